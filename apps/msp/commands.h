@@ -1,0 +1,8 @@
+#pragma once
+// The msp subcommands. Each takes the arguments after its name and returns the exit status;
+// errors are thrown (ricci::Error, msp::UsageError) and reported by main().
+namespace msp {
+
+int run_info(int argc, char** argv);
+
+}  // namespace msp

@@ -1,0 +1,57 @@
+// msp: the manifold-spline command-line tool. Dispatches to one subcommand per file.
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include <ricci/mesh/errors.h>
+
+#include "msp/cli.h"
+#include "msp/commands.h"
+
+namespace {
+
+struct Subcommand {
+  const char* name;
+  int (*run)(int, char**);
+  const char* summary;
+};
+
+const Subcommand kSubcommands[] = {
+    {"info", msp::run_info, "describe a mesh: counts, topology, defects (--json)"},
+};
+
+void print_usage() {
+  std::cerr << "usage: msp <command> [options]\n\ncommands:\n";
+  for (const auto& c : kSubcommands) std::cerr << "  " << c.name << "\t" << c.summary << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    print_usage();
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string name = argv[1];
+  for (const auto& c : kSubcommands) {
+    if (name != c.name) continue;
+    try {
+      return c.run(argc - 2, argv + 2);
+    } catch (const msp::UsageError& e) {
+      std::cerr << "msp " << name << ": " << e.what() << "\n";
+      return 2;
+    } catch (const ricci::Error& e) {
+      std::cerr << "msp " << name << ": error: " << e.what() << "\n";
+      return 1;
+    } catch (const std::bad_alloc&) {
+      std::cerr << "msp " << name << ": error: out of memory\n";
+      return 1;
+    } catch (const std::exception& e) {
+      std::cerr << "msp " << name << ": internal error: " << e.what() << "\n";
+      return 3;
+    }
+  }
+  std::cerr << "msp: unknown command '" << name << "' (msp --help lists them)\n";
+  return 2;
+}

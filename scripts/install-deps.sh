@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs, from Debian packages, whatever the build, the tests and the demo need and is missing.
+# Idempotent: when everything is present it changes nothing and does not touch the network.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build ccache pkg-config
+  libeigen3-dev libopenmesh-dev libcgal-dev libosd-dev
+  libtinygltf-dev libstb-dev nlohmann-json3-dev zlib1g-dev
+  libsuitesparse-dev libopenblas0-pthread
+  libgtest-dev
+)
+# Node.js may come from another source (with its own npm); only ask Debian for it when absent.
+command -v node >/dev/null 2>&1 || PACKAGES+=(nodejs)
+command -v npm >/dev/null 2>&1 || PACKAGES+=(npm)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "install-deps: installing ${missing[*]}" >&2
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "install-deps: all Debian packages present" >&2
+fi
