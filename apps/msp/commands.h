@@ -4,5 +4,10 @@
 namespace msp {
 
 int run_info(int argc, char** argv);
+int run_generate(int argc, char** argv);
+int run_flow(int argc, char** argv);
+int run_atlas(int argc, char** argv);
+int run_uniformize(int argc, char** argv);
+int run_fit(int argc, char** argv);
 
 }  // namespace msp

@@ -19,6 +19,11 @@ struct Subcommand {
 
 const Subcommand kSubcommands[] = {
     {"info", msp::run_info, "describe a mesh: counts, topology, defects (--json)"},
+    {"generate", msp::run_generate, "mesh a closed or open test surface of a given genus"},
+    {"flow", msp::run_flow, "discrete Ricci flow to a target curvature (E2, H2, S2)"},
+    {"atlas", msp::run_atlas, "one-cone flat metric, cut graph, layout and affine atlas"},
+    {"uniformize", msp::run_uniformize, "hyperbolic / spherical / flat uniformization structures"},
+    {"fit", msp::run_fit, "fit a manifold spline to a mesh and export glTF"},
 };
 
 void print_usage() {
