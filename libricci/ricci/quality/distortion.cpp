@@ -68,13 +68,13 @@ double percentile(std::vector<double>& values, double q) {
   return values[k];
 }
 
-}  // namespace
-
-Eigen::VectorXd mesh_edge_lengths(const Mesh& mesh) {
+Eigen::VectorXd embedded_lengths(const Mesh& mesh) {
   Eigen::VectorXd lengths(mesh.n_edges());
   for (auto e : mesh.edges()) lengths[e.idx()] = mesh.calc_edge_length(e);
   return lengths;
 }
+
+}  // namespace
 
 DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& lengths,
                                     const DistortionOptions& options) {
@@ -82,7 +82,7 @@ DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& len
     throw InvalidInputError("distortion: " + std::to_string(lengths.size()) + " lengths for " +
                             std::to_string(mesh.n_edges()) + " edges");
   }
-  const Eigen::VectorXd original = mesh_edge_lengths(mesh);
+  const Eigen::VectorXd original = embedded_lengths(mesh);
   std::vector<double> log_surface, log_flat, ratios, qc;
   for (auto f : mesh.faces()) {
     if (!options.excluded_faces.empty() && options.excluded_faces[f.idx()]) continue;

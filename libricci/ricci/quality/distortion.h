@@ -32,7 +32,4 @@ struct DistortionReport {
 [[nodiscard]] DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& lengths,
                                                   const DistortionOptions& options = {});
 
-/// The mesh's own edge lengths, by edge index.
-[[nodiscard]] Eigen::VectorXd mesh_edge_lengths(const Mesh& mesh);
-
 }  // namespace ricci
