@@ -22,7 +22,7 @@ struct SingularityOptions {
   int max_ranked_vertices = 5000;
   /// Flow settings for the verifying flows (tolerance 1e-9 is plenty to compare distortions).
   FlowOptions flow = [] {
-    FlowOptions o;
+    FlowOptions o = one_cone_flow_options();
     o.tolerance = 1e-9;
     return o;
   }();

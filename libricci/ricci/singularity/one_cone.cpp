@@ -58,6 +58,13 @@ std::string to_string(OneConeKind kind) {
   return "unknown";
 }
 
+FlowOptions one_cone_flow_options() {
+  FlowOptions options;
+  options.scheme = Scheme::CirclePacking;
+  options.radii = RadiusInit::Min;
+  return options;
+}
+
 int count_boundary_loops(const Mesh& mesh) {
   std::vector<char> seen(mesh.n_halfedges(), 0);
   int loops = 0;
