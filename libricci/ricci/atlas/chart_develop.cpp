@@ -86,8 +86,8 @@ Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
       c[m] = corners[next][(k + 2) % 3];        // to(o) = from(hs[k])
       c[(m + 2) % 3] = corners[next][k];        // from(o) = to(hs[k])
       const Eigen::Vector2d p = place_third_vertex(
-          positions[c[(m + 2) % 3]], positions[c[m]], length(o),
-          length(mesh.prev_halfedge_handle(o)), length(mesh.next_halfedge_handle(o)));
+          positions[c[(m + 2) % 3]], positions[c[m]], length(mesh.prev_halfedge_handle(o)),
+          length(mesh.next_halfedge_handle(o)));
       c[(m + 1) % 3] = new_vertex(p, mesh.to_vertex_handle(gs[(m + 1) % 3]).idx());
       it->second = static_cast<int>(order.size());
       order.push_back(g.idx());

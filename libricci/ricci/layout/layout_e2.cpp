@@ -74,17 +74,26 @@ double corner_angle_from_lengths(double opposite, double b, double c) {
   return 2.0 * std::atan2(std::sqrt(std::max(0.0, s_b * s_c)), std::sqrt(std::max(0.0, s * s_a)));
 }
 
-Eigen::Vector2d place_third_vertex(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double l_ab,
-                                   double l_ac, double l_bc) {
-  const Eigen::Vector2d e = (b - a).normalized();
-  const Eigen::Vector2d n(-e.y(), e.x());
-  const double theta = corner_angle_from_lengths(l_bc, l_ab, l_ac);
-  return a + l_ac * (std::cos(theta) * e + std::sin(theta) * n);
+double triangle_area_from_lengths(double a, double b, double c) {
+  // Kahan's ordering of Heron's formula: accurate to a few ulps even for needles, where
+  // sqrt(l^2 - x^2) in a naive circle intersection loses half the digits.
+  if (a < b) std::swap(a, b);
+  if (b < c) std::swap(b, c);
+  if (a < b) std::swap(a, b);
+  const double p = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
+  return 0.25 * std::sqrt(std::max(0.0, p));
 }
 
 Eigen::Vector2d place_third_vertex(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double l_ac,
                                    double l_bc) {
-  return place_third_vertex(a, b, (b - a).norm(), l_ac, l_bc);
+  const Eigen::Vector2d ab = b - a;
+  const double d = ab.norm();
+  const Eigen::Vector2d e = ab / d;
+  const Eigen::Vector2d n(-e.y(), e.x());
+  // Foot of the altitude from the two circle equations; height from the stable area.
+  const double x = (d * d + l_ac * l_ac - l_bc * l_bc) / (2.0 * d);
+  const double y = 2.0 * triangle_area_from_lengths(d, l_ac, l_bc) / d;
+  return a + x * e + y * n;
 }
 
 void measure_layout(const Mesh& mesh, const Eigen::VectorXd& lengths,
@@ -141,7 +150,7 @@ LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& lengths,
   result.positions.row(b.idx()) = Eigen::RowVector2d(length_of(mesh, lengths, h0), 0.0);
   result.positions.row(c.idx()) = place_third_vertex(
       Eigen::Vector2d::Zero(), Eigen::Vector2d(length_of(mesh, lengths, h0), 0.0),
-      length_of(mesh, lengths, h0), length_of(mesh, lengths, mesh.prev_halfedge_handle(h0)),
+      length_of(mesh, lengths, mesh.prev_halfedge_handle(h0)),
       length_of(mesh, lengths, mesh.next_halfedge_handle(h0)));
   placed[a.idx()] = placed[b.idx()] = placed[c.idx()] = 1;
   reached[seed.idx()] = 1;
@@ -162,8 +171,7 @@ LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& lengths,
       const Eigen::Vector2d pa = result.positions.row(mesh.from_vertex_handle(o).idx());
       const Eigen::Vector2d pb = result.positions.row(mesh.to_vertex_handle(o).idx());
       result.positions.row(w.idx()) =
-          place_third_vertex(pa, pb, length_of(mesh, lengths, o),
-                             length_of(mesh, lengths, mesh.prev_halfedge_handle(o)),
+          place_third_vertex(pa, pb, length_of(mesh, lengths, mesh.prev_halfedge_handle(o)),
                              length_of(mesh, lengths, mesh.next_halfedge_handle(o)));
       placed[w.idx()] = 1;
     }

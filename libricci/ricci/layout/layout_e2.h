@@ -37,18 +37,17 @@ struct LayoutE2Result {
 [[nodiscard]] LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
                                        const LayoutE2Options& options = {});
 
-/// Places c on the left of a->b (counter-clockwise triangle a, b, c) at distance l_ac from a and
-/// at the angle the metric lengths (l_ab, l_ac, l_bc) give at a. The angle comes from the
-/// half-angle formula, stable for needle triangles; only the direction of b - a is used.
-/// \pre the three lengths satisfy the triangle inequality (a violation is clamped to 0 or pi).
-[[nodiscard]] Eigen::Vector2d place_third_vertex(const Eigen::Vector2d& a,
-                                                 const Eigen::Vector2d& b, double l_ab,
-                                                 double l_ac, double l_bc);
-
-/// Same with l_ab = |b - a|: c lies on both circles |c - a| = l_ac and |c - b| = l_bc.
+/// Places c so that |c - a| = l_ac, |c - b| = l_bc and (a, b, c) is counter-clockwise: the
+/// intersection of two circles, with the height taken from Kahan's stable Heron formula so that
+/// needle triangles keep all their digits. A triangle inequality violation is clamped (c lands
+/// on the line through a and b).
 [[nodiscard]] Eigen::Vector2d place_third_vertex(const Eigen::Vector2d& a,
                                                  const Eigen::Vector2d& b, double l_ac,
                                                  double l_bc);
+
+/// Area of a triangle with side lengths a, b, c (Kahan's ordering of Heron's formula); 0 when
+/// the triangle inequality fails.
+[[nodiscard]] double triangle_area_from_lengths(double a, double b, double c);
 
 /// Angle opposite the side `opposite` in a triangle with sides (opposite, b, c), by the stable
 /// half-angle formula. Clamped to [0, pi] when the triangle inequality fails.
