@@ -61,6 +61,11 @@ struct FlowOptions {
   LinearSolver solver = LinearSolver::Auto;
   /// Halvings of a Newton step before the line search gives up.
   int max_step_halvings = 40;
+  /// When the run from (scheme, radii) does not converge, retry from the next metric of
+  /// inversive-distance/mean → inversive-distance/min → circle-packing/mean → combinatorial
+  /// (the last always satisfies Thurston's conditions for cones of valence ≥ 4 - 2K̄/π, but is
+  /// not conformal to the mesh). The result records the metric that converged and the attempts.
+  bool fall_back_to_other_metrics = false;
   /// Optional progress report (never called from another thread).
   std::function<void(const FlowProgress&)> progress;
 };
@@ -97,6 +102,8 @@ struct FlowResult {
   /// The factorisation actually used (after any fallback).
   LinearSolver solver = LinearSolver::Auto;
   FlowTimings timings;
+  /// One line per run that did not converge before the reported one (fall-back mode).
+  std::vector<std::string> failed_attempts;
 
   bool converged() const { return status == FlowStatus::Converged; }
 };

@@ -92,6 +92,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   double error = max_error(state, run.target);
   double merit = (state.curvature - run.target).squaredNorm();
   int crawling = 0;  // consecutive iterations whose step was cut hard by broken triangles
+  int recent_broken = 0;  // iterations with broken trial triangles in the last window
   result.error_history.push_back(error);
   while (error >= o.tolerance) {
     if (result.iterations >= o.max_newton_iterations) {
@@ -142,8 +143,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
       result.status = triangles ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
       result.message = failure_message(
           run, state, result.status,
-          triangles ? "every shortened Newton step broke a triangle (face " +
-                          std::to_string(trial.bad_face) + ")"
+          triangles ? std::string("every shortened Newton step broke a triangle")
                     : "the line search found no decrease of the curvature error (rounding floor "
                       "or a non-convex energy)");
       return;
@@ -155,6 +155,23 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     result.error_history.push_back(error);
     if (o.progress) o.progress({result.iterations, error, t_step, seconds_since(run.start)});
     crawling = (broken > 0 && t_step < 1e-3) ? crawling + 1 : 0;
+    recent_broken += broken > 0 ? 1 : 0;
+    // Newton converges quadratically once it is near the answer; ten iterations without halving
+    // the error mean it is creeping along the boundary of the admissible metrics.
+    constexpr int kWindow = 10;
+    if (result.iterations % kWindow == 0) {
+      const double before = result.error_history[result.error_history.size() - 1 - kWindow];
+      if (error > 0.5 * before) {
+        result.status = recent_broken > 0 ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
+        result.message = failure_message(
+            run, state, result.status,
+            "the error fell from " + std::to_string(before) + " to only " + std::to_string(error) +
+                " in " + std::to_string(kWindow) + " iterations" +
+                (recent_broken > 0 ? " while steps kept breaking triangles" : ""));
+        return;
+      }
+      recent_broken = 0;
+    }
     if (crawling >= 8) {
       result.status = FlowStatus::TriangleInequality;
       result.message = failure_message(run, state, result.status,

@@ -304,28 +304,52 @@ void count_duplicate_vertices(Context& c) {
   for (size_t k = 1; k < order.size(); ++k) c.d.duplicate_vertices += p[order[k - 1]] == p[order[k]];
 }
 
+/// Faces on the same vertex set, found by sorting (hash of the sorted face, face) pairs and
+/// comparing the faces of equal hashes exactly.
 void count_duplicate_faces(Context& c) {
   const auto& faces = c.soup.faces;
-  std::vector<std::vector<int>> keys;
-  std::vector<int> order;
+  std::vector<std::pair<uint64_t, int>> keyed;
+  std::vector<int> sorted_a, sorted_b;
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!c.use_face[f]) continue;
-    keys.emplace_back(faces[f]);
-    std::sort(keys.back().begin(), keys.back().end());
-    order.push_back(static_cast<int>(keys.size() - 1));
+    sorted_a.assign(faces[f].begin(), faces[f].end());
+    std::sort(sorted_a.begin(), sorted_a.end());
+    uint64_t hash = 1469598103934665603ULL;
+    for (int v : sorted_a) hash = (hash ^ static_cast<uint32_t>(v)) * 1099511628211ULL;
+    keyed.push_back({hash, static_cast<int>(f)});
   }
-  std::vector<int> face_of;
-  for (size_t f = 0; f < faces.size(); ++f)
-    if (c.use_face[f]) face_of.push_back(static_cast<int>(f));
-  std::stable_sort(order.begin(), order.end(), [&keys](int a, int b) { return keys[a] < keys[b]; });
+  std::sort(keyed.begin(), keyed.end());
+  auto same_set = [&](int f, int g) {
+    if (faces[f].size() != faces[g].size()) return false;
+    sorted_a.assign(faces[f].begin(), faces[f].end());
+    sorted_b.assign(faces[g].begin(), faces[g].end());
+    std::sort(sorted_a.begin(), sorted_a.end());
+    std::sort(sorted_b.begin(), sorted_b.end());
+    return sorted_a == sorted_b;
+  };
   int first_a = -1, first_b = -1;
-  for (size_t k = 1; k < order.size(); ++k) {
-    if (keys[order[k - 1]] != keys[order[k]]) continue;
-    ++c.d.duplicate_faces;
-    if (first_a < 0 || face_of[order[k]] < first_b) {
-      first_a = face_of[order[k - 1]];
-      first_b = face_of[order[k]];
+  std::vector<int> representatives;
+  for (size_t i = 0; i < keyed.size();) {
+    size_t j = i + 1;
+    while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+    // Within a run of equal hashes (nearly always one vertex set), compare with the distinct
+    // sets seen so far in the run; a face equal to one of them is a duplicate.
+    representatives.assign(1, keyed[i].second);
+    for (size_t k = i + 1; k < j; ++k) {
+      const int f = keyed[k].second;
+      const auto match = std::find_if(representatives.begin(), representatives.end(),
+                                      [&](int g) { return same_set(g, f); });
+      if (match == representatives.end()) {
+        representatives.push_back(f);
+        continue;
+      }
+      ++c.d.duplicate_faces;
+      if (first_b < 0 || f < first_b) {
+        first_a = *match;
+        first_b = f;
+      }
     }
+    i = j;
   }
   if (first_a >= 0)
     add_problem(c.d, MeshProblemKind::kDuplicateFace, c.d.duplicate_faces,
@@ -334,20 +358,26 @@ void count_duplicate_faces(Context& c) {
                 "duplicate faces");
 }
 
-/// Zero-area faces (vector area <= 1e-12 * bbox_diagonal^2, scale-invariant) and the smallest
-/// triangle angle.
+/// Zero-area faces and the smallest triangle angle. A face is degenerate when its area is at most
+/// 1e-12 * (longest side)^2, i.e. its corners are collinear to 12 digits (or coincide). The test
+/// is scale-invariant and judges shape, not size: a tiny well-shaped triangle (marching-cubes
+/// meshes have them) is fine for the pipeline, a needle with collinear corners is not.
 void measure_faces(Context& c) {
   const auto& p = c.soup.positions;
-  const double tolerance = 1e-12 * c.d.bbox_diagonal * c.d.bbox_diagonal;
   double min_cos_angle = 2;  // cosine of the smallest angle seen; 2 = none yet
   int first_zero = -1, zero = 0;
   for (size_t f = 0; f < c.soup.faces.size(); ++f) {
     if (!c.use_face[f]) continue;
     const auto& face = c.soup.faces[f];
     Eigen::Vector3d area = Eigen::Vector3d::Zero();
-    for (size_t k = 1; k + 1 < face.size(); ++k)
-      area += (p[face[k]] - p[face[0]]).cross(p[face[k + 1]] - p[face[0]]);
-    if (0.5 * area.norm() <= tolerance) {  // false for NaN: those are reported apart
+    double longest_squared = 0;
+    for (size_t k = 0; k < face.size(); ++k) {
+      longest_squared = std::max(longest_squared,
+                                 (p[face[(k + 1) % face.size()]] - p[face[k]]).squaredNorm());
+      if (k >= 1 && k + 1 < face.size())
+        area += (p[face[k]] - p[face[0]]).cross(p[face[k + 1]] - p[face[0]]);
+    }
+    if (0.5 * area.norm() <= 1e-12 * longest_squared) {  // false for NaN: reported apart
       ++zero;
       if (first_zero < 0) first_zero = static_cast<int>(f);
     }

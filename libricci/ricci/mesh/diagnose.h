@@ -54,7 +54,7 @@ struct MeshDiagnosis {
   bool consistently_oriented = true;  ///< no directed edge is used twice
   int non_manifold_edges = 0;
   int non_manifold_vertices = 0;
-  int degenerate_faces = 0;       ///< repeated index, or area <= 1e-12 * bbox_diagonal^2
+  int degenerate_faces = 0;       ///< repeated index, or area <= 1e-12 * (longest side)^2
   int duplicate_vertices = 0;     ///< vertices at exactly the position of an earlier one
   int duplicate_faces = 0;        ///< faces on the same vertex set as an earlier one
   int bad_faces = 0;              ///< faces with < 3 vertices or an out-of-range index

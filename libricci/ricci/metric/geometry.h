@@ -51,9 +51,13 @@ inline double geometry_cosine(Geometry g, double x) {
 /// perimeter reaches 2π.
 inline bool triangle_angles(Geometry g, const double l[3], double theta[3],
                             double* cosine = nullptr, double* sine = nullptr) {
-  // s - l_k computed as (l_a + l_b - l_k)/2: exact for the degenerate test.
-  const double d[3] = {0.5 * (l[1] + l[2] - l[0]), 0.5 * (l[2] + l[0] - l[1]),
-                       0.5 * (l[0] + l[1] - l[2])};
+  // s - l_k = (l_a + l_b - l_k)/2 with the subtraction done first against the longer of l_a,
+  // l_b: exact by Sterbenz's lemma when they are close, so needles keep their small angles.
+  double d[3];
+  for (int k = 0; k < 3; ++k) {
+    const double a = l[(k + 1) % 3], b = l[(k + 2) % 3];
+    d[k] = 0.5 * ((std::max(a, b) - l[k]) + std::min(a, b));
+  }
   const double s = 0.5 * (l[0] + l[1] + l[2]);
   if (!(d[0] > 0 && d[1] > 0 && d[2] > 0)) return false;
   if (g == Geometry::Spherical && !(s < M_PI)) return false;

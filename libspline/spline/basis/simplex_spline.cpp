@@ -84,7 +84,7 @@ int SimplexSplineDag::add(std::uint32_t mask) {
     node.knot[0] = static_cast<std::uint8_t>(ia);
     node.knot[1] = static_cast<std::uint8_t>(orientation > 0 ? ib : ic);
     node.knot[2] = static_cast<std::uint8_t>(orientation > 0 ? ic : ib);
-    node.data[0] = 1.0 / best;
+    node.data[0] = 1.0 / std::abs(accurate_det2d(knots_[ia], knots_[ib], knots_[ic]));
   } else if (orientation != 0) {
     const int triple[3] = {ia, ib, ic};
     for (int k = 0; k < 3; ++k) {
@@ -95,7 +95,7 @@ int SimplexSplineDag::add(std::uint32_t mask) {
       node.knot[k] = static_cast<std::uint8_t>(triple[k]);
     }
     const Eigen::Vector2d e1 = knots_[ib] - knots_[ia], e2 = knots_[ic] - knots_[ia];
-    const double det = cross(e1, e2);
+    const double det = accurate_det2d(knots_[ia], knots_[ib], knots_[ic]);
     node.kind = Kind::recurrence;
     node.data[0] = e2.y() / det;
     node.data[1] = -e2.x() / det;
@@ -122,11 +122,10 @@ void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,
       }
       continue;
     }
-    const Eigen::Vector2d w = u - knots_[node.knot[0]];
     const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
-    const double lb = g_b.dot(w), lc = g_c.dot(w);
-    const double lambda[3] = {1.0 - lb - lc, lb, lc};
     const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+    const double lambda[3] = {barycentric(node, 0, g[0], u), barycentric(node, 1, g[1], u),
+                              barycentric(node, 2, g[2], u)};
     double hxx = 0.0, hxy = 0.0, hyy = 0.0;
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
@@ -160,10 +159,10 @@ void SimplexSplineDag::evaluate_directional(const Eigen::Vector2d& u,
       }
       continue;
     }
-    const Eigen::Vector2d w = u - knots_[node.knot[0]];
     const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
-    const double lb = g_b.dot(w), lc = g_c.dot(w);
-    const double lambda[3] = {1.0 - lb - lc, lb, lc};
+    const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+    const double lambda[3] = {barycentric(node, 0, g[0], u), barycentric(node, 1, g[1], u),
+                              barycentric(node, 2, g[2], u)};
     const double mb = g_b.dot(direction), mc = g_c.dot(direction);
     const double mu[3] = {-mb - mc, mb, mc};
     for (int k = 0; k < 3; ++k) {

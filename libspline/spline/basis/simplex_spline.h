@@ -65,8 +65,11 @@ class SimplexSplineDag {
   static constexpr std::uint16_t kNoChild = 0xFFFF;
   // 64 bytes: a degree-5 triangle has ~700 nodes, and a domain thousands of triangles.
   struct Node {
-    // base: 1/|d| in data[0]. recurrence: lambda_b = g_b.(u - x_a), lambda_c = g_c.(u - x_a),
-    // lambda_a = 1 - lambda_b - lambda_c with g_b = data[0..1], g_c = data[2..3].
+    // base: 1/|d| in data[0]. recurrence: lambda_k(u) = g_k.(u - s) for the triple k = a, b, c
+    // with g_b = data[0..1], g_c = data[2..3], g_a = -g_b - g_c, and s either end of the edge
+    // opposite x_k (knot[(k+1)%3], knot[(k+2)%3]; lambda_k vanishes at both): the one nearer to
+    // u, since the rounding error is eps |g_k| |u - s| and thin triples (two knots of one cloud
+    // and a far knot) have large |g_k|.
     double data[4] = {0.0, 0.0, 0.0, 0.0};
     float box[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // knots' bounding box, rounded outwards
     std::uint16_t child[3] = {kNoChild, kNoChild, kNoChild};  // X \ x_a, X \ x_b, X \ x_c
@@ -74,6 +77,12 @@ class SimplexSplineDag {
     Kind kind = Kind::zero;
     std::uint8_t degree = 0;
   };
+  double barycentric(const Node& node, int k, const Eigen::Vector2d& g_k,
+                     const Eigen::Vector2d& u) const {
+    const Eigen::Vector2d wp = u - knots_[node.knot[(k + 1) % 3]];
+    const Eigen::Vector2d wq = u - knots_[node.knot[(k + 2) % 3]];
+    return g_k.dot(wp.squaredNorm() <= wq.squaredNorm() ? wp : wq);
+  }
   bool outside(const Node& node, const Eigen::Vector2d& u) const {
     // Strictly outside the closed box: u and its perturbation lie outside the knots' hull.
     return u.x() < node.box[0] || u.y() < node.box[1] || u.x() > node.box[2] ||
