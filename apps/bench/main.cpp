@@ -21,6 +21,8 @@ const Benchmark kBenchmarks[] = {
      "one row of 'flow' in this process (used by 'flow' through a child process)"},
     {"solvers", msp::bench::run_solver_benchmark,
      "factorisations of the E2 Newton Hessian: Eigen LDLT/LLT vs CHOLMOD supernodal/simplicial"},
+    {"mesh-io", msp::bench::run_mesh_io_benchmark,
+     "read stages (parse, diagnose, build) on the largest shared models vs OpenMesh's reader"},
 };
 
 void usage() {
