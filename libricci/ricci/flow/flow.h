@@ -1,0 +1,124 @@
+#pragma once
+// Discrete surface Ricci flow: find the circle-packing metric conformal to the mesh's whose
+// vertex curvature is a given target, by Newton's method on the convex Ricci energy (or the
+// papers' gradient descent, for comparison). ALGORITHMS.md §3; discrete-surface-ricci-flow §V;
+// ricci-flow-3d-shape-analysis §3.5-4.
+//
+//   ricci::Targets targets = ricci::uniform_target(mesh, ricci::Geometry::Euclidean);
+//   ricci::FlowResult result = ricci::flow(mesh, targets);
+//   if (!result.converged()) std::cerr << result.message;
+//   use(result.lengths);
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ricci/flow/linear_solver.h"
+#include "ricci/flow/targets.h"
+#include "ricci/mesh/mesh.h"
+#include "ricci/metric/circle_packing.h"
+#include "ricci/metric/geometry.h"
+#include "ricci/metric/mesh_tables.h"
+
+namespace ricci {
+
+enum class FlowMethod { Newton, GradientDescent };
+
+enum class FlowStatus {
+  Converged,          ///< max |K - K̄| < tolerance
+  MaxIterations,      ///< iteration budget spent while still making progress
+  Stalled,            ///< the line search found no decrease (or the factorisation failed)
+  TriangleInequality  ///< every trial step broke a triangle: the target is out of reach
+};
+
+std::string to_string(FlowStatus status);
+std::string to_string(FlowMethod method);
+
+/// One line of progress, reported after each iteration (Newton) or every 100 (gradient).
+struct FlowProgress {
+  int iteration = 0;
+  double max_error = 0;  ///< max |K - K̄| after the iteration
+  double step = 0;       ///< line-search step length taken (1 = full Newton step)
+  double seconds = 0;    ///< since the solve started
+};
+
+struct FlowOptions {
+  Geometry geometry = Geometry::Euclidean;
+  Scheme scheme = Scheme::InversiveDistance;
+  RadiusInit radii = RadiusInit::Mean;
+  FlowMethod method = FlowMethod::Newton;
+  /// Stop when max_i |K_i - K̄_i| is below this (radians).
+  double tolerance = 1e-10;
+  /// Newton iterations allowed.
+  int max_newton_iterations = 60;
+  /// Gradient-descent iterations allowed.
+  int max_gradient_iterations = 2000000;
+  /// Initial gradient-descent step ε in u += ε (K̄ - K) (the papers use ≤ 0.05); halved when
+  /// the error grows or a triangle breaks.
+  double gradient_step = 0.1;
+  /// Sparse factorisation for Newton (Auto = CHOLMOD supernodal, measured fastest here).
+  LinearSolver solver = LinearSolver::Auto;
+  /// Halvings of a Newton step before the line search gives up.
+  int max_step_halvings = 40;
+  /// When the run from (scheme, radii) does not converge, retry from the next metric of
+  /// inversive-distance/mean → inversive-distance/min → circle-packing/mean → combinatorial
+  /// (the last always satisfies Thurston's conditions for cones of valence ≥ 4 - 2K̄/π, but is
+  /// not conformal to the mesh). The result records the metric that converged and the attempts.
+  bool fall_back_to_other_metrics = false;
+  /// Optional progress report (never called from another thread).
+  std::function<void(const FlowProgress&)> progress;
+};
+
+/// Where the solve's time went (seconds).
+struct FlowTimings {
+  double setup = 0;          ///< tables, initial metric, target check
+  double evaluation = 0;     ///< lengths, angles, curvature (including line-search trials)
+  double assembly = 0;       ///< Hessian values
+  double analysis = 0;       ///< symbolic factorisation (once)
+  double factorization = 0;  ///< numeric factorisations
+  double solve = 0;          ///< triangular solves
+  double total = 0;          ///< whole call, from the mesh to the result
+};
+
+struct FlowResult {
+  FlowStatus status = FlowStatus::Stalled;
+  /// Empty when converged; otherwise one paragraph naming the worst vertices and what to try.
+  std::string message;
+  /// The final metric: radii at the end of the flow and the fixed edge quantities.
+  CirclePackingMetric metric;
+  /// Flow variables (log-radii in E2) and the metric's edge lengths, by index.
+  Eigen::VectorXd u;
+  EdgeLengths lengths;
+  /// Final vertex curvature and target.
+  Eigen::VectorXd curvature, target;
+  /// Lengths of the mesh were multiplied by this before the flow (1 in E2; in H2/S2 the mesh is
+  /// scaled so that its area matches the area Gauss-Bonnet gives the target).
+  double length_scale = 1;
+  /// max |K - K̄| before the first iteration and after each one.
+  std::vector<double> error_history;
+  int iterations = 0;
+  double max_error = 0;
+  /// The factorisation actually used (after any fallback).
+  LinearSolver solver = LinearSolver::Auto;
+  FlowTimings timings;
+  /// One line per run that did not converge before the reported one (fall-back mode).
+  std::vector<std::string> failed_attempts;
+
+  bool converged() const { return status == FlowStatus::Converged; }
+};
+
+/// Runs the flow from the initial metric of the mesh (options.scheme, options.radii).
+/// \pre a connected triangle 2-manifold (closed or with boundary) without degenerate faces.
+/// \throw InfeasibleTargetError before any work when the target violates Gauss-Bonnet or a cone
+///        needs more valence; InvalidInputError for bad sizes or degenerate faces. Failure to
+///        converge is a status with a best-effort payload, not an exception.
+[[nodiscard]] FlowResult flow(const Mesh& mesh, const Targets& targets,
+                              const FlowOptions& options = {});
+
+/// Runs the flow from a given initial metric (its geometry overrides options.geometry).
+/// \throw as above.
+[[nodiscard]] FlowResult flow(const MeshTables& tables, const CirclePackingMetric& initial,
+                              const Targets& targets, const FlowOptions& options = {});
+
+}  // namespace ricci

@@ -1,0 +1,77 @@
+#include "ricci/flow/linear_solver.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCholesky>
+
+#include "ricci/mesh/errors.h"
+
+namespace ricci {
+
+std::string to_string(LinearSolver solver) {
+  switch (solver) {
+    case LinearSolver::Auto: return "auto";
+    case LinearSolver::EigenLDLT: return "eigen-ldlt";
+    case LinearSolver::EigenLLT: return "eigen-llt";
+    case LinearSolver::CholmodSupernodal: return "cholmod-supernodal";
+    default: return "cholmod-simplicial";
+  }
+}
+
+namespace {
+using Sparse = Eigen::SparseMatrix<double>;
+}  // namespace
+
+struct SymmetricFactorization::Impl {
+  Eigen::SimplicialLDLT<Sparse, Eigen::Lower> eigen_ldlt;
+  Eigen::SimplicialLLT<Sparse, Eigen::Lower> eigen_llt;
+  Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> cholmod_supernodal;
+  Eigen::CholmodSimplicialLDLT<Sparse, Eigen::Lower> cholmod_simplicial;
+};
+
+SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
+    : kind_(kind == LinearSolver::Auto ? LinearSolver::CholmodSupernodal : kind),
+      impl_(std::make_unique<Impl>()) {
+  // CHOLMOD reports a non-positive-definite matrix on stderr unless told not to; the caller
+  // handles the failure (libraries never print).
+  impl_->cholmod_supernodal.cholmod().print = 0;
+  impl_->cholmod_simplicial.cholmod().print = 0;
+}
+
+SymmetricFactorization::~SymmetricFactorization() = default;
+
+void SymmetricFactorization::analyze(const Sparse& lower) {
+  switch (kind_) {
+    case LinearSolver::EigenLDLT: impl_->eigen_ldlt.analyzePattern(lower); break;
+    case LinearSolver::EigenLLT: impl_->eigen_llt.analyzePattern(lower); break;
+    case LinearSolver::CholmodSupernodal: impl_->cholmod_supernodal.analyzePattern(lower); break;
+    default: impl_->cholmod_simplicial.analyzePattern(lower); break;
+  }
+}
+
+bool SymmetricFactorization::factorize(const Sparse& lower) {
+  switch (kind_) {
+    case LinearSolver::EigenLDLT:
+      impl_->eigen_ldlt.factorize(lower);
+      return impl_->eigen_ldlt.info() == Eigen::Success;
+    case LinearSolver::EigenLLT:
+      impl_->eigen_llt.factorize(lower);
+      return impl_->eigen_llt.info() == Eigen::Success;
+    case LinearSolver::CholmodSupernodal:
+      impl_->cholmod_supernodal.factorize(lower);
+      return impl_->cholmod_supernodal.info() == Eigen::Success;
+    default:
+      impl_->cholmod_simplicial.factorize(lower);
+      return impl_->cholmod_simplicial.info() == Eigen::Success;
+  }
+}
+
+Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const {
+  switch (kind_) {
+    case LinearSolver::EigenLDLT: return impl_->eigen_ldlt.solve(rhs);
+    case LinearSolver::EigenLLT: return impl_->eigen_llt.solve(rhs);
+    case LinearSolver::CholmodSupernodal: return impl_->cholmod_supernodal.solve(rhs);
+    default: return impl_->cholmod_simplicial.solve(rhs);
+  }
+}
+
+}  // namespace ricci

@@ -1,0 +1,185 @@
+// Newton's method on the Ricci energy: H δu = K̄ - K with H = ∂K/∂u, backtracking on the
+// curvature residual (the Newton direction decreases ‖K - K̄‖² whether or not H is definite,
+// which matters in S2).
+#include <cmath>
+
+#include "ricci/flow/flow_internal.h"
+#include "ricci/flow/hessian.h"
+#include "ricci/flow/linear_solver.h"
+
+namespace ricci::detail {
+
+namespace {
+
+// Adds sigma to the diagonal of a lower-triangular CSC matrix (first entry of each column).
+void shift_diagonal(Eigen::SparseMatrix<double>& lower, double sigma) {
+  for (int j = 0; j < lower.outerSize(); ++j) lower.valuePtr()[lower.outerIndexPtr()[j]] += sigma;
+}
+
+double max_abs_diagonal(const Eigen::SparseMatrix<double>& lower) {
+  double m = 0;
+  for (int j = 0; j < lower.outerSize(); ++j) {
+    m = std::max(m, std::abs(lower.valuePtr()[lower.outerIndexPtr()[j]]));
+  }
+  return m;
+}
+
+// Owns the factorisation and its fallbacks: an LLT that fails (the energy is not convex, e.g.
+// in S2 or for inversive distances below 1) switches to LDLT for the rest of the run; if that
+// fails too, a growing diagonal shift makes the system solvable (a damped Newton step).
+class NewtonSystem {
+ public:
+  NewtonSystem(LinearSolver kind, const Eigen::SparseMatrix<double>& pattern, FlowTimings& timings)
+      : factorization_(std::make_unique<SymmetricFactorization>(kind)), timings_(timings) {
+    const auto t0 = Clock::now();
+    factorization_->analyze(pattern);
+    timings_.analysis += seconds_since(t0);
+  }
+
+  LinearSolver kind() const { return factorization_->kind(); }
+
+  // Solves H x = rhs; returns false if no factorisation gave a finite solution.
+  bool solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+    if (try_solve(H, rhs, x)) return true;
+    if (kind() != LinearSolver::EigenLDLT) {
+      factorization_ = std::make_unique<SymmetricFactorization>(LinearSolver::EigenLDLT);
+      const auto t0 = Clock::now();
+      factorization_->analyze(H);
+      timings_.analysis += seconds_since(t0);
+      if (try_solve(H, rhs, x)) return true;
+    }
+    Eigen::SparseMatrix<double> shifted = H;
+    const double scale = std::max(max_abs_diagonal(H), 1e-300);
+    for (double sigma = 1e-10 * scale; sigma < 10 * scale; sigma *= 100) {
+      shifted = H;
+      shift_diagonal(shifted, sigma);
+      if (try_solve(shifted, rhs, x)) return true;
+    }
+    return false;
+  }
+
+ private:
+  bool try_solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs,
+                 Eigen::VectorXd& x) {
+    auto t0 = Clock::now();
+    const bool ok = factorization_->factorize(H);
+    timings_.factorization += seconds_since(t0);
+    if (!ok) return false;
+    t0 = Clock::now();
+    x = factorization_->solve(rhs);
+    timings_.solve += seconds_since(t0);
+    return x.allFinite();
+  }
+
+  std::unique_ptr<SymmetricFactorization> factorization_;
+  FlowTimings& timings_;
+};
+
+}  // namespace
+
+void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
+  const MeshTables& t = run.tables;
+  const FlowOptions& o = run.options;
+  const bool euclidean = run.geometry == Geometry::Euclidean;
+  // E2 gauge: H·1 = 0 (scaling all radii keeps every angle), so pin vertex 0 and solve the
+  // reduced system; its dropped equation holds because Σ(K̄ - K) = 0 by Gauss-Bonnet.
+  HessianAssembler assembler(t, euclidean ? 0 : -1);
+  NewtonSystem system(o.solver, assembler.matrix(), result.timings);
+  const int n = assembler.num_unknowns();
+
+  FlowState trial;
+  Eigen::VectorXd rhs(n), reduced_step(n), step(t.num_vertices());
+  double error = max_error(state, run.target);
+  double merit = (state.curvature - run.target).squaredNorm();
+  int crawling = 0;  // consecutive iterations whose step was cut hard by broken triangles
+  int recent_broken = 0;  // iterations with broken trial triangles in the last window
+  result.error_history.push_back(error);
+  while (error >= o.tolerance) {
+    if (result.iterations >= o.max_newton_iterations) {
+      result.status = FlowStatus::MaxIterations;
+      result.message = failure_message(run, state, result.status,
+                                       "Newton used its " + std::to_string(o.max_newton_iterations) +
+                                           " iterations");
+      return;
+    }
+    auto t0 = Clock::now();
+    const Eigen::SparseMatrix<double>& H = assembler.assemble(run.geometry, run.eta, state);
+    result.timings.assembly += seconds_since(t0);
+    for (int v = 0; v < t.num_vertices(); ++v) {
+      if (assembler.unknown(v) >= 0) rhs[assembler.unknown(v)] = run.target[v] - state.curvature[v];
+    }
+    if (!system.solve(H, rhs, reduced_step)) {
+      result.status = FlowStatus::Stalled;
+      result.message = failure_message(run, state, result.status,
+                                       "no factorisation of the Hessian gave a finite step");
+      return;
+    }
+    result.solver = system.kind();
+    for (int v = 0; v < t.num_vertices(); ++v) {
+      step[v] = assembler.unknown(v) >= 0 ? reduced_step[assembler.unknown(v)] : 0.0;
+    }
+    // In E2 a constant shift of u is a global scale: keep Σu fixed as the papers normalise.
+    if (euclidean) step.array() -= step.mean();
+
+    double t_step = 1.0;
+    int broken = 0;
+    bool accepted = false;
+    t0 = Clock::now();
+    for (int halving = 0; halving <= o.max_step_halvings; ++halving, t_step *= 0.5) {
+      if (!evaluate_flow_state(t, run.geometry, run.eta, state.u + t_step * step, trial)) {
+        ++broken;
+        continue;
+      }
+      const double trial_merit = (trial.curvature - run.target).squaredNorm();
+      // Armijo on ½‖K - K̄‖², whose slope along the Newton step is -‖K - K̄‖².
+      if (trial_merit <= (1.0 - 1e-4 * t_step) * merit || max_error(trial, run.target) < o.tolerance) {
+        accepted = true;
+        break;
+      }
+    }
+    result.timings.evaluation += seconds_since(t0);
+    if (!accepted) {
+      const bool triangles = broken > o.max_step_halvings / 2;
+      result.status = triangles ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
+      result.message = failure_message(
+          run, state, result.status,
+          triangles ? std::string("every shortened Newton step broke a triangle")
+                    : "the line search found no decrease of the curvature error (rounding floor "
+                      "or a non-convex energy)");
+      return;
+    }
+    std::swap(state, trial);
+    merit = (state.curvature - run.target).squaredNorm();
+    error = max_error(state, run.target);
+    ++result.iterations;
+    result.error_history.push_back(error);
+    if (o.progress) o.progress({result.iterations, error, t_step, seconds_since(run.start)});
+    crawling = (broken > 0 && t_step < 1e-3) ? crawling + 1 : 0;
+    recent_broken += broken > 0 ? 1 : 0;
+    // Newton converges quadratically once it is near the answer; ten iterations without halving
+    // the error mean it is creeping along the boundary of the admissible metrics.
+    constexpr int kWindow = 10;
+    if (result.iterations % kWindow == 0) {
+      const double before = result.error_history[result.error_history.size() - 1 - kWindow];
+      if (error > 0.5 * before) {
+        result.status = recent_broken > 0 ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
+        result.message = failure_message(
+            run, state, result.status,
+            "the error fell from " + std::to_string(before) + " to only " + std::to_string(error) +
+                " in " + std::to_string(kWindow) + " iterations" +
+                (recent_broken > 0 ? " while steps kept breaking triangles" : ""));
+        return;
+      }
+      recent_broken = 0;
+    }
+    if (crawling >= 8) {
+      result.status = FlowStatus::TriangleInequality;
+      result.message = failure_message(run, state, result.status,
+                                       "Newton steps keep breaking triangles and shrink below 1e-3");
+      return;
+    }
+  }
+  result.status = FlowStatus::Converged;
+}
+
+}  // namespace ricci::detail
