@@ -126,8 +126,8 @@ FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& opt
   lengths *= scale;
   std::vector<std::pair<Scheme, RadiusInit>> attempts = {{options.scheme, options.radii}};
   if (options.fall_back_to_other_metrics) {
-    for (auto next : {std::pair{Scheme::InversiveDistance, RadiusInit::Mean},
-                      std::pair{Scheme::InversiveDistance, RadiusInit::Min},
+    for (auto next : {std::pair{Scheme::InversiveDistance, RadiusInit::Min},
+                      std::pair{Scheme::InversiveDistance, RadiusInit::Mean},
                       std::pair{Scheme::CirclePacking, RadiusInit::Mean},
                       std::pair{Scheme::Combinatorial, RadiusInit::Mean}}) {
       if (next != attempts.front()) attempts.push_back(next);
@@ -149,7 +149,7 @@ FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& opt
     }
     result.timings.setup += setup;
     if (result.converged()) break;
-    failures.push_back(to_string(scheme) + (radii == RadiusInit::Min ? "/min" : "") + ": " +
+    failures.push_back(to_string(scheme) + (radii == RadiusInit::Min ? "/min" : "/mean") + ": " +
                        result.message);
   }
   result.failed_attempts = std::move(failures);
