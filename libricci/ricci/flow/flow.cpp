@@ -133,7 +133,7 @@ FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& opt
       if (next != attempts.front()) attempts.push_back(next);
     }
   }
-  FlowResult result;
+  FlowResult result, best;
   std::vector<std::string> failures;
   for (const auto& [scheme, radii] : attempts) {
     const auto attempt_start = detail::Clock::now();
@@ -149,9 +149,12 @@ FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& opt
     }
     result.timings.setup += setup;
     if (result.converged()) break;
+    // If nothing converges, report the attempt that came closest.
+    if (best.error_history.empty() || result.max_error < best.max_error) best = result;
     failures.push_back(to_string(scheme) + (radii == RadiusInit::Min ? "/min" : "/mean") + ": " +
                        result.message);
   }
+  if (!result.converged() && !best.error_history.empty()) result = std::move(best);
   result.failed_attempts = std::move(failures);
   result.length_scale = scale;
   result.timings.total = detail::seconds_since(start);
