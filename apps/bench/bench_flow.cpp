@@ -145,6 +145,7 @@ int run_flow_case(int argc, char** argv) {
   j["status"] = ricci::to_string(best.status);
   j["metric"] = ricci::to_string(best.metric.scheme);
   j["iterations"] = best.iterations;
+  j["factorizations"] = best.factorizations;
   j["error"] = best.max_error;
   j["newton_seconds"] = best.timings.total;
   j["newton_cpu_seconds"] = best_cpu;

@@ -125,6 +125,7 @@ int run_flow(int argc, char** argv) {
     j["mesh"] = path;
     j["status"] = ricci::to_string(result.status);
     j["iterations"] = result.iterations;
+    j["factorizations"] = result.factorizations;
     j["max_curvature_error"] = result.max_error;
     j["seconds"] = result.timings.total;
     j["vertices"] = mesh.n_vertices();

@@ -99,6 +99,8 @@ struct FlowResult {
   /// max |K - K̄| before the first iteration and after each one.
   std::vector<double> error_history;
   int iterations = 0;
+  /// Numeric factorisations of the Hessian (Newton reuses one near the answer).
+  int factorizations = 0;
   double max_error = 0;
   /// The factorisation actually used (after any fallback).
   LinearSolver solver = LinearSolver::Auto;

@@ -39,6 +39,37 @@ class NewtonSystem {
   }
 
   LinearSolver kind() const { return factorization_->kind(); }
+  int factorizations() const { return factorizations_; }
+
+  // Near the answer H changes little between iterations: iterate x += F⁻¹(rhs - H x) with the
+  // previous factorisation F, a stationary iteration that converges to the exact Newton step at
+  // rate ‖I - F⁻¹H‖ = O(|δu|). Returns false (and the caller refactorises) if it is not fast.
+  bool solve_reusing(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs,
+                     Eigen::VectorXd& x) {
+    if (!factored_) return false;
+    const auto t0 = Clock::now();
+    x = factorization_->solve(rhs);
+    double previous = rhs.norm();
+    bool ok = false;
+    for (int i = 0; i < 12 && x.allFinite(); ++i) {
+      const Eigen::VectorXd residual = rhs - H.selfadjointView<Eigen::Lower>() * x;
+      const double norm = residual.norm();
+      // Rounding floors the residual near eps·cond(H)·‖rhs‖ (H is a Laplacian, cond ~ #V), so
+      // stop when it stalls; an inexact step with relative residual 1e-8 still converges fast.
+      if (norm <= 1e-12 * rhs.norm()) {
+        ok = true;
+        break;
+      }
+      if (!(norm < 0.3 * previous)) {
+        ok = norm <= 1e-8 * rhs.norm();
+        break;
+      }
+      previous = norm;
+      x += factorization_->solve(residual);
+    }
+    timings_.solve += seconds_since(t0);
+    return ok;
+  }
 
   // Solves H x = rhs; returns false if no factorisation gave a finite solution.
   bool solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
@@ -66,6 +97,8 @@ class NewtonSystem {
     auto t0 = Clock::now();
     const bool ok = factorization_->factorize(H);
     timings_.factorization += seconds_since(t0);
+    ++factorizations_;
+    factored_ = ok;
     if (!ok) return false;
     t0 = Clock::now();
     x = factorization_->solve(rhs);
@@ -82,6 +115,8 @@ class NewtonSystem {
 
   std::unique_ptr<SymmetricFactorization> factorization_;
   FlowTimings& timings_;
+  bool factored_ = false;  // the factorisation holds a (possibly older) Hessian
+  int factorizations_ = 0;
 };
 
 // Levenberg-Marquardt step for ‖K - K̄‖² in S2: (H² + μI) δ = H (K̄ - K) with μ = ‖K - K̄‖ times
@@ -125,6 +160,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   int crawling = 0;  // consecutive iterations whose step was cut hard by broken triangles
   int recent_broken = 0;  // iterations with broken trial triangles in the last window
   double lambda = 1.0;  // Levenberg-Marquardt damping factor (S2 only)
+  bool last_step_full = false;
   result.error_history.push_back(error);
   while (error >= o.tolerance) {
     if (result.iterations >= o.max_newton_iterations) {
@@ -141,8 +177,11 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
       if (assembler.unknown(v) >= 0) rhs[assembler.unknown(v)] = run.target[v] - state.curvature[v];
     }
     const bool spherical = run.geometry == Geometry::Spherical;
+    // Reuse the last factorisation once Newton is in its fast phase (full steps, small error).
+    const bool reuse = last_step_full && error < 1e-2;
     if (spherical ? !levenberg_marquardt_step(H, rhs, lambda, result.timings, reduced_step)
-                  : !system.solve(H, rhs, reduced_step)) {
+                  : !((reuse && system.solve_reusing(H, rhs, reduced_step)) ||
+                      system.solve(H, rhs, reduced_step))) {
       result.status = FlowStatus::Stalled;
       result.message = failure_message(run, state, result.status,
                                        "no factorisation of the Hessian gave a finite step");
@@ -184,6 +223,8 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
                       "or a non-convex energy)");
       return;
     }
+    last_step_full = t_step == 1.0;
+    result.factorizations = system.factorizations();
     lambda = t_step == 1.0 ? std::max(lambda * 0.1, 1e-10) : std::min(lambda * 4.0, 1e4);
     std::swap(state, trial);
     merit = (state.curvature - run.target).squaredNorm();
