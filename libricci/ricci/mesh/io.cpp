@@ -1,21 +1,80 @@
-// Interim reader on OpenMesh IO; to be replaced by the strict soup readers (issue 2).
+// read_mesh() on the strict soup readers; write_mesh() with exact round-trip coordinates.
 #include "ricci/mesh/io.h"
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <random>
 
+#include "ricci/mesh/build_mesh.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/soup_io.h"
 
 namespace ricci {
+namespace {
 
-Mesh read_mesh(const std::string& path) {
-  Mesh mesh;
-  if (!OpenMesh::IO::read_mesh(mesh, path)) throw IOError("cannot read mesh " + path);
-  return mesh;
+/// Appends the shortest representation that parses back to exactly `value`.
+void append_number(std::string& out, double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
 }
 
+void append_vertex(std::string& out, const char* prefix, const Mesh::Point& p) {
+  out += prefix;
+  for (int k = 0; k < 3; ++k) {
+    if (k) out += ' ';
+    append_number(out, p[k]);
+  }
+  out += '\n';
+}
+
+std::string format_mesh(const Mesh& mesh, MeshFormat format) {
+  std::string out;
+  out.reserve(mesh.n_vertices() * 60 + mesh.n_faces() * 24 + 256);
+  const std::string counts = std::to_string(mesh.n_vertices()) + " " + std::to_string(mesh.n_faces());
+  if (format == MeshFormat::kOff) out += "OFF\n" + counts + " 0\n";
+  if (format == MeshFormat::kPly)
+    out += "ply\nformat ascii 1.0\ncomment written by libricci\nelement vertex " +
+           std::to_string(mesh.n_vertices()) +
+           "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+           std::to_string(mesh.n_faces()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  if (format == MeshFormat::kObj) out += "# written by libricci: " + counts + " (vertices faces)\n";
+  for (const auto v : mesh.vertices()) append_vertex(out, format == MeshFormat::kObj ? "v " : "", mesh.point(v));
+  const int base = format == MeshFormat::kObj ? 1 : 0;
+  for (const auto f : mesh.faces()) {
+    out += format == MeshFormat::kObj ? "f" : std::to_string(mesh.valence(f));
+    for (const auto v : mesh.fv_range(f)) {
+      out += ' ';
+      out += std::to_string(v.idx() + base);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace
+
+Mesh read_mesh(const std::string& path) { return build_mesh(read_soup(path)); }
+
 void write_mesh(const Mesh& mesh, const std::string& path) {
-  OpenMesh::IO::Options options;
-  if (!OpenMesh::IO::write_mesh(mesh, path, options, 17)) throw IOError("cannot write mesh " + path);
+  const MeshFormat format = format_from_extension(path);
+  if (format == MeshFormat::kStl) throw IOError(path + ": writing STL is not supported (use .obj, .off or .ply)");
+  if (path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0)
+    throw IOError(path + ": writing .gz is not supported");
+  const std::string text = format_mesh(mesh, format);
+  std::random_device entropy;
+  const std::string temp = path + ".tmp" + std::to_string(entropy());
+  std::FILE* file = std::fopen(temp.c_str(), "wb");
+  if (!file) throw IOError(path + ": cannot create " + temp);
+  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  const bool closed = std::fclose(file) == 0;
+  std::error_code error;
+  if (written && closed) std::filesystem::rename(temp, path, error);
+  if (!written || !closed || error) {
+    std::filesystem::remove(temp, error);
+    throw IOError(path + ": write failed (disk full or no permission?)");
+  }
 }
 
 }  // namespace ricci

@@ -7,12 +7,16 @@
 
 namespace ricci {
 
-/// Reads an OBJ, OFF, PLY or STL file (optionally .gz) into a triangle mesh.
-/// \throw IOError on unreadable or malformed files; TopologyError when the faces do not form a
-///        2-manifold OpenMesh can hold.
+/// Reads an OBJ, OFF, PLY or STL file (optionally .gz) into a triangle mesh: read_soup() then
+/// build_mesh() (polygons triangulated, unreferenced vertices dropped, faces oriented).
+/// \throw IOError on unreadable or malformed files; TopologyError when the faces are not a
+///        single-component orientable 2-manifold; InvalidInputError on NaN/inf coordinates or
+///        degenerate faces. Messages start with the file name.
 [[nodiscard]] Mesh read_mesh(const std::string& path);
 
-/// Writes OBJ, OFF or PLY, chosen by the extension. \throw IOError.
+/// Writes OBJ, OFF or PLY (ascii), chosen by the extension, with every coordinate in the
+/// shortest decimal form that reads back to the same double. The file appears atomically
+/// (written to a temporary next to it, then renamed). \throw IOError.
 void write_mesh(const Mesh& mesh, const std::string& path);
 
 }  // namespace ricci

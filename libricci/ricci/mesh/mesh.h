@@ -5,6 +5,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace ricci {
 

@@ -1,0 +1,223 @@
+#include "ricci/atlas/atlas.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "ricci/atlas/chart_develop.h"
+#include "ricci/mesh/errors.h"
+
+namespace ricci {
+namespace {
+
+/// Angle at corner `h` (to_vertex(h) in face(h)) from the lengths.
+double corner_angle(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
+  return corner_angle_from_lengths(lengths[mesh.edge_handle(mesh.prev_halfedge_handle(h)).idx()],
+                                   lengths[mesh.edge_handle(h).idx()],
+                                   lengths[mesh.edge_handle(mesh.next_halfedge_handle(h)).idx()]);
+}
+
+double vertex_curvature(const Mesh& mesh, const Eigen::VectorXd& lengths, VertexHandle v) {
+  double sum = 0.0;
+  for (auto h : mesh.vih_range(v)) {
+    if (!mesh.is_boundary(h)) sum += corner_angle(mesh, lengths, h);
+  }
+  return (mesh.is_boundary(v) ? M_PI : 2.0 * M_PI) - sum;
+}
+
+Chart central_chart(const Mesh& mesh, const SlicedMesh& sliced, const LayoutE2Result& layout) {
+  Chart chart;
+  chart.kind = ChartKind::central;
+  chart.faces.resize(mesh.n_faces());
+  chart.corners.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
+  for (auto f : mesh.faces()) {
+    chart.faces[f.idx()] = f.idx();
+    const auto hs = face_halfedges(mesh, f);
+    for (int k = 0; k < 3; ++k) chart.corners(f.idx(), k) = sliced.corner_vertex[hs[k].idx()];
+  }
+  chart.to_original_vertex = sliced.to_original_vertex;
+  chart.positions = layout.positions;
+  return chart;
+}
+
+/// Vertices of a cut path, in order, without repeats of the root.
+std::vector<int> path_vertices(const Mesh& mesh, const CutPath& path) {
+  std::vector<int> vertices;
+  for (auto h : path.halfedges) {
+    vertices.push_back(mesh.from_vertex_handle(h).idx());
+    vertices.push_back(mesh.to_vertex_handle(h).idx());
+  }
+  return vertices;
+}
+
+/// A domain face at `vertex` with its central-chart corner positions (the seed of a chart
+/// developed in the central chart's frame, so transitions to it start from the identity).
+bool seed_at(const Mesh& mesh, const AffineAtlas& atlas, int vertex, int& face,
+             Eigen::Matrix<double, 3, 2>& positions) {
+  for (auto f : mesh.vf_range(VertexHandle(vertex))) {
+    if (!atlas.in_domain[f.idx()]) continue;
+    face = f.idx();
+    for (int k = 0; k < 3; ++k) {
+      positions.row(k) = atlas.charts[0].positions.row(atlas.charts[0].corners(face, k));
+    }
+    return true;
+  }
+  return false;
+}
+
+void add_cut_path_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue,
+                         AffineAtlas& atlas) {
+  for (int i = 0; i < atlas.cut_path_count(); ++i) {
+    std::vector<int> vertices = path_vertices(mesh, atlas.cut_path(i));
+    if (vertices.empty()) continue;
+    const int middle = vertices[vertices.size() / 2];
+    if (atlas.root_is_cone) {
+      vertices.erase(std::remove(vertices.begin(), vertices.end(), atlas.cut.root.idx()),
+                     vertices.end());
+    }
+    int seed = -1;
+    Eigen::Matrix<double, 3, 2> seed_positions;
+    if (!seed_at(mesh, atlas, middle, seed, seed_positions)) continue;
+    const std::vector<int> region = detail::two_ring_faces(mesh, vertices, atlas.in_domain);
+    Chart chart = detail::develop_chart(mesh, lengths, region, seed, seed_positions, glue);
+    chart.kind = ChartKind::cut_path;
+    chart.source = i;
+    atlas.charts.push_back(std::move(chart));
+  }
+}
+
+/// Picks, for every domain face, the first chart holding its neighbourhood as one piece:
+/// central, then cut-path charts holding the face, then (built on demand) vertex charts.
+void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue,
+                                 AffineAtlas& atlas) {
+  std::vector<std::vector<int>> charts_of_face(mesh.n_faces());
+  for (size_t c = 1; c < atlas.charts.size(); ++c) {
+    for (int f : atlas.charts[c].faces) charts_of_face[f].push_back(static_cast<int>(c));
+  }
+  std::map<int, int> vertex_chart;  // original vertex -> chart index (-1: none possible)
+  atlas.neighbourhood_chart.assign(mesh.n_faces(), -1);
+  atlas.uncovered_faces = 0;
+  for (auto f : mesh.faces()) {
+    if (!atlas.in_domain[f.idx()]) continue;
+    const std::vector<int> hood = detail::face_neighbourhood(mesh, f.idx(), atlas.in_domain);
+    int found = detail::holds_as_one_piece(mesh, atlas.charts[0], hood) ? 0 : -1;
+    for (size_t i = 0; found < 0 && i < charts_of_face[f.idx()].size(); ++i) {
+      const int c = charts_of_face[f.idx()][i];
+      if (detail::holds_as_one_piece(mesh, atlas.charts[c], hood)) found = c;
+    }
+    for (auto v : mesh.fv_range(f)) {
+      if (found >= 0) break;
+      auto it = vertex_chart.find(v.idx());
+      if (it == vertex_chart.end()) {
+        int seed = -1;
+        Eigen::Matrix<double, 3, 2> seed_positions;
+        int index = -1;
+        if (seed_at(mesh, atlas, v.idx(), seed, seed_positions)) {
+          const auto region = detail::two_ring_faces(mesh, {v.idx()}, atlas.in_domain);
+          Chart chart = detail::develop_chart(mesh, lengths, region, seed, seed_positions, glue);
+          chart.kind = ChartKind::vertex;
+          chart.source = v.idx();
+          index = static_cast<int>(atlas.charts.size());
+          atlas.charts.push_back(std::move(chart));
+        }
+        it = vertex_chart.emplace(v.idx(), index).first;
+      }
+      if (it->second >= 0 && detail::holds_as_one_piece(mesh, atlas.charts[it->second], hood)) {
+        found = it->second;
+      }
+    }
+    atlas.neighbourhood_chart[f.idx()] = found;
+    if (found < 0) ++atlas.uncovered_faces;
+  }
+}
+
+}  // namespace
+
+int Chart::slot(int face) const {
+  const auto it = std::lower_bound(faces.begin(), faces.end(), face);
+  return it != faces.end() && *it == face ? static_cast<int>(it - faces.begin()) : -1;
+}
+
+int AffineAtlas::cut_path_count() const {
+  return static_cast<int>(cut.loops.size() + cut.boundary_connectors.size());
+}
+
+const CutPath& AffineAtlas::cut_path(int index) const {
+  const int loops = static_cast<int>(cut.loops.size());
+  return index < loops ? cut.loops[index] : cut.boundary_connectors[index - loops];
+}
+
+Eigen::Vector2d AffineAtlas::corner_position(int chart, int face, int corner) const {
+  if (chart < 0 || chart >= static_cast<int>(charts.size())) {
+    throw InvalidInputError("atlas: chart " + std::to_string(chart) + " does not exist");
+  }
+  const Chart& c = charts[chart];
+  const int row = c.slot(face);
+  if (row < 0 || corner < 0 || corner > 2) {
+    throw InvalidInputError("atlas: chart " + std::to_string(chart) + " does not hold face " +
+                            std::to_string(face) + " corner " + std::to_string(corner));
+  }
+  return c.positions.row(c.corners(row, corner)).transpose();
+}
+
+Eigen::Matrix<double, 3, 2> AffineAtlas::face_positions(int chart, int face) const {
+  Eigen::Matrix<double, 3, 2> p;
+  for (int k = 0; k < 3; ++k) p.row(k) = corner_position(chart, face, k).transpose();
+  return p;
+}
+
+std::optional<RigidMotion2> AffineAtlas::transition(int chart_a, int chart_b, int face) const {
+  if (chart_a == chart_b) return RigidMotion2{};
+  if (face < 0 || face >= static_cast<int>(face_transitions.size())) return std::nullopt;
+  for (int t : face_transitions[face]) {
+    const Transition& tr = transitions[t];
+    if (tr.chart_a == chart_a && tr.chart_b == chart_b) return tr.motion;
+    if (tr.chart_a == chart_b && tr.chart_b == chart_a) return tr.motion.inverse();
+  }
+  return std::nullopt;
+}
+
+Eigen::Vector2d AffineAtlas::map(const Eigen::Vector2d& point, int chart_a, int chart_b,
+                                 int face) const {
+  const auto motion = transition(chart_a, chart_b, face);
+  if (!motion) {
+    throw InvalidInputError("atlas: charts " + std::to_string(chart_a) + " and " +
+                            std::to_string(chart_b) + " do not overlap at face " +
+                            std::to_string(face));
+  }
+  return motion->apply(point);
+}
+
+AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                               VertexHandle root, const AtlasOptions& options) {
+  AffineAtlas atlas;
+  atlas.cut = compute_cut_graph(mesh, root, edge_lengths);
+  const Eigen::VectorXd lengths = checked_edge_lengths(mesh, edge_lengths);
+  atlas.sliced = slice_along(mesh, atlas.cut.is_cut_edge);
+  check_disk(atlas.sliced, "atlas");
+  atlas.polygon = fundamental_polygon_word(mesh, atlas.cut, atlas.sliced);
+  atlas.layout = layout_e2(atlas.sliced.mesh, sliced_edge_lengths(atlas.sliced, lengths),
+                           options.layout);
+
+  atlas.root_curvature = vertex_curvature(mesh, lengths, root);
+  atlas.root_is_cone =
+      !mesh.is_boundary(root) && std::abs(atlas.root_curvature) > options.cone_tolerance;
+  atlas.in_domain.assign(mesh.n_faces(), 1);
+  if (atlas.root_is_cone) {
+    for (auto f : mesh.vf_range(root)) atlas.in_domain[f.idx()] = 0;
+  }
+  atlas.charts.push_back(central_chart(mesh, atlas.sliced, atlas.layout));
+  const Eigen::Vector2d lo = atlas.layout.positions.colwise().minCoeff();
+  const Eigen::Vector2d hi = atlas.layout.positions.colwise().maxCoeff();
+  atlas.domain_diameter = (hi - lo).norm();
+
+  const double glue = options.glue_tolerance * lengths.mean();
+  add_cut_path_charts(mesh, lengths, glue, atlas);
+  assign_neighbourhood_charts(mesh, lengths, glue, atlas);
+  detail::compute_transitions(mesh, atlas);
+  detail::compute_side_pairings(mesh, atlas);
+  return atlas;
+}
+
+}  // namespace ricci

@@ -1,0 +1,178 @@
+// Transition maps between overlapping charts and the side pairings of the cut graph's arcs.
+#include <algorithm>
+#include <map>
+#include <numeric>
+
+#include "ricci/atlas/chart_develop.h"
+
+namespace ricci::detail {
+namespace {
+
+int find_root(std::vector<int>& parent, int x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+int local_index(const std::vector<int>& sorted, int face) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), face);
+  return it != sorted.end() && *it == face ? static_cast<int>(it - sorted.begin()) : -1;
+}
+
+/// Chart vertices of the two ends of halfedge hs[k] of a face in `chart` (row `row`): from, to.
+std::pair<int, int> edge_copies(const Chart& chart, int row, int k) {
+  return {chart.corners(row, (k + 2) % 3), chart.corners(row, k)};
+}
+
+/// True when faces f and g (sharing the edge of f's k-th halfedge) are glued along it in `chart`.
+bool glued(const Mesh& mesh, const Chart& chart, int f, int k, int g) {
+  const auto hs = face_halfedges(mesh, FaceHandle(f));
+  const auto gs = face_halfedges(mesh, FaceHandle(g));
+  const auto o = mesh.opposite_halfedge_handle(hs[k]);
+  const int m = gs[0] == o ? 0 : (gs[1] == o ? 1 : 2);
+  const auto [f_from, f_to] = edge_copies(chart, chart.slot(f), k);
+  const auto [g_from, g_to] = edge_copies(chart, chart.slot(g), m);
+  return f_from == g_to && f_to == g_from;
+}
+
+/// Splits the faces shared by charts a and b into pieces glued in both, and fits one rigid
+/// motion per piece.
+void fit_pair(const Mesh& mesh, AffineAtlas& atlas, int a, int b, const std::vector<int>& faces) {
+  const Chart& ca = atlas.charts[a];
+  const Chart& cb = atlas.charts[b];
+  std::vector<int> parent(faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const auto hs = face_halfedges(mesh, FaceHandle(faces[i]));
+    for (int k = 0; k < 3; ++k) {
+      const auto g = mesh.face_handle(mesh.opposite_halfedge_handle(hs[k]));
+      if (!g.is_valid()) continue;
+      const int j = local_index(faces, g.idx());
+      if (j < 0 || !glued(mesh, ca, faces[i], k, g.idx()) || !glued(mesh, cb, faces[i], k, g.idx())) {
+        continue;
+      }
+      parent[find_root(parent, static_cast<int>(i))] = find_root(parent, j);
+    }
+  }
+  std::map<int, std::vector<int>> pieces;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    pieces[find_root(parent, static_cast<int>(i))].push_back(faces[i]);
+  }
+  for (auto& [root, piece] : pieces) {
+    std::vector<std::pair<int, int>> pairs;
+    for (int f : piece) {
+      for (int k = 0; k < 3; ++k) pairs.push_back({ca.corners(ca.slot(f), k), cb.corners(cb.slot(f), k)});
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    Eigen::MatrixX2d from(pairs.size(), 2), to(pairs.size(), 2);
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      from.row(static_cast<Eigen::Index>(i)) = ca.positions.row(pairs[i].first);
+      to.row(static_cast<Eigen::Index>(i)) = cb.positions.row(pairs[i].second);
+    }
+    Transition t;
+    t.chart_a = a;
+    t.chart_b = b;
+    t.motion = fit_rigid_motion(from, to, &t.residual);
+    t.faces = std::move(piece);
+    const int index = static_cast<int>(atlas.transitions.size());
+    for (int f : t.faces) atlas.face_transitions[f].push_back(index);
+    atlas.max_transition_residual = std::max(atlas.max_transition_residual, t.residual);
+    atlas.transitions.push_back(std::move(t));
+  }
+}
+
+/// Arcs of the cut graph: maximal paths whose inner vertices have cut-degree 2 and are neither
+/// the root nor on the original boundary.
+std::vector<std::vector<HalfedgeHandle>> cut_arcs(const Mesh& mesh, const CutGraph& cut) {
+  std::vector<int> degree(mesh.n_vertices(), 0);
+  for (auto e : mesh.edges()) {
+    if (!cut.is_cut_edge[e.idx()]) continue;
+    ++degree[mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx()];
+    ++degree[mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx()];
+  }
+  auto is_node = [&](VertexHandle v) {
+    return degree[v.idx()] != 2 || v == cut.root || mesh.is_boundary(v);
+  };
+  std::vector<char> used(mesh.n_edges(), 0);
+  std::vector<std::vector<HalfedgeHandle>> arcs;
+  auto walk = [&](HalfedgeHandle h) {
+    std::vector<HalfedgeHandle> arc;
+    while (true) {
+      used[mesh.edge_handle(h).idx()] = 1;
+      arc.push_back(h);
+      const auto v = mesh.to_vertex_handle(h);
+      if (is_node(v)) break;
+      HalfedgeHandle next;
+      for (auto g : mesh.voh_range(v)) {
+        if (cut.is_cut_edge[mesh.edge_handle(g).idx()] && !used[mesh.edge_handle(g).idx()]) next = g;
+      }
+      if (!next.is_valid()) break;  // closed arc without node
+      h = next;
+    }
+    arcs.push_back(std::move(arc));
+  };
+  for (auto v : mesh.vertices()) {
+    if (!is_node(v)) continue;
+    for (auto h : mesh.voh_range(v)) {
+      if (cut.is_cut_edge[mesh.edge_handle(h).idx()] && !used[mesh.edge_handle(h).idx()]) walk(h);
+    }
+  }
+  for (auto e : mesh.edges()) {
+    if (cut.is_cut_edge[e.idx()] && !used[e.idx()]) walk(mesh.halfedge_handle(e, 0));
+  }
+  return arcs;
+}
+
+}  // namespace
+
+void compute_transitions(const Mesh& mesh, AffineAtlas& atlas) {
+  std::vector<std::vector<int>> charts_of_face(mesh.n_faces());
+  for (size_t c = 0; c < atlas.charts.size(); ++c) {
+    for (int f : atlas.charts[c].faces) charts_of_face[f].push_back(static_cast<int>(c));
+  }
+  std::map<std::pair<int, int>, std::vector<int>> shared;
+  for (auto f : mesh.faces()) {
+    const auto& list = charts_of_face[f.idx()];
+    for (size_t i = 0; i < list.size(); ++i) {
+      for (size_t j = i + 1; j < list.size(); ++j) shared[{list[i], list[j]}].push_back(f.idx());
+    }
+  }
+  atlas.transitions.clear();
+  atlas.face_transitions.assign(mesh.n_faces(), {});
+  atlas.max_transition_residual = 0.0;
+  for (const auto& [pair, faces] : shared) fit_pair(mesh, atlas, pair.first, pair.second, faces);
+}
+
+void compute_side_pairings(const Mesh& mesh, AffineAtlas& atlas) {
+  const SlicedMesh& s = atlas.sliced;
+  const Eigen::MatrixX2d& x = atlas.layout.positions;
+  std::vector<int> loop_of_edge(mesh.n_edges(), -1);
+  for (size_t i = 0; i < atlas.cut.loops.size(); ++i) {
+    loop_of_edge[mesh.edge_handle(atlas.cut.loops[i].generator).idx()] = static_cast<int>(i);
+  }
+  atlas.side_pairings.clear();
+  atlas.max_side_pairing_residual = 0.0;
+  for (auto& arc : cut_arcs(mesh, atlas.cut)) {
+    std::vector<std::pair<int, int>> pairs;  // (left copy, right copy) of each arc vertex
+    SidePairing side;
+    for (auto h : arc) {
+      const auto o = mesh.opposite_halfedge_handle(h);
+      pairs.push_back({s.corner_vertex[mesh.prev_halfedge_handle(h).idx()], s.corner_vertex[o.idx()]});
+      pairs.push_back({s.corner_vertex[h.idx()], s.corner_vertex[mesh.prev_halfedge_handle(o).idx()]});
+      if (loop_of_edge[mesh.edge_handle(h).idx()] >= 0) side.loop = loop_of_edge[mesh.edge_handle(h).idx()];
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    Eigen::MatrixX2d from(pairs.size(), 2), to(pairs.size(), 2);
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      from.row(static_cast<Eigen::Index>(i)) = x.row(pairs[i].first);
+      to.row(static_cast<Eigen::Index>(i)) = x.row(pairs[i].second);
+    }
+    side.motion = fit_rigid_motion(from, to, &side.residual);
+    side.halfedges = std::move(arc);
+    atlas.max_side_pairing_residual = std::max(atlas.max_side_pairing_residual, side.residual);
+    atlas.side_pairings.push_back(std::move(side));
+  }
+}
+
+}  // namespace ricci::detail

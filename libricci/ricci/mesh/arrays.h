@@ -1,0 +1,15 @@
+#pragma once
+// Adapters between ricci::Mesh and the libigl-style (V, F) arrays.
+#include "ricci/mesh/mesh.h"
+
+namespace ricci {
+
+/// #V by 3 positions and #F by 3 vertex indices, both in the mesh's own index order.
+[[nodiscard]] VertexFaceArrays to_arrays(const Mesh& mesh);
+
+/// A mesh from (V, F) arrays, validated like a file (build_mesh()): faces may be re-oriented
+/// consistently and unreferenced vertices are dropped (vertex indices then shift).
+/// \throw InvalidInputError (index out of range, NaN, degenerate) or TopologyError.
+[[nodiscard]] Mesh from_arrays(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+
+}  // namespace ricci

@@ -1,0 +1,45 @@
+#pragma once
+// Reducing a dense scan to a domain mesh of a chosen size with the same topology, and projecting
+// points onto a mesh. Bodies use CGAL (in *_cgal.cpp files only).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ricci/mesh/mesh.h"
+
+namespace ricci {
+
+struct SimplifyOptions {
+  /// Number of faces wanted in the result (reached within a few percent).
+  int target_faces = 2000;
+  /// Isotropic remeshing rounds after the edge collapses, for well-shaped triangles (0 = none).
+  int remesh_iterations = 3;
+};
+
+struct SimplifyResult {
+  Mesh mesh;
+  int faces_before = 0;
+  int faces_after = 0;
+  double min_angle_deg = 0.0;  ///< Smallest corner angle of the result.
+};
+
+/// Garland-Heckbert edge collapses (link condition kept, so the topology cannot change), then
+/// isotropic remeshing at the resulting mean edge length.
+/// \pre a closed or open 2-manifold triangle mesh; target_faces >= 4.
+/// \throw InvalidInputError for a bad target; TopologyError if the Euler characteristic or
+///        boundary count changed (which the link condition should prevent).
+[[nodiscard]] SimplifyResult simplify_mesh(const Mesh& dense, const SimplifyOptions& options = {});
+
+/// A point on a mesh: the face, its barycentric coordinates (in the face's halfedge order
+/// starting at mesh.halfedge_handle(face)), the 3D point and the distance to the query.
+struct SurfacePoint {
+  int face = -1;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  double distance = 0.0;
+};
+
+/// The closest point on `mesh` of every row of `queries` (#Q by 3), by an AABB tree.
+[[nodiscard]] std::vector<SurfacePoint> closest_points(const Mesh& mesh, const Eigen::MatrixX3d& queries);
+
+}  // namespace ricci

@@ -1,0 +1,156 @@
+#include "ricci/singularity/one_cone.h"
+
+#include <cmath>
+#include <string>
+
+#include "ricci/mesh/errors.h"
+
+namespace ricci {
+namespace {
+
+int euler_characteristic(const Mesh& m) {
+  return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) + static_cast<int>(m.n_faces());
+}
+
+void check_vertex(const Mesh& mesh, int vertex) {
+  if (vertex < 0 || vertex >= static_cast<int>(mesh.n_vertices())) {
+    throw InvalidInputError("singular vertex " + std::to_string(vertex) + " is out of range (mesh has " +
+                            std::to_string(mesh.n_vertices()) + " vertices)");
+  }
+}
+
+// The mesh without `vertex` and its incident faces; fills input_vertex with the index map.
+Mesh remove_star(const Mesh& mesh, int vertex, std::vector<int>& input_vertex) {
+  Mesh out;
+  std::vector<VertexHandle> new_handle(mesh.n_vertices());
+  for (auto v : mesh.vertices()) {
+    if (v.idx() == vertex) continue;
+    new_handle[v.idx()] = out.add_vertex(mesh.point(v));
+    input_vertex.push_back(v.idx());
+  }
+  for (auto f : mesh.faces()) {
+    std::vector<VertexHandle> corners;
+    bool touches = false;
+    for (auto v : mesh.fv_range(f)) {
+      touches = touches || v.idx() == vertex;
+      corners.push_back(new_handle[v.idx()]);
+    }
+    if (!touches) out.add_face(corners);
+  }
+  return out;
+}
+
+const char* radius_name(RadiusInit radii) {
+  switch (radii) {
+    case RadiusInit::Mean: return "mean";
+    case RadiusInit::Min: return "min";
+    case RadiusInit::LeastSquares: return "least-squares";
+  }
+  return "unknown";
+}
+
+std::vector<int> identity_map(int n, int added) {
+  std::vector<int> map(static_cast<size_t>(n + added), -1);
+  for (int i = 0; i < n; ++i) map[static_cast<size_t>(i)] = i;
+  return map;
+}
+
+}  // namespace
+
+std::string to_string(OneConeKind kind) {
+  switch (kind) {
+    case OneConeKind::FlatTorus: return "flat-torus";
+    case OneConeKind::SingleCone: return "single-cone";
+    case OneConeKind::PuncturedSphere: return "punctured-sphere";
+    case OneConeKind::OpenSurface: return "open-surface";
+  }
+  return "unknown";
+}
+
+FlowOptions one_cone_flow_options() {
+  FlowOptions options;
+  options.scheme = Scheme::CirclePacking;
+  options.radii = RadiusInit::Mean;
+  return options;
+}
+
+std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kind) {
+  if (kind == OneConeKind::SingleCone) {
+    return {{Scheme::CirclePacking, RadiusInit::Mean},
+            {Scheme::CirclePacking, RadiusInit::Min},
+            {Scheme::Combinatorial, RadiusInit::Mean}};
+  }
+  return {{Scheme::InversiveDistance, RadiusInit::Mean},
+          {Scheme::InversiveDistance, RadiusInit::Min},
+          {Scheme::CirclePacking, RadiusInit::Mean},
+          {Scheme::Combinatorial, RadiusInit::Mean}};
+}
+
+FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
+  if (keep_metric) return flow(problem.mesh, problem.targets, options);
+  std::vector<std::string> failures;
+  FlowResult result;
+  for (auto [scheme, radii] : one_cone_metric_order(problem.kind)) {
+    FlowOptions attempt = options;
+    attempt.scheme = scheme;
+    attempt.radii = radii;
+    result = flow(problem.mesh, problem.targets, attempt);
+    if (result.converged()) break;
+    failures.push_back(to_string(scheme) + "/" + radius_name(radii) + ": " + to_string(result.status));
+  }
+  result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
+  return result;
+}
+
+int count_boundary_loops(const Mesh& mesh) {
+  std::vector<char> seen(mesh.n_halfedges(), 0);
+  int loops = 0;
+  for (auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
+    ++loops;
+    for (auto g = h; !seen[g.idx()]; g = mesh.next_halfedge_handle(g)) seen[g.idx()] = 1;
+  }
+  return loops;
+}
+
+int mesh_genus(const Mesh& mesh) {
+  return (2 - euler_characteristic(mesh) - count_boundary_loops(mesh)) / 2;
+}
+
+bool needs_singular_vertex(const Mesh& mesh) {
+  return count_boundary_loops(mesh) == 0 && mesh_genus(mesh) != 1;
+}
+
+OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence) {
+  OneConeProblem problem;
+  problem.genus = mesh_genus(mesh);
+  problem.boundary_loops = count_boundary_loops(mesh);
+  const int n = static_cast<int>(mesh.n_vertices());
+  if (problem.boundary_loops > 0 || problem.genus == 1) {
+    problem.kind = problem.boundary_loops > 0 ? OneConeKind::OpenSurface : OneConeKind::FlatTorus;
+    problem.mesh = mesh;
+    problem.input_vertex = identity_map(n, 0);
+    problem.targets = single_cone_target(problem.mesh, 0);  // no cone on these topologies
+    return problem;
+  }
+  check_vertex(mesh, vertex);
+  problem.chosen_vertex = vertex;
+  if (problem.genus == 0) {
+    problem.kind = OneConeKind::PuncturedSphere;
+    problem.mesh = remove_star(mesh, vertex, problem.input_vertex);
+    problem.targets = boundary_target(problem.mesh, BoundaryMode::SpreadByLength);
+    return problem;
+  }
+  problem.kind = OneConeKind::SingleCone;
+  ValenceOptions options = valence;
+  options.cone_curvature = 2.0 * M_PI * euler_characteristic(mesh);
+  ValenceResult modified = modify_valence(mesh, mesh.vertex_handle(vertex), options);
+  problem.mesh = std::move(modified.mesh);
+  problem.cone = vertex;
+  problem.valence_splits = modified.splits;
+  problem.input_vertex = identity_map(n, modified.splits);
+  problem.targets = single_cone_target(problem.mesh, vertex);
+  return problem;
+}
+
+}  // namespace ricci

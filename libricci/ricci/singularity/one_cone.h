@@ -1,0 +1,68 @@
+#pragma once
+// The one-extraordinary-point problem of the manifold-splines paper (section 4): which mesh the
+// flow runs on and which curvature it aims for, by topology.
+//   closed, genus 1   -> flat torus, no cone;
+//   closed, genus >= 2 -> one cone of curvature 2*pi*chi at the chosen vertex, after valence
+//                         modification;
+//   closed, genus 0   -> the chosen vertex's star is removed (a cone of 4*pi has no flat
+//                         realisation) and the new boundary carries the curvature 2*pi;
+//   open               -> flat interior, boundary curvature 2*pi*chi spread by boundary length.
+#include <string>
+#include <vector>
+
+#include "ricci/flow/flow.h"
+#include "ricci/flow/targets.h"
+#include "ricci/mesh/mesh.h"
+#include "ricci/singularity/valence.h"
+
+namespace ricci {
+
+enum class OneConeKind { FlatTorus, SingleCone, PuncturedSphere, OpenSurface };
+
+std::string to_string(OneConeKind kind);
+
+struct OneConeProblem {
+  OneConeKind kind = OneConeKind::FlatTorus;
+  Mesh mesh;            ///< The mesh the flow runs on (valence-modified or punctured).
+  int cone = -1;        ///< Cone vertex in `mesh` (SingleCone only), else -1.
+  int chosen_vertex = -1;  ///< The input vertex the problem was built around, -1 if unused.
+  /// mesh vertex index -> input vertex index, or -1 for a vertex added by an edge split.
+  std::vector<int> input_vertex;
+  Targets targets;
+  int valence_splits = 0;
+  int genus = 0;
+  int boundary_loops = 0;
+};
+
+/// Builds the problem around `vertex` (ignored for genus 1 and open surfaces).
+/// \pre a connected oriented 2-manifold triangle mesh.
+/// \throw InvalidInputError for a vertex out of range or on the boundary when it is needed.
+[[nodiscard]] OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex,
+                                              const ValenceOptions& valence = {});
+
+/// Default flow settings for one-cone problems (scheme and radii are chosen per problem by
+/// solve_one_cone_flow; tolerance 1e-10).
+[[nodiscard]] FlowOptions one_cone_flow_options();
+
+/// The metrics tried, in order, for a problem of this kind. Flat tori, open and punctured
+/// surfaces start with the inversive distance (it reproduces the mesh, so the result is the most
+/// conformal); a large cone (-4*pi for genus 2, -8*pi for genus 3) breaks inversive-distance
+/// triangles on the shared scans, so single cones start with Thurston circle packing. The
+/// combinatorial metric (tangent circles, Phi = 0) comes last: Thurston's theorem guarantees it
+/// once the cone has valence >= 4 - 2K/pi, but it ignores the mesh's shape.
+[[nodiscard]] std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kind);
+
+/// Runs the flow with the metrics of one_cone_metric_order until one converges (the options'
+/// scheme and radii are overridden unless `keep_metric`). The result's failed_attempts lists the
+/// runs that did not converge. Returns the last attempt when none converged.
+[[nodiscard]] FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options,
+                                             bool keep_metric = false);
+
+/// Whether the mesh's topology asks for a singular vertex at all (closed, genus != 1).
+[[nodiscard]] bool needs_singular_vertex(const Mesh& mesh);
+
+/// Genus and boundary-loop count of a connected mesh.
+[[nodiscard]] int mesh_genus(const Mesh& mesh);
+[[nodiscard]] int count_boundary_loops(const Mesh& mesh);
+
+}  // namespace ricci

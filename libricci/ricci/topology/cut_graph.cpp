@@ -1,0 +1,286 @@
+#include "ricci/topology/cut_graph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numeric>
+#include <queue>
+#include <string>
+
+#include "ricci/mesh/errors.h"
+
+namespace ricci {
+namespace {
+
+/// Disjoint sets with path halving; enough for Kruskal on the dual graph.
+class UnionFind {
+ public:
+  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int find(int x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  bool unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    parent_[a] = b;
+    return true;
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+/// The quotient surface where each boundary loop is one node: node(v) = v for interior vertices,
+/// n_vertices + loop index for boundary vertices.
+struct Quotient {
+  int vertex_count = 0;
+  std::vector<int> loop_of_vertex;
+  std::vector<std::vector<VertexHandle>> loop_vertices;
+
+  int node(VertexHandle v) const {
+    const int loop = loop_of_vertex[v.idx()];
+    return loop < 0 ? v.idx() : vertex_count + loop;
+  }
+  int node_count() const { return vertex_count + static_cast<int>(loop_vertices.size()); }
+};
+
+/// Shortest-path tree of the quotient from the root's node over interior edges.
+struct ShortestPathTree {
+  std::vector<double> distance;          // by node
+  std::vector<HalfedgeHandle> parent;    // by node: halfedge arriving at the node
+  std::vector<char> edge_in_tree;        // by edge
+};
+
+ShortestPathTree shortest_path_tree(const Mesh& mesh, const Quotient& q, int root_node,
+                                    const Eigen::VectorXd& lengths) {
+  const int n = q.node_count();
+  ShortestPathTree t;
+  t.distance.assign(n, std::numeric_limits<double>::infinity());
+  t.parent.assign(n, HalfedgeHandle());
+  t.edge_in_tree.assign(mesh.n_edges(), 0);
+  std::vector<char> done(n, 0);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  t.distance[root_node] = 0.0;
+  heap.push({0.0, root_node});
+  auto relax_from = [&](int node, VertexHandle v) {
+    for (auto h : mesh.voh_range(v)) {
+      if (mesh.is_boundary(mesh.edge_handle(h))) continue;
+      const int m = q.node(mesh.to_vertex_handle(h));
+      if (m == node || done[m]) continue;
+      const double d = t.distance[node] + lengths[mesh.edge_handle(h).idx()];
+      if (d < t.distance[m]) {
+        t.distance[m] = d;
+        t.parent[m] = h;
+        heap.push({d, m});
+      }
+    }
+  };
+  while (!heap.empty()) {
+    const auto [d, node] = heap.top();
+    heap.pop();
+    if (done[node] || d > t.distance[node]) continue;
+    done[node] = 1;
+    if (node < q.vertex_count) {
+      relax_from(node, VertexHandle(node));
+    } else {
+      for (auto v : q.loop_vertices[node - q.vertex_count]) relax_from(node, v);
+    }
+  }
+  for (int node = 0; node < n; ++node) {
+    const bool used = node >= q.vertex_count || q.loop_of_vertex[node] < 0;
+    if (!used) continue;
+    if (!done[node]) {
+      const std::string what = node < q.vertex_count
+                                   ? "vertex " + std::to_string(node)
+                                   : "boundary loop " + std::to_string(node - q.vertex_count);
+      throw TopologyError("cut graph: " + what + " is not connected to the root");
+    }
+    if (t.parent[node].is_valid()) t.edge_in_tree[mesh.edge_handle(t.parent[node]).idx()] = 1;
+  }
+  return t;
+}
+
+/// Halfedges from the root's node down the tree to `node`.
+std::vector<HalfedgeHandle> tree_path(const Mesh& mesh, const Quotient& q,
+                                      const ShortestPathTree& t, int node) {
+  std::vector<HalfedgeHandle> path;
+  while (t.parent[node].is_valid()) {
+    path.push_back(t.parent[node]);
+    node = q.node(mesh.from_vertex_handle(t.parent[node]));
+  }
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+double path_length(const Mesh& mesh, const std::vector<HalfedgeHandle>& path,
+                   const Eigen::VectorXd& lengths) {
+  double sum = 0.0;
+  for (auto h : path) sum += lengths[mesh.edge_handle(h).idx()];
+  return sum;
+}
+
+/// Cotree edges: maximum spanning tree of the dual graph over interior non-tree edges, weighted
+/// by the length of the loop each closes (Erickson-Whittlesey). Returns the leftover edges.
+std::vector<EdgeHandle> cotree_leftovers(const Mesh& mesh, const Quotient& q,
+                                         const ShortestPathTree& t,
+                                         const Eigen::VectorXd& lengths) {
+  std::vector<std::pair<double, int>> candidates;
+  for (auto e : mesh.edges()) {
+    if (mesh.is_boundary(e) || t.edge_in_tree[e.idx()]) continue;
+    const auto h = mesh.halfedge_handle(e, 0);
+    const double w = t.distance[q.node(mesh.from_vertex_handle(h))] + lengths[e.idx()] +
+                     t.distance[q.node(mesh.to_vertex_handle(h))];
+    candidates.push_back({w, e.idx()});
+  }
+  // Ties broken by edge index so the result does not depend on the sort's stability.
+  std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  UnionFind dual(static_cast<int>(mesh.n_faces()));
+  std::vector<EdgeHandle> leftovers;
+  for (const auto& [w, index] : candidates) {
+    const EdgeHandle e(index);
+    const int f0 = mesh.face_handle(mesh.halfedge_handle(e, 0)).idx();
+    const int f1 = mesh.face_handle(mesh.halfedge_handle(e, 1)).idx();
+    if (!dual.unite(f0, f1)) leftovers.push_back(e);
+  }
+  return leftovers;
+}
+
+void check_path_continuity(const Mesh& mesh, const CutGraph& g, const CutPath& path) {
+  for (size_t k = 0; k + 1 < path.halfedges.size(); ++k) {
+    const auto a = mesh.to_vertex_handle(path.halfedges[k]);
+    const auto b = mesh.from_vertex_handle(path.halfedges[k + 1]);
+    const int la = g.boundary_loop_of_vertex[a.idx()];
+    if (a != b && (la < 0 || la != g.boundary_loop_of_vertex[b.idx()])) {
+      throw TopologyError("cut graph: path breaks between vertices " + std::to_string(a.idx()) +
+                          " and " + std::to_string(b.idx()));
+    }
+  }
+}
+
+}  // namespace
+
+Eigen::VectorXd checked_edge_lengths(const Mesh& mesh, const Eigen::VectorXd& edge_lengths) {
+  if (edge_lengths.size() == 0) {
+    Eigen::VectorXd lengths(mesh.n_edges());
+    for (auto e : mesh.edges()) lengths[e.idx()] = mesh.calc_edge_length(e);
+    return checked_edge_lengths(mesh, lengths);
+  }
+  if (edge_lengths.size() != static_cast<Eigen::Index>(mesh.n_edges())) {
+    throw InvalidInputError("edge lengths: " + std::to_string(edge_lengths.size()) +
+                            " values for " + std::to_string(mesh.n_edges()) + " edges");
+  }
+  for (Eigen::Index i = 0; i < edge_lengths.size(); ++i) {
+    if (!std::isfinite(edge_lengths[i]) || edge_lengths[i] <= 0.0) {
+      throw InvalidInputError("edge lengths: edge " + std::to_string(i) +
+                              " has non-positive or non-finite length");
+    }
+  }
+  return edge_lengths;
+}
+
+std::vector<std::vector<HalfedgeHandle>> find_boundary_loops(const Mesh& mesh) {
+  std::vector<std::vector<HalfedgeHandle>> loops;
+  std::vector<char> seen(mesh.n_halfedges(), 0);
+  for (auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
+    std::vector<HalfedgeHandle> loop;
+    for (auto g = h; !seen[g.idx()]; g = mesh.next_halfedge_handle(g)) {
+      seen[g.idx()] = 1;
+      loop.push_back(g);
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root,
+                           const Eigen::VectorXd& edge_lengths, const CutGraphOptions& options) {
+  if (!root.is_valid() || root.idx() >= static_cast<int>(mesh.n_vertices())) {
+    throw InvalidInputError("cut graph: root vertex " + std::to_string(root.idx()) +
+                            " is out of range");
+  }
+  if (mesh.n_faces() == 0) throw InvalidInputError("cut graph: mesh has no faces");
+  const Eigen::VectorXd lengths = checked_edge_lengths(mesh, edge_lengths);
+
+  CutGraph g;
+  g.root = root;
+  g.boundary_loops = find_boundary_loops(mesh);
+  g.boundary_loop_count = static_cast<int>(g.boundary_loops.size());
+  g.euler_characteristic = static_cast<int>(mesh.n_vertices()) -
+                           static_cast<int>(mesh.n_edges()) + static_cast<int>(mesh.n_faces());
+  const int twice_genus = 2 - g.euler_characteristic - g.boundary_loop_count;
+  if (twice_genus < 0 || twice_genus % 2 != 0) {
+    throw TopologyError("cut graph: Euler characteristic " +
+                        std::to_string(g.euler_characteristic) + " with " +
+                        std::to_string(g.boundary_loop_count) +
+                        " boundary loops is not a connected orientable surface");
+  }
+  g.genus = twice_genus / 2;
+
+  Quotient q;
+  q.vertex_count = static_cast<int>(mesh.n_vertices());
+  q.loop_of_vertex.assign(mesh.n_vertices(), -1);
+  for (int j = 0; j < g.boundary_loop_count; ++j) {
+    std::vector<VertexHandle> vertices;
+    for (auto h : g.boundary_loops[j]) {
+      const auto v = mesh.to_vertex_handle(h);
+      if (q.loop_of_vertex[v.idx()] >= 0) {
+        throw TopologyError("cut graph: vertex " + std::to_string(v.idx()) +
+                            " lies on the boundary twice (non-manifold)");
+      }
+      q.loop_of_vertex[v.idx()] = j;
+      vertices.push_back(v);
+    }
+    q.loop_vertices.push_back(std::move(vertices));
+  }
+  g.boundary_loop_of_vertex = q.loop_of_vertex;
+
+  const int root_node = q.node(root);
+  const ShortestPathTree tree = shortest_path_tree(mesh, q, root_node, lengths);
+  const std::vector<EdgeHandle> leftovers = cotree_leftovers(mesh, q, tree, lengths);
+  if (static_cast<int>(leftovers.size()) != twice_genus) {
+    throw TopologyError("cut graph: " + std::to_string(leftovers.size()) +
+                        " leftover edges where 2g = " + std::to_string(twice_genus) +
+                        " (faces not connected across interior edges?)");
+  }
+
+  g.is_cut_edge.assign(mesh.n_edges(), 0);
+  for (auto e : leftovers) {
+    CutPath loop;
+    loop.kind = CutPathKind::homology_loop;
+    loop.generator = mesh.halfedge_handle(e, 0);
+    loop.halfedges = tree_path(mesh, q, tree, q.node(mesh.from_vertex_handle(loop.generator)));
+    loop.halfedges.push_back(loop.generator);
+    const auto back = tree_path(mesh, q, tree, q.node(mesh.to_vertex_handle(loop.generator)));
+    for (auto it = back.rbegin(); it != back.rend(); ++it) {
+      loop.halfedges.push_back(mesh.opposite_halfedge_handle(*it));
+    }
+    loop.length = path_length(mesh, loop.halfedges, lengths);
+    g.loops.push_back(std::move(loop));
+  }
+  for (int j = 0; j < g.boundary_loop_count; ++j) {
+    const int node = q.vertex_count + j;
+    if (node == root_node) continue;
+    CutPath connector;
+    connector.kind = CutPathKind::boundary_connector;
+    connector.boundary_loop = j;
+    connector.halfedges = tree_path(mesh, q, tree, node);
+    connector.length = path_length(mesh, connector.halfedges, lengths);
+    g.boundary_connectors.push_back(std::move(connector));
+  }
+  for (const auto* paths : {&g.loops, &g.boundary_connectors}) {
+    for (const auto& path : *paths) {
+      if (options.check_paths) check_path_continuity(mesh, g, path);
+      for (auto h : path.halfedges) g.is_cut_edge[mesh.edge_handle(h).idx()] = 1;
+    }
+  }
+  return g;
+}
+
+}  // namespace ricci

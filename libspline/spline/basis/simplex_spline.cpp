@@ -1,0 +1,209 @@
+#include "spline/basis/simplex_spline.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "ricci/mesh/errors.h"
+
+namespace spline {
+namespace {
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+int popcount(std::uint32_t mask) {
+  int count = 0;
+  for (; mask != 0; mask &= mask - 1) ++count;
+  return count;
+}
+
+}  // namespace
+
+SimplexSplineDag::SimplexSplineDag(std::vector<Eigen::Vector2d> knots) : knots_(std::move(knots)) {
+  if (knots_.size() > 32) {
+    throw ricci::InvalidInputError("simplex spline: " + std::to_string(knots_.size()) +
+                                   " knots, at most 32 supported");
+  }
+  for (std::size_t i = 0; i < knots_.size(); ++i) {
+    if (!knots_[i].allFinite()) {
+      throw ricci::InvalidInputError("simplex spline: knot " + std::to_string(i) +
+                                     " is not finite");
+    }
+  }
+}
+
+int SimplexSplineDag::add(std::uint32_t mask) {
+  if (const auto it = index_.find(mask); it != index_.end()) return it->second;
+  const int count = popcount(mask);
+  if (count < 3 || (knots_.size() < 32 && (mask >> knots_.size()) != 0)) {
+    throw ricci::InvalidInputError("simplex spline: knot subset needs at least 3 valid knots");
+  }
+  if (nodes_.size() >= kNoChild) {
+    throw ricci::InvalidInputError("simplex spline: too many knot subsets in one DAG");
+  }
+  int members[32];
+  int size = 0;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  for (int i = 0; i < static_cast<int>(knots_.size()); ++i) {
+    if (mask & (1u << i)) {
+      members[size++] = i;
+      lo = lo.cwiseMin(knots_[i]);
+      hi = hi.cwiseMax(knots_[i]);
+    }
+  }
+  Node node;
+  node.degree = static_cast<std::uint8_t>(count - 3);
+  const float inf = std::numeric_limits<float>::infinity();
+  node.box[0] = std::nextafter(static_cast<float>(lo.x()), -inf);
+  node.box[1] = std::nextafter(static_cast<float>(lo.y()), -inf);
+  node.box[2] = std::nextafter(static_cast<float>(hi.x()), inf);
+  node.box[3] = std::nextafter(static_cast<float>(hi.y()), inf);
+  // The triple of largest area keeps the barycentric coordinates (and the cancellation in the
+  // recurrence) as small as possible.
+  double best = 0.0;
+  int ia = -1, ib = -1, ic = -1;
+  for (int x = 0; x < size; ++x) {
+    for (int y = x + 1; y < size; ++y) {
+      const Eigen::Vector2d e1 = knots_[members[y]] - knots_[members[x]];
+      for (int z = y + 1; z < size; ++z) {
+        const double det = std::abs(cross(e1, knots_[members[z]] - knots_[members[x]]));
+        if (det > best) {
+          best = det;
+          ia = members[x], ib = members[y], ic = members[z];
+        }
+      }
+    }
+  }
+  // No affinely independent triple: M is a measure on a line, zero as a function.
+  const int orientation = ia < 0 ? 0 : orient2d(knots_[ia], knots_[ib], knots_[ic]);
+  if (orientation != 0 && count == 3) {
+    node.kind = Kind::base;
+    node.knot[0] = static_cast<std::uint8_t>(ia);
+    node.knot[1] = static_cast<std::uint8_t>(orientation > 0 ? ib : ic);
+    node.knot[2] = static_cast<std::uint8_t>(orientation > 0 ? ic : ib);
+    node.data[0] = 1.0 / std::abs(accurate_det2d(knots_[ia], knots_[ib], knots_[ic]));
+  } else if (orientation != 0) {
+    const int triple[3] = {ia, ib, ic};
+    for (int k = 0; k < 3; ++k) {
+      const int child = add(mask & ~(1u << triple[k]));
+      node.child[k] = nodes_[static_cast<std::size_t>(child)].kind == Kind::zero
+                          ? kNoChild
+                          : static_cast<std::uint16_t>(child);
+      node.knot[k] = static_cast<std::uint8_t>(triple[k]);
+    }
+    const Eigen::Vector2d e1 = knots_[ib] - knots_[ia], e2 = knots_[ic] - knots_[ia];
+    const double det = accurate_det2d(knots_[ia], knots_[ib], knots_[ic]);
+    node.kind = Kind::recurrence;
+    node.data[0] = e2.y() / det;
+    node.data[1] = -e2.x() / det;
+    node.data[2] = -e1.y() / det;
+    node.data[3] = e1.x() / det;
+  }
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.push_back(node);
+  index_.emplace(mask, id);
+  return id;
+}
+
+void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,
+                                std::vector<Jet>& jets) const {
+  jets.assign(nodes_.size(), Jet{});
+  for (std::size_t id = 0; id < nodes_.size(); ++id) {
+    const Node& node = nodes_[id];
+    if (node.kind == Kind::zero || outside(node, u)) continue;
+    Jet& jet = jets[id];
+    if (node.kind == Kind::base) {
+      if (in_half_open_triangle(knots_[node.knot[0]], knots_[node.knot[1]], knots_[node.knot[2]],
+                                u, tie)) {
+        jet.value = node.data[0];
+      }
+      continue;
+    }
+    const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
+    const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+    const double lambda[3] = {barycentric(node, 0, g[0], u), barycentric(node, 1, g[1], u),
+                              barycentric(node, 2, g[2], u)};
+    double hxx = 0.0, hxy = 0.0, hyy = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      if (node.child[k] == kNoChild) continue;
+      const Jet& c = jets[node.child[k]];
+      jet.value += lambda[k] * c.value;
+      jet.gradient += g[k] * c.value;
+      hxx += g[k].x() * c.gradient.x();
+      hxy += 0.5 * (g[k].x() * c.gradient.y() + g[k].y() * c.gradient.x());
+      hyy += g[k].y() * c.gradient.y();
+    }
+    const double n = node.degree;
+    jet.gradient *= n;
+    jet.hessian = n * Eigen::Vector3d(hxx, hxy, hyy);
+  }
+}
+
+void SimplexSplineDag::evaluate_directional(const Eigen::Vector2d& u,
+                                            const Eigen::Vector2d& direction, int max_order,
+                                            const TieBreak& tie,
+                                            std::vector<double>& table) const {
+  const std::size_t stride = static_cast<std::size_t>(max_order) + 1;
+  table.assign(nodes_.size() * stride, 0.0);
+  for (std::size_t id = 0; id < nodes_.size(); ++id) {
+    const Node& node = nodes_[id];
+    if (node.kind == Kind::zero || outside(node, u)) continue;
+    double* out = &table[id * stride];
+    if (node.kind == Kind::base) {
+      if (in_half_open_triangle(knots_[node.knot[0]], knots_[node.knot[1]], knots_[node.knot[2]],
+                                u, tie)) {
+        out[0] = node.data[0];
+      }
+      continue;
+    }
+    const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
+    const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+    const double lambda[3] = {barycentric(node, 0, g[0], u), barycentric(node, 1, g[1], u),
+                              barycentric(node, 2, g[2], u)};
+    const double mb = g_b.dot(direction), mc = g_c.dot(direction);
+    const double mu[3] = {-mb - mc, mb, mc};
+    for (int k = 0; k < 3; ++k) {
+      if (node.child[k] == kNoChild) continue;
+      const double* c = &table[static_cast<std::size_t>(node.child[k]) * stride];
+      out[0] += lambda[k] * c[0];
+      for (std::size_t order = 1; order < stride; ++order) out[order] += mu[k] * c[order - 1];
+    }
+    for (std::size_t order = 1; order < stride; ++order) out[order] *= node.degree;
+  }
+}
+
+Jet simplex_spline(const std::vector<Eigen::Vector2d>& knots, const Eigen::Vector2d& u,
+                   const TieBreak& tie) {
+  if (knots.size() < 3) {
+    throw ricci::InvalidInputError("simplex spline: needs at least 3 knots");
+  }
+  SimplexSplineDag dag(knots);
+  const std::uint32_t all =
+      knots.size() == 32 ? ~0u : ((1u << static_cast<std::uint32_t>(knots.size())) - 1u);
+  const int root = dag.add(all);
+  std::vector<Jet> jets;
+  dag.evaluate(u, tie, jets);
+  return jets[static_cast<std::size_t>(root)];
+}
+
+std::vector<double> simplex_spline_directional(const std::vector<Eigen::Vector2d>& knots,
+                                               const Eigen::Vector2d& u,
+                                               const Eigen::Vector2d& direction, int max_order,
+                                               const TieBreak& tie) {
+  if (knots.size() < 3 || max_order < 0) {
+    throw ricci::InvalidInputError("simplex spline: needs at least 3 knots and max_order >= 0");
+  }
+  SimplexSplineDag dag(knots);
+  const std::uint32_t all =
+      knots.size() == 32 ? ~0u : ((1u << static_cast<std::uint32_t>(knots.size())) - 1u);
+  const int root = dag.add(all);
+  std::vector<double> table;
+  dag.evaluate_directional(u, direction, max_order, tie, table);
+  const auto begin = table.begin() + static_cast<std::ptrdiff_t>(root) * (max_order + 1);
+  return std::vector<double>(begin, begin + max_order + 1);
+}
+
+}  // namespace spline

@@ -1,0 +1,106 @@
+#pragma once
+// Bivariate simplex splines M(u | X) for a knot multiset X of n + 3 points (degree n), by the
+// Micchelli recurrence, memoised over knot subsets (bit masks), with exact derivative formulas.
+//
+// Normalisation (the DMS one, ALGORITHMS.md section 7): for 3 knots M = 1/|d(a,b,c)| inside the
+// triangle (d = det[1 1 1; a b c] = twice the signed area), and for more knots
+//     M(u | X) = sum_a lambda_a(u) M(u | X \ x_a),   u = sum_a lambda_a x_a, sum_a lambda_a = 1,
+// over any affinely independent triple {x_a} of X (we take the one of largest area: choosing the
+// first found one loses partition of unity at small cloud radii). The standard simplex spline
+// (volume of a slice of an (n+2)-simplex over its volume, integral 1) satisfies the same
+// recurrence with the factor (n+2)/n, and equals 2/|d| for 3 knots; so
+//     M_DMS = M_standard / ((n + 1)(n + 2)),   integral of M_DMS over R^2 = 1 / ((n + 1)(n + 2)),
+// which is also the integral of a degree-n Bernstein polynomial over a triangle divided by |d|:
+// the factor that makes N = |d| M a partition of unity. Derivatives (Micchelli; DMS 1992): for
+// d = sum_a mu_a x_a with sum_a mu_a = 0,
+//     D_d M(u | X) = n sum_a mu_a M(u | X \ x_a)    (degree-n M, this normalisation),
+// applied with the same triple (mu_a = d . grad lambda_a) and recursively for higher orders.
+// Points on knot lines take the value of the polynomial piece on the side given by a TieBreak.
+#include <Eigen/Core>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "spline/basis/orientation.h"
+
+namespace spline {
+
+/// Value, gradient and Hessian (xx, xy, yy) of a function of the plane at a point.
+struct Jet {
+  double value = 0.0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+  Eigen::Vector3d hessian = Eigen::Vector3d::Zero();  ///< (d2/dx2, d2/dxdy, d2/dy2)
+};
+
+/// Factor from the DMS normalisation to the standard one (integral 1): (n + 1)(n + 2).
+[[nodiscard]] constexpr double standard_simplex_spline_factor(int degree) {
+  return (degree + 1.0) * (degree + 2.0);
+}
+
+/// A set of simplex splines over subsets of one knot list, sharing the sub-results of their
+/// recurrences: a DAG of knot subsets, each node with its affinely independent triple chosen once
+/// (largest |det|) so that evaluating at a point is one pass over the nodes.
+class SimplexSplineDag {
+ public:
+  /// \throw ricci::InvalidInputError with more than 32 knots or a non-finite knot.
+  /// (A DAG holds at most 65535 nodes: far more than 32 knots of degree <= 7 need.)
+  explicit SimplexSplineDag(std::vector<Eigen::Vector2d> knots);
+
+  /// Adds M(. | {knots[i] : bit i of mask}) (at least 3 bits) and returns its node id.
+  int add(std::uint32_t mask);
+
+  [[nodiscard]] int node_count() const { return static_cast<int>(nodes_.size()); }
+  [[nodiscard]] const std::vector<Eigen::Vector2d>& knots() const { return knots_; }
+
+  /// Evaluates every node at u: jets[id] is then M, grad M and Hessian of M for node id.
+  void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& jets) const;
+
+  /// Directional derivatives D_d^k M for k = 0..max_order of every node at u:
+  /// table[id * (max_order + 1) + k].
+  void evaluate_directional(const Eigen::Vector2d& u, const Eigen::Vector2d& direction,
+                            int max_order, const TieBreak& tie, std::vector<double>& table) const;
+
+ private:
+  enum class Kind : std::uint8_t { zero, base, recurrence };
+  static constexpr std::uint16_t kNoChild = 0xFFFF;
+  // 64 bytes: a degree-5 triangle has ~700 nodes, and a domain thousands of triangles.
+  struct Node {
+    // base: 1/|d| in data[0]. recurrence: lambda_k(u) = g_k.(u - s) for the triple k = a, b, c
+    // with g_b = data[0..1], g_c = data[2..3], g_a = -g_b - g_c, and s either end of the edge
+    // opposite x_k (knot[(k+1)%3], knot[(k+2)%3]; lambda_k vanishes at both): the one nearer to
+    // u, since the rounding error is eps |g_k| |u - s| and thin triples (two knots of one cloud
+    // and a far knot) have large |g_k|.
+    double data[4] = {0.0, 0.0, 0.0, 0.0};
+    float box[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // knots' bounding box, rounded outwards
+    std::uint16_t child[3] = {kNoChild, kNoChild, kNoChild};  // X \ x_a, X \ x_b, X \ x_c
+    std::uint8_t knot[3] = {0, 0, 0};  // base: ccw triangle; recurrence: the triple (a, b, c)
+    Kind kind = Kind::zero;
+    std::uint8_t degree = 0;
+  };
+  double barycentric(const Node& node, int k, const Eigen::Vector2d& g_k,
+                     const Eigen::Vector2d& u) const {
+    const Eigen::Vector2d wp = u - knots_[node.knot[(k + 1) % 3]];
+    const Eigen::Vector2d wq = u - knots_[node.knot[(k + 2) % 3]];
+    return g_k.dot(wp.squaredNorm() <= wq.squaredNorm() ? wp : wq);
+  }
+  bool outside(const Node& node, const Eigen::Vector2d& u) const {
+    // Strictly outside the closed box: u and its perturbation lie outside the knots' hull.
+    return u.x() < node.box[0] || u.y() < node.box[1] || u.x() > node.box[2] ||
+           u.y() > node.box[3];
+  }
+
+  std::vector<Eigen::Vector2d> knots_;
+  std::vector<Node> nodes_;
+  std::unordered_map<std::uint32_t, int> index_;
+};
+
+/// M_DMS(u | knots) with gradient and Hessian (3 to 32 knots).
+[[nodiscard]] Jet simplex_spline(const std::vector<Eigen::Vector2d>& knots,
+                                 const Eigen::Vector2d& u, const TieBreak& tie = {});
+
+/// D_d^k M_DMS(u | knots) for k = 0..max_order.
+[[nodiscard]] std::vector<double> simplex_spline_directional(
+    const std::vector<Eigen::Vector2d>& knots, const Eigen::Vector2d& u,
+    const Eigen::Vector2d& direction, int max_order, const TieBreak& tie = {});
+
+}  // namespace spline

@@ -1,0 +1,125 @@
+#include "spline/basis/triangle_basis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "ricci/mesh/errors.h"
+#include "spline/basis/multi_index.h"
+
+namespace spline {
+namespace {
+
+std::vector<Eigen::Vector2d> concatenate(const KnotCloud& c0, const KnotCloud& c1,
+                                         const KnotCloud& c2) {
+  const int n = c0.degree();
+  if (n < 1 || n > kMaxDmsDegree || c1.degree() != n || c2.degree() != n) {
+    throw ricci::InvalidInputError("triangle basis: clouds of degrees " +
+                                   std::to_string(c0.degree()) + ", " +
+                                   std::to_string(c1.degree()) + ", " +
+                                   std::to_string(c2.degree()) + " (need equal, 1.." +
+                                   std::to_string(kMaxDmsDegree) + ")");
+  }
+  std::vector<Eigen::Vector2d> knots;
+  for (const KnotCloud* c : {&c0, &c1, &c2}) {
+    knots.insert(knots.end(), c->knots.begin(), c->knots.end());
+  }
+  return knots;
+}
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+}  // namespace
+
+TriangleBasis::TriangleBasis(const KnotCloud& cloud0, const KnotCloud& cloud1,
+                             const KnotCloud& cloud2)
+    : degree_(cloud0.degree()), dag_(concatenate(cloud0, cloud1, cloud2)) {
+  const int n = degree_;
+  const auto& knots = dag_.knots();
+  box_min_ = box_max_ = knots[0];
+  for (const Eigen::Vector2d& t : knots) {
+    box_min_ = box_min_.cwiseMin(t);
+    box_max_ = box_max_.cwiseMax(t);
+  }
+  for (const Eigen::Vector3i& beta : multi_indices(n)) {
+    std::uint32_t mask = 0;
+    for (int v = 0; v < 3; ++v) {
+      for (int j = 0; j <= beta[v]; ++j) mask |= 1u << (v * (n + 1) + j);
+    }
+    const Eigen::Vector2d& a = knots[static_cast<std::size_t>(beta[0])];
+    const Eigen::Vector2d& b = knots[static_cast<std::size_t>(n + 1 + beta[1])];
+    const Eigen::Vector2d& c = knots[static_cast<std::size_t>(2 * (n + 1) + beta[2])];
+    const double d = std::abs(cross(b - a, c - a));
+    if (!(d > 0.0)) {
+      throw ricci::InvalidInputError("triangle basis: shifted triangle of beta (" +
+                                     std::to_string(beta[0]) + "," + std::to_string(beta[1]) +
+                                     "," + std::to_string(beta[2]) + ") is degenerate");
+    }
+    masks_.push_back(mask);
+    scales_.push_back(d);
+    roots_.push_back(dag_.add(mask));
+  }
+}
+
+std::vector<Eigen::Vector2d> TriangleBasis::knot_set(int i) const {
+  std::vector<Eigen::Vector2d> result;
+  const std::uint32_t mask = masks_[static_cast<std::size_t>(i)];
+  for (std::size_t k = 0; k < dag_.knots().size(); ++k) {
+    if (mask & (1u << k)) result.push_back(dag_.knots()[k]);
+  }
+  return result;
+}
+
+bool TriangleBasis::in_support(int i, const Eigen::Vector2d& u) const {
+  // Closed convex hull by Andrew's monotone chain with exact orientations.
+  std::vector<Eigen::Vector2d> points = knot_set(i);
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y());
+  });
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t pass = 0; pass < 2; ++pass) {
+    const std::size_t start = k;
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      const Eigen::Vector2d& p = pass == 0 ? points[j] : points[points.size() - 1 - j];
+      while (k >= start + 2 && orient2d(hull[k - 2], hull[k - 1], p) <= 0) --k;
+      hull[k++] = p;
+    }
+    --k;  // the last point starts the other chain
+  }
+  if (k < 3) return false;  // collinear knots: the function vanishes
+  for (std::size_t j = 0; j < k; ++j) {
+    if (orient2d(hull[j], hull[(j + 1) % k], u) < 0) return false;
+  }
+  return true;
+}
+
+void TriangleBasis::evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,
+                             std::vector<Jet>& scratch) const {
+  dag_.evaluate(u, tie, scratch);
+  out.resize(roots_.size());
+  for (std::size_t i = 0; i < roots_.size(); ++i) {
+    const Jet& m = scratch[static_cast<std::size_t>(roots_[i])];
+    out[i].value = scales_[i] * m.value;
+    out[i].gradient = scales_[i] * m.gradient;
+    out[i].hessian = scales_[i] * m.hessian;
+  }
+}
+
+void TriangleBasis::evaluate_directional(const Eigen::Vector2d& u,
+                                         const Eigen::Vector2d& direction, int max_order,
+                                         const TieBreak& tie, std::vector<double>& out,
+                                         std::vector<double>& scratch) const {
+  dag_.evaluate_directional(u, direction, max_order, tie, scratch);
+  const std::size_t stride = static_cast<std::size_t>(max_order) + 1;
+  out.resize(roots_.size() * stride);
+  for (std::size_t i = 0; i < roots_.size(); ++i) {
+    for (std::size_t k = 0; k < stride; ++k) {
+      out[i * stride + k] = scales_[i] * scratch[static_cast<std::size_t>(roots_[i]) * stride + k];
+    }
+  }
+}
+
+}  // namespace spline

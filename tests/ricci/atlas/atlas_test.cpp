@@ -1,0 +1,159 @@
+#include "ricci/atlas/atlas.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+
+#include "ricci/atlas/chart_develop.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/topology/test_grids.h"
+
+namespace ricci {
+namespace {
+
+/// Facts every atlas must satisfy, whatever the mesh: neighbourhood charts exist and are
+/// isometric, positively oriented planar pieces; transitions fit to `tolerance` (relative to the
+/// domain diameter) and map corners between charts.
+void expect_consistent_atlas(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                             const AffineAtlas& atlas, double tolerance) {
+  EXPECT_EQ(atlas.uncovered_faces, 0);
+  EXPECT_EQ(atlas.layout.flipped_faces, 0);
+  EXPECT_LT(atlas.layout.max_relative_length_error, tolerance);
+  EXPECT_LT(atlas.max_transition_residual, tolerance * atlas.domain_diameter);
+  EXPECT_LT(atlas.max_side_pairing_residual, tolerance * atlas.domain_diameter);
+  for (auto f : mesh.faces()) {
+    const int c = atlas.chart_of_face_neighbourhood(f.idx());
+    if (!atlas.in_domain[f.idx()]) {
+      EXPECT_EQ(c, -1);
+      continue;
+    }
+    ASSERT_GE(c, 0) << "face " << f.idx();
+    const auto hood = detail::face_neighbourhood(mesh, f.idx(), atlas.in_domain);
+    EXPECT_TRUE(detail::holds_as_one_piece(mesh, atlas.charts[c], hood));
+    for (int g : hood) {
+      const auto p = atlas.face_positions(c, g);
+      const Eigen::Vector2d u = p.row(1) - p.row(0), v = p.row(2) - p.row(0);
+      EXPECT_GT(u.x() * v.y() - u.y() * v.x(), 0.0);
+      const auto hs = face_halfedges(mesh, FaceHandle(g));
+      for (int k = 0; k < 3; ++k) {
+        const double l = lengths[mesh.edge_handle(hs[k]).idx()];
+        EXPECT_NEAR((p.row(k) - p.row((k + 2) % 3)).norm(), l, tolerance * l);
+      }
+    }
+  }
+  // Every transition maps its faces' corners from one chart onto the other.
+  for (const Transition& t : atlas.transitions) {
+    for (int f : t.faces) {
+      const auto a = atlas.face_positions(t.chart_a, f), b = atlas.face_positions(t.chart_b, f);
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector2d mapped = atlas.map(a.row(k).transpose(), t.chart_a, t.chart_b, f);
+        EXPECT_LT((mapped - b.row(k).transpose()).norm(), tolerance * atlas.domain_diameter);
+        const Eigen::Vector2d back = atlas.map(b.row(k).transpose(), t.chart_b, t.chart_a, f);
+        EXPECT_LT((back - a.row(k).transpose()).norm(), tolerance * atlas.domain_diameter);
+      }
+    }
+  }
+}
+
+/// True when t is an integer combination of the lattice basis (g1, g2).
+bool in_lattice(const Eigen::Vector2d& t, const Eigen::Vector2d& g1, const Eigen::Vector2d& g2) {
+  Eigen::Matrix2d basis;
+  basis << g1, g2;
+  const Eigen::Vector2d c = basis.inverse() * t;
+  return (c - c.array().round().matrix()).cwiseAbs().maxCoeff() < 1e-9;
+}
+
+TEST(Atlas, FlatTorusTransitionsAreTranslationsByPeriods) {
+  const int nx = 18, ny = 12;
+  const double w = 4.5, h = 2.0;
+  const Mesh torus = test::flat_torus_grid(nx, ny);
+  const Eigen::VectorXd lengths = test::flat_torus_lengths(torus, nx, ny, w, h);
+  for (int root : {0, 77}) {
+    SCOPED_TRACE("root " + std::to_string(root));
+    const AffineAtlas atlas = build_affine_atlas(torus, lengths, VertexHandle(root));
+    EXPECT_FALSE(atlas.root_is_cone);
+    EXPECT_NEAR(atlas.root_curvature, 0.0, 1e-12);
+    EXPECT_TRUE(atlas.polygon.canonical);
+    expect_consistent_atlas(torus, lengths, atlas, 1e-12);
+    EXPECT_GE(atlas.charts.size(), 3u);  // central + one per loop at least
+    // Each side pairing is a deck translation; the loops' two are the periods: shortest loops
+    // on this grid are the straight ones, of lengths h and w, perpendicular (the layout's frame
+    // is rotated by the seed edge, so compare norms and angles, not coordinates).
+    std::vector<Eigen::Vector2d> generators;
+    for (const SidePairing& s : atlas.side_pairings) {
+      EXPECT_LT(std::abs(s.motion.angle), 1e-12);
+      if (s.loop >= 0) generators.push_back(s.motion.translation);
+    }
+    ASSERT_EQ(generators.size(), 2u);
+    std::sort(generators.begin(), generators.end(),
+              [](const auto& a, const auto& b) { return a.norm() < b.norm(); });
+    EXPECT_NEAR(generators[0].norm(), h, 1e-10);
+    EXPECT_NEAR(generators[1].norm(), w, 1e-10);
+    EXPECT_NEAR(generators[0].dot(generators[1]), 0.0, 1e-10);
+    for (const SidePairing& s : atlas.side_pairings) {
+      EXPECT_TRUE(in_lattice(s.motion.translation, generators[0], generators[1]));
+      EXPECT_GT(s.motion.translation.norm(), 0.5 * h);  // a cut never pairs a side with itself
+    }
+    // Charts are developed in the central chart's frame: every transition is a deck translation.
+    for (const Transition& t : atlas.transitions) {
+      EXPECT_LT(std::abs(t.motion.angle), 1e-12);
+      EXPECT_TRUE(in_lattice(t.motion.translation, generators[0], generators[1]))
+          << t.motion.translation.transpose();
+    }
+  }
+}
+
+TEST(Atlas, PlanarGridWithInteriorRootIsOneSheet) {
+  const Mesh grid = test::planar_grid(14, 10, 3.5, 2.5);
+  const Eigen::VectorXd lengths = checked_edge_lengths(grid, {});
+  const AffineAtlas atlas = build_affine_atlas(grid, lengths, VertexHandle(7 * 15 + 5));
+  EXPECT_FALSE(atlas.root_is_cone);
+  expect_consistent_atlas(grid, lengths, atlas, 1e-12);
+  // Cutting a planar disk along a tree path changes nothing in the plane: all motions are the
+  // identity.
+  for (const SidePairing& s : atlas.side_pairings) {
+    EXPECT_LT(std::abs(s.motion.angle), 1e-12);
+    EXPECT_LT(s.motion.translation.norm(), 1e-12);
+  }
+  for (const Transition& t : atlas.transitions) {
+    EXPECT_LT(std::abs(t.motion.angle), 1e-12);
+    EXPECT_LT(t.motion.translation.norm(), 1e-12);
+  }
+}
+
+TEST(Atlas, RigidMotionFitRecoversAMotion) {
+  RigidMotion2 m;
+  m.angle = 2.5;
+  m.translation = Eigen::Vector2d(-3.0, 7.0);
+  Eigen::MatrixX2d from(4, 2), to(4, 2);
+  from << 0, 0, 1, 0, 0, 2, 3, 1;
+  for (int i = 0; i < 4; ++i) to.row(i) = m.apply(from.row(i).transpose()).transpose();
+  double residual = 1.0;
+  const RigidMotion2 fit = fit_rigid_motion(from, to, &residual);
+  EXPECT_NEAR(fit.angle, 2.5, 1e-14);
+  EXPECT_LT((fit.translation - m.translation).norm(), 1e-13);
+  EXPECT_LT(residual, 1e-13);
+  const RigidMotion2 id = m.inverse().after(m);
+  EXPECT_NEAR(id.angle, 0.0, 1e-15);
+  EXPECT_LT(id.translation.norm(), 1e-14);
+}
+
+TEST(Atlas, QueriesRejectWhatTheChartsDoNotHold) {
+  const Mesh torus = test::flat_torus_grid(8, 8);
+  const AffineAtlas atlas =
+      build_affine_atlas(torus, test::flat_torus_lengths(torus, 8, 8, 1.0, 1.0), VertexHandle(0));
+  EXPECT_THROW((void)atlas.corner_position(99, 0, 0), InvalidInputError);
+  EXPECT_THROW((void)atlas.corner_position(0, 0, 3), InvalidInputError);
+  // A loop chart holds only faces near its loop: find a face it lacks.
+  const Chart& loop_chart = atlas.charts[1];
+  int missing = -1;
+  for (auto f : torus.faces()) {
+    if (loop_chart.slot(f.idx()) < 0) missing = f.idx();
+  }
+  ASSERT_GE(missing, 0);
+  EXPECT_FALSE(atlas.transition(0, 1, missing).has_value());
+  EXPECT_THROW((void)atlas.map(Eigen::Vector2d::Zero(), 0, 1, missing), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace ricci

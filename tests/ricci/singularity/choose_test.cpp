@@ -1,0 +1,67 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "ricci/mesh/io.h"
+#include "ricci/singularity/choose.h"
+
+namespace {
+
+ricci::Mesh shared_model(const std::string& relative) {
+  return ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + relative);
+}
+
+// The paper's brute force: one full flow per vertex.
+double brute_force_best(const ricci::Mesh& mesh, int& best_vertex) {
+  double best = std::numeric_limits<double>::infinity();
+  for (auto v : mesh.vertices()) {
+    double d = ricci::one_cone_area_distortion(mesh, v.idx());
+    if (d < best) {
+      best = d;
+      best_vertex = v.idx();
+    }
+  }
+  return best;
+}
+
+void expect_close_to_brute_force(const std::string& model) {
+  ricci::Mesh mesh = shared_model(model);
+  auto choice = ricci::choose_singularity(mesh);
+  int brute_vertex = -1;
+  double brute = brute_force_best(mesh, brute_vertex);
+  ASSERT_TRUE(std::isfinite(brute)) << model;
+  EXPECT_LE(choice.area_distortion, 1.02 * brute)
+      << model << ": chose " << choice.vertex << ", brute force " << brute_vertex;
+  EXPECT_LT(choice.flows_run * 10, static_cast<int>(mesh.n_vertices())) << model;
+  std::cout << model << ": chose vertex " << choice.vertex << " (distortion " << choice.area_distortion
+            << ", " << choice.flows_run << " flows); brute force vertex " << brute_vertex << " ("
+            << brute << ", " << mesh.n_vertices() << " flows)\n";
+}
+
+TEST(ChooseSingularity, MatchesBruteForceOnGenusTwo) { expect_close_to_brute_force("closed_g2/eight_cgal.off"); }
+
+TEST(ChooseSingularity, MatchesBruteForceOnGenusZero) {
+  expect_close_to_brute_force("closed_g0/knight_decimated.off");
+}
+
+TEST(ChooseSingularity, GenusOneAndOpenSurfacesNeedNoVertex) {
+  auto choice = ricci::choose_singularity(shared_model("closed_g1/knot1.off"));
+  EXPECT_EQ(choice.vertex, -1);
+  EXPECT_EQ(choice.flows_run, 1);
+  EXPECT_TRUE(std::isfinite(choice.area_distortion));
+}
+
+TEST(ChooseSingularity, LinearRankingCoversEveryInteriorVertexSorted) {
+  auto mesh = shared_model("closed_g2/eight.off");
+  auto ranked = ricci::rank_singularities(mesh);
+  EXPECT_EQ(ranked.size(), mesh.n_vertices());
+  EXPECT_TRUE(std::is_sorted(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+    return a.area_distortion < b.area_distortion;
+  }));
+  for (const auto& s : ranked) EXPECT_TRUE(std::isfinite(s.area_distortion));
+}
+
+}  // namespace
