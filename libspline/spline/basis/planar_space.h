@@ -61,7 +61,7 @@ class PlanarDmsSpace {
   /// The (I, beta) whose support (closed hull of V_beta^I) contains u.
   [[nodiscard]] std::vector<BasisFunctionId> support(const Eigen::Vector2d& u) const;
 
-  /// Triangles whose clouds' bounding box contains u (candidates for non-zero functions).
+  /// Triangles whose clouds' convex hull contains u (candidates for non-zero functions).
   [[nodiscard]] std::vector<int> candidate_triangles(const Eigen::Vector2d& u) const;
 
   /// All basis functions with a non-zero value or derivative at u.

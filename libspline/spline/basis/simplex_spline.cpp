@@ -108,6 +108,15 @@ int SimplexSplineDag::add(std::uint32_t mask) {
   return id;
 }
 
+void SimplexSplineDag::release_index() {
+  std::unordered_map<std::uint32_t, int>().swap(index_);
+  nodes_.shrink_to_fit();
+}
+
+std::size_t SimplexSplineDag::memory_bytes() const {
+  return nodes_.capacity() * sizeof(Node) + knots_.capacity() * sizeof(Eigen::Vector2d);
+}
+
 void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,
                                 std::vector<Jet>& jets) const {
   jets.assign(nodes_.size(), Jet{});

@@ -50,6 +50,13 @@ class SimplexSplineDag {
   int add(std::uint32_t mask);
 
   [[nodiscard]] int node_count() const { return static_cast<int>(nodes_.size()); }
+
+  /// Drops the subset -> node map once all roots are added (it is as large as the nodes). Later
+  /// add() calls stay correct but no longer share the nodes built before.
+  void release_index();
+
+  /// Bytes held by the nodes and knots (the evaluation state).
+  [[nodiscard]] std::size_t memory_bytes() const;
   [[nodiscard]] const std::vector<Eigen::Vector2d>& knots() const { return knots_; }
 
   /// Evaluates every node at u: jets[id] is then M, grad M and Hessian of M for node id.

@@ -1,0 +1,46 @@
+// msp-bench NAME [args]: benchmarks that print figures and ratios (never run as tests).
+// Each benchmark lives in its own file; this table is the only place that lists them.
+#include <cstring>
+#include <exception>
+#include <iostream>
+
+#include "bench/benchmarks.h"
+
+namespace {
+
+struct Benchmark {
+  const char* name;
+  int (*run)(int, char**);
+  const char* summary;
+};
+
+const Benchmark kBenchmarks[] = {
+    {"dms", msp::bench::run_dms_benchmark,
+     "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
+};
+
+void usage() {
+  std::cerr << "usage: msp-bench <name> [args]\n\nbenchmarks:\n";
+  for (const auto& b : kBenchmarks) std::cerr << "  " << b.name << "\t" << b.summary << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help")) {
+    usage();
+    return argc < 2 ? 2 : 0;
+  }
+  for (const auto& b : kBenchmarks) {
+    if (std::strcmp(argv[1], b.name) != 0) continue;
+    try {
+      return b.run(argc - 2, argv + 2);
+    } catch (const std::exception& e) {
+      std::cerr << "msp-bench " << b.name << ": " << e.what() << "\n";
+      return 1;
+    }
+  }
+  std::cerr << "msp-bench: unknown benchmark '" << argv[1] << "'\n";
+  usage();
+  return 2;
+}
