@@ -19,6 +19,22 @@ int popcount(std::uint32_t mask) {
   return count;
 }
 
+void put_longest_opposite_first(const std::vector<Eigen::Vector2d>& knots, int& a, int& b, int& c) {
+  // lambda_a's gradient is derived as -(g_b + g_c); it is the largest of the three (the one
+  // opposite the longest edge), so the sum does not cancel. Deriving a small one would lose
+  // digits in proportion to the triangle's aspect ratio (cloud radius / edge length).
+  const double opposite_a = (knots[c] - knots[b]).squaredNorm();
+  const double opposite_b = (knots[a] - knots[c]).squaredNorm();
+  const double opposite_c = (knots[b] - knots[a]).squaredNorm();
+  if (opposite_b > opposite_a && opposite_b >= opposite_c) {
+    const int t = a;
+    a = b, b = c, c = t;
+  } else if (opposite_c > opposite_a && opposite_c > opposite_b) {
+    const int t = c;
+    c = b, b = a, a = t;
+  }
+}
+
 }  // namespace
 
 SimplexSplineDag::SimplexSplineDag(std::vector<Eigen::Vector2d> knots) : knots_(std::move(knots)) {
@@ -86,6 +102,7 @@ int SimplexSplineDag::add(std::uint32_t mask) {
     node.knot[2] = static_cast<std::uint8_t>(orientation > 0 ? ic : ib);
     node.data[0] = 1.0 / std::abs(accurate_det2d(knots_[ia], knots_[ib], knots_[ic]));
   } else if (orientation != 0) {
+    put_longest_opposite_first(knots_, ia, ib, ic);
     const int triple[3] = {ia, ib, ic};
     for (int k = 0; k < 3; ++k) {
       const int child = add(mask & ~(1u << triple[k]));
