@@ -84,6 +84,13 @@ class SimplexSplineDag {
     Kind kind = Kind::zero;
     std::uint8_t degree = 0;
   };
+  struct Triple {
+    int a = -1, b = -1, c = -1;
+  };
+  // The subset's largest-area knot triple (a < 0: all collinear); also fills node.box.
+  Triple largest_triple(std::uint32_t mask, Node& node) const;
+  // Adds the children X \ x_k and the barycentric gradients of the triple to node.
+  void set_recurrence(std::uint32_t mask, Triple triple, Node& node);
   double barycentric(const Node& node, int k, const Eigen::Vector2d& g_k,
                      const Eigen::Vector2d& u) const {
     const Eigen::Vector2d wp = u - knots_[node.knot[(k + 1) % 3]];
