@@ -16,6 +16,14 @@
 //     D_d M(u | X) = n sum_a mu_a M(u | X \ x_a)    (degree-n M, this normalisation),
 // applied with the same triple (mu_a = d . grad lambda_a) and recursively for higher orders.
 // Points on knot lines take the value of the polynomial piece on the side given by a TieBreak.
+//
+// Numerics (measured with msp-bench dms and the tests): the triples' determinants use error-free
+// products (orientation.h); each lambda_a is anchored at the end of its opposite edge nearer to
+// u; and the one gradient derived from the other two (sum of gradients = 0) is the largest, so the
+// subtraction does not cancel. Without the last point thin triples (two knots of a cloud and a
+// far knot) lost digits in proportion to edge length / cloud radius; with it partition of unity
+// holds to ~1e-15 for cloud radii from 0.45 of the inradius down to 1e-7 of the edge length, also
+// at points inside the clouds. Evaluation is const and thread-safe.
 #include <Eigen/Core>
 #include <cstdint>
 #include <unordered_map>
