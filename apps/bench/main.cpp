@@ -21,6 +21,8 @@ const Benchmark kBenchmarks[] = {
      "one row of 'flow' in this process (used by 'flow' through a child process)"},
     {"solvers", msp::bench::run_solver_benchmark,
      "factorisations of the E2 Newton Hessian: Eigen LDLT/LLT vs CHOLMOD supernodal/simplicial"},
+    {"topology", msp::bench::run_topology_benchmark,
+     "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
 };
 
 void usage() {
