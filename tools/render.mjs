@@ -1,10 +1,10 @@
 #!/usr/bin/env node
 // Renders a .glb to a PNG with three.js in headless Chromium (Debian's /usr/bin/chromium driven
-// by puppeteer-core). The page, three.js and the model are served from 127.0.0.1 on an
+// by puppeteer-core); an .svg is rasterised as it is (at --width, height from its aspect ratio). The page, three.js and the model are served from 127.0.0.1 on an
 // ephemeral port; nothing is fetched from outside. One retry on failure; the whole run is killed
 // after --timeout seconds (default 60).
 //
-// Usage: node tools/render.mjs FILE.glb OUT.png [--width 1024] [--height 768]
+// Usage: node tools/render.mjs FILE.glb|FILE.svg OUT.png [--width 1024] [--height 768]
 //          [--azimuth 35] [--elevation 25] [--background #ffffff] [--timeout 60]
 // Exit status: 0 rendered, 1 render failed twice, 2 usage, 3 timed out.
 import { createServer } from 'node:http';
@@ -44,6 +44,17 @@ function parseArgs(argv) {
   return { model: positionals[0], out: positionals[1], ...options };
 }
 
+function svgPage(options) {
+  return `<!doctype html>
+<html><head><meta charset="utf-8"><style>html,body{margin:0;background:${options.background}}img{display:block}</style></head>
+<body><img id="svg" width="${options.width}"><script>
+const img = document.getElementById('svg');
+img.onload = () => { window.__render = { status: 'loaded', width: img.width, height: img.height, triangles: 0 }; };
+img.onerror = () => { window.__render = { status: 'error', message: 'the SVG did not load' }; };
+img.src = '/model.svg';
+</script></body></html>`;
+}
+
 function page(options) {
   return `<!doctype html>
 <html><head><meta charset="utf-8"><style>html,body{margin:0;background:${options.background}}canvas{display:block}</style>
@@ -79,7 +90,21 @@ try {
   const dir = new THREE.Vector3(Math.cos(el) * Math.sin(az), Math.sin(el), Math.cos(el) * Math.cos(az));
   const fov = THREE.MathUtils.degToRad(camera.fov);
   const fit = Math.min(fov, 2 * Math.atan(Math.tan(fov / 2) * camera.aspect));
-  const distance = 1.05 * sphere.radius / Math.sin(fit / 2);
+  // Start from the bounding sphere, then move in until the box's corners fill 90% of the frame.
+  let distance = sphere.radius / Math.sin(fit / 2);
+  const corners = [];
+  for (let i = 0; i < 8; ++i) corners.push(new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z));
+  for (let iteration = 0; iteration < 4; ++iteration) {
+    camera.position.copy(sphere.center).addScaledVector(dir, distance);
+    camera.lookAt(sphere.center);
+    camera.updateMatrixWorld();
+    let extent = 0;
+    for (const c of corners) {
+      const p = c.clone().project(camera);
+      extent = Math.max(extent, Math.abs(p.x), Math.abs(p.y));
+    }
+    distance *= Math.max(0.5, Math.min(2, extent / 0.9));
+  }
   camera.position.copy(sphere.center).addScaledVector(dir, distance);
   camera.lookAt(sphere.center);
   key.position.copy(camera.position).add(new THREE.Vector3(0, sphere.radius, 0));
@@ -94,10 +119,11 @@ try {
 </script></body></html>`;
 }
 
-const MIME = { '.js': 'text/javascript', '.html': 'text/html', '.glb': 'model/gltf-binary' };
+const MIME = { '.js': 'text/javascript', '.html': 'text/html', '.glb': 'model/gltf-binary', '.svg': 'image/svg+xml' };
 
 function serve(options) {
-  const html = page(options);
+  const isSvg = options.model.toLowerCase().endsWith('.svg');
+  const html = isSvg ? svgPage(options) : page(options);
   const server = createServer((req, res) => {
     const url = new URL(req.url, 'http://127.0.0.1');
     const send = (file) => {
@@ -107,7 +133,7 @@ function serve(options) {
         .pipe(res);
     };
     if (url.pathname === '/') { res.writeHead(200, { 'Content-Type': 'text/html' }); res.end(html); return; }
-    if (url.pathname === '/model.glb') { send(path.resolve(options.model)); return; }
+    if (url.pathname === (isSvg ? '/model.svg' : '/model.glb')) { send(path.resolve(options.model)); return; }
     if (url.pathname.startsWith('/three/')) {
       const file = path.normalize(path.join(threeRoot, decodeURIComponent(url.pathname.slice('/three/'.length))));
       if (file.startsWith(threeRoot + path.sep)) { send(file); return; }
@@ -147,7 +173,10 @@ async function renderOnce(options, port, state) {
     await tab.waitForFunction(() => window.__render !== undefined, { timeout: 40000, polling: 100 });
     const result = await tab.evaluate(() => window.__render);
     if (result.status !== 'loaded') throw new Error(`page: ${result.message}\n${consoleLines.join('\n')}`);
-    const png = await tab.screenshot({ type: 'png', clip: { x: 0, y: 0, width: options.width, height: options.height } });
+    // An SVG sets the height: its aspect ratio at the asked width.
+    const height = result.height ? Math.round(result.height) : options.height;
+    if (height !== options.height) await tab.setViewport({ width: options.width, height, deviceScaleFactor: 1 });
+    const png = await tab.screenshot({ type: 'png', clip: { x: 0, y: 0, width: options.width, height } });
     await writeFile(options.out, png);
     return result;
   } finally {
@@ -175,7 +204,8 @@ async function main() {
   for (let attempt = 1; attempt <= 2; ++attempt) {
     try {
       const result = await renderOnce(options, port, state);
-      console.log(`${options.out}: ${options.width}x${options.height}, ${result.triangles} triangles (attempt ${attempt})`);
+      const what = result.height ? `${options.width}x${Math.round(result.height)}` : `${options.width}x${options.height}, ${result.triangles} triangles`;
+      console.log(`${options.out}: ${what} (attempt ${attempt})`);
       status = 0;
       break;
     } catch (e) {

@@ -104,7 +104,7 @@ struct Picture {
   std::vector<ricci::RigidMotion2> copies;
   std::vector<int> cone_faces;  ///< Faces outside the spline domain (the cone's one-ring).
   bool edges_drawn = false;     ///< Triangle edges are left out when they would merge into grey.
-  double cone_ring_px = 0.0;    ///< Diameter of the cone's one-ring in the picture.
+  double cone_ring = 0.0;       ///< Diameter of the cone's one-ring in the chart.
 };
 
 std::string triangle_path(const SvgCanvas& canvas, const ricci::AffineAtlas& atlas, const std::vector<int>& faces,
@@ -216,7 +216,7 @@ void draw_cone_copies(SvgCanvas& canvas, Picture& pic) {
     }
     widest = std::max(widest, wedge.diagonal().norm());
   }
-  pic.cone_ring_px = 2.0 * widest * canvas.pixels_per_unit();
+  pic.cone_ring = 2.0 * widest;
   canvas.add("<g id=\"cone-copies\" fill=\"" + std::string(kConeFill) + "\" stroke=\"#111\" stroke-width=\"1.2\">");
   for (int v : pic.outline.vertices) {
     if (pic.atlas.sliced.to_original_vertex[static_cast<size_t>(v)] != root) continue;
@@ -240,9 +240,11 @@ std::vector<std::string> caption(const Picture& pic, const AtlasSvgOptions& opti
   lines.push_back(topology);
   if (r.problem.cone >= 0) {
     const double angle = 2 * M_PI - r.flow.curvature[r.problem.cone];
+    char ring[32];
+    std::snprintf(ring, sizeof ring, "%.1e", pic.cone_ring / std::max(pic.atlas.domain_diameter, 1e-300));
     lines.push_back("one cone of angle " + fixed(angle / M_PI, 2) +
-                    "π: orange dots; its one-ring, outside the spline domain, is orange and spans about " +
-                    fixed(pic.cone_ring_px, 1) + " px");
+                    "π: orange dots; its one-ring (outside the spline domain, orange) spans about " + ring +
+                    " of the domain's diameter");
   }
   const auto loops = loop_names(pic.atlas);
   lines.push_back("boundary word: " + word_text(pic.atlas.polygon, loops) +

@@ -32,7 +32,7 @@ struct CheckerboardOptions {
   Rgba dark = {40, 40, 48, 255};
   Rgba light = {236, 236, 228, 255};
   /// Every `major` squares a thin coloured line helps follow rows across the surface (0: none).
-  int major = 8;
+  int major = 0;
   Rgba major_colour = {200, 60, 40, 255};
 };
 
