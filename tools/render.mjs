@@ -154,8 +154,9 @@ const CHROMIUM_ARGS = [
 ];
 
 async function renderOnce(options, port, state) {
+  if (state.stopping) throw new Error('stopping');
   const profile = await mkdtemp(path.join(os.tmpdir(), 'msp-render-'));
-  state.profile = profile;
+  state.profiles.add(profile);
   try {
     state.browser = await puppeteer.launch({
       executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
@@ -182,7 +183,8 @@ async function renderOnce(options, port, state) {
   } finally {
     if (state.browser) await state.browser.close().catch(() => {});
     state.browser = null;
-    await rm(profile, { recursive: true, force: true });
+    await rm(profile, { recursive: true, force: true }).catch(() => {});
+    if (!state.stopping) state.profiles.delete(profile);
   }
 }
 
@@ -190,12 +192,22 @@ async function main() {
   const options = parseArgs(process.argv.slice(2));
   try { await stat(options.model); } catch { usage(`cannot read ${options.model}`); }
   try { await stat(path.join(threeRoot, 'build', 'three.module.js')); } catch { usage('tools/node_modules missing: run npm ci --prefix tools (scripts/install-deps.sh does)'); }
-  const state = { browser: null, profile: null };
+  const state = { browser: null, profiles: new Set(), stopping: false };
   const watchdog = setTimeout(async () => {
     console.error(`render: timed out after ${options.timeout} s`);
+    state.stopping = true;
     const proc = state.browser?.process();
-    if (proc) proc.kill('SIGKILL');
-    if (state.profile) await rm(state.profile, { recursive: true, force: true }).catch(() => {});
+    if (proc && proc.exitCode === null) {
+      const exited = new Promise((resolve) => proc.once('exit', resolve));
+      proc.kill('SIGKILL');
+      await Promise.race([exited, new Promise((resolve) => setTimeout(resolve, 2000))]);
+    }
+    // Chromium's helpers may still be writing into the profile for a moment.
+    for (const profile of state.profiles) {
+      for (let i = 0; i < 5; ++i) {
+        try { await rm(profile, { recursive: true, force: true }); break; } catch { await new Promise((r) => setTimeout(r, 200)); }
+      }
+    }
     process.exit(3);
   }, options.timeout * 1000);
   const server = await serve(options);
@@ -209,9 +221,11 @@ async function main() {
       status = 0;
       break;
     } catch (e) {
+      if (state.stopping) break;
       console.error(`render: attempt ${attempt} failed: ${e.message}`);
     }
   }
+  if (state.stopping) return;  // the watchdog cleans up and exits with status 3
   clearTimeout(watchdog);
   server.close();
   process.exit(status);
