@@ -91,14 +91,18 @@ FairResult fair(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& contro
     throw ricci::SolverError("fair: CHOLMOD could not factor I + w C^T C (" +
                              std::to_string(k.rows()) + " unknowns)");
   }
+  // Unknown: the correction d = c~ - c, small when c is nearly feasible, so the solver's relative
+  // error (about cond(K) eps) costs little absolutely; a feasible c gives d = 0 to rounding.
   const double scale = std::max(control_points.cwiseAbs().maxCoeff(), 1e-300);
+  const Eigen::MatrixX3d infeasibility = c * control_points;
   Eigen::MatrixX3d lambda = Eigen::MatrixX3d::Zero(c.rows(), 3);
   Eigen::MatrixX3d x = control_points;
   for (int it = 0; it < options.max_iterations; ++it) {
-    const Eigen::MatrixXd rhs = control_points - Eigen::MatrixX3d(c.transpose() * lambda);
-    x = solver.solve(rhs);
-    if (!x.allFinite()) throw ricci::SolverError("fair: non-finite solution");
-    const Eigen::MatrixX3d residual = c * x;
+    const Eigen::MatrixX3d rhs = -Eigen::MatrixX3d(c.transpose() * (w * infeasibility + lambda));
+    const Eigen::MatrixX3d d = solver.solve(rhs);
+    if (!d.allFinite()) throw ricci::SolverError("fair: non-finite solution");
+    x = control_points + d;
+    const Eigen::MatrixX3d residual = infeasibility + c * d;
     lambda += w * residual;
     result.iterations = it + 1;
     result.max_constraint_residual = residual.cwiseAbs().maxCoeff();

@@ -10,7 +10,7 @@
 //
 // Solver: the constraints C c~ = 0 are linear and, taken over both orientations (I, J) and
 // (J, I), linearly dependent, so the KKT matrix [I C^T; C 0] is singular. We use the augmented
-// Lagrangian instead: (I + w C^T C) c~ = c - C^T lambda, lambda += w C c~, with one CHOLMOD
+// Lagrangian instead: (I + w C^T C) d = -C^T (w C c + lambda), c~ = c + d, lambda += w C c~, with one CHOLMOD
 // factorisation of the SPD matrix reused over the iterations; it converges to the exact
 // projection of c onto {C c~ = 0}, dependent rows and all. A global polynomial satisfies every
 // constraint, so it is returned unchanged.
@@ -24,8 +24,8 @@ namespace spline {
 
 struct FairOptions {
   int r = 1;                 ///< rows of control points tied to each neighbour, in [0, n - 1]
-  double penalty = 1e6;      ///< w, relative to the identity term
-  int max_iterations = 30;   ///< augmented-Lagrangian updates
+  double penalty = 1e8;      ///< w, relative to the identity term
+  int max_iterations = 50;   ///< augmented-Lagrangian updates
   double tolerance = 1e-12;  ///< stop when max |C c~| <= tolerance * max |c|
   /// By face: constraints only between two faces both marked (empty: all domain faces).
   std::vector<char> active_faces;
