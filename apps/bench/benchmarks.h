@@ -5,5 +5,6 @@ namespace msp::bench {
 int run_flow_benchmark(int argc, char** argv);  // bench_flow.cpp
 int run_flow_case(int argc, char** argv);       // bench_flow.cpp
 int run_solver_benchmark(int argc, char** argv);  // bench_flow.cpp
+int run_loop_benchmark(int argc, char** argv);    // bench_loop.cpp
 
 }  // namespace msp::bench
