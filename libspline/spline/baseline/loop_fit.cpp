@@ -1,6 +1,7 @@
 #include "spline/baseline/loop_fit.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -15,6 +16,15 @@ namespace spline {
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point& t) {
+  const auto now = Clock::now();
+  const double s = std::chrono::duration<double>(now - t).count();
+  t = now;
+  return s;
+}
 
 // Relative mismatch of the control-point count that triggers a second simplification.
 constexpr double kCountTolerance = 0.02;
@@ -130,19 +140,30 @@ LoopFitResult fit_loop_surface(const ricci::Mesh& dense, const LoopFitOptions& o
   if (dense.n_vertices() == 0 || dense.n_faces() == 0) {
     throw ricci::InvalidInputError("fit_loop_surface: the dense mesh is empty");
   }
-  if (options.projection_steps < 0) throw ricci::InvalidInputError("fit_loop_surface: projection_steps < 0");
+  if (options.projection_steps < 0 || options.parameter_corrections < 0) {
+    throw ricci::InvalidInputError("fit_loop_surface: projection_steps and parameter_corrections must be >= 0");
+  }
   LoopFitResult result;
+  auto clock = Clock::now();
   result.control = loop_control_mesh(dense, options.control_points, options.remesh_iterations);
+  result.seconds_control_mesh = seconds_since(clock);
   LoopSurfaceOptions surface_options;
   surface_options.isolation_level = options.isolation_level;
   const LoopSurface surface(result.control, surface_options);
+  result.seconds_surface = seconds_since(clock);
 
   const Eigen::MatrixX3d points = positions(dense);
-  const auto locations = loop_parameters(surface, points);
-  const LoopSolve solve = fit_loop_control_points(surface, locations, points, options.smoothness);
+  auto locations = loop_parameters(surface, points);
+  LoopSolve solve;
+  LoopProjection projection;
+  for (int round = 0; round <= options.parameter_corrections; ++round) {
+    if (round > 0) locations = projection.locations;
+    solve = fit_loop_control_points(surface, locations, points, options.smoothness);
+    result.seconds_solve += seconds_since(clock);
+    projection = project_to_loop_surface(surface, solve.control, points, locations, options.projection_steps);
+    result.seconds_projection += seconds_since(clock);
+  }
   for (auto v : result.control.vertices()) result.control.set_point(v, ricci::to_openmesh(solve.control.row(v.idx())));
-
-  LoopProjection projection = project_to_loop_surface(surface, solve.control, points, locations, options.projection_steps);
   result.control_points = surface.num_control_points();
   result.samples = static_cast<int>(points.rows());
   result.bbox_diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();

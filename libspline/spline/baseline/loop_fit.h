@@ -23,6 +23,10 @@ struct LoopFitOptions {
   /// Gauss-Newton closest-point steps per vertex when measuring the error (0 = distance to the
   /// point at the vertex's fit parameter only).
   int projection_steps = 8;
+  /// Parameter corrections: after a fit, each vertex's parameter moves to its closest point on
+  /// the fitted surface and the control points are fitted again (0 = parameters stay the closest
+  /// points on the control mesh).
+  int parameter_corrections = 2;
   /// Isotropic remeshing rounds of the control mesh after simplification.
   int remesh_iterations = 3;
 };
@@ -34,16 +38,19 @@ struct LoopFitResult {
   double bbox_diagonal = 0.0;    ///< Of the dense mesh; the unit of the relative errors.
   double rms_relative = 0.0;     ///< RMS over dense vertices of the distance to the limit surface.
   double max_relative = 0.0;     ///< Largest such distance.
-  double parameter_rms_relative = 0.0;  ///< The same at the fit parameters, before projection.
+  double parameter_rms_relative = 0.0;  ///< The same at the last fit's parameters, before projection.
   double parameter_max_relative = 0.0;
   double smoothness_weight = 0.0;       ///< Absolute weight of |L X|^2 that was used.
   std::vector<LoopLocation> locations;  ///< Closest limit-surface location of each dense vertex.
+  /// Wall-clock seconds of the stages: control mesh (simplification), OpenSubdiv set-up
+  /// (refinement, patches, stencils), least-squares solves, closest-point projections.
+  double seconds_control_mesh = 0.0, seconds_surface = 0.0, seconds_solve = 0.0, seconds_projection = 0.0;
 };
 
 /// Simplifies (or, when it has too few faces, first midpoint-subdivides) `dense` to a mesh of
 /// about `control_points` vertices with the same genus and boundaries, fits the Loop limit
 /// surface of that connectivity to the dense vertices (parameters from closest points on the
-/// control mesh), and measures the distance of every dense vertex to the fitted surface.
+/// control mesh, then corrected by projection), and measures the distance of every dense vertex to the fitted surface.
 /// \throw ricci::InvalidInputError on an empty mesh, control_points < 4 or bad options;
 ///        ricci::SolverError if the normal equations cannot be factorised or give NaN.
 [[nodiscard]] LoopFitResult fit_loop_surface(const ricci::Mesh& dense, const LoopFitOptions& options = {});
