@@ -267,31 +267,32 @@ Mesh generate_surface(const GenerateOptions& options) {
   const double area = PMP::area(opened);
   if (!(area > 0)) throw Error("generate_surface: the cut removed the whole surface");
 
+  // Up to four sizes, keeping the closest to the target among those of the right topology.
   double L = edge_length_for(area, options.target_faces);
-  SurfaceMesh best;
+  Mesh best;
   double best_error = 1e300;
+  std::string failure;
   for (int attempt = 0; attempt < 4; ++attempt) {
-    SurfaceMesh mesh = remesh_attempt(closed, shape, options, cuts, L);
-    const double faces = static_cast<double>(mesh.number_of_faces());
-    const double error = std::abs(faces / options.target_faces - 1);
-    if (error < best_error) {
+    Mesh mesh = to_ricci(remesh_attempt(closed, shape, options, cuts, L));
+    const double faces = static_cast<double>(mesh.n_faces());
+    const SurfaceTopology t = surface_topology(mesh);
+    if (!t.manifold || t.components != 1 || t.genus != options.genus ||
+        t.boundary_loops != options.holes) {
+      failure = std::to_string(t.components) + " component(s) of genus " +
+                std::to_string(t.genus) + " with " + std::to_string(t.boundary_loops) +
+                " boundary loop(s)" + (t.manifold ? "" : ", non-manifold");
+    } else if (const double error = std::abs(faces / options.target_faces - 1); error < best_error) {
       best_error = error;
       best = std::move(mesh);
     }
     if (best_error < 0.05) break;
     L *= std::sqrt(faces / options.target_faces);
   }
-
-  Mesh result = to_ricci(best);
-  const SurfaceTopology t = surface_topology(result);
-  if (!t.manifold || t.components != 1 || t.genus != options.genus ||
-      t.boundary_loops != options.holes) {
-    throw Error("generate_surface: CGAL produced " + std::to_string(t.components) +
-                " component(s) of genus " + std::to_string(t.genus) + " with " +
-                std::to_string(t.boundary_loops) + " boundary loop(s)" +
-                (t.manifold ? "" : ", non-manifold") + " instead of " + describe_surface(options));
+  if (best_error == 1e300) {
+    throw Error("generate_surface: CGAL produced " + failure + " instead of " +
+                describe_surface(options));
   }
-  return result;
+  return best;
 }
 
 }  // namespace ricci
