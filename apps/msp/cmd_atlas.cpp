@@ -107,6 +107,8 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh,
           {"valence_splits", r.problem.valence_splits},
           {"flows_for_choice", r.flows_for_choice},
           {"newton_iterations", r.flow.iterations},
+          {"metric", ricci::to_string(r.flow.metric.scheme)},
+          {"failed_metrics", r.flow.failed_attempts},
           {"max_curvature_error", r.flow.max_error},
           {"transition_residual", r.relative_transition_residual()},
           {"transition_residual_absolute",
@@ -149,6 +151,7 @@ int run_atlas(int argc, char** argv) {
   options.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
   if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
+  options.keep_metric = args.has("metric") || args.has("radii");
   options.flow.tolerance = args.get_double("tolerance", 1e-10);
   if (!args.has("quiet")) {
     options.progress = [](const std::string& stage) {

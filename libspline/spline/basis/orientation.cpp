@@ -33,6 +33,11 @@ struct Expansion {
     add(std::fma(a, b, -p));  // exact rounding error of the product
     add(p);
   }
+  double approximate() const {  // smallest first: the sum is accurate to a few ulps
+    double sum = 0.0;
+    for (int i = 0; i < size; ++i) sum += terms[i];
+    return sum;
+  }
   int sign() const {
     if (size == 0) return 0;
     return terms[size - 1] > 0.0 ? 1 : -1;
@@ -62,6 +67,18 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   e.add_product(b.x(), c.y());
   e.add_product(-b.y(), c.x());
   return e.sign();
+}
+
+double accurate_det2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                      const Eigen::Vector2d& c) {
+  Expansion e;
+  e.add_product(a.x(), b.y());
+  e.add_product(-a.x(), c.y());
+  e.add_product(-a.y(), b.x());
+  e.add_product(a.y(), c.x());
+  e.add_product(b.x(), c.y());
+  e.add_product(-b.y(), c.x());
+  return e.approximate();
 }
 
 int cross_sign(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& d) {

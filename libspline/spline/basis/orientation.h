@@ -15,6 +15,11 @@ namespace spline {
 [[nodiscard]] int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                            const Eigen::Vector2d& c);
 
+/// det[b - a, c - a] (twice the signed area) to within a few ulps of the exact value, also for
+/// slivers where the plain formula cancels: used once per knot triple when a DAG is built.
+[[nodiscard]] double accurate_det2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                    const Eigen::Vector2d& c);
+
 /// Exact sign of cross(q - p, d) = (q - p).x * d.y - (q - p).y * d.x.
 [[nodiscard]] int cross_sign(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
                              const Eigen::Vector2d& d);

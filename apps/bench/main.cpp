@@ -1,0 +1,58 @@
+// msp-bench NAME [args]: benchmarks that print figures and ratios (never run as tests).
+// Each benchmark lives in its own file; this table is the only place that lists them.
+#include <cstring>
+#include <exception>
+#include <iostream>
+
+#include "bench/benchmarks.h"
+
+namespace {
+
+struct Benchmark {
+  const char* name;
+  int (*run)(int, char**);
+  const char* summary;
+};
+
+const Benchmark kBenchmarks[] = {
+    {"flow", msp::bench::run_flow_benchmark,
+     "E2 Ricci flow, 1k-1M faces: Newton time, iterations, error, peak memory, ratio to one Cholesky"},
+    {"flow-one", msp::bench::run_flow_case,
+     "one row of 'flow' in this process (used by 'flow' through a child process)"},
+    {"loop-fit", msp::bench::run_loop_benchmark,
+     "OpenSubdiv Loop-surface fit of the genus 0-3 models: control points, RMS/max distance per diagonal, time"},
+    {"solvers", msp::bench::run_solver_benchmark,
+     "factorisations of the E2 Newton Hessian: Eigen LDLT/LLT vs CHOLMOD supernodal/simplicial"},
+    {"mesh-io", msp::bench::run_mesh_io_benchmark,
+     "read stages (parse, diagnose, build) on the largest shared models vs OpenMesh's reader"},
+    {"dms", msp::bench::run_dms_benchmark,
+     "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
+    {"topology", msp::bench::run_topology_benchmark,
+     "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
+};
+
+void usage() {
+  std::cerr << "usage: msp-bench <name> [args]\n\nbenchmarks:\n";
+  for (const auto& b : kBenchmarks) std::cerr << "  " << b.name << "\t" << b.summary << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help")) {
+    usage();
+    return argc < 2 ? 2 : 0;
+  }
+  for (const auto& b : kBenchmarks) {
+    if (std::strcmp(argv[1], b.name) != 0) continue;
+    try {
+      return b.run(argc - 2, argv + 2);
+    } catch (const std::exception& e) {
+      std::cerr << "msp-bench " << b.name << ": " << e.what() << "\n";
+      return 1;
+    }
+  }
+  std::cerr << "msp-bench: unknown benchmark '" << argv[1] << "'\n";
+  usage();
+  return 2;
+}
