@@ -4,10 +4,10 @@
 #include <iostream>
 #include <string>
 
-#include <nlohmann/json.hpp>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <ricci/pipeline/one_cone_atlas.h>
+#include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
 #include "msp/commands.h"
@@ -19,17 +19,19 @@ namespace msp {
 namespace {
 
 const char* kUsage =
-    "msp atlas MESH [--singularity auto|VERTEX] [--metric circle-packing|inversive-distance|combinatorial] "
+    "msp atlas MESH [--singularity auto|VERTEX] [--metric "
+    "circle-packing|inversive-distance|combinatorial] "
     "[--radii mean|min|least-squares] [--tolerance T] [-o PICTURE.svg] [--cover-depth N] "
     "[--checkerboard OUT.glb|OUT.obj] [--checker-squares N] [--quiet] [--json]";
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // The pictures of issue 4: the SVG of the domain and its copies, the checkerboard mesh.
-void write_pictures(const Args& args, const std::string& path, const ricci::OneConeAtlasResult& result,
-                    const nlohmann::json& report) {
+void write_pictures(const Args& args, const std::string& path,
+                    const ricci::OneConeAtlasResult& result, const nlohmann::json& report) {
   auto note = [&](const std::string& file) {
     if (!args.has("quiet")) std::cerr << "msp atlas: wrote " << file << "\n";
   };
@@ -43,7 +45,8 @@ void write_pictures(const Args& args, const std::string& path, const ricci::OneC
   if (auto out = args.get("checkerboard")) {
     CheckerboardOptions texture;
     texture.squares = args.get_int("checker-squares", texture.squares);
-    if (texture.squares <= 0 || texture.squares > 256) throw UsageError("--checker-squares must be in [1, 256]");
+    if (texture.squares <= 0 || texture.squares > 256)
+      throw UsageError("--checker-squares must be in [1, 256]");
     texture.size = texture.squares * std::max(8, 1024 / texture.squares);
     if (ends_with(*out, ".glb")) {
       CheckerboardExportOptions options;
@@ -73,7 +76,8 @@ std::string polygon_word_text(const ricci::FundamentalPolygon& polygon) {
   std::string text;
   for (const auto& letter : polygon.word) {
     if (!text.empty()) text += " ";
-    text += (letter.kind == ricci::PolygonLetter::Kind::loop ? "a" : "b") + std::to_string(letter.index);
+    text += (letter.kind == ricci::PolygonLetter::Kind::loop ? "a" : "b") +
+            std::to_string(letter.index);
     if (letter.sign < 0) text += "^-1";
   }
   return text;
@@ -90,7 +94,8 @@ nlohmann::json singularities_json(const ricci::OneConeAtlasResult& r) {
   return list;
 }
 
-nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh, const ricci::OneConeAtlasResult& r) {
+nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh,
+                           const ricci::OneConeAtlasResult& r) {
   const auto& t = r.timings;
   return {{"mesh", path},
           {"vertices", mesh.n_vertices()},
@@ -122,18 +127,24 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh, con
           {"quasi_conformal_max", r.distortion.quasi_conformal_max},
           {"seconds", t.total},
           {"stage_seconds",
-           {{"choice", t.choice}, {"valence", t.valence}, {"flow", t.flow}, {"atlas", t.atlas}, {"distortion", t.distortion}}}};
+           {{"choice", t.choice},
+            {"valence", t.valence},
+            {"flow", t.flow},
+            {"atlas", t.atlas},
+            {"distortion", t.distortion}}}};
 }
 
 }  // namespace
 
 int run_atlas(int argc, char** argv) {
   Args args(argc, argv, {"json", "quiet"});
-  args.require_known({"singularity", "metric", "radii", "tolerance", "quiet", "json", "output", "cover-depth",
-                      "checkerboard", "checker-squares"});
+  args.require_known({"singularity", "metric", "radii", "tolerance", "quiet", "json", "output",
+                      "cover-depth", "checkerboard", "checker-squares"});
   args.require_positionals(1, kUsage);
-  if (auto svg = args.get("output"); svg && !ends_with(*svg, ".svg")) throw UsageError("-o must name an .svg file, not '" + *svg + "'");
-  if (auto out = args.get("checkerboard"); out && !ends_with(*out, ".glb") && !ends_with(*out, ".obj")) {
+  if (auto svg = args.get("output"); svg && !ends_with(*svg, ".svg"))
+    throw UsageError("-o must name an .svg file, not '" + *svg + "'");
+  if (auto out = args.get("checkerboard");
+      out && !ends_with(*out, ".glb") && !ends_with(*out, ".obj")) {
     throw UsageError("--checkerboard must name a .glb or .obj file, not '" + *out + "'");
   }
   ricci::OneConeAtlasOptions options;
@@ -143,7 +154,9 @@ int run_atlas(int argc, char** argv) {
   options.keep_metric = args.has("metric") || args.has("radii");
   options.flow.tolerance = args.get_double("tolerance", 1e-10);
   if (!args.has("quiet")) {
-    options.progress = [](const std::string& stage) { std::cerr << "msp atlas: " << stage << "\n"; };
+    options.progress = [](const std::string& stage) {
+      std::cerr << "msp atlas: " << stage << "\n";
+    };
   }
   const std::string path = args.positionals()[0];
   const ricci::Mesh mesh = ricci::read_mesh(path);

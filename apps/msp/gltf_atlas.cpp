@@ -59,8 +59,10 @@ gltf::Mesh loop_lines(const ricci::OneConeAtlasResult& result, size_t loop, cons
     const auto h = halfedges[i];
     const int a = mesh.from_vertex_handle(h).idx(), b = mesh.to_vertex_handle(h).idx();
     // Lifted off the surface along the normal so the lines are not buried in it.
-    lines.positions.row(static_cast<Eigen::Index>(2 * i)) = ricci::to_eigen(mesh.point(mesh.vertex_handle(a))).transpose() + lift * normals.row(a);
-    lines.positions.row(static_cast<Eigen::Index>(2 * i + 1)) = ricci::to_eigen(mesh.point(mesh.vertex_handle(b))).transpose() + lift * normals.row(b);
+    lines.positions.row(static_cast<Eigen::Index>(2 * i)) =
+        ricci::to_eigen(mesh.point(mesh.vertex_handle(a))).transpose() + lift * normals.row(a);
+    lines.positions.row(static_cast<Eigen::Index>(2 * i + 1)) =
+        ricci::to_eigen(mesh.point(mesh.vertex_handle(b))).transpose() + lift * normals.row(b);
     lines.indices.push_back(static_cast<std::uint32_t>(2 * i));
     lines.indices.push_back(static_cast<std::uint32_t>(2 * i + 1));
   }
@@ -75,7 +77,8 @@ void write_binary(const std::string& path, const std::vector<std::uint8_t>& byte
     std::FILE* f = std::fopen(temp.c_str(), "wb");
     if (!f) throw ricci::IOError("cannot write " + path);
     const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
-    if (std::fclose(f) != 0 || written != bytes.size()) throw ricci::IOError("cannot write " + path);
+    if (std::fclose(f) != 0 || written != bytes.size())
+      throw ricci::IOError("cannot write " + path);
   });
 }
 
@@ -97,12 +100,14 @@ AtlasTexturedMesh atlas_textured_mesh(const ricci::OneConeAtlasResult& result) {
   for (Eigen::Index v = 0; v < n; ++v) {
     const int original = atlas.sliced.to_original_vertex[static_cast<size_t>(v)];
     out.problem_vertex[static_cast<size_t>(v)] = original;
-    out.positions.row(v) = ricci::to_eigen(sliced.point(sliced.vertex_handle(static_cast<int>(v)))).transpose();
+    out.positions.row(v) =
+        ricci::to_eigen(sliced.point(sliced.vertex_handle(static_cast<int>(v)))).transpose();
     out.normals.row(v) = problem_normals.row(original);
   }
   const Eigen::RowVector2d lo = x.colwise().minCoeff(), hi = x.colwise().maxCoeff();
   const double side = (hi - lo).maxCoeff();
-  if (!(side > 0) || !std::isfinite(side)) throw ricci::InvalidInputError("atlas texture: the layout is degenerate");
+  if (!(side > 0) || !std::isfinite(side))
+    throw ricci::InvalidInputError("atlas texture: the layout is degenerate");
   out.uv_scale = 1.0 / side;
   out.uvs.resize(n, 2);
   for (Eigen::Index v = 0; v < n; ++v) {
@@ -116,7 +121,8 @@ AtlasTexturedMesh atlas_textured_mesh(const ricci::OneConeAtlasResult& result) {
   return out;
 }
 
-gltf::Scene checkerboard_scene(const ricci::OneConeAtlasResult& result, const CheckerboardExportOptions& options) {
+gltf::Scene checkerboard_scene(const ricci::OneConeAtlasResult& result,
+                               const CheckerboardExportOptions& options) {
   const AtlasTexturedMesh textured = atlas_textured_mesh(result);
   gltf::Scene scene;
   scene.name = "atlas checkerboard";
@@ -141,7 +147,8 @@ gltf::Scene checkerboard_scene(const ricci::OneConeAtlasResult& result, const Ch
   if (options.cut_loops) {
     const auto names = loop_names(result.atlas);
     for (size_t i = 0; i < result.atlas.cut.loops.size(); ++i) {
-      if (!result.atlas.cut.loops[i].halfedges.empty()) scene.meshes.push_back(loop_lines(result, i, names[i], normals, lift));
+      if (!result.atlas.cut.loops[i].halfedges.empty())
+        scene.meshes.push_back(loop_lines(result, i, names[i], normals, lift));
     }
   }
   if (options.cone_point && result.problem.cone >= 0) {
@@ -149,7 +156,9 @@ gltf::Scene checkerboard_scene(const ricci::OneConeAtlasResult& result, const Ch
     cone.name = "cone";
     cone.topology = gltf::Topology::points;
     const int c = result.problem.cone;
-    cone.positions = (ricci::to_eigen(mesh.point(mesh.vertex_handle(c))) + lift * normals.row(c).transpose()).transpose();
+    cone.positions =
+        (ricci::to_eigen(mesh.point(mesh.vertex_handle(c))) + lift * normals.row(c).transpose())
+            .transpose();
     cone.material.base_color = {0.0, 0.0, 0.0, 1.0};
     const double angle = 2 * M_PI - result.flow.curvature[c];
     cone.extras = {{"vertex", c}, {"input_vertex", result.chosen_vertex}, {"cone_angle", angle}};
@@ -169,17 +178,21 @@ void write_checkerboard_obj(const ricci::OneConeAtlasResult& result, const std::
 
   write_binary((folder / png_name).string(), encode_png(checkerboard(texture)));
   write_text_atomically((folder / mtl_name).string(),
-                        "# msp atlas checkerboard\nnewmtl checkerboard\nKa 0 0 0\nKd 1 1 1\nKs 0 0 0\nillum 1\nmap_Kd " +
+                        "# msp atlas checkerboard\nnewmtl checkerboard\nKa 0 0 0\nKd 1 1 1\nKs 0 0 "
+                        "0\nillum 1\nmap_Kd " +
                             png_name + "\n");
   std::ostringstream out;
   out.precision(9);
-  out << "# msp atlas: the mesh split along the cut, texture coordinates = central chart of the atlas\n";
+  out << "# msp atlas: the mesh split along the cut, texture coordinates = central chart of the "
+         "atlas\n";
   out << "mtllib " << mtl_name << "\no surface\n";
   for (Eigen::Index v = 0; v < m.positions.rows(); ++v) {
-    out << "v " << m.positions(v, 0) << ' ' << m.positions(v, 1) << ' ' << m.positions(v, 2) << '\n';
+    out << "v " << m.positions(v, 0) << ' ' << m.positions(v, 1) << ' ' << m.positions(v, 2)
+        << '\n';
   }
   // OBJ's v axis points up the image: undo the glTF flip.
-  for (Eigen::Index v = 0; v < m.uvs.rows(); ++v) out << "vt " << m.uvs(v, 0) << ' ' << 1.0 - m.uvs(v, 1) << '\n';
+  for (Eigen::Index v = 0; v < m.uvs.rows(); ++v)
+    out << "vt " << m.uvs(v, 0) << ' ' << 1.0 - m.uvs(v, 1) << '\n';
   for (Eigen::Index v = 0; v < m.normals.rows(); ++v) {
     out << "vn " << m.normals(v, 0) << ' ' << m.normals(v, 1) << ' ' << m.normals(v, 2) << '\n';
   }

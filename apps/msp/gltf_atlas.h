@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include <ricci/pipeline/one_cone_atlas.h>
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
-#include <ricci/pipeline/one_cone_atlas.h>
 
 #include "msp/gltf_writer.h"
 #include "msp/texture_image.h"
@@ -25,7 +25,7 @@ struct AtlasTexturedMesh {
   Eigen::MatrixX2d uvs;
   std::vector<std::uint32_t> triangles;  ///< 3 per face, face order of the problem mesh.
   std::vector<int> problem_vertex;       ///< By vertex: the vertex of the problem mesh.
-  double uv_scale = 1.0;  ///< uv length per unit of the flat metric.
+  double uv_scale = 1.0;                 ///< uv length per unit of the flat metric.
 };
 
 /// \throw ricci::InvalidInputError if the result holds no layout.

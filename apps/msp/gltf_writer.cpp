@@ -99,7 +99,8 @@ class BufferBuilder {
   }
 
   int add_indices(const std::vector<std::uint32_t>& indices) {
-    const int view = add_view(indices.data(), indices.size() * sizeof(std::uint32_t), kElementArrayBuffer);
+    const int view =
+        add_view(indices.data(), indices.size() * sizeof(std::uint32_t), kElementArrayBuffer);
     tinygltf::Accessor a;
     a.bufferView = view;
     a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
@@ -132,7 +133,8 @@ std::vector<float> unit_normals(const Eigen::MatrixX3d& normals) {
   return out;
 }
 
-int add_texture(tinygltf::Model& model, BufferBuilder& buffer, const Texture& texture, const std::string& name) {
+int add_texture(tinygltf::Model& model, BufferBuilder& buffer, const Texture& texture,
+                const std::string& name) {
   tinygltf::Image image;
   image.name = name;
   image.mimeType = "image/png";
@@ -141,10 +143,12 @@ int add_texture(tinygltf::Model& model, BufferBuilder& buffer, const Texture& te
   model.images.push_back(image);
 
   tinygltf::Sampler sampler;
-  const int wrap = texture.repeat ? TINYGLTF_TEXTURE_WRAP_REPEAT : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  const int wrap =
+      texture.repeat ? TINYGLTF_TEXTURE_WRAP_REPEAT : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
   sampler.wrapS = wrap;
   sampler.wrapT = wrap;
-  sampler.magFilter = texture.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.magFilter =
+      texture.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
   sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
   model.samplers.push_back(sampler);
 
@@ -165,7 +169,8 @@ int add_material(tinygltf::Model& model, BufferBuilder& buffer, const Mesh& mesh
   material.doubleSided = m.double_sided;
   if (m.base_color[3] < 1.0) material.alphaMode = "BLEND";
   if (m.texture) {
-    material.pbrMetallicRoughness.baseColorTexture.index = add_texture(model, buffer, *m.texture, material.name);
+    material.pbrMetallicRoughness.baseColorTexture.index =
+        add_texture(model, buffer, *m.texture, material.name);
   }
   model.materials.push_back(material);
   return static_cast<int>(model.materials.size() - 1);
@@ -187,8 +192,10 @@ void add_mesh(tinygltf::Model& model, BufferBuilder& buffer, const Mesh& mesh) {
   tinygltf::Primitive primitive;
   primitive.mode = primitive_mode(mesh.topology);
   primitive.attributes["POSITION"] = buffer.add_floats(to_floats(mesh.positions), 3, true);
-  if (mesh.normals.rows() > 0) primitive.attributes["NORMAL"] = buffer.add_floats(unit_normals(mesh.normals), 3, false);
-  if (mesh.uvs.rows() > 0) primitive.attributes["TEXCOORD_0"] = buffer.add_floats(to_floats(mesh.uvs), 2, false);
+  if (mesh.normals.rows() > 0)
+    primitive.attributes["NORMAL"] = buffer.add_floats(unit_normals(mesh.normals), 3, false);
+  if (mesh.uvs.rows() > 0)
+    primitive.attributes["TEXCOORD_0"] = buffer.add_floats(to_floats(mesh.uvs), 2, false);
   if (!mesh.indices.empty()) primitive.indices = buffer.add_indices(mesh.indices);
   primitive.material = add_material(model, buffer, mesh);
 
@@ -229,21 +236,27 @@ void check_mesh(const Mesh& mesh) {
   const Eigen::Index n = mesh.positions.rows();
   if (n == 0) fail(mesh, "no vertices");
   if (!mesh.positions.allFinite()) fail(mesh, "a position is not finite");
-  if (mesh.normals.rows() != 0 && mesh.normals.rows() != n) fail(mesh, "normals and positions differ in count");
+  if (mesh.normals.rows() != 0 && mesh.normals.rows() != n)
+    fail(mesh, "normals and positions differ in count");
   if (mesh.uvs.rows() != 0 && mesh.uvs.rows() != n) fail(mesh, "uvs and positions differ in count");
   if (!mesh.uvs.allFinite()) fail(mesh, "a texture coordinate is not finite");
   for (Eigen::Index r = 0; r < mesh.normals.rows(); ++r) {
     const double len = mesh.normals.row(r).norm();
-    if (!std::isfinite(len) || len < 1e-12) fail(mesh, "normal " + std::to_string(r) + " is zero or not finite");
+    if (!std::isfinite(len) || len < 1e-12)
+      fail(mesh, "normal " + std::to_string(r) + " is zero or not finite");
   }
-  const size_t per = mesh.topology == Topology::triangles ? 3 : mesh.topology == Topology::lines ? 2 : 1;
+  const size_t per = mesh.topology == Topology::triangles ? 3
+                     : mesh.topology == Topology::lines   ? 2
+                                                          : 1;
   if (mesh.indices.size() % per != 0) {
-    fail(mesh, std::to_string(mesh.indices.size()) + " indices is not a multiple of " + std::to_string(per));
+    fail(mesh, std::to_string(mesh.indices.size()) + " indices is not a multiple of " +
+                   std::to_string(per));
   }
   if (mesh.topology != Topology::points && mesh.indices.empty()) fail(mesh, "no indices");
   for (size_t i = 0; i < mesh.indices.size(); ++i) {
     if (mesh.indices[i] >= static_cast<std::uint64_t>(n)) {
-      fail(mesh, "index " + std::to_string(i) + " = " + std::to_string(mesh.indices[i]) + " is out of range");
+      fail(mesh, "index " + std::to_string(i) + " = " + std::to_string(mesh.indices[i]) +
+                     " is out of range");
     }
   }
   if (mesh.material.texture) {
@@ -279,7 +292,8 @@ void write_glb(const Scene& scene, const std::string& path) {
   const std::vector<std::uint8_t> bytes = glb_bytes(scene);
   write_file_atomically(path, [&](const std::string& temp) {
     std::ofstream out(temp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size()));
     out.close();
     if (!out) throw ricci::IOError("cannot write " + path);
   });

@@ -10,8 +10,8 @@
 namespace msp {
 
 struct AtlasSvgOptions {
-  std::string title;        ///< First caption line, e.g. the mesh file.
-  double width_px = 1000;   ///< Width of the SVG in pixels.
+  std::string title;       ///< First caption line, e.g. the mesh file.
+  double width_px = 1000;  ///< Width of the SVG in pixels.
   /// Copies are products of up to this many side pairings; -1: 2 on a torus (translations tile
   /// the plane), 1 otherwise (the first ring: more would pile up around the cone).
   int cover_depth = -1;
@@ -21,7 +21,8 @@ struct AtlasSvgOptions {
 
 /// The SVG document (UTF-8 text).
 /// \throw ricci::InvalidInputError if the result holds no atlas (empty layout).
-[[nodiscard]] std::string atlas_svg(const ricci::OneConeAtlasResult& result, const AtlasSvgOptions& options = {});
+[[nodiscard]] std::string atlas_svg(const ricci::OneConeAtlasResult& result,
+                                    const AtlasSvgOptions& options = {});
 
 /// The depth `atlas_svg` uses for `options.cover_depth` (resolves -1).
 [[nodiscard]] int resolved_cover_depth(const ricci::OneConeAtlasResult& result, int cover_depth);

@@ -10,8 +10,10 @@ namespace msp {
 SvgCanvas::SvgCanvas(const Eigen::AlignedBox2d& view, double width_px, double rotation)
     : view_(view), rotation_(Eigen::Rotation2Dd(rotation).toRotationMatrix()), width_(width_px) {
   const Eigen::Vector2d size = view.sizes();
-  if (view.isEmpty() || !(size.x() > 0) || !(size.y() > 0) || !(width_px > 0) || !size.allFinite()) {
-    throw ricci::InvalidInputError("SVG canvas: empty or non-finite view, or width " + std::to_string(width_px));
+  if (view.isEmpty() || !(size.x() > 0) || !(size.y() > 0) || !(width_px > 0) ||
+      !size.allFinite()) {
+    throw ricci::InvalidInputError("SVG canvas: empty or non-finite view, or width " +
+                                   std::to_string(width_px));
   }
   scale_ = width_px / size.x();
   height_ = size.y() * scale_;
@@ -55,11 +57,20 @@ std::string svg_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;

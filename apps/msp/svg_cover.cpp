@@ -19,16 +19,18 @@ double polygon_area(const Eigen::MatrixX2d& p) {
 }
 
 bool same_motion(const ricci::RigidMotion2& a, const ricci::RigidMotion2& b, double distance) {
-  return std::abs(std::remainder(a.angle - b.angle, 2.0 * M_PI)) < 1e-9 && (a.translation - b.translation).norm() < distance;
+  return std::abs(std::remainder(a.angle - b.angle, 2.0 * M_PI)) < 1e-9 &&
+         (a.translation - b.translation).norm() < distance;
 }
 
 }  // namespace
 
 std::array<int, 3> loop_colour_rgb(int loop) {
   // Distinct on white and for most colour-blind readers (Sasha Trubetskoy's list).
-  static const std::array<int, 3> palette[] = {{230, 25, 75},  {60, 180, 75},  {67, 99, 216},  {245, 130, 49},
-                                               {145, 30, 180}, {15, 163, 177}, {240, 50, 230}, {154, 99, 36},
-                                               {70, 153, 144}, {128, 128, 0},  {0, 0, 117},    {143, 188, 26}};
+  static const std::array<int, 3> palette[] = {{230, 25, 75},  {60, 180, 75},  {67, 99, 216},
+                                               {245, 130, 49}, {145, 30, 180}, {15, 163, 177},
+                                               {240, 50, 230}, {154, 99, 36},  {70, 153, 144},
+                                               {128, 128, 0},  {0, 0, 117},    {143, 188, 26}};
   if (loop < 0) return {102, 102, 102};
   return palette[static_cast<size_t>(loop) % (sizeof palette / sizeof palette[0])];
 }
@@ -49,7 +51,8 @@ DomainOutline domain_outline(const ricci::AffineAtlas& atlas) {
       break;
     }
   }
-  if (!start.is_valid()) throw ricci::TopologyError("atlas picture: the sliced mesh has no boundary");
+  if (!start.is_valid())
+    throw ricci::TopologyError("atlas picture: the sliced mesh has no boundary");
   DomainOutline outline;
   ricci::HalfedgeHandle h = start;
   do {
@@ -58,7 +61,8 @@ DomainOutline domain_outline(const ricci::AffineAtlas& atlas) {
   } while (h != start && outline.vertices.size() <= sliced.n_halfedges());
   outline.points.resize(static_cast<Eigen::Index>(outline.vertices.size()), 2);
   for (size_t i = 0; i < outline.vertices.size(); ++i) {
-    outline.points.row(static_cast<Eigen::Index>(i)) = atlas.layout.positions.row(outline.vertices[i]);
+    outline.points.row(static_cast<Eigen::Index>(i)) =
+        atlas.layout.positions.row(outline.vertices[i]);
   }
   outline.signed_area = polygon_area(outline.points);
   // Face-less halfedges run clockwise around a counter-clockwise disk.
@@ -86,7 +90,8 @@ std::vector<CutSide> cut_sides(const ricci::Mesh& mesh, const ricci::AffineAtlas
       left.points.row(i) = x.row(corner[static_cast<size_t>(mesh.prev_halfedge_handle(h).idx())]);
       left.points.row(i + 1) = x.row(corner[static_cast<size_t>(h.idx())]);
       right.points.row(i) = x.row(corner[static_cast<size_t>(o.idx())]);
-      right.points.row(i + 1) = x.row(corner[static_cast<size_t>(mesh.prev_halfedge_handle(o).idx())]);
+      right.points.row(i + 1) =
+          x.row(corner[static_cast<size_t>(mesh.prev_halfedge_handle(o).idx())]);
     }
     sides.push_back(std::move(left));
     sides.push_back(std::move(right));
@@ -100,7 +105,8 @@ std::vector<std::string> loop_names(const ricci::AffineAtlas& atlas) {
   const auto& order = atlas.polygon.canonical_order;
   if (atlas.polygon.canonical && order.size() == loops) {
     for (size_t k = 0; k < order.size(); ++k) {
-      names[static_cast<size_t>(order[k])] = std::string(k % 2 == 0 ? "a" : "b") + std::to_string(k / 2 + 1);
+      names[static_cast<size_t>(order[k])] =
+          std::string(k % 2 == 0 ? "a" : "b") + std::to_string(k / 2 + 1);
     }
   } else {
     for (size_t i = 0; i < loops; ++i) names[i] = "c" + std::to_string(i + 1);
@@ -108,7 +114,8 @@ std::vector<std::string> loop_names(const ricci::AffineAtlas& atlas) {
   return names;
 }
 
-std::vector<ricci::RigidMotion2> cover_motions(const ricci::AffineAtlas& atlas, int depth, double tolerance) {
+std::vector<ricci::RigidMotion2> cover_motions(const ricci::AffineAtlas& atlas, int depth,
+                                               double tolerance) {
   const double distance = tolerance * std::max(atlas.domain_diameter, 1e-300);
   std::vector<ricci::RigidMotion2> generators;
   for (const auto& side : atlas.side_pairings) {

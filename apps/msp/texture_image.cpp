@@ -17,7 +17,8 @@ void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
   out.push_back(static_cast<std::uint8_t>(v));
 }
 
-void put_chunk(std::vector<std::uint8_t>& out, const char* type, const std::vector<std::uint8_t>& data) {
+void put_chunk(std::vector<std::uint8_t>& out, const char* type,
+               const std::vector<std::uint8_t>& data) {
   put_u32(out, static_cast<std::uint32_t>(data.size()));
   const size_t start = out.size();
   out.insert(out.end(), type, type + 4);
@@ -32,7 +33,8 @@ void put_chunk(std::vector<std::uint8_t>& out, const char* type, const std::vect
 
 RgbaImage::RgbaImage(int w, int h, Rgba fill) : width(w), height(h) {
   if (w <= 0 || h <= 0) {
-    throw ricci::InvalidInputError("image size " + std::to_string(w) + "x" + std::to_string(h) + " is not positive");
+    throw ricci::InvalidInputError("image size " + std::to_string(w) + "x" + std::to_string(h) +
+                                   " is not positive");
   }
   pixels.resize(static_cast<size_t>(w) * static_cast<size_t>(h) * 4);
   for (size_t i = 0; i < pixels.size(); i += 4) {
@@ -41,21 +43,24 @@ RgbaImage::RgbaImage(int w, int h, Rgba fill) : width(w), height(h) {
 }
 
 Rgba RgbaImage::at(int x, int y) const {
-  const size_t i = (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
+  const size_t i =
+      (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
   return {pixels[i], pixels[i + 1], pixels[i + 2], pixels[i + 3]};
 }
 
 void RgbaImage::set(int x, int y, Rgba colour) {
-  const size_t i = (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
+  const size_t i =
+      (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
   for (size_t c = 0; c < 4; ++c) pixels[i + c] = colour[c];
 }
 
 std::vector<std::uint8_t> encode_png(const RgbaImage& image) {
   const size_t row_bytes = static_cast<size_t>(image.width) * 4;
-  if (image.width <= 0 || image.height <= 0 || image.pixels.size() != row_bytes * static_cast<size_t>(image.height)) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != row_bytes * static_cast<size_t>(image.height)) {
     throw ricci::InvalidInputError("encode_png: image " + std::to_string(image.width) + "x" +
-                                   std::to_string(image.height) + " with " + std::to_string(image.pixels.size()) +
-                                   " bytes of pixels");
+                                   std::to_string(image.height) + " with " +
+                                   std::to_string(image.pixels.size()) + " bytes of pixels");
   }
   // Each scanline starts with its filter type (0: none).
   std::vector<std::uint8_t> raw;
@@ -67,7 +72,8 @@ std::vector<std::uint8_t> encode_png(const RgbaImage& image) {
   }
   uLongf packed_size = compressBound(static_cast<uLong>(raw.size()));
   std::vector<std::uint8_t> packed(packed_size);
-  if (compress2(packed.data(), &packed_size, raw.data(), static_cast<uLong>(raw.size()), Z_BEST_COMPRESSION) != Z_OK) {
+  if (compress2(packed.data(), &packed_size, raw.data(), static_cast<uLong>(raw.size()),
+                Z_BEST_COMPRESSION) != Z_OK) {
     throw ricci::IOError("encode_png: zlib could not compress the image");
   }
   packed.resize(packed_size);
@@ -76,7 +82,8 @@ std::vector<std::uint8_t> encode_png(const RgbaImage& image) {
   std::vector<std::uint8_t> header;
   put_u32(header, static_cast<std::uint32_t>(image.width));
   put_u32(header, static_cast<std::uint32_t>(image.height));
-  header.insert(header.end(), {8, 6, 0, 0, 0});  // 8 bits, RGBA, deflate, adaptive filters, no interlace
+  header.insert(header.end(),
+                {8, 6, 0, 0, 0});  // 8 bits, RGBA, deflate, adaptive filters, no interlace
   put_chunk(out, "IHDR", header);
   put_chunk(out, "IDAT", packed);
   put_chunk(out, "IEND", {});
@@ -86,7 +93,8 @@ std::vector<std::uint8_t> encode_png(const RgbaImage& image) {
 RgbaImage checkerboard(const CheckerboardOptions& o) {
   if (o.size <= 0 || o.squares <= 0 || o.size % o.squares != 0) {
     throw ricci::InvalidInputError("checkerboard: size " + std::to_string(o.size) +
-                                   " is not a positive multiple of squares " + std::to_string(o.squares));
+                                   " is not a positive multiple of squares " +
+                                   std::to_string(o.squares));
   }
   const int step = o.size / o.squares;
   RgbaImage image(o.size, o.size, o.light);

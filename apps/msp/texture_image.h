@@ -27,8 +27,8 @@ struct RgbaImage {
 [[nodiscard]] std::vector<std::uint8_t> encode_png(const RgbaImage& image);
 
 struct CheckerboardOptions {
-  int size = 1024;    ///< Width and height in pixels (a power of two keeps mipmaps exact).
-  int squares = 32;   ///< Squares along each side; size must be a multiple of it.
+  int size = 1024;   ///< Width and height in pixels (a power of two keeps mipmaps exact).
+  int squares = 32;  ///< Squares along each side; size must be a multiple of it.
   Rgba dark = {40, 40, 48, 255};
   Rgba light = {236, 236, 228, 255};
   /// Every `major` squares a thin coloured line helps follow rows across the surface (0: none).

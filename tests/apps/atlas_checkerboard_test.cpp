@@ -35,7 +35,8 @@ TEST(AtlasCheckerboard, UvsAreTheFlatMetricUpToOneScale) {
     double worst = 0.0;
     for (auto e : sliced.mesh.edges()) {
       const auto h = sliced.mesh.halfedge_handle(e, 0);
-      const int a = sliced.mesh.from_vertex_handle(h).idx(), b = sliced.mesh.to_vertex_handle(h).idx();
+      const int a = sliced.mesh.from_vertex_handle(h).idx(),
+                b = sliced.mesh.to_vertex_handle(h).idx();
       const double uv = (m.uvs.row(a) - m.uvs.row(b)).norm();
       const double metric = r->flow.lengths[sliced.to_original_edge[static_cast<size_t>(e.idx())]];
       worst = std::max(worst, std::abs(uv / (m.uv_scale * metric) - 1.0));
@@ -44,11 +45,15 @@ TEST(AtlasCheckerboard, UvsAreTheFlatMetricUpToOneScale) {
     // Inside the unit square, touching both ends of the longer side.
     EXPECT_GE(m.uvs.minCoeff(), -1e-12);
     EXPECT_LE(m.uvs.maxCoeff(), 1 + 1e-12);
-    EXPECT_NEAR(std::max(m.uvs.col(0).maxCoeff() - m.uvs.col(0).minCoeff(), m.uvs.col(1).maxCoeff() - m.uvs.col(1).minCoeff()), 1.0, 1e-12);
+    EXPECT_NEAR(std::max(m.uvs.col(0).maxCoeff() - m.uvs.col(0).minCoeff(),
+                         m.uvs.col(1).maxCoeff() - m.uvs.col(1).minCoeff()),
+                1.0, 1e-12);
     // Positions are those of the problem mesh; normals are unit and shared across the seam.
     for (Eigen::Index v = 0; v < m.positions.rows(); ++v) {
       const int p = m.problem_vertex[static_cast<size_t>(v)];
-      EXPECT_EQ(m.positions.row(v), ricci::to_eigen(r->problem.mesh.point(r->problem.mesh.vertex_handle(p))).transpose());
+      EXPECT_EQ(
+          m.positions.row(v),
+          ricci::to_eigen(r->problem.mesh.point(r->problem.mesh.vertex_handle(p))).transpose());
       EXPECT_NEAR(m.normals.row(v).norm(), 1.0, 1e-12);
     }
     // The split adds exactly the seam copies: more vertices than the closed mesh.
@@ -78,10 +83,12 @@ TEST(AtlasCheckerboard, GlbHasSurfaceLoopsAndConeAndValidates) {
   EXPECT_EQ(model.images[0].width, 256);
   EXPECT_EQ(model.asset.extras.Get("genus").GetNumberAsInt(), 2);
   const auto& surface = model.meshes[0].primitives[0];
-  EXPECT_EQ(model.accessors[static_cast<size_t>(surface.indices)].count, 3 * r.problem.mesh.n_faces());
+  EXPECT_EQ(model.accessors[static_cast<size_t>(surface.indices)].count,
+            3 * r.problem.mesh.n_faces());
 
   const auto report = msp_test::run_gltf_validator(path.string());
-  if (!report) GTEST_SKIP() << "node or tools/node_modules missing (scripts/install-deps.sh installs them)";
+  if (!report)
+    GTEST_SKIP() << "node or tools/node_modules missing (scripts/install-deps.sh installs them)";
   EXPECT_EQ(report->value("errors", -1), 0) << report->dump(1);
   EXPECT_EQ(report->value("warnings", -1), 0) << report->dump(1);
 }
@@ -121,18 +128,22 @@ TEST(AtlasCheckerboard, CommandLineWritesPicturesAndKeepsTheReport) {
   const fs::path dir = temp_dir();
   const std::string model = std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off";
   const std::string out = (dir / "cli.json").string();
-  const std::string command = std::string(MSP_BINARY) + " atlas '" + model + "' --singularity 570 --quiet --json -o '" +
-                              (dir / "cli.svg").string() + "' --checkerboard '" + (dir / "cli.glb").string() + "' > '" + out + "'";
+  const std::string command = std::string(MSP_BINARY) + " atlas '" + model +
+                              "' --singularity 570 --quiet --json -o '" +
+                              (dir / "cli.svg").string() + "' --checkerboard '" +
+                              (dir / "cli.glb").string() + "' > '" + out + "'";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   std::ifstream in(out);
   const auto report = nlohmann::json::parse(in);
-  for (const char* key : {"genus", "transition_residual", "polygon_word", "singularities", "stage_seconds"}) {
+  for (const char* key :
+       {"genus", "transition_residual", "polygon_word", "singularities", "stage_seconds"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
   EXPECT_GT(fs::file_size(dir / "cli.svg"), 10000u);
   EXPECT_GT(fs::file_size(dir / "cli.glb"), 10000u);
   // Bad output names are usage errors (status 2) and write nothing.
-  const std::string bad = std::string(MSP_BINARY) + " atlas '" + model + "' --quiet -o '" + (dir / "x.png").string() + "' 2>/dev/null >/dev/null";
+  const std::string bad = std::string(MSP_BINARY) + " atlas '" + model + "' --quiet -o '" +
+                          (dir / "x.png").string() + "' 2>/dev/null >/dev/null";
   const int status = std::system(bad.c_str());
   EXPECT_EQ(WEXITSTATUS(status), 2);
   EXPECT_FALSE(fs::exists(dir / "x.png"));

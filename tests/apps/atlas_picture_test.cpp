@@ -15,7 +15,8 @@ using msp_test::torus_atlas;
 
 // Sum over the domain and its copies of their winding numbers around p: how many layers of the
 // patch cover p.
-int layers(const Eigen::MatrixX2d& outline, const std::vector<ricci::RigidMotion2>& copies, const Eigen::Vector2d& p) {
+int layers(const Eigen::MatrixX2d& outline, const std::vector<ricci::RigidMotion2>& copies,
+           const Eigen::Vector2d& p) {
   int total = msp::winding_number(outline, p);
   for (const auto& m : copies) total += msp::winding_number(msp::transformed(outline, m), p);
   return total;
@@ -32,8 +33,10 @@ double min_boundary_edge(const Eigen::MatrixX2d& outline) {
 // Interior angle of the counter-clockwise polygon at vertex i, in (0, 2 pi).
 double interior_angle(const Eigen::MatrixX2d& p, Eigen::Index i) {
   const Eigen::Index n = p.rows();
-  const Eigen::Vector2d to_prev = p.row((i + n - 1) % n) - p.row(i), to_next = p.row((i + 1) % n) - p.row(i);
-  double a = std::atan2(to_next.x() * to_prev.y() - to_next.y() * to_prev.x(), to_next.dot(to_prev));
+  const Eigen::Vector2d to_prev = p.row((i + n - 1) % n) - p.row(i),
+                        to_next = p.row((i + 1) % n) - p.row(i);
+  double a =
+      std::atan2(to_next.x() * to_prev.y() - to_next.y() * to_prev.x(), to_next.dot(to_prev));
   if (a <= 0) a += 2 * M_PI;
   return a;
 }
@@ -66,7 +69,8 @@ TEST(AtlasPicture, ConeCornersAddUpToTheConeAngle) {
   double corners = 0.0;
   int copies = 0;
   for (size_t i = 0; i < outline.vertices.size(); ++i) {
-    if (r.atlas.sliced.to_original_vertex[static_cast<size_t>(outline.vertices[i])] != root) continue;
+    if (r.atlas.sliced.to_original_vertex[static_cast<size_t>(outline.vertices[i])] != root)
+      continue;
     corners += interior_angle(outline.points, static_cast<Eigen::Index>(i));
     ++copies;
   }
@@ -84,7 +88,8 @@ TEST(AtlasPicture, SidePairingsMapLeftSidesOntoRightSides) {
       ASSERT_FALSE(sides[s + 1].left);
       const auto& motion = r->atlas.side_pairings[static_cast<size_t>(sides[s].pairing)].motion;
       const Eigen::MatrixX2d moved = msp::transformed(sides[s].points, motion);
-      EXPECT_LT((moved - sides[s + 1].points).rowwise().norm().maxCoeff(), 1e-9 * r->atlas.domain_diameter);
+      EXPECT_LT((moved - sides[s + 1].points).rowwise().norm().maxCoeff(),
+                1e-9 * r->atlas.domain_diameter);
     }
   }
 }
@@ -94,7 +99,8 @@ TEST(AtlasPicture, TorusCopiesTileThePlaneWithoutGapsOrOverlaps) {
   const msp::DomainOutline outline = msp::domain_outline(r.atlas);
   const auto copies = msp::cover_motions(r.atlas, msp::resolved_cover_depth(r, -1));
   ASSERT_EQ(msp::resolved_cover_depth(r, -1), 2);
-  for (const auto& m : copies) EXPECT_LT(std::abs(m.angle), 1e-9) << "a torus's deck transformations are translations";
+  for (const auto& m : copies)
+    EXPECT_LT(std::abs(m.angle), 1e-9) << "a torus's deck transformations are translations";
   if (r.atlas.side_pairings.size() == 2) {
     EXPECT_EQ(copies.size(), 12u);  // {i a + j b : 0 < |i| + |j| <= 2}
   }
@@ -105,7 +111,8 @@ TEST(AtlasPicture, TorusCopiesTileThePlaneWithoutGapsOrOverlaps) {
     if (side.loop >= 0) loop_translations.push_back(side.motion.translation);
   }
   ASSERT_EQ(loop_translations.size(), 2u);
-  const double cell = std::abs(loop_translations[0].x() * loop_translations[1].y() - loop_translations[0].y() * loop_translations[1].x());
+  const double cell = std::abs(loop_translations[0].x() * loop_translations[1].y() -
+                               loop_translations[0].y() * loop_translations[1].x());
   EXPECT_NEAR(cell, outline.signed_area, 1e-9 * outline.signed_area);
 
   // Points just around every corner and edge of the domain, and inside it, are covered exactly
@@ -117,14 +124,16 @@ TEST(AtlasPicture, TorusCopiesTileThePlaneWithoutGapsOrOverlaps) {
   for (Eigen::Index i = 0; i < outline.points.rows(); ++i) {
     for (int k = 0; k < 6; ++k) {
       const double a = turn(random);
-      const Eigen::Vector2d p = outline.points.row(i).transpose() + eps * Eigen::Vector2d(std::cos(a), std::sin(a));
+      const Eigen::Vector2d p =
+          outline.points.row(i).transpose() + eps * Eigen::Vector2d(std::cos(a), std::sin(a));
       ASSERT_EQ(layers(outline.points, copies, p), 1) << "near outline vertex " << i;
       ++checked;
     }
   }
   for (auto f : r.atlas.sliced.mesh.faces()) {
     Eigen::Vector2d c = Eigen::Vector2d::Zero();
-    for (auto v : r.atlas.sliced.mesh.fv_range(f)) c += r.atlas.layout.positions.row(v.idx()).transpose() / 3.0;
+    for (auto v : r.atlas.sliced.mesh.fv_range(f))
+      c += r.atlas.layout.positions.row(v.idx()).transpose() / 3.0;
     ASSERT_EQ(layers(outline.points, copies, c), 1) << "face " << f.idx();
   }
   EXPECT_GT(checked, 100);
@@ -141,9 +150,11 @@ TEST(AtlasPicture, Genus2FirstRingHasOneCopyAcrossEachSide) {
     // (moved by the pairing for a right side, by its inverse for a left side).
     const auto& pairing = r.atlas.side_pairings[static_cast<size_t>(side.pairing)];
     const Eigen::Index mid = side.points.rows() / 2;
-    const Eigen::Vector2d a = side.points.row(mid - 1).transpose(), b = side.points.row(mid).transpose();
+    const Eigen::Vector2d a = side.points.row(mid - 1).transpose(),
+                          b = side.points.row(mid).transpose();
     const Eigen::Vector2d tangent = (b - a).normalized();
-    const Eigen::Vector2d outward = (side.left ? -1.0 : 1.0) * Eigen::Vector2d(-tangent.y(), tangent.x());
+    const Eigen::Vector2d outward =
+        (side.left ? -1.0 : 1.0) * Eigen::Vector2d(-tangent.y(), tangent.x());
     const Eigen::Vector2d p = 0.5 * (a + b) + 0.05 * (b - a).norm() * outward;
     const auto across = side.left ? pairing.motion.inverse() : pairing.motion;
     EXPECT_EQ(msp::winding_number(outline.points, p), 0);

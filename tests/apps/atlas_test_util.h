@@ -10,7 +10,8 @@ namespace msp_test {
 inline ricci::OneConeAtlasResult build_atlas(const std::string& model, int singular_vertex) {
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = singular_vertex;
-  return ricci::build_one_cone_atlas(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + model), options);
+  return ricci::build_one_cone_atlas(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + model),
+                                     options);
 }
 
 /// closed_g1/elk.off: a flat torus (no cone).

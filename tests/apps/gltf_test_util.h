@@ -17,7 +17,8 @@ inline std::optional<nlohmann::json> run_gltf_validator(const std::string& path)
   const fs::path tools = fs::path(MSP_SOURCE_DIR) / "tools";
   if (!fs::exists(tools / "node_modules" / "gltf-validator")) return std::nullopt;
   if (std::system("command -v node >/dev/null 2>&1") != 0) return std::nullopt;
-  const std::string command = "node '" + (tools / "validate.mjs").string() + "' --json '" + path + "' 2>&1";
+  const std::string command =
+      "node '" + (tools / "validate.mjs").string() + "' --json '" + path + "' 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return std::nullopt;
   std::string output;

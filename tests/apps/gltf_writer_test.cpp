@@ -26,7 +26,8 @@ Mesh octahedron() {
   m.positions << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
   m.normals = m.positions * 3.0;  // not unit: the writer normalises
   m.uvs.resize(6, 2);
-  for (int i = 0; i < 6; ++i) m.uvs.row(i) << 0.5 + 0.5 * m.positions(i, 0), 0.5 + 0.5 * m.positions(i, 1);
+  for (int i = 0; i < 6; ++i)
+    m.uvs.row(i) << 0.5 + 0.5 * m.positions(i, 0), 0.5 + 0.5 * m.positions(i, 1);
   m.indices = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
   return m;
 }
@@ -38,7 +39,8 @@ Scene sample_scene() {
   msp::CheckerboardOptions checker;
   checker.size = 64;
   checker.squares = 8;
-  surface.material.texture = msp::gltf::Texture{msp::encode_png(msp::checkerboard(checker)), true, true};
+  surface.material.texture =
+      msp::gltf::Texture{msp::encode_png(msp::checkerboard(checker)), true, true};
   surface.material.double_sided = true;
   surface.extras = {{"kind", "surface"}};
   scene.meshes.push_back(surface);
@@ -58,8 +60,11 @@ Scene sample_scene() {
   point.material.base_color = {0.1, 0.1, 0.9, 1.0};
   scene.meshes.push_back(point);
 
-  scene.extras = {{"genus", 2}, {"cone_angle", 6 * M_PI}, {"word", "a1 b1 a1^-1 b1^-1"},
-                  {"list", {1, 2.5, false}}, {"big", 10000000000LL}};
+  scene.extras = {{"genus", 2},
+                  {"cone_angle", 6 * M_PI},
+                  {"word", "a1 b1 a1^-1 b1^-1"},
+                  {"list", {1, 2.5, false}},
+                  {"big", 10000000000LL}};
   return scene;
 }
 
@@ -84,7 +89,9 @@ std::vector<T> read_accessor(const tinygltf::Model& model, int index) {
   const auto& a = model.accessors[static_cast<size_t>(index)];
   const auto& view = model.bufferViews[static_cast<size_t>(a.bufferView)];
   const auto& data = model.buffers[static_cast<size_t>(view.buffer)].data;
-  const size_t components = a.type == TINYGLTF_TYPE_SCALAR ? 1 : a.type == TINYGLTF_TYPE_VEC2 ? 2 : 3;
+  const size_t components = a.type == TINYGLTF_TYPE_SCALAR ? 1
+                            : a.type == TINYGLTF_TYPE_VEC2 ? 2
+                                                           : 3;
   std::vector<T> out(a.count * components);
   std::memcpy(out.data(), data.data() + view.byteOffset + a.byteOffset, out.size() * sizeof(T));
   return out;
@@ -111,7 +118,9 @@ TEST(GltfWriter, RoundTripsMeshesTextureAndExtras) {
   const int pos = surface.attributes.at("POSITION");
   const auto positions = read_accessor<float>(model, pos);
   ASSERT_EQ(positions.size(), 18u);
-  for (int i = 0; i < 18; ++i) EXPECT_EQ(positions[static_cast<size_t>(i)], static_cast<float>(scene.meshes[0].positions(i / 3, i % 3)));
+  for (int i = 0; i < 18; ++i)
+    EXPECT_EQ(positions[static_cast<size_t>(i)],
+              static_cast<float>(scene.meshes[0].positions(i / 3, i % 3)));
   EXPECT_EQ(model.accessors[static_cast<size_t>(pos)].minValues, (std::vector<double>{-1, -1, -1}));
   EXPECT_EQ(model.accessors[static_cast<size_t>(pos)].maxValues, (std::vector<double>{1, 1, 1}));
   EXPECT_EQ(read_accessor<std::uint32_t>(model, surface.indices), scene.meshes[0].indices);
@@ -133,15 +142,17 @@ TEST(GltfWriter, RoundTripsMeshesTextureAndExtras) {
   EXPECT_TRUE(material.doubleSided);
   const int texture = material.pbrMetallicRoughness.baseColorTexture.index;
   ASSERT_GE(texture, 0);
-  const auto& image = model.images[static_cast<size_t>(model.textures[static_cast<size_t>(texture)].source)];
+  const auto& image =
+      model.images[static_cast<size_t>(model.textures[static_cast<size_t>(texture)].source)];
   EXPECT_EQ(image.mimeType, "image/png");
   EXPECT_GE(image.bufferView, 0);
   ASSERT_EQ(image.width, 64);
   ASSERT_EQ(image.height, 64);
-  EXPECT_EQ(image.image[(9 * 64 + 9) * 4], 40);     // square (1, 1): dark
-  EXPECT_EQ(image.image[(9 * 64 + 17) * 4], 236);   // square (2, 1): light
+  EXPECT_EQ(image.image[(9 * 64 + 9) * 4], 40);    // square (1, 1): dark
+  EXPECT_EQ(image.image[(9 * 64 + 17) * 4], 236);  // square (2, 1): light
 
-  const auto& line_material = model.materials[static_cast<size_t>(model.meshes[1].primitives[0].material)];
+  const auto& line_material =
+      model.materials[static_cast<size_t>(model.meshes[1].primitives[0].material)];
   EXPECT_DOUBLE_EQ(line_material.pbrMetallicRoughness.baseColorFactor[0], 0.9);
 
   // Metadata: on the asset and the scene, numbers keep their values.
@@ -157,7 +168,8 @@ TEST(GltfWriter, GlbHeaderAndChunksAreConsistent) {
   const std::vector<std::uint8_t> bytes = msp::gltf::glb_bytes(sample_scene());
   auto u32 = [&](size_t at) {
     return static_cast<std::uint32_t>(bytes[at]) | static_cast<std::uint32_t>(bytes[at + 1]) << 8 |
-           static_cast<std::uint32_t>(bytes[at + 2]) << 16 | static_cast<std::uint32_t>(bytes[at + 3]) << 24;
+           static_cast<std::uint32_t>(bytes[at + 2]) << 16 |
+           static_cast<std::uint32_t>(bytes[at + 3]) << 24;
   };
   ASSERT_GE(bytes.size(), 28u);
   EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + 4), "glTF");
@@ -176,7 +188,8 @@ TEST(GltfWriter, PassesTheKhronosValidatorWithoutWarnings) {
   const fs::path path = temp_file("validate.glb");
   msp::gltf::write_glb(sample_scene(), path.string());
   const auto report = msp_test::run_gltf_validator(path.string());
-  if (!report) GTEST_SKIP() << "node or tools/node_modules missing (scripts/install-deps.sh installs them)";
+  if (!report)
+    GTEST_SKIP() << "node or tools/node_modules missing (scripts/install-deps.sh installs them)";
   ASSERT_TRUE(report->is_object()) << "validator output is not JSON";
   EXPECT_EQ(report->value("errors", -1), 0) << report->dump(1);
   EXPECT_EQ(report->value("warnings", -1), 0) << report->dump(1);
@@ -227,13 +240,17 @@ TEST(TexturePng, EncodesPixelsExactly) {
   msp::RgbaImage image(5, 3, {0, 0, 0, 255});
   for (int y = 0; y < 3; ++y) {
     for (int x = 0; x < 5; ++x) {
-      image.set(x, y, {static_cast<std::uint8_t>(50 * x), static_cast<std::uint8_t>(100 * y), 7, static_cast<std::uint8_t>(255 - x)});
+      image.set(x, y,
+                {static_cast<std::uint8_t>(50 * x), static_cast<std::uint8_t>(100 * y), 7,
+                 static_cast<std::uint8_t>(255 - x)});
     }
   }
   const auto png = msp::encode_png(image);
   tinygltf::Image decoded;
   std::string err, warn;
-  ASSERT_TRUE(tinygltf::LoadImageData(&decoded, 0, &err, &warn, 0, 0, png.data(), static_cast<int>(png.size()), nullptr)) << err;
+  ASSERT_TRUE(tinygltf::LoadImageData(&decoded, 0, &err, &warn, 0, 0, png.data(),
+                                      static_cast<int>(png.size()), nullptr))
+      << err;
   ASSERT_EQ(decoded.width, 5);
   ASSERT_EQ(decoded.height, 3);
   ASSERT_EQ(decoded.component, 4);
