@@ -63,7 +63,7 @@ void check_coordinates(Context& c) {
   if (first_bad < 0) return;
   const auto& p = positions[first_bad];
   add_problem(c.d, MeshProblemKind::kNonFiniteCoordinate, referenced_bad,
-              "vertex " + std::to_string(first_bad) + " has a non-finite coordinate (" +
+              c.soup.vertex_where(first_bad) + " has a non-finite coordinate (" +
                   number_text(p.x()) + ", " + number_text(p.y()) + ", " + number_text(p.z()) + ")",
               "such vertices");
 }

@@ -43,6 +43,7 @@ PolygonSoup parse_obj(std::string_view data, const std::string& name) {
                    quote_token(token));
       }
       soup.positions.push_back(p);
+      soup.vertex_lines.push_back(static_cast<int>(line_number));
     } else if (token == "f") {
       const size_t f = soup.faces.size();
       std::vector<int> face;

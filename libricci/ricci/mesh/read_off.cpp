@@ -41,10 +41,12 @@ void read_vertices(LineCursor& cursor, long long count, const std::string& name,
                    PolygonSoup& soup) {
   std::string_view text, token;
   soup.positions.resize(static_cast<size_t>(count));
+  soup.vertex_lines.resize(static_cast<size_t>(count));
   for (long long v = 0; v < count; ++v) {
     if (!next_content_line(cursor, text))
       fail(name, cursor.line_number(),
            "file ends after " + std::to_string(v) + " of " + std::to_string(count) + " vertices");
+    soup.vertex_lines[static_cast<size_t>(v)] = static_cast<int>(cursor.line_number());
     auto& p = soup.positions[static_cast<size_t>(v)];
     for (int k = 0; k < 3; ++k) {
       if (!next_token(text, token))

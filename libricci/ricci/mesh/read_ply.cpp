@@ -375,6 +375,7 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
       reader.read_record(record, values, lists);
       if (is_vertex) {
         soup.positions.emplace_back(values[px], values[py], values[pz]);
+        soup.vertex_lines.push_back(static_cast<int>(reader.record_line()));
       } else if (is_face) {
         std::vector<int> face(lists[plist].size());
         for (size_t k = 0; k < face.size(); ++k) face[k] = checked_index(lists[plist][k]);
@@ -386,7 +387,10 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
     }
   }
   if (!has_vertices) fail(name, 0, "PLY header declares no 'vertex' element");
-  if (header.encoding != Encoding::kAscii) soup.face_lines.clear();  // binary: no lines to name
+  if (header.encoding != Encoding::kAscii) {  // binary: no lines to name
+    soup.face_lines.clear();
+    soup.vertex_lines.clear();
+  }
   return soup;
 }
 

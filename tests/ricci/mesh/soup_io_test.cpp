@@ -85,6 +85,8 @@ TEST_F(SoupIo, OffFaceLinesAreRecorded) {
   const auto soup = ricci::read_soup(write(
       "lines.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0.5\n0 1 -2.25\n\n# gap\n3 0 1 2\n3 0 2 3\n"));
   EXPECT_EQ(soup.face_lines, (std::vector<int>{9, 10}));
+  EXPECT_EQ(soup.vertex_lines, (std::vector<int>{3, 4, 5, 6}));
+  EXPECT_EQ(soup.vertex_where(2), "vertex 2 (line 5)");
   EXPECT_EQ(soup.face_where(1), "face 1 (line 10)");
 }
 
