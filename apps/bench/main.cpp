@@ -27,6 +27,8 @@ const Benchmark kBenchmarks[] = {
      "read stages (parse, diagnose, build) on the largest shared models vs OpenMesh's reader"},
     {"dms", msp::bench::run_dms_benchmark,
      "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
+    {"singularity", msp::bench::run_singularity_benchmark,
+     "automatic choice of the extraordinary point vs the paper's brute force (one flow per vertex)"},
     {"topology", msp::bench::run_topology_benchmark,
      "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
 };
