@@ -14,7 +14,7 @@ echo "demo: describing $MODEL" >&2
 "$MSP" info "$MODEL" --json > "$OUT/info.json"
 
 echo "demo: one-cone flat metric, cut graph, layout and affine atlas" >&2
-"$MSP" atlas "$MODEL" --json > "$OUT/atlas.json"
+"$MSP" atlas "$MODEL" --json -o "$OUT/atlas.svg" --checkerboard "$OUT/checkerboard.glb" > "$OUT/atlas.json"
 
 echo "demo: outputs in $OUT:" >&2
 ls -1 "$OUT" >&2

@@ -12,13 +12,50 @@
 #include "msp/cli.h"
 #include "msp/commands.h"
 #include "msp/flow_options.h"
+#include "msp/gltf_atlas.h"
+#include "msp/svg_atlas.h"
 
 namespace msp {
 namespace {
 
 const char* kUsage =
     "msp atlas MESH [--singularity auto|VERTEX] [--metric circle-packing|inversive-distance|combinatorial] "
-    "[--radii mean|min|least-squares] [--tolerance T] [--quiet] [--json]";
+    "[--radii mean|min|least-squares] [--tolerance T] [-o PICTURE.svg] [--cover-depth N] "
+    "[--checkerboard OUT.glb|OUT.obj] [--checker-squares N] [--quiet] [--json]";
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The pictures of issue 4: the SVG of the domain and its copies, the checkerboard mesh.
+void write_pictures(const Args& args, const std::string& path, const ricci::OneConeAtlasResult& result,
+                    const nlohmann::json& report) {
+  auto note = [&](const std::string& file) {
+    if (!args.has("quiet")) std::cerr << "msp atlas: wrote " << file << "\n";
+  };
+  if (auto svg = args.get("output")) {
+    AtlasSvgOptions options;
+    options.title = path;
+    options.cover_depth = args.get_int("cover-depth", -1);
+    write_text_atomically(*svg, atlas_svg(result, options));
+    note(*svg);
+  }
+  if (auto out = args.get("checkerboard")) {
+    CheckerboardOptions texture;
+    texture.squares = args.get_int("checker-squares", texture.squares);
+    if (texture.squares <= 0 || texture.squares > 256) throw UsageError("--checker-squares must be in [1, 256]");
+    texture.size = texture.squares * std::max(8, 1024 / texture.squares);
+    if (ends_with(*out, ".glb")) {
+      CheckerboardExportOptions options;
+      options.texture = texture;
+      options.extras = {{"msp_atlas", report}};
+      gltf::write_glb(checkerboard_scene(result, options), *out);
+    } else {
+      write_checkerboard_obj(result, *out, texture);
+    }
+    note(*out);
+  }
+}
 
 int parse_singularity(const std::string& s) {
   if (s == "auto") return -1;
@@ -92,8 +129,13 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh, con
 
 int run_atlas(int argc, char** argv) {
   Args args(argc, argv, {"json", "quiet"});
-  args.require_known({"singularity", "metric", "radii", "tolerance", "quiet", "json"});
+  args.require_known({"singularity", "metric", "radii", "tolerance", "quiet", "json", "output", "cover-depth",
+                      "checkerboard", "checker-squares"});
   args.require_positionals(1, kUsage);
+  if (auto svg = args.get("output"); svg && !ends_with(*svg, ".svg")) throw UsageError("-o must name an .svg file, not '" + *svg + "'");
+  if (auto out = args.get("checkerboard"); out && !ends_with(*out, ".glb") && !ends_with(*out, ".obj")) {
+    throw UsageError("--checkerboard must name a .glb or .obj file, not '" + *out + "'");
+  }
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
   if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
@@ -107,11 +149,13 @@ int run_atlas(int argc, char** argv) {
   const ricci::Mesh mesh = ricci::read_mesh(path);
   const ricci::OneConeAtlasResult result = ricci::build_one_cone_atlas(mesh, options);
   nlohmann::json report = report_json(path, mesh, result);
+  write_pictures(args, path, result, report);
   if (args.has("json")) {
     std::cout << report.dump() << "\n";
   } else {
     for (auto& [key, value] : report.items()) std::cout << key << " " << value.dump() << "\n";
   }
+
   return 0;
 }
 
