@@ -11,7 +11,7 @@ namespace ricci {
 
 /// Which sparse factorisation Newton uses.
 enum class LinearSolver {
-  Auto,               ///< the measured default (CholmodSupernodal; see flow.h)
+  Auto,               ///< measured default: EigenLDLT below 20k unknowns, else CholmodSupernodal
   EigenLDLT,          ///< Eigen::SimplicialLDLT (also handles indefinite matrices)
   EigenLLT,           ///< Eigen::SimplicialLLT
   CholmodSupernodal,  ///< CHOLMOD supernodal LLT (BLAS level 3)
