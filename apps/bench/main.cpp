@@ -23,6 +23,12 @@ const Benchmark kBenchmarks[] = {
      "issue 5 baseline: OpenSubdiv Loop surface fitted to genus 0-3 models, RMS/max per diagonal"},
     {"solvers", msp::bench::run_solver_benchmark,
      "factorisations of the E2 Newton Hessian: Eigen LDLT/LLT vs CHOLMOD supernodal/simplicial"},
+    {"mesh-io", msp::bench::run_mesh_io_benchmark,
+     "read stages (parse, diagnose, build) on the largest shared models vs OpenMesh's reader"},
+    {"dms", msp::bench::run_dms_benchmark,
+     "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
+    {"topology", msp::bench::run_topology_benchmark,
+     "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
 };
 
 void usage() {
