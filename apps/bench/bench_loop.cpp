@@ -4,8 +4,8 @@
 // RMS and max over vertices, divided by the input's bounding-box diagonal).
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -68,19 +68,26 @@ int run_loop_benchmark(int argc, char** argv) {
     } else if (arg == "--corrections" && i + 1 < argc) {
       options.parameter_corrections = std::stoi(argv[++i]);
     } else if (arg == "--help") {
-      std::printf("msp-bench loop-fit [--control 2000,20000] [--smoothness 1e-3] [--corrections 2] [models...]\n");
+      std::printf(
+          "msp-bench loop-fit [--control 2000,20000] [--smoothness 1e-3] [--corrections 2] "
+          "[models...]\n");
       return 0;
     } else {
       models.push_back(fs::exists(arg) ? arg : std::string(MSP_SHARED_MODELS_DIR) + "/" + arg);
     }
   }
   if (models.empty()) models = default_models();
-  std::printf("Loop subdivision baseline (OpenSubdiv %s, isolation %d, Gregory end caps, lambda %g relative)\n",
-              "3.5", options.isolation_level, options.smoothness);
-  std::printf("%d parameter corrections; errors: distance of every input vertex to the limit surface after"
-              " %d Gauss-Newton steps, / bbox diagonal\n\n",
-              options.parameter_corrections, options.projection_steps);
-  std::printf("| model | genus | V | C wanted | C | C/V | RMS/diag | max/diag | RMS/diag at param | wall s | CPU s | s: simplify/osd/solve/project |\n");
+  std::printf(
+      "Loop subdivision baseline (OpenSubdiv %s, isolation %d, Gregory end caps, lambda %g "
+      "relative)\n",
+      "3.5", options.isolation_level, options.smoothness);
+  std::printf(
+      "%d parameter corrections; errors: distance of every input vertex to the limit surface after"
+      " %d Gauss-Newton steps, / bbox diagonal\n\n",
+      options.parameter_corrections, options.projection_steps);
+  std::printf(
+      "| model | genus | V | C wanted | C | C/V | RMS/diag | max/diag | RMS/diag at param | wall s "
+      "| CPU s | s: simplify/osd/solve/project |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& path : models) {
     ricci::Mesh dense;
@@ -99,14 +106,16 @@ int run_loop_benchmark(int argc, char** argv) {
         const spline::LoopFitResult r = spline::fit_loop_surface(dense, options);
         const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-        std::printf("| %s | %d | %zu | %d | %d | %.2f | %.3e | %.3e | %.3e | %.1f | %.1f | %.1f/%.1f/%.1f/%.1f |\n",
-                    short_name(path).c_str(), genus, dense.n_vertices(), count, r.control_points,
-                    r.control_points / static_cast<double>(dense.n_vertices()), r.rms_relative, r.max_relative,
-                    r.parameter_rms_relative, seconds, cpu, r.seconds_control_mesh, r.seconds_surface,
-                    r.seconds_solve, r.seconds_projection);
+        std::printf(
+            "| %s | %d | %zu | %d | %d | %.2f | %.3e | %.3e | %.3e | %.1f | %.1f | "
+            "%.1f/%.1f/%.1f/%.1f |\n",
+            short_name(path).c_str(), genus, dense.n_vertices(), count, r.control_points,
+            r.control_points / static_cast<double>(dense.n_vertices()), r.rms_relative,
+            r.max_relative, r.parameter_rms_relative, seconds, cpu, r.seconds_control_mesh,
+            r.seconds_surface, r.seconds_solve, r.seconds_projection);
       } catch (const std::exception& e) {
-        std::printf("| %s | %d | %zu | %d | failed: %s |\n", short_name(path).c_str(), genus, dense.n_vertices(),
-                    count, e.what());
+        std::printf("| %s | %d | %zu | %d | failed: %s |\n", short_name(path).c_str(), genus,
+                    dense.n_vertices(), count, e.what());
       }
       std::fflush(stdout);
     }

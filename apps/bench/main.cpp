@@ -20,7 +20,7 @@ const Benchmark kBenchmarks[] = {
     {"flow-one", msp::bench::run_flow_case,
      "one row of 'flow' in this process (used by 'flow' through a child process)"},
     {"loop-fit", msp::bench::run_loop_benchmark,
-     "OpenSubdiv Loop-surface fit of the genus 0-3 models: control points, RMS/max distance per diagonal, time"},
+     "issue 5 baseline: OpenSubdiv Loop surface fitted to genus 0-3 models, RMS/max per diagonal"},
     {"solvers", msp::bench::run_solver_benchmark,
      "factorisations of the E2 Newton Hessian: Eigen LDLT/LLT vs CHOLMOD supernodal/simplicial"},
     {"mesh-io", msp::bench::run_mesh_io_benchmark,

@@ -43,7 +43,8 @@ Sparse umbrella_laplacian(const ricci::Mesh& mesh) {
     entries.emplace_back(v.idx(), v.idx(), 1.0);
     for (auto w : mesh.vv_range(v)) entries.emplace_back(v.idx(), w.idx(), -1.0 / valence);
   }
-  Sparse l(static_cast<Eigen::Index>(mesh.n_vertices()), static_cast<Eigen::Index>(mesh.n_vertices()));
+  Sparse l(static_cast<Eigen::Index>(mesh.n_vertices()),
+           static_cast<Eigen::Index>(mesh.n_vertices()));
   l.setFromTriplets(entries.begin(), entries.end());
   return l;
 }
@@ -58,19 +59,22 @@ int boundary_edges(const ricci::Mesh& mesh) {
 
 ricci::Mesh loop_control_mesh(const ricci::Mesh& dense, int control_points, int remesh_iterations) {
   if (control_points < 4) {
-    throw ricci::InvalidInputError("loop_control_mesh: control_points is " + std::to_string(control_points) +
-                                   ", at least 4 are needed");
+    throw ricci::InvalidInputError("loop_control_mesh: control_points is " +
+                                   std::to_string(control_points) + ", at least 4 are needed");
   }
-  if (dense.n_faces() == 0) throw ricci::InvalidInputError("loop_control_mesh: the dense mesh has no faces");
+  if (dense.n_faces() == 0)
+    throw ricci::InvalidInputError("loop_control_mesh: the dense mesh has no faces");
   // F = 2V - 2 chi - B for a triangle mesh; the boundary edge count B scales like sqrt(V).
-  const double chi = static_cast<double>(dense.n_vertices()) - static_cast<double>(dense.n_edges()) +
-                     static_cast<double>(dense.n_faces());
+  const double chi = static_cast<double>(dense.n_vertices()) -
+                     static_cast<double>(dense.n_edges()) + static_cast<double>(dense.n_faces());
   const double boundary =
       boundary_edges(dense) * std::sqrt(control_points / static_cast<double>(dense.n_vertices()));
-  const int target_faces = std::max(4, static_cast<int>(std::lround(2.0 * control_points - 2.0 * chi - boundary)));
+  const int target_faces =
+      std::max(4, static_cast<int>(std::lround(2.0 * control_points - 2.0 * chi - boundary)));
   ricci::Mesh source = dense;
   // Simplification only removes vertices: refine first when the scan is coarser than the target.
-  while (static_cast<double>(source.n_faces()) < 1.5 * target_faces) source = ricci::subdivide_midpoint(source);
+  while (static_cast<double>(source.n_faces()) < 1.5 * target_faces)
+    source = ricci::subdivide_midpoint(source);
   ricci::SimplifyOptions options;
   options.target_faces = target_faces;
   options.remesh_iterations = remesh_iterations;
@@ -88,7 +92,8 @@ ricci::Mesh loop_control_mesh(const ricci::Mesh& dense, int control_points, int 
   return control;
 }
 
-std::vector<LoopLocation> loop_parameters(const LoopSurface& surface, const Eigen::MatrixX3d& points) {
+std::vector<LoopLocation> loop_parameters(const LoopSurface& surface,
+                                          const Eigen::MatrixX3d& points) {
   const auto closest = ricci::closest_points(surface.control_mesh(), points);
   std::vector<LoopLocation> locations(closest.size());
   for (size_t i = 0; i < closest.size(); ++i) {
@@ -100,11 +105,12 @@ std::vector<LoopLocation> loop_parameters(const LoopSurface& surface, const Eige
   return locations;
 }
 
-LoopSolve fit_loop_control_points(const LoopSurface& surface, const std::vector<LoopLocation>& locations,
+LoopSolve fit_loop_control_points(const LoopSurface& surface,
+                                  const std::vector<LoopLocation>& locations,
                                   const Eigen::MatrixX3d& points, double smoothness) {
   if (static_cast<Eigen::Index>(locations.size()) != points.rows()) {
-    throw ricci::InvalidInputError("fit_loop_control_points: " + std::to_string(locations.size()) + " locations for " +
-                                   std::to_string(points.rows()) + " points");
+    throw ricci::InvalidInputError("fit_loop_control_points: " + std::to_string(locations.size()) +
+                                   " locations for " + std::to_string(points.rows()) + " points");
   }
   if (!(smoothness >= 0.0) || !std::isfinite(smoothness)) {
     throw ricci::InvalidInputError("fit_loop_control_points: smoothness must be finite and >= 0");
@@ -120,18 +126,18 @@ LoopSolve fit_loop_control_points(const LoopSurface& surface, const std::vector<
   }
   Eigen::SimplicialLDLT<Sparse> solver(normal);
   if (solver.info() != Eigen::Success) {
-    throw ricci::SolverError("fit_loop_control_points: the normal matrix (" + std::to_string(normal.rows()) +
-                             " control points, " + std::to_string(points.rows()) +
-                             " samples) could not be factorised");
+    throw ricci::SolverError("fit_loop_control_points: the normal matrix (" +
+                             std::to_string(normal.rows()) + " control points, " +
+                             std::to_string(points.rows()) + " samples) could not be factorised");
   }
   const Eigen::MatrixX3d rhs = a.transpose() * points;
   result.control = solver.solve(rhs);
   // A singular system factorises with a zero pivot and yields Inf/NaN: treat that as a failure.
   if (solver.info() != Eigen::Success || !result.control.allFinite() ||
       (solver.vectorD().array().abs() <= 1e-14 * solver.vectorD().cwiseAbs().maxCoeff()).any()) {
-    throw ricci::SolverError("fit_loop_control_points: the normal matrix is singular (" +
-                             std::to_string(points.rows()) + " samples for " + std::to_string(normal.rows()) +
-                             " control points; use smoothness > 0)");
+    throw ricci::SolverError(
+        "fit_loop_control_points: the normal matrix is singular (" + std::to_string(points.rows()) +
+        " samples for " + std::to_string(normal.rows()) + " control points; use smoothness > 0)");
   }
   return result;
 }
@@ -141,7 +147,8 @@ LoopFitResult fit_loop_surface(const ricci::Mesh& dense, const LoopFitOptions& o
     throw ricci::InvalidInputError("fit_loop_surface: the dense mesh is empty");
   }
   if (options.projection_steps < 0 || options.parameter_corrections < 0) {
-    throw ricci::InvalidInputError("fit_loop_surface: projection_steps and parameter_corrections must be >= 0");
+    throw ricci::InvalidInputError(
+        "fit_loop_surface: projection_steps and parameter_corrections must be >= 0");
   }
   LoopFitResult result;
   auto clock = Clock::now();
@@ -160,17 +167,20 @@ LoopFitResult fit_loop_surface(const ricci::Mesh& dense, const LoopFitOptions& o
     if (round > 0) locations = projection.locations;
     solve = fit_loop_control_points(surface, locations, points, options.smoothness);
     result.seconds_solve += seconds_since(clock);
-    projection = project_to_loop_surface(surface, solve.control, points, locations, options.projection_steps);
+    projection = project_to_loop_surface(surface, solve.control, points, locations,
+                                         options.projection_steps);
     result.seconds_projection += seconds_since(clock);
   }
-  for (auto v : result.control.vertices()) result.control.set_point(v, ricci::to_openmesh(solve.control.row(v.idx())));
+  for (auto v : result.control.vertices())
+    result.control.set_point(v, ricci::to_openmesh(solve.control.row(v.idx())));
   result.control_points = surface.num_control_points();
   result.samples = static_cast<int>(points.rows());
   result.bbox_diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
   const double n = static_cast<double>(points.rows());
   result.rms_relative = std::sqrt(projection.distances.squaredNorm() / n) / result.bbox_diagonal;
   result.max_relative = projection.distances.maxCoeff() / result.bbox_diagonal;
-  result.parameter_rms_relative = std::sqrt(projection.start_distances.squaredNorm() / n) / result.bbox_diagonal;
+  result.parameter_rms_relative =
+      std::sqrt(projection.start_distances.squaredNorm() / n) / result.bbox_diagonal;
   result.parameter_max_relative = projection.start_distances.maxCoeff() / result.bbox_diagonal;
   result.smoothness_weight = solve.smoothness_weight;
   result.locations = std::move(projection.locations);

@@ -30,8 +30,8 @@ Eigen::Vector2d parameter_step(const LoopPoint& p, const Eigen::Vector3d& move) 
 // Moves `loc` by `d` in its face's (u, v). A step that leaves the face stops on the edge; if a
 // face lies across it, the rest of the step's 3D displacement continues in that face (the
 // surface is C1 there, so both faces' derivatives span the same tangent plane).
-LoopLocation walk(const LoopSurface& surface, const Eigen::MatrixX3d& patch_points, LoopLocation loc,
-                  Eigen::Vector2d d, LoopPoint p) {
+LoopLocation walk(const LoopSurface& surface, const Eigen::MatrixX3d& patch_points,
+                  LoopLocation loc, Eigen::Vector2d d, LoopPoint p) {
   for (int hop = 0; hop <= kMaxHops; ++hop) {
     const Eigen::Vector3d b = barycentric(loc);
     const Eigen::Vector3d db(-d[0] - d[1], d[0], d[1]);
@@ -66,11 +66,12 @@ LoopLocation walk(const LoopSurface& surface, const Eigen::MatrixX3d& patch_poin
 }  // namespace
 
 LoopProjection project_to_loop_surface(const LoopSurface& surface, const Eigen::MatrixX3d& control,
-                                       const Eigen::MatrixX3d& points, const std::vector<LoopLocation>& start,
-                                       int steps) {
+                                       const Eigen::MatrixX3d& points,
+                                       const std::vector<LoopLocation>& start, int steps) {
   if (static_cast<Eigen::Index>(start.size()) != points.rows()) {
     throw ricci::InvalidInputError("project_to_loop_surface: " + std::to_string(start.size()) +
-                                   " start locations for " + std::to_string(points.rows()) + " points");
+                                   " start locations for " + std::to_string(points.rows()) +
+                                   " points");
   }
   const Eigen::MatrixX3d patch_points = surface.patch_points(control);
   LoopProjection out;

@@ -24,13 +24,15 @@ namespace {
 using StencilTable = Far::StencilTableReal<double>;
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
-// Largest number of patch points of one Loop patch (12 for a box spline, 18 for a Gregory triangle).
+// Largest number of patch points of one Loop patch (12 for a box spline, 18 for a Gregory
+// triangle).
 constexpr int kMaxPatchPoints = 20;
 
 // Parametric slack allowed on locations coming from closest-point queries.
 constexpr double kParamSlack = 1e-9;
 
-std::unique_ptr<Far::TopologyRefiner> make_refiner(const std::vector<std::array<int, 3>>& corners, int vertices) {
+std::unique_ptr<Far::TopologyRefiner> make_refiner(const std::vector<std::array<int, 3>>& corners,
+                                                   int vertices) {
   std::vector<int> per_face(corners.size(), 3);
   std::vector<int> indices;
   indices.reserve(3 * corners.size());
@@ -46,7 +48,8 @@ std::unique_ptr<Far::TopologyRefiner> make_refiner(const std::vector<std::array<
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   std::unique_ptr<Far::TopologyRefiner> refiner(
       Factory::Create(desc, Factory::Options(Sdc::SCHEME_LOOP, sdc)));
-  if (!refiner) throw ricci::InvalidInputError("LoopSurface: OpenSubdiv rejected the control mesh topology");
+  if (!refiner)
+    throw ricci::InvalidInputError("LoopSurface: OpenSubdiv rejected the control mesh topology");
   return refiner;
 }
 
@@ -84,12 +87,14 @@ struct LoopSurface::Impl {
   const Far::PatchTable::PatchHandle& find(const LoopLocation& loc) const {
     if (loc.face < 0 || loc.face >= static_cast<int>(corners.size()) || !(loc.u >= -kParamSlack) ||
         !(loc.v >= -kParamSlack) || !(loc.u + loc.v <= 1.0 + kParamSlack)) {
-      throw ricci::InvalidInputError("LoopSurface: location (face " + std::to_string(loc.face) + ", u " +
-                                     std::to_string(loc.u) + ", v " + std::to_string(loc.v) +
-                                     ") is outside the control faces");
+      throw ricci::InvalidInputError("LoopSurface: location (face " + std::to_string(loc.face) +
+                                     ", u " + std::to_string(loc.u) + ", v " +
+                                     std::to_string(loc.v) + ") is outside the control faces");
     }
-    const auto* handle = patch_map->FindPatch(ptex[static_cast<size_t>(loc.face)], clamp01(loc.u), clamp01(loc.v));
-    if (!handle) throw ricci::InvalidInputError("LoopSurface: no patch at face " + std::to_string(loc.face));
+    const auto* handle =
+        patch_map->FindPatch(ptex[static_cast<size_t>(loc.face)], clamp01(loc.u), clamp01(loc.v));
+    if (!handle)
+      throw ricci::InvalidInputError("LoopSurface: no patch at face " + std::to_string(loc.face));
     return *handle;
   }
 
@@ -99,13 +104,13 @@ struct LoopSurface::Impl {
 LoopSurface::LoopSurface(const ricci::Mesh& control, const LoopSurfaceOptions& options)
     : impl_(std::make_unique<Impl>()) {
   if (control.n_vertices() < 4 || control.n_faces() < 2) {
-    throw ricci::InvalidInputError("LoopSurface: the control mesh needs at least 4 vertices and 2 faces, got " +
-                                   std::to_string(control.n_vertices()) + " and " +
-                                   std::to_string(control.n_faces()));
+    throw ricci::InvalidInputError(
+        "LoopSurface: the control mesh needs at least 4 vertices and 2 faces, got " +
+        std::to_string(control.n_vertices()) + " and " + std::to_string(control.n_faces()));
   }
   if (options.isolation_level < 1 || options.isolation_level > 10) {
-    throw ricci::InvalidInputError("LoopSurface: isolation_level " + std::to_string(options.isolation_level) +
-                                   " is outside 1..10");
+    throw ricci::InvalidInputError("LoopSurface: isolation_level " +
+                                   std::to_string(options.isolation_level) + " is outside 1..10");
   }
   Impl& m = *impl_;
   m.control = control;
@@ -115,10 +120,14 @@ LoopSurface::LoopSurface(const ricci::Mesh& control, const LoopSurfaceOptions& o
     auto& c = m.corners[static_cast<size_t>(f.idx())];
     int k = 0;
     for (auto v : control.fv_range(f)) {
-      if (k == 3) throw ricci::InvalidInputError("LoopSurface: face " + std::to_string(f.idx()) + " is not a triangle");
+      if (k == 3)
+        throw ricci::InvalidInputError("LoopSurface: face " + std::to_string(f.idx()) +
+                                       " is not a triangle");
       c[static_cast<size_t>(k++)] = v.idx();
     }
-    if (k != 3) throw ricci::InvalidInputError("LoopSurface: face " + std::to_string(f.idx()) + " is not a triangle");
+    if (k != 3)
+      throw ricci::InvalidInputError("LoopSurface: face " + std::to_string(f.idx()) +
+                                     " is not a triangle");
     auto& n = m.neighbours[static_cast<size_t>(f.idx())];
     for (auto h : control.fh_range(f)) {
       int a = control.from_vertex_handle(h).idx(), b = control.to_vertex_handle(h).idx();
@@ -153,23 +162,26 @@ LoopSurface::LoopSurface(const ricci::Mesh& control, const LoopSurfaceOptions& o
       Far::StencilTableFactoryReal<double>::Create(*m.refiner, stencil_options));
   const StencilTable* local = m.patches->GetLocalPointStencilTable<double>();
   if (local && local->GetNumStencils() > 0) {
-    m.point_stencils.reset(
-        Far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(*m.refiner, refined.get(), local));
+    m.point_stencils.reset(Far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(
+        *m.refiner, refined.get(), local));
   } else {
     m.point_stencils = std::move(refined);
   }
   const int expected = m.refiner->GetNumVerticesTotal() + m.patches->GetNumLocalPoints();
   if (!m.point_stencils || m.point_stencils->GetNumStencils() != expected) {
-    throw ricci::SolverError("LoopSurface: OpenSubdiv produced " +
-                             std::to_string(m.point_stencils ? m.point_stencils->GetNumStencils() : 0) +
-                             " patch-point stencils, expected " + std::to_string(expected));
+    throw ricci::SolverError(
+        "LoopSurface: OpenSubdiv produced " +
+        std::to_string(m.point_stencils ? m.point_stencils->GetNumStencils() : 0) +
+        " patch-point stencils, expected " + std::to_string(expected));
   }
   m.point_matrix = to_sparse(*m.point_stencils, num_control_points());
 }
 
 LoopSurface::~LoopSurface() = default;
 
-int LoopSurface::num_control_points() const { return static_cast<int>(impl_->control.n_vertices()); }
+int LoopSurface::num_control_points() const {
+  return static_cast<int>(impl_->control.n_vertices());
+}
 
 const ricci::Mesh& LoopSurface::control_mesh() const { return impl_->control; }
 
@@ -177,9 +189,12 @@ int LoopSurface::neighbour(int face, int k) const {
   return impl_->neighbours[static_cast<size_t>(face)][static_cast<size_t>(k)];
 }
 
-int LoopSurface::corner(int face, int k) const { return impl_->corners[static_cast<size_t>(face)][static_cast<size_t>(k)]; }
+int LoopSurface::corner(int face, int k) const {
+  return impl_->corners[static_cast<size_t>(face)][static_cast<size_t>(k)];
+}
 
-Eigen::SparseMatrix<double, Eigen::RowMajor> LoopSurface::design_matrix(const std::vector<LoopLocation>& locations) const {
+Eigen::SparseMatrix<double, Eigen::RowMajor> LoopSurface::design_matrix(
+    const std::vector<LoopLocation>& locations) const {
   const Impl& m = *impl_;
   std::vector<double> s(locations.size()), t(locations.size());
   Far::LimitStencilTableFactoryReal<double>::LocationArrayVec arrays(locations.size());
@@ -196,12 +211,13 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> LoopSurface::design_matrix(const st
   if (locations.empty()) return a;
   Far::LimitStencilTableFactoryReal<double>::Options options;
   options.generate1stDerivatives = false;
-  std::unique_ptr<const Far::LimitStencilTableReal<double>> table(Far::LimitStencilTableFactoryReal<double>::Create(
-      *m.refiner, arrays, m.point_stencils.get(), m.patches.get(), options));
+  std::unique_ptr<const Far::LimitStencilTableReal<double>> table(
+      Far::LimitStencilTableFactoryReal<double>::Create(*m.refiner, arrays, m.point_stencils.get(),
+                                                        m.patches.get(), options));
   if (!table || table->GetNumStencils() != static_cast<int>(locations.size())) {
-    throw ricci::SolverError("LoopSurface: OpenSubdiv returned " +
-                             std::to_string(table ? table->GetNumStencils() : 0) + " limit stencils for " +
-                             std::to_string(locations.size()) + " locations");
+    throw ricci::SolverError(
+        "LoopSurface: OpenSubdiv returned " + std::to_string(table ? table->GetNumStencils() : 0) +
+        " limit stencils for " + std::to_string(locations.size()) + " locations");
   }
   return to_sparse(*table, num_control_points());
 }
@@ -209,16 +225,19 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> LoopSurface::design_matrix(const st
 Eigen::MatrixX3d LoopSurface::patch_points(const Eigen::MatrixX3d& control) const {
   if (control.rows() != num_control_points()) {
     throw ricci::InvalidInputError("LoopSurface::patch_points: " + std::to_string(control.rows()) +
-                                   " control points for a mesh of " + std::to_string(num_control_points()));
+                                   " control points for a mesh of " +
+                                   std::to_string(num_control_points()));
   }
   return impl_->point_matrix * control;
 }
 
-LoopPoint LoopSurface::evaluate(const Eigen::MatrixX3d& patch_points, const LoopLocation& location) const {
+LoopPoint LoopSurface::evaluate(const Eigen::MatrixX3d& patch_points,
+                                const LoopLocation& location) const {
   const Impl& m = *impl_;
   const auto& handle = m.find(location);
   auto cvs = m.patches->GetPatchVertices(handle);
-  if (cvs.size() > kMaxPatchPoints) throw ricci::SolverError("LoopSurface: a patch has too many points");
+  if (cvs.size() > kMaxPatchPoints)
+    throw ricci::SolverError("LoopSurface: a patch has too many points");
   double w[kMaxPatchPoints], wu[kMaxPatchPoints], wv[kMaxPatchPoints];
   m.patches->EvaluateBasis(handle, Impl::clamp01(location.u), Impl::clamp01(location.v), w, wu, wv);
   LoopPoint p;

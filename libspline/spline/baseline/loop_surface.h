@@ -60,7 +60,8 @@ class LoopSurface {
 
   /// Limit position and derivatives at `location` from patch_points().
   /// \throw ricci::InvalidInputError on a location outside the faces.
-  [[nodiscard]] LoopPoint evaluate(const Eigen::MatrixX3d& patch_points, const LoopLocation& location) const;
+  [[nodiscard]] LoopPoint evaluate(const Eigen::MatrixX3d& patch_points,
+                                   const LoopLocation& location) const;
 
   /// The face across the edge opposite corner k (0..2, fv_range order) of `face`, -1 on a boundary.
   [[nodiscard]] int neighbour(int face, int k) const;
