@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ricci/atlas/chart_develop.h"
+#include "ricci/atlas/holonomy.h"
 #include "ricci/mesh/errors.h"
 
 namespace ricci {
@@ -217,6 +218,16 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
   assign_neighbourhood_charts(mesh, lengths, glue, atlas);
   detail::compute_transitions(mesh, atlas);
   detail::compute_side_pairings(mesh, atlas);
+  atlas.canonical = canonical_basis(atlas.polygon.word);
+  atlas.loop_holonomy = loop_holonomies(mesh, atlas);
+  if (!atlas.loop_holonomy.empty()) {
+    for (const auto& generator : atlas.canonical.generators) {
+      atlas.canonical_holonomy.push_back(word_holonomy(atlas.loop_holonomy, generator));
+    }
+    const RigidMotion2 relator = word_holonomy(atlas.loop_holonomy, atlas.polygon.word);
+    atlas.relator_holonomy_angle = std::abs(relator.angle);
+    atlas.relator_holonomy_translation = relator.translation.norm();
+  }
   return atlas;
 }
 

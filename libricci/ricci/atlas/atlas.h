@@ -85,6 +85,18 @@ struct AffineAtlas {
   double max_transition_residual = 0.0;
   double max_side_pairing_residual = 0.0;
 
+  /// Canonical generators a1 b1 ... ag bg as words in the cut graph's loops (holes capped);
+  /// the cut graph itself keeps tree-cotree order (see polygon.canonical).
+  CanonicalBasis canonical;
+  /// Closed surfaces: holonomy (deck transformation in the central chart) of each loop and of
+  /// each canonical generator (atlas/holonomy.h); empty for open surfaces.
+  std::vector<RigidMotion2> loop_holonomy;
+  std::vector<RigidMotion2> canonical_holonomy;
+  /// |rho(relator)| as a motion: rotation angle and translation length of the image of the
+  /// polygon's relator, which is the identity for an exact flat metric.
+  double relator_holonomy_angle = 0.0;
+  double relator_holonomy_translation = 0.0;
+
   /// Cut paths in chart order: the loops, then the boundary connectors.
   [[nodiscard]] const CutPath& cut_path(int index) const;
   [[nodiscard]] int cut_path_count() const;

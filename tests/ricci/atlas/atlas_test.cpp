@@ -94,6 +94,18 @@ TEST(Atlas, FlatTorusTransitionsAreTranslationsByPeriods) {
       EXPECT_TRUE(in_lattice(s.motion.translation, generators[0], generators[1]));
       EXPECT_GT(s.motion.translation.norm(), 0.5 * h);  // a cut never pairs a side with itself
     }
+    // The loops' holonomies are the two periods too, and commute.
+    ASSERT_EQ(atlas.loop_holonomy.size(), 2u);
+    std::vector<double> norms;
+    for (const auto& m : atlas.loop_holonomy) {
+      EXPECT_LT(std::abs(m.angle), 1e-12);
+      EXPECT_TRUE(in_lattice(m.translation, generators[0], generators[1]));
+      norms.push_back(m.translation.norm());
+    }
+    std::sort(norms.begin(), norms.end());
+    EXPECT_NEAR(norms[0], h, 1e-10);
+    EXPECT_NEAR(norms[1], w, 1e-10);
+    EXPECT_LT(atlas.relator_holonomy_translation, 1e-12 * atlas.domain_diameter);
     // Charts are developed in the central chart's frame: every transition is a deck translation.
     for (const Transition& t : atlas.transitions) {
       EXPECT_LT(std::abs(t.motion.angle), 1e-12);

@@ -68,6 +68,23 @@ void expect_sound_atlas(const FlatMetric& m, const AffineAtlas& atlas) {
   }
 }
 
+/// The loops' holonomy is a representation: the polygon's relator and the canonical relator
+/// [a1,b1]...[ag,bg] both map to the identity.
+void expect_holonomy_representation(const AffineAtlas& atlas, int genus) {
+  ASSERT_EQ(static_cast<int>(atlas.loop_holonomy.size()), 2 * genus);
+  ASSERT_EQ(static_cast<int>(atlas.canonical_holonomy.size()), 2 * genus);
+  EXPECT_LT(atlas.relator_holonomy_angle, 1e-9);
+  EXPECT_LT(atlas.relator_holonomy_translation, 1e-9 * atlas.domain_diameter);
+  RigidMotion2 product;
+  for (int i = 0; i < genus; ++i) {
+    const RigidMotion2& a = atlas.canonical_holonomy[2 * i];
+    const RigidMotion2& b = atlas.canonical_holonomy[2 * i + 1];
+    product = product.after(a).after(b).after(a.inverse()).after(b.inverse());
+  }
+  EXPECT_LT(std::abs(product.angle), 1e-9);
+  EXPECT_LT(product.translation.norm(), 1e-9 * atlas.domain_diameter);
+}
+
 TEST(AtlasOnFlow, GenusTwoConeMetric) {
   const FlatMetric m = one_cone_metric("closed_g2/eight.off", 0);
   const AffineAtlas atlas = build_affine_atlas(m.mesh, m.lengths, m.cone);
@@ -79,6 +96,7 @@ TEST(AtlasOnFlow, GenusTwoConeMetric) {
   double max_angle = 0.0;
   for (const auto& s : atlas.side_pairings) max_angle = std::max(max_angle, std::abs(s.motion.angle));
   EXPECT_GT(max_angle, 1e-3);
+  expect_holonomy_representation(atlas, 2);
 }
 
 TEST(AtlasOnFlow, GenusOneFlatMetricHasTranslationsOnly) {
@@ -88,6 +106,8 @@ TEST(AtlasOnFlow, GenusOneFlatMetricHasTranslationsOnly) {
   expect_sound_atlas(m, atlas);
   for (const auto& t : atlas.transitions) EXPECT_LT(std::abs(t.motion.angle), 1e-9);
   for (const auto& s : atlas.side_pairings) EXPECT_LT(std::abs(s.motion.angle), 1e-9);
+  expect_holonomy_representation(atlas, 1);
+  for (const auto& h : atlas.loop_holonomy) EXPECT_LT(std::abs(h.angle), 1e-9);
 }
 
 TEST(AtlasOnFlow, OpenGenusTwoWithBoundaryCurvature) {

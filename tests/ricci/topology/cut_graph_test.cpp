@@ -56,6 +56,58 @@ SlicedMesh expect_valid_cut(const Mesh& mesh, const CutGraph& cut, int genus, in
   return sliced;
 }
 
+/// The canonical basis has 2g generators and its relator, expanded in the loops, is the
+/// polygon's loop word again (a free-group identity, checked after cyclic reduction).
+void expect_canonical_basis_of(const FundamentalPolygon& polygon, int genus) {
+  const CanonicalBasis basis = canonical_basis(polygon.word);
+  ASSERT_EQ(static_cast<int>(basis.generators.size()), 2 * genus);
+  LoopWord relator, loop_word;
+  auto append_inverse = [&](const LoopWord& w) {
+    for (auto it = w.rbegin(); it != w.rend(); ++it) {
+      PolygonLetter l = *it;
+      l.sign = -l.sign;
+      relator.push_back(l);
+    }
+  };
+  for (int i = 0; i < genus; ++i) {
+    const LoopWord& a = basis.generators[2 * i];
+    const LoopWord& b = basis.generators[2 * i + 1];
+    relator.insert(relator.end(), a.begin(), a.end());
+    relator.insert(relator.end(), b.begin(), b.end());
+    append_inverse(a);
+    append_inverse(b);
+  }
+  for (const auto& l : polygon.word) {
+    if (l.kind == PolygonLetter::Kind::loop) loop_word.push_back(l);
+  }
+  EXPECT_TRUE(same_cyclic_word(cyclically_reduced(relator), cyclically_reduced(loop_word)));
+}
+
+TEST(CutGraph, CanonicalBasisOfHandMadeWords) {
+  auto letter = [](int index, int sign) {
+    PolygonLetter l;
+    l.index = index;
+    l.sign = sign;
+    return l;
+  };
+  // Already canonical: the basis is the loops themselves.
+  const LoopWord torus{letter(0, 1), letter(1, 1), letter(0, -1), letter(1, -1)};
+  const CanonicalBasis b1 = canonical_basis(torus);
+  ASSERT_EQ(b1.generators.size(), 2u);
+  EXPECT_EQ(b1.generators[0], LoopWord{letter(0, 1)});
+  EXPECT_EQ(b1.generators[1], LoopWord{letter(1, 1)});
+  // The genus-2 word tree-cotree gives on eight.off rooted at vertex 0 (valence-modified):
+  // c a^-1 b^-1 a d c^-1 b d^-1.
+  FundamentalPolygon p;
+  p.word = {letter(2, 1), letter(0, -1), letter(1, -1), letter(0, 1),
+            letter(3, 1), letter(2, -1), letter(1, 1),  letter(3, -1)};
+  EXPECT_FALSE(is_canonical_word(p.word));
+  expect_canonical_basis_of(p, 2);
+  // A letter linked with no other is not a one-vertex surface word.
+  const LoopWord unlinked{letter(0, 1), letter(0, -1), letter(1, 1), letter(1, -1)};
+  EXPECT_THROW((void)canonical_basis(unlinked), TopologyError);
+}
+
 TEST(CutGraph, FlatTorusGridGivesTwoLoopsAndACanonicalSquare) {
   const Mesh mesh = test::flat_torus_grid(12, 9);
   const Eigen::VectorXd lengths = test::flat_torus_lengths(mesh, 12, 9, 3.0, 2.0);
@@ -135,6 +187,7 @@ TEST_P(CutGraphOnModels, SlicesIntoADiskWithTwoGLoops) {
     if (c.genus <= 1) {
       EXPECT_TRUE(polygon.canonical);
     }
+    expect_canonical_basis_of(polygon, c.genus);
   }
 }
 
