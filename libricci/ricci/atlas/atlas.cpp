@@ -42,7 +42,27 @@ Chart central_chart(const Mesh& mesh, const SlicedMesh& sliced, const LayoutE2Re
   return chart;
 }
 
-/// Vertices of a cut path, in order, without repeats of the root.
+/// Fills the domain_max_*_length_error fields from the central chart.
+void measure_domain_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atlas) {
+  const Chart& central = atlas.charts[0];
+  double worst = 0.0, worst_absolute = 0.0;
+  for (auto f : mesh.faces()) {
+    if (!atlas.in_domain[f.idx()]) continue;
+    const auto hs = face_halfedges(mesh, f);
+    for (int k = 0; k < 3; ++k) {
+      const double l = lengths[mesh.edge_handle(hs[k]).idx()];
+      const double d = (central.positions.row(central.corners(f.idx(), k)) -
+                        central.positions.row(central.corners(f.idx(), (k + 2) % 3)))
+                           .norm();
+      worst = std::max(worst, std::abs(d - l) / l);
+      worst_absolute = std::max(worst_absolute, std::abs(d - l));
+    }
+  }
+  atlas.domain_max_relative_length_error = worst;
+  atlas.domain_max_absolute_length_error = worst_absolute;
+}
+
+/// Vertices of a cut path, in order, with repeats.
 std::vector<int> path_vertices(const Mesh& mesh, const CutPath& path) {
   std::vector<int> vertices;
   for (auto h : path.halfedges) {
@@ -209,6 +229,7 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
     for (auto f : mesh.vf_range(root)) atlas.in_domain[f.idx()] = 0;
   }
   atlas.charts.push_back(central_chart(mesh, atlas.sliced, atlas.layout));
+  measure_domain_lengths(mesh, lengths, atlas);
   const Eigen::Vector2d lo = atlas.layout.positions.colwise().minCoeff();
   const Eigen::Vector2d hi = atlas.layout.positions.colwise().maxCoeff();
   atlas.domain_diameter = (hi - lo).norm();

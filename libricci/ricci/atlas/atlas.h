@@ -82,6 +82,14 @@ struct AffineAtlas {
   std::vector<int> neighbourhood_chart;
   int uncovered_faces = 0;         ///< Domain faces with no such chart (0 when all is well).
   double domain_diameter = 0.0;    ///< Bounding-box diagonal of the central chart.
+  /// Layout accuracy on the spline domain: max relative edge-length error over the edges of
+  /// domain faces in the central chart. (layout.max_relative_length_error also covers the
+  /// cone's one-ring, whose edges can be many orders of magnitude shorter than the chart's
+  /// coordinates, so their relative error is bounded by the coordinates' rounding.)
+  double domain_max_relative_length_error = 0.0;
+  /// Same edges, absolute error |d - l| (the floor is the rounding of the chart coordinates,
+  /// about 1e-16 times domain_diameter, which dominates the relative error of tiny edges).
+  double domain_max_absolute_length_error = 0.0;
   double max_transition_residual = 0.0;
   double max_side_pairing_residual = 0.0;
 
