@@ -1,8 +1,8 @@
 // msp-bench topology [models folder]: times of the cut graph, slicing, layout and atlas.
 // Closed bench meshes have no flat metric of their own, so on them only the cut graph and the
 // slicing are timed; the layout and atlas are timed on flat torus grids (exact flat lengths).
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <string>
 
 #include "bench/benchmarks.h"
@@ -64,11 +64,11 @@ void flat_torus_row(int nx, int ny) {
       ricci::layout_e2(sliced.mesh, ricci::sliced_edge_lengths(sliced, lengths));
   const double layout_time = seconds_since(t);
   t = Clock::now();
-  const ricci::AffineAtlas atlas = ricci::build_affine_atlas(torus, lengths, ricci::VertexHandle(0));
+  const ricci::AffineAtlas atlas =
+      ricci::build_affine_atlas(torus, lengths, ricci::VertexHandle(0));
   const double atlas_time = seconds_since(t);
   std::printf("flat torus %4d x %-4d        %7zu %9.3f %9.3f %9.3f %9.1e %9.1e %3zu\n", nx, ny,
-              torus.n_faces(), cut_time, layout_time, atlas_time,
-              layout.max_relative_length_error,
+              torus.n_faces(), cut_time, layout_time, atlas_time, layout.max_relative_length_error,
               atlas.max_transition_residual / atlas.domain_diameter, atlas.charts.size());
 }
 
@@ -76,10 +76,11 @@ void flat_torus_row(int nx, int ny) {
 
 int run_topology_benchmark(int argc, char** argv) {
   const std::string folder = argc > 0 ? argv[0] : std::string(MSP_SHARED_MODELS_DIR) + "/bench";
-  std::printf("cut graph (tree-cotree from vertex 0, 3D lengths) + slicing + polygon word,\n"
-              "thread CPU seconds\n");
-  std::printf("%-28s %7s %2s %2s %6s %9s %9s %9s %s\n", "mesh", "faces", "g", "b", "cuts",
-              "cut", "slice", "word", "canonical");
+  std::printf(
+      "cut graph (tree-cotree from vertex 0, 3D lengths) + slicing + polygon word,\n"
+      "thread CPU seconds\n");
+  std::printf("%-28s %7s %2s %2s %6s %9s %9s %9s %s\n", "mesh", "faces", "g", "b", "cuts", "cut",
+              "slice", "word", "canonical");
   for (const char* name : {"sphere_10k.obj", "torus_10k.obj", "genus2_10k.obj", "genus3_10k.obj",
                            "cap_10k.obj", "sphere_100k.obj", "torus_100k.obj", "genus2_100k.obj",
                            "genus3_100k.obj", "cap_100k.obj"}) {

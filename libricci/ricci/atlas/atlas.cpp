@@ -218,8 +218,8 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
   atlas.sliced = slice_along(mesh, atlas.cut.is_cut_edge);
   check_disk(atlas.sliced, "atlas");
   atlas.polygon = fundamental_polygon_word(mesh, atlas.cut, atlas.sliced);
-  atlas.layout = layout_e2(atlas.sliced.mesh, sliced_edge_lengths(atlas.sliced, lengths),
-                           options.layout);
+  atlas.layout =
+      layout_e2(atlas.sliced.mesh, sliced_edge_lengths(atlas.sliced, lengths), options.layout);
 
   atlas.root_curvature = vertex_curvature(mesh, lengths, root);
   atlas.root_is_cone =

@@ -80,8 +80,8 @@ struct AffineAtlas {
   /// By face: a chart holding the face and every domain face sharing a vertex with it as one
   /// glued planar piece; -1 outside the domain.
   std::vector<int> neighbourhood_chart;
-  int uncovered_faces = 0;         ///< Domain faces with no such chart (0 when all is well).
-  double domain_diameter = 0.0;    ///< Bounding-box diagonal of the central chart.
+  int uncovered_faces = 0;       ///< Domain faces with no such chart (0 when all is well).
+  double domain_diameter = 0.0;  ///< Bounding-box diagonal of the central chart.
   /// Layout accuracy on the spline domain: max relative edge-length error over the edges of
   /// domain faces in the central chart. (layout.max_relative_length_error also covers the
   /// cone's one-ring, whose edges can be many orders of magnitude shorter than the chart's
@@ -110,7 +110,9 @@ struct AffineAtlas {
   [[nodiscard]] int cut_path_count() const;
 
   /// A chart holding `face` with its vertex-neighbourhood as one planar piece, or -1.
-  [[nodiscard]] int chart_of_face_neighbourhood(int face) const { return neighbourhood_chart[face]; }
+  [[nodiscard]] int chart_of_face_neighbourhood(int face) const {
+    return neighbourhood_chart[face];
+  }
   /// Position of corner k of `face` in `chart`. \throw InvalidInputError if the chart lacks it.
   [[nodiscard]] Eigen::Vector2d corner_position(int chart, int face, int corner) const;
   /// The three corner positions of `face` in `chart`, one per row.

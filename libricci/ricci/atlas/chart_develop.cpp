@@ -65,8 +65,8 @@ Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
   const auto seed_hs = face_halfedges(mesh, FaceHandle(seed_face));
   std::array<int, 3> seed_corners;
   for (int k = 0; k < 3; ++k) {
-    seed_corners[k] = new_vertex(seed_positions.row(k).transpose(),
-                                 mesh.to_vertex_handle(seed_hs[k]).idx());
+    seed_corners[k] =
+        new_vertex(seed_positions.row(k).transpose(), mesh.to_vertex_handle(seed_hs[k]).idx());
   }
   slot[seed_face] = 0;
   order.push_back(seed_face);
@@ -83,11 +83,11 @@ Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
       const auto gs = face_halfedges(mesh, g);
       const int m = corner_of(gs, o);
       std::array<int, 3> c;
-      c[m] = corners[next][(k + 2) % 3];        // to(o) = from(hs[k])
-      c[(m + 2) % 3] = corners[next][k];        // from(o) = to(hs[k])
-      const Eigen::Vector2d p = place_third_vertex(
-          positions[c[(m + 2) % 3]], positions[c[m]], length(mesh.prev_halfedge_handle(o)),
-          length(mesh.next_halfedge_handle(o)));
+      c[m] = corners[next][(k + 2) % 3];  // to(o) = from(hs[k])
+      c[(m + 2) % 3] = corners[next][k];  // from(o) = to(hs[k])
+      const Eigen::Vector2d p = place_third_vertex(positions[c[(m + 2) % 3]], positions[c[m]],
+                                                   length(mesh.prev_halfedge_handle(o)),
+                                                   length(mesh.next_halfedge_handle(o)));
       c[(m + 1) % 3] = new_vertex(p, mesh.to_vertex_handle(gs[(m + 1) % 3]).idx());
       it->second = static_cast<int>(order.size());
       order.push_back(g.idx());

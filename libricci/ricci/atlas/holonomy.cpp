@@ -31,9 +31,8 @@ void turn_clockwise(const Mesh& mesh, const AffineAtlas& atlas, const CutCrossin
       const RigidMotion2& m = atlas.side_pairings[arc].motion;
       // Leaving the arc's left face for its right face: the right face's central copy sits
       // across the paired side, so it is brought back by the inverse pairing (and vice versa).
-      development = development.after(mesh.face_handle(g).idx() == cut.left_face_of_edge[e]
-                                          ? m.inverse()
-                                          : m);
+      development = development.after(
+          mesh.face_handle(g).idx() == cut.left_face_of_edge[e] ? m.inverse() : m);
     }
     g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
   }

@@ -49,9 +49,9 @@ struct Quotient {
 
 /// Shortest-path tree of the quotient from the root's node over interior edges.
 struct ShortestPathTree {
-  std::vector<double> distance;          // by node
-  std::vector<HalfedgeHandle> parent;    // by node: halfedge arriving at the node
-  std::vector<char> edge_in_tree;        // by edge
+  std::vector<double> distance;        // by node
+  std::vector<HalfedgeHandle> parent;  // by node: halfedge arriving at the node
+  std::vector<char> edge_in_tree;      // by edge
 };
 
 ShortestPathTree shortest_path_tree(const Mesh& mesh, const Quotient& q, int root_node,
@@ -199,8 +199,8 @@ std::vector<std::vector<HalfedgeHandle>> find_boundary_loops(const Mesh& mesh) {
   return loops;
 }
 
-CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root,
-                           const Eigen::VectorXd& edge_lengths, const CutGraphOptions& options) {
+CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root, const Eigen::VectorXd& edge_lengths,
+                           const CutGraphOptions& options) {
   if (!root.is_valid() || root.idx() >= static_cast<int>(mesh.n_vertices())) {
     throw InvalidInputError("cut graph: root vertex " + std::to_string(root.idx()) +
                             " is out of range");
@@ -212,8 +212,8 @@ CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root,
   g.root = root;
   g.boundary_loops = find_boundary_loops(mesh);
   g.boundary_loop_count = static_cast<int>(g.boundary_loops.size());
-  g.euler_characteristic = static_cast<int>(mesh.n_vertices()) -
-                           static_cast<int>(mesh.n_edges()) + static_cast<int>(mesh.n_faces());
+  g.euler_characteristic = static_cast<int>(mesh.n_vertices()) - static_cast<int>(mesh.n_edges()) +
+                           static_cast<int>(mesh.n_faces());
   const int twice_genus = 2 - g.euler_characteristic - g.boundary_loop_count;
   if (twice_genus < 0 || twice_genus % 2 != 0) {
     throw TopologyError("cut graph: Euler characteristic " +

@@ -32,7 +32,8 @@ FlatMetric one_cone_metric(const std::string& model, int cone) {
   } else {
     m.mesh = mesh;
   }
-  const FlowResult flow_result = flow(m.mesh, single_cone_target(m.mesh, cone), one_cone_flow_options());
+  const FlowResult flow_result =
+      flow(m.mesh, single_cone_target(m.mesh, cone), one_cone_flow_options());
   EXPECT_TRUE(flow_result.converged()) << flow_result.message;
   m.lengths = flow_result.lengths;
   return m;
@@ -88,7 +89,8 @@ TEST(AtlasOnFlow, GenusTwoConeMetric) {
   expect_sound_atlas(m, atlas);
   // The holonomy of a genus-2 flat cone metric is not all translations.
   double max_angle = 0.0;
-  for (const auto& s : atlas.side_pairings) max_angle = std::max(max_angle, std::abs(s.motion.angle));
+  for (const auto& s : atlas.side_pairings)
+    max_angle = std::max(max_angle, std::abs(s.motion.angle));
   EXPECT_GT(max_angle, 1e-3);
   expect_holonomy_representation(atlas, 2);
 }

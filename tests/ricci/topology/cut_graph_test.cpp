@@ -149,7 +149,8 @@ TEST(CutGraph, PlanarGridIsAlreadyADisk) {
   const CutGraph inside = compute_cut_graph(grid, VertexHandle(17));
   expect_valid_cut(grid, inside, 0, 1);
   ASSERT_EQ(inside.boundary_connectors.size(), 1u);
-  EXPECT_EQ(grid.from_vertex_handle(inside.boundary_connectors[0].halfedges.front()), VertexHandle(17));
+  EXPECT_EQ(grid.from_vertex_handle(inside.boundary_connectors[0].halfedges.front()),
+            VertexHandle(17));
 }
 
 TEST(CutGraph, BadInputThrows) {
@@ -193,17 +194,13 @@ TEST_P(CutGraphOnModels, SlicesIntoADiskWithTwoGLoops) {
 
 INSTANTIATE_TEST_SUITE_P(
     Models, CutGraphOnModels,
-    ::testing::Values(ModelCase{"closed_g1/kitten_nf20k.off", 1, 0},
-                      ModelCase{"closed_g1/knot1.off", 1, 0},
-                      ModelCase{"closed_g2/eight.off", 2, 0},
-                      ModelCase{"closed_g2/joint.off", 2, 0},
-                      ModelCase{"closed_g3/genus3.off", 3, 0},
-                      ModelCase{"closed_g4plus/fertility.off", 4, 0},
-                      ModelCase{"closed_g4plus/couplingdown.off", 9, 0},
-                      ModelCase{"open/head.off", 0, 3}, ModelCase{"open/holes.off", 0, 7},
-                      ModelCase{"open/eight_hole.off", 2, 1},
-                      ModelCase{"open/eight_open.off", 0, 4},
-                      ModelCase{"open/beetle.off", 0, 11}),
+    ::testing::Values(
+        ModelCase{"closed_g1/kitten_nf20k.off", 1, 0}, ModelCase{"closed_g1/knot1.off", 1, 0},
+        ModelCase{"closed_g2/eight.off", 2, 0}, ModelCase{"closed_g2/joint.off", 2, 0},
+        ModelCase{"closed_g3/genus3.off", 3, 0}, ModelCase{"closed_g4plus/fertility.off", 4, 0},
+        ModelCase{"closed_g4plus/couplingdown.off", 9, 0}, ModelCase{"open/head.off", 0, 3},
+        ModelCase{"open/holes.off", 0, 7}, ModelCase{"open/eight_hole.off", 2, 1},
+        ModelCase{"open/eight_open.off", 0, 4}, ModelCase{"open/beetle.off", 0, 11}),
     [](const auto& info) {
       std::string name = info.param.path;
       for (char& ch : name) {
