@@ -4,6 +4,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/topology/polygon_word.h"
 #include "ricci/topology/slice.h"
 #include "ricci/topology/test_grids.h"
@@ -109,8 +110,8 @@ TEST(CutGraph, CanonicalBasisOfHandMadeWords) {
 }
 
 TEST(CutGraph, FlatTorusGridGivesTwoLoopsAndACanonicalSquare) {
-  const Mesh mesh = test::flat_torus_grid(12, 9);
-  const Eigen::VectorXd lengths = test::flat_torus_lengths(mesh, 12, 9, 3.0, 2.0);
+  const Mesh mesh = make_flat_torus_grid(12, 9, 3.0, 2.0);
+  const Eigen::VectorXd lengths = flat_torus_edge_lengths(mesh, 12, 9, 3.0, 2.0);
   const CutGraph cut = compute_cut_graph(mesh, VertexHandle(40), lengths);
   const SlicedMesh sliced = expect_valid_cut(mesh, cut, 1, 0);
   const FundamentalPolygon polygon = fundamental_polygon_word(mesh, cut, sliced);
@@ -154,7 +155,7 @@ TEST(CutGraph, PlanarGridIsAlreadyADisk) {
 }
 
 TEST(CutGraph, BadInputThrows) {
-  const Mesh mesh = test::flat_torus_grid(4, 4);
+  const Mesh mesh = make_flat_torus_grid(4, 4, 1.0, 1.0);
   EXPECT_THROW((void)compute_cut_graph(mesh, VertexHandle(99)), InvalidInputError);
   EXPECT_THROW((void)compute_cut_graph(mesh, VertexHandle(0), Eigen::VectorXd::Ones(3)),
                InvalidInputError);
