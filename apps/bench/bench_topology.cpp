@@ -36,6 +36,12 @@ void cut_and_slice_row(const std::string& path) {
   auto t = Clock::now();
   const ricci::CutGraph cut = ricci::compute_cut_graph(mesh, ricci::VertexHandle(0), lengths);
   const double cut_time = seconds_since(t);
+  if (cut.genus == 0 && cut.boundary_loop_count == 0) {
+    std::printf(
+        "%-28s %7zu %2d %2d %6d %9.3f   (closed genus 0: no cut; the pipeline punctures it)\n",
+        path.substr(path.find_last_of('/') + 1).c_str(), mesh.n_faces(), 0, 0, 0, cut_time);
+    return;
+  }
   t = Clock::now();
   const ricci::SlicedMesh sliced = ricci::slice_along(mesh, cut.is_cut_edge);
   ricci::check_disk(sliced);
