@@ -7,10 +7,10 @@
 #include <iostream>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
 #include <ricci/mesh/diagnose.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/soup_io.h>
+#include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
 #include "msp/commands.h"

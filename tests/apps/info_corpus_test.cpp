@@ -96,6 +96,19 @@ TEST(InfoCorpus, UnreadableFilesFailWithoutStrictReadableOnesAreDescribed) {
   }
 }
 
+// The pipeline commands read through ricci::read_mesh(), which refuses every bad file with the
+// same one-line message (here `msp flow`, the first command that needs a clean surface).
+TEST(InfoCorpus, PipelineCommandsRefuseEveryBadFileInOneLine) {
+  for (const auto& bad : kBadFiles) {
+    SCOPED_TRACE(bad.name);
+    const auto result = run_msp({"flow", bad_path(bad.name)});
+    EXPECT_EQ(result.exit_status, 1);
+    EXPECT_EQ(line_count(result.err), 1) << result.err;
+    EXPECT_EQ(result.err.rfind("msp flow: error: ", 0), 0u) << result.err;
+    EXPECT_NE(result.err.find(bad.keyword), std::string::npos) << result.err;
+  }
+}
+
 TEST(InfoCorpus, DescribesTheDefectsItFinds) {
   auto info = [](const char* name) {
     return nlohmann::json::parse(run_msp({"info", "--json", bad_path(name)}).out);
