@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ricci/atlas/chart_develop.h"
+#include "ricci/atlas/holonomy.h"
 #include "ricci/mesh/errors.h"
 
 namespace ricci {
@@ -41,7 +42,27 @@ Chart central_chart(const Mesh& mesh, const SlicedMesh& sliced, const LayoutE2Re
   return chart;
 }
 
-/// Vertices of a cut path, in order, without repeats of the root.
+/// Fills the domain_max_*_length_error fields from the central chart.
+void measure_domain_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atlas) {
+  const Chart& central = atlas.charts[0];
+  double worst = 0.0, worst_absolute = 0.0;
+  for (auto f : mesh.faces()) {
+    if (!atlas.in_domain[f.idx()]) continue;
+    const auto hs = face_halfedges(mesh, f);
+    for (int k = 0; k < 3; ++k) {
+      const double l = lengths[mesh.edge_handle(hs[k]).idx()];
+      const double d = (central.positions.row(central.corners(f.idx(), k)) -
+                        central.positions.row(central.corners(f.idx(), (k + 2) % 3)))
+                           .norm();
+      worst = std::max(worst, std::abs(d - l) / l);
+      worst_absolute = std::max(worst_absolute, std::abs(d - l));
+    }
+  }
+  atlas.domain_max_relative_length_error = worst;
+  atlas.domain_max_absolute_length_error = worst_absolute;
+}
+
+/// Vertices of a cut path, in order, with repeats.
 std::vector<int> path_vertices(const Mesh& mesh, const CutPath& path) {
   std::vector<int> vertices;
   for (auto h : path.halfedges) {
@@ -197,8 +218,8 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
   atlas.sliced = slice_along(mesh, atlas.cut.is_cut_edge);
   check_disk(atlas.sliced, "atlas");
   atlas.polygon = fundamental_polygon_word(mesh, atlas.cut, atlas.sliced);
-  atlas.layout = layout_e2(atlas.sliced.mesh, sliced_edge_lengths(atlas.sliced, lengths),
-                           options.layout);
+  atlas.layout =
+      layout_e2(atlas.sliced.mesh, sliced_edge_lengths(atlas.sliced, lengths), options.layout);
 
   atlas.root_curvature = vertex_curvature(mesh, lengths, root);
   atlas.root_is_cone =
@@ -208,6 +229,7 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
     for (auto f : mesh.vf_range(root)) atlas.in_domain[f.idx()] = 0;
   }
   atlas.charts.push_back(central_chart(mesh, atlas.sliced, atlas.layout));
+  measure_domain_lengths(mesh, lengths, atlas);
   const Eigen::Vector2d lo = atlas.layout.positions.colwise().minCoeff();
   const Eigen::Vector2d hi = atlas.layout.positions.colwise().maxCoeff();
   atlas.domain_diameter = (hi - lo).norm();
@@ -217,6 +239,16 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
   assign_neighbourhood_charts(mesh, lengths, glue, atlas);
   detail::compute_transitions(mesh, atlas);
   detail::compute_side_pairings(mesh, atlas);
+  atlas.canonical = canonical_basis(atlas.polygon.word);
+  atlas.loop_holonomy = loop_holonomies(mesh, atlas);
+  if (!atlas.loop_holonomy.empty()) {
+    for (const auto& generator : atlas.canonical.generators) {
+      atlas.canonical_holonomy.push_back(word_holonomy(atlas.loop_holonomy, generator));
+    }
+    const RigidMotion2 relator = word_holonomy(atlas.loop_holonomy, atlas.polygon.word);
+    atlas.relator_holonomy_angle = std::abs(relator.angle);
+    atlas.relator_holonomy_translation = relator.translation.norm();
+  }
   return atlas;
 }
 

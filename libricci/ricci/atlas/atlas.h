@@ -80,17 +80,39 @@ struct AffineAtlas {
   /// By face: a chart holding the face and every domain face sharing a vertex with it as one
   /// glued planar piece; -1 outside the domain.
   std::vector<int> neighbourhood_chart;
-  int uncovered_faces = 0;         ///< Domain faces with no such chart (0 when all is well).
-  double domain_diameter = 0.0;    ///< Bounding-box diagonal of the central chart.
+  int uncovered_faces = 0;       ///< Domain faces with no such chart (0 when all is well).
+  double domain_diameter = 0.0;  ///< Bounding-box diagonal of the central chart.
+  /// Layout accuracy on the spline domain: max relative edge-length error over the edges of
+  /// domain faces in the central chart. (layout.max_relative_length_error also covers the
+  /// cone's one-ring, whose edges can be many orders of magnitude shorter than the chart's
+  /// coordinates, so their relative error is bounded by the coordinates' rounding.)
+  double domain_max_relative_length_error = 0.0;
+  /// Same edges, absolute error |d - l| (the floor is the rounding of the chart coordinates,
+  /// about 1e-16 times domain_diameter, which dominates the relative error of tiny edges).
+  double domain_max_absolute_length_error = 0.0;
   double max_transition_residual = 0.0;
   double max_side_pairing_residual = 0.0;
+
+  /// Canonical generators a1 b1 ... ag bg as words in the cut graph's loops (holes capped);
+  /// the cut graph itself keeps tree-cotree order (see polygon.canonical).
+  CanonicalBasis canonical;
+  /// Closed surfaces: holonomy (deck transformation in the central chart) of each loop and of
+  /// each canonical generator (atlas/holonomy.h); empty for open surfaces.
+  std::vector<RigidMotion2> loop_holonomy;
+  std::vector<RigidMotion2> canonical_holonomy;
+  /// |rho(relator)| as a motion: rotation angle and translation length of the image of the
+  /// polygon's relator, which is the identity for an exact flat metric.
+  double relator_holonomy_angle = 0.0;
+  double relator_holonomy_translation = 0.0;
 
   /// Cut paths in chart order: the loops, then the boundary connectors.
   [[nodiscard]] const CutPath& cut_path(int index) const;
   [[nodiscard]] int cut_path_count() const;
 
   /// A chart holding `face` with its vertex-neighbourhood as one planar piece, or -1.
-  [[nodiscard]] int chart_of_face_neighbourhood(int face) const { return neighbourhood_chart[face]; }
+  [[nodiscard]] int chart_of_face_neighbourhood(int face) const {
+    return neighbourhood_chart[face];
+  }
   /// Position of corner k of `face` in `chart`. \throw InvalidInputError if the chart lacks it.
   [[nodiscard]] Eigen::Vector2d corner_position(int chart, int face, int corner) const;
   /// The three corner positions of `face` in `chart`, one per row.

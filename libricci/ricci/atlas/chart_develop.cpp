@@ -45,105 +45,133 @@ std::vector<int> two_ring_faces(const Mesh& mesh, const std::vector<int>& vertic
   return faces;
 }
 
-Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
-                    const std::vector<int>& region, int seed_face,
-                    const Eigen::Matrix<double, 3, 2>& seed_positions, double glue_distance) {
+namespace {
+
+/// Faces placed so far: each with its three vertex copies, copies with positions.
+struct Development {
   std::unordered_map<int, int> slot;  // original face -> placement order, -1 = in region only
-  slot.reserve(region.size() * 2);
-  for (int f : region) slot[f] = -1;
-  std::vector<int> order;
+  std::vector<int> order;             // placed faces in placement order
   std::vector<std::array<int, 3>> corners;
   std::vector<Eigen::Vector2d> positions;
   std::vector<int> original;
-  auto new_vertex = [&](const Eigen::Vector2d& p, int v) {
+
+  int new_vertex(const Eigen::Vector2d& p, int v) {
     positions.push_back(p);
     original.push_back(v);
     return static_cast<int>(positions.size()) - 1;
-  };
-  auto length = [&](HalfedgeHandle h) { return lengths[mesh.edge_handle(h).idx()]; };
-
-  const auto seed_hs = face_halfedges(mesh, FaceHandle(seed_face));
-  std::array<int, 3> seed_corners;
-  for (int k = 0; k < 3; ++k) {
-    seed_corners[k] = new_vertex(seed_positions.row(k).transpose(),
-                                 mesh.to_vertex_handle(seed_hs[k]).idx());
   }
-  slot[seed_face] = 0;
-  order.push_back(seed_face);
-  corners.push_back(seed_corners);
-  for (size_t next = 0; next < order.size(); ++next) {
-    const int f = order[next];
-    const auto hs = face_halfedges(mesh, FaceHandle(f));
+  /// Placement order of the face across halfedge o (from a placed face), or -1.
+  int placed_across(const Mesh& mesh, HalfedgeHandle o) const {
+    const auto g = mesh.face_handle(o);
+    if (!g.is_valid()) return -1;
+    const auto it = slot.find(g.idx());
+    return it == slot.end() ? -1 : it->second;
+  }
+};
+
+/// Breadth-first growth from the seed; every face gets fresh copies of the vertex it adds.
+void grow(const Mesh& mesh, const Eigen::VectorXd& lengths, Development& d) {
+  auto length = [&](HalfedgeHandle h) { return lengths[mesh.edge_handle(h).idx()]; };
+  for (size_t next = 0; next < d.order.size(); ++next) {
+    const auto hs = face_halfedges(mesh, FaceHandle(d.order[next]));
     for (int k = 0; k < 3; ++k) {
       const auto o = mesh.opposite_halfedge_handle(hs[k]);
       const auto g = mesh.face_handle(o);
       if (!g.is_valid()) continue;
-      auto it = slot.find(g.idx());
-      if (it == slot.end() || it->second >= 0) continue;
+      auto it = d.slot.find(g.idx());
+      if (it == d.slot.end() || it->second >= 0) continue;
       const auto gs = face_halfedges(mesh, g);
       const int m = corner_of(gs, o);
       std::array<int, 3> c;
-      c[m] = corners[next][(k + 2) % 3];        // to(o) = from(hs[k])
-      c[(m + 2) % 3] = corners[next][k];        // from(o) = to(hs[k])
-      const Eigen::Vector2d p = place_third_vertex(
-          positions[c[(m + 2) % 3]], positions[c[m]], length(mesh.prev_halfedge_handle(o)),
-          length(mesh.next_halfedge_handle(o)));
-      c[(m + 1) % 3] = new_vertex(p, mesh.to_vertex_handle(gs[(m + 1) % 3]).idx());
-      it->second = static_cast<int>(order.size());
-      order.push_back(g.idx());
-      corners.push_back(c);
+      c[m] = d.corners[next][(k + 2) % 3];  // to(o) = from(hs[k])
+      c[(m + 2) % 3] = d.corners[next][k];  // from(o) = to(hs[k])
+      const Eigen::Vector2d p = place_third_vertex(d.positions[c[(m + 2) % 3]], d.positions[c[m]],
+                                                   length(mesh.prev_halfedge_handle(o)),
+                                                   length(mesh.next_halfedge_handle(o)));
+      c[(m + 1) % 3] = d.new_vertex(p, mesh.to_vertex_handle(gs[(m + 1) % 3]).idx());
+      it->second = static_cast<int>(d.order.size());
+      d.order.push_back(g.idx());
+      d.corners.push_back(c);
     }
   }
+}
 
-  // Glue copies that meet across an edge shared by two placed faces.
-  std::vector<int> parent(positions.size());
+/// Union-find parents gluing the copies that meet, within `glue_distance`, across an edge
+/// shared by two placed faces.
+std::vector<int> glue(const Mesh& mesh, const Development& d, double glue_distance) {
+  std::vector<int> parent(d.positions.size());
   std::iota(parent.begin(), parent.end(), 0);
-  for (size_t r = 0; r < order.size(); ++r) {
-    const auto hs = face_halfedges(mesh, FaceHandle(order[r]));
+  for (size_t r = 0; r < d.order.size(); ++r) {
+    const auto hs = face_halfedges(mesh, FaceHandle(d.order[r]));
     for (int k = 0; k < 3; ++k) {
       const auto o = mesh.opposite_halfedge_handle(hs[k]);
-      const auto g = mesh.face_handle(o);
-      if (!g.is_valid()) continue;
-      const auto it = slot.find(g.idx());
-      if (it == slot.end() || it->second < 0) continue;
-      const int m = corner_of(face_halfedges(mesh, g), o);
-      const std::array<int, 3>& c = corners[it->second];
-      const int pairs[2][2] = {{corners[r][(k + 2) % 3], c[m]}, {corners[r][k], c[(m + 2) % 3]}};
+      const int other = d.placed_across(mesh, o);
+      if (other < 0) continue;
+      const int m = corner_of(face_halfedges(mesh, mesh.face_handle(o)), o);
+      const std::array<int, 3>& c = d.corners[other];
+      const int pairs[2][2] = {{d.corners[r][(k + 2) % 3], c[m]},
+                               {d.corners[r][k], c[(m + 2) % 3]}};
       for (const auto& pr : pairs) {
         const int a = find_root(parent, pr[0]), b = find_root(parent, pr[1]);
-        if (a != b && (positions[a] - positions[b]).norm() <= glue_distance) parent[a] = b;
+        if (a != b && (d.positions[a] - d.positions[b]).norm() <= glue_distance) parent[a] = b;
       }
     }
   }
+  return parent;
+}
 
+/// The chart of a development: glued copies merged, faces sorted by index.
+Chart to_chart(const Development& d, std::vector<int>& parent) {
   Chart chart;
-  std::vector<int> compact(positions.size(), -1);
-  for (size_t v = 0; v < positions.size(); ++v) {
+  std::vector<int> compact(d.positions.size(), -1);
+  std::vector<Eigen::Vector2d> positions;
+  for (size_t v = 0; v < d.positions.size(); ++v) {
     const int root = find_root(parent, static_cast<int>(v));
     if (compact[root] < 0) {
       compact[root] = static_cast<int>(chart.to_original_vertex.size());
-      chart.to_original_vertex.push_back(original[root]);
+      chart.to_original_vertex.push_back(d.original[root]);
+      positions.push_back(d.positions[root]);
     }
+    compact[v] = compact[root];
   }
-  chart.positions.resize(static_cast<Eigen::Index>(chart.to_original_vertex.size()), 2);
+  chart.positions.resize(static_cast<Eigen::Index>(positions.size()), 2);
   for (size_t v = 0; v < positions.size(); ++v) {
-    if (find_root(parent, static_cast<int>(v)) == static_cast<int>(v)) {
-      chart.positions.row(compact[v]) = positions[v].transpose();
-    }
+    chart.positions.row(static_cast<Eigen::Index>(v)) = positions[v].transpose();
   }
-  std::vector<size_t> rows(order.size());
+  std::vector<size_t> rows(d.order.size());
   std::iota(rows.begin(), rows.end(), 0);
-  std::sort(rows.begin(), rows.end(), [&](size_t a, size_t b) { return order[a] < order[b]; });
-  chart.faces.resize(order.size());
-  chart.corners.resize(static_cast<Eigen::Index>(order.size()), 3);
+  std::sort(rows.begin(), rows.end(), [&](size_t a, size_t b) { return d.order[a] < d.order[b]; });
+  chart.faces.resize(d.order.size());
+  chart.corners.resize(static_cast<Eigen::Index>(d.order.size()), 3);
   for (size_t i = 0; i < rows.size(); ++i) {
-    chart.faces[i] = order[rows[i]];
+    chart.faces[i] = d.order[rows[i]];
     for (int k = 0; k < 3; ++k) {
-      chart.corners(static_cast<Eigen::Index>(i), k) =
-          compact[find_root(parent, corners[rows[i]][k])];
+      chart.corners(static_cast<Eigen::Index>(i), k) = compact[d.corners[rows[i]][k]];
     }
   }
   return chart;
+}
+
+}  // namespace
+
+Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                    const std::vector<int>& region, int seed_face,
+                    const Eigen::Matrix<double, 3, 2>& seed_positions, double glue_distance) {
+  Development d;
+  d.slot.reserve(region.size() * 2);
+  for (int f : region) d.slot[f] = -1;
+  const auto seed_hs = face_halfedges(mesh, FaceHandle(seed_face));
+  std::array<int, 3> seed_corners;
+  for (int k = 0; k < 3; ++k) {
+    seed_corners[k] =
+        d.new_vertex(seed_positions.row(k).transpose(), mesh.to_vertex_handle(seed_hs[k]).idx());
+  }
+  d.slot[seed_face] = 0;
+  d.order.push_back(seed_face);
+  d.corners.push_back(seed_corners);
+  grow(mesh, lengths, d);
+  std::vector<int> parent = glue(mesh, d, glue_distance);
+  return to_chart(d, parent);
 }
 
 std::vector<int> face_neighbourhood(const Mesh& mesh, int face,

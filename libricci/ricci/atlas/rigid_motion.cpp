@@ -43,8 +43,8 @@ RigidMotion2 fit_rigid_motion(const Eigen::MatrixX2d& from, const Eigen::MatrixX
   if (residual) {
     *residual = 0.0;
     for (Eigen::Index i = 0; i < from.rows(); ++i) {
-      *residual = std::max(*residual,
-                           (m.apply(from.row(i).transpose()) - to.row(i).transpose()).norm());
+      *residual =
+          std::max(*residual, (m.apply(from.row(i).transpose()) - to.row(i).transpose()).norm());
     }
   }
   return m;

@@ -24,7 +24,6 @@ struct RigidMotion2 {
 /// `residual`, if given, receives max_i |motion(from_i) - to_i|.
 /// \pre from.rows() == to.rows() >= 1. \throw InvalidInputError otherwise.
 [[nodiscard]] RigidMotion2 fit_rigid_motion(const Eigen::MatrixX2d& from,
-                                            const Eigen::MatrixX2d& to,
-                                            double* residual = nullptr);
+                                            const Eigen::MatrixX2d& to, double* residual = nullptr);
 
 }  // namespace ricci

@@ -47,7 +47,8 @@ void fit_pair(const Mesh& mesh, AffineAtlas& atlas, int a, int b, const std::vec
       const auto g = mesh.face_handle(mesh.opposite_halfedge_handle(hs[k]));
       if (!g.is_valid()) continue;
       const int j = local_index(faces, g.idx());
-      if (j < 0 || !glued(mesh, ca, faces[i], k, g.idx()) || !glued(mesh, cb, faces[i], k, g.idx())) {
+      if (j < 0 || !glued(mesh, ca, faces[i], k, g.idx()) ||
+          !glued(mesh, cb, faces[i], k, g.idx())) {
         continue;
       }
       parent[find_root(parent, static_cast<int>(i))] = find_root(parent, j);
@@ -60,7 +61,8 @@ void fit_pair(const Mesh& mesh, AffineAtlas& atlas, int a, int b, const std::vec
   for (auto& [root, piece] : pieces) {
     std::vector<std::pair<int, int>> pairs;
     for (int f : piece) {
-      for (int k = 0; k < 3; ++k) pairs.push_back({ca.corners(ca.slot(f), k), cb.corners(cb.slot(f), k)});
+      for (int k = 0; k < 3; ++k)
+        pairs.push_back({ca.corners(ca.slot(f), k), cb.corners(cb.slot(f), k)});
     }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
@@ -104,7 +106,8 @@ std::vector<std::vector<HalfedgeHandle>> cut_arcs(const Mesh& mesh, const CutGra
       if (is_node(v)) break;
       HalfedgeHandle next;
       for (auto g : mesh.voh_range(v)) {
-        if (cut.is_cut_edge[mesh.edge_handle(g).idx()] && !used[mesh.edge_handle(g).idx()]) next = g;
+        if (cut.is_cut_edge[mesh.edge_handle(g).idx()] && !used[mesh.edge_handle(g).idx()])
+          next = g;
       }
       if (!next.is_valid()) break;  // closed arc without node
       h = next;
@@ -157,9 +160,12 @@ void compute_side_pairings(const Mesh& mesh, AffineAtlas& atlas) {
     SidePairing side;
     for (auto h : arc) {
       const auto o = mesh.opposite_halfedge_handle(h);
-      pairs.push_back({s.corner_vertex[mesh.prev_halfedge_handle(h).idx()], s.corner_vertex[o.idx()]});
-      pairs.push_back({s.corner_vertex[h.idx()], s.corner_vertex[mesh.prev_halfedge_handle(o).idx()]});
-      if (loop_of_edge[mesh.edge_handle(h).idx()] >= 0) side.loop = loop_of_edge[mesh.edge_handle(h).idx()];
+      pairs.push_back(
+          {s.corner_vertex[mesh.prev_halfedge_handle(h).idx()], s.corner_vertex[o.idx()]});
+      pairs.push_back(
+          {s.corner_vertex[h.idx()], s.corner_vertex[mesh.prev_halfedge_handle(o).idx()]});
+      if (loop_of_edge[mesh.edge_handle(h).idx()] >= 0)
+        side.loop = loop_of_edge[mesh.edge_handle(h).idx()];
     }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

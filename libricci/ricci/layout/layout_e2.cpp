@@ -62,7 +62,9 @@ int central_face(const Mesh& mesh) {
   return last.idx();
 }
 
-double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
+double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+  return u.x() * v.y() - u.y() * v.x();
+}
 
 }  // namespace
 
@@ -124,7 +126,8 @@ void measure_layout(const Mesh& mesh, const Eigen::VectorXd& lengths,
                       positions.row(mesh.from_vertex_handle(h).idx()))
                          .norm();
     const double l = lengths[e.idx()];
-    result.max_relative_length_error = std::max(result.max_relative_length_error, std::abs(d - l) / l);
+    result.max_relative_length_error =
+        std::max(result.max_relative_length_error, std::abs(d - l) / l);
   }
   result.max_vertex_angle = angle.empty() ? 0.0 : *std::max_element(angle.begin(), angle.end());
 }

@@ -41,9 +41,8 @@ struct LayoutE2Result {
 /// intersection of two circles, with the height taken from Kahan's stable Heron formula so that
 /// needle triangles keep all their digits. A triangle inequality violation is clamped (c lands
 /// on the line through a and b).
-[[nodiscard]] Eigen::Vector2d place_third_vertex(const Eigen::Vector2d& a,
-                                                 const Eigen::Vector2d& b, double l_ac,
-                                                 double l_bc);
+[[nodiscard]] Eigen::Vector2d place_third_vertex(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                                 double l_ac, double l_bc);
 
 /// Area of a triangle with side lengths a, b, c (Kahan's ordering of Heron's formula); 0 when
 /// the triangle inequality fails.

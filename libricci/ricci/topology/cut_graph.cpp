@@ -49,9 +49,9 @@ struct Quotient {
 
 /// Shortest-path tree of the quotient from the root's node over interior edges.
 struct ShortestPathTree {
-  std::vector<double> distance;          // by node
-  std::vector<HalfedgeHandle> parent;    // by node: halfedge arriving at the node
-  std::vector<char> edge_in_tree;        // by edge
+  std::vector<double> distance;        // by node
+  std::vector<HalfedgeHandle> parent;  // by node: halfedge arriving at the node
+  std::vector<char> edge_in_tree;      // by edge
 };
 
 ShortestPathTree shortest_path_tree(const Mesh& mesh, const Quotient& q, int root_node,
@@ -151,6 +151,43 @@ std::vector<EdgeHandle> cotree_leftovers(const Mesh& mesh, const Quotient& q,
   return leftovers;
 }
 
+/// The quotient for the given boundary loops. \throw TopologyError on a vertex met twice.
+Quotient make_quotient(const Mesh& mesh, const std::vector<std::vector<HalfedgeHandle>>& loops) {
+  Quotient q;
+  q.vertex_count = static_cast<int>(mesh.n_vertices());
+  q.loop_of_vertex.assign(mesh.n_vertices(), -1);
+  for (int j = 0; j < static_cast<int>(loops.size()); ++j) {
+    std::vector<VertexHandle> vertices;
+    for (auto h : loops[j]) {
+      const auto v = mesh.to_vertex_handle(h);
+      if (q.loop_of_vertex[v.idx()] >= 0) {
+        throw TopologyError("cut graph: vertex " + std::to_string(v.idx()) +
+                            " lies on the boundary twice (non-manifold)");
+      }
+      q.loop_of_vertex[v.idx()] = j;
+      vertices.push_back(v);
+    }
+    q.loop_vertices.push_back(std::move(vertices));
+  }
+  return q;
+}
+
+/// Loop closed by leftover edge e: tree path to from(h), h, tree path back from to(h).
+CutPath make_loop(const Mesh& mesh, const Quotient& q, const ShortestPathTree& tree, EdgeHandle e,
+                  const Eigen::VectorXd& lengths) {
+  CutPath loop;
+  loop.kind = CutPathKind::homology_loop;
+  loop.generator = mesh.halfedge_handle(e, 0);
+  loop.halfedges = tree_path(mesh, q, tree, q.node(mesh.from_vertex_handle(loop.generator)));
+  loop.halfedges.push_back(loop.generator);
+  const auto back = tree_path(mesh, q, tree, q.node(mesh.to_vertex_handle(loop.generator)));
+  for (auto it = back.rbegin(); it != back.rend(); ++it) {
+    loop.halfedges.push_back(mesh.opposite_halfedge_handle(*it));
+  }
+  loop.length = path_length(mesh, loop.halfedges, lengths);
+  return loop;
+}
+
 void check_path_continuity(const Mesh& mesh, const CutGraph& g, const CutPath& path) {
   for (size_t k = 0; k + 1 < path.halfedges.size(); ++k) {
     const auto a = mesh.to_vertex_handle(path.halfedges[k]);
@@ -199,8 +236,8 @@ std::vector<std::vector<HalfedgeHandle>> find_boundary_loops(const Mesh& mesh) {
   return loops;
 }
 
-CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root,
-                           const Eigen::VectorXd& edge_lengths, const CutGraphOptions& options) {
+CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root, const Eigen::VectorXd& edge_lengths,
+                           const CutGraphOptions& options) {
   if (!root.is_valid() || root.idx() >= static_cast<int>(mesh.n_vertices())) {
     throw InvalidInputError("cut graph: root vertex " + std::to_string(root.idx()) +
                             " is out of range");
@@ -212,8 +249,8 @@ CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root,
   g.root = root;
   g.boundary_loops = find_boundary_loops(mesh);
   g.boundary_loop_count = static_cast<int>(g.boundary_loops.size());
-  g.euler_characteristic = static_cast<int>(mesh.n_vertices()) -
-                           static_cast<int>(mesh.n_edges()) + static_cast<int>(mesh.n_faces());
+  g.euler_characteristic = static_cast<int>(mesh.n_vertices()) - static_cast<int>(mesh.n_edges()) +
+                           static_cast<int>(mesh.n_faces());
   const int twice_genus = 2 - g.euler_characteristic - g.boundary_loop_count;
   if (twice_genus < 0 || twice_genus % 2 != 0) {
     throw TopologyError("cut graph: Euler characteristic " +
@@ -223,22 +260,7 @@ CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root,
   }
   g.genus = twice_genus / 2;
 
-  Quotient q;
-  q.vertex_count = static_cast<int>(mesh.n_vertices());
-  q.loop_of_vertex.assign(mesh.n_vertices(), -1);
-  for (int j = 0; j < g.boundary_loop_count; ++j) {
-    std::vector<VertexHandle> vertices;
-    for (auto h : g.boundary_loops[j]) {
-      const auto v = mesh.to_vertex_handle(h);
-      if (q.loop_of_vertex[v.idx()] >= 0) {
-        throw TopologyError("cut graph: vertex " + std::to_string(v.idx()) +
-                            " lies on the boundary twice (non-manifold)");
-      }
-      q.loop_of_vertex[v.idx()] = j;
-      vertices.push_back(v);
-    }
-    q.loop_vertices.push_back(std::move(vertices));
-  }
+  const Quotient q = make_quotient(mesh, g.boundary_loops);
   g.boundary_loop_of_vertex = q.loop_of_vertex;
 
   const int root_node = q.node(root);
@@ -251,19 +273,7 @@ CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root,
   }
 
   g.is_cut_edge.assign(mesh.n_edges(), 0);
-  for (auto e : leftovers) {
-    CutPath loop;
-    loop.kind = CutPathKind::homology_loop;
-    loop.generator = mesh.halfedge_handle(e, 0);
-    loop.halfedges = tree_path(mesh, q, tree, q.node(mesh.from_vertex_handle(loop.generator)));
-    loop.halfedges.push_back(loop.generator);
-    const auto back = tree_path(mesh, q, tree, q.node(mesh.to_vertex_handle(loop.generator)));
-    for (auto it = back.rbegin(); it != back.rend(); ++it) {
-      loop.halfedges.push_back(mesh.opposite_halfedge_handle(*it));
-    }
-    loop.length = path_length(mesh, loop.halfedges, lengths);
-    g.loops.push_back(std::move(loop));
-  }
+  for (auto e : leftovers) g.loops.push_back(make_loop(mesh, q, tree, e, lengths));
   for (int j = 0; j < g.boundary_loop_count; ++j) {
     const int node = q.vertex_count + j;
     if (node == root_node) continue;

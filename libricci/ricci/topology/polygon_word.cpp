@@ -14,7 +14,9 @@ bool is_canonical_word(const std::vector<PolygonLetter>& w, std::vector<int>* or
     if (order) order->clear();
     return true;
   }
-  auto inverse = [](PolygonLetter a, PolygonLetter b) { return a.index == b.index && a.sign == -b.sign; };
+  auto inverse = [](PolygonLetter a, PolygonLetter b) {
+    return a.index == b.index && a.sign == -b.sign;
+  };
   for (size_t shift = 0; shift < 4; ++shift) {
     bool ok = true;
     std::vector<int> found;

@@ -94,7 +94,8 @@ SlicedMesh slice_along(const Mesh& mesh, const std::vector<char>& is_cut_edge) {
   SlicedMesh s;
   const int copies = assign_corner_copies(mesh, is_cut_edge, s.corner_vertex, s.to_original_vertex);
   s.mesh.reserve(copies, mesh.n_edges(), mesh.n_faces());
-  for (int c = 0; c < copies; ++c) s.mesh.add_vertex(mesh.point(VertexHandle(s.to_original_vertex[c])));
+  for (int c = 0; c < copies; ++c)
+    s.mesh.add_vertex(mesh.point(VertexHandle(s.to_original_vertex[c])));
 
   s.from_original_halfedge.assign(mesh.n_halfedges(), -1);
   for (auto f : mesh.faces()) {
@@ -140,8 +141,7 @@ SlicedMesh slice_along(const Mesh& mesh, const std::vector<char>& is_cut_edge) {
   }
   s.boundary_loop_count = static_cast<int>(find_boundary_loops(s.mesh).size());
   s.euler_characteristic = static_cast<int>(s.mesh.n_vertices()) -
-                           static_cast<int>(s.mesh.n_edges()) +
-                           static_cast<int>(s.mesh.n_faces());
+                           static_cast<int>(s.mesh.n_edges()) + static_cast<int>(s.mesh.n_faces());
   s.component_count = count_components(s.mesh);
   return s;
 }

@@ -6,6 +6,7 @@
 
 #include "ricci/atlas/chart_develop.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/topology/test_grids.h"
 
 namespace ricci {
@@ -66,8 +67,8 @@ bool in_lattice(const Eigen::Vector2d& t, const Eigen::Vector2d& g1, const Eigen
 TEST(Atlas, FlatTorusTransitionsAreTranslationsByPeriods) {
   const int nx = 18, ny = 12;
   const double w = 4.5, h = 2.0;
-  const Mesh torus = test::flat_torus_grid(nx, ny);
-  const Eigen::VectorXd lengths = test::flat_torus_lengths(torus, nx, ny, w, h);
+  const Mesh torus = make_flat_torus_grid(nx, ny, w, h);
+  const Eigen::VectorXd lengths = flat_torus_edge_lengths(torus, nx, ny, w, h);
   for (int root : {0, 77}) {
     SCOPED_TRACE("root " + std::to_string(root));
     const AffineAtlas atlas = build_affine_atlas(torus, lengths, VertexHandle(root));
@@ -94,12 +95,45 @@ TEST(Atlas, FlatTorusTransitionsAreTranslationsByPeriods) {
       EXPECT_TRUE(in_lattice(s.motion.translation, generators[0], generators[1]));
       EXPECT_GT(s.motion.translation.norm(), 0.5 * h);  // a cut never pairs a side with itself
     }
+    // The loops' holonomies are the two periods too, and commute.
+    ASSERT_EQ(atlas.loop_holonomy.size(), 2u);
+    std::vector<double> norms;
+    for (const auto& m : atlas.loop_holonomy) {
+      EXPECT_LT(std::abs(m.angle), 1e-12);
+      EXPECT_TRUE(in_lattice(m.translation, generators[0], generators[1]));
+      norms.push_back(m.translation.norm());
+    }
+    std::sort(norms.begin(), norms.end());
+    EXPECT_NEAR(norms[0], h, 1e-10);
+    EXPECT_NEAR(norms[1], w, 1e-10);
+    EXPECT_LT(atlas.relator_holonomy_translation, 1e-12 * atlas.domain_diameter);
     // Charts are developed in the central chart's frame: every transition is a deck translation.
     for (const Transition& t : atlas.transitions) {
       EXPECT_LT(std::abs(t.motion.angle), 1e-12);
       EXPECT_TRUE(in_lattice(t.motion.translation, generators[0], generators[1]))
           << t.motion.translation.transpose();
     }
+  }
+}
+
+TEST(Atlas, ShearedFlatTorusHolonomyGeneratesTheLattice) {
+  const int nx = 15, ny = 10;
+  const double w = 3.0, h = 2.0, shear = 1.3;
+  const Mesh torus = make_flat_torus_grid(nx, ny, w, h, shear);
+  const Eigen::VectorXd lengths = flat_torus_edge_lengths(torus, nx, ny, w, h, shear);
+  const AffineAtlas atlas = build_affine_atlas(torus, lengths, VertexHandle(31));
+  expect_consistent_atlas(torus, lengths, atlas, 1e-12);
+  ASSERT_EQ(atlas.loop_holonomy.size(), 2u);
+  const Eigen::Vector2d g1 = atlas.loop_holonomy[0].translation;
+  const Eigen::Vector2d g2 = atlas.loop_holonomy[1].translation;
+  // A basis of the period lattice has covolume w * h, whatever the shear.
+  EXPECT_NEAR(std::abs(g1.x() * g2.y() - g1.y() * g2.x()), w * h, 1e-10);
+  for (const Transition& t : atlas.transitions) {
+    EXPECT_LT(std::abs(t.motion.angle), 1e-12);
+    EXPECT_TRUE(in_lattice(t.motion.translation, g1, g2));
+  }
+  for (const SidePairing& s : atlas.side_pairings) {
+    EXPECT_TRUE(in_lattice(s.motion.translation, g1, g2));
   }
 }
 
@@ -139,9 +173,9 @@ TEST(Atlas, RigidMotionFitRecoversAMotion) {
 }
 
 TEST(Atlas, QueriesRejectWhatTheChartsDoNotHold) {
-  const Mesh torus = test::flat_torus_grid(8, 8);
+  const Mesh torus = make_flat_torus_grid(8, 8, 1.0, 1.0);
   const AffineAtlas atlas =
-      build_affine_atlas(torus, test::flat_torus_lengths(torus, 8, 8, 1.0, 1.0), VertexHandle(0));
+      build_affine_atlas(torus, flat_torus_edge_lengths(torus, 8, 8, 1.0, 1.0), VertexHandle(0));
   EXPECT_THROW((void)atlas.corner_position(99, 0, 0), InvalidInputError);
   EXPECT_THROW((void)atlas.corner_position(0, 0, 3), InvalidInputError);
   // A loop chart holds only faces near its loop: find a face it lacks.

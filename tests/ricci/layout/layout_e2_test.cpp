@@ -4,6 +4,7 @@
 
 #include "ricci/atlas/rigid_motion.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/topology/cut_graph.h"
 #include "ricci/topology/slice.h"
 #include "ricci/topology/test_grids.h"
@@ -52,8 +53,8 @@ TEST(LayoutE2, ScalingTheLengthsScalesTheLayout) {
 
 TEST(LayoutE2, FlatTorusFundamentalDomainIsExact) {
   const int nx = 16, ny = 12;
-  const Mesh torus = test::flat_torus_grid(nx, ny);
-  const Eigen::VectorXd lengths = test::flat_torus_lengths(torus, nx, ny, 4.0, 3.0);
+  const Mesh torus = make_flat_torus_grid(nx, ny, 4.0, 3.0);
+  const Eigen::VectorXd lengths = flat_torus_edge_lengths(torus, nx, ny, 4.0, 3.0);
   const CutGraph cut = compute_cut_graph(torus, VertexHandle(0), lengths);
   const SlicedMesh disk = slice_along(torus, cut.is_cut_edge);
   check_disk(disk);

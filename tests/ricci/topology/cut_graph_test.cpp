@@ -4,6 +4,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/topology/polygon_word.h"
 #include "ricci/topology/slice.h"
 #include "ricci/topology/test_grids.h"
@@ -56,9 +57,61 @@ SlicedMesh expect_valid_cut(const Mesh& mesh, const CutGraph& cut, int genus, in
   return sliced;
 }
 
+/// The canonical basis has 2g generators and its relator, expanded in the loops, is the
+/// polygon's loop word again (a free-group identity, checked after cyclic reduction).
+void expect_canonical_basis_of(const FundamentalPolygon& polygon, int genus) {
+  const CanonicalBasis basis = canonical_basis(polygon.word);
+  ASSERT_EQ(static_cast<int>(basis.generators.size()), 2 * genus);
+  LoopWord relator, loop_word;
+  auto append_inverse = [&](const LoopWord& w) {
+    for (auto it = w.rbegin(); it != w.rend(); ++it) {
+      PolygonLetter l = *it;
+      l.sign = -l.sign;
+      relator.push_back(l);
+    }
+  };
+  for (int i = 0; i < genus; ++i) {
+    const LoopWord& a = basis.generators[2 * i];
+    const LoopWord& b = basis.generators[2 * i + 1];
+    relator.insert(relator.end(), a.begin(), a.end());
+    relator.insert(relator.end(), b.begin(), b.end());
+    append_inverse(a);
+    append_inverse(b);
+  }
+  for (const auto& l : polygon.word) {
+    if (l.kind == PolygonLetter::Kind::loop) loop_word.push_back(l);
+  }
+  EXPECT_TRUE(same_cyclic_word(cyclically_reduced(relator), cyclically_reduced(loop_word)));
+}
+
+TEST(CutGraph, CanonicalBasisOfHandMadeWords) {
+  auto letter = [](int index, int sign) {
+    PolygonLetter l;
+    l.index = index;
+    l.sign = sign;
+    return l;
+  };
+  // Already canonical: the basis is the loops themselves.
+  const LoopWord torus{letter(0, 1), letter(1, 1), letter(0, -1), letter(1, -1)};
+  const CanonicalBasis b1 = canonical_basis(torus);
+  ASSERT_EQ(b1.generators.size(), 2u);
+  EXPECT_EQ(b1.generators[0], LoopWord{letter(0, 1)});
+  EXPECT_EQ(b1.generators[1], LoopWord{letter(1, 1)});
+  // The genus-2 word tree-cotree gives on eight.off rooted at vertex 0 (valence-modified):
+  // c a^-1 b^-1 a d c^-1 b d^-1.
+  FundamentalPolygon p;
+  p.word = {letter(2, 1), letter(0, -1), letter(1, -1), letter(0, 1),
+            letter(3, 1), letter(2, -1), letter(1, 1),  letter(3, -1)};
+  EXPECT_FALSE(is_canonical_word(p.word));
+  expect_canonical_basis_of(p, 2);
+  // A letter linked with no other is not a one-vertex surface word.
+  const LoopWord unlinked{letter(0, 1), letter(0, -1), letter(1, 1), letter(1, -1)};
+  EXPECT_THROW((void)canonical_basis(unlinked), TopologyError);
+}
+
 TEST(CutGraph, FlatTorusGridGivesTwoLoopsAndACanonicalSquare) {
-  const Mesh mesh = test::flat_torus_grid(12, 9);
-  const Eigen::VectorXd lengths = test::flat_torus_lengths(mesh, 12, 9, 3.0, 2.0);
+  const Mesh mesh = make_flat_torus_grid(12, 9, 3.0, 2.0);
+  const Eigen::VectorXd lengths = flat_torus_edge_lengths(mesh, 12, 9, 3.0, 2.0);
   const CutGraph cut = compute_cut_graph(mesh, VertexHandle(40), lengths);
   const SlicedMesh sliced = expect_valid_cut(mesh, cut, 1, 0);
   const FundamentalPolygon polygon = fundamental_polygon_word(mesh, cut, sliced);
@@ -97,11 +150,12 @@ TEST(CutGraph, PlanarGridIsAlreadyADisk) {
   const CutGraph inside = compute_cut_graph(grid, VertexHandle(17));
   expect_valid_cut(grid, inside, 0, 1);
   ASSERT_EQ(inside.boundary_connectors.size(), 1u);
-  EXPECT_EQ(grid.from_vertex_handle(inside.boundary_connectors[0].halfedges.front()), VertexHandle(17));
+  EXPECT_EQ(grid.from_vertex_handle(inside.boundary_connectors[0].halfedges.front()),
+            VertexHandle(17));
 }
 
 TEST(CutGraph, BadInputThrows) {
-  const Mesh mesh = test::flat_torus_grid(4, 4);
+  const Mesh mesh = make_flat_torus_grid(4, 4, 1.0, 1.0);
   EXPECT_THROW((void)compute_cut_graph(mesh, VertexHandle(99)), InvalidInputError);
   EXPECT_THROW((void)compute_cut_graph(mesh, VertexHandle(0), Eigen::VectorXd::Ones(3)),
                InvalidInputError);
@@ -135,22 +189,19 @@ TEST_P(CutGraphOnModels, SlicesIntoADiskWithTwoGLoops) {
     if (c.genus <= 1) {
       EXPECT_TRUE(polygon.canonical);
     }
+    expect_canonical_basis_of(polygon, c.genus);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Models, CutGraphOnModels,
-    ::testing::Values(ModelCase{"closed_g1/kitten_nf20k.off", 1, 0},
-                      ModelCase{"closed_g1/knot1.off", 1, 0},
-                      ModelCase{"closed_g2/eight.off", 2, 0},
-                      ModelCase{"closed_g2/joint.off", 2, 0},
-                      ModelCase{"closed_g3/genus3.off", 3, 0},
-                      ModelCase{"closed_g4plus/fertility.off", 4, 0},
-                      ModelCase{"closed_g4plus/couplingdown.off", 9, 0},
-                      ModelCase{"open/head.off", 0, 3}, ModelCase{"open/holes.off", 0, 7},
-                      ModelCase{"open/eight_hole.off", 2, 1},
-                      ModelCase{"open/eight_open.off", 0, 4},
-                      ModelCase{"open/beetle.off", 0, 11}),
+    ::testing::Values(
+        ModelCase{"closed_g1/kitten_nf20k.off", 1, 0}, ModelCase{"closed_g1/knot1.off", 1, 0},
+        ModelCase{"closed_g2/eight.off", 2, 0}, ModelCase{"closed_g2/joint.off", 2, 0},
+        ModelCase{"closed_g3/genus3.off", 3, 0}, ModelCase{"closed_g4plus/fertility.off", 4, 0},
+        ModelCase{"closed_g4plus/couplingdown.off", 9, 0}, ModelCase{"open/head.off", 0, 3},
+        ModelCase{"open/holes.off", 0, 7}, ModelCase{"open/eight_hole.off", 2, 1},
+        ModelCase{"open/eight_open.off", 0, 4}, ModelCase{"open/beetle.off", 0, 11}),
     [](const auto& info) {
       std::string name = info.param.path;
       for (char& ch : name) {
