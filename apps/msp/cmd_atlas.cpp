@@ -1,5 +1,6 @@
 // msp atlas MESH: one-cone flat metric, cut graph, layout and affine atlas, with the figures
 // that say whether it worked (curvature error, transition residual, flipped faces, distortion).
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -115,6 +116,12 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh,
            std::max(r.atlas.max_transition_residual, r.atlas.max_side_pairing_residual)},
           {"flipped_faces", r.atlas.layout.flipped_faces},
           {"layout_length_error", r.atlas.layout.max_relative_length_error},
+          {"domain_length_error", r.atlas.domain_max_relative_length_error},
+          {"domain_length_error_absolute", r.atlas.domain_diameter > 0
+                                               ? r.atlas.domain_max_absolute_length_error / r.atlas.domain_diameter
+                                               : 0.0},
+          {"max_vertex_angle", r.atlas.layout.max_vertex_angle},
+          {"relator_residual", r.atlas.relator_holonomy_translation / std::max(r.atlas.domain_diameter, 1e-300)},
           {"charts", r.atlas.charts.size()},
           {"uncovered_faces", r.atlas.uncovered_faces},
           {"polygon_word", polygon_word_text(r.atlas.polygon)},
