@@ -1,8 +1,15 @@
 #pragma once
-// Entry points of msp-bench's benchmarks (one file each; the table is in main.cpp).
+// Entry points of the msp-bench benchmarks (one file each), dispatched by bench/main.cpp.
 namespace msp::bench {
 
+int run_flow_benchmark(int argc, char** argv);  // bench_flow.cpp
+int run_flow_case(int argc, char** argv);       // bench_flow.cpp
+int run_solver_benchmark(int argc, char** argv);  // bench_flow.cpp
+int run_mesh_io_benchmark(int argc, char** argv);  // bench_mesh_io.cpp
+
 /// DMS basis: build cost, memory and evaluation cost per point for degrees 2..5.
-int run_dms_benchmark(int argc, char** argv);
+int run_dms_benchmark(int argc, char** argv);  // bench_dms.cpp
+int run_topology_benchmark(int argc, char** argv);  // bench_topology.cpp
+int run_loop_benchmark(int argc, char** argv);    // bench_loop.cpp
 
 }  // namespace msp::bench

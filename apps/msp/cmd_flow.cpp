@@ -90,7 +90,9 @@ int run_flow(int argc, char** argv) {
   ricci::FlowOptions options;
   options.geometry = parse_geometry(args.get_or("geometry", "euclidean"));
   options.scheme = parse_scheme(args.get_or("metric", "inversive-distance"));
-  options.radii = parse_radii(args.get_or("radii", "mean"));
+  // Without an explicit --metric, try the conformal metrics first and fall back (reported).
+  options.fall_back_to_other_metrics = !args.has("metric") && !args.has("radii");
+  options.radii = parse_radii(args.get_or("radii", "min"));
   options.solver = parse_solver(args.get_or("solver", "auto"));
   options.tolerance = args.get_double("tolerance", 1e-10);
   const std::string method = args.get_or("method", "newton");
@@ -123,12 +125,14 @@ int run_flow(int argc, char** argv) {
     j["mesh"] = path;
     j["status"] = ricci::to_string(result.status);
     j["iterations"] = result.iterations;
+    j["factorizations"] = result.factorizations;
     j["max_curvature_error"] = result.max_error;
     j["seconds"] = result.timings.total;
     j["vertices"] = mesh.n_vertices();
     j["faces"] = mesh.n_faces();
     j["geometry"] = ricci::to_string(options.geometry);
-    j["metric"] = ricci::to_string(options.scheme);
+    j["metric"] = ricci::to_string(result.metric.scheme);
+    j["failed_attempts"] = result.failed_attempts;
     j["method"] = ricci::to_string(options.method);
     j["solver"] = ricci::to_string(result.solver);
     j["error_history"] = result.error_history;
@@ -144,7 +148,8 @@ int run_flow(int argc, char** argv) {
     std::cout << "status " << ricci::to_string(result.status) << "\niterations "
               << result.iterations << "\nmax_curvature_error " << result.max_error
               << "\nseconds " << result.timings.total << "\nvertices " << mesh.n_vertices()
-              << "\nfaces " << mesh.n_faces() << "\n";
+              << "\nfaces " << mesh.n_faces() << "\nmetric "
+              << ricci::to_string(result.metric.scheme) << "\n";
   }
   if (!result.converged()) throw ricci::SolverError(result.message);
   return 0;

@@ -7,10 +7,10 @@
 #include <iostream>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
 #include <ricci/mesh/diagnose.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/soup_io.h>
+#include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
 #include "msp/commands.h"
@@ -29,6 +29,8 @@ std::string genus_text(double genus) {
   out << genus;
   return out.str();
 }
+
+bool has_triangles(const ricci::MeshDiagnosis& d);
 
 nlohmann::json to_json(const std::string& path, const ricci::MeshDiagnosis& d) {
   nlohmann::json problems = nlohmann::json::array();
@@ -57,9 +59,11 @@ nlohmann::json to_json(const std::string& path, const ricci::MeshDiagnosis& d) {
           {"non_finite_vertices", d.non_finite_vertices},
           {"boundary_edges", d.boundary_edges},
           {"bbox_diagonal", d.bbox_diagonal},
-          {"min_angle_deg", d.min_angle_deg},
+          {"min_angle_deg", has_triangles(d) ? nlohmann::json(d.min_angle_deg) : nlohmann::json()},
           {"problems", problems}};
 }
+
+bool has_triangles(const ricci::MeshDiagnosis& d) { return d.non_triangle_faces < d.faces; }
 
 const char* yes_no(bool value) { return value ? "yes" : "no"; }
 
@@ -85,9 +89,10 @@ void print_text(std::ostream& out, const std::string& path, const ricci::MeshDia
   out << "degenerate faces      " << d.degenerate_faces << "\n";
   out << "duplicate vertices    " << d.duplicate_vertices << "\n";
   out << "duplicate faces       " << d.duplicate_faces << "\n";
-  std::snprintf(line, sizeof line, "bbox diagonal         %.9g\nmin angle             %.4g deg\n",
-                d.bbox_diagonal, d.min_angle_deg);
+  std::snprintf(line, sizeof line, "bbox diagonal         %.9g\n", d.bbox_diagonal);
   out << line;
+  std::snprintf(line, sizeof line, "min angle             %.4g deg\n", d.min_angle_deg);
+  out << (has_triangles(d) ? line : "min angle             n/a (no triangles)\n");
   if (d.problems.empty()) {
     out << "problems              none: a clean single-component orientable 2-manifold\n";
     return;

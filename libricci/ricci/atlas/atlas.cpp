@@ -11,15 +11,11 @@
 namespace ricci {
 namespace {
 
-/// Angle at corner `h` (to_vertex(h) in face(h)) from the lengths, by the half-angle form of the
-/// cosine law, which stays accurate for needle triangles.
+/// Angle at corner `h` (to_vertex(h) in face(h)) from the lengths.
 double corner_angle(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
-  const double a = lengths[mesh.edge_handle(h).idx()];
-  const double b = lengths[mesh.edge_handle(mesh.next_halfedge_handle(h)).idx()];
-  const double c = lengths[mesh.edge_handle(mesh.prev_halfedge_handle(h)).idx()];  // opposite
-  const double s = 0.5 * (a + b + c);
-  return 2.0 * std::atan2(std::sqrt(std::max(0.0, (s - a) * (s - b))),
-                          std::sqrt(std::max(0.0, s * (s - c))));
+  return corner_angle_from_lengths(lengths[mesh.edge_handle(mesh.prev_halfedge_handle(h)).idx()],
+                                   lengths[mesh.edge_handle(h).idx()],
+                                   lengths[mesh.edge_handle(mesh.next_halfedge_handle(h)).idx()]);
 }
 
 double vertex_curvature(const Mesh& mesh, const Eigen::VectorXd& lengths, VertexHandle v) {

@@ -46,6 +46,12 @@ std::string failure_message(const FlowRun& run, const FlowState& state, FlowStat
   if (status == FlowStatus::MaxIterations) {
     out << "more iterations or a looser tolerance; ";
   }
+  if (run.geometry == Geometry::Spherical) {
+    out << "(S2: the spherical energy is not convex and circle packings on the sphere are only "
+           "unique up to Möbius maps, so Newton from the mesh's metric can drift to degenerate "
+           "triangles; start from a flat metric laid out and mapped by inverse stereographic "
+           "projection) ";
+  }
   out << "valence modification around large cones (split edges of the cone vertex's link), "
          "another metric (inversive-distance or circle-packing, min radii), or a target "
          "with smaller cones.";
@@ -112,16 +118,45 @@ FlowResult flow(const MeshTables& tables, const CirclePackingMetric& initial,
 FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& options) {
   const auto start = detail::Clock::now();
   const MeshTables tables = build_mesh_tables(mesh);
-  check_targets(tables, targets, options.geometry, options.scheme);
+  // Gauss-Bonnet first, before any work; the valence test belongs to each attempt's metric.
+  check_targets(tables, targets, options.geometry,
+                options.fall_back_to_other_metrics ? Scheme::InversiveDistance : options.scheme);
   EdgeLengths lengths = mesh_edge_lengths(mesh);
   const double scale = geometry_length_scale(tables, lengths, options.geometry, targets.curvature);
   lengths *= scale;
-  const CirclePackingMetric initial =
-      initial_metric(tables, lengths, options.geometry, options.scheme, options.radii);
-  const double setup = detail::seconds_since(start);
-  FlowResult result = flow(tables, initial, targets, options);
+  std::vector<std::pair<Scheme, RadiusInit>> attempts = {{options.scheme, options.radii}};
+  if (options.fall_back_to_other_metrics) {
+    for (auto next : {std::pair{Scheme::InversiveDistance, RadiusInit::Min},
+                      std::pair{Scheme::InversiveDistance, RadiusInit::Mean},
+                      std::pair{Scheme::CirclePacking, RadiusInit::Mean},
+                      std::pair{Scheme::Combinatorial, RadiusInit::Mean}}) {
+      if (next != attempts.front()) attempts.push_back(next);
+    }
+  }
+  FlowResult result, best;
+  std::vector<std::string> failures;
+  for (const auto& [scheme, radii] : attempts) {
+    const auto attempt_start = detail::Clock::now();
+    const CirclePackingMetric initial =
+        initial_metric(tables, lengths, options.geometry, scheme, radii);
+    const double setup = detail::seconds_since(attempt_start);
+    try {
+      result = flow(tables, initial, targets, options);
+    } catch (const InfeasibleTargetError&) {
+      if (attempts.size() == 1) throw;
+      failures.push_back(to_string(scheme) + ": target infeasible for this metric");
+      continue;
+    }
+    result.timings.setup += setup;
+    if (result.converged()) break;
+    // If nothing converges, report the attempt that came closest.
+    if (best.error_history.empty() || result.max_error < best.max_error) best = result;
+    failures.push_back(to_string(scheme) + (radii == RadiusInit::Min ? "/min" : "/mean") + ": " +
+                       result.message);
+  }
+  if (!result.converged() && !best.error_history.empty()) result = std::move(best);
+  result.failed_attempts = std::move(failures);
   result.length_scale = scale;
-  result.timings.setup += setup;
   result.timings.total = detail::seconds_since(start);
   return result;
 }

@@ -66,15 +66,33 @@ double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() 
 
 }  // namespace
 
+double corner_angle_from_lengths(double opposite, double b, double c) {
+  // Half-angle form tan(theta/2) = sqrt((s-b)(s-c) / (s(s-a))): accurate for needles, where
+  // acos of the cosine law or the circle intersection's sqrt(l^2 - x^2) lose half the digits.
+  const double s_a = 0.5 * (b + c - opposite), s_b = 0.5 * (opposite + c - b),
+               s_c = 0.5 * (opposite + b - c), s = 0.5 * (opposite + b + c);
+  return 2.0 * std::atan2(std::sqrt(std::max(0.0, s_b * s_c)), std::sqrt(std::max(0.0, s * s_a)));
+}
+
+double triangle_area_from_lengths(double a, double b, double c) {
+  // Kahan's ordering of Heron's formula: accurate to a few ulps even for needles, where
+  // sqrt(l^2 - x^2) in a naive circle intersection loses half the digits.
+  if (a < b) std::swap(a, b);
+  if (b < c) std::swap(b, c);
+  if (a < b) std::swap(a, b);
+  const double p = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
+  return 0.25 * std::sqrt(std::max(0.0, p));
+}
+
 Eigen::Vector2d place_third_vertex(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double l_ac,
                                    double l_bc) {
   const Eigen::Vector2d ab = b - a;
   const double d = ab.norm();
   const Eigen::Vector2d e = ab / d;
   const Eigen::Vector2d n(-e.y(), e.x());
-  // Projection of c on the line ab from the two circle equations.
+  // Foot of the altitude from the two circle equations; height from the stable area.
   const double x = (d * d + l_ac * l_ac - l_bc * l_bc) / (2.0 * d);
-  const double y = std::sqrt(std::max(0.0, l_ac * l_ac - x * x));
+  const double y = 2.0 * triangle_area_from_lengths(d, l_ac, l_bc) / d;
   return a + x * e + y * n;
 }
 

@@ -37,11 +37,21 @@ struct LayoutE2Result {
 [[nodiscard]] LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
                                        const LayoutE2Options& options = {});
 
-/// Places c so that |c - a| = l_ac, |c - b| = l_bc and (a, b, c) is counter-clockwise.
-/// A triangle inequality violation is clamped (c lands on the line through a and b).
+/// Places c so that |c - a| = l_ac, |c - b| = l_bc and (a, b, c) is counter-clockwise: the
+/// intersection of two circles, with the height taken from Kahan's stable Heron formula so that
+/// needle triangles keep all their digits. A triangle inequality violation is clamped (c lands
+/// on the line through a and b).
 [[nodiscard]] Eigen::Vector2d place_third_vertex(const Eigen::Vector2d& a,
                                                  const Eigen::Vector2d& b, double l_ac,
                                                  double l_bc);
+
+/// Area of a triangle with side lengths a, b, c (Kahan's ordering of Heron's formula); 0 when
+/// the triangle inequality fails.
+[[nodiscard]] double triangle_area_from_lengths(double a, double b, double c);
+
+/// Angle opposite the side `opposite` in a triangle with sides (opposite, b, c), by the stable
+/// half-angle formula. Clamped to [0, pi] when the triangle inequality fails.
+[[nodiscard]] double corner_angle_from_lengths(double opposite, double b, double c);
 
 /// Signed area, max relative length error, flipped faces and max vertex angle of `positions`
 /// against `edge_lengths` (fills those fields of `result`).

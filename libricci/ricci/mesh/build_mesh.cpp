@@ -5,6 +5,8 @@
 #include <array>
 #include <unordered_set>
 
+#include <Eigen/Geometry>
+
 #include "ricci/mesh/diagnose.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/topology_util.h"
@@ -14,7 +16,8 @@ namespace ricci {
 namespace {
 
 [[noreturn]] void refuse(const PolygonSoup& soup, const MeshProblem& problem) {
-  const std::string message = soup.source.empty() ? problem.message : soup.source + ": " + problem.message;
+  const std::string message =
+      soup.source.empty() ? problem.message : soup.source + ": " + problem.message;
   switch (problem.kind) {
     case MeshProblemKind::kNonFiniteCoordinate:
     case MeshProblemKind::kBadFace:
@@ -31,14 +34,23 @@ namespace {
 std::vector<std::vector<int>> orient_faces(const PolygonSoup& soup, int& flipped) {
   const detail::EdgeTable table = detail::build_edge_table(soup.faces, {});
   const size_t face_count = soup.faces.size();
-  std::vector<std::vector<std::pair<int, bool>>> neighbours(face_count);
+  // Adjacency across 2-face edges in CSR form: (neighbour, must it be flipped relative to us).
+  std::vector<size_t> begin(face_count + 1, 0);
+  for (size_t e = 0; e < table.edge_count(); ++e) {
+    if (table.side_count(e) != 2) continue;
+    ++begin[table.side(e, 0).face + 1];
+    ++begin[table.side(e, 1).face + 1];
+  }
+  for (size_t f = 0; f < face_count; ++f) begin[f + 1] += begin[f];
+  std::vector<std::pair<int, bool>> links(begin.back());
+  std::vector<size_t> fill(begin.begin(), begin.end() - 1);
   for (size_t e = 0; e < table.edge_count(); ++e) {
     if (table.side_count(e) != 2) continue;
     const auto& s0 = table.side(e, 0);
     const auto& s1 = table.side(e, 1);
     const bool flip = s0.from == s1.from;
-    neighbours[s0.face].push_back({s1.face, flip});
-    neighbours[s1.face].push_back({s0.face, flip});
+    links[fill[s0.face]++] = {s1.face, flip};
+    links[fill[s1.face]++] = {s0.face, flip};
   }
   std::vector<signed char> reversed(face_count, -1);
   std::vector<int> stack;
@@ -49,7 +61,8 @@ std::vector<std::vector<int>> orient_faces(const PolygonSoup& soup, int& flipped
     while (!stack.empty()) {
       const int f = stack.back();
       stack.pop_back();
-      for (const auto& [g, flip] : neighbours[f]) {
+      for (size_t k = begin[f]; k < begin[f + 1]; ++k) {
+        const auto [g, flip] = links[k];
         if (reversed[g] >= 0) continue;
         reversed[g] = static_cast<signed char>(reversed[f] ^ flip);
         stack.push_back(g);
@@ -70,8 +83,8 @@ std::vector<std::vector<int>> orient_faces(const PolygonSoup& soup, int& flipped
     double volume = 0;
     for (const auto& face : faces)
       for (size_t k = 1; k + 1 < face.size(); ++k)
-        volume += soup.positions[face[0]].dot(
-            soup.positions[face[k]].cross(soup.positions[face[k + 1]]));
+        volume +=
+            soup.positions[face[0]].dot(soup.positions[face[k]].cross(soup.positions[face[k + 1]]));
     if (volume < 0) {
       for (auto& face : faces) std::reverse(face.begin(), face.end());
       flipped = static_cast<int>(face_count) - flipped;
@@ -96,7 +109,8 @@ std::vector<std::array<int, 3>> triangulate(const PolygonSoup& soup,
     if (face.size() > 3) ++polygons;
   if (polygons > 0)
     for (const auto& face : faces)
-      for (size_t k = 0; k < face.size(); ++k) edges.insert(edge_key(face[k], face[(k + 1) % face.size()]));
+      for (size_t k = 0; k < face.size(); ++k)
+        edges.insert(edge_key(face[k], face[(k + 1) % face.size()]));
   std::vector<std::array<int, 3>> triangles;
   triangles.reserve(faces.size());
   std::vector<Eigen::Vector3d> corners;
@@ -107,9 +121,8 @@ std::vector<std::array<int, 3>> triangulate(const PolygonSoup& soup,
     }
     corners.clear();
     for (int v : face) corners.push_back(soup.positions[v]);
-    const auto pieces = triangulate_polygon(corners, [&](int i, int j) {
-      return edges.count(edge_key(face[i], face[j])) == 0;
-    });
+    const auto pieces = triangulate_polygon(
+        corners, [&](int i, int j) { return edges.count(edge_key(face[i], face[j])) == 0; });
     for (const auto& t : pieces) {
       triangles.push_back({face[t[0]], face[t[1]], face[t[2]]});
       for (int k = 0; k < 3; ++k) edges.insert(edge_key(face[t[k]], face[t[(k + 1) % 3]]));

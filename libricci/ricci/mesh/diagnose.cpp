@@ -79,9 +79,8 @@ void classify_faces(Context& c) {
   for (size_t f = 0; f < faces.size(); ++f) {
     const auto& face = faces[f];
     if (face.size() != 3) ++c.d.non_triangle_faces;
-    const bool bad = face.size() < 3 || std::any_of(face.begin(), face.end(), [n](int i) {
-                       return i < 0 || i >= n;
-                     });
+    const bool bad = face.size() < 3 ||
+                     std::any_of(face.begin(), face.end(), [n](int i) { return i < 0 || i >= n; });
     if (bad) {
       ++c.d.bad_faces;
       if (first_bad < 0) first_bad = static_cast<int>(f);
@@ -101,8 +100,8 @@ void classify_faces(Context& c) {
   c.d.degenerate_faces += repeats;
   if (first_bad >= 0)
     add_problem(c.d, MeshProblemKind::kBadFace, c.d.bad_faces,
-                c.soup.face_where(first_bad) + " has fewer than 3 vertices or an index outside [0, " +
-                    std::to_string(n) + ")",
+                c.soup.face_where(first_bad) +
+                    " has fewer than 3 vertices or an index outside [0, " + std::to_string(n) + ")",
                 "such faces");
   if (std::count(c.use_face.begin(), c.use_face.end(), 1) == 0)
     add_problem(c.d, MeshProblemKind::kNoFaces, 1, "no usable faces", "");
@@ -155,7 +154,11 @@ void check_orientability(Context& c) {
     ++begin[table.side(e, 1).face + 1];
   }
   for (size_t f = 0; f < face_count; ++f) begin[f + 1] += begin[f];
-  struct Link { int face; int edge; bool flip; };
+  struct Link {
+    int face;
+    int edge;
+    bool flip;
+  };
   std::vector<Link> links(begin.back());
   std::vector<size_t> fill(begin.begin(), begin.end() - 1);
   for (size_t e = 0; e < table.edge_count(); ++e) {
@@ -272,7 +275,8 @@ void count_topology(Context& c) {
     on_boundary[c.edges.low(e)] = on_boundary[c.edges.high(e)] = 1;
   }
   for (size_t v = 0; v < n; ++v)
-    if (on_boundary[v] && loops.find(static_cast<int>(v)) == static_cast<int>(v)) ++c.d.boundary_loops;
+    if (on_boundary[v] && loops.find(static_cast<int>(v)) == static_cast<int>(v))
+      ++c.d.boundary_loops;
   c.d.euler_characteristic = c.d.referenced_vertices - c.d.edges + used_faces;
   c.d.genus = (2.0 * c.d.components - c.d.boundary_loops - c.d.euler_characteristic) / 2.0;
   if (c.d.components > 1) {
@@ -284,9 +288,9 @@ void count_topology(Context& c) {
     for (size_t k = 0; k < sizes.size() && k < 4; ++k)
       list += (k ? ", " : "") + std::to_string(sizes[k]);
     if (sizes.size() > 4) list += ", ...";
-    c.d.problems.push_back({MeshProblemKind::kSeveralComponents, c.d.components,
-                            std::to_string(c.d.components) +
-                                " connected components (vertex counts " + list + ")"});
+    c.d.problems.push_back(
+        {MeshProblemKind::kSeveralComponents, c.d.components,
+         std::to_string(c.d.components) + " connected components (vertex counts " + list + ")"});
   }
 }
 
@@ -301,53 +305,84 @@ void count_duplicate_vertices(Context& c) {
     return std::lexicographical_compare(p[a].data(), p[a].data() + 3, p[b].data(), p[b].data() + 3);
   };
   std::sort(order.begin(), order.end(), less);
-  for (size_t k = 1; k < order.size(); ++k) c.d.duplicate_vertices += p[order[k - 1]] == p[order[k]];
+  for (size_t k = 1; k < order.size(); ++k)
+    c.d.duplicate_vertices += p[order[k - 1]] == p[order[k]];
 }
 
+/// Faces on the same vertex set, found by sorting (hash of the sorted face, face) pairs and
+/// comparing the faces of equal hashes exactly.
 void count_duplicate_faces(Context& c) {
   const auto& faces = c.soup.faces;
-  std::vector<std::vector<int>> keys;
-  std::vector<int> order;
+  std::vector<std::pair<uint64_t, int>> keyed;
+  std::vector<int> sorted_a, sorted_b;
   for (size_t f = 0; f < faces.size(); ++f) {
     if (!c.use_face[f]) continue;
-    keys.emplace_back(faces[f]);
-    std::sort(keys.back().begin(), keys.back().end());
-    order.push_back(static_cast<int>(keys.size() - 1));
+    sorted_a.assign(faces[f].begin(), faces[f].end());
+    std::sort(sorted_a.begin(), sorted_a.end());
+    uint64_t hash = 1469598103934665603ULL;
+    for (int v : sorted_a) hash = (hash ^ static_cast<uint32_t>(v)) * 1099511628211ULL;
+    keyed.push_back({hash, static_cast<int>(f)});
   }
-  std::vector<int> face_of;
-  for (size_t f = 0; f < faces.size(); ++f)
-    if (c.use_face[f]) face_of.push_back(static_cast<int>(f));
-  std::stable_sort(order.begin(), order.end(), [&keys](int a, int b) { return keys[a] < keys[b]; });
+  std::sort(keyed.begin(), keyed.end());
+  auto same_set = [&](int f, int g) {
+    if (faces[f].size() != faces[g].size()) return false;
+    sorted_a.assign(faces[f].begin(), faces[f].end());
+    sorted_b.assign(faces[g].begin(), faces[g].end());
+    std::sort(sorted_a.begin(), sorted_a.end());
+    std::sort(sorted_b.begin(), sorted_b.end());
+    return sorted_a == sorted_b;
+  };
   int first_a = -1, first_b = -1;
-  for (size_t k = 1; k < order.size(); ++k) {
-    if (keys[order[k - 1]] != keys[order[k]]) continue;
-    ++c.d.duplicate_faces;
-    if (first_a < 0 || face_of[order[k]] < first_b) {
-      first_a = face_of[order[k - 1]];
-      first_b = face_of[order[k]];
+  std::vector<int> representatives;
+  for (size_t i = 0; i < keyed.size();) {
+    size_t j = i + 1;
+    while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+    // Within a run of equal hashes (nearly always one vertex set), compare with the distinct
+    // sets seen so far in the run; a face equal to one of them is a duplicate.
+    representatives.assign(1, keyed[i].second);
+    for (size_t k = i + 1; k < j; ++k) {
+      const int f = keyed[k].second;
+      const auto match = std::find_if(representatives.begin(), representatives.end(),
+                                      [&](int g) { return same_set(g, f); });
+      if (match == representatives.end()) {
+        representatives.push_back(f);
+        continue;
+      }
+      ++c.d.duplicate_faces;
+      if (first_b < 0 || f < first_b) {
+        first_a = *match;
+        first_b = f;
+      }
     }
+    i = j;
   }
   if (first_a >= 0)
-    add_problem(c.d, MeshProblemKind::kDuplicateFace, c.d.duplicate_faces,
-                c.soup.face_where(first_b) + " has the same vertices as " +
-                    c.soup.face_where(first_a),
-                "duplicate faces");
+    add_problem(
+        c.d, MeshProblemKind::kDuplicateFace, c.d.duplicate_faces,
+        c.soup.face_where(first_b) + " has the same vertices as " + c.soup.face_where(first_a),
+        "duplicate faces");
 }
 
-/// Zero-area faces (vector area <= 1e-12 * bbox_diagonal^2, scale-invariant) and the smallest
-/// triangle angle.
+/// Zero-area faces and the smallest triangle angle. A face is degenerate when its area is at most
+/// 1e-12 * (longest side)^2, i.e. its corners are collinear to 12 digits (or coincide). The test
+/// is scale-invariant and judges shape, not size: a tiny well-shaped triangle (marching-cubes
+/// meshes have them) is fine for the pipeline, a needle with collinear corners is not.
 void measure_faces(Context& c) {
   const auto& p = c.soup.positions;
-  const double tolerance = 1e-12 * c.d.bbox_diagonal * c.d.bbox_diagonal;
   double min_cos_angle = 2;  // cosine of the smallest angle seen; 2 = none yet
   int first_zero = -1, zero = 0;
   for (size_t f = 0; f < c.soup.faces.size(); ++f) {
     if (!c.use_face[f]) continue;
     const auto& face = c.soup.faces[f];
     Eigen::Vector3d area = Eigen::Vector3d::Zero();
-    for (size_t k = 1; k + 1 < face.size(); ++k)
-      area += (p[face[k]] - p[face[0]]).cross(p[face[k + 1]] - p[face[0]]);
-    if (0.5 * area.norm() <= tolerance) {  // false for NaN: those are reported apart
+    double longest_squared = 0;
+    for (size_t k = 0; k < face.size(); ++k) {
+      longest_squared =
+          std::max(longest_squared, (p[face[(k + 1) % face.size()]] - p[face[k]]).squaredNorm());
+      if (k >= 1 && k + 1 < face.size())
+        area += (p[face[k]] - p[face[0]]).cross(p[face[k + 1]] - p[face[0]]);
+    }
+    if (0.5 * area.norm() <= 1e-12 * longest_squared) {  // false for NaN: reported apart
       ++zero;
       if (first_zero < 0) first_zero = static_cast<int>(f);
     }

@@ -1,4 +1,5 @@
-// The undirected-edge table: a sort of all polygon sides, cheaper than a hash map at 100k faces.
+// The undirected-edge table: a counting sort of all polygon sides by their lower vertex, then a
+// small sort inside each bucket; linear in practice, and several times faster than a hash map.
 #include "ricci/mesh/topology_util.h"
 
 #include <algorithm>
@@ -7,36 +8,43 @@ namespace ricci::detail {
 
 EdgeTable build_edge_table(const std::vector<std::vector<int>>& faces,
                            const std::vector<char>& use_face) {
-  struct Keyed {
-    uint64_t key;
-    FaceSide side;
-  };
-  std::vector<Keyed> keyed;
-  size_t total = 0;
-  for (const auto& face : faces) total += face.size();
-  keyed.reserve(total);
+  auto used = [&](size_t f) { return use_face.empty() || use_face[f]; };
+  int max_vertex = -1;
+  for (size_t f = 0; f < faces.size(); ++f)
+    if (used(f))
+      for (int v : faces[f]) max_vertex = std::max(max_vertex, v);
+  std::vector<size_t> bucket(static_cast<size_t>(max_vertex) + 2, 0);
   for (size_t f = 0; f < faces.size(); ++f) {
-    if (!use_face.empty() && !use_face[f]) continue;
+    if (!used(f)) continue;
+    const auto& face = faces[f];
+    for (size_t k = 0; k < face.size(); ++k)
+      ++bucket[std::min(face[k], face[(k + 1) % face.size()]) + 1];
+  }
+  for (size_t b = 1; b < bucket.size(); ++b) bucket[b] += bucket[b - 1];
+  std::vector<FaceSide> sides(bucket.back());
+  std::vector<size_t> fill(bucket.begin(), bucket.end() - 1);
+  for (size_t f = 0; f < faces.size(); ++f) {  // faces in order: buckets start sorted by face
+    if (!used(f)) continue;
     const auto& face = faces[f];
     for (size_t k = 0; k < face.size(); ++k) {
       const int a = face[k], b = face[(k + 1) % face.size()];
-      const auto lo = static_cast<uint64_t>(static_cast<uint32_t>(std::min(a, b)));
-      const auto hi = static_cast<uint64_t>(static_cast<uint32_t>(std::max(a, b)));
-      keyed.push_back({(lo << 32) | hi, {static_cast<int>(f), a, b}});
+      sides[fill[std::min(a, b)]++] = {static_cast<int>(f), a, b};
     }
   }
-  // Stable on (key, face) so messages list faces in file order.
-  std::sort(keyed.begin(), keyed.end(), [](const Keyed& x, const Keyed& y) {
-    return x.key != y.key ? x.key < y.key : x.side.face < y.side.face;
-  });
   EdgeTable table;
-  table.sides.reserve(keyed.size());
-  for (size_t i = 0; i < keyed.size(); ++i) {
-    if (i == 0 || keyed[i].key != keyed[i - 1].key) table.edge_begin.push_back(i);
-    table.sides.push_back(keyed[i].side);
+  auto high = [](const FaceSide& s) { return std::max(s.from, s.to); };
+  for (size_t b = 0; b + 1 < bucket.size(); ++b) {
+    const auto first = sides.begin() + static_cast<std::ptrdiff_t>(bucket[b]);
+    const auto last = sides.begin() + static_cast<std::ptrdiff_t>(bucket[b + 1]);
+    // Stable: sides of one edge stay in face order, so messages list faces in file order.
+    std::stable_sort(first, last,
+                     [&](const FaceSide& x, const FaceSide& y) { return high(x) < high(y); });
+    for (auto it = first; it != last; ++it)
+      if (it == first || high(*it) != high(*(it - 1)))
+        table.edge_begin.push_back(static_cast<size_t>(it - sides.begin()));
   }
-  table.edge_begin.push_back(keyed.size());
-  if (keyed.empty()) table.edge_begin.clear();
+  if (!table.edge_begin.empty()) table.edge_begin.push_back(sides.size());
+  table.sides = std::move(sides);
   return table;
 }
 

@@ -51,9 +51,13 @@ inline double geometry_cosine(Geometry g, double x) {
 /// perimeter reaches 2π.
 inline bool triangle_angles(Geometry g, const double l[3], double theta[3],
                             double* cosine = nullptr, double* sine = nullptr) {
-  // s - l_k computed as (l_a + l_b - l_k)/2: exact for the degenerate test.
-  const double d[3] = {0.5 * (l[1] + l[2] - l[0]), 0.5 * (l[2] + l[0] - l[1]),
-                       0.5 * (l[0] + l[1] - l[2])};
+  // s - l_k = (l_a + l_b - l_k)/2 with the subtraction done first against the longer of l_a,
+  // l_b: exact by Sterbenz's lemma when they are close, so needles keep their small angles.
+  double d[3];
+  for (int k = 0; k < 3; ++k) {
+    const double a = l[(k + 1) % 3], b = l[(k + 2) % 3];
+    d[k] = 0.5 * ((std::max(a, b) - l[k]) + std::min(a, b));
+  }
   const double s = 0.5 * (l[0] + l[1] + l[2]);
   if (!(d[0] > 0 && d[1] > 0 && d[2] > 0)) return false;
   if (g == Geometry::Spherical && !(s < M_PI)) return false;
@@ -65,6 +69,13 @@ inline bool triangle_angles(Geometry g, const double l[3], double theta[3],
     theta[k] = 2.0 * std::atan2(std::sqrt(y2), std::sqrt(x2));
     if (cosine) cosine[k] = (x2 - y2) / (x2 + y2);
     if (sine) sine[k] = 2.0 * std::sqrt(x2 * y2) / (x2 + y2);
+  }
+  if (g == Geometry::Euclidean) {
+    // Rounding would make each face's angle sum miss π by a biased ulp; summed over a million
+    // faces that drift breaks Σ K = 2πχ at the 1e-10 level. Closing the sum on the largest
+    // angle (whose relative accuracy matters least) leaves an unbiased ulp per face.
+    const int big = theta[0] >= theta[1] ? (theta[0] >= theta[2] ? 0 : 2) : (theta[1] >= theta[2] ? 1 : 2);
+    theta[big] = M_PI - (theta[(big + 1) % 3] + theta[(big + 2) % 3]);
   }
   return true;
 }

@@ -1,0 +1,77 @@
+#include "ricci/pipeline/one_cone_atlas.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "ricci/mesh/errors.h"
+
+namespace ricci {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The cut graph's root: the cone, else an interior vertex (genus 1) or vertex 0 (open).
+VertexHandle atlas_root(const OneConeProblem& problem) {
+  if (problem.cone >= 0) return problem.mesh.vertex_handle(problem.cone);
+  for (auto v : problem.mesh.vertices()) {
+    if (!problem.mesh.is_boundary(v)) return v;
+  }
+  return problem.mesh.vertex_handle(0);
+}
+
+}  // namespace
+
+double OneConeAtlasResult::relative_transition_residual() const {
+  double residual = std::max(atlas.max_transition_residual, atlas.max_side_pairing_residual);
+  return atlas.domain_diameter > 0 ? residual / atlas.domain_diameter : residual;
+}
+
+OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
+  const auto start = Clock::now();
+  auto report = [&](const char* stage) {
+    if (options.progress) options.progress(stage);
+  };
+  OneConeAtlasResult result;
+  result.chosen_vertex = options.singular_vertex;
+  if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
+    report("choosing the singular vertex");
+    auto t = Clock::now();
+    SingularityOptions choice = options.choice;
+    choice.flow = options.flow;
+    choice.valence = options.valence;
+    choice.keep_metric = options.keep_metric;
+    SingularityChoice chosen = choose_singularity(mesh, choice);
+    result.chosen_vertex = chosen.vertex;
+    result.flows_for_choice = chosen.flows_run;
+    result.timings.choice = seconds_since(t);
+  }
+
+  report("valence modification");
+  auto t = Clock::now();
+  result.problem = prepare_one_cone(mesh, result.chosen_vertex, options.valence);
+  result.timings.valence = seconds_since(t);
+
+  report("Ricci flow");
+  t = Clock::now();
+  result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
+  result.timings.flow = seconds_since(t);
+  if (!result.flow.converged()) throw SolverError(result.flow.message);
+
+  report("cut graph, layout and atlas");
+  t = Clock::now();
+  result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths, atlas_root(result.problem), options.atlas);
+  result.timings.atlas = seconds_since(t);
+
+  report("distortion");
+  t = Clock::now();
+  result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths);
+  result.timings.distortion = seconds_since(t);
+  result.timings.total = seconds_since(start);
+  return result;
+}
+
+}  // namespace ricci

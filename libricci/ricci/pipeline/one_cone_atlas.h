@@ -1,0 +1,53 @@
+#pragma once
+// The whole of libricci's one-extraordinary-point pipeline in one call: singularity choice,
+// valence modification, Ricci flow to the one-cone flat metric, cut graph, layout and affine
+// atlas, with the distortion report (manifold-splines paper, section 4).
+#include <functional>
+#include <string>
+
+#include "ricci/atlas/atlas.h"
+#include "ricci/flow/flow.h"
+#include "ricci/mesh/mesh.h"
+#include "ricci/quality/distortion.h"
+#include "ricci/singularity/choose.h"
+#include "ricci/singularity/one_cone.h"
+
+namespace ricci {
+
+struct OneConeAtlasOptions {
+  /// Input vertex index of the singularity, or -1 to choose it (least area distortion).
+  int singular_vertex = -1;
+  /// Flow settings (tolerance, solver, ...). The metric is chosen per problem
+  /// (one_cone_metric_order) unless `keep_metric`, which forces flow.scheme and flow.radii.
+  FlowOptions flow = one_cone_flow_options();
+  bool keep_metric = false;
+  ValenceOptions valence;
+  SingularityOptions choice;
+  AtlasOptions atlas;
+  /// Optional progress: called with a stage name when that stage starts.
+  std::function<void(const std::string& stage)> progress;
+};
+
+/// Wall-clock seconds of each stage.
+struct OneConeAtlasTimings {
+  double choice = 0, valence = 0, flow = 0, atlas = 0, distortion = 0, total = 0;
+};
+
+struct OneConeAtlasResult {
+  OneConeProblem problem;  ///< The (valence-modified or punctured) mesh and its targets.
+  FlowResult flow;
+  AffineAtlas atlas;
+  DistortionReport distortion;
+  int chosen_vertex = -1;       ///< Input vertex of the singularity, -1 when none.
+  int flows_for_choice = 0;     ///< Flows the automatic choice ran (0 when given).
+  OneConeAtlasTimings timings;
+  /// max transition (and side pairing) residual divided by the domain diameter.
+  [[nodiscard]] double relative_transition_residual() const;
+};
+
+/// \pre a connected, oriented 2-manifold triangle mesh.
+/// \throw InvalidInputError / TopologyError for bad input; SolverError when the flow does not
+///        converge (its message names the worst vertices and what to try).
+[[nodiscard]] OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options = {});
+
+}  // namespace ricci

@@ -1,0 +1,104 @@
+#pragma once
+// Control points of a manifold spline: the paper's initial choice (the piecewise-linear surface
+// reproduced face by face) and a least-squares fit to points with a thin-plate smoothness term;
+// closest-point projection onto the spline; and the whole scan pipeline (simplify, atlas, fit,
+// fair) of manifold-splines section 5.
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ricci/mesh/mesh.h"
+#include "ricci/pipeline/one_cone_atlas.h"
+#include "spline/fair/fair.h"
+#include "spline/manifold/manifold_space.h"
+
+namespace spline {
+
+/// Per domain face, the degree-1 polynomial L_I mapping I's corners (in its neighbourhood chart)
+/// to the mesh's 3D vertex positions, seen as degree n: c_{I,beta} = L_I(mean of beta's blossom
+/// arguments) (the "domain points"). F then equals the mesh up to the knot clouds' spread.
+/// \pre space was built on `mesh`.
+[[nodiscard]] Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& space,
+                                                               const ricci::Mesh& mesh);
+
+struct FitOptions {
+  /// lambda: weight of the thin-plate energy. The objective is
+  ///   sum_k |F(u_k) - p_k|^2 + lambda (N / A) h^4 int (|F_uu|^2 + 2 |F_uv|^2 + |F_vv|^2)
+  ///   + anchor (N / #functions) |c - c_0|^2,
+  /// N the number of points, A the domain's chart area, h its mean edge length in the chart, so
+  /// lambda compares a point residual with a second difference over one edge (dimensionless).
+  double smoothing = 1e-3;
+  /// Keeps the normal matrix SPD where no point reaches a function (dimensionless, tiny).
+  double anchor = 1e-8;
+};
+
+struct FitResult {
+  Eigen::MatrixX3d control_points;
+  int points = 0;              ///< points used (those with a domain face)
+  double rms_at_parameters = 0.0;  ///< of |F(u_k) - p_k| (no projection)
+  double max_at_parameters = 0.0;
+  double seconds_assemble = 0.0, seconds_solve = 0.0;
+};
+
+/// Least-squares fit (normal equations, CHOLMOD supernodal). Points whose face is -1 or outside
+/// the domain are skipped. `initial` (function_count() x 3) anchors unreached functions.
+/// \throw ricci::InvalidInputError on size mismatches; ricci::SolverError if the solve fails.
+[[nodiscard]] FitResult fit_control_points(const ManifoldSplineSpace& space,
+                                           const std::vector<DomainPoint>& parameters,
+                                           const Eigen::MatrixX3d& points,
+                                           const Eigen::MatrixX3d& initial,
+                                           const FitOptions& options = {});
+
+/// The closest point of the spline to `target`, by Gauss-Newton steps on |F(u) - target|^2 from
+/// `start`, moving between faces through the neighbourhood charts (stops at the hole's rim).
+struct Projection {
+  DomainPoint point;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double distance = 0.0;
+};
+[[nodiscard]] Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& start,
+                                           const Eigen::Vector3d& target, int iterations = 6);
+
+struct FitErrors {
+  int points = 0;
+  double rms = 0.0, max = 0.0;  ///< distances to the spline (after projection)
+};
+/// Distances of points (with parameters; face -1 skipped) to the spline after projection.
+[[nodiscard]] FitErrors fit_errors(const ManifoldSpline& spline,
+                                   const std::vector<DomainPoint>& parameters,
+                                   const Eigen::MatrixX3d& points, int iterations = 6);
+
+struct ScanFitOptions {
+  int domain_faces = 2000;  ///< target size of the simplified domain mesh
+  int degree = 3;
+  int fair_r = 1;           ///< fairing after the fit; -1 = none
+  FitOptions fit;
+  FairOptions fair;         ///< its r is replaced by fair_r
+  KnotCloudOptions knots;
+  ricci::OneConeAtlasOptions atlas;
+  /// Optional progress: called with a stage name when that stage starts.
+  std::function<void(const std::string& stage)> progress;
+};
+
+struct ScanFitTimings {
+  double simplify = 0, atlas = 0, space = 0, parameters = 0, fit = 0, fair = 0, total = 0;
+};
+
+struct ScanFitResult {
+  ricci::OneConeAtlasResult atlas;   ///< atlas.problem.mesh is the spline's domain mesh
+  ManifoldSpline spline;
+  std::vector<DomainPoint> vertex_parameters;  ///< by input vertex (face -1: in the hole)
+  FitResult fit;
+  FairResult fairing;
+  ScanFitTimings timings;
+};
+
+/// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the
+/// space, parameters of the scan's vertices and face centroids by closest point on the domain
+/// mesh, fit, then fair.
+/// \throw as simplify_mesh, build_one_cone_atlas, fit_control_points, fair.
+[[nodiscard]] ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options = {});
+
+}  // namespace spline

@@ -1,0 +1,311 @@
+#include "spline/manifold/manifold_space.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "ricci/atlas/rigid_motion.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/topology/slice.h"
+
+namespace spline {
+namespace {
+
+using ricci::InvalidInputError;
+using ricci::TopologyError;
+
+std::string face_name(int face) { return "face " + std::to_string(face); }
+
+// Corner of chart row `row` at original vertex v, or -1.
+int corner_at(const ricci::Chart& chart, int row, int vertex) {
+  for (int k = 0; k < 3; ++k) {
+    if (chart.to_original_vertex[chart.corners(row, k)] == vertex) return k;
+  }
+  return -1;
+}
+
+}  // namespace
+
+ManifoldSplineSpace::~ManifoldSplineSpace() = default;
+
+ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::AffineAtlas& atlas,
+                                         const ManifoldSplineOptions& options)
+    : degree_(options.degree), atlas_(atlas) {
+  if (degree_ < 1 || degree_ > kMaxDmsDegree) {
+    throw InvalidInputError("manifold spline: degree " + std::to_string(degree_) +
+                            " outside 1.." + std::to_string(kMaxDmsDegree));
+  }
+  const int faces = static_cast<int>(mesh.n_faces());
+  if (static_cast<int>(atlas_.in_domain.size()) != faces ||
+      static_cast<int>(atlas_.neighbourhood_chart.size()) != faces) {
+    throw InvalidInputError("manifold spline: the atlas has " +
+                            std::to_string(atlas_.in_domain.size()) + " faces, the mesh " +
+                            std::to_string(faces));
+  }
+  domain_index_.assign(static_cast<std::size_t>(faces), -1);
+  neighbours_.assign(static_cast<std::size_t>(faces), {-1, -1, -1});
+  vertex_faces_.assign(mesh.n_vertices(), {});
+  for (auto f : mesh.faces()) {
+    const int i = f.idx();
+    const auto hs = ricci::face_halfedges(mesh, f);
+    // Edge opposite corner k runs from corner k+1 to corner k+2: halfedge k+2.
+    for (int k = 0; k < 3; ++k) {
+      const auto opposite = mesh.opposite_halfedge_handle(hs[(k + 2) % 3]);
+      const auto g = mesh.face_handle(opposite);
+      neighbours_[i][k] = g.is_valid() ? g.idx() : -1;
+    }
+    if (!atlas_.in_domain[i]) continue;
+    domain_index_[i] = static_cast<int>(domain_faces_.size());
+    domain_faces_.push_back(i);
+    for (int k = 0; k < 3; ++k) vertex_faces_[mesh.to_vertex_handle(hs[k]).idx()].push_back(i);
+  }
+  build_home_clouds(mesh, options);
+  chart_spaces_.resize(atlas_.charts.size());
+  chart_once_ = std::make_unique<std::once_flag[]>(atlas_.charts.size());
+}
+
+// Home cloud of v: made in the neighbourhood chart of v's lowest domain face, which holds v's
+// whole domain star glued around one copy of v (the atlas guarantees this per face).
+void ManifoldSplineSpace::build_home_clouds(const ricci::Mesh& mesh,
+                                            const ManifoldSplineOptions& options) {
+  const std::size_t n_vertices = mesh.n_vertices();
+  home_clouds_.assign(n_vertices, {});
+  home_chart_.assign(n_vertices, -1);
+  home_face_.assign(n_vertices, -1);
+  for (std::size_t v = 0; v < n_vertices; ++v) {
+    const auto& star = vertex_faces_[v];
+    if (star.empty()) continue;
+    const int vertex = static_cast<int>(v);
+    const int home_face = *std::min_element(star.begin(), star.end());
+    const int chart_index = atlas_.neighbourhood_chart[home_face];
+    if (chart_index < 0) {
+      throw TopologyError("manifold spline: " + face_name(home_face) +
+                          " has no neighbourhood chart (vertex " + std::to_string(vertex) + ")");
+    }
+    const ricci::Chart& chart = atlas_.charts[chart_index];
+    int copy = -1;
+    std::map<int, int> next;  // ring neighbour a -> b for each ccw triangle (v, a, b)
+    for (int f : star) {
+      const int row = chart.slot(f);
+      const int k = row < 0 ? -1 : corner_at(chart, row, vertex);
+      if (k < 0 || (copy >= 0 && chart.corners(row, k) != copy)) {
+        throw TopologyError("manifold spline: chart " + std::to_string(chart_index) +
+                            " does not hold the star of vertex " + std::to_string(vertex) +
+                            " glued (" + face_name(f) + ")");
+      }
+      copy = chart.corners(row, k);
+      next[chart.corners(row, (k + 1) % 3)] = chart.corners(row, (k + 2) % 3);
+    }
+    // An open fan (hole or surface boundary) starts at the neighbour no triangle ends at.
+    int start = next.begin()->first;
+    std::vector<int> targets;
+    for (const auto& entry : next) targets.push_back(entry.second);
+    for (const auto& entry : next) {
+      if (std::find(targets.begin(), targets.end(), entry.first) == targets.end()) start = entry.first;
+    }
+    std::vector<Eigen::Vector2d> ring{chart.positions.row(start).transpose()};
+    int current = start;
+    bool closed = false;
+    for (std::size_t step = 0; step < next.size(); ++step) {
+      const auto it = next.find(current);
+      if (it == next.end()) break;
+      current = it->second;
+      if (current == start) {
+        closed = true;
+        break;
+      }
+      ring.push_back(chart.positions.row(current).transpose());
+    }
+    home_chart_[v] = chart_index;
+    home_face_[v] = home_face;
+    home_clouds_[v] = make_knot_cloud(degree_, static_cast<std::uint64_t>(vertex),
+                                      chart.positions.row(copy).transpose(), ring, closed,
+                                      options.knots);
+  }
+}
+
+// The home cloud of corner k of `face` moved into `chart`: by the atlas transition around `face`
+// when it places the vertex where the chart has it, else by the rigid motion of the face's own
+// corners (same chart, another copy; or charts without a recorded transition).
+KnotCloud ManifoldSplineSpace::cloud_in_chart(int chart, int face, int corner) const {
+  const ricci::Chart& target = atlas_.charts[chart];
+  const int row = target.slot(face);
+  const int copy = target.corners(row, corner);
+  const int vertex = target.to_original_vertex[copy];
+  const int home = home_chart_[vertex];
+  const ricci::Chart& source = atlas_.charts[home];
+  const int home_row = source.slot(face);
+  const Eigen::Vector2d here = target.positions.row(copy).transpose();
+  const Eigen::Vector2d there = source.positions.row(source.corners(home_row, corner)).transpose();
+  std::optional<ricci::RigidMotion2> motion;
+  if (home != chart) motion = atlas_.transition(home, chart, face);
+  const double tolerance = 1e-7 * std::max(atlas_.domain_diameter, 1e-300);
+  if (!motion || (motion->apply(there) - here).norm() > tolerance) {
+    motion = ricci::fit_rigid_motion(atlas_.face_positions(home, face),
+                                     atlas_.face_positions(chart, face));
+  }
+  KnotCloud cloud = transformed(home_clouds_[vertex], motion->rotation(), motion->translation);
+  cloud.knots[0] = here;  // exact: PlanarDmsSpace requires knots[0] == the vertex
+  return cloud;
+}
+
+std::unique_ptr<ManifoldSplineSpace::ChartSpace> ManifoldSplineSpace::build_chart_space(
+    int chart_index) const {
+  const ricci::Chart& chart = atlas_.charts[chart_index];
+  auto result = std::make_unique<ChartSpace>();
+  result->triangle_of_row.assign(chart.faces.size(), -1);
+  std::vector<int> local(static_cast<std::size_t>(chart.positions.rows()), -1);
+  PlanarTriangulation triangulation;
+  std::vector<KnotCloud> clouds;
+  for (std::size_t row = 0; row < chart.faces.size(); ++row) {
+    const int face = chart.faces[row];
+    if (domain_index_[face] < 0) continue;
+    Eigen::Vector3i triangle;
+    for (int k = 0; k < 3; ++k) {
+      const int copy = chart.corners(static_cast<Eigen::Index>(row), k);
+      if (local[copy] < 0) {
+        local[copy] = static_cast<int>(triangulation.positions.size());
+        triangulation.positions.push_back(chart.positions.row(copy).transpose());
+        clouds.push_back(cloud_in_chart(chart_index, face, k));
+      }
+      triangle[k] = local[copy];
+    }
+    result->triangle_of_row[row] = static_cast<int>(triangulation.triangles.size());
+    result->face_of_triangle.push_back(face);
+    triangulation.triangles.push_back(triangle);
+  }
+  result->space = std::make_unique<PlanarDmsSpace>(std::move(triangulation), std::move(clouds));
+  return result;
+}
+
+const ManifoldSplineSpace::ChartSpace& ManifoldSplineSpace::chart_space(int chart) const {
+  if (chart < 0 || chart >= static_cast<int>(chart_spaces_.size())) {
+    throw InvalidInputError("manifold spline: chart " + std::to_string(chart) + " does not exist");
+  }
+  std::call_once(chart_once_[chart], [&] { chart_spaces_[chart] = build_chart_space(chart); });
+  return *chart_spaces_[chart];
+}
+
+bool ManifoldSplineSpace::holds_neighbourhood(int chart_index, int face) const {
+  const ricci::Chart& chart = atlas_.charts[chart_index];
+  const int row = chart.slot(face);
+  if (row < 0 || domain_index_[face] < 0) return false;
+  for (int k = 0; k < 3; ++k) {
+    const int copy = chart.corners(row, k);
+    const int vertex = chart.to_original_vertex[copy];
+    for (int g : vertex_faces_[vertex]) {
+      const int g_row = chart.slot(g);
+      if (g_row < 0) return false;
+      const int corner = corner_at(chart, g_row, vertex);
+      if (corner < 0 || chart.corners(g_row, corner) != copy) return false;
+    }
+  }
+  return true;
+}
+
+Eigen::Vector2d ManifoldSplineSpace::chart_point(int chart, int face,
+                                                 const Eigen::Vector3d& bary) const {
+  return atlas_.face_positions(chart, face).transpose() * bary;
+}
+
+std::array<KnotCloud, 3> ManifoldSplineSpace::face_clouds(int chart, int face) const {
+  const ChartSpace& cs = chart_space(chart);
+  const int row = atlas_.charts[chart].slot(face);
+  if (row < 0 || cs.triangle_of_row[row] < 0) {
+    throw InvalidInputError("manifold spline: chart " + std::to_string(chart) +
+                            " holds no domain " + face_name(face));
+  }
+  const Eigen::Vector3i& t = cs.space->triangulation().triangles[cs.triangle_of_row[row]];
+  const auto& clouds = cs.space->clouds();
+  return {clouds[t[0]], clouds[t[1]], clouds[t[2]]};
+}
+
+std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis(const DomainPoint& point,
+                                                                     int chart,
+                                                                     const TieBreak& tie) const {
+  if (point.face < 0 || point.face >= face_count() || domain_index_[point.face] < 0) {
+    throw InvalidInputError("manifold spline: " + face_name(point.face) +
+                            " is not in the spline's domain");
+  }
+  if (chart < 0) chart = chart_of(point.face);
+  return evaluate_basis_at(chart, point.face, chart_point(chart, point.face, point.barycentric),
+                           tie);
+}
+
+std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(
+    int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie) const {
+  const ChartSpace& cs = chart_space(chart);
+  const int row = atlas_.charts[chart].slot(face);
+  if (row < 0 || cs.triangle_of_row[row] < 0) {
+    throw InvalidInputError("manifold spline: chart " + std::to_string(chart) +
+                            " holds no domain " + face_name(face));
+  }
+  const auto& triangles = cs.space->triangulation().triangles;
+  const Eigen::Vector3i own = triangles[cs.triangle_of_row[row]];
+  const int m = functions_per_face();
+  std::vector<ManifoldBasisSample> out;
+  for (const BasisSample& s : cs.space->evaluate_basis(u, tie)) {
+    const Eigen::Vector3i& t = triangles[s.triangle];
+    bool shares = false;
+    for (int a = 0; a < 3 && !shares; ++a) {
+      shares = t[a] == own[0] || t[a] == own[1] || t[a] == own[2];
+    }
+    if (!shares) continue;  // another sheet of a self-overlapping chart
+    out.push_back({domain_index_[cs.face_of_triangle[s.triangle]] * m + s.beta, s.jet});
+  }
+  return out;
+}
+
+Eigen::MatrixXd ManifoldSplineSpace::control_points_of(const BivariatePolynomial& p,
+                                                       int chart) const {
+  const ChartSpace& cs = chart_space(chart);
+  const int m = functions_per_face();
+  Eigen::MatrixXd points = Eigen::MatrixXd::Zero(function_count(), p.coefficients.cols());
+  const auto& clouds = cs.space->clouds();
+  for (std::size_t t = 0; t < cs.face_of_triangle.size(); ++t) {
+    const Eigen::Vector3i& tri = cs.space->triangulation().triangles[t];
+    points.middleRows(domain_index_[cs.face_of_triangle[t]] * m, m) =
+        triangle_control_points(p, clouds[tri[0]], clouds[tri[1]], clouds[tri[2]]);
+  }
+  return points;
+}
+
+SurfaceJet combine(const std::vector<ManifoldBasisSample>& samples,
+                   const Eigen::MatrixX3d& control_points, int chart) {
+  SurfaceJet s;
+  s.chart = chart;
+  for (const ManifoldBasisSample& b : samples) {
+    const Eigen::Vector3d c = control_points.row(b.function).transpose();
+    s.position += b.jet.value * c;
+    s.du += b.jet.gradient.x() * c;
+    s.dv += b.jet.gradient.y() * c;
+    s.duu += b.jet.hessian[0] * c;
+    s.duv += b.jet.hessian[1] * c;
+    s.dvv += b.jet.hessian[2] * c;
+  }
+  const Eigen::Vector3d n = s.du.cross(s.dv);
+  if (n.norm() > 0.0) s.normal = n.normalized();
+  return s;
+}
+
+SurfaceJet ManifoldSpline::evaluate(const DomainPoint& point, int chart,
+                                    const TieBreak& tie) const {
+  if (control_points.rows() != space->function_count()) {
+    throw InvalidInputError("manifold spline: " + std::to_string(control_points.rows()) +
+                            " control points for " + std::to_string(space->function_count()) +
+                            " functions");
+  }
+  if (chart < 0 && point.face >= 0 && point.face < space->face_count()) {
+    chart = space->chart_of(point.face);
+  }
+  return combine(space->evaluate_basis(point, chart, tie), control_points, chart);
+}
+
+SurfaceJet ManifoldSpline::evaluate_at(int chart, int face, const Eigen::Vector2d& u,
+                                       const TieBreak& tie) const {
+  return combine(space->evaluate_basis_at(chart, face, u, tie), control_points, chart);
+}
+
+}  // namespace spline

@@ -1,0 +1,164 @@
+#pragma once
+// The manifold DMS spline space over ricci's affine atlas (manifold-splines paper section 5,
+// ALGORITHMS.md section 7): F(u) = sum_I sum_beta c_{I,beta} N_{I,beta}(tau_I(u)).
+//
+// Knots. Every domain vertex v has ONE home cloud, made by make_knot_cloud (knot_cloud.h: the rule
+// and its reasons) in a home chart where v's whole domain one-ring is one planar piece: the
+// neighbourhood chart of the lowest-numbered domain face around v. In any other chart (or another
+// copy of v in the same chart) the cloud is the home cloud moved by the rigid motion relating the
+// two placements of a face around v (the atlas transition, or the face's own corners when the
+// atlas has none for that pair). Blossoms and DMS basis functions are affine invariant, so every
+// chart that holds a point's neighbourhood sees the same basis functions there.
+//
+// Functions. Domain face I (atlas.in_domain[I] != 0) carries (n + 1)(n + 2)/2 functions, beta in
+// multi_indices(n) order relative to I's corners (corner k = to_vertex of the k-th halfedge of
+// face_halfedges(mesh, I), the atlas' corner order): global index
+// domain_index(I) * functions_per_face() + beta. Faces of the cone's one-ring carry none.
+//
+// Evaluation. A point is a face and barycentric coordinates (in the same corner order). It is
+// evaluated in a chart holding the face's vertex-neighbourhood as one glued piece (by default the
+// atlas' neighbourhood chart); per chart a PlanarDmsSpace over its domain faces is built on first
+// use and cached (thread-safe). Only functions of faces sharing a chart vertex with the point's
+// face can reach it (clouds stay inside their vertex stars), so those are kept: this also makes
+// self-overlapping charts (the central chart around a cone of angle 6 pi) harmless.
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "ricci/atlas/atlas.h"
+#include "ricci/mesh/mesh.h"
+#include "spline/basis/blossom.h"
+#include "spline/basis/planar_space.h"
+#include "spline/knots/knot_cloud.h"
+
+namespace spline {
+
+struct ManifoldSplineOptions {
+  int degree = 3;           ///< n, in 1..kMaxDmsDegree
+  KnotCloudOptions knots;   ///< the home-cloud rule
+};
+
+/// One basis function at a point: global function index and its jet in the chart's frame.
+struct ManifoldBasisSample {
+  int function = 0;
+  Jet jet;
+};
+
+/// A point of the domain: a face and barycentric coordinates in the face's corner order.
+struct DomainPoint {
+  int face = -1;
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Constant(1.0 / 3.0);
+};
+
+class ManifoldSplineSpace {
+ public:
+  /// \pre `atlas` was built on `mesh` (e.g. build_one_cone_atlas(...).problem.mesh and .atlas).
+  /// \throw ricci::InvalidInputError on a degree out of range or an atlas of another mesh;
+  ///        ricci::TopologyError when a domain vertex has no chart holding its one-ring.
+  ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::AffineAtlas& atlas,
+                      const ManifoldSplineOptions& options = {});
+  ~ManifoldSplineSpace();
+  ManifoldSplineSpace(const ManifoldSplineSpace&) = delete;
+  ManifoldSplineSpace& operator=(const ManifoldSplineSpace&) = delete;
+
+  [[nodiscard]] int degree() const { return degree_; }
+  [[nodiscard]] int functions_per_face() const { return multi_index_count(degree_); }
+  [[nodiscard]] int face_count() const { return static_cast<int>(domain_index_.size()); }
+  [[nodiscard]] int domain_face_count() const { return static_cast<int>(domain_faces_.size()); }
+  [[nodiscard]] int function_count() const { return domain_face_count() * functions_per_face(); }
+  [[nodiscard]] bool in_domain(int face) const { return domain_index_[face] >= 0; }
+  /// Position of `face` among the domain faces, -1 outside the domain.
+  [[nodiscard]] int domain_index(int face) const { return domain_index_[face]; }
+  [[nodiscard]] const std::vector<int>& domain_faces() const { return domain_faces_; }
+  [[nodiscard]] int function_index(int face, int beta) const {
+    return domain_index_[face] * functions_per_face() + beta;
+  }
+  /// The face across the edge opposite corner k of `face` (-1 on a boundary).
+  [[nodiscard]] int neighbour(int face, int k) const { return neighbours_[face][k]; }
+  [[nodiscard]] const ricci::AffineAtlas& atlas() const { return atlas_; }
+  [[nodiscard]] const KnotCloud& home_cloud(int vertex) const { return home_clouds_[vertex]; }
+  [[nodiscard]] int home_chart(int vertex) const { return home_chart_[vertex]; }
+
+  /// True when `chart` holds every domain face sharing a vertex with `face` glued around it.
+  [[nodiscard]] bool holds_neighbourhood(int chart, int face) const;
+  /// The chart used by default for points of `face`: the atlas' neighbourhood chart.
+  [[nodiscard]] int chart_of(int face) const { return atlas_.neighbourhood_chart[face]; }
+  /// The point of `face` with these barycentric coordinates in `chart`'s coordinates.
+  [[nodiscard]] Eigen::Vector2d chart_point(int chart, int face, const Eigen::Vector3d& bary) const;
+  /// The clouds of `face`'s three corners as seen in `chart` (corner order).
+  /// \throw ricci::InvalidInputError when the chart does not hold the face or it is not a domain face.
+  [[nodiscard]] std::array<KnotCloud, 3> face_clouds(int chart, int face) const;
+
+  /// All functions non-zero at the point (value or derivatives), jets in `chart`'s frame
+  /// (chart -1: chart_of(face)). `tie` picks the side of knot lines (one-sided derivatives).
+  /// \throw ricci::InvalidInputError for a face outside the domain or a chart not holding it.
+  [[nodiscard]] std::vector<ManifoldBasisSample> evaluate_basis(const DomainPoint& point,
+                                                                int chart = -1,
+                                                                const TieBreak& tie = {}) const;
+  /// Same at a point u given in `chart`'s coordinates near `face` (u may leave the face slightly:
+  /// any point of the face's neighbourhood is evaluated correctly).
+  [[nodiscard]] std::vector<ManifoldBasisSample> evaluate_basis_at(int chart, int face,
+                                                                   const Eigen::Vector2d& u,
+                                                                   const TieBreak& tie = {}) const;
+
+  /// Control points (function_count() x k) reproducing p (given in `chart`'s coordinates) on
+  /// every domain face `chart` holds; rows of other faces are zero.
+  [[nodiscard]] Eigen::MatrixXd control_points_of(const BivariatePolynomial& p, int chart) const;
+
+  /// The cached planar space of `chart` and the original face of each of its triangles.
+  struct ChartSpace;
+  [[nodiscard]] const ChartSpace& chart_space(int chart) const;
+
+ private:
+  void build_home_clouds(const ricci::Mesh& mesh, const ManifoldSplineOptions& options);
+  [[nodiscard]] KnotCloud cloud_in_chart(int chart, int face, int corner) const;
+  [[nodiscard]] std::unique_ptr<ChartSpace> build_chart_space(int chart) const;
+
+  int degree_ = 0;
+  ricci::AffineAtlas atlas_;
+  std::vector<int> domain_index_;   // by face
+  std::vector<int> domain_faces_;   // domain faces, ascending
+  std::vector<std::array<int, 3>> neighbours_;       // by face, across the edge opposite corner k
+  std::vector<std::vector<int>> vertex_faces_;       // by vertex: incident domain faces
+  std::vector<KnotCloud> home_clouds_;               // by vertex (empty outside the domain)
+  std::vector<int> home_chart_, home_face_;          // by vertex
+  mutable std::vector<std::unique_ptr<ChartSpace>> chart_spaces_;
+  mutable std::unique_ptr<std::once_flag[]> chart_once_;
+};
+
+/// The planar space of one chart: its domain faces as triangles over its used chart vertices.
+struct ManifoldSplineSpace::ChartSpace {
+  std::unique_ptr<PlanarDmsSpace> space;
+  std::vector<int> face_of_triangle;   ///< original face by local triangle
+  std::vector<int> triangle_of_row;    ///< by row of Chart::faces: local triangle or -1
+};
+
+/// Position, derivatives (in the evaluating chart's frame) and unit normal of the surface.
+struct SurfaceJet {
+  int chart = -1;  ///< the frame of the derivatives
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d du = Eigen::Vector3d::Zero(), dv = Eigen::Vector3d::Zero();
+  Eigen::Vector3d duu = Eigen::Vector3d::Zero(), duv = Eigen::Vector3d::Zero(),
+                  dvv = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< du x dv normalised (zero if degenerate)
+};
+
+/// A manifold spline surface: a space and one 3D control point per function.
+struct ManifoldSpline {
+  std::shared_ptr<const ManifoldSplineSpace> space;
+  Eigen::MatrixX3d control_points;  ///< space->function_count() rows
+
+  /// \throw ricci::InvalidInputError as evaluate_basis, or on a wrong control-point count.
+  [[nodiscard]] SurfaceJet evaluate(const DomainPoint& point, int chart = -1,
+                                    const TieBreak& tie = {}) const;
+  [[nodiscard]] SurfaceJet evaluate_at(int chart, int face, const Eigen::Vector2d& u,
+                                       const TieBreak& tie = {}) const;
+};
+
+/// Combines basis samples with control points (rows indexed by function) into a surface jet.
+[[nodiscard]] SurfaceJet combine(const std::vector<ManifoldBasisSample>& samples,
+                                 const Eigen::MatrixX3d& control_points, int chart);
+
+}  // namespace spline

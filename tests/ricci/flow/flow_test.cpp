@@ -1,0 +1,260 @@
+#include <gtest/gtest.h>
+
+#include <ricci/flow/flow.h>
+#include <ricci/mesh/errors.h>
+#include <ricci/mesh/io.h>
+#include <ricci/metric/curvature.h>
+
+#include "ricci/test_meshes.h"
+
+namespace ricci {
+namespace {
+
+using testing::shared_model;
+
+void expect_finite(const FlowResult& r) {
+  EXPECT_TRUE(r.lengths.allFinite());
+  EXPECT_TRUE(r.curvature.allFinite());
+  EXPECT_TRUE(r.u.allFinite());
+}
+
+// E2 flat metric on genus 1: the acceptance check (≤ 15 Newton iterations, < 1e-10).
+class FlatTorusTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(FlatTorusTest, ConvergesInFewNewtonIterations) {
+  const std::string name = GetParam();
+  const Mesh mesh = name == "procedural" ? testing::torus(40, 25) : read_mesh(shared_model(name));
+  FlowOptions options;
+  options.fall_back_to_other_metrics = true;
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_LT(r.max_error, 1e-10);
+  EXPECT_LE(r.iterations, 15);
+  expect_finite(r);
+  // The reported curvature is the metric's own.
+  const MeshTables t = build_mesh_tables(mesh);
+  EXPECT_LT(vertex_curvature(t, r.lengths, Geometry::Euclidean).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Genus1, FlatTorusTest,
+                         ::testing::Values("procedural", "closed_g1/kitten_nf20k.off",
+                                           "closed_g1/rocker-arm.off", "closed_g1/knot1.off",
+                                           "closed_g1/elk.off"));
+
+TEST(Flow, InversiveDistanceConvergesOnKittenWithoutFallback) {
+  const Mesh mesh = read_mesh(shared_model("closed_g1/kitten_nf20k.off"));
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_EQ(r.metric.scheme, Scheme::InversiveDistance);
+  EXPECT_TRUE(r.failed_attempts.empty());
+  // Quadratic convergence: each of the last steps at least squares the error (up to a factor).
+  const auto& h = r.error_history;
+  ASSERT_GE(h.size(), 3u);
+  EXPECT_LT(h[h.size() - 2], 10 * h[h.size() - 3] * h[h.size() - 3] + 1e-12);
+}
+
+// H2 uniformization of genus 2 and 3: K = 0 at every vertex, the faces carry the curvature.
+class HyperbolicTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(HyperbolicTest, UniformizationSatisfiesGaussBonnet) {
+  const Mesh mesh = read_mesh(shared_model(GetParam()));
+  FlowOptions options;
+  options.geometry = Geometry::Hyperbolic;
+  options.fall_back_to_other_metrics = true;
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Hyperbolic), options);
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_LT(r.max_error, 1e-10);
+  const MeshTables t = build_mesh_tables(mesh);
+  const double area = face_areas(t, r.lengths, Geometry::Hyperbolic).sum();
+  // Σ K - Σ A = 2πχ with K = 0: the hyperbolic area is -2πχ = 4π(g - 1).
+  EXPECT_NEAR(r.curvature.sum() - area, 2 * M_PI * t.euler_characteristic, 1e-8);
+  EXPECT_NEAR(area, -2 * M_PI * t.euler_characteristic, 1e-8);
+  expect_finite(r);
+}
+
+INSTANTIATE_TEST_SUITE_P(Genus2And3, HyperbolicTest,
+                         ::testing::Values("closed_g2/eight.off", "closed_g3/genus3.off",
+                                           "closed_g3/helmet.off"));
+
+TEST(Flow, SphericalEitherConvergesOrSaysWhy) {
+  const Mesh mesh = read_mesh(shared_model("closed_g0/knight_decimated.off"));
+  FlowOptions options;
+  options.geometry = Geometry::Spherical;
+  options.tolerance = 1e-8;
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Spherical), options);
+  expect_finite(r);
+  if (r.converged()) {
+    EXPECT_LT(r.max_error, 1e-8);
+  } else {
+    EXPECT_NE(r.message.find("S2"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("worst vertices"), std::string::npos);
+  }
+}
+
+TEST(Flow, SphericalUniformizationOfAGenus0Model) {
+  const Mesh mesh = read_mesh(shared_model("closed_g0/bunny_npm_closed.off"));
+  FlowOptions options;
+  options.geometry = Geometry::Spherical;
+  options.tolerance = 1e-8;
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Spherical), options);
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_LT(r.max_error, 1e-8);
+  const MeshTables t = build_mesh_tables(mesh);
+  // Σ K + Σ A = 4π with K = 0: the triangles tile the unit sphere.
+  EXPECT_NEAR(face_areas(t, r.lengths, Geometry::Spherical).sum(), 4 * M_PI, 1e-6);
+}
+
+TEST(Flow, SphericalConvergesOnARoundSphere) {
+  // The octahedral sphere's own metric is close to the uniformization: Newton gets there.
+  const Mesh mesh = testing::sphere(3);
+  FlowOptions options;
+  options.geometry = Geometry::Spherical;
+  options.tolerance = 1e-8;
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Spherical), options);
+  ASSERT_TRUE(r.converged()) << r.message;
+  const MeshTables t = build_mesh_tables(mesh);
+  EXPECT_NEAR(face_areas(t, r.lengths, Geometry::Spherical).sum(), 4 * M_PI, 1e-6);
+}
+
+TEST(Flow, OpenSurfaceWithBoundaryCurvatureSpreadByLength) {
+  const Mesh mesh = read_mesh(shared_model("open/head.off"));
+  FlowOptions options;
+  options.fall_back_to_other_metrics = true;
+  const Targets targets = boundary_target(mesh, BoundaryMode::SpreadByLength);
+  const MeshTables t = build_mesh_tables(mesh);
+  EXPECT_NEAR(targets.curvature.sum(), 2 * M_PI * t.euler_characteristic, 1e-12);
+  const FlowResult r = flow(mesh, targets, options);
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_LT(r.max_error, 1e-10);
+}
+
+TEST(Flow, ScalingTheMeshChangesNothingButTheScale) {
+  Mesh mesh = read_mesh(shared_model("closed_g1/knot1.off"));
+  const FlowResult a = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
+  for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * 1e3);
+  const FlowResult b = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
+  ASSERT_TRUE(a.converged() && b.converged());
+  EXPECT_EQ(a.iterations, b.iterations);
+  const MeshTables t = build_mesh_tables(mesh);
+  const Eigen::MatrixX3d angles_a = corner_angles(t, a.lengths, Geometry::Euclidean);
+  const Eigen::MatrixX3d angles_b = corner_angles(t, b.lengths, Geometry::Euclidean);
+  EXPECT_LT((angles_a - angles_b).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT(((b.lengths / 1e3 - a.lengths).array() / a.lengths.array()).abs().maxCoeff(), 1e-9);
+}
+
+TEST(Flow, GradientDescentReachesTheNewtonAnswer) {
+  const Mesh mesh = testing::torus(12, 8);
+  FlowOptions options;
+  options.tolerance = 1e-9;
+  const FlowResult newton = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
+  options.method = FlowMethod::GradientDescent;
+  const FlowResult gradient = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
+  ASSERT_TRUE(newton.converged() && gradient.converged()) << gradient.message;
+  EXPECT_GT(gradient.iterations, 10 * newton.iterations);
+  EXPECT_LT(((gradient.lengths - newton.lengths).array() / newton.lengths.array()).abs().maxCoeff(), 1e-7);
+}
+
+TEST(Flow, ProgressIsReportedEveryNewtonIteration) {
+  const Mesh mesh = testing::torus(12, 8);
+  FlowOptions options;
+  int calls = 0;
+  options.progress = [&](const FlowProgress& p) {
+    ++calls;
+    EXPECT_EQ(p.iteration, calls);
+  };
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
+  EXPECT_EQ(calls, r.iterations);
+}
+
+TEST(Targets, GaussBonnetViolationsAreRefusedBeforeAnyWork) {
+  const Mesh torus = testing::torus(10, 6);
+  Targets bad{Eigen::VectorXd::Zero(torus.n_vertices())};
+  bad.curvature[3] = 0.1;
+  EXPECT_THROW((void)flow(torus, bad), InfeasibleTargetError);
+  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
+  EXPECT_THROW((void)uniform_target(eight, Geometry::Euclidean), InfeasibleTargetError);
+  // H2 needs Σ K̄ > 2πχ: a flat one-cone target has Σ K̄ = 2πχ exactly.
+  FlowOptions h2;
+  h2.geometry = Geometry::Hyperbolic;
+  try {
+    (void)flow(eight, single_cone_target(eight, 0), h2);
+    FAIL() << "expected InfeasibleTargetError";
+  } catch (const InfeasibleTargetError& e) {
+    EXPECT_NE(std::string(e.what()).find("2πχ"), std::string::npos) << e.what();
+  }
+  Targets cone = single_cone_target(eight, 0);
+  cone.curvature[1] = 7.0;  // a cone angle below zero
+  EXPECT_THROW((void)flow(eight, cone), InfeasibleTargetError);
+}
+
+TEST(Targets, ConeNeedingMoreValenceAsksForValenceModification) {
+  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
+  FlowOptions options;
+  options.scheme = Scheme::CirclePacking;
+  try {
+    (void)flow(eight, single_cone_target(eight, 0), options);
+    FAIL() << "expected InfeasibleTargetError";
+  } catch (const InfeasibleTargetError& e) {
+    EXPECT_NE(std::string(e.what()).find("valence modification"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Targets, HelpersDistributeCurvature) {
+  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
+  const Targets cone = single_cone_target(eight, 5);
+  EXPECT_DOUBLE_EQ(cone.curvature[5], -4 * M_PI);
+  EXPECT_EQ(cone.curvature.cwiseAbs().sum(), 4 * M_PI);
+  const Targets cones = cones_target(eight, {{1, -2 * M_PI}, {2, -2 * M_PI}});
+  EXPECT_DOUBLE_EQ(cones.curvature.sum(), -4 * M_PI);
+  EXPECT_THROW((void)cones_target(eight, {{1, 1.0}, {1, 1.0}}), InvalidInputError);
+  EXPECT_THROW((void)single_cone_target(eight, -1), InvalidInputError);
+  const Mesh head = read_mesh(shared_model("open/head.off"));
+  const Targets loop = boundary_target(head, BoundaryMode::OneLoop);
+  const MeshTables t = build_mesh_tables(head);
+  EXPECT_NEAR(loop.curvature.sum(), 2 * M_PI * t.euler_characteristic, 1e-12);
+  int nonzero = 0;
+  for (int v = 0; v < loop.curvature.size(); ++v) nonzero += loop.curvature[v] != 0;
+  EXPECT_LT(nonzero, static_cast<int>(t.boundary_loops[0].size() + t.boundary_loops[1].size() +
+                                      t.boundary_loops[2].size()));
+  EXPECT_THROW((void)boundary_target(eight, BoundaryMode::SpreadByLength), InvalidInputError);
+}
+
+TEST(Flow, UnreachableTargetReturnsAStatusNamingTheWorstVertices) {
+  // elk's inversive-distance metric has no flat solution with intact triangles.
+  const Mesh mesh = read_mesh(shared_model("closed_g1/elk.off"));
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
+  ASSERT_FALSE(r.converged());
+  EXPECT_EQ(r.status, FlowStatus::TriangleInequality);
+  EXPECT_NE(r.message.find("worst vertices"), std::string::npos);
+  EXPECT_NE(r.message.find("valence modification"), std::string::npos);
+  expect_finite(r);
+}
+
+TEST(Flow, IterationBudgetIsAStatus) {
+  const Mesh mesh = read_mesh(shared_model("closed_g1/knot1.off"));
+  FlowOptions options;
+  options.max_newton_iterations = 1;
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
+  EXPECT_EQ(r.status, FlowStatus::MaxIterations);
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_LT(r.error_history[1], r.error_history[0]);
+}
+
+TEST(Flow, EverySolverGivesTheSameMetric) {
+  const Mesh mesh = read_mesh(shared_model("closed_g2/eight.off"));
+  FlowOptions options;
+  options.geometry = Geometry::Hyperbolic;
+  EdgeLengths reference;
+  for (auto solver : {LinearSolver::EigenLDLT, LinearSolver::EigenLLT, LinearSolver::CholmodSupernodal,
+                      LinearSolver::CholmodSimplicial}) {
+    options.solver = solver;
+    const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Hyperbolic), options);
+    ASSERT_TRUE(r.converged()) << to_string(solver);
+    EXPECT_EQ(r.solver, solver);
+    if (reference.size() == 0) reference = r.lengths;
+    EXPECT_LT((r.lengths - reference).cwiseAbs().maxCoeff(), 1e-9) << to_string(solver);
+  }
+}
+
+}  // namespace
+}  // namespace ricci
