@@ -36,10 +36,10 @@ void check_options(int degree, const KnotCloudOptions& options) {
   }
   if (!(options.radius_fraction > 0.0 && options.radius_fraction < 0.5) ||
       !(options.radius_jitter >= 0.0 && options.radius_jitter < 1.0) ||
-      !(options.angle_jitter >= 0.0 && options.angle_jitter <= 0.4)) {
+      !(options.angle_jitter >= 0.0 && options.angle_jitter <= 0.1)) {
     throw ricci::InvalidInputError(
         "knot cloud: options out of range (radius_fraction in (0,0.5), radius_jitter in [0,1), "
-        "angle_jitter in [0,0.4])");
+        "angle_jitter in [0,0.1])");
   }
 }
 

@@ -11,9 +11,11 @@
 //    (L rho - L r - 2 r (rho + r)) / (L + 2 r) > 0, L the edge length, rho <= L / (2 sqrt 3)), so
 //    every shifted triangle [t_{0,b0}, t_{1,b1}, t_{2,b2}] keeps I's orientation and their
 //    intersection Omega_I contains a disc: the DMS knot-net conditions (check_dms_conditions).
-//  - angular spacing 2 pi / (n + 1/2) never puts two knots of a cloud on a line through v; the
-//    rotation away from edge directions keeps t_{v,j} off the line through v and a neighbour
-//    (such near-collinear triples make sub-simplex-splines nearly singular: large derivatives).
+//  - angular spacing s = 2 pi / (n + 1/2): the multiple of s nearest to pi misses it by at least
+//    s / 4, so with angular jitter below s / 8 per knot no two knots of a cloud lie on a line
+//    through v (they stay (1/4 - 2 angle_jitter) s away from it); the rotation away from edge
+//    directions keeps t_{v,j} off the line through v and a neighbour (such near-collinear
+//    triples make sub-simplex-splines nearly singular: large derivatives).
 //  - the seeded jitter breaks the coincidences of regular meshes (translated copies of one pattern
 //    put knots of different clouds on common lines). The seed is mixed with the vertex id, so the
 //    cloud does not depend on evaluation order, and the pattern is measured from the direction of
@@ -43,7 +45,7 @@ struct KnotCloudOptions {
   /// conditions are guaranteed (see above).
   double radius_fraction = 0.4;
   double radius_jitter = 0.4;    ///< knot distances vary in [(1 - jitter) r, r], in [0, 1)
-  double angle_jitter = 0.15;    ///< angular jitter, fraction of the pattern spacing, in [0, 0.4]
+  double angle_jitter = 0.06;    ///< angular jitter, fraction of the pattern spacing, in [0, 0.1]
   std::uint64_t seed = 1;        ///< mixed with the vertex id
 };
 

@@ -46,35 +46,42 @@ TEST(KnotClouds, KnotsStayCloseToTheirVertexAwayFromEdgeLines) {
   const PlanarTriangulation t = testing::ring_disk(3, 5);
   const std::vector<VertexRing> rings = vertex_rings(t);
   for (int n = 1; n <= kMaxDmsDegree; ++n) {
-    const std::vector<KnotCloud> clouds = make_knot_clouds(t, n);
-    for (std::size_t v = 0; v < clouds.size(); ++v) {
-      const Eigen::Vector2d& center = t.positions[v];
-      ASSERT_EQ(clouds[v].degree(), n);
-      EXPECT_EQ(clouds[v].knots[0], center);
-      double smallest_inradius = 1e300;
-      const auto& ring = rings[v].neighbours;
-      const std::size_t fan = rings[v].closed ? ring.size() : ring.size() - 1;
-      for (std::size_t i = 0; i < fan; ++i) {
-        smallest_inradius = std::min(
-            smallest_inradius,
-            inradius(center, t.positions[ring[i]], t.positions[ring[(i + 1) % ring.size()]]));
-      }
-      // Widest gap among n * valence forbidden rotations on a circle of length pi.
-      const double clearance_bound = kPi / (2.0 * n * static_cast<double>(ring.size()));
-      for (int j = 1; j <= n; ++j) {
-        const Eigen::Vector2d offset = clouds[v].knots[j] - center;
-        EXPECT_LE(offset.norm(), 0.4 * smallest_inradius * (1 + 1e-12));
-        EXPECT_GE(offset.norm(), 0.4 * smallest_inradius * (1 - 0.4) * (1 - 1e-12));
-        for (int w : ring) {
-          const Eigen::Vector2d e = t.positions[w] - center;
-          const double sine = std::abs(offset.x() * e.y() - offset.y() * e.x()) /
-                              (offset.norm() * e.norm());
-          EXPECT_GE(std::asin(std::min(1.0, sine)), clearance_bound * (1 - 1e-9));
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+      KnotCloudOptions options;
+      options.seed = seed;
+      const std::vector<KnotCloud> clouds = make_knot_clouds(t, n, options);
+      for (std::size_t v = 0; v < clouds.size(); ++v) {
+        const Eigen::Vector2d& center = t.positions[v];
+        ASSERT_EQ(clouds[v].degree(), n);
+        EXPECT_EQ(clouds[v].knots[0], center);
+        double smallest_inradius = 1e300;
+        const auto& ring = rings[v].neighbours;
+        const std::size_t fan = rings[v].closed ? ring.size() : ring.size() - 1;
+        for (std::size_t i = 0; i < fan; ++i) {
+          smallest_inradius = std::min(
+              smallest_inradius,
+              inradius(center, t.positions[ring[i]], t.positions[ring[(i + 1) % ring.size()]]));
         }
-        for (int k = j + 1; k <= n; ++k) {  // no two knots of a cloud on a line through v
-          const Eigen::Vector2d other = clouds[v].knots[k] - center;
-          EXPECT_GT(std::abs(offset.x() * other.y() - offset.y() * other.x()),
-                    1e-3 * offset.norm() * other.norm());
+        // Widest gap among n * valence forbidden rotations on a circle of length pi.
+        const double clearance_bound = kPi / (2.0 * n * static_cast<double>(ring.size()));
+        for (int j = 1; j <= n; ++j) {
+          const Eigen::Vector2d offset = clouds[v].knots[j] - center;
+          EXPECT_LE(offset.norm(), 0.4 * smallest_inradius * (1 + 1e-12));
+          EXPECT_GE(offset.norm(), 0.4 * smallest_inradius * (1 - 0.4) * (1 - 1e-12));
+          for (int w : ring) {
+            const Eigen::Vector2d e = t.positions[w] - center;
+            const double sine = std::abs(offset.x() * e.y() - offset.y() * e.x()) /
+                                (offset.norm() * e.norm());
+            EXPECT_GE(std::asin(std::min(1.0, sine)), clearance_bound * (1 - 1e-9));
+          }
+          // No two knots of a cloud on a line through v: (1/4 - 2 * 0.06) of the spacing away.
+          const double spacing = 2.0 * kPi / (n + 0.5);
+          for (int k = j + 1; k <= n; ++k) {
+            const Eigen::Vector2d other = clouds[v].knots[k] - center;
+            EXPECT_GE(std::abs(offset.x() * other.y() - offset.y() * other.x()),
+                      std::sin((0.25 - 2 * 0.06) * spacing) * offset.norm() * other.norm() *
+                          (1 - 1e-9));
+          }
         }
       }
     }
