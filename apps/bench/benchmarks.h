@@ -5,5 +5,7 @@ namespace msp::bench {
 int run_flow_benchmark(int argc, char** argv);  // bench_flow.cpp
 int run_flow_case(int argc, char** argv);       // bench_flow.cpp
 int run_solver_benchmark(int argc, char** argv);  // bench_flow.cpp
+int run_spline_benchmark(int argc, char** argv);      // bench_spline.cpp
+int run_spline_fit_benchmark(int argc, char** argv);  // bench_spline.cpp
 
 }  // namespace msp::bench

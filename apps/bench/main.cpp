@@ -21,6 +21,10 @@ const Benchmark kBenchmarks[] = {
      "one row of 'flow' in this process (used by 'flow' through a child process)"},
     {"solvers", msp::bench::run_solver_benchmark,
      "factorisations of the E2 Newton Hessian: Eigen LDLT/LLT vs CHOLMOD supernodal/simplicial"},
+    {"spline", msp::bench::run_spline_benchmark,
+     "manifold DMS spline at the paper's Table 1 sizes: construction/fit/fair seconds vs T_spline"},
+    {"spline-fit", msp::bench::run_spline_fit_benchmark,
+     "scan fit on genus 0-3 models [paths...]: RMS/max distance over the diagonal, seconds per stage"},
 };
 
 void usage() {
