@@ -151,8 +151,30 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
     throw ricci::SolverError("fit: CHOLMOD could not factor the normal equations (" +
                              std::to_string(normal.rows()) + " unknowns)");
   }
-  result.control_points = solver.solve(rhs);
-  if (!result.control_points.allFinite()) throw ricci::SolverError("fit: non-finite solution");
+  if (options.constraint_r < 0) {
+    result.control_points = solver.solve(rhs);
+    if (!result.control_points.allFinite()) throw ricci::SolverError("fit: non-finite solution");
+  } else {
+    FairOptions fair_options;
+    fair_options.r = options.constraint_r;
+    const Eigen::SparseMatrix<double> c = fairing_constraints(space, fair_options);
+    const double w = options.constraint_penalty * normal.diagonal().mean();
+    Eigen::SparseMatrix<double> penalised = normal + w * Eigen::SparseMatrix<double>(
+                                                             Eigen::SparseMatrix<double>(c.transpose()) * c);
+    solver.compute(penalised);
+    if (solver.info() != Eigen::Success) {
+      throw ricci::SolverError("fit: CHOLMOD could not factor the constrained normal equations");
+    }
+    Eigen::MatrixX3d lambda = Eigen::MatrixX3d::Zero(c.rows(), 3);
+    for (int it = 0; it < options.constraint_iterations; ++it) {
+      result.control_points = solver.solve(Eigen::MatrixX3d(rhs - c.transpose() * lambda));
+      if (!result.control_points.allFinite()) throw ricci::SolverError("fit: non-finite solution");
+      const Eigen::MatrixX3d residual = c * result.control_points;
+      lambda += w * residual;
+      result.max_constraint_residual = residual.cwiseAbs().maxCoeff();
+      if (result.max_constraint_residual <= 1e-12 * result.control_points.cwiseAbs().maxCoeff()) break;
+    }
+  }
   result.seconds_solve = seconds_since(solve_start);
 
   const Eigen::MatrixX3d residual =
@@ -274,7 +296,9 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   result.timings.parameters = seconds_since(t);
 
   t = stage("fit");
-  result.fit = fit_control_points(*space, parameters, data, initial, options.fit);
+  FitOptions fit_options = options.fit;
+  if (options.constrained_fit && options.fair_r >= 0) fit_options.constraint_r = options.fair_r;
+  result.fit = fit_control_points(*space, parameters, data, initial, fit_options);
   result.timings.fit = seconds_since(t);
 
   result.spline.space = space;

@@ -32,6 +32,12 @@ struct FitOptions {
   double smoothing = 1e-3;
   /// Keeps the normal matrix SPD where no point reaches a function (dimensionless, tiny).
   double anchor = 1e-8;
+  /// >= 0: fit subject to the fairing constraints of this r (fair.h, eq. 14's constraints) by
+  /// the augmented Lagrangian: the best constrained surface for the points, where fitting first
+  /// and projecting the control points afterwards (eq. 14) loses the fit. -1: unconstrained.
+  int constraint_r = -1;
+  double constraint_penalty = 1e6;   ///< w relative to the mean diagonal of the normal matrix
+  int constraint_iterations = 30;
 };
 
 struct FitResult {
@@ -40,6 +46,7 @@ struct FitResult {
   double rms_at_parameters = 0.0;  ///< of |F(u_k) - p_k| (no projection)
   double max_at_parameters = 0.0;
   double seconds_assemble = 0.0, seconds_solve = 0.0;
+  double max_constraint_residual = 0.0;  ///< max |C c| when constrained
 };
 
 /// Least-squares fit (normal equations, CHOLMOD supernodal). Points whose face is -1 or outside
@@ -74,6 +81,9 @@ struct ScanFitOptions {
   int domain_faces = 2000;  ///< target size of the simplified domain mesh
   int degree = 3;
   int fair_r = 1;           ///< fairing after the fit; -1 = none
+  /// Fit subject to the fairing constraints of fair_r (then fairing changes nothing); false:
+  /// fit freely, then fair by eq. 14 (projection of the control points).
+  bool constrained_fit = true;
   FitOptions fit;
   FairOptions fair;         ///< its r is replaced by fair_r
   KnotCloudOptions knots;
