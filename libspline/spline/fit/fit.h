@@ -36,8 +36,11 @@ struct FitOptions {
   /// the augmented Lagrangian: the best constrained surface for the points, where fitting first
   /// and projecting the control points afterwards (eq. 14) loses the fit. -1: unconstrained.
   int constraint_r = -1;
-  double constraint_penalty = 1e6;   ///< w relative to the mean diagonal of the normal matrix
-  int constraint_iterations = 30;
+  /// w relative to the mean diagonal of the normal matrix. Moderate on purpose: the normal
+  /// matrix's smallest eigenvalues are the anchor's (1e-8), so a large w makes N + w C^T C
+  /// numerically indefinite; the iterations, not w, drive C c to zero.
+  double constraint_penalty = 1e3;
+  int constraint_iterations = 200;
 };
 
 struct FitResult {
