@@ -141,12 +141,22 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   Eigen::SparseMatrix<double> identity(normal.rows(), normal.cols());
   identity.setIdentity();
   normal += anchor * identity;
-  const Eigen::MatrixX3d rhs = design.transpose() * rhs_points + anchor * initial;
+  Eigen::MatrixX3d rhs = design.transpose() * rhs_points + anchor * initial;
   result.seconds_assemble = seconds_since(start);
 
   const auto solve_start = Clock::now();
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
   solver.compute(normal);
+  // Rounding in A^T A can outweigh a tiny anchor where a sliver makes basis Hessians huge: raise
+  // the anchor to 1e-12, then 1e-10, of the largest diagonal entry before giving up.
+  for (double relative : {1e-12, 1e-10}) {
+    if (solver.info() == Eigen::Success) break;
+    const double shift = relative * normal.diagonal().maxCoeff();
+    normal += shift * identity;
+    rhs += shift * initial;
+    result.anchor_raised = true;
+    solver.compute(normal);
+  }
   if (solver.info() != Eigen::Success) {
     throw ricci::SolverError("fit: CHOLMOD could not factor the normal equations (" +
                              std::to_string(normal.rows()) + " unknowns)");

@@ -50,6 +50,7 @@ struct FitResult {
   double max_at_parameters = 0.0;
   double seconds_assemble = 0.0, seconds_solve = 0.0;
   double max_constraint_residual = 0.0;  ///< max |C c| when constrained
+  bool anchor_raised = false;  ///< the factorisation needed a larger anchor (rounding)
 };
 
 /// Least-squares fit (normal equations, CHOLMOD supernodal). Points whose face is -1 or outside

@@ -44,6 +44,20 @@ ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::A
                             std::to_string(atlas_.in_domain.size()) + " faces, the mesh " +
                             std::to_string(faces));
   }
+  // A face without a neighbourhood chart (atlas.uncovered_faces) or not strictly counter-clockwise
+  // in some chart (a flipped sliver) cannot carry DMS functions: it joins the hole.
+  std::vector<char> usable(static_cast<std::size_t>(faces), 1);
+  for (int i = 0; i < faces; ++i) usable[i] = atlas_.neighbourhood_chart[i] >= 0;
+  for (const ricci::Chart& chart : atlas_.charts) {
+    for (std::size_t row = 0; row < chart.faces.size(); ++row) {
+      const auto r = static_cast<Eigen::Index>(row);
+      const Eigen::Vector2d a = chart.positions.row(chart.corners(r, 0)).transpose();
+      const Eigen::Vector2d b = chart.positions.row(chart.corners(r, 1)).transpose();
+      const Eigen::Vector2d c = chart.positions.row(chart.corners(r, 2)).transpose();
+      const double cross = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+      if (!(cross > 0.0)) usable[chart.faces[row]] = 0;
+    }
+  }
   domain_index_.assign(static_cast<std::size_t>(faces), -1);
   neighbours_.assign(static_cast<std::size_t>(faces), {-1, -1, -1});
   vertex_faces_.assign(mesh.n_vertices(), {});
@@ -57,6 +71,10 @@ ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::A
       neighbours_[i][k] = g.is_valid() ? g.idx() : -1;
     }
     if (!atlas_.in_domain[i]) continue;
+    if (!usable[i]) {
+      ++excluded_faces_;
+      continue;
+    }
     domain_index_[i] = static_cast<int>(domain_faces_.size());
     domain_faces_.push_back(i);
     for (int k = 0; k < 3; ++k) vertex_faces_[mesh.to_vertex_handle(hs[k]).idx()].push_back(i);

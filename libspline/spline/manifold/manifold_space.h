@@ -10,7 +10,8 @@
 // atlas has none for that pair). Blossoms and DMS basis functions are affine invariant, so every
 // chart that holds a point's neighbourhood sees the same basis functions there.
 //
-// Functions. Domain face I (atlas.in_domain[I] != 0) carries (n + 1)(n + 2)/2 functions, beta in
+// Functions. Domain face I (atlas.in_domain[I] != 0, a neighbourhood chart, counter-clockwise in
+// every chart holding it; the rare others are left out like the hole, see excluded_faces()) carries (n + 1)(n + 2)/2 functions, beta in
 // multi_indices(n) order relative to I's corners (corner k = to_vertex of the k-th halfedge of
 // face_halfedges(mesh, I), the atlas' corner order): global index
 // domain_index(I) * functions_per_face() + beta. Faces of the cone's one-ring carry none.
@@ -80,6 +81,8 @@ class ManifoldSplineSpace {
   [[nodiscard]] const ricci::AffineAtlas& atlas() const { return atlas_; }
   [[nodiscard]] const KnotCloud& home_cloud(int vertex) const { return home_clouds_[vertex]; }
   [[nodiscard]] int home_chart(int vertex) const { return home_chart_[vertex]; }
+  /// Atlas domain faces left out: no neighbourhood chart, or flipped/degenerate in a chart.
+  [[nodiscard]] int excluded_faces() const { return excluded_faces_; }
 
   /// True when `chart` holds every domain face sharing a vertex with `face` glued around it.
   [[nodiscard]] bool holds_neighbourhood(int chart, int face) const;
@@ -117,6 +120,7 @@ class ManifoldSplineSpace {
   [[nodiscard]] std::unique_ptr<ChartSpace> build_chart_space(int chart) const;
 
   int degree_ = 0;
+  int excluded_faces_ = 0;
   ricci::AffineAtlas atlas_;
   std::vector<int> domain_index_;   // by face
   std::vector<int> domain_faces_;   // domain faces, ascending
