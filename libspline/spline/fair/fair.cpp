@@ -70,8 +70,8 @@ FairResult fair(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& contro
                 const FairOptions& options) {
   if (control_points.rows() != space.function_count()) {
     throw ricci::InvalidInputError("fair: " + std::to_string(control_points.rows()) +
-                                   " control points for " +
-                                   std::to_string(space.function_count()) + " functions");
+                                   " control points for " + std::to_string(space.function_count()) +
+                                   " functions");
   }
   const Eigen::SparseMatrix<double> c = fairing_constraints(space, options);
   FairResult result;

@@ -42,7 +42,8 @@ double chart_area(const Eigen::Matrix<double, 3, 2>& p) {
 Eigen::Vector3d face_point(const ricci::Mesh& mesh, int face, const Eigen::Vector3d& bary) {
   const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) p += bary[k] * ricci::to_eigen(mesh.point(mesh.to_vertex_handle(hs[k])));
+  for (int k = 0; k < 3; ++k)
+    p += bary[k] * ricci::to_eigen(mesh.point(mesh.to_vertex_handle(hs[k])));
   return p;
 }
 
@@ -99,7 +100,8 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   for (std::size_t k = 0; k < parameters.size(); ++k) {
     const DomainPoint& p = parameters[k];
     if (p.face < 0 || !space.in_domain(p.face)) continue;
-    for (const auto& s : space.evaluate_basis(p)) triplets.emplace_back(row, s.function, s.jet.value);
+    for (const auto& s : space.evaluate_basis(p))
+      triplets.emplace_back(row, s.function, s.jet.value);
     targets.push_back(points.row(static_cast<Eigen::Index>(k)).transpose());
     ++row;
   }
@@ -169,8 +171,8 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
     fair_options.r = options.constraint_r;
     const Eigen::SparseMatrix<double> c = fairing_constraints(space, fair_options);
     const double w = options.constraint_penalty * normal.diagonal().mean();
-    Eigen::SparseMatrix<double> penalised = normal + w * Eigen::SparseMatrix<double>(
-                                                             Eigen::SparseMatrix<double>(c.transpose()) * c);
+    Eigen::SparseMatrix<double> penalised =
+        normal + w * Eigen::SparseMatrix<double>(Eigen::SparseMatrix<double>(c.transpose()) * c);
     solver.compute(penalised);
     if (solver.info() != Eigen::Success) {
       throw ricci::SolverError("fit: CHOLMOD could not factor the constrained normal equations");
@@ -182,7 +184,8 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
       const Eigen::MatrixX3d residual = c * result.control_points;
       lambda += w * residual;
       result.max_constraint_residual = residual.cwiseAbs().maxCoeff();
-      if (result.max_constraint_residual <= 1e-12 * result.control_points.cwiseAbs().maxCoeff()) break;
+      if (result.max_constraint_residual <= 1e-12 * result.control_points.cwiseAbs().maxCoeff())
+        break;
     }
   }
   result.seconds_solve = seconds_since(solve_start);
@@ -299,8 +302,10 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   const auto closest = ricci::closest_points(mesh, data);
   std::vector<DomainPoint> parameters(closest.size());
   for (std::size_t k = 0; k < closest.size(); ++k) {
-    if (space->in_domain(closest[k].face)) parameters[k] = {closest[k].face, closest[k].barycentric};
-    else parameters[k] = {-1, Eigen::Vector3d::Zero()};
+    if (space->in_domain(closest[k].face))
+      parameters[k] = {closest[k].face, closest[k].barycentric};
+    else
+      parameters[k] = {-1, Eigen::Vector3d::Zero()};
   }
   result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
   result.timings.parameters = seconds_since(t);

@@ -34,8 +34,8 @@ ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::A
                                          const ManifoldSplineOptions& options)
     : degree_(options.degree), atlas_(atlas) {
   if (degree_ < 1 || degree_ > kMaxDmsDegree) {
-    throw InvalidInputError("manifold spline: degree " + std::to_string(degree_) +
-                            " outside 1.." + std::to_string(kMaxDmsDegree));
+    throw InvalidInputError("manifold spline: degree " + std::to_string(degree_) + " outside 1.." +
+                            std::to_string(kMaxDmsDegree));
   }
   const int faces = static_cast<int>(mesh.n_faces());
   if (static_cast<int>(atlas_.in_domain.size()) != faces ||
@@ -121,7 +121,8 @@ void ManifoldSplineSpace::build_home_clouds(const ricci::Mesh& mesh,
     std::vector<int> targets;
     for (const auto& entry : next) targets.push_back(entry.second);
     for (const auto& entry : next) {
-      if (std::find(targets.begin(), targets.end(), entry.first) == targets.end()) start = entry.first;
+      if (std::find(targets.begin(), targets.end(), entry.first) == targets.end())
+        start = entry.first;
     }
     std::vector<Eigen::Vector2d> ring{chart.positions.row(start).transpose()};
     int current = start;
@@ -138,9 +139,9 @@ void ManifoldSplineSpace::build_home_clouds(const ricci::Mesh& mesh,
     }
     home_chart_[v] = chart_index;
     home_face_[v] = home_face;
-    home_clouds_[v] = make_knot_cloud(degree_, static_cast<std::uint64_t>(vertex),
-                                      chart.positions.row(copy).transpose(), ring, closed,
-                                      options.knots);
+    home_clouds_[v] =
+        make_knot_cloud(degree_, static_cast<std::uint64_t>(vertex),
+                        chart.positions.row(copy).transpose(), ring, closed, options.knots);
   }
 }
 
@@ -252,8 +253,9 @@ std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis(const Domai
                            tie);
 }
 
-std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(
-    int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie) const {
+std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(int chart, int face,
+                                                                        const Eigen::Vector2d& u,
+                                                                        const TieBreak& tie) const {
   const ChartSpace& cs = chart_space(chart);
   const int row = atlas_.charts[chart].slot(face);
   if (row < 0 || cs.triangle_of_row[row] < 0) {

@@ -11,9 +11,9 @@
 // chart that holds a point's neighbourhood sees the same basis functions there.
 //
 // Functions. Domain face I (atlas.in_domain[I] != 0, a neighbourhood chart, counter-clockwise in
-// every chart holding it; the rare others are left out like the hole, see excluded_faces()) carries (n + 1)(n + 2)/2 functions, beta in
-// multi_indices(n) order relative to I's corners (corner k = to_vertex of the k-th halfedge of
-// face_halfedges(mesh, I), the atlas' corner order): global index
+// every chart holding it; the rare others are left out like the hole, see excluded_faces()) carries
+// (n + 1)(n + 2)/2 functions, beta in multi_indices(n) order relative to I's corners (corner k =
+// to_vertex of the k-th halfedge of face_halfedges(mesh, I), the atlas' corner order): global index
 // domain_index(I) * functions_per_face() + beta. Faces of the cone's one-ring carry none.
 //
 // Evaluation. A point is a face and barycentric coordinates (in the same corner order). It is
@@ -37,8 +37,8 @@
 namespace spline {
 
 struct ManifoldSplineOptions {
-  int degree = 3;           ///< n, in 1..kMaxDmsDegree
-  KnotCloudOptions knots;   ///< the home-cloud rule
+  int degree = 3;          ///< n, in 1..kMaxDmsDegree
+  KnotCloudOptions knots;  ///< the home-cloud rule
 };
 
 /// One basis function at a point: global function index and its jet in the chart's frame.
@@ -91,7 +91,8 @@ class ManifoldSplineSpace {
   /// The point of `face` with these barycentric coordinates in `chart`'s coordinates.
   [[nodiscard]] Eigen::Vector2d chart_point(int chart, int face, const Eigen::Vector3d& bary) const;
   /// The clouds of `face`'s three corners as seen in `chart` (corner order).
-  /// \throw ricci::InvalidInputError when the chart does not hold the face or it is not a domain face.
+  /// \throw ricci::InvalidInputError when the chart does not hold the face or it is not a domain
+  /// face.
   [[nodiscard]] std::array<KnotCloud, 3> face_clouds(int chart, int face) const;
 
   /// All functions non-zero at the point (value or derivatives), jets in `chart`'s frame
@@ -122,12 +123,12 @@ class ManifoldSplineSpace {
   int degree_ = 0;
   int excluded_faces_ = 0;
   ricci::AffineAtlas atlas_;
-  std::vector<int> domain_index_;   // by face
-  std::vector<int> domain_faces_;   // domain faces, ascending
-  std::vector<std::array<int, 3>> neighbours_;       // by face, across the edge opposite corner k
-  std::vector<std::vector<int>> vertex_faces_;       // by vertex: incident domain faces
-  std::vector<KnotCloud> home_clouds_;               // by vertex (empty outside the domain)
-  std::vector<int> home_chart_, home_face_;          // by vertex
+  std::vector<int> domain_index_;               // by face
+  std::vector<int> domain_faces_;               // domain faces, ascending
+  std::vector<std::array<int, 3>> neighbours_;  // by face, across the edge opposite corner k
+  std::vector<std::vector<int>> vertex_faces_;  // by vertex: incident domain faces
+  std::vector<KnotCloud> home_clouds_;          // by vertex (empty outside the domain)
+  std::vector<int> home_chart_, home_face_;     // by vertex
   mutable std::vector<std::unique_ptr<ChartSpace>> chart_spaces_;
   mutable std::unique_ptr<std::once_flag[]> chart_once_;
 };
@@ -135,8 +136,8 @@ class ManifoldSplineSpace {
 /// The planar space of one chart: its domain faces as triangles over its used chart vertices.
 struct ManifoldSplineSpace::ChartSpace {
   std::unique_ptr<PlanarDmsSpace> space;
-  std::vector<int> face_of_triangle;   ///< original face by local triangle
-  std::vector<int> triangle_of_row;    ///< by row of Chart::faces: local triangle or -1
+  std::vector<int> face_of_triangle;  ///< original face by local triangle
+  std::vector<int> triangle_of_row;   ///< by row of Chart::faces: local triangle or -1
 };
 
 /// Position, derivatives (in the evaluating chart's frame) and unit normal of the surface.
