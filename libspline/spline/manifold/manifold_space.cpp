@@ -195,7 +195,10 @@ std::unique_ptr<ManifoldSplineSpace::ChartSpace> ManifoldSplineSpace::build_char
     result->face_of_triangle.push_back(face);
     triangulation.triangles.push_back(triangle);
   }
-  result->space = std::make_unique<PlanarDmsSpace>(std::move(triangulation), std::move(clouds));
+  // A chart made only of hole faces has no space (nothing is evaluated there).
+  if (!triangulation.triangles.empty()) {
+    result->space = std::make_unique<PlanarDmsSpace>(std::move(triangulation), std::move(clouds));
+  }
   return result;
 }
 
@@ -283,6 +286,7 @@ Eigen::MatrixXd ManifoldSplineSpace::control_points_of(const BivariatePolynomial
   const ChartSpace& cs = chart_space(chart);
   const int m = functions_per_face();
   Eigen::MatrixXd points = Eigen::MatrixXd::Zero(function_count(), p.coefficients.cols());
+  if (!cs.space) return points;
   const auto& clouds = cs.space->clouds();
   for (std::size_t t = 0; t < cs.face_of_triangle.size(); ++t) {
     const Eigen::Vector3i& tri = cs.space->triangulation().triangles[t];

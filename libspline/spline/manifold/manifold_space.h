@@ -135,7 +135,7 @@ class ManifoldSplineSpace {
 
 /// The planar space of one chart: its domain faces as triangles over its used chart vertices.
 struct ManifoldSplineSpace::ChartSpace {
-  std::unique_ptr<PlanarDmsSpace> space;
+  std::unique_ptr<PlanarDmsSpace> space;  ///< null when the chart holds no domain face
   std::vector<int> face_of_triangle;  ///< original face by local triangle
   std::vector<int> triangle_of_row;   ///< by row of Chart::faces: local triangle or -1
 };
