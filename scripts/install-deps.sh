@@ -9,6 +9,7 @@ PACKAGES=(
   libtinygltf-dev libstb-dev nlohmann-json3-dev zlib1g-dev
   libsuitesparse-dev libopenblas0-pthread
   libgtest-dev
+  chromium fonts-dejavu-core
 )
 # Node.js may come from another source (with its own npm); only ask Debian for it when absent.
 command -v node >/dev/null 2>&1 || PACKAGES+=(nodejs)
@@ -27,4 +28,17 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 else
   echo "install-deps: all Debian packages present" >&2
+fi
+
+# Node tools (tools/package.json: glTF validator, three.js, puppeteer-core): install the locked
+# versions when node_modules is missing or older than the lock file.
+TOOLS="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools"
+if [[ -f "$TOOLS/package-lock.json" ]]; then
+  stamp="$TOOLS/node_modules/.package-lock.json"
+  if [[ ! -f "$stamp" || "$TOOLS/package-lock.json" -nt "$stamp" ]]; then
+    echo "install-deps: npm ci in tools/" >&2
+    npm ci --prefix "$TOOLS" --no-audit --no-fund --loglevel=error >/dev/null
+  else
+    echo "install-deps: tools/node_modules up to date" >&2
+  fi
 fi

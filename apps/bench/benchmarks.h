@@ -7,5 +7,11 @@ int run_flow_case(int argc, char** argv);       // bench_flow.cpp
 int run_solver_benchmark(int argc, char** argv);  // bench_flow.cpp
 int run_spline_benchmark(int argc, char** argv);      // bench_spline.cpp
 int run_spline_fit_benchmark(int argc, char** argv);  // bench_spline.cpp
+int run_mesh_io_benchmark(int argc, char** argv);  // bench_mesh_io.cpp
+
+/// DMS basis: build cost, memory and evaluation cost per point for degrees 2..5.
+int run_dms_benchmark(int argc, char** argv);  // bench_dms.cpp
+int run_topology_benchmark(int argc, char** argv);  // bench_topology.cpp
+int run_loop_benchmark(int argc, char** argv);    // bench_loop.cpp
 
 }  // namespace msp::bench

@@ -19,12 +19,20 @@ const Benchmark kBenchmarks[] = {
      "E2 Ricci flow, 1k-1M faces: Newton time, iterations, error, peak memory, ratio to one Cholesky"},
     {"flow-one", msp::bench::run_flow_case,
      "one row of 'flow' in this process (used by 'flow' through a child process)"},
+    {"loop-fit", msp::bench::run_loop_benchmark,
+     "OpenSubdiv Loop-surface fit of the genus 0-3 models: control points, RMS/max distance per diagonal, time"},
     {"solvers", msp::bench::run_solver_benchmark,
      "factorisations of the E2 Newton Hessian: Eigen LDLT/LLT vs CHOLMOD supernodal/simplicial"},
     {"spline", msp::bench::run_spline_benchmark,
      "manifold DMS spline at the paper's Table 1 sizes: construction/fit/fair seconds vs T_spline"},
     {"spline-fit", msp::bench::run_spline_fit_benchmark,
      "scan fit on genus 0-3 models [paths...]: RMS/max distance over the diagonal, seconds per stage"},
+    {"mesh-io", msp::bench::run_mesh_io_benchmark,
+     "read stages (parse, diagnose, build) on the largest shared models vs OpenMesh's reader"},
+    {"dms", msp::bench::run_dms_benchmark,
+     "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
+    {"topology", msp::bench::run_topology_benchmark,
+     "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
 };
 
 void usage() {

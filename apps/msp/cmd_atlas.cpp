@@ -4,21 +4,61 @@
 #include <iostream>
 #include <string>
 
-#include <nlohmann/json.hpp>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <ricci/pipeline/one_cone_atlas.h>
+#include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
 #include "msp/commands.h"
 #include "msp/flow_options.h"
+#include "msp/gltf_atlas.h"
+#include "msp/svg_atlas.h"
 
 namespace msp {
 namespace {
 
 const char* kUsage =
-    "msp atlas MESH [--singularity auto|VERTEX] [--metric circle-packing|inversive-distance|combinatorial] "
-    "[--radii mean|min|least-squares] [--tolerance T] [--quiet] [--json]";
+    "msp atlas MESH [--singularity auto|VERTEX] [--metric "
+    "circle-packing|inversive-distance|combinatorial] "
+    "[--radii mean|min|least-squares] [--tolerance T] [-o PICTURE.svg] [--cover-depth N] "
+    "[--checkerboard OUT.glb|OUT.obj] [--checker-squares N] [--quiet] [--json]";
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The pictures of issue 4: the SVG of the domain and its copies, the checkerboard mesh.
+void write_pictures(const Args& args, const std::string& path,
+                    const ricci::OneConeAtlasResult& result, const nlohmann::json& report) {
+  auto note = [&](const std::string& file) {
+    if (!args.has("quiet")) std::cerr << "msp atlas: wrote " << file << "\n";
+  };
+  if (auto svg = args.get("output")) {
+    AtlasSvgOptions options;
+    options.title = path;
+    options.cover_depth = args.get_int("cover-depth", -1);
+    write_text_atomically(*svg, atlas_svg(result, options));
+    note(*svg);
+  }
+  if (auto out = args.get("checkerboard")) {
+    CheckerboardOptions texture;
+    texture.squares = args.get_int("checker-squares", texture.squares);
+    if (texture.squares <= 0 || texture.squares > 256)
+      throw UsageError("--checker-squares must be in [1, 256]");
+    texture.size = texture.squares * std::max(8, 1024 / texture.squares);
+    if (ends_with(*out, ".glb")) {
+      CheckerboardExportOptions options;
+      options.texture = texture;
+      options.extras = {{"msp_atlas", report}};
+      gltf::write_glb(checkerboard_scene(result, options), *out);
+    } else {
+      write_checkerboard_obj(result, *out, texture);
+    }
+    note(*out);
+  }
+}
 
 int parse_singularity(const std::string& s) {
   if (s == "auto") return -1;
@@ -36,7 +76,8 @@ std::string polygon_word_text(const ricci::FundamentalPolygon& polygon) {
   std::string text;
   for (const auto& letter : polygon.word) {
     if (!text.empty()) text += " ";
-    text += (letter.kind == ricci::PolygonLetter::Kind::loop ? "a" : "b") + std::to_string(letter.index);
+    text += (letter.kind == ricci::PolygonLetter::Kind::loop ? "a" : "b") +
+            std::to_string(letter.index);
     if (letter.sign < 0) text += "^-1";
   }
   return text;
@@ -53,7 +94,8 @@ nlohmann::json singularities_json(const ricci::OneConeAtlasResult& r) {
   return list;
 }
 
-nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh, const ricci::OneConeAtlasResult& r) {
+nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh,
+                           const ricci::OneConeAtlasResult& r) {
   const auto& t = r.timings;
   return {{"mesh", path},
           {"vertices", mesh.n_vertices()},
@@ -65,6 +107,8 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh, con
           {"valence_splits", r.problem.valence_splits},
           {"flows_for_choice", r.flows_for_choice},
           {"newton_iterations", r.flow.iterations},
+          {"metric", ricci::to_string(r.flow.metric.scheme)},
+          {"failed_metrics", r.flow.failed_attempts},
           {"max_curvature_error", r.flow.max_error},
           {"transition_residual", r.relative_transition_residual()},
           {"transition_residual_absolute",
@@ -83,32 +127,48 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh, con
           {"quasi_conformal_max", r.distortion.quasi_conformal_max},
           {"seconds", t.total},
           {"stage_seconds",
-           {{"choice", t.choice}, {"valence", t.valence}, {"flow", t.flow}, {"atlas", t.atlas}, {"distortion", t.distortion}}}};
+           {{"choice", t.choice},
+            {"valence", t.valence},
+            {"flow", t.flow},
+            {"atlas", t.atlas},
+            {"distortion", t.distortion}}}};
 }
 
 }  // namespace
 
 int run_atlas(int argc, char** argv) {
   Args args(argc, argv, {"json", "quiet"});
-  args.require_known({"singularity", "metric", "radii", "tolerance", "quiet", "json"});
+  args.require_known({"singularity", "metric", "radii", "tolerance", "quiet", "json", "output",
+                      "cover-depth", "checkerboard", "checker-squares"});
   args.require_positionals(1, kUsage);
+  if (auto svg = args.get("output"); svg && !ends_with(*svg, ".svg"))
+    throw UsageError("-o must name an .svg file, not '" + *svg + "'");
+  if (auto out = args.get("checkerboard");
+      out && !ends_with(*out, ".glb") && !ends_with(*out, ".obj")) {
+    throw UsageError("--checkerboard must name a .glb or .obj file, not '" + *out + "'");
+  }
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
   if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
+  options.keep_metric = args.has("metric") || args.has("radii");
   options.flow.tolerance = args.get_double("tolerance", 1e-10);
   if (!args.has("quiet")) {
-    options.progress = [](const std::string& stage) { std::cerr << "msp atlas: " << stage << "\n"; };
+    options.progress = [](const std::string& stage) {
+      std::cerr << "msp atlas: " << stage << "\n";
+    };
   }
   const std::string path = args.positionals()[0];
   const ricci::Mesh mesh = ricci::read_mesh(path);
   const ricci::OneConeAtlasResult result = ricci::build_one_cone_atlas(mesh, options);
   nlohmann::json report = report_json(path, mesh, result);
+  write_pictures(args, path, result, report);
   if (args.has("json")) {
     std::cout << report.dump() << "\n";
   } else {
     for (auto& [key, value] : report.items()) std::cout << key << " " << value.dump() << "\n";
   }
+
   return 0;
 }
 

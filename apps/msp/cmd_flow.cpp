@@ -91,8 +91,8 @@ int run_flow(int argc, char** argv) {
   options.geometry = parse_geometry(args.get_or("geometry", "euclidean"));
   options.scheme = parse_scheme(args.get_or("metric", "inversive-distance"));
   // Without an explicit --metric, try the conformal metrics first and fall back (reported).
-  options.fall_back_to_other_metrics = !args.has("metric");
-  options.radii = parse_radii(args.get_or("radii", "mean"));
+  options.fall_back_to_other_metrics = !args.has("metric") && !args.has("radii");
+  options.radii = parse_radii(args.get_or("radii", "min"));
   options.solver = parse_solver(args.get_or("solver", "auto"));
   options.tolerance = args.get_double("tolerance", 1e-10);
   const std::string method = args.get_or("method", "newton");
@@ -125,6 +125,7 @@ int run_flow(int argc, char** argv) {
     j["mesh"] = path;
     j["status"] = ricci::to_string(result.status);
     j["iterations"] = result.iterations;
+    j["factorizations"] = result.factorizations;
     j["max_curvature_error"] = result.max_error;
     j["seconds"] = result.timings.total;
     j["vertices"] = mesh.n_vertices();

@@ -7,10 +7,10 @@
 #include <iostream>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
 #include <ricci/mesh/diagnose.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/soup_io.h>
+#include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
 #include "msp/commands.h"
@@ -19,7 +19,7 @@ namespace msp {
 namespace {
 
 /// Genus as an integer when it is one (every 2-manifold), else the half-integer.
-nlohmann::json genus_json(double genus) {
+nlohmann::ordered_json genus_json(double genus) {
   if (genus == std::floor(genus)) return static_cast<long long>(genus);
   return genus;
 }
@@ -32,8 +32,9 @@ std::string genus_text(double genus) {
 
 bool has_triangles(const ricci::MeshDiagnosis& d);
 
-nlohmann::json to_json(const std::string& path, const ricci::MeshDiagnosis& d) {
-  nlohmann::json problems = nlohmann::json::array();
+/// The keys in reading order (ordered_json), snake_case as the issue specifies.
+nlohmann::ordered_json to_json(const std::string& path, const ricci::MeshDiagnosis& d) {
+  nlohmann::ordered_json problems = nlohmann::ordered_json::array();
   for (const auto& problem : d.problems) problems.push_back(problem.message);
   return {{"file", path},
           {"vertices", d.vertices},
@@ -59,7 +60,7 @@ nlohmann::json to_json(const std::string& path, const ricci::MeshDiagnosis& d) {
           {"non_finite_vertices", d.non_finite_vertices},
           {"boundary_edges", d.boundary_edges},
           {"bbox_diagonal", d.bbox_diagonal},
-          {"min_angle_deg", has_triangles(d) ? nlohmann::json(d.min_angle_deg) : nlohmann::json()},
+          {"min_angle_deg", has_triangles(d) ? nlohmann::ordered_json(d.min_angle_deg) : nlohmann::ordered_json()},
           {"problems", problems}};
 }
 

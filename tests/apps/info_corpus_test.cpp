@@ -43,8 +43,8 @@ const BadFile kBadFiles[] = {
     {"truncated_ascii.stl", "file ends inside a facet", true},
     {"truncated_binary.stl", "binary STL says 10 triangles", true},
     {"corrupt.off.gz", "corrupt or truncated gzip", true},
-    {"nan_coordinate.obj", "vertex 2 has a non-finite coordinate (nan", false},
-    {"inf_coordinate.off", "vertex 2 has a non-finite coordinate (0, 1, inf)", false},
+    {"nan_coordinate.obj", "vertex 2 (line 3) has a non-finite coordinate (nan", false},
+    {"inf_coordinate.off", "vertex 2 (line 5) has a non-finite coordinate (0, 1, inf)", false},
     {"fin_edge.off", "edge (0, 1) is shared by 3 faces (faces 0, 1, 2)", false},
     {"bowtie.off", "vertex 0 is pinched: its faces form 2 fans", false},
     {"mobius.obj", "non-orientable: orientation conflict at edge", false},
@@ -93,6 +93,19 @@ TEST(InfoCorpus, UnreadableFilesFailWithoutStrictReadableOnesAreDescribed) {
     const auto info = nlohmann::json::parse(result.out);
     ASSERT_FALSE(info["problems"].empty());
     EXPECT_NE(info["problems"][0].get<std::string>().find(bad.keyword), std::string::npos);
+  }
+}
+
+// The pipeline commands read through ricci::read_mesh(), which refuses every bad file with the
+// same one-line message (here `msp flow`, the first command that needs a clean surface).
+TEST(InfoCorpus, PipelineCommandsRefuseEveryBadFileInOneLine) {
+  for (const auto& bad : kBadFiles) {
+    SCOPED_TRACE(bad.name);
+    const auto result = run_msp({"flow", bad_path(bad.name)});
+    EXPECT_EQ(result.exit_status, 1);
+    EXPECT_EQ(line_count(result.err), 1) << result.err;
+    EXPECT_EQ(result.err.rfind("msp flow: error: ", 0), 0u) << result.err;
+    EXPECT_NE(result.err.find(bad.keyword), std::string::npos) << result.err;
   }
 }
 

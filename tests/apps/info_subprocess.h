@@ -28,9 +28,9 @@ inline std::string shell_quote(const std::string& text) {
 inline ProcessResult run_msp(const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
   static int counter = 0;
-  const fs::path err_path = fs::temp_directory_path() /
-                            ("msp_info_test_" + std::to_string(::getpid()) + "_" +
-                             std::to_string(counter++) + ".err");
+  const fs::path err_path =
+      fs::temp_directory_path() /
+      ("msp_info_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ".err");
   std::string command = shell_quote(MSP_BINARY);
   for (const auto& arg : args) command += " " + shell_quote(arg);
   command += " 2>" + shell_quote(err_path.string());

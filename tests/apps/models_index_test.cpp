@@ -4,13 +4,13 @@
 // build exactly the clean ones into an OpenMesh surface with the same topology.
 #include <gtest/gtest.h>
 
+#include <ricci/mesh/errors.h>
+#include <ricci/mesh/io.h>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <set>
 #include <nlohmann/json.hpp>
-#include <ricci/mesh/errors.h>
-#include <ricci/mesh/io.h>
+#include <set>
 
 #include "info_subprocess.h"
 
@@ -66,7 +66,8 @@ struct Expected {
 
 std::vector<Expected> expectations(const fs::path& folder) {
   std::vector<Expected> all;
-  for (const auto& row : read_index_tables(folder / "INDEX.md")) all.push_back({folder / row.at("file"), row});
+  for (const auto& row : read_index_tables(folder / "INDEX.md"))
+    all.push_back({folder / row.at("file"), row});
   return all;
 }
 
@@ -153,9 +154,11 @@ TEST(SharedModels, EveryMeshFileIsIndexedOrABenchmark) {
   for (const auto& e : expectations(MSP_SHARED_MODELS)) listed.insert(fs::weakly_canonical(e.path));
   for (const auto& entry : fs::recursive_directory_iterator(MSP_SHARED_MODELS)) {
     const std::string ext = entry.path().extension().string();
-    const bool mesh = ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gz";
+    const bool mesh =
+        ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl" || ext == ".gz";
     if (!mesh || entry.path().parent_path().filename() == "bench") continue;
-    EXPECT_TRUE(listed.count(fs::weakly_canonical(entry.path()))) << entry.path() << " is not in INDEX.md";
+    EXPECT_TRUE(listed.count(fs::weakly_canonical(entry.path())))
+        << entry.path() << " is not in INDEX.md";
   }
 }
 

@@ -126,14 +126,14 @@ FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& opt
   lengths *= scale;
   std::vector<std::pair<Scheme, RadiusInit>> attempts = {{options.scheme, options.radii}};
   if (options.fall_back_to_other_metrics) {
-    for (auto next : {std::pair{Scheme::InversiveDistance, RadiusInit::Mean},
-                      std::pair{Scheme::InversiveDistance, RadiusInit::Min},
+    for (auto next : {std::pair{Scheme::InversiveDistance, RadiusInit::Min},
+                      std::pair{Scheme::InversiveDistance, RadiusInit::Mean},
                       std::pair{Scheme::CirclePacking, RadiusInit::Mean},
                       std::pair{Scheme::Combinatorial, RadiusInit::Mean}}) {
       if (next != attempts.front()) attempts.push_back(next);
     }
   }
-  FlowResult result;
+  FlowResult result, best;
   std::vector<std::string> failures;
   for (const auto& [scheme, radii] : attempts) {
     const auto attempt_start = detail::Clock::now();
@@ -149,9 +149,12 @@ FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& opt
     }
     result.timings.setup += setup;
     if (result.converged()) break;
-    failures.push_back(to_string(scheme) + (radii == RadiusInit::Min ? "/min" : "") + ": " +
+    // If nothing converges, report the attempt that came closest.
+    if (best.error_history.empty() || result.max_error < best.max_error) best = result;
+    failures.push_back(to_string(scheme) + (radii == RadiusInit::Min ? "/min" : "/mean") + ": " +
                        result.message);
   }
+  if (!result.converged() && !best.error_history.empty()) result = std::move(best);
   result.failed_attempts = std::move(failures);
   result.length_scale = scale;
   result.timings.total = detail::seconds_since(start);

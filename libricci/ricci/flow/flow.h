@@ -46,7 +46,8 @@ struct FlowProgress {
 struct FlowOptions {
   Geometry geometry = Geometry::Euclidean;
   Scheme scheme = Scheme::InversiveDistance;
-  RadiusInit radii = RadiusInit::Mean;
+  /// Min (shape-analysis Alg. 1) converged on more of the shared models than Mean.
+  RadiusInit radii = RadiusInit::Min;
   FlowMethod method = FlowMethod::Newton;
   /// Stop when max_i |K_i - K̄_i| is below this (radians).
   double tolerance = 1e-10;
@@ -62,7 +63,7 @@ struct FlowOptions {
   /// Halvings of a Newton step before the line search gives up.
   int max_step_halvings = 40;
   /// When the run from (scheme, radii) does not converge, retry from the next metric of
-  /// inversive-distance/mean → inversive-distance/min → circle-packing/mean → combinatorial
+  /// inversive-distance/min → inversive-distance/mean → circle-packing/mean → combinatorial
   /// (the last always satisfies Thurston's conditions for cones of valence ≥ 4 - 2K̄/π, but is
   /// not conformal to the mesh). The result records the metric that converged and the attempts.
   bool fall_back_to_other_metrics = false;
@@ -98,6 +99,8 @@ struct FlowResult {
   /// max |K - K̄| before the first iteration and after each one.
   std::vector<double> error_history;
   int iterations = 0;
+  /// Numeric factorisations of the Hessian (Newton reuses one near the answer).
+  int factorizations = 0;
   double max_error = 0;
   /// The factorisation actually used (after any fallback).
   LinearSolver solver = LinearSolver::Auto;

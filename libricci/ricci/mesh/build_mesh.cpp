@@ -16,7 +16,8 @@ namespace ricci {
 namespace {
 
 [[noreturn]] void refuse(const PolygonSoup& soup, const MeshProblem& problem) {
-  const std::string message = soup.source.empty() ? problem.message : soup.source + ": " + problem.message;
+  const std::string message =
+      soup.source.empty() ? problem.message : soup.source + ": " + problem.message;
   switch (problem.kind) {
     case MeshProblemKind::kNonFiniteCoordinate:
     case MeshProblemKind::kBadFace:
@@ -82,8 +83,8 @@ std::vector<std::vector<int>> orient_faces(const PolygonSoup& soup, int& flipped
     double volume = 0;
     for (const auto& face : faces)
       for (size_t k = 1; k + 1 < face.size(); ++k)
-        volume += soup.positions[face[0]].dot(
-            soup.positions[face[k]].cross(soup.positions[face[k + 1]]));
+        volume +=
+            soup.positions[face[0]].dot(soup.positions[face[k]].cross(soup.positions[face[k + 1]]));
     if (volume < 0) {
       for (auto& face : faces) std::reverse(face.begin(), face.end());
       flipped = static_cast<int>(face_count) - flipped;
@@ -108,7 +109,8 @@ std::vector<std::array<int, 3>> triangulate(const PolygonSoup& soup,
     if (face.size() > 3) ++polygons;
   if (polygons > 0)
     for (const auto& face : faces)
-      for (size_t k = 0; k < face.size(); ++k) edges.insert(edge_key(face[k], face[(k + 1) % face.size()]));
+      for (size_t k = 0; k < face.size(); ++k)
+        edges.insert(edge_key(face[k], face[(k + 1) % face.size()]));
   std::vector<std::array<int, 3>> triangles;
   triangles.reserve(faces.size());
   std::vector<Eigen::Vector3d> corners;
@@ -119,9 +121,8 @@ std::vector<std::array<int, 3>> triangulate(const PolygonSoup& soup,
     }
     corners.clear();
     for (int v : face) corners.push_back(soup.positions[v]);
-    const auto pieces = triangulate_polygon(corners, [&](int i, int j) {
-      return edges.count(edge_key(face[i], face[j])) == 0;
-    });
+    const auto pieces = triangulate_polygon(
+        corners, [&](int i, int j) { return edges.count(edge_key(face[i], face[j])) == 0; });
     for (const auto& t : pieces) {
       triangles.push_back({face[t[0]], face[t[1]], face[t[2]]});
       for (int k = 0; k < 3; ++k) edges.insert(edge_key(face[t[k]], face[t[(k + 1) % 3]]));

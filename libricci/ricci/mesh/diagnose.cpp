@@ -63,7 +63,7 @@ void check_coordinates(Context& c) {
   if (first_bad < 0) return;
   const auto& p = positions[first_bad];
   add_problem(c.d, MeshProblemKind::kNonFiniteCoordinate, referenced_bad,
-              "vertex " + std::to_string(first_bad) + " has a non-finite coordinate (" +
+              c.soup.vertex_where(first_bad) + " has a non-finite coordinate (" +
                   number_text(p.x()) + ", " + number_text(p.y()) + ", " + number_text(p.z()) + ")",
               "such vertices");
 }
@@ -79,9 +79,8 @@ void classify_faces(Context& c) {
   for (size_t f = 0; f < faces.size(); ++f) {
     const auto& face = faces[f];
     if (face.size() != 3) ++c.d.non_triangle_faces;
-    const bool bad = face.size() < 3 || std::any_of(face.begin(), face.end(), [n](int i) {
-                       return i < 0 || i >= n;
-                     });
+    const bool bad = face.size() < 3 ||
+                     std::any_of(face.begin(), face.end(), [n](int i) { return i < 0 || i >= n; });
     if (bad) {
       ++c.d.bad_faces;
       if (first_bad < 0) first_bad = static_cast<int>(f);
@@ -101,8 +100,8 @@ void classify_faces(Context& c) {
   c.d.degenerate_faces += repeats;
   if (first_bad >= 0)
     add_problem(c.d, MeshProblemKind::kBadFace, c.d.bad_faces,
-                c.soup.face_where(first_bad) + " has fewer than 3 vertices or an index outside [0, " +
-                    std::to_string(n) + ")",
+                c.soup.face_where(first_bad) +
+                    " has fewer than 3 vertices or an index outside [0, " + std::to_string(n) + ")",
                 "such faces");
   if (std::count(c.use_face.begin(), c.use_face.end(), 1) == 0)
     add_problem(c.d, MeshProblemKind::kNoFaces, 1, "no usable faces", "");
@@ -155,7 +154,11 @@ void check_orientability(Context& c) {
     ++begin[table.side(e, 1).face + 1];
   }
   for (size_t f = 0; f < face_count; ++f) begin[f + 1] += begin[f];
-  struct Link { int face; int edge; bool flip; };
+  struct Link {
+    int face;
+    int edge;
+    bool flip;
+  };
   std::vector<Link> links(begin.back());
   std::vector<size_t> fill(begin.begin(), begin.end() - 1);
   for (size_t e = 0; e < table.edge_count(); ++e) {
@@ -272,7 +275,8 @@ void count_topology(Context& c) {
     on_boundary[c.edges.low(e)] = on_boundary[c.edges.high(e)] = 1;
   }
   for (size_t v = 0; v < n; ++v)
-    if (on_boundary[v] && loops.find(static_cast<int>(v)) == static_cast<int>(v)) ++c.d.boundary_loops;
+    if (on_boundary[v] && loops.find(static_cast<int>(v)) == static_cast<int>(v))
+      ++c.d.boundary_loops;
   c.d.euler_characteristic = c.d.referenced_vertices - c.d.edges + used_faces;
   c.d.genus = (2.0 * c.d.components - c.d.boundary_loops - c.d.euler_characteristic) / 2.0;
   if (c.d.components > 1) {
@@ -284,9 +288,9 @@ void count_topology(Context& c) {
     for (size_t k = 0; k < sizes.size() && k < 4; ++k)
       list += (k ? ", " : "") + std::to_string(sizes[k]);
     if (sizes.size() > 4) list += ", ...";
-    c.d.problems.push_back({MeshProblemKind::kSeveralComponents, c.d.components,
-                            std::to_string(c.d.components) +
-                                " connected components (vertex counts " + list + ")"});
+    c.d.problems.push_back(
+        {MeshProblemKind::kSeveralComponents, c.d.components,
+         std::to_string(c.d.components) + " connected components (vertex counts " + list + ")"});
   }
 }
 
@@ -301,7 +305,8 @@ void count_duplicate_vertices(Context& c) {
     return std::lexicographical_compare(p[a].data(), p[a].data() + 3, p[b].data(), p[b].data() + 3);
   };
   std::sort(order.begin(), order.end(), less);
-  for (size_t k = 1; k < order.size(); ++k) c.d.duplicate_vertices += p[order[k - 1]] == p[order[k]];
+  for (size_t k = 1; k < order.size(); ++k)
+    c.d.duplicate_vertices += p[order[k - 1]] == p[order[k]];
 }
 
 /// Faces on the same vertex set, found by sorting (hash of the sorted face, face) pairs and
@@ -352,10 +357,10 @@ void count_duplicate_faces(Context& c) {
     i = j;
   }
   if (first_a >= 0)
-    add_problem(c.d, MeshProblemKind::kDuplicateFace, c.d.duplicate_faces,
-                c.soup.face_where(first_b) + " has the same vertices as " +
-                    c.soup.face_where(first_a),
-                "duplicate faces");
+    add_problem(
+        c.d, MeshProblemKind::kDuplicateFace, c.d.duplicate_faces,
+        c.soup.face_where(first_b) + " has the same vertices as " + c.soup.face_where(first_a),
+        "duplicate faces");
 }
 
 /// Zero-area faces and the smallest triangle angle. A face is degenerate when its area is at most
@@ -372,8 +377,8 @@ void measure_faces(Context& c) {
     Eigen::Vector3d area = Eigen::Vector3d::Zero();
     double longest_squared = 0;
     for (size_t k = 0; k < face.size(); ++k) {
-      longest_squared = std::max(longest_squared,
-                                 (p[face[(k + 1) % face.size()]] - p[face[k]]).squaredNorm());
+      longest_squared =
+          std::max(longest_squared, (p[face[(k + 1) % face.size()]] - p[face[k]]).squaredNorm());
       if (k >= 1 && k + 1 < face.size())
         area += (p[face[k]] - p[face[0]]).cross(p[face[k + 1]] - p[face[0]]);
     }

@@ -12,16 +12,16 @@ namespace ricci {
 /// The kinds of defect that keep a soup from being a clean single-component orientable
 /// 2-manifold, in the order diagnose() reports them (the first one is the headline).
 enum class MeshProblemKind {
-  kNonFiniteCoordinate,   ///< a referenced vertex has a NaN or infinite coordinate
-  kBadFace,               ///< fewer than 3 vertices or an index outside [0, #V)
-  kNoFaces,               ///< nothing left to describe
-  kRepeatedIndex,         ///< a face lists one vertex twice (degenerate)
-  kNonManifoldEdge,       ///< an edge in more than 2 faces
-  kNonManifoldVertex,     ///< a vertex whose faces form several fans (pinched)
-  kNonOrientable,         ///< no consistent orientation exists (Mobius strip, Klein bottle)
-  kDuplicateFace,         ///< two faces on the same vertex set
-  kSeveralComponents,     ///< more than one connected component
-  kZeroArea,              ///< a face of (numerically) zero area
+  kNonFiniteCoordinate,  ///< a referenced vertex has a NaN or infinite coordinate
+  kBadFace,              ///< fewer than 3 vertices or an index outside [0, #V)
+  kNoFaces,              ///< nothing left to describe
+  kRepeatedIndex,        ///< a face lists one vertex twice (degenerate)
+  kNonManifoldEdge,      ///< an edge in more than 2 faces
+  kNonManifoldVertex,    ///< a vertex whose faces form several fans (pinched)
+  kNonOrientable,        ///< no consistent orientation exists (Mobius strip, Klein bottle)
+  kDuplicateFace,        ///< two faces on the same vertex set
+  kSeveralComponents,    ///< more than one connected component
+  kZeroArea,             ///< a face of (numerically) zero area
 };
 
 /// One kind of defect: how many elements have it and a message naming the first of them.
@@ -41,26 +41,26 @@ struct MeshDiagnosis {
   int referenced_vertices = 0;    ///< vertices used by a face that enters the topology
   int unreferenced_vertices = 0;  ///< vertices no such face uses
   int edges = 0;
-  int faces = 0;                  ///< faces in the file
+  int faces = 0;  ///< faces in the file
   int non_triangle_faces = 0;
-  int components = 0;             ///< connected through shared vertices
-  int boundary_edges = 0;         ///< edges in exactly one face
-  int boundary_loops = 0;         ///< connected components of the boundary edges
+  int components = 0;      ///< connected through shared vertices
+  int boundary_edges = 0;  ///< edges in exactly one face
+  int boundary_loops = 0;  ///< connected components of the boundary edges
   int euler_characteristic = 0;
-  double genus = 0;               ///< (2c - b - chi) / 2
-  bool edge_manifold = true;      ///< every edge in at most 2 faces
-  bool vertex_manifold = true;    ///< the faces around each vertex form one fan
-  bool orientable = true;         ///< the faces can be oriented consistently (over 2-face edges)
+  double genus = 0;             ///< (2c - b - chi) / 2
+  bool edge_manifold = true;    ///< every edge in at most 2 faces
+  bool vertex_manifold = true;  ///< the faces around each vertex form one fan
+  bool orientable = true;       ///< the faces can be oriented consistently (over 2-face edges)
   bool consistently_oriented = true;  ///< no directed edge is used twice
   int non_manifold_edges = 0;
   int non_manifold_vertices = 0;
-  int degenerate_faces = 0;       ///< repeated index, or area <= 1e-12 * (longest side)^2
-  int duplicate_vertices = 0;     ///< vertices at exactly the position of an earlier one
-  int duplicate_faces = 0;        ///< faces on the same vertex set as an earlier one
-  int bad_faces = 0;              ///< faces with < 3 vertices or an out-of-range index
-  int non_finite_vertices = 0;    ///< vertices with a NaN or infinite coordinate
-  double bbox_diagonal = 0;       ///< over the finite vertex positions
-  double min_angle_deg = 0;       ///< smallest triangle angle (triangles only; 0 if none)
+  int degenerate_faces = 0;           ///< repeated index, or area <= 1e-12 * (longest side)^2
+  int duplicate_vertices = 0;         ///< vertices at exactly the position of an earlier one
+  int duplicate_faces = 0;            ///< faces on the same vertex set as an earlier one
+  int bad_faces = 0;                  ///< faces with < 3 vertices or an out-of-range index
+  int non_finite_vertices = 0;        ///< vertices with a NaN or infinite coordinate
+  double bbox_diagonal = 0;           ///< over the finite vertex positions
+  double min_angle_deg = 0;           ///< smallest triangle angle (triangles only; 0 if none)
   std::vector<MeshProblem> problems;  ///< empty iff the soup is a clean surface (see below)
 
   /// The "clean manifold" column of INDEX.md: there are faces, every edge is in at most 2 faces,

@@ -94,12 +94,14 @@ Shape make_shape(int genus) {
 }
 
 // Newton steps along the gradient onto f = 0: remeshed vertices land on the smooth surface.
-Point project_onto(const Shape& shape, const Point& p) {
+// With `keep_x` the step is restricted to the plane x = p.x (boundary vertices of a cut).
+Point project_onto(const Shape& shape, const Point& p, bool keep_x = false) {
   double x = p.x(), y = p.y(), z = p.z();
   const double h = 1e-6;
-  for (int it = 0; it < 6; ++it) {
+  for (int it = 0; it < 10; ++it) {
     const double v = shape.f(x, y, z);
-    const double gx = (shape.f(x + h, y, z) - shape.f(x - h, y, z)) / (2 * h);
+    if (std::abs(v) < 1e-14) break;
+    const double gx = keep_x ? 0.0 : (shape.f(x + h, y, z) - shape.f(x - h, y, z)) / (2 * h);
     const double gy = (shape.f(x, y + h, z) - shape.f(x, y - h, z)) / (2 * h);
     const double gz = (shape.f(x, y, z + h) - shape.f(x, y, z - h)) / (2 * h);
     const double g2 = gx * gx + gy * gy + gz * gz;
@@ -107,7 +109,6 @@ Point project_onto(const Shape& shape, const Point& p) {
     x -= v * gx / g2;
     y -= v * gy / g2;
     z -= v * gz / g2;
-    if (std::abs(v) < 1e-12) break;
   }
   return {x, y, z};
 }
@@ -135,20 +136,46 @@ SurfaceMesh mesh_implicit(const Shape& shape, std::uint32_t seed) {
   return mesh;
 }
 
-// Cuts the x-end caps off, `hole_depth` deep from the mesh's extreme x: hole 1 at the +x end,
-// hole 2 at the -x end.
-void cut_holes(SurfaceMesh& mesh, const GenerateOptions& options) {
-  if (options.holes == 0) return;
-  const CGAL::Bbox_3 box = PMP::bbox(mesh);
+// The cut planes x = position, keeping the side where side * (x - position) < 0: hole 1 at the
+// +x end, hole 2 at the -x end, each `hole_depth` deep from the closed surface's extreme x.
+struct Cut {
+  double position;
+  double side;
+};
+
+std::vector<Cut> cuts_for(const SurfaceMesh& closed, const GenerateOptions& options) {
+  if (options.holes == 0) return {};
+  const CGAL::Bbox_3 box = PMP::bbox(closed);
   if (options.hole_depth >= box.xmax() - box.xmin()) {
     throw InvalidInputError("generate_surface: hole_depth " + std::to_string(options.hole_depth) +
                             " is not below the surface's x extent");
   }
-  PMP::clip(mesh, Kernel::Plane_3(1, 0, 0, -(box.xmax() - options.hole_depth)),
-            CGAL::parameters::clip_volume(false));
-  if (options.holes >= 2) {
-    PMP::clip(mesh, Kernel::Plane_3(-1, 0, 0, box.xmin() + options.hole_depth),
+  std::vector<Cut> cuts = {{box.xmax() - options.hole_depth, 1.0}};
+  if (options.holes >= 2) cuts.push_back({box.xmin() + options.hole_depth, -1.0});
+  return cuts;
+}
+
+void cut(SurfaceMesh& mesh, const std::vector<Cut>& cuts) {
+  for (const Cut& c : cuts) {
+    PMP::clip(mesh, Kernel::Plane_3(c.side, 0, 0, -c.side * c.position),
               CGAL::parameters::clip_volume(false));
+  }
+}
+
+// Final placement: interior vertices onto the implicit surface, boundary vertices onto its
+// intersection with their cut plane (the remeshing leaves the latter on chords of that curve).
+void project_all(SurfaceMesh& mesh, const Shape& shape, const std::vector<Cut>& cuts) {
+  for (auto v : mesh.vertices()) {
+    if (!mesh.is_border(v)) {
+      mesh.point(v) = project_onto(shape, mesh.point(v));
+      continue;
+    }
+    const Point& p = mesh.point(v);
+    const Cut* nearest = &cuts.front();
+    for (const Cut& c : cuts) {
+      if (std::abs(p.x() - c.position) < std::abs(p.x() - nearest->position)) nearest = &c;
+    }
+    mesh.point(v) = project_onto(shape, Point(nearest->position, p.y(), p.z()), true);
   }
 }
 
@@ -159,7 +186,7 @@ double edge_length_for(double area, int faces) {
 // One attempt at edge length L: remesh the closed surface onto the implicit surface, cut, then
 // clean the cut's slivers with a pass that slides boundary vertices along the boundary.
 SurfaceMesh remesh_attempt(const SurfaceMesh& closed, const Shape& shape,
-                           const GenerateOptions& options, double L) {
+                           const GenerateOptions& options, const std::vector<Cut>& cuts, double L) {
   SurfaceMesh mesh = closed;
   namespace params = CGAL::parameters;
   auto project = [&shape, &mesh](SurfaceMesh::Vertex_index v) {
@@ -170,7 +197,9 @@ SurfaceMesh remesh_attempt(const SurfaceMesh& closed, const Shape& shape,
                                .number_of_relaxation_steps(3)
                                .projection_functor(project));
   if (options.holes > 0) {
-    cut_holes(mesh, options);
+    cut(mesh, cuts);
+    // Put the cut curve on the exact surface first, so the cleanup keeps its neighbours off it.
+    project_all(mesh, shape, cuts);
     PMP::isotropic_remeshing(faces(mesh), L, mesh,
                              params::number_of_iterations(3)
                                  .number_of_relaxation_steps(3)
@@ -178,6 +207,17 @@ SurfaceMesh remesh_attempt(const SurfaceMesh& closed, const Shape& shape,
                                  .projection_functor(project));
   }
   mesh.collect_garbage();
+  project_all(mesh, shape, cuts);
+  if (options.holes > 0) {
+    // The projection moved the cut curve off its chords, squeezing the triangles along it: a
+    // last pass with the (now exact) boundary frozen restores their shape.
+    PMP::isotropic_remeshing(faces(mesh), L, mesh,
+                             params::number_of_iterations(3)
+                                 .number_of_relaxation_steps(3)
+                                 .protect_constraints(true)
+                                 .projection_functor(project));
+    mesh.collect_garbage();
+  }
   return mesh;
 }
 
@@ -221,36 +261,38 @@ Mesh generate_surface(const GenerateOptions& options) {
   const SurfaceMesh closed = mesh_implicit(shape, options.seed);
 
   // Area that survives the cuts, measured on a cut copy of the Mesh_3 output.
-  SurfaceMesh cut = closed;
-  cut_holes(cut, options);
-  const double area = PMP::area(cut);
+  const std::vector<Cut> cuts = cuts_for(closed, options);
+  SurfaceMesh opened = closed;
+  cut(opened, cuts);
+  const double area = PMP::area(opened);
   if (!(area > 0)) throw Error("generate_surface: the cut removed the whole surface");
 
+  // Up to four sizes, keeping the closest to the target among those of the right topology.
   double L = edge_length_for(area, options.target_faces);
-  SurfaceMesh best;
+  Mesh best;
   double best_error = 1e300;
+  std::string failure;
   for (int attempt = 0; attempt < 4; ++attempt) {
-    SurfaceMesh mesh = remesh_attempt(closed, shape, options, L);
-    const double faces = static_cast<double>(mesh.number_of_faces());
-    const double error = std::abs(faces / options.target_faces - 1);
-    if (error < best_error) {
+    Mesh mesh = to_ricci(remesh_attempt(closed, shape, options, cuts, L));
+    const double faces = static_cast<double>(mesh.n_faces());
+    const SurfaceTopology t = surface_topology(mesh);
+    if (!t.manifold || t.components != 1 || t.genus != options.genus ||
+        t.boundary_loops != options.holes) {
+      failure = std::to_string(t.components) + " component(s) of genus " +
+                std::to_string(t.genus) + " with " + std::to_string(t.boundary_loops) +
+                " boundary loop(s)" + (t.manifold ? "" : ", non-manifold");
+    } else if (const double error = std::abs(faces / options.target_faces - 1); error < best_error) {
       best_error = error;
       best = std::move(mesh);
     }
     if (best_error < 0.05) break;
     L *= std::sqrt(faces / options.target_faces);
   }
-
-  Mesh result = to_ricci(best);
-  const SurfaceTopology t = surface_topology(result);
-  if (!t.manifold || t.components != 1 || t.genus != options.genus ||
-      t.boundary_loops != options.holes) {
-    throw Error("generate_surface: CGAL produced " + std::to_string(t.components) +
-                " component(s) of genus " + std::to_string(t.genus) + " with " +
-                std::to_string(t.boundary_loops) + " boundary loop(s)" +
-                (t.manifold ? "" : ", non-manifold") + " instead of " + describe_surface(options));
+  if (best_error == 1e300) {
+    throw Error("generate_surface: CGAL produced " + failure + " instead of " +
+                describe_surface(options));
   }
-  return result;
+  return best;
 }
 
 }  // namespace ricci

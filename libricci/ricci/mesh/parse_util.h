@@ -31,7 +31,9 @@ class LineCursor {
   /// 1-based number of the line last returned.
   long line_number() const { return line_number_; }
   /// Bytes not yet returned (the binary body after a PLY header).
-  std::string_view rest() const { return pos_ >= data_.size() ? std::string_view{} : data_.substr(pos_); }
+  std::string_view rest() const {
+    return pos_ >= data_.size() ? std::string_view{} : data_.substr(pos_);
+  }
 
  private:
   std::string_view data_;
@@ -39,7 +41,9 @@ class LineCursor {
   long line_number_ = 0;
 };
 
-inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
 
 /// Splits the next whitespace-separated token off the front of `text`; false when none is left.
 inline bool next_token(std::string_view& text, std::string_view& token) {

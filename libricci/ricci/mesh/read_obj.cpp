@@ -14,8 +14,9 @@ namespace {
 void refuse_binary(std::string_view data, const std::string& name) {
   const size_t probe = std::min<size_t>(data.size(), 4096);
   if (std::memchr(data.data(), '\0', probe))
-    fail(name, 0, "not an OBJ file: binary data (NUL bytes) in the first " +
-                      std::to_string(probe) + " bytes");
+    fail(name, 0,
+         "not an OBJ file: binary data (NUL bytes) in the first " + std::to_string(probe) +
+             " bytes");
 }
 
 }  // namespace
@@ -38,10 +39,11 @@ PolygonSoup parse_obj(std::string_view data, const std::string& name) {
                    " coordinates; 3 are needed");
         if (!parse_double(token, p[k]))
           fail(name, line_number,
-               "vertex " + std::to_string(soup.positions.size()) +
-                   ": expected a number, found " + quote_token(token));
+               "vertex " + std::to_string(soup.positions.size()) + ": expected a number, found " +
+                   quote_token(token));
       }
       soup.positions.push_back(p);
+      soup.vertex_lines.push_back(static_cast<int>(line_number));
     } else if (token == "f") {
       const size_t f = soup.faces.size();
       std::vector<int> face;

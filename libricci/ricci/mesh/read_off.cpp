@@ -19,8 +19,7 @@ bool next_content_line(LineCursor& cursor, std::string_view& content) {
   return false;
 }
 
-long long read_count(std::string_view& text, const char* what, const std::string& name,
-                     long line) {
+long long read_count(std::string_view& text, const char* what, const std::string& name, long line) {
   std::string_view token;
   long long count = 0;
   if (!next_token(text, token)) fail(name, line, std::string("missing ") + what + " count");
@@ -36,6 +35,59 @@ void check_header(std::string_view keyword, const std::string& name) {
   const std::string_view prefix = keyword.substr(0, keyword.size() - 3);
   if (prefix.find('4') != std::string_view::npos || prefix.find('n') != std::string_view::npos)
     fail(name, 1, "unsupported OFF variant " + quote_token(keyword) + " (only 3-D is read)");
+}
+
+void read_vertices(LineCursor& cursor, long long count, const std::string& name,
+                   PolygonSoup& soup) {
+  std::string_view text, token;
+  soup.positions.resize(static_cast<size_t>(count));
+  soup.vertex_lines.resize(static_cast<size_t>(count));
+  for (long long v = 0; v < count; ++v) {
+    if (!next_content_line(cursor, text))
+      fail(name, cursor.line_number(),
+           "file ends after " + std::to_string(v) + " of " + std::to_string(count) + " vertices");
+    soup.vertex_lines[static_cast<size_t>(v)] = static_cast<int>(cursor.line_number());
+    auto& p = soup.positions[static_cast<size_t>(v)];
+    for (int k = 0; k < 3; ++k) {
+      if (!next_token(text, token))
+        fail(name, cursor.line_number(),
+             "vertex " + std::to_string(v) + " has " + std::to_string(k) +
+                 " coordinates; 3 are needed");
+      if (!parse_double(token, p[k]))
+        fail(name, cursor.line_number(),
+             "vertex " + std::to_string(v) + ": expected a number, found " + quote_token(token));
+    }
+  }
+}
+
+/// One face line "n i1 ... in [colour]" into `face`.
+void read_face(std::string_view text, long long f, long long vertex_count, const std::string& name,
+               long line, std::vector<int>& face) {
+  std::string_view token;
+  long long size = 0;
+  next_token(text, token);
+  if (!parse_int(token, size) || size < 0)
+    fail(name, line, "face " + std::to_string(f) + ": bad vertex count " + quote_token(token));
+  if (size > static_cast<long long>(text.size()))
+    fail(name, line,
+         "face " + std::to_string(f) + " claims " + std::to_string(size) +
+             " vertices but the line is too short");
+  face.resize(static_cast<size_t>(size));
+  for (long long k = 0; k < size; ++k) {
+    long long index = 0;
+    if (!next_token(text, token))
+      fail(name, line,
+           "face " + std::to_string(f) + " lists " + std::to_string(k) + " of " +
+               std::to_string(size) + " vertex indices");
+    if (!parse_int(token, index))
+      fail(name, line,
+           "face " + std::to_string(f) + ": expected a vertex index, found " + quote_token(token));
+    if (index < 0 || index >= vertex_count)
+      fail(name, line,
+           "face " + std::to_string(f) + " has vertex index " + std::to_string(index) +
+               " but the file has " + std::to_string(vertex_count) + " vertices");
+    face[static_cast<size_t>(k)] = static_cast<int>(index);
+  }
 }
 
 }  // namespace
@@ -64,58 +116,16 @@ PolygonSoup parse_off(std::string_view data, const std::string& name) {
              std::to_string(data.size()) + " bytes");
 
   PolygonSoup soup;
-  soup.positions.resize(static_cast<size_t>(vertex_count));
-  for (long long v = 0; v < vertex_count; ++v) {
-    if (!next_content_line(cursor, text))
-      fail(name, cursor.line_number(),
-           "file ends after " + std::to_string(v) + " of " + std::to_string(vertex_count) +
-               " vertices");
-    auto& p = soup.positions[static_cast<size_t>(v)];
-    for (int k = 0; k < 3; ++k) {
-      if (!next_token(text, token))
-        fail(name, cursor.line_number(),
-             "vertex " + std::to_string(v) + " has " + std::to_string(k) +
-                 " coordinates; 3 are needed");
-      if (!parse_double(token, p[k]))
-        fail(name, cursor.line_number(),
-             "vertex " + std::to_string(v) + ": expected a number, found " + quote_token(token));
-    }
-  }
+  read_vertices(cursor, vertex_count, name, soup);
   soup.faces.resize(static_cast<size_t>(face_count));
   soup.face_lines.resize(static_cast<size_t>(face_count));
   for (long long f = 0; f < face_count; ++f) {
     if (!next_content_line(cursor, text))
       fail(name, cursor.line_number(),
-           "file ends after " + std::to_string(f) + " of " + std::to_string(face_count) +
-               " faces");
-    const long line = cursor.line_number();
-    soup.face_lines[static_cast<size_t>(f)] = static_cast<int>(line);
-    long long size = 0;
-    next_token(text, token);
-    if (!parse_int(token, size) || size < 0)
-      fail(name, line, "face " + std::to_string(f) + ": bad vertex count " + quote_token(token));
-    if (size > static_cast<long long>(text.size()))
-      fail(name, line,
-           "face " + std::to_string(f) + " claims " + std::to_string(size) +
-               " vertices but the line is too short");
-    auto& face = soup.faces[static_cast<size_t>(f)];
-    face.resize(static_cast<size_t>(size));
-    for (long long k = 0; k < size; ++k) {
-      long long index = 0;
-      if (!next_token(text, token))
-        fail(name, line,
-             "face " + std::to_string(f) + " lists " + std::to_string(k) + " of " +
-                 std::to_string(size) + " vertex indices");
-      if (!parse_int(token, index))
-        fail(name, line,
-             "face " + std::to_string(f) + ": expected a vertex index, found " +
-                 quote_token(token));
-      if (index < 0 || index >= vertex_count)
-        fail(name, line,
-             "face " + std::to_string(f) + " has vertex index " + std::to_string(index) +
-                 " but the file has " + std::to_string(vertex_count) + " vertices");
-      face[static_cast<size_t>(k)] = static_cast<int>(index);
-    }
+           "file ends after " + std::to_string(f) + " of " + std::to_string(face_count) + " faces");
+    soup.face_lines[static_cast<size_t>(f)] = static_cast<int>(cursor.line_number());
+    read_face(text, f, vertex_count, name, cursor.line_number(),
+              soup.faces[static_cast<size_t>(f)]);
   }
   return soup;
 }

@@ -21,11 +21,11 @@ bool type_from_name(std::string_view name, PlyType& type) {
     PlyType type;
   };
   static const Entry kTypes[] = {
-      {"char", PlyType::kInt8},     {"int8", PlyType::kInt8},       {"uchar", PlyType::kUInt8},
-      {"uint8", PlyType::kUInt8},   {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
-      {"ushort", PlyType::kUInt16}, {"uint16", PlyType::kUInt16},   {"int", PlyType::kInt32},
-      {"int32", PlyType::kInt32},   {"uint", PlyType::kUInt32},     {"uint32", PlyType::kUInt32},
-      {"float", PlyType::kFloat32}, {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
+      {"char", PlyType::kInt8},      {"int8", PlyType::kInt8},       {"uchar", PlyType::kUInt8},
+      {"uint8", PlyType::kUInt8},    {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
+      {"ushort", PlyType::kUInt16},  {"uint16", PlyType::kUInt16},   {"int", PlyType::kInt32},
+      {"int32", PlyType::kInt32},    {"uint", PlyType::kUInt32},     {"uint32", PlyType::kUInt32},
+      {"float", PlyType::kFloat32},  {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
       {"float64", PlyType::kFloat64}};
   for (const auto& entry : kTypes) {
     if (name == entry.name) {
@@ -38,10 +38,18 @@ bool type_from_name(std::string_view name, PlyType& type) {
 
 size_t type_size(PlyType type) {
   switch (type) {
-    case PlyType::kInt8: case PlyType::kUInt8: return 1;
-    case PlyType::kInt16: case PlyType::kUInt16: return 2;
-    case PlyType::kInt32: case PlyType::kUInt32: case PlyType::kFloat32: return 4;
-    case PlyType::kFloat64: return 8;
+    case PlyType::kInt8:
+    case PlyType::kUInt8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUInt16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUInt32:
+    case PlyType::kFloat32:
+      return 4;
+    case PlyType::kFloat64:
+      return 8;
   }
   return 0;
 }
@@ -86,10 +94,14 @@ Header parse_header(LineCursor& cursor, const std::string& name) {
     while (count < 5 && next_token(text, words[count])) ++count;
     if (token == "format") {
       if (count < 1) fail(name, n, "format line names no format");
-      if (words[0] == "ascii") header.encoding = Encoding::kAscii;
-      else if (words[0] == "binary_little_endian") header.encoding = Encoding::kLittleEndian;
-      else if (words[0] == "binary_big_endian") header.encoding = Encoding::kBigEndian;
-      else fail(name, n, "unknown PLY format " + quote_token(words[0]));
+      if (words[0] == "ascii")
+        header.encoding = Encoding::kAscii;
+      else if (words[0] == "binary_little_endian")
+        header.encoding = Encoding::kLittleEndian;
+      else if (words[0] == "binary_big_endian")
+        header.encoding = Encoding::kBigEndian;
+      else
+        fail(name, n, "unknown PLY format " + quote_token(words[0]));
       has_format = true;
     } else if (token == "element") {
       Element element;
@@ -104,7 +116,8 @@ Header parse_header(LineCursor& cursor, const std::string& name) {
       if (header.elements.empty()) fail(name, n, "property before any element");
       Property property;
       if (count >= 4 && words[0] == "list") {
-        if (!type_from_name(words[1], property.count_type) || !type_from_name(words[2], property.type))
+        if (!type_from_name(words[1], property.count_type) ||
+            !type_from_name(words[2], property.type))
           fail(name, n, "unknown type in list property " + quote_token(words[3]));
         if (property.count_type == PlyType::kFloat32 || property.count_type == PlyType::kFloat64)
           fail(name, n, "list property " + quote_token(words[3]) + " has a floating-point count");
@@ -136,8 +149,9 @@ class BodyReader {
     unsigned char first_byte = 0;
     std::memcpy(&first_byte, &one, 1);
     const bool host_little = first_byte == 1;
-    swap_ = encoding == Encoding::kBigEndian ? host_little
-                                             : (encoding == Encoding::kLittleEndian && !host_little);
+    swap_ = encoding == Encoding::kBigEndian
+                ? host_little
+                : (encoding == Encoding::kLittleEndian && !host_little);
   }
 
   /// One value as a double; false at the end of the data. Sets `bad_token` on malformed text.
@@ -172,14 +186,30 @@ class BodyReader {
     if (swap_)
       for (size_t i = 0; i < size / 2; ++i) std::swap(bytes[i], bytes[size - 1 - i]);
     switch (type) {
-      case PlyType::kInt8: value = as<int8_t>(bytes); break;
-      case PlyType::kUInt8: value = as<uint8_t>(bytes); break;
-      case PlyType::kInt16: value = as<int16_t>(bytes); break;
-      case PlyType::kUInt16: value = as<uint16_t>(bytes); break;
-      case PlyType::kInt32: value = as<int32_t>(bytes); break;
-      case PlyType::kUInt32: value = as<uint32_t>(bytes); break;
-      case PlyType::kFloat32: value = as<float>(bytes); break;
-      case PlyType::kFloat64: value = as<double>(bytes); break;
+      case PlyType::kInt8:
+        value = as<int8_t>(bytes);
+        break;
+      case PlyType::kUInt8:
+        value = as<uint8_t>(bytes);
+        break;
+      case PlyType::kInt16:
+        value = as<int16_t>(bytes);
+        break;
+      case PlyType::kUInt16:
+        value = as<uint16_t>(bytes);
+        break;
+      case PlyType::kInt32:
+        value = as<int32_t>(bytes);
+        break;
+      case PlyType::kUInt32:
+        value = as<uint32_t>(bytes);
+        break;
+      case PlyType::kFloat32:
+        value = as<float>(bytes);
+        break;
+      case PlyType::kFloat64:
+        value = as<double>(bytes);
+        break;
     }
     return true;
   }
@@ -215,8 +245,7 @@ class ElementReader {
         continue;
       }
       const double size = value(property.count_type, record, property.name);
-      if (size < 0 || size != std::floor(size) ||
-          size > static_cast<double>(body_.remaining()))
+      if (size < 0 || size != std::floor(size) || size > static_cast<double>(body_.remaining()))
         where_fail(record, "list " + quote_token(property.name) + " has a bad length " +
                                std::to_string(size));
       auto& list = lists[p];
@@ -292,8 +321,10 @@ void append_strip_triangles(const std::vector<long long>& strip_list, PolygonSou
     strip.clear();
   };
   for (long long index : strip_list) {
-    if (index < 0) flush();
-    else strip.push_back(index);
+    if (index < 0)
+      flush();
+    else
+      strip.push_back(index);
   }
   flush();
 }
@@ -318,7 +349,8 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
             static_cast<double>(body.remaining()))
       fail(name, element.header_line,
            "element " + quote_token(element.name) + " claims " + std::to_string(element.count) +
-               " records but only " + std::to_string(body.remaining()) + " bytes follow the header");
+               " records but only " + std::to_string(body.remaining()) +
+               " bytes follow the header");
     const bool is_vertex = element.name == "vertex";
     const bool is_face = element.name == "face";
     const bool is_strips = element.name == "tristrips";
@@ -335,6 +367,7 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
       plist = face_list_property(element, name);
       if (is_face) soup.faces.reserve(static_cast<size_t>(element.count));
     }
+    if (element.properties.empty()) continue;  // records without data: nothing to read
     std::vector<double> values(element.properties.size());
     std::vector<std::vector<long long>> lists(element.properties.size());
     ElementReader reader(body, element, name);
@@ -342,6 +375,7 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
       reader.read_record(record, values, lists);
       if (is_vertex) {
         soup.positions.emplace_back(values[px], values[py], values[pz]);
+        soup.vertex_lines.push_back(static_cast<int>(reader.record_line()));
       } else if (is_face) {
         std::vector<int> face(lists[plist].size());
         for (size_t k = 0; k < face.size(); ++k) face[k] = checked_index(lists[plist][k]);
@@ -353,7 +387,10 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
     }
   }
   if (!has_vertices) fail(name, 0, "PLY header declares no 'vertex' element");
-  if (header.encoding != Encoding::kAscii) soup.face_lines.clear();  // binary: no lines to name
+  if (header.encoding != Encoding::kAscii) {  // binary: no lines to name
+    soup.face_lines.clear();
+    soup.vertex_lines.clear();
+  }
   return soup;
 }
 

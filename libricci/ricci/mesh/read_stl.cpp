@@ -29,19 +29,23 @@ struct PositionHash {
 class Welder {
  public:
   explicit Welder(PolygonSoup& soup) : soup_(soup) {}
-  int vertex(const Eigen::Vector3d& p) {
+  /// Index of the vertex at `p`, made on first sight; `line` (0 = none) is where it appeared.
+  int vertex(const Eigen::Vector3d& p, long line = 0) {
     // NaN never equals itself: give such corners their own vertex so diagnose() can name it.
-    if (!p.allFinite()) {
-      soup_.positions.push_back(p);
-      return static_cast<int>(soup_.positions.size() - 1);
-    }
+    if (!p.allFinite()) return add(p, line);
     const auto [it, inserted] = index_.try_emplace(p, static_cast<int>(soup_.positions.size()));
-    if (inserted) soup_.positions.push_back(p);
+    if (inserted) add(p, line);
     return it->second;
   }
   void reserve(size_t triangles) { index_.reserve(triangles / 2 + 3); }
 
  private:
+  int add(const Eigen::Vector3d& p, long line) {
+    soup_.positions.push_back(p);
+    if (line > 0) soup_.vertex_lines.push_back(static_cast<int>(line));
+    return static_cast<int>(soup_.positions.size() - 1);
+  }
+
   PolygonSoup& soup_;
   std::unordered_map<Eigen::Vector3d, int, PositionHash> index_;
 };
@@ -91,7 +95,7 @@ PolygonSoup parse_ascii(std::string_view data, const std::string& name) {
         if (!parse_double(token, p[k]))
           fail(name, n, "vertex: expected a number, found " + quote_token(token));
       }
-      face.push_back(welder.vertex(p));
+      face.push_back(welder.vertex(p, n));
       if (face.size() > 3) fail(name, n, "facet has more than 3 vertices");
     } else if (token == "endfacet") {
       if (face.size() != 3)

@@ -16,6 +16,8 @@ struct PolygonSoup {
   std::vector<std::vector<int>> faces;
   /// Source line (1-based) of each face, or empty when the format has no lines (binary files).
   std::vector<int> face_lines;
+  /// Source line (1-based) of each vertex, or empty when the format has no lines.
+  std::vector<int> vertex_lines;
   /// Name of the file the soup came from ("" when built in memory); used in messages.
   std::string source;
 
@@ -24,6 +26,13 @@ struct PolygonSoup {
     std::string where = "face " + std::to_string(face);
     if (face < face_lines.size() && face_lines[face] > 0)
       where += " (line " + std::to_string(face_lines[face]) + ")";
+    return where;
+  }
+  /// "vertex 7 (line 9)" or "vertex 7".
+  [[nodiscard]] std::string vertex_where(size_t vertex) const {
+    std::string where = "vertex " + std::to_string(vertex);
+    if (vertex < vertex_lines.size() && vertex_lines[vertex] > 0)
+      where += " (line " + std::to_string(vertex_lines[vertex]) + ")";
     return where;
   }
 };

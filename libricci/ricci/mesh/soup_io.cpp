@@ -129,7 +129,8 @@ MeshFormat format_from_extension(const std::string& path) {
   if (detail::ends_with(name, ".stl")) return MeshFormat::kStl;
   const size_t slash = name.find_last_of('/');
   const size_t dot = name.find_last_of('.');
-  const bool has_extension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  const bool has_extension =
+      dot != std::string::npos && (slash == std::string::npos || dot > slash);
   detail::fail(path, 0,
                has_extension ? "unknown mesh format '" + name.substr(dot) +
                                    "' (expected .off, .obj, .ply or .stl, optionally .gz)"
@@ -141,10 +142,18 @@ PolygonSoup parse_soup(std::string_view data, MeshFormat format, const std::stri
   if (data.empty()) detail::fail(name, 0, "file is empty");
   PolygonSoup soup;
   switch (format) {
-    case MeshFormat::kOff: soup = detail::parse_off(data, name); break;
-    case MeshFormat::kObj: soup = detail::parse_obj(data, name); break;
-    case MeshFormat::kPly: soup = detail::parse_ply(data, name); break;
-    case MeshFormat::kStl: soup = detail::parse_stl(data, name); break;
+    case MeshFormat::kOff:
+      soup = detail::parse_off(data, name);
+      break;
+    case MeshFormat::kObj:
+      soup = detail::parse_obj(data, name);
+      break;
+    case MeshFormat::kPly:
+      soup = detail::parse_ply(data, name);
+      break;
+    case MeshFormat::kStl:
+      soup = detail::parse_stl(data, name);
+      break;
   }
   soup.source = name;
   detail::check_soup_indices(soup, name);

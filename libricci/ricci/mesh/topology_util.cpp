@@ -37,7 +37,8 @@ EdgeTable build_edge_table(const std::vector<std::vector<int>>& faces,
     const auto first = sides.begin() + static_cast<std::ptrdiff_t>(bucket[b]);
     const auto last = sides.begin() + static_cast<std::ptrdiff_t>(bucket[b + 1]);
     // Stable: sides of one edge stay in face order, so messages list faces in file order.
-    std::stable_sort(first, last, [&](const FaceSide& x, const FaceSide& y) { return high(x) < high(y); });
+    std::stable_sort(first, last,
+                     [&](const FaceSide& x, const FaceSide& y) { return high(x) < high(y); });
     for (auto it = first; it != last; ++it)
       if (it == first || high(*it) != high(*(it - 1)))
         table.edge_begin.push_back(static_cast<size_t>(it - sides.begin()));

@@ -36,13 +36,19 @@ struct FaceSide {
 
 /// Every polygon side grouped by undirected edge (sorted by (min, max) vertex index).
 struct EdgeTable {
-  std::vector<FaceSide> sides;       // grouped by edge
-  std::vector<size_t> edge_begin;    // edge e owns sides[edge_begin[e] .. edge_begin[e + 1])
+  std::vector<FaceSide> sides;     // grouped by edge
+  std::vector<size_t> edge_begin;  // edge e owns sides[edge_begin[e] .. edge_begin[e + 1])
   size_t edge_count() const { return edge_begin.empty() ? 0 : edge_begin.size() - 1; }
   size_t side_count(size_t e) const { return edge_begin[e + 1] - edge_begin[e]; }
   const FaceSide& side(size_t e, size_t k) const { return sides[edge_begin[e] + k]; }
-  int low(size_t e) const { const auto& s = sides[edge_begin[e]]; return s.from < s.to ? s.from : s.to; }
-  int high(size_t e) const { const auto& s = sides[edge_begin[e]]; return s.from < s.to ? s.to : s.from; }
+  int low(size_t e) const {
+    const auto& s = sides[edge_begin[e]];
+    return s.from < s.to ? s.from : s.to;
+  }
+  int high(size_t e) const {
+    const auto& s = sides[edge_begin[e]];
+    return s.from < s.to ? s.to : s.from;
+  }
 };
 
 /// Builds the table over the faces with `use_face[f]` true (all when `use_face` is empty).

@@ -6,7 +6,9 @@
 namespace ricci {
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// True when q lies inside or on triangle (a, b, c) given counter-clockwise.
 bool inside(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b,

@@ -43,6 +43,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     SingularityOptions choice = options.choice;
     choice.flow = options.flow;
     choice.valence = options.valence;
+    choice.keep_metric = options.keep_metric;
     SingularityChoice chosen = choose_singularity(mesh, choice);
     result.chosen_vertex = chosen.vertex;
     result.flows_for_choice = chosen.flows_run;
@@ -56,7 +57,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
 
   report("Ricci flow");
   t = Clock::now();
-  result.flow = flow(result.problem.mesh, result.problem.targets, options.flow);
+  result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
   result.timings.flow = seconds_since(t);
   if (!result.flow.converged()) throw SolverError(result.flow.message);
 

@@ -17,8 +17,10 @@ namespace ricci {
 struct OneConeAtlasOptions {
   /// Input vertex index of the singularity, or -1 to choose it (least area distortion).
   int singular_vertex = -1;
-  /// Flow settings (scheme, tolerance, solver); defaults reach one-cone targets.
+  /// Flow settings (tolerance, solver, ...). The metric is chosen per problem
+  /// (one_cone_metric_order) unless `keep_metric`, which forces flow.scheme and flow.radii.
   FlowOptions flow = one_cone_flow_options();
+  bool keep_metric = false;
   ValenceOptions valence;
   SingularityOptions choice;
   AtlasOptions atlas;

@@ -27,6 +27,8 @@ struct SingularityOptions {
     return o;
   }();
   ValenceOptions valence;
+  /// Force flow.scheme / flow.radii instead of one_cone_metric_order.
+  bool keep_metric = false;
 };
 
 struct SingularityScore {

@@ -40,6 +40,15 @@ Mesh remove_star(const Mesh& mesh, int vertex, std::vector<int>& input_vertex) {
   return out;
 }
 
+const char* radius_name(RadiusInit radii) {
+  switch (radii) {
+    case RadiusInit::Mean: return "mean";
+    case RadiusInit::Min: return "min";
+    case RadiusInit::LeastSquares: return "least-squares";
+  }
+  return "unknown";
+}
+
 std::vector<int> identity_map(int n, int added) {
   std::vector<int> map(static_cast<size_t>(n + added), -1);
   for (int i = 0; i < n; ++i) map[static_cast<size_t>(i)] = i;
@@ -61,8 +70,36 @@ std::string to_string(OneConeKind kind) {
 FlowOptions one_cone_flow_options() {
   FlowOptions options;
   options.scheme = Scheme::CirclePacking;
-  options.radii = RadiusInit::Min;
+  options.radii = RadiusInit::Mean;
   return options;
+}
+
+std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kind) {
+  if (kind == OneConeKind::SingleCone) {
+    return {{Scheme::CirclePacking, RadiusInit::Mean},
+            {Scheme::CirclePacking, RadiusInit::Min},
+            {Scheme::Combinatorial, RadiusInit::Mean}};
+  }
+  return {{Scheme::InversiveDistance, RadiusInit::Mean},
+          {Scheme::InversiveDistance, RadiusInit::Min},
+          {Scheme::CirclePacking, RadiusInit::Mean},
+          {Scheme::Combinatorial, RadiusInit::Mean}};
+}
+
+FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
+  if (keep_metric) return flow(problem.mesh, problem.targets, options);
+  std::vector<std::string> failures;
+  FlowResult result;
+  for (auto [scheme, radii] : one_cone_metric_order(problem.kind)) {
+    FlowOptions attempt = options;
+    attempt.scheme = scheme;
+    attempt.radii = radii;
+    result = flow(problem.mesh, problem.targets, attempt);
+    if (result.converged()) break;
+    failures.push_back(to_string(scheme) + "/" + radius_name(radii) + ": " + to_string(result.status));
+  }
+  result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
+  return result;
 }
 
 int count_boundary_loops(const Mesh& mesh) {

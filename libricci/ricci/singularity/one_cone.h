@@ -40,11 +40,23 @@ struct OneConeProblem {
 [[nodiscard]] OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex,
                                               const ValenceOptions& valence = {});
 
-/// Flow settings that reach one-cone targets: Thurston circle packing (weights in [0, pi/2]) from
-/// min radii. The inversive-distance metric reproduces the mesh exactly but, measured on the
-/// shared genus-2/3 scans, breaks triangles before a cone of curvature -4*pi or -8*pi is reached,
-/// while circle packing with valence modification converges in 5-7 Newton steps.
+/// Default flow settings for one-cone problems (scheme and radii are chosen per problem by
+/// solve_one_cone_flow; tolerance 1e-10).
 [[nodiscard]] FlowOptions one_cone_flow_options();
+
+/// The metrics tried, in order, for a problem of this kind. Flat tori, open and punctured
+/// surfaces start with the inversive distance (it reproduces the mesh, so the result is the most
+/// conformal); a large cone (-4*pi for genus 2, -8*pi for genus 3) breaks inversive-distance
+/// triangles on the shared scans, so single cones start with Thurston circle packing. The
+/// combinatorial metric (tangent circles, Phi = 0) comes last: Thurston's theorem guarantees it
+/// once the cone has valence >= 4 - 2K/pi, but it ignores the mesh's shape.
+[[nodiscard]] std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kind);
+
+/// Runs the flow with the metrics of one_cone_metric_order until one converges (the options'
+/// scheme and radii are overridden unless `keep_metric`). The result's failed_attempts lists the
+/// runs that did not converge. Returns the last attempt when none converged.
+[[nodiscard]] FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options,
+                                             bool keep_metric = false);
 
 /// Whether the mesh's topology asks for a singular vertex at all (closed, genus != 1).
 [[nodiscard]] bool needs_singular_vertex(const Mesh& mesh);

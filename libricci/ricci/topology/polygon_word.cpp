@@ -98,3 +98,100 @@ FundamentalPolygon fundamental_polygon_word(const Mesh& mesh, const CutGraph& cu
 }
 
 }  // namespace ricci
+
+namespace ricci {
+namespace {
+
+LoopWord inverse(const LoopWord& w) {
+  LoopWord r(w.rbegin(), w.rend());
+  for (auto& l : r) l.sign = -l.sign;
+  return r;
+}
+
+LoopWord slice(const LoopWord& w, size_t begin, size_t end) {
+  return begin < end ? LoopWord(w.begin() + begin, w.begin() + end) : LoopWord{};
+}
+
+LoopWord concat(std::initializer_list<LoopWord> parts) {
+  LoopWord r;
+  for (const auto& p : parts) r.insert(r.end(), p.begin(), p.end());
+  return r;
+}
+
+bool is_inverse(const PolygonLetter& a, const PolygonLetter& b) {
+  return a.index == b.index && a.sign == -b.sign;
+}
+
+}  // namespace
+
+LoopWord cyclically_reduced(LoopWord word) {
+  LoopWord stack;
+  for (const auto& l : word) {
+    if (!stack.empty() && is_inverse(stack.back(), l)) {
+      stack.pop_back();
+    } else {
+      stack.push_back(l);
+    }
+  }
+  size_t begin = 0, end = stack.size();
+  while (end - begin >= 2 && is_inverse(stack[begin], stack[end - 1])) {
+    ++begin;
+    --end;
+  }
+  return slice(stack, begin, end);
+}
+
+bool same_cyclic_word(const LoopWord& a, const LoopWord& b) {
+  if (a.size() != b.size()) return false;
+  if (a.empty()) return true;
+  for (size_t shift = 0; shift < a.size(); ++shift) {
+    bool equal = true;
+    for (size_t i = 0; equal && i < a.size(); ++i) equal = a[(i + shift) % a.size()] == b[i];
+    if (equal) return true;
+  }
+  return false;
+}
+
+CanonicalBasis canonical_basis(const std::vector<PolygonLetter>& word) {
+  LoopWord rest;
+  for (const auto& l : word) {
+    if (l.kind == PolygonLetter::Kind::loop) rest.push_back(l);
+  }
+  CanonicalBasis basis;
+  // Invariant: the original relator is (cyclically) [a1,b1]...[ak,bk] rest, with the ai, bi
+  // expanded to their words; each step moves one linked pair of `rest` into a commutator.
+  while (!rest.empty()) {
+    const auto x = rest.front();
+    size_t x_inv = 0;
+    for (size_t i = 1; i < rest.size(); ++i) {
+      if (is_inverse(rest[i], x)) x_inv = i;
+    }
+    if (x_inv == 0) {
+      throw TopologyError("canonical basis: loop " + std::to_string(x.index) +
+                          " does not appear once each way in the polygon word");
+    }
+    size_t y_pos = 0, y_inv = 0;
+    for (size_t i = 1; i < x_inv && y_pos == 0; ++i) {
+      for (size_t j = x_inv + 1; j < rest.size(); ++j) {
+        if (is_inverse(rest[j], rest[i])) {
+          y_pos = i;
+          y_inv = j;
+        }
+      }
+    }
+    if (y_pos == 0) {
+      throw TopologyError("canonical basis: loop " + std::to_string(x.index) +
+                          " is linked with no other loop (not a one-vertex surface word)");
+    }
+    // rest = x B y C x^-1 D y^-1 T
+    const LoopWord b = slice(rest, 1, y_pos), c = slice(rest, y_pos + 1, x_inv),
+                   d = slice(rest, x_inv + 1, y_inv), t = slice(rest, y_inv + 1, rest.size());
+    const LoopWord y{rest[y_pos]};
+    basis.generators.push_back(concat({LoopWord{x}, inverse(c), inverse(d)}));
+    basis.generators.push_back(concat({d, c, b, y, inverse(d)}));
+    rest = concat({d, c, b, t});
+  }
+  return basis;
+}
+
+}  // namespace ricci

@@ -42,4 +42,29 @@ struct FundamentalPolygon {
 [[nodiscard]] bool is_canonical_word(const std::vector<PolygonLetter>& loop_letters,
                                      std::vector<int>* order = nullptr);
 
+/// A word in the loops of a cut graph: letters (loop index, sign), read left to right.
+using LoopWord = std::vector<PolygonLetter>;
+
+/// A canonical system of generators of the fundamental group (of the surface with its holes
+/// capped), each written as a word in the cut graph's loops, based at the root.
+struct CanonicalBasis {
+  /// 2g words: a1, b1, a2, b2, ... The relator a1 b1 a1^-1 b1^-1 ... ag bg ag^-1 bg^-1, with
+  /// every generator replaced by its word, equals the polygon's loop word up to rotation.
+  std::vector<LoopWord> generators;
+};
+
+/// Canonical generators from the polygon's loop word by the classical cut-and-paste
+/// normalisation (x B y C x^-1 D y^-1 T becomes x' y' x'^-1 y'^-1 D C B T with
+/// x' = x C^-1 D^-1 and y' = D C B y D^-1). Boundary letters are dropped (holes capped).
+/// The generators are homotopy classes: their curves are not re-routed on the mesh.
+/// \throw TopologyError if the loop letters are not an orientable one-vertex surface word
+///        (a letter not appearing once each way, or one linked with no other).
+[[nodiscard]] CanonicalBasis canonical_basis(const std::vector<PolygonLetter>& word);
+
+/// Free reduction (cancels x x^-1 pairs) followed by cyclic reduction.
+[[nodiscard]] LoopWord cyclically_reduced(LoopWord word);
+
+/// True when a and b are equal as cyclic words (one is a rotation of the other).
+[[nodiscard]] bool same_cyclic_word(const LoopWord& a, const LoopWord& b);
+
 }  // namespace ricci

@@ -88,10 +88,7 @@ std::vector<int> PlanarDmsSpace::candidate_triangles(const Eigen::Vector2d& u) c
     for (int x = x0; x <= x1; ++x) {
       for (int t : cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) +
                           static_cast<std::size_t>(x)]) {
-        const TriangleBasis& b = bases_[static_cast<std::size_t>(t)];
-        if ((u.array() >= b.box_min().array()).all() && (u.array() <= b.box_max().array()).all()) {
-          result.push_back(t);
-        }
+        if (bases_[static_cast<std::size_t>(t)].in_hull(u)) result.push_back(t);
       }
     }
   }

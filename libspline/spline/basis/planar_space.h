@@ -7,6 +7,10 @@
 // Partition of unity and polynomial reproduction hold at u when every triangle whose functions
 // reach u is present, e.g. for u in a triangle all of whose vertices are interior vertices: each
 // N_{J,beta} is supported in the hull of J's clouds, J slightly enlarged by the cloud radii.
+//
+// Cost (msp-bench dms, CPU time, one core): all non-zero functions with gradient and Hessian at
+// a point take ~2 / 4 / 10 / 20 us for n = 2 / 3 / 4 / 5; construction ~16 / 45 / 110 / 260 us
+// and ~3.5 / 9 / 21 / 44 KB per triangle. Queries are const and thread-safe.
 #include <Eigen/Core>
 #include <vector>
 
@@ -61,7 +65,7 @@ class PlanarDmsSpace {
   /// The (I, beta) whose support (closed hull of V_beta^I) contains u.
   [[nodiscard]] std::vector<BasisFunctionId> support(const Eigen::Vector2d& u) const;
 
-  /// Triangles whose clouds' bounding box contains u (candidates for non-zero functions).
+  /// Triangles whose clouds' convex hull contains u (candidates for non-zero functions).
   [[nodiscard]] std::vector<int> candidate_triangles(const Eigen::Vector2d& u) const;
 
   /// All basis functions with a non-zero value or derivative at u.

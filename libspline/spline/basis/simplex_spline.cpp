@@ -19,6 +19,22 @@ int popcount(std::uint32_t mask) {
   return count;
 }
 
+void put_longest_opposite_first(const std::vector<Eigen::Vector2d>& knots, int& a, int& b, int& c) {
+  // lambda_a's gradient is derived as -(g_b + g_c); it is the largest of the three (the one
+  // opposite the longest edge), so the sum does not cancel. Deriving a small one would lose
+  // digits in proportion to the triangle's aspect ratio (cloud radius / edge length).
+  const double opposite_a = (knots[c] - knots[b]).squaredNorm();
+  const double opposite_b = (knots[a] - knots[c]).squaredNorm();
+  const double opposite_c = (knots[b] - knots[a]).squaredNorm();
+  if (opposite_b > opposite_a && opposite_b >= opposite_c) {
+    const int t = a;
+    a = b, b = c, c = t;
+  } else if (opposite_c > opposite_a && opposite_c > opposite_b) {
+    const int t = c;
+    c = b, b = a, a = t;
+  }
+}
+
 }  // namespace
 
 SimplexSplineDag::SimplexSplineDag(std::vector<Eigen::Vector2d> knots) : knots_(std::move(knots)) {
@@ -43,6 +59,27 @@ int SimplexSplineDag::add(std::uint32_t mask) {
   if (nodes_.size() >= kNoChild) {
     throw ricci::InvalidInputError("simplex spline: too many knot subsets in one DAG");
   }
+  Node node;
+  node.degree = static_cast<std::uint8_t>(count - 3);
+  const Triple t = largest_triple(mask, node);
+  // No affinely independent triple: M is a measure on a line, zero as a function.
+  const int orientation = t.a < 0 ? 0 : orient2d(knots_[t.a], knots_[t.b], knots_[t.c]);
+  if (orientation != 0 && count == 3) {
+    node.kind = Kind::base;
+    node.knot[0] = static_cast<std::uint8_t>(t.a);
+    node.knot[1] = static_cast<std::uint8_t>(orientation > 0 ? t.b : t.c);
+    node.knot[2] = static_cast<std::uint8_t>(orientation > 0 ? t.c : t.b);
+    node.data[0] = 1.0 / std::abs(accurate_det2d(knots_[t.a], knots_[t.b], knots_[t.c]));
+  } else if (orientation != 0) {
+    set_recurrence(mask, t, node);
+  }
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.push_back(node);
+  index_.emplace(mask, id);
+  return id;
+}
+
+SimplexSplineDag::Triple SimplexSplineDag::largest_triple(std::uint32_t mask, Node& node) const {
   int members[32];
   int size = 0;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
@@ -54,58 +91,57 @@ int SimplexSplineDag::add(std::uint32_t mask) {
       hi = hi.cwiseMax(knots_[i]);
     }
   }
-  Node node;
-  node.degree = static_cast<std::uint8_t>(count - 3);
   const float inf = std::numeric_limits<float>::infinity();
   node.box[0] = std::nextafter(static_cast<float>(lo.x()), -inf);
   node.box[1] = std::nextafter(static_cast<float>(lo.y()), -inf);
   node.box[2] = std::nextafter(static_cast<float>(hi.x()), inf);
   node.box[3] = std::nextafter(static_cast<float>(hi.y()), inf);
-  // The triple of largest area keeps the barycentric coordinates (and the cancellation in the
-  // recurrence) as small as possible.
-  double best = 0.0;
-  int ia = -1, ib = -1, ic = -1;
+  // The triple of largest area keeps the barycentric coordinates bounded (|lambda| <= 3 on the
+  // hull of the subset) and so the recurrence well conditioned.
+  Triple best;
+  double best_area = 0.0;
   for (int x = 0; x < size; ++x) {
     for (int y = x + 1; y < size; ++y) {
       const Eigen::Vector2d e1 = knots_[members[y]] - knots_[members[x]];
       for (int z = y + 1; z < size; ++z) {
-        const double det = std::abs(cross(e1, knots_[members[z]] - knots_[members[x]]));
-        if (det > best) {
-          best = det;
-          ia = members[x], ib = members[y], ic = members[z];
+        const double area = std::abs(cross(e1, knots_[members[z]] - knots_[members[x]]));
+        if (area > best_area) {
+          best_area = area;
+          best = Triple{members[x], members[y], members[z]};
         }
       }
     }
   }
-  // No affinely independent triple: M is a measure on a line, zero as a function.
-  const int orientation = ia < 0 ? 0 : orient2d(knots_[ia], knots_[ib], knots_[ic]);
-  if (orientation != 0 && count == 3) {
-    node.kind = Kind::base;
-    node.knot[0] = static_cast<std::uint8_t>(ia);
-    node.knot[1] = static_cast<std::uint8_t>(orientation > 0 ? ib : ic);
-    node.knot[2] = static_cast<std::uint8_t>(orientation > 0 ? ic : ib);
-    node.data[0] = 1.0 / std::abs(accurate_det2d(knots_[ia], knots_[ib], knots_[ic]));
-  } else if (orientation != 0) {
-    const int triple[3] = {ia, ib, ic};
-    for (int k = 0; k < 3; ++k) {
-      const int child = add(mask & ~(1u << triple[k]));
-      node.child[k] = nodes_[static_cast<std::size_t>(child)].kind == Kind::zero
-                          ? kNoChild
-                          : static_cast<std::uint16_t>(child);
-      node.knot[k] = static_cast<std::uint8_t>(triple[k]);
-    }
-    const Eigen::Vector2d e1 = knots_[ib] - knots_[ia], e2 = knots_[ic] - knots_[ia];
-    const double det = accurate_det2d(knots_[ia], knots_[ib], knots_[ic]);
-    node.kind = Kind::recurrence;
-    node.data[0] = e2.y() / det;
-    node.data[1] = -e2.x() / det;
-    node.data[2] = -e1.y() / det;
-    node.data[3] = e1.x() / det;
+  return best;
+}
+
+void SimplexSplineDag::set_recurrence(std::uint32_t mask, Triple t, Node& node) {
+  put_longest_opposite_first(knots_, t.a, t.b, t.c);
+  const int triple[3] = {t.a, t.b, t.c};
+  for (int k = 0; k < 3; ++k) {
+    const int child = add(mask & ~(1u << triple[k]));
+    node.child[k] = nodes_[static_cast<std::size_t>(child)].kind == Kind::zero
+                        ? kNoChild
+                        : static_cast<std::uint16_t>(child);
+    node.knot[k] = static_cast<std::uint8_t>(triple[k]);
   }
-  const int id = static_cast<int>(nodes_.size());
-  nodes_.push_back(node);
-  index_.emplace(mask, id);
-  return id;
+  // g_b, g_c from the edges opposite b and c, each without cancellation.
+  const Eigen::Vector2d e1 = knots_[t.b] - knots_[t.a], e2 = knots_[t.c] - knots_[t.a];
+  const double det = accurate_det2d(knots_[t.a], knots_[t.b], knots_[t.c]);
+  node.kind = Kind::recurrence;
+  node.data[0] = e2.y() / det;
+  node.data[1] = -e2.x() / det;
+  node.data[2] = -e1.y() / det;
+  node.data[3] = e1.x() / det;
+}
+
+void SimplexSplineDag::release_index() {
+  std::unordered_map<std::uint32_t, int>().swap(index_);
+  nodes_.shrink_to_fit();
+}
+
+std::size_t SimplexSplineDag::memory_bytes() const {
+  return nodes_.capacity() * sizeof(Node) + knots_.capacity() * sizeof(Eigen::Vector2d);
 }
 
 void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,

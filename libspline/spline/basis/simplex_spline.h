@@ -16,6 +16,14 @@
 //     D_d M(u | X) = n sum_a mu_a M(u | X \ x_a)    (degree-n M, this normalisation),
 // applied with the same triple (mu_a = d . grad lambda_a) and recursively for higher orders.
 // Points on knot lines take the value of the polynomial piece on the side given by a TieBreak.
+//
+// Numerics (measured with msp-bench dms and the tests): the triples' determinants use error-free
+// products (orientation.h); each lambda_a is anchored at the end of its opposite edge nearer to
+// u; and the one gradient derived from the other two (sum of gradients = 0) is the largest, so the
+// subtraction does not cancel. Without the last point thin triples (two knots of a cloud and a
+// far knot) lost digits in proportion to edge length / cloud radius; with it partition of unity
+// holds to ~1e-15 for cloud radii from 0.45 of the inradius down to 1e-7 of the edge length, also
+// at points inside the clouds. Evaluation is const and thread-safe.
 #include <Eigen/Core>
 #include <cstdint>
 #include <unordered_map>
@@ -50,6 +58,13 @@ class SimplexSplineDag {
   int add(std::uint32_t mask);
 
   [[nodiscard]] int node_count() const { return static_cast<int>(nodes_.size()); }
+
+  /// Drops the subset -> node map once all roots are added (it is as large as the nodes). Later
+  /// add() calls stay correct but no longer share the nodes built before.
+  void release_index();
+
+  /// Bytes held by the nodes and knots (the evaluation state).
+  [[nodiscard]] std::size_t memory_bytes() const;
   [[nodiscard]] const std::vector<Eigen::Vector2d>& knots() const { return knots_; }
 
   /// Evaluates every node at u: jets[id] is then M, grad M and Hessian of M for node id.
@@ -77,6 +92,13 @@ class SimplexSplineDag {
     Kind kind = Kind::zero;
     std::uint8_t degree = 0;
   };
+  struct Triple {
+    int a = -1, b = -1, c = -1;
+  };
+  // The subset's largest-area knot triple (a < 0: all collinear); also fills node.box.
+  Triple largest_triple(std::uint32_t mask, Node& node) const;
+  // Adds the children X \ x_k and the barycentric gradients of the triple to node.
+  void set_recurrence(std::uint32_t mask, Triple triple, Node& node);
   double barycentric(const Node& node, int k, const Eigen::Vector2d& g_k,
                      const Eigen::Vector2d& u) const {
     const Eigen::Vector2d wp = u - knots_[node.knot[(k + 1) % 3]];

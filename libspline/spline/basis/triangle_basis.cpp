@@ -31,6 +31,36 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
+// Counter-clockwise convex hull (Andrew's monotone chain, exact orientations, collinear points
+// dropped); fewer than 3 points when all are collinear.
+std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points) {
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y());
+  });
+  std::vector<Eigen::Vector2d> hull(2 * points.size() + 1);
+  std::size_t k = 0;
+  for (std::size_t pass = 0; pass < 2; ++pass) {
+    const std::size_t start = k;
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      const Eigen::Vector2d& p = pass == 0 ? points[j] : points[points.size() - 1 - j];
+      while (k >= start + 2 && orient2d(hull[k - 2], hull[k - 1], p) <= 0) --k;
+      hull[k++] = p;
+    }
+    --k;  // the last point starts the other chain
+  }
+  hull.resize(k);
+  return hull;
+}
+
+bool in_closed_polygon(const std::vector<Eigen::Vector2d>& hull, const Eigen::Vector2d& u) {
+  if (hull.size() < 3) return false;  // collinear knots: the functions vanish
+  for (std::size_t j = 0; j < hull.size(); ++j) {
+    if (orient2d(hull[j], hull[(j + 1) % hull.size()], u) < 0) return false;
+  }
+  return true;
+}
+
+
 }  // namespace
 
 TriangleBasis::TriangleBasis(const KnotCloud& cloud0, const KnotCloud& cloud1,
@@ -61,6 +91,13 @@ TriangleBasis::TriangleBasis(const KnotCloud& cloud0, const KnotCloud& cloud1,
     scales_.push_back(d);
     roots_.push_back(dag_.add(mask));
   }
+  dag_.release_index();
+  hull_ = convex_hull(knots);
+}
+
+std::size_t TriangleBasis::memory_bytes() const {
+  return sizeof(*this) + dag_.memory_bytes() + masks_.capacity() * sizeof(std::uint32_t) +
+         roots_.capacity() * sizeof(int) + scales_.capacity() * sizeof(double);
 }
 
 std::vector<Eigen::Vector2d> TriangleBasis::knot_set(int i) const {
@@ -73,27 +110,12 @@ std::vector<Eigen::Vector2d> TriangleBasis::knot_set(int i) const {
 }
 
 bool TriangleBasis::in_support(int i, const Eigen::Vector2d& u) const {
-  // Closed convex hull by Andrew's monotone chain with exact orientations.
-  std::vector<Eigen::Vector2d> points = knot_set(i);
-  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
-    return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y());
-  });
-  std::vector<Eigen::Vector2d> hull(2 * points.size());
-  std::size_t k = 0;
-  for (std::size_t pass = 0; pass < 2; ++pass) {
-    const std::size_t start = k;
-    for (std::size_t j = 0; j < points.size(); ++j) {
-      const Eigen::Vector2d& p = pass == 0 ? points[j] : points[points.size() - 1 - j];
-      while (k >= start + 2 && orient2d(hull[k - 2], hull[k - 1], p) <= 0) --k;
-      hull[k++] = p;
-    }
-    --k;  // the last point starts the other chain
-  }
-  if (k < 3) return false;  // collinear knots: the function vanishes
-  for (std::size_t j = 0; j < k; ++j) {
-    if (orient2d(hull[j], hull[(j + 1) % k], u) < 0) return false;
-  }
-  return true;
+  return in_closed_polygon(convex_hull(knot_set(i)), u);
+}
+
+bool TriangleBasis::in_hull(const Eigen::Vector2d& u) const {
+  if ((u.array() < box_min_.array()).any() || (u.array() > box_max_.array()).any()) return false;
+  return in_closed_polygon(hull_, u);
 }
 
 void TriangleBasis::evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,

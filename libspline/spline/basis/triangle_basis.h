@@ -27,6 +27,8 @@ class TriangleBasis {
   [[nodiscard]] int degree() const { return degree_; }
   [[nodiscard]] int size() const { return static_cast<int>(roots_.size()); }
   [[nodiscard]] int node_count() const { return dag_.node_count(); }
+  /// Bytes of evaluation state (about 64 per DAG node: ~9 KB at degree 3, ~44 KB at degree 5).
+  [[nodiscard]] std::size_t memory_bytes() const;
 
   /// Knot set V_beta^I of the function at position i of multi_indices(n).
   [[nodiscard]] std::vector<Eigen::Vector2d> knot_set(int i) const;
@@ -39,6 +41,10 @@ class TriangleBasis {
 
   /// True when u lies in the closed convex hull of V_beta^I (the support of function i).
   [[nodiscard]] bool in_support(int i, const Eigen::Vector2d& u) const;
+
+  /// True when u lies in the closed convex hull of all knots of the three clouds: outside it,
+  /// every function of the triangle and all its derivatives vanish.
+  [[nodiscard]] bool in_hull(const Eigen::Vector2d& u) const;
 
   /// Jets of all functions at u, in multi_indices(n) order. scratch is reused storage.
   void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,
@@ -56,6 +62,7 @@ class TriangleBasis {
   std::vector<int> roots_;
   std::vector<double> scales_;
   Eigen::Vector2d box_min_, box_max_;
+  std::vector<Eigen::Vector2d> hull_;  // counter-clockwise hull of all knots
 };
 
 }  // namespace spline

@@ -34,11 +34,11 @@ void check_options(int degree, const KnotCloudOptions& options) {
     throw ricci::InvalidInputError("knot cloud: degree " + std::to_string(degree) +
                                    " outside 1.." + std::to_string(kMaxDmsDegree));
   }
-  if (!(options.radius_fraction > 0.0 && options.radius_fraction < 1.0) ||
+  if (!(options.radius_fraction > 0.0 && options.radius_fraction < 0.5) ||
       !(options.radius_jitter >= 0.0 && options.radius_jitter < 1.0) ||
       !(options.angle_jitter >= 0.0 && options.angle_jitter <= 0.4)) {
     throw ricci::InvalidInputError(
-        "knot cloud: options out of range (radius_fraction in (0,1), radius_jitter in [0,1), "
+        "knot cloud: options out of range (radius_fraction in (0,0.5), radius_jitter in [0,1), "
         "angle_jitter in [0,0.4])");
   }
 }

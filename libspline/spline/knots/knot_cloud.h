@@ -39,7 +39,9 @@ struct KnotCloud {
 
 /// Options of the knot-cloud rule.
 struct KnotCloudOptions {
-  double radius_fraction = 0.4;  ///< r / (smallest inradius of incident triangles), in (0, 1)
+  /// r / (smallest inradius of incident triangles), in (0, 0.5): the range where the knot-net
+  /// conditions are guaranteed (see above).
+  double radius_fraction = 0.4;
   double radius_jitter = 0.4;    ///< knot distances vary in [(1 - jitter) r, r], in [0, 1)
   double angle_jitter = 0.15;    ///< angular jitter, fraction of the pattern spacing, in [0, 0.4]
   std::uint64_t seed = 1;        ///< mixed with the vertex id

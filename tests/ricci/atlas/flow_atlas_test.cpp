@@ -1,6 +1,4 @@
-// The atlas on flat metrics computed by the Ricci flow (genus 1, 2, open genus 2). Compiled only
-// once the flow is on the branch (ricci/flow/flow.h).
-#if __has_include("ricci/flow/flow.h")
+// The atlas on flat metrics computed by the Ricci flow (genus 1, 2, open genus 2).
 #include <gtest/gtest.h>
 
 #include "ricci/atlas/atlas.h"
@@ -102,4 +100,3 @@ TEST(AtlasOnFlow, OpenGenusTwoWithBoundaryCurvature) {
 
 }  // namespace
 }  // namespace ricci
-#endif

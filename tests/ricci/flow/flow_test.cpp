@@ -91,6 +91,19 @@ TEST(Flow, SphericalEitherConvergesOrSaysWhy) {
   }
 }
 
+TEST(Flow, SphericalUniformizationOfAGenus0Model) {
+  const Mesh mesh = read_mesh(shared_model("closed_g0/bunny_npm_closed.off"));
+  FlowOptions options;
+  options.geometry = Geometry::Spherical;
+  options.tolerance = 1e-8;
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Spherical), options);
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_LT(r.max_error, 1e-8);
+  const MeshTables t = build_mesh_tables(mesh);
+  // Σ K + Σ A = 4π with K = 0: the triangles tile the unit sphere.
+  EXPECT_NEAR(face_areas(t, r.lengths, Geometry::Spherical).sum(), 4 * M_PI, 1e-6);
+}
+
 TEST(Flow, SphericalConvergesOnARoundSphere) {
   // The octahedral sphere's own metric is close to the uniformization: Newton gets there.
   const Mesh mesh = testing::sphere(3);

@@ -75,7 +75,8 @@ TEST(Diagnose, MobiusStripAndKleinBottleAreNonOrientable) {
   EXPECT_EQ(strip.boundary_loops, 1);  // the Mobius strip's boundary is one circle
   EXPECT_EQ(strip.euler_characteristic, 0);
   EXPECT_EQ(first_kind(strip), MeshProblemKind::kNonOrientable);
-  EXPECT_NE(strip.problems.front().message.find("orientation conflict at edge ("), std::string::npos);
+  EXPECT_NE(strip.problems.front().message.find("orientation conflict at edge ("),
+            std::string::npos);
   EXPECT_FALSE(strip.clean_manifold());
   const auto klein = diagnose(torus(10, 6, false, true));
   EXPECT_FALSE(klein.orientable);
@@ -143,7 +144,8 @@ TEST(Diagnose, DegenerateFacesByRepeatedIndexOrCollinearCorners) {
   const auto d = diagnose(soup);
   EXPECT_EQ(d.degenerate_faces, 2);
   EXPECT_EQ(first_kind(d), MeshProblemKind::kRepeatedIndex);
-  EXPECT_EQ(d.problems.front().message, "face 9 (line 42) is degenerate: it repeats a vertex index");
+  EXPECT_EQ(d.problems.front().message,
+            "face 9 (line 42) is degenerate: it repeats a vertex index");
   EXPECT_EQ(d.problems.back().kind, MeshProblemKind::kZeroArea);
   EXPECT_EQ(d.problems.back().message, "face 8 has zero area");
 }

@@ -57,7 +57,8 @@ TEST_F(MeshIo, WriteRefusesUnsupportedTargetsAndLeavesNothing) {
   const ricci::Mesh mesh = ricci::build_mesh(ricci_test::tetrahedron());
   EXPECT_THROW(ricci::write_mesh(mesh, (dir_ / "m.stl").string()), ricci::IOError);
   EXPECT_THROW(ricci::write_mesh(mesh, (dir_ / "m.xyz").string()), ricci::IOError);
-  EXPECT_THROW(ricci::write_mesh(mesh, (dir_ / "no" / "such" / "dir.obj").string()), ricci::IOError);
+  EXPECT_THROW(ricci::write_mesh(mesh, (dir_ / "no" / "such" / "dir.obj").string()),
+               ricci::IOError);
   EXPECT_TRUE(fs::is_empty(dir_));
 }
 

@@ -76,7 +76,8 @@ inline ricci::PolygonSoup mobius(int n) {
 }
 
 /// Appends `other` with its indices shifted (a disjoint union).
-inline void append(ricci::PolygonSoup& soup, const ricci::PolygonSoup& other, const Eigen::Vector3d& shift) {
+inline void append(ricci::PolygonSoup& soup, const ricci::PolygonSoup& other,
+                   const Eigen::Vector3d& shift) {
   const int offset = static_cast<int>(soup.positions.size());
   for (const auto& p : other.positions) soup.positions.push_back(p + shift);
   for (auto face : other.faces) {

@@ -39,6 +39,36 @@ TEST(Generate, ClosedTorusAndOpenDoubleTorus) {
   expect_generated(open);
 }
 
+// Signed distance to the generator's genus-1 torus (R = 1, r = 0.35 around the z axis).
+double torus_distance(const OpenMesh::Vec3d& p) {
+  const double q = std::hypot(p[0], p[1]) - 1.0;
+  return std::hypot(q, p[2]) - 0.35;
+}
+
+TEST(Generate, VerticesLieOnTheImplicitSurfaceAndTheCutPlane) {
+  GenerateOptions o;
+  o.genus = 1;
+  o.holes = 1;
+  o.target_faces = 500;
+  const Mesh mesh = generate_surface(o);
+  ASSERT_EQ(surface_topology(mesh).boundary_loops, 1);
+  double max_x = -1e300;
+  for (auto v : mesh.vertices()) {
+    EXPECT_NEAR(torus_distance(mesh.point(v)), 0.0, 1e-10) << "vertex " << v.idx();
+    max_x = std::max(max_x, mesh.point(v)[0]);
+  }
+  // The +x cap is cut hole_depth deep from the torus's extreme x = R + r, up to the Mesh_3
+  // approximation of that extreme; every boundary vertex sits exactly on that plane.
+  EXPECT_NEAR(max_x, 1.35 - o.hole_depth, 1e-3);
+  int boundary_vertices = 0;
+  for (auto v : mesh.vertices()) {
+    if (!v.is_boundary()) continue;
+    ++boundary_vertices;
+    EXPECT_EQ(mesh.point(v)[0], max_x);
+  }
+  EXPECT_GT(boundary_vertices, 8);
+}
+
 TEST(Generate, ClosedBlobIsDeterministicForASeed) {
   GenerateOptions blob;
   blob.genus = 0;

@@ -16,7 +16,7 @@ ricci::Mesh shared_model(const std::string& relative) {
 
 // Runs the flow on the problem and checks the curvature reached its target everywhere.
 ricci::FlowResult expect_flow_reaches_target(const ricci::OneConeProblem& problem) {
-  ricci::FlowResult r = ricci::flow(problem.mesh, problem.targets, ricci::one_cone_flow_options());
+  ricci::FlowResult r = ricci::solve_one_cone_flow(problem, ricci::one_cone_flow_options());
   EXPECT_TRUE(r.converged()) << r.message;
   EXPECT_LT(r.max_error, 1e-9);
   return r;

@@ -9,6 +9,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "spline/basis/planar_fixtures.h"
+#include "spline/knots/dms_conditions.h"
 #include "spline/knots/knot_cloud.h"
 
 namespace spline {
@@ -145,25 +146,56 @@ TEST(PlanarDmsSpace, ReproducesVectorPolynomialsInALocalFrame) {
   }
 }
 
-// Cloud radius down to 1e-6 of the edge length: still a partition of unity to 1e-9.
+// Cloud radius about 1e-6 of the edge length: still a partition of unity, also at points inside
+// the clouds, where the functions vary on the scale of the cloud.
 TEST(PlanarDmsSpace, TinyCloudsKeepPartitionOfUnity) {
   for (int n = 2; n <= 5; ++n) {
     const PlanarTriangulation t = perturbed_grid(5, 0.3, 300 + n);
-    // Inradius ~ 0.05 here: a fraction of 2e-5 gives radius ~1e-6 of the edge length (0.2).
-    const PlanarDmsSpace space = make_space(t, n, 1e-5);
+    // Inradius ~0.05 and edges ~0.2 here: a fraction of 5e-6 gives radius ~1e-6 of the edge.
+    const PlanarDmsSpace space = make_space(t, n, 5e-6);
     std::mt19937 rng(n);
+    std::uniform_real_distribution<double> unit(-1.5, 1.5);
     for (int i : inner_triangles(t)) {
       for (int k = 0; k < 4; ++k) {
-        const Eigen::Vector2d u = random_point_in(t, i, rng);
-        const Sums s = sum_basis(space, u);
-        ASSERT_NEAR(s.value, 1.0, 1e-9) << "degree " << n;
+        const Sums s = sum_basis(space, random_point_in(t, i, rng));
+        ASSERT_NEAR(s.value, 1.0, 1e-12) << "degree " << n;
         ASSERT_TRUE(s.gradient.allFinite() && s.hessian.allFinite());
       }
-      // Right next to a vertex, inside its cloud.
-      const Eigen::Vector2d v = t.positions[t.triangles[static_cast<std::size_t>(i)][0]];
-      const Sums s = sum_basis(space, v + Eigen::Vector2d(3e-7, -2e-7));
-      ASSERT_NEAR(s.value, 1.0, 1e-9) << "degree " << n;
+      const int v = t.triangles[static_cast<std::size_t>(i)][0];
+      const double radius = (space.clouds()[v].knots[1] - t.positions[v]).norm();
+      for (int k = 0; k < 10; ++k) {
+        const Eigen::Vector2d u = t.positions[v] + radius * Eigen::Vector2d(unit(rng), unit(rng));
+        const Sums s = sum_basis(space, u);
+        ASSERT_NEAR(s.value, 1.0, 1e-12) << "degree " << n << " inside the cloud of " << v;
+        ASSERT_LT(s.gradient.norm(), 1e-12 * s.gradient_scale) << "degree " << n;
+      }
     }
+  }
+}
+
+// A knot nearly collinear (1e-13 off) with its vertex and a neighbour, i.e. with knots sharing
+// its knot sets: finite values, still a partition of unity.
+TEST(PlanarDmsSpace, NearlyCollinearKnotsStayFinite) {
+  const int n = 3;
+  const PlanarTriangulation t = perturbed_grid(4, 0.2, 17);
+  std::vector<KnotCloud> clouds = make_knot_clouds(t, n);
+  const std::vector<VertexRing> rings = vertex_rings(t);
+  const std::vector<bool> interior = testing::interior_vertices(t);
+  std::size_t v = 0;
+  while (!interior[v]) ++v;
+  const Eigen::Vector2d edge = (t.positions[rings[v].neighbours[0]] - t.positions[v]).normalized();
+  const double radius = (clouds[v].knots[1] - t.positions[v]).norm();
+  clouds[v].knots[1] =
+      t.positions[v] + radius * edge + 1e-13 * Eigen::Vector2d(-edge.y(), edge.x());
+  ASSERT_TRUE(check_dms_conditions(t, clouds).satisfied);
+  const PlanarDmsSpace space(t, clouds);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> unit(-0.05, 0.05);
+  for (int k = 0; k < 300; ++k) {
+    const Eigen::Vector2d u = t.positions[v] + Eigen::Vector2d(unit(rng), unit(rng));
+    const Sums s = sum_basis(space, u);
+    ASSERT_TRUE(std::isfinite(s.value) && s.gradient.allFinite() && s.hessian.allFinite());
+    EXPECT_NEAR(s.value, 1.0, 1e-9);
   }
 }
 

@@ -1,0 +1,103 @@
+// Regression over real and bundled meshes of genus 0-3, closed and open: the one-cone atlas must
+// come out with the curvature reached, no flipped face, rigid transitions and the right cone.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "ricci/mesh/io.h"
+#include "ricci/pipeline/one_cone_atlas.h"
+
+namespace {
+
+struct Case {
+  const char* path;  // relative to the shared models, or "models/..." for bundled ones
+  int singular_vertex;
+};
+
+std::string resolve(const std::string& path) {
+  if (path.rfind("models/", 0) == 0) return std::string(MSP_SOURCE_DIR) + "/" + path;
+  return std::string(MSP_SHARED_MODELS) + "/" + path;
+}
+
+// Edge-length errors of the central chart against the flat metric: the largest absolute error
+// (relative to the domain diameter) and the largest relative error over edges longer than
+// 1e-4 of the diameter. Near a cone of angle 2*pi*(2g - 1) the flat metric shrinks like
+// r^(2g - 1): edges there are 1e-8 of the diameter or less and double-precision coordinates of
+// the global chart carry only eps * diameter absolute accuracy (the local charts are exact).
+struct LayoutErrors {
+  double absolute = 0.0, relative_long_edges = 0.0;
+};
+
+LayoutErrors layout_errors(const ricci::OneConeAtlasResult& r) {
+  const ricci::Mesh& m = r.problem.mesh;
+  const auto& sliced = r.atlas.sliced;
+  const auto& P = r.atlas.layout.positions;
+  LayoutErrors errors;
+  for (auto e : sliced.mesh.edges()) {
+    auto h = sliced.mesh.halfedge_handle(e, 0);
+    int a = sliced.mesh.from_vertex_handle(h).idx(), b = sliced.mesh.to_vertex_handle(h).idx();
+    auto original = m.find_halfedge(m.vertex_handle(sliced.to_original_vertex[a]),
+                                    m.vertex_handle(sliced.to_original_vertex[b]));
+    double l = r.flow.lengths[m.edge_handle(original).idx()];
+    double error = std::abs((P.row(a) - P.row(b)).norm() - l);
+    errors.absolute = std::max(errors.absolute, error / r.atlas.domain_diameter);
+    if (l > 1e-4 * r.atlas.domain_diameter) errors.relative_long_edges = std::max(errors.relative_long_edges, error / l);
+  }
+  return errors;
+}
+
+class OneConeAtlasRegression : public ::testing::TestWithParam<Case> {};
+
+TEST_P(OneConeAtlasRegression, FlatOneConeAtlasIsExact) {
+  const Case& c = GetParam();
+  ricci::Mesh mesh = ricci::read_mesh(resolve(c.path));
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = c.singular_vertex;
+  ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
+
+  EXPECT_LT(r.flow.max_error, 1e-9) << c.path;
+  EXPECT_EQ(r.atlas.layout.flipped_faces, 0) << c.path;
+  LayoutErrors errors = layout_errors(r);
+  EXPECT_LT(errors.absolute, 1e-11) << c.path;
+  EXPECT_LT(errors.relative_long_edges, 1e-9) << c.path;
+  EXPECT_LT(r.relative_transition_residual(), 1e-9) << c.path;
+  EXPECT_EQ(r.atlas.uncovered_faces, 0) << c.path;
+  const int chi = 2 - 2 * r.problem.genus - r.problem.boundary_loops;
+  if (r.problem.kind == ricci::OneConeKind::SingleCone) {
+    double cone_angle = 2 * M_PI - r.flow.curvature[r.problem.cone];
+    EXPECT_NEAR(cone_angle, 2 * M_PI - 2 * M_PI * chi, 1e-9) << c.path;
+    EXPECT_GE(r.problem.mesh.valence(r.problem.mesh.vertex_handle(r.problem.cone)),
+              static_cast<unsigned>(ricci::required_cone_valence(2 * M_PI * chi)));
+  }
+  if (r.problem.kind == ricci::OneConeKind::FlatTorus) {
+    for (const auto& s : r.atlas.side_pairings) EXPECT_NEAR(s.motion.angle, 0.0, 1e-9) << c.path;
+  }
+  // Gauss-Bonnet of the flat metric: all curvature sums to 2*pi*chi of the flowed mesh.
+  const auto& m = r.problem.mesh;
+  int chi_flowed = static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) + static_cast<int>(m.n_faces());
+  EXPECT_NEAR(r.flow.curvature.sum(), 2 * M_PI * chi_flowed, 1e-8) << c.path;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    SharedAndBundledModels, OneConeAtlasRegression,
+    ::testing::Values(Case{"closed_g0/knight_decimated.off", 0}, Case{"models/genus0.off", 10},
+                      Case{"closed_g1/knot1.off", -1}, Case{"closed_g1/elk.off", -1},
+                      Case{"models/genus1.off", -1}, Case{"closed_g2/eight.off", 0},
+                      Case{"closed_g2/eight_cgal.off", 3}, Case{"models/genus2.off", 0},
+                      Case{"closed_g3/elephant_cgal.off", 0}, Case{"models/genus3.off", 0},
+                      Case{"open/head.off", -1}, Case{"open/eight_hole.off", -1},
+                      Case{"open/intersection_quads.off", -1}, Case{"models/genus2_hole.off", -1},
+                      Case{"models/cap_open.off", -1}));
+
+TEST(OneConeAtlas, AutomaticChoiceRunsFewFlows) {
+  ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
+  ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh);
+  EXPECT_GE(r.chosen_vertex, 0);
+  EXPECT_GT(r.flows_for_choice, 0);
+  EXPECT_LT(r.flows_for_choice, 40);
+  EXPECT_LT(r.flow.max_error, 1e-9);
+}
+
+}  // namespace

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Regenerates the README pictures in docs/images from the shared models: the atlas SVGs
+# (rasterised) and renders of the checkerboard .glb files. Needs a built msp and tools/node_modules.
+# Usage: tools/make-docs-images.sh [MSP_BINARY] [MODELS_DIR]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+msp="${1:-$root/build/apps/msp}"
+models="${2:-$root/../shared/models}"
+out="$root/docs/images"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$out"
+
+# name model singularity azimuth elevation svg-width (PNGs stay under 300 KB)
+while read -r name model singularity azimuth elevation width; do
+  args=(atlas "$models/$model" --quiet -o "$work/$name.svg" --checkerboard "$work/$name.glb")
+  [[ "$singularity" != auto ]] && args+=(--singularity "$singularity")
+  "$msp" "${args[@]}" >/dev/null
+  # Caption shows the model's path relative to the models folder.
+  sed -i "s|$models/||" "$work/$name.svg"
+  node "$root/tools/validate.mjs" "$work/$name.glb"
+  node "$root/tools/render.mjs" "$work/$name.svg" "$out/atlas_$name.png" --width "$width"
+  node "$root/tools/render.mjs" "$work/$name.glb" "$out/checkerboard_$name.png" --width 800 --height 600 \
+    --azimuth "$azimuth" --elevation "$elevation"
+done <<'LIST'
+genus1_elk closed_g1/elk.off auto 30 20 1000
+genus2_eight closed_g2/eight.off 570 20 35 1000
+genus3 closed_g3/genus3.off 17 0 60 860
+LIST
+ls -l "$out"
