@@ -124,13 +124,19 @@ TEST(ManifoldSpline, TwoChartsSeeTheSameSurface) {
             Eigen::Matrix2d ha, hb;
             ha << ja.duu[i], ja.duv[i], ja.duv[i], ja.dvv[i];
             hb << jb.duu[i], jb.duv[i], jb.duv[i], jb.dvv[i];
-            worst[2] = std::max(worst[2], (ha - r.transpose() * hb * r).norm() * h * h);
+            // Relative to the Hessian's size: second derivatives near knot lines reach
+            // 1e3 |c| / h^2 and amplify the transitions' 1e-12 rounding like (h / r)^3.
+            worst[2] = std::max(worst[2], (ha - r.transpose() * hb * r).norm() /
+                                              std::max(ha.norm(), 1.0 / (h * h)));
           }
           ++compared;
         }
       }
       EXPECT_GT(compared, 10) << model;
-      for (double w : worst) EXPECT_LT(w, 1e-9) << model << " n=" << n;
+      for (int order = 0; order < 3; ++order)
+        EXPECT_LT(worst[order], 1e-9)
+            << model << " n=" << n << " order " << order << " transition residual "
+            << space->atlas().max_transition_residual / space->atlas().domain_diameter;
     }
   }
 }
