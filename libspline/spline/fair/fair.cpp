@@ -86,6 +86,7 @@ FairResult fair(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& contro
   identity.setIdentity();
   k += identity;
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+  solver.cholmod().print = 0;  // libraries never print; failures are reported by info()
   solver.compute(k);
   if (solver.info() != Eigen::Success) {
     throw ricci::SolverError("fair: CHOLMOD could not factor I + w C^T C (" +

@@ -148,6 +148,7 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
 
   const auto solve_start = Clock::now();
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+  solver.cholmod().print = 0;  // libraries never print; failures are reported by info()
   solver.compute(normal);
   // Rounding in A^T A can outweigh a tiny anchor where a sliver makes basis Hessians huge: raise
   // the anchor to 1e-12, then 1e-10, of the largest diagonal entry before giving up.
