@@ -5,6 +5,8 @@ namespace msp::bench {
 int run_flow_benchmark(int argc, char** argv);  // bench_flow.cpp
 int run_flow_case(int argc, char** argv);       // bench_flow.cpp
 int run_solver_benchmark(int argc, char** argv);  // bench_flow.cpp
+int run_spline_benchmark(int argc, char** argv);      // bench_spline.cpp
+int run_spline_fit_benchmark(int argc, char** argv);  // bench_spline.cpp
 int run_mesh_io_benchmark(int argc, char** argv);  // bench_mesh_io.cpp
 
 /// DMS basis: build cost, memory and evaluation cost per point for degrees 2..5.

@@ -70,8 +70,8 @@ FairResult fair(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& contro
                 const FairOptions& options) {
   if (control_points.rows() != space.function_count()) {
     throw ricci::InvalidInputError("fair: " + std::to_string(control_points.rows()) +
-                                   " control points for " +
-                                   std::to_string(space.function_count()) + " functions");
+                                   " control points for " + std::to_string(space.function_count()) +
+                                   " functions");
   }
   const Eigen::SparseMatrix<double> c = fairing_constraints(space, options);
   FairResult result;
@@ -86,6 +86,7 @@ FairResult fair(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& contro
   identity.setIdentity();
   k += identity;
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+  solver.cholmod().print = 0;  // libraries never print; failures are reported by info()
   solver.compute(k);
   if (solver.info() != Eigen::Success) {
     throw ricci::SolverError("fair: CHOLMOD could not factor I + w C^T C (" +

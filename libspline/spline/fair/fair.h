@@ -10,8 +10,8 @@
 //
 // Solver: the constraints C c~ = 0 are linear and, taken over both orientations (I, J) and
 // (J, I), linearly dependent, so the KKT matrix [I C^T; C 0] is singular. We use the augmented
-// Lagrangian instead: (I + w C^T C) d = -C^T (w C c + lambda), c~ = c + d, lambda += w C c~, with one CHOLMOD
-// factorisation of the SPD matrix reused over the iterations; it converges to the exact
+// Lagrangian instead: (I + w C^T C) d = -C^T (w C c + lambda), c~ = c + d, lambda += w C c~, with
+// one CHOLMOD factorisation of the SPD matrix reused over the iterations; it converges to the exact
 // projection of c onto {C c~ = 0}, dependent rows and all. A global polynomial satisfies every
 // constraint, so it is returned unchanged.
 #include <Eigen/Core>
@@ -33,10 +33,10 @@ struct FairOptions {
 
 struct FairResult {
   Eigen::MatrixX3d control_points;
-  int constraints = 0;                  ///< rows of C
+  int constraints = 0;  ///< rows of C
   int iterations = 0;
-  double max_constraint_residual = 0.0; ///< max |C c~|, absolute
-  double max_change = 0.0;              ///< max |c~ - c|
+  double max_constraint_residual = 0.0;  ///< max |C c~|, absolute
+  double max_change = 0.0;               ///< max |c~ - c|
 };
 
 /// The constraint matrix C (rows: one per constrained (I, beta, J)), columns: space functions.

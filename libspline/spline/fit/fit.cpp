@@ -42,7 +42,8 @@ double chart_area(const Eigen::Matrix<double, 3, 2>& p) {
 Eigen::Vector3d face_point(const ricci::Mesh& mesh, int face, const Eigen::Vector3d& bary) {
   const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) p += bary[k] * ricci::to_eigen(mesh.point(mesh.to_vertex_handle(hs[k])));
+  for (int k = 0; k < 3; ++k)
+    p += bary[k] * ricci::to_eigen(mesh.point(mesh.to_vertex_handle(hs[k])));
   return p;
 }
 
@@ -99,7 +100,8 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   for (std::size_t k = 0; k < parameters.size(); ++k) {
     const DomainPoint& p = parameters[k];
     if (p.face < 0 || !space.in_domain(p.face)) continue;
-    for (const auto& s : space.evaluate_basis(p)) triplets.emplace_back(row, s.function, s.jet.value);
+    for (const auto& s : space.evaluate_basis(p))
+      triplets.emplace_back(row, s.function, s.jet.value);
     targets.push_back(points.row(static_cast<Eigen::Index>(k)).transpose());
     ++row;
   }
@@ -141,18 +143,52 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   Eigen::SparseMatrix<double> identity(normal.rows(), normal.cols());
   identity.setIdentity();
   normal += anchor * identity;
-  const Eigen::MatrixX3d rhs = design.transpose() * rhs_points + anchor * initial;
+  Eigen::MatrixX3d rhs = design.transpose() * rhs_points + anchor * initial;
   result.seconds_assemble = seconds_since(start);
 
   const auto solve_start = Clock::now();
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+  solver.cholmod().print = 0;  // libraries never print; failures are reported by info()
   solver.compute(normal);
+  // Rounding in A^T A can outweigh a tiny anchor where a sliver makes basis Hessians huge: raise
+  // the anchor to 1e-12, then 1e-10, of the largest diagonal entry before giving up.
+  for (double relative : {1e-12, 1e-10}) {
+    if (solver.info() == Eigen::Success) break;
+    const double shift = relative * normal.diagonal().maxCoeff();
+    normal += shift * identity;
+    rhs += shift * initial;
+    result.anchor_raised = true;
+    solver.compute(normal);
+  }
   if (solver.info() != Eigen::Success) {
     throw ricci::SolverError("fit: CHOLMOD could not factor the normal equations (" +
                              std::to_string(normal.rows()) + " unknowns)");
   }
-  result.control_points = solver.solve(rhs);
-  if (!result.control_points.allFinite()) throw ricci::SolverError("fit: non-finite solution");
+  if (options.constraint_r < 0) {
+    result.control_points = solver.solve(rhs);
+    if (!result.control_points.allFinite()) throw ricci::SolverError("fit: non-finite solution");
+  } else {
+    FairOptions fair_options;
+    fair_options.r = options.constraint_r;
+    const Eigen::SparseMatrix<double> c = fairing_constraints(space, fair_options);
+    const double w = options.constraint_penalty * normal.diagonal().mean();
+    Eigen::SparseMatrix<double> penalised =
+        normal + w * Eigen::SparseMatrix<double>(Eigen::SparseMatrix<double>(c.transpose()) * c);
+    solver.compute(penalised);
+    if (solver.info() != Eigen::Success) {
+      throw ricci::SolverError("fit: CHOLMOD could not factor the constrained normal equations");
+    }
+    Eigen::MatrixX3d lambda = Eigen::MatrixX3d::Zero(c.rows(), 3);
+    for (int it = 0; it < options.constraint_iterations; ++it) {
+      result.control_points = solver.solve(Eigen::MatrixX3d(rhs - c.transpose() * lambda));
+      if (!result.control_points.allFinite()) throw ricci::SolverError("fit: non-finite solution");
+      const Eigen::MatrixX3d residual = c * result.control_points;
+      lambda += w * residual;
+      result.max_constraint_residual = residual.cwiseAbs().maxCoeff();
+      if (result.max_constraint_residual <= 1e-12 * result.control_points.cwiseAbs().maxCoeff())
+        break;
+    }
+  }
   result.seconds_solve = seconds_since(solve_start);
 
   const Eigen::MatrixX3d residual =
@@ -267,14 +303,18 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   const auto closest = ricci::closest_points(mesh, data);
   std::vector<DomainPoint> parameters(closest.size());
   for (std::size_t k = 0; k < closest.size(); ++k) {
-    if (space->in_domain(closest[k].face)) parameters[k] = {closest[k].face, closest[k].barycentric};
-    else parameters[k] = {-1, Eigen::Vector3d::Zero()};
+    if (space->in_domain(closest[k].face))
+      parameters[k] = {closest[k].face, closest[k].barycentric};
+    else
+      parameters[k] = {-1, Eigen::Vector3d::Zero()};
   }
   result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
   result.timings.parameters = seconds_since(t);
 
   t = stage("fit");
-  result.fit = fit_control_points(*space, parameters, data, initial, options.fit);
+  FitOptions fit_options = options.fit;
+  if (options.constrained_fit && options.fair_r >= 0) fit_options.constraint_r = options.fair_r;
+  result.fit = fit_control_points(*space, parameters, data, initial, fit_options);
   result.timings.fit = seconds_since(t);
 
   result.spline.space = space;

@@ -34,8 +34,8 @@ ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::A
                                          const ManifoldSplineOptions& options)
     : degree_(options.degree), atlas_(atlas) {
   if (degree_ < 1 || degree_ > kMaxDmsDegree) {
-    throw InvalidInputError("manifold spline: degree " + std::to_string(degree_) +
-                            " outside 1.." + std::to_string(kMaxDmsDegree));
+    throw InvalidInputError("manifold spline: degree " + std::to_string(degree_) + " outside 1.." +
+                            std::to_string(kMaxDmsDegree));
   }
   const int faces = static_cast<int>(mesh.n_faces());
   if (static_cast<int>(atlas_.in_domain.size()) != faces ||
@@ -43,6 +43,20 @@ ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::A
     throw InvalidInputError("manifold spline: the atlas has " +
                             std::to_string(atlas_.in_domain.size()) + " faces, the mesh " +
                             std::to_string(faces));
+  }
+  // A face without a neighbourhood chart (atlas.uncovered_faces) or not strictly counter-clockwise
+  // in some chart (a flipped sliver) cannot carry DMS functions: it joins the hole.
+  std::vector<char> usable(static_cast<std::size_t>(faces), 1);
+  for (int i = 0; i < faces; ++i) usable[i] = atlas_.neighbourhood_chart[i] >= 0;
+  for (const ricci::Chart& chart : atlas_.charts) {
+    for (std::size_t row = 0; row < chart.faces.size(); ++row) {
+      const auto r = static_cast<Eigen::Index>(row);
+      const Eigen::Vector2d a = chart.positions.row(chart.corners(r, 0)).transpose();
+      const Eigen::Vector2d b = chart.positions.row(chart.corners(r, 1)).transpose();
+      const Eigen::Vector2d c = chart.positions.row(chart.corners(r, 2)).transpose();
+      const double cross = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+      if (!(cross > 0.0)) usable[chart.faces[row]] = 0;
+    }
   }
   domain_index_.assign(static_cast<std::size_t>(faces), -1);
   neighbours_.assign(static_cast<std::size_t>(faces), {-1, -1, -1});
@@ -57,6 +71,10 @@ ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::A
       neighbours_[i][k] = g.is_valid() ? g.idx() : -1;
     }
     if (!atlas_.in_domain[i]) continue;
+    if (!usable[i]) {
+      ++excluded_faces_;
+      continue;
+    }
     domain_index_[i] = static_cast<int>(domain_faces_.size());
     domain_faces_.push_back(i);
     for (int k = 0; k < 3; ++k) vertex_faces_[mesh.to_vertex_handle(hs[k]).idx()].push_back(i);
@@ -103,7 +121,8 @@ void ManifoldSplineSpace::build_home_clouds(const ricci::Mesh& mesh,
     std::vector<int> targets;
     for (const auto& entry : next) targets.push_back(entry.second);
     for (const auto& entry : next) {
-      if (std::find(targets.begin(), targets.end(), entry.first) == targets.end()) start = entry.first;
+      if (std::find(targets.begin(), targets.end(), entry.first) == targets.end())
+        start = entry.first;
     }
     std::vector<Eigen::Vector2d> ring{chart.positions.row(start).transpose()};
     int current = start;
@@ -120,9 +139,9 @@ void ManifoldSplineSpace::build_home_clouds(const ricci::Mesh& mesh,
     }
     home_chart_[v] = chart_index;
     home_face_[v] = home_face;
-    home_clouds_[v] = make_knot_cloud(degree_, static_cast<std::uint64_t>(vertex),
-                                      chart.positions.row(copy).transpose(), ring, closed,
-                                      options.knots);
+    home_clouds_[v] =
+        make_knot_cloud(degree_, static_cast<std::uint64_t>(vertex),
+                        chart.positions.row(copy).transpose(), ring, closed, options.knots);
   }
 }
 
@@ -176,7 +195,10 @@ std::unique_ptr<ManifoldSplineSpace::ChartSpace> ManifoldSplineSpace::build_char
     result->face_of_triangle.push_back(face);
     triangulation.triangles.push_back(triangle);
   }
-  result->space = std::make_unique<PlanarDmsSpace>(std::move(triangulation), std::move(clouds));
+  // A chart made only of hole faces has no space (nothing is evaluated there).
+  if (!triangulation.triangles.empty()) {
+    result->space = std::make_unique<PlanarDmsSpace>(std::move(triangulation), std::move(clouds));
+  }
   return result;
 }
 
@@ -234,8 +256,9 @@ std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis(const Domai
                            tie);
 }
 
-std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(
-    int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie) const {
+std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(int chart, int face,
+                                                                        const Eigen::Vector2d& u,
+                                                                        const TieBreak& tie) const {
   const ChartSpace& cs = chart_space(chart);
   const int row = atlas_.charts[chart].slot(face);
   if (row < 0 || cs.triangle_of_row[row] < 0) {
@@ -263,6 +286,7 @@ Eigen::MatrixXd ManifoldSplineSpace::control_points_of(const BivariatePolynomial
   const ChartSpace& cs = chart_space(chart);
   const int m = functions_per_face();
   Eigen::MatrixXd points = Eigen::MatrixXd::Zero(function_count(), p.coefficients.cols());
+  if (!cs.space) return points;
   const auto& clouds = cs.space->clouds();
   for (std::size_t t = 0; t < cs.face_of_triangle.size(); ++t) {
     const Eigen::Vector3i& tri = cs.space->triangulation().triangles[t];

@@ -10,9 +10,10 @@
 // atlas has none for that pair). Blossoms and DMS basis functions are affine invariant, so every
 // chart that holds a point's neighbourhood sees the same basis functions there.
 //
-// Functions. Domain face I (atlas.in_domain[I] != 0) carries (n + 1)(n + 2)/2 functions, beta in
-// multi_indices(n) order relative to I's corners (corner k = to_vertex of the k-th halfedge of
-// face_halfedges(mesh, I), the atlas' corner order): global index
+// Functions. Domain face I (atlas.in_domain[I] != 0, a neighbourhood chart, counter-clockwise in
+// every chart holding it; the rare others are left out like the hole, see excluded_faces()) carries
+// (n + 1)(n + 2)/2 functions, beta in multi_indices(n) order relative to I's corners (corner k =
+// to_vertex of the k-th halfedge of face_halfedges(mesh, I), the atlas' corner order): global index
 // domain_index(I) * functions_per_face() + beta. Faces of the cone's one-ring carry none.
 //
 // Evaluation. A point is a face and barycentric coordinates (in the same corner order). It is
@@ -36,8 +37,8 @@
 namespace spline {
 
 struct ManifoldSplineOptions {
-  int degree = 3;           ///< n, in 1..kMaxDmsDegree
-  KnotCloudOptions knots;   ///< the home-cloud rule
+  int degree = 3;          ///< n, in 1..kMaxDmsDegree
+  KnotCloudOptions knots;  ///< the home-cloud rule
 };
 
 /// One basis function at a point: global function index and its jet in the chart's frame.
@@ -80,6 +81,8 @@ class ManifoldSplineSpace {
   [[nodiscard]] const ricci::AffineAtlas& atlas() const { return atlas_; }
   [[nodiscard]] const KnotCloud& home_cloud(int vertex) const { return home_clouds_[vertex]; }
   [[nodiscard]] int home_chart(int vertex) const { return home_chart_[vertex]; }
+  /// Atlas domain faces left out: no neighbourhood chart, or flipped/degenerate in a chart.
+  [[nodiscard]] int excluded_faces() const { return excluded_faces_; }
 
   /// True when `chart` holds every domain face sharing a vertex with `face` glued around it.
   [[nodiscard]] bool holds_neighbourhood(int chart, int face) const;
@@ -88,7 +91,8 @@ class ManifoldSplineSpace {
   /// The point of `face` with these barycentric coordinates in `chart`'s coordinates.
   [[nodiscard]] Eigen::Vector2d chart_point(int chart, int face, const Eigen::Vector3d& bary) const;
   /// The clouds of `face`'s three corners as seen in `chart` (corner order).
-  /// \throw ricci::InvalidInputError when the chart does not hold the face or it is not a domain face.
+  /// \throw ricci::InvalidInputError when the chart does not hold the face or it is not a domain
+  /// face.
   [[nodiscard]] std::array<KnotCloud, 3> face_clouds(int chart, int face) const;
 
   /// All functions non-zero at the point (value or derivatives), jets in `chart`'s frame
@@ -117,22 +121,23 @@ class ManifoldSplineSpace {
   [[nodiscard]] std::unique_ptr<ChartSpace> build_chart_space(int chart) const;
 
   int degree_ = 0;
+  int excluded_faces_ = 0;
   ricci::AffineAtlas atlas_;
-  std::vector<int> domain_index_;   // by face
-  std::vector<int> domain_faces_;   // domain faces, ascending
-  std::vector<std::array<int, 3>> neighbours_;       // by face, across the edge opposite corner k
-  std::vector<std::vector<int>> vertex_faces_;       // by vertex: incident domain faces
-  std::vector<KnotCloud> home_clouds_;               // by vertex (empty outside the domain)
-  std::vector<int> home_chart_, home_face_;          // by vertex
+  std::vector<int> domain_index_;               // by face
+  std::vector<int> domain_faces_;               // domain faces, ascending
+  std::vector<std::array<int, 3>> neighbours_;  // by face, across the edge opposite corner k
+  std::vector<std::vector<int>> vertex_faces_;  // by vertex: incident domain faces
+  std::vector<KnotCloud> home_clouds_;          // by vertex (empty outside the domain)
+  std::vector<int> home_chart_, home_face_;     // by vertex
   mutable std::vector<std::unique_ptr<ChartSpace>> chart_spaces_;
   mutable std::unique_ptr<std::once_flag[]> chart_once_;
 };
 
 /// The planar space of one chart: its domain faces as triangles over its used chart vertices.
 struct ManifoldSplineSpace::ChartSpace {
-  std::unique_ptr<PlanarDmsSpace> space;
-  std::vector<int> face_of_triangle;   ///< original face by local triangle
-  std::vector<int> triangle_of_row;    ///< by row of Chart::faces: local triangle or -1
+  std::unique_ptr<PlanarDmsSpace> space;  ///< null when the chart holds no domain face
+  std::vector<int> face_of_triangle;  ///< original face by local triangle
+  std::vector<int> triangle_of_row;   ///< by row of Chart::faces: local triangle or -1
 };
 
 /// Position, derivatives (in the evaluating chart's frame) and unit normal of the surface.

@@ -52,7 +52,8 @@ TEST(Fairing, LeavesAPolynomialUnchanged) {
 
 TEST(Fairing, ConstantSurfaceOnTheWholeManifoldIsUnchanged) {
   const auto space = small_space("genus2.off", 3);
-  const Eigen::MatrixX3d c = Eigen::RowVector3d(1.5, -2.0, 0.25).replicate(space->function_count(), 1);
+  const Eigen::MatrixX3d c =
+      Eigen::RowVector3d(1.5, -2.0, 0.25).replicate(space->function_count(), 1);
   for (int r = 0; r < 3; ++r) {
     FairOptions options;
     options.r = r;
@@ -118,7 +119,9 @@ TEST(Fairing, MeetsTheConstraintsAndProjects) {
               }
               if (!same) continue;
               EXPECT_LT((result.control_points.row(space->function_index(f, b)) -
-                         result.control_points.row(space->function_index(g, e))).norm(), 1e-9);
+                         result.control_points.row(space->function_index(g, e)))
+                            .norm(),
+                        1e-9);
               ++checked;
             }
           }

@@ -25,7 +25,8 @@ Eigen::Vector3d random_barycentric(std::mt19937& rng) {
 Eigen::Vector3d mesh_point(const ricci::Mesh& mesh, int face, const Eigen::Vector3d& bary) {
   const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) p += bary[k] * ricci::to_eigen(mesh.point(mesh.to_vertex_handle(hs[k])));
+  for (int k = 0; k < 3; ++k)
+    p += bary[k] * ricci::to_eigen(mesh.point(mesh.to_vertex_handle(hs[k])));
   return p;
 }
 
@@ -61,7 +62,8 @@ TEST(Fit, InitialControlPointsFollowTheMesh) {
     double worst = 0.0;
     for (int f : space->domain_faces()) {
       const Eigen::Vector3d centre = Eigen::Vector3d::Constant(1.0 / 3.0);
-      worst = std::max(worst, (spline.evaluate({f, centre}).position - mesh_point(mesh, f, centre)).norm());
+      worst = std::max(
+          worst, (spline.evaluate({f, centre}).position - mesh_point(mesh, f, centre)).norm());
     }
     EXPECT_LT(worst, 0.25 * mean_edge_3d(mesh)) << "n=" << n;
   }
@@ -76,7 +78,8 @@ TEST(Fit, RecoversASplineFromItsSamples) {
     std::mt19937 rng(n);
     std::vector<DomainPoint> parameters;
     for (int f : space->domain_faces()) {
-      for (int i = 0; i < 2 * space->functions_per_face(); ++i) parameters.push_back({f, random_barycentric(rng)});
+      for (int i = 0; i < 2 * space->functions_per_face(); ++i)
+        parameters.push_back({f, random_barycentric(rng)});
     }
     Eigen::MatrixX3d points(static_cast<Eigen::Index>(parameters.size()), 3);
     for (std::size_t k = 0; k < parameters.size(); ++k) {
@@ -85,10 +88,11 @@ TEST(Fit, RecoversASplineFromItsSamples) {
     FitOptions options;
     options.smoothing = 0.0;
     options.anchor = 0.0;
-    const FitResult fit = fit_control_points(*space, parameters, points,
-                                             Eigen::MatrixX3d::Zero(space->function_count(), 3), options);
+    const FitResult fit = fit_control_points(
+        *space, parameters, points, Eigen::MatrixX3d::Zero(space->function_count(), 3), options);
     const double scale = truth.control_points.cwiseAbs().maxCoeff();
-    EXPECT_LT((fit.control_points - truth.control_points).cwiseAbs().maxCoeff(), 1e-8 * scale) << "n=" << n;
+    EXPECT_LT((fit.control_points - truth.control_points).cwiseAbs().maxCoeff(), 1e-8 * scale)
+        << "n=" << n;
     EXPECT_LT(fit.max_at_parameters, 1e-9 * scale);
   }
 }
@@ -107,8 +111,10 @@ TEST(Fit, ProjectionFindsTheFootPoint) {
     const DomainPoint foot{f, random_barycentric(rng)};
     const SurfaceJet jet = spline.evaluate(foot);
     const Eigen::Vector3d target = jet.position + d * jet.normal;
-    const DomainPoint start{f, (foot.barycentric + Eigen::Vector3d(0.05, -0.03, -0.02)).cwiseMax(0.0)};
-    const Projection p = project_to_spline(spline, {f, start.barycentric / start.barycentric.sum()}, target, 8);
+    const DomainPoint start{f,
+                            (foot.barycentric + Eigen::Vector3d(0.05, -0.03, -0.02)).cwiseMax(0.0)};
+    const Projection p =
+        project_to_spline(spline, {f, start.barycentric / start.barycentric.sum()}, target, 8);
     worst = std::max(worst, std::abs(p.distance - d) / d);
     ++tested;
   }

@@ -73,7 +73,8 @@ TEST(ManifoldSpline, ReproducesPolynomialsInAChart) {
       p.degree = n;
       std::srand(static_cast<unsigned>(n));
       p.coefficients = Eigen::MatrixXd::Random(monomial_count(n), 3);
-      p.origin = space->chart_point(chart, space->domain_faces()[0], Eigen::Vector3d::Constant(1.0 / 3));
+      p.origin =
+          space->chart_point(chart, space->domain_faces()[0], Eigen::Vector3d::Constant(1.0 / 3));
       p.scale = space->atlas().domain_diameter;
       const Eigen::MatrixX3d c = space->control_points_of(p, chart);
       std::mt19937 rng(n);
@@ -123,13 +124,19 @@ TEST(ManifoldSpline, TwoChartsSeeTheSameSurface) {
             Eigen::Matrix2d ha, hb;
             ha << ja.duu[i], ja.duv[i], ja.duv[i], ja.dvv[i];
             hb << jb.duu[i], jb.duv[i], jb.duv[i], jb.dvv[i];
-            worst[2] = std::max(worst[2], (ha - r.transpose() * hb * r).norm() * h * h);
+            // Relative to the Hessian's size: second derivatives near knot lines reach
+            // 1e3 |c| / h^2 and amplify the transitions' 1e-12 rounding like (h / r)^3.
+            worst[2] = std::max(worst[2], (ha - r.transpose() * hb * r).norm() /
+                                              std::max(ha.norm(), 1.0 / (h * h)));
           }
           ++compared;
         }
       }
       EXPECT_GT(compared, 10) << model;
-      for (double w : worst) EXPECT_LT(w, 1e-9) << model << " n=" << n;
+      for (int order = 0; order < 3; ++order)
+        EXPECT_LT(worst[order], 1e-9)
+            << model << " n=" << n << " order " << order << " transition residual "
+            << space->atlas().max_transition_residual / space->atlas().domain_diameter;
     }
   }
 }
@@ -173,17 +180,20 @@ TEST(ManifoldSpline, ContinuousUpToOrderNMinusOneAcrossEdgesAndTheCut) {
           if (g < f || !space->in_domain(g)) continue;  // each edge once
           const int chart = space->chart_of(f);
           const auto p = space->atlas().face_positions(chart, f);
-          const Eigen::Vector2d a = p.row((k + 1) % 3).transpose(), b = p.row((k + 2) % 3).transpose();
+          const Eigen::Vector2d a = p.row((k + 1) % 3).transpose(),
+                                b = p.row((k + 2) % 3).transpose();
           const Eigen::Vector2d u = a + along(rng) * (b - a);
           const Eigen::Vector2d normal = Eigen::Vector2d(-(b - a).y(), (b - a).x()).normalized();
           const double d = 1e-12 * h;
           const Eigen::MatrixXd local = local_control_points(*space, c, chart, f);
           const PlanarDmsSpace& planar = *space->chart_space(chart).space;
-          const Eigen::MatrixXd left = planar.evaluate_directional(local, u + d * normal, normal, n);
-          const Eigen::MatrixXd right = planar.evaluate_directional(local, u - d * normal, normal, n);
+          const Eigen::MatrixXd left =
+              planar.evaluate_directional(local, u + d * normal, normal, n);
+          const Eigen::MatrixXd right =
+              planar.evaluate_directional(local, u - d * normal, normal, n);
           for (int order = 0; order < n; ++order) {
-            const Eigen::RowVectorXd jump =
-                left.row(order) - right.row(order) - d * (left.row(order + 1) + right.row(order + 1));
+            const Eigen::RowVectorXd jump = left.row(order) - right.row(order) -
+                                            d * (left.row(order + 1) + right.row(order + 1));
             double higher = 0.0;
             for (int j = order + 1; j <= n; ++j) {
               higher += std::pow(h, j - order) * std::max(left.row(j).norm(), right.row(j).norm());
@@ -191,8 +201,9 @@ TEST(ManifoldSpline, ContinuousUpToOrderNMinusOneAcrossEdgesAndTheCut) {
             const double scale = std::max({left.row(order).norm(), std::pow(h, -order)});
             worst = std::max(worst, jump.norm() / (1e-8 * scale + 1e-14 * higher));
           }
-          largest_order_n_jump = std::max(largest_order_n_jump, (left.row(n) - right.row(n)).norm() /
-                                                                    std::max(left.row(n).norm(), 1e-300));
+          largest_order_n_jump =
+              std::max(largest_order_n_jump,
+                       (left.row(n) - right.row(n)).norm() / std::max(left.row(n).norm(), 1e-300));
           ++edges;
           const ricci::Chart& central = space->atlas().charts[0];
           const int rf = central.slot(f), rg = central.slot(g);
