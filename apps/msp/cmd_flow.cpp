@@ -12,6 +12,7 @@
 
 #include "msp/cli.h"
 #include "msp/commands.h"
+#include "msp/flow_options.h"
 
 namespace msp {
 
@@ -23,35 +24,6 @@ const char* kUsage =
     "[--target uniform|cone:VERTEX|boundary|boundary-loop] [--method newton|gradient] "
     "[--solver auto|eigen-ldlt|eigen-llt|cholmod-supernodal|cholmod-simplicial] [--tolerance T] "
     "[--max-iterations N] [--lengths-out FILE] [--quiet] [--json]";
-
-ricci::Geometry parse_geometry(const std::string& s) {
-  if (s == "euclidean" || s == "e2") return ricci::Geometry::Euclidean;
-  if (s == "hyperbolic" || s == "h2") return ricci::Geometry::Hyperbolic;
-  if (s == "spherical" || s == "s2") return ricci::Geometry::Spherical;
-  throw UsageError("--geometry must be euclidean, hyperbolic or spherical, not '" + s + "'");
-}
-
-ricci::Scheme parse_scheme(const std::string& s) {
-  if (s == "circle-packing") return ricci::Scheme::CirclePacking;
-  if (s == "inversive-distance") return ricci::Scheme::InversiveDistance;
-  if (s == "combinatorial") return ricci::Scheme::Combinatorial;
-  throw UsageError("--metric must be circle-packing, inversive-distance or combinatorial, not '" + s + "'");
-}
-
-ricci::RadiusInit parse_radii(const std::string& s) {
-  if (s == "mean") return ricci::RadiusInit::Mean;
-  if (s == "min") return ricci::RadiusInit::Min;
-  if (s == "least-squares") return ricci::RadiusInit::LeastSquares;
-  throw UsageError("--radii must be mean, min or least-squares, not '" + s + "'");
-}
-
-ricci::LinearSolver parse_solver(const std::string& s) {
-  for (auto k : {ricci::LinearSolver::Auto, ricci::LinearSolver::EigenLDLT, ricci::LinearSolver::EigenLLT,
-                 ricci::LinearSolver::CholmodSupernodal, ricci::LinearSolver::CholmodSimplicial}) {
-    if (s == ricci::to_string(k)) return k;
-  }
-  throw UsageError("unknown --solver '" + s + "'");
-}
 
 ricci::Targets parse_target(const std::string& s, const ricci::Mesh& mesh, ricci::Geometry g) {
   if (s == "uniform") return ricci::uniform_target(mesh, g);

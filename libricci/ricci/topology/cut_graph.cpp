@@ -9,29 +9,10 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/topology_util.h"
 
 namespace ricci {
 namespace {
-
-/// Disjoint sets with path halving; enough for Kruskal on the dual graph.
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent_[a] = b;
-    return true;
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 /// The quotient surface where each boundary loop is one node: node(v) = v for interior vertices,
 /// n_vertices + loop index for boundary vertices.
@@ -140,7 +121,7 @@ std::vector<EdgeHandle> cotree_leftovers(const Mesh& mesh, const Quotient& q,
   std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
     return a.first != b.first ? a.first > b.first : a.second < b.second;
   });
-  UnionFind dual(static_cast<int>(mesh.n_faces()));
+  detail::DisjointSets dual(mesh.n_faces());
   std::vector<EdgeHandle> leftovers;
   for (const auto& [w, index] : candidates) {
     const EdgeHandle e(index);
