@@ -116,6 +116,13 @@ Targets boundary_target(const Mesh& mesh, BoundaryMode mode, int loop) {
       if (loop_length(mesh, t.boundary_loops[i]) > loop_length(mesh, t.boundary_loops[loop])) loop = i;
     }
   }
+  if (mode == BoundaryMode::CircleDomain) {
+    for (int i = 0; i < loops; ++i) {
+      const double loop_total = i == loop ? total + 2.0 * M_PI * (loops - 1) : -2.0 * M_PI;
+      spread_by_length(mesh, {t.boundary_loops[i]}, loop_total, targets.curvature);
+    }
+    return targets;
+  }
   if (loop >= loops) {
     throw InvalidInputError("boundary loop " + std::to_string(loop) + " is out of range (the mesh has " +
                             std::to_string(loops) + ")");

@@ -21,7 +21,10 @@ struct Targets {
 /// How boundary_target distributes the boundary's total curvature 2πχ.
 enum class BoundaryMode {
   SpreadByLength,  ///< over all boundary vertices, proportional to their boundary edge length
-  OneLoop          ///< over one loop only (by length); the other loops get 0 (geodesic)
+  OneLoop,         ///< over one loop only (by length); the other loops get 0 (geodesic)
+  /// Like a circle domain: every loop but the longest gets -2π (a round hole), the longest the
+  /// rest, 2π(1 - 2g); each spread over its own loop by length.
+  CircleDomain
 };
 
 /// Uniformization: K̄ = 0 at every vertex (E2 for χ = 0, H2 for χ < 0, S2 for χ > 0, with the

@@ -86,9 +86,12 @@ std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kin
           {Scheme::Combinatorial, RadiusInit::Mean}};
 }
 
-FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
-  if (keep_metric) return flow(problem.mesh, problem.targets, options);
-  std::vector<std::string> failures;
+namespace {
+
+// Runs the flow with each metric of one_cone_metric_order until one converges; failed runs are
+// appended to `failures`.
+FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options,
+                       std::vector<std::string>& failures) {
   FlowResult result;
   for (auto [scheme, radii] : one_cone_metric_order(problem.kind)) {
     FlowOptions attempt = options;
@@ -97,6 +100,24 @@ FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions&
     result = flow(problem.mesh, problem.targets, attempt);
     if (result.converged()) break;
     failures.push_back(to_string(scheme) + "/" + radius_name(radii) + ": " + to_string(result.status));
+  }
+  return result;
+}
+
+}  // namespace
+
+FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
+  if (keep_metric) return flow(problem.mesh, problem.targets, options);
+  std::vector<std::string> failures;
+  FlowResult result = try_metrics(problem, options, failures);
+  if (!result.converged() && problem.kind == OneConeKind::OpenSurface && problem.boundary_loops > 1) {
+    // Spreading 2*pi*chi over all loops by length bends inner holes the wrong way on scans with
+    // many holes; a circle-domain split (round holes) is the natural second try.
+    OneConeProblem circle = problem;
+    circle.targets = boundary_target(problem.mesh, BoundaryMode::CircleDomain);
+    failures.push_back("boundary spread by length failed with every metric; trying a circle domain");
+    FlowResult second = try_metrics(circle, options, failures);
+    if (second.converged()) result = std::move(second);
   }
   result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
   return result;

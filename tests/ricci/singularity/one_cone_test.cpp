@@ -4,6 +4,7 @@
 #include <string>
 
 #include "ricci/flow/flow.h"
+#include "ricci/metric/mesh_tables.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
 #include "ricci/singularity/one_cone.h"
@@ -72,6 +73,35 @@ TEST(OneCone, OpenSurfacePushesCurvatureToTheBoundary) {
 TEST(OneCone, VertexOutOfRangeIsRefused) {
   EXPECT_THROW((void)ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 100000),
                ricci::InvalidInputError);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(OneCone, CircleDomainTargetMakesRoundHoles) {
+  auto mesh = shared_model("open/holes.off");  // genus 0, 7 boundary loops
+  auto targets = ricci::boundary_target(mesh, ricci::BoundaryMode::CircleDomain);
+  auto tables = ricci::build_mesh_tables(mesh);
+  ASSERT_EQ(tables.boundary_loops.size(), 7u);
+  EXPECT_NEAR(targets.curvature.sum(), 2 * M_PI * tables.euler_characteristic, 1e-9);
+  int round_holes = 0;
+  for (const auto& loop : tables.boundary_loops) {
+    double sum = 0;
+    for (int v : loop) sum += targets.curvature[v];
+    if (std::abs(sum + 2 * M_PI) < 1e-9) {
+      ++round_holes;
+    } else {
+      EXPECT_NEAR(sum, 2 * M_PI, 1e-9);  // the outer loop of a genus-0 domain
+    }
+  }
+  EXPECT_EQ(round_holes, 6);
+}
+
+TEST(OneCone, ScanWithManyHolesFallsBackToACircleDomain) {
+  auto problem = ricci::prepare_one_cone(shared_model("open/mech-holes-shark.off"), -1);
+  auto r = expect_flow_reaches_target(problem);
+  EXPECT_FALSE(r.failed_attempts.empty());  // spread by length fails on this scan
 }
 
 }  // namespace
