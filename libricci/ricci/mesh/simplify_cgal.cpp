@@ -11,6 +11,7 @@
 
 #include "ricci/mesh/cgal_convert.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/mesh/simplify.h"
 
 namespace ricci {
@@ -19,16 +20,6 @@ namespace {
 namespace SMS = CGAL::Surface_mesh_simplification;
 namespace PMP = CGAL::Polygon_mesh_processing;
 using cgal::SurfaceMesh;
-
-int euler_characteristic(const Mesh& m) {
-  return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) + static_cast<int>(m.n_faces());
-}
-
-int boundary_halfedges(const Mesh& m) {
-  int count = 0;
-  for (auto h : m.halfedges()) count += m.is_boundary(h) ? 1 : 0;
-  return count;
-}
 
 void collapse_to(SurfaceMesh& mesh, int target_faces) {
   using Policies = SMS::GarlandHeckbert_plane_policies<SurfaceMesh, cgal::Kernel>;
@@ -77,11 +68,12 @@ SimplifyResult simplify_mesh(const Mesh& dense, const SimplifyOptions& options) 
   if (options.remesh_iterations > 0) remesh(mesh, options.target_faces, options.remesh_iterations);
   result.mesh = cgal::from_surface_mesh(mesh);
   result.faces_after = static_cast<int>(result.mesh.n_faces());
-  if (euler_characteristic(result.mesh) != euler_characteristic(dense) ||
-      (boundary_halfedges(result.mesh) == 0) != (boundary_halfedges(dense) == 0)) {
+  const SurfaceTopology before = surface_topology(dense), after = surface_topology(result.mesh);
+  if (after.euler_characteristic != before.euler_characteristic ||
+      (after.boundary_loops == 0) != (before.boundary_loops == 0)) {
     throw TopologyError("simplify: the topology changed (Euler characteristic " +
-                        std::to_string(euler_characteristic(dense)) + " -> " +
-                        std::to_string(euler_characteristic(result.mesh)) + "); ask for more faces");
+                        std::to_string(before.euler_characteristic) + " -> " +
+                        std::to_string(after.euler_characteristic) + "); ask for more faces");
   }
   result.min_angle_deg = min_corner_angle_deg(result.mesh);
   return result;

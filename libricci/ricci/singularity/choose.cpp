@@ -11,16 +11,13 @@
 #include <Eigen/SparseCholesky>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/quality/distortion.h"
 
 namespace ricci {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-int euler_characteristic(const Mesh& m) {
-  return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) + static_cast<int>(m.n_faces());
-}
 
 double cot_at(const Mesh& mesh, HalfedgeHandle h) {
   // Cotangent of the corner opposite halfedge h (inside h's face).
@@ -103,7 +100,7 @@ std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const Singula
   const int n = static_cast<int>(mesh.n_vertices());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(shifted_laplacian(mesh));
   if (solver.info() != Eigen::Success) throw SolverError("singularity ranking: Laplacian factorisation failed");
-  const double cone = 2.0 * M_PI * euler_characteristic(mesh);
+  const double cone = 2.0 * M_PI * surface_topology(mesh).euler_characteristic;
   Eigen::VectorXd base_rhs = -angle_defects(mesh);
   base_rhs.array() += cone / n;  // with the cone's mean removed, the right-hand side sums to 0
   Eigen::VectorXd u0 = solver.solve(base_rhs);

@@ -4,13 +4,10 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
 
 namespace ricci {
 namespace {
-
-int euler_characteristic(const Mesh& m) {
-  return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) + static_cast<int>(m.n_faces());
-}
 
 void check_vertex(const Mesh& mesh, int vertex) {
   if (vertex < 0 || vertex >= static_cast<int>(mesh.n_vertices())) {
@@ -123,29 +120,16 @@ FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions&
   return result;
 }
 
-int count_boundary_loops(const Mesh& mesh) {
-  std::vector<char> seen(mesh.n_halfedges(), 0);
-  int loops = 0;
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
-    ++loops;
-    for (auto g = h; !seen[g.idx()]; g = mesh.next_halfedge_handle(g)) seen[g.idx()] = 1;
-  }
-  return loops;
-}
-
-int mesh_genus(const Mesh& mesh) {
-  return (2 - euler_characteristic(mesh) - count_boundary_loops(mesh)) / 2;
-}
-
 bool needs_singular_vertex(const Mesh& mesh) {
-  return count_boundary_loops(mesh) == 0 && mesh_genus(mesh) != 1;
+  const SurfaceTopology t = surface_topology(mesh);
+  return t.boundary_loops == 0 && t.genus != 1;
 }
 
 OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence) {
   OneConeProblem problem;
-  problem.genus = mesh_genus(mesh);
-  problem.boundary_loops = count_boundary_loops(mesh);
+  const SurfaceTopology topology = surface_topology(mesh);
+  problem.genus = topology.genus;
+  problem.boundary_loops = topology.boundary_loops;
   const int n = static_cast<int>(mesh.n_vertices());
   if (problem.boundary_loops > 0 || problem.genus == 1) {
     problem.kind = problem.boundary_loops > 0 ? OneConeKind::OpenSurface : OneConeKind::FlatTorus;
@@ -164,7 +148,7 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
   }
   problem.kind = OneConeKind::SingleCone;
   ValenceOptions options = valence;
-  options.cone_curvature = 2.0 * M_PI * euler_characteristic(mesh);
+  options.cone_curvature = 2.0 * M_PI * topology.euler_characteristic;
   ValenceResult modified = modify_valence(mesh, mesh.vertex_handle(vertex), options);
   problem.mesh = std::move(modified.mesh);
   problem.cone = vertex;

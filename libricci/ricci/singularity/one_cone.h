@@ -61,8 +61,4 @@ struct OneConeProblem {
 /// Whether the mesh's topology asks for a singular vertex at all (closed, genus != 1).
 [[nodiscard]] bool needs_singular_vertex(const Mesh& mesh);
 
-/// Genus and boundary-loop count of a connected mesh.
-[[nodiscard]] int mesh_genus(const Mesh& mesh);
-[[nodiscard]] int count_boundary_loops(const Mesh& mesh);
-
 }  // namespace ricci

@@ -7,6 +7,7 @@
 #include "ricci/metric/mesh_tables.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/singularity/one_cone.h"
 
 namespace {
@@ -56,7 +57,7 @@ TEST(OneCone, GenusZeroRemovesTheStarAndBendsTheNewBoundary) {
   auto problem = ricci::prepare_one_cone(mesh, 7);
   EXPECT_EQ(problem.kind, ricci::OneConeKind::PuncturedSphere);
   EXPECT_EQ(problem.mesh.n_vertices() + 1, mesh.n_vertices());
-  EXPECT_EQ(ricci::count_boundary_loops(problem.mesh), 1);
+  EXPECT_EQ(ricci::surface_topology(problem.mesh).boundary_loops, 1);
   EXPECT_NEAR(problem.targets.curvature.sum(), 2 * M_PI, 1e-12);
   expect_flow_reaches_target(problem);
 }
