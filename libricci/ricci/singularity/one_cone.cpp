@@ -5,6 +5,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/singularity/open_target.h"
 
 namespace ricci {
 namespace {
@@ -103,18 +104,44 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options
 
 }  // namespace
 
+namespace {
+
+// The harmonic boundary target where every boundary angle stays positive (a sharp corner can
+// ask for more than pi), else the curvature spread by length.
+Targets open_surface_target(const Mesh& mesh) {
+  Targets harmonic = harmonic_boundary_target(mesh);
+  const double margin = 1e-3;
+  if ((harmonic.curvature.array() < M_PI - margin).all()) return harmonic;
+  return boundary_target(mesh, BoundaryMode::SpreadByLength);
+}
+
+// Boundary targets to try after the problem's own, for open surfaces.
+std::vector<std::pair<std::string, Targets>> alternative_boundary_targets(const OneConeProblem& problem) {
+  std::vector<std::pair<std::string, Targets>> out;
+  if (problem.kind != OneConeKind::OpenSurface) return out;
+  Targets by_length = boundary_target(problem.mesh, BoundaryMode::SpreadByLength);
+  if (by_length.curvature != problem.targets.curvature) {
+    out.emplace_back("boundary curvature spread by length", std::move(by_length));
+  }
+  if (problem.boundary_loops > 1) {
+    out.emplace_back("circle domain", boundary_target(problem.mesh, BoundaryMode::CircleDomain));
+  }
+  return out;
+}
+
+}  // namespace
+
 FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
   if (keep_metric) return flow(problem.mesh, problem.targets, options);
   std::vector<std::string> failures;
   FlowResult result = try_metrics(problem, options, failures);
-  if (!result.converged() && problem.kind == OneConeKind::OpenSurface && problem.boundary_loops > 1) {
-    // Spreading 2*pi*chi over all loops by length bends inner holes the wrong way on scans with
-    // many holes; a circle-domain split (round holes) is the natural second try.
-    OneConeProblem circle = problem;
-    circle.targets = boundary_target(problem.mesh, BoundaryMode::CircleDomain);
-    failures.push_back("boundary spread by length failed with every metric; trying a circle domain");
-    FlowResult second = try_metrics(circle, options, failures);
-    if (second.converged()) result = std::move(second);
+  for (auto& [name, targets] : alternative_boundary_targets(problem)) {
+    if (result.converged()) break;
+    OneConeProblem other = problem;
+    other.targets = std::move(targets);
+    failures.push_back("failed with every metric; trying the boundary target: " + name);
+    FlowResult next = try_metrics(other, options, failures);
+    if (next.converged()) result = std::move(next);
   }
   result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
   return result;
@@ -135,7 +162,10 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
     problem.kind = problem.boundary_loops > 0 ? OneConeKind::OpenSurface : OneConeKind::FlatTorus;
     problem.mesh = mesh;
     problem.input_vertex = identity_map(n, 0);
-    problem.targets = single_cone_target(problem.mesh, 0);  // no cone on these topologies
+    // No cone on these topologies. Open surfaces: the harmonic boundary target keeps the
+    // boundary's lengths (least area distortion; the others are fall-backs in the solve).
+    problem.targets = problem.kind == OneConeKind::OpenSurface ? open_surface_target(problem.mesh)
+                                                                : single_cone_target(problem.mesh, 0);
     return problem;
   }
   check_vertex(mesh, vertex);

@@ -6,7 +6,9 @@
 //                         modification;
 //   closed, genus 0   -> the chosen vertex's star is removed (a cone of 4*pi has no flat
 //                         realisation) and the new boundary carries the curvature 2*pi;
-//   open               -> flat interior, boundary curvature 2*pi*chi spread by boundary length.
+//   open               -> flat interior, all curvature (2*pi*chi) on the boundary, by default
+//                         where the boundary keeps its lengths (open_target.h); spread by
+//                         length or as a circle domain when that flow fails.
 #include <string>
 #include <vector>
 
