@@ -4,7 +4,9 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/neighbourhoods.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/metric/subdivide.h"
 #include "ricci/singularity/open_target.h"
 
 namespace ricci {
@@ -152,7 +154,9 @@ bool needs_singular_vertex(const Mesh& mesh) {
   return t.boundary_loops == 0 && t.genus != 1;
 }
 
-OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence) {
+namespace {
+
+OneConeProblem prepare_on(const Mesh& mesh, int vertex, const ValenceOptions& valence) {
   OneConeProblem problem;
   const SurfaceTopology topology = surface_topology(mesh);
   problem.genus = topology.genus;
@@ -185,6 +189,30 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
   problem.valence_splits = modified.splits;
   problem.input_vertex = identity_map(n, modified.splits);
   problem.targets = single_cone_target(problem.mesh, vertex);
+  return problem;
+}
+
+}  // namespace
+
+OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence,
+                                bool refine_thin_handles) {
+  if (!refine_thin_handles) return prepare_on(mesh, vertex, valence);
+  // Thin handles first: a face whose neighbourhood wraps around one cannot get a chart.
+  Mesh refined;
+  int subdivisions = 0;
+  while (count_non_disk_face_neighbourhoods(subdivisions > 0 ? refined : mesh) > 0 &&
+         subdivisions < kMaxHandleSubdivisions) {
+    refined = subdivide_midpoint(subdivisions > 0 ? refined : mesh);
+    ++subdivisions;
+  }
+  if (subdivisions == 0) return prepare_on(mesh, vertex, valence);
+  OneConeProblem problem = prepare_on(refined, vertex, valence);
+  problem.subdivisions = subdivisions;
+  // Midpoint subdivision keeps the input's vertex indices and appends the midpoints.
+  const int n = static_cast<int>(mesh.n_vertices());
+  for (int& v : problem.input_vertex) {
+    if (v >= n) v = -1;
+  }
   return problem;
 }
 
