@@ -1,37 +1,47 @@
 #include "ricci/mesh/neighbourhoods.h"
 
-#include <algorithm>
 #include <vector>
 
 namespace ricci {
 namespace {
 
-// Number of distinct values in a small vector (sorted in place).
-int count_distinct(std::vector<int>& values) {
-  std::sort(values.begin(), values.end());
-  return static_cast<int>(std::unique(values.begin(), values.end()) - values.begin());
-}
+// Counts distinct indices with a per-index stamp (no sorting: this runs once per face).
+struct DistinctCounter {
+  std::vector<int> stamp;
+  int current = 0, count = 0;
+
+  explicit DistinctCounter(std::size_t size) : stamp(size, -1) {}
+  void start(int id) {
+    current = id;
+    count = 0;
+  }
+  bool add(int index) {
+    if (stamp[index] == current) return false;
+    stamp[index] = current;
+    ++count;
+    return true;
+  }
+};
 
 }  // namespace
 
 int count_non_disk_face_neighbourhoods(const Mesh& mesh) {
+  DistinctCounter faces(mesh.n_faces()), edges(mesh.n_edges()), vertices(mesh.n_vertices());
   int count = 0;
-  std::vector<int> faces, edges, vertices;
   for (auto f : mesh.faces()) {
-    faces.clear();
+    faces.start(f.idx());
+    edges.start(f.idx());
+    vertices.start(f.idx());
     for (auto v : mesh.fv_range(f)) {
-      for (auto g : mesh.vf_range(v)) faces.push_back(g.idx());
-    }
-    const int face_count = count_distinct(faces);
-    edges.clear();
-    vertices.clear();
-    for (int i = 0; i < face_count; ++i) {
-      for (auto h : mesh.fh_range(FaceHandle(faces[i]))) {
-        edges.push_back(mesh.edge_handle(h).idx());
-        vertices.push_back(mesh.to_vertex_handle(h).idx());
+      for (auto g : mesh.vf_range(v)) {
+        if (!faces.add(g.idx())) continue;
+        for (auto h : mesh.fh_range(g)) {
+          edges.add(mesh.edge_handle(h).idx());
+          vertices.add(mesh.to_vertex_handle(h).idx());
+        }
       }
     }
-    if (count_distinct(vertices) - count_distinct(edges) + face_count != 1) ++count;
+    if (vertices.count - edges.count + faces.count != 1) ++count;
   }
   return count;
 }
