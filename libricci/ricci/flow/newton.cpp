@@ -196,6 +196,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   double merit = (state.curvature - run.target).squaredNorm();
   int crawling = 0;  // consecutive iterations whose step was cut hard by broken triangles
   int recent_broken = 0;  // iterations with broken trial triangles in the last window
+  int stagnant = 0;       // consecutive short steps that barely lowered the error
   double lambda = 1.0;  // Levenberg-Marquardt damping factor (S2 only)
   bool last_step_full = false;
   result.error_history.push_back(error);
@@ -251,6 +252,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     lambda = t_step == 1.0 ? std::max(lambda * 0.1, 1e-10) : std::min(lambda * 4.0, 1e4);
     std::swap(state, trial);
     merit = (state.curvature - run.target).squaredNorm();
+    const double previous_error = error;
     error = max_error(state, run.target);
     ++result.iterations;
     result.error_history.push_back(error);
@@ -272,6 +274,17 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
         return;
       }
       recent_broken = 0;
+    }
+    // Short steps that gain under 2% each: the radii are heading to the boundary of the metric
+    // space (no solution with these edge quantities, e.g. Thurston's angles at a 10pi cone).
+    // Waiting for the ten-iteration window costs seconds on 100k faces before the next metric.
+    stagnant = (t_step < 1.0 / 64 && error > 0.98 * previous_error) ? stagnant + 1 : 0;
+    if (euclidean && stagnant >= 3) {
+      result.status = FlowStatus::Stalled;
+      result.message = failure_message(run, state, result.status,
+                                       "three short Newton steps in a row lowered the error by less "
+                                       "than 2% each (no solution for these edge quantities?)");
+      return;
     }
     if (crawling >= 8) {
       result.status = FlowStatus::TriangleInequality;
