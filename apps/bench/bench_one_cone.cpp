@@ -162,6 +162,27 @@ int run_one_cone_case(int argc, char** argv) {
     j["degenerate_in_doubles"] = signs.degenerate_in_doubles;
     j["edge_error"] = r.atlas.layout.max_relative_length_error;
     j["transition"] = r.relative_transition_residual();
+    if (args.has("verbose")) {  // the worst edge of the layout, to see where closure error sits
+      const ricci::Mesh& sm = r.atlas.sliced.mesh;
+      double worst = 0;
+      int wa = 0, wb = 0;
+      double wl = 0;
+      const Eigen::VectorXd sl = ricci::sliced_edge_lengths(r.atlas.sliced, r.flow.lengths);
+      for (auto e : sm.edges()) {
+        const auto h = sm.halfedge_handle(e, 0);
+        const int a = sm.from_vertex_handle(h).idx(), b = sm.to_vertex_handle(h).idx();
+        const double err = std::abs(r.atlas.layout.edge_vector(a, b).norm() - sl[e.idx()]) / sl[e.idx()];
+        if (err > worst) { worst = err; wa = a; wb = b; wl = sl[e.idx()]; }
+      }
+      const int oa = r.atlas.sliced.to_original_vertex[wa], ob = r.atlas.sliced.to_original_vertex[wb];
+      std::cerr << "worst edge " << oa << "-" << ob << " rel " << worst << " length/diam " << wl / r.atlas.domain_diameter
+                << " K err " << r.flow.curvature[oa] - r.flow.target[oa] << " " << r.flow.curvature[ob] - r.flow.target[ob]
+                << " pos " << r.atlas.layout.positions.row(wa) << " seed " << r.atlas.layout.seed_face << "\n";
+      Eigen::VectorXd kerr = (r.flow.curvature - r.flow.target).cwiseAbs();
+      Eigen::Index worst_v;
+      kerr.maxCoeff(&worst_v);
+      std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
+    }
     j["qc_mean"] = r.distortion.quasi_conformal_mean;
     j["qc_max"] = r.distortion.quasi_conformal_max;
     j["qc_p50"] = r.distortion.quasi_conformal_p50;

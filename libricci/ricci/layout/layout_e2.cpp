@@ -74,7 +74,10 @@ std::vector<double> face_sizes(const Mesh& mesh, const Eigen::VectorXd& lengths)
 }
 
 // Growth scale of a face: log16 of its size, so faces within a factor 16 grow breadth-first.
-int size_bucket(double size) { return std::ilogb(size) / 4 - (std::ilogb(size) < 0 ? 1 : 0); }
+int size_bucket(double size) {
+  const int octave = std::ilogb(size);
+  return octave >= 0 ? octave / 4 : -((3 - octave) / 4);  // floor(octave / 4)
+}
 
 // The seed: the smallest face when sizes span more than 2^8 (tiny faces at a large cone, where
 // the growth must start), else the central face.
