@@ -95,7 +95,9 @@ TEST(OneConeAtlas, AutomaticChoiceRunsFewFlows) {
   ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh);
   EXPECT_GE(r.chosen_vertex, 0);
   EXPECT_GT(r.flows_for_choice, 0);
-  EXPECT_LT(r.flows_for_choice, 40);
+  // eight.off has 768 vertices; the greedy one-ring descent took 40 flows once single cones
+  // start with tangent circles near the cone (their area distortion differs slightly).
+  EXPECT_LT(r.flows_for_choice, 50);
   EXPECT_LT(r.flow.max_error, 1e-9);
 }
 
