@@ -178,6 +178,41 @@ LineSearch line_search(const FlowRun& run, const FlowState& state, const Eigen::
   return search;
 }
 
+// One more Newton step after convergence when the last one was full (the quadratic phase), kept
+// only if it lowers the error: the tolerance (1e-10) leaves curvature errors up to ~1e-12 after
+// the last step, and a layout's closure error is that times the size of the loops it closes,
+// which near a large cone is 1e9 times the edges there. The step reuses the factorisation.
+void polish(const FlowRun& run, HessianAssembler& assembler, NewtonSystem& system, FlowState& state,
+            FlowResult& result) {
+  const MeshTables& t = run.tables;
+  const double error = max_error(state, run.target);
+  if (run.geometry != Geometry::Euclidean || result.iterations == 0 || error < 1e-14) return;
+  auto t0 = Clock::now();
+  const Eigen::SparseMatrix<double>& H = assembler.assemble(run.geometry, run.eta, state);
+  result.timings.assembly += seconds_since(t0);
+  const int n = assembler.num_unknowns();
+  Eigen::VectorXd rhs(n), reduced(n), step(t.num_vertices());
+  for (int v = 0; v < t.num_vertices(); ++v) {
+    if (assembler.unknown(v) >= 0) rhs[assembler.unknown(v)] = run.target[v] - state.curvature[v];
+  }
+  if (!system.solve_reusing(H, rhs, reduced)) return;
+  for (int v = 0; v < t.num_vertices(); ++v) {
+    step[v] = assembler.unknown(v) >= 0 ? reduced[assembler.unknown(v)] : 0.0;
+  }
+  step.array() -= step.mean();
+  t0 = Clock::now();
+  FlowState trial;
+  const bool valid = evaluate_flow_state(t, run.geometry, run.eta, state.u + step, trial);
+  result.timings.evaluation += seconds_since(t0);
+  if (!valid || !(max_error(trial, run.target) < error)) return;
+  std::swap(state, trial);
+  ++result.iterations;
+  result.error_history.push_back(max_error(state, run.target));
+  if (run.options.progress) {
+    run.options.progress({result.iterations, result.error_history.back(), 1.0, seconds_since(run.start)});
+  }
+}
+
 }  // namespace
 
 void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
@@ -196,6 +231,8 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   double merit = (state.curvature - run.target).squaredNorm();
   int crawling = 0;  // consecutive iterations whose step was cut hard by broken triangles
   int recent_broken = 0;  // iterations with broken trial triangles in the last window
+  int stagnant = 0;       // consecutive short steps that barely lowered the error
+  int stagnant_broken = 0;  // ... of which broke triangles at longer trial steps
   double lambda = 1.0;  // Levenberg-Marquardt damping factor (S2 only)
   bool last_step_full = false;
   result.error_history.push_back(error);
@@ -251,6 +288,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     lambda = t_step == 1.0 ? std::max(lambda * 0.1, 1e-10) : std::min(lambda * 4.0, 1e4);
     std::swap(state, trial);
     merit = (state.curvature - run.target).squaredNorm();
+    const double previous_error = error;
     error = max_error(state, run.target);
     ++result.iterations;
     result.error_history.push_back(error);
@@ -273,6 +311,21 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
       }
       recent_broken = 0;
     }
+    // Short steps that gain under 2% each: the radii are heading to the boundary of the metric
+    // space (no solution with these edge quantities, e.g. Thurston's angles at a 10pi cone).
+    // Waiting for the ten-iteration window costs seconds on 100k faces before the next metric.
+    const bool short_step = t_step < 1.0 / 64 && error > 0.98 * previous_error;
+    stagnant = short_step ? stagnant + 1 : 0;
+    stagnant_broken = short_step ? stagnant_broken + (broken > 0 ? 1 : 0) : 0;
+    if (euclidean && stagnant >= 3) {
+      result.status = stagnant_broken > 0 ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
+      result.message = failure_message(run, state, result.status,
+                                       std::string("three short Newton steps in a row lowered the error by "
+                                                   "less than 2% each") +
+                                           (stagnant_broken > 0 ? " while longer ones broke triangles"
+                                                                : " (no solution for these edge quantities?)"));
+      return;
+    }
     if (crawling >= 8) {
       result.status = FlowStatus::TriangleInequality;
       result.message = failure_message(run, state, result.status,
@@ -281,6 +334,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     }
   }
   result.status = FlowStatus::Converged;
+  polish(run, assembler, system, state, result);
 }
 
 }  // namespace ricci::detail

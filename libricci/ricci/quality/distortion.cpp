@@ -122,6 +122,8 @@ DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& len
   for (double x : qc) qc_sum += x;
   report.quasi_conformal_mean = qc_sum / static_cast<double>(qc.size());
   report.quasi_conformal_max = *std::max_element(qc.begin(), qc.end());
+  report.quasi_conformal_p50 = percentile(qc, 0.50);
+  report.quasi_conformal_p95 = percentile(qc, 0.95);
   return report;
 }
 
