@@ -40,7 +40,8 @@ struct LayoutE2Result {
 
 /// Places the faces one by one, each new vertex at the intersection of two circles on the left
 /// of the known edge (counter-clockwise faces), in double-double coordinates. Faces are grown
-/// across edges smallest scale first (breadth-first among faces within a factor 16 in size):
+/// breadth-first, except that faces below half the median size come first, smallest scale
+/// first (breadth-first among faces within a factor 16 in size):
 /// a vertex is placed through a chain of faces, and where two chains meet the metric's
 /// rounding-level curvature error shows up multiplied by the size of the loop they enclose.
 /// Growing the tiny faces at a large cone outwards from the cone keeps those loops as small as
