@@ -59,9 +59,23 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   }
   u.timings.layout = seconds_since(t);
   t = Clock::now();
-  u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry);
-  u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings);
-  if (u.geometry == Geometry::Euclidean) torus_modulus(u);
+  if (u.geometry == Geometry::Hyperbolic) {
+    u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry);
+    u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings);
+  } else {
+    // Translations carry the unit of length; the residuals are taken on the domain scaled to
+    // unit size (scale-free), then the maps are conjugated back to the mesh's units.
+    const double size = std::max(u.positions.cwiseAbs().maxCoeff(), 1e-300);
+    u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions / size, u.geometry);
+    u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings);
+    const Mobius to_mesh = Mobius::from_matrix(Eigen::Vector2cd(size, 1.0).asDiagonal());
+    auto back = [&](Mobius& m) { m = to_mesh * m * to_mesh.inverse(); };
+    for (Mobius& m : u.pairings.edge_pairing) back(m);
+    for (CutArc& a : u.pairings.arcs) back(a.pairing);
+    for (Mobius& m : u.group.loop_holonomy) back(m);
+    for (Mobius& m : u.group.generators) back(m);
+    torus_modulus(u);
+  }
   u.timings.group = seconds_since(t);
 }
 
