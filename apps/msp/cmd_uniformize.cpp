@@ -129,7 +129,7 @@ int run_uniformize(int argc, char** argv) {
   options.root_vertex = args.get_int("root", 0);
   options.flow.solver = parse_solver(args.get_or("solver", "auto"));
   options.flow.tolerance = args.get_double("tolerance", options.flow.tolerance);
-  const int depth = args.get_int("depth", 3);
+  const int depth = args.get_int("depth", 5);
   if (depth < 0 || depth > 6) throw UsageError("--depth must be between 0 and 6");
   const std::string path = args.positionals()[0];
   const ricci::Mesh mesh = ricci::read_mesh(path);

@@ -99,18 +99,21 @@ void draw_cover(SvgCanvas& canvas, const ricci::Uniformization& u, const Poincar
                 PoincareSvgStats& stats) {
   std::vector<ricci::Mobius> pairings;
   for (const auto& a : u.pairings.arcs) pairings.push_back(a.pairing);
-  const auto elements = ricci::group_elements(pairings, o.depth, 1e-7, o.max_copies);
   const std::vector<Complex> domain = outline(u);
   const std::vector<ArcSide> sides = arc_sides(u);
   const double px = 1.0 / canvas.pixels_per_unit();
+  // Copies below min_copy_px are neither drawn nor extended: their neighbours further out are
+  // smaller still, and the budget goes to the copies one can see.
+  const auto visible = [&](const ricci::Mobius& g) {
+    if (extent(mapped(g, domain)) >= o.min_copy_px * px) return true;
+    ++stats.copies_culled;
+    return false;
+  };
+  const auto elements = ricci::group_elements(pairings, o.depth, 1e-7, o.max_copies, visible);
   canvas.add("<g id=\"copies\" stroke-linejoin=\"round\">");
   // Far copies first, so the central domain is drawn last, on top.
   for (auto it = elements.rbegin(); it != elements.rend(); ++it) {
     const std::vector<Complex> image = mapped(it->map, domain);
-    if (it->word_length > 0 && extent(image) < o.min_copy_px * px) {
-      ++stats.copies_culled;
-      continue;
-    }
     ++stats.copies_drawn;
     const double width = it->word_length == 0 ? 1.6 : std::max(0.3, 1.0 - 0.25 * it->word_length);
     canvas.add("<path d=\"" + canvas.path_data(to_rows(thinned(image, 0.4 * px)), true) +
@@ -179,11 +182,12 @@ std::vector<std::string> caption(const ricci::Uniformization& u, const PoincareS
                 u.geometry == ricci::Geometry::Hyperbolic ? "Poincare disk" : "plane",
                 stats.copies_drawn - 1, o.depth);
   lines.push_back(buffer);
+  lines.push_back("sides coloured by the loop whose cotree edge they hold (grey: tree arcs); fill by "
+                  "word length; grey background: longer words, not drawn");
   std::snprintf(buffer, sizeof buffer,
-                "sides coloured by the loop whose cotree edge they hold (grey: tree arcs); "
-                "fill by word length (grey: copies of longer words, not drawn); %d copies under %.1f px "
-                "skipped; relation residual %.1e",
-                stats.copies_culled, o.min_copy_px, u.group.relation_residual);
+                "%d candidate copies under %.1f px skipped; relation residual %.1e; side spread %.1e",
+                stats.copies_culled, o.min_copy_px, u.group.relation_residual,
+                u.pairings.max_spread);
   lines.push_back(buffer);
   return lines;
 }

@@ -13,7 +13,7 @@ struct PoincareSvgOptions {
   std::string title;       ///< First caption line, e.g. the mesh file.
   double width_px = 1000;  ///< Width of the drawing in pixels.
   /// Copies are products of up to this many side pairings (arc pairings and their inverses).
-  int depth = 3;
+  int depth = 5;
   /// Copies whose picture spans fewer pixels than this are not drawn.
   double min_copy_px = 1.5;
   int max_copies = 6000;

@@ -19,7 +19,8 @@ std::tuple<long, long, long, long> bucket(const Mobius& g, double cell) {
 }  // namespace
 
 std::vector<GroupElement> group_elements(const std::vector<Mobius>& generators, int max_length,
-                                         double tolerance, int max_elements) {
+                                         double tolerance, int max_elements,
+                                         const std::function<bool(const Mobius&)>& keep) {
   std::vector<Mobius> letters;
   for (const Mobius& g : generators) {
     letters.push_back(g);
@@ -49,7 +50,7 @@ std::vector<GroupElement> group_elements(const std::vector<Mobius>& generators, 
     for (size_t i = begin; i < end; ++i) {
       for (const Mobius& letter : letters) {
         const Mobius g = elements[i].map * letter;
-        if (known(g)) continue;
+        if (known(g) || (keep && !keep(g))) continue;
         index.insert({bucket(g, cell), static_cast<int>(elements.size())});
         elements.push_back({g, length});
         if (static_cast<int>(elements.size()) >= max_elements) return elements;
