@@ -35,6 +35,8 @@ const Benchmark kBenchmarks[] = {
      "automatic choice of the extraordinary point vs the paper's brute force (one flow per vertex)"},
     {"topology", msp::bench::run_topology_benchmark,
      "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
+    {"uniformize", msp::bench::run_uniformize_benchmark,
+     "issue 7: uniformization (flow, cut, layout, Fuchsian group) at the Ricci-flow paper's Table I sizes"},
 };
 
 void usage() {

@@ -22,7 +22,8 @@ namespace {
 
 const char* kUsage =
     "msp uniformize MESH [-o cover.svg] [--json] [--depth N] [--seed-face F] [--root V] "
-    "[--solver auto|eigen-ldlt|eigen-llt|cholmod-supernodal|cholmod-simplicial] [--tolerance T]";
+    "[--solver auto|eigen-ldlt|eigen-llt|cholmod-supernodal|cholmod-simplicial] [--tolerance T] "
+    "[--metric circle-packing|inversive-distance|combinatorial] [--radii mean|min|least-squares]";
 
 nlohmann::json complex_json(ricci::Complex z) { return {z.real(), z.imag()}; }
 
@@ -122,12 +123,14 @@ void print_summary(const ricci::Mesh& mesh, const ricci::Uniformization& u) {
 
 int run_uniformize(int argc, char** argv) {
   Args args(argc, argv, {"json"});
-  args.require_known({"output", "json", "depth", "seed-face", "root", "solver", "tolerance"});
+  args.require_known({"output", "json", "depth", "seed-face", "root", "solver", "tolerance", "metric", "radii"});
   args.require_positionals(1, kUsage);
   ricci::UniformizeOptions options;
   options.seed_face = args.get_int("seed-face", -1);
   options.root_vertex = args.get_int("root", 0);
   options.flow.solver = parse_solver(args.get_or("solver", "auto"));
+  if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
+  if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
   options.flow.tolerance = args.get_double("tolerance", options.flow.tolerance);
   const int depth = args.get_int("depth", 5);
   if (depth < 0 || depth > 6) throw UsageError("--depth must be between 0 and 6");
