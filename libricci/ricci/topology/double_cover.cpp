@@ -6,19 +6,36 @@
 
 namespace ricci {
 
-DoubleCover double_cover(const Mesh& mesh) {
-  bool open = false;
-  for (auto v : mesh.vertices()) open = open || mesh.is_boundary(v);
-  if (!open) throw TopologyError("double_cover: the mesh is closed (nothing to double)");
+namespace {
+
+/// Splits every interior edge whose two ends lie on the boundary (a chord), at its midpoint.
+int split_chords(Mesh& mesh) {
+  std::vector<EdgeHandle> chords;
   for (auto e : mesh.edges()) {
     const auto h = mesh.halfedge_handle(e, 0);
     if (!mesh.is_boundary(e) && mesh.is_boundary(mesh.from_vertex_handle(h)) &&
         mesh.is_boundary(mesh.to_vertex_handle(h))) {
-      throw TopologyError("double_cover: interior edge " + std::to_string(e.idx()) +
-                          " joins two boundary vertices (split it first)");
+      chords.push_back(e);
     }
   }
+  for (EdgeHandle e : chords) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const auto mid = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+    mesh.split(e, mid);
+  }
+  return static_cast<int>(chords.size());
+}
+
+}  // namespace
+
+DoubleCover double_cover(const Mesh& input) {
+  bool open = false;
+  for (auto v : input.vertices()) open = open || input.is_boundary(v);
+  if (!open) throw TopologyError("double_cover: the mesh is closed (nothing to double)");
   DoubleCover result;
+  result.original = input;
+  result.split_edges = split_chords(result.original);
+  const Mesh& mesh = result.original;
   result.original_faces = static_cast<int>(mesh.n_faces());
   result.mirror_vertex.resize(mesh.n_vertices());
   for (auto v : mesh.vertices()) {

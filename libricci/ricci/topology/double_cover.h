@@ -12,9 +12,15 @@ namespace ricci {
 
 struct DoubleCover {
   Mesh mesh;
+  /// The open surface that was doubled: the input, with every interior edge that joined two
+  /// boundary vertices split at its midpoint (its two copies would otherwise be parallel edges).
+  /// Indices below refer to this mesh; its first vertices and faces keep the input's indices
+  /// except for the faces a split replaced.
+  Mesh original;
+  int split_edges = 0;
   /// By vertex index of the double: the vertex of the original it copies.
   std::vector<int> to_original_vertex;
-  /// By face index of the double: faces [0, F) are the original faces (same index and
+  /// By face index of the double: faces [0, F) are the faces of `original` (same index and
   /// orientation), faces [F, 2F) their mirror copies, with reversed orientation.
   int original_faces = 0;
   /// By original vertex index: its vertex in the mirror copy (the same vertex on the boundary).
@@ -22,8 +28,7 @@ struct DoubleCover {
 };
 
 /// \pre a connected oriented 2-manifold with at least one boundary loop.
-/// \throw TopologyError for a closed mesh, or when an interior edge joins two boundary vertices
-///        (its two copies would be parallel edges: split that edge first), naming the edge.
+/// \throw TopologyError for a closed mesh or when a mirror face cannot be glued (non-manifold).
 [[nodiscard]] DoubleCover double_cover(const Mesh& mesh);
 
 }  // namespace ricci

@@ -99,6 +99,7 @@ TEST(DoubleCover, IsClosedOrientableOfGenus2gPlusBMinus1) {
   };
   std::vector<Case> cases;
   cases.push_back({make_disk(4, 6), 0});
+  cases.push_back({make_planar_grid(4, 3, 1.0, 1.0), 0});  // corner diagonals are chords
   cases.push_back({make_annulus(3, 12), 1});
   cases.push_back({make_open_genus(1, 2, 2), 3});
   cases.push_back({read_mesh(shared_model("open/eight_hole.off")), 4});
@@ -112,16 +113,19 @@ TEST(DoubleCover, IsClosedOrientableOfGenus2gPlusBMinus1) {
     EXPECT_TRUE(t.manifold);
     EXPECT_EQ(t.components, 1);
     EXPECT_EQ(t.genus, c.genus);
-    EXPECT_EQ(t.faces, 2 * before.faces);
+    EXPECT_EQ(t.faces, 2 * static_cast<int>(d.original.n_faces()));
+    EXPECT_EQ(static_cast<int>(d.original.n_faces()), before.faces + 2 * d.split_edges);
     // Orientable and consistently oriented: every edge is used once in each direction.
     for (auto e : d.mesh.edges()) {
       EXPECT_FALSE(d.mesh.is_boundary(e));
     }
     // Mirror copies sit on the same points; the boundary is shared.
-    for (auto v : c.mesh.vertices()) {
+    for (auto v : d.original.vertices()) {
       EXPECT_EQ(d.to_original_vertex[d.mirror_vertex[v.idx()]], v.idx());
     }
   }
+  EXPECT_GT(double_cover(make_planar_grid(4, 3, 1.0, 1.0)).split_edges, 0);
+  EXPECT_EQ(double_cover(make_disk(4, 6)).split_edges, 0);
   EXPECT_THROW((void)double_cover(make_icosphere(1)), TopologyError);
 }
 
