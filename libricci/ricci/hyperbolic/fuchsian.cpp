@@ -123,6 +123,48 @@ DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const Slic
   return result;
 }
 
+namespace {
+
+/// The point c among `candidates` whose images under the prefixes of `word` stay closest to it
+/// (smallest max over prefixes g of |g|_c, the norm of g in the frame centred at c).
+Complex best_frame_centre(const DomainPairings& pairings, const ArcWord& word,
+                          const std::vector<Complex>& candidates) {
+  Complex best = 0.0;
+  double best_size = INFINITY;
+  for (const Complex& c : candidates) {
+    const Mobius to_c = Mobius::from_rotation_point(0.0, c);
+    Mobius prefix;
+    double size = 0.0;
+    for (const ArcLetter& l : word) {
+      const Mobius& m = pairings.arcs[static_cast<size_t>(l.arc)].pairing;
+      prefix = prefix * (l.sign > 0 ? m : m.inverse());
+      size = std::max(size, (to_c * prefix * to_c.inverse()).m.norm());
+      if (size >= best_size) break;
+    }
+    if (size < best_size) {
+      best_size = size;
+      best = c;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
+                            const std::vector<Complex>& candidates) {
+  const ArcWord w = cyclically_reduced(word);
+  const Complex c = best_frame_centre(pairings, w, candidates);
+  const Mobius to_c = Mobius::from_rotation_point(0.0, c);
+  const Mobius from_c = to_c.inverse();
+  Mobius product;
+  for (const ArcLetter& l : w) {
+    const Mobius& m = pairings.arcs[static_cast<size_t>(l.arc)].pairing;
+    product = product * (to_c * (l.sign > 0 ? m : m.inverse()) * from_c);
+  }
+  return distance_to_identity(product);
+}
+
 ArcWord freely_reduced(const ArcWord& word) {
   ArcWord out;
   for (const ArcLetter& l : word) {
@@ -133,6 +175,16 @@ ArcWord freely_reduced(const ArcWord& word) {
     }
   }
   return out;
+}
+
+ArcWord cyclically_reduced(const ArcWord& word) {
+  ArcWord w = freely_reduced(word);
+  size_t begin = 0, end = w.size();
+  while (end - begin >= 2 && w[begin].arc == w[end - 1].arc && w[begin].sign == -w[end - 1].sign) {
+    ++begin;
+    --end;
+  }
+  return ArcWord(w.begin() + static_cast<std::ptrdiff_t>(begin), w.begin() + static_cast<std::ptrdiff_t>(end));
 }
 
 Mobius evaluate(const DomainPairings& pairings, const ArcWord& word) {
@@ -193,13 +245,16 @@ double relation_residual(const std::vector<Mobius>& generators) {
 }
 
 HolonomyGroup holonomy_group(const Mesh& mesh, const CutGraph& cut, const SlicedMesh& sliced,
-                             const DomainPairings& pairings) {
+                             const DomainPairings& pairings, const Eigen::VectorXcd& positions) {
   HolonomyGroup group;
   group.polygon = fundamental_polygon_word(mesh, cut, sliced);
   group.loop_words = loop_arc_words(mesh, cut, pairings);
   for (const ArcWord& w : group.loop_words) group.loop_holonomy.push_back(evaluate(pairings, w));
+  std::vector<Complex> candidates{0.0};
+  const Eigen::Index stride = std::max<Eigen::Index>(1, positions.size() / 64);
+  for (Eigen::Index i = 0; i < positions.size(); i += stride) candidates.push_back(positions[i]);
   group.polygon_residual =
-      distance_to_identity(evaluate(pairings, arc_word(group.loop_words, group.polygon.word)));
+      conditioned_residual(pairings, arc_word(group.loop_words, group.polygon.word), candidates);
   group.basis = canonical_basis(group.polygon.word);
   for (size_t i = 0; i < group.basis.generators.size(); ++i) {
     group.generator_words.push_back(arc_word(group.loop_words, group.basis.generators[i]));
@@ -214,7 +269,7 @@ HolonomyGroup holonomy_group(const Mesh& mesh, const CutGraph& cut, const Sliced
       for (auto it = w->rbegin(); it != w->rend(); ++it) relation.push_back({it->arc, -it->sign});
     }
   }
-  group.relation_residual = distance_to_identity(evaluate(pairings, freely_reduced(relation)));
+  group.relation_residual = conditioned_residual(pairings, relation, candidates);
   group.relation_residual_direct = relation_residual(group.generators);
   return group;
 }

@@ -60,6 +60,18 @@ using ArcWord = std::vector<ArcLetter>;
 /// matrices, which is what keeps the products accurate to 1e-9.
 [[nodiscard]] ArcWord freely_reduced(const ArcWord& word);
 
+/// Free reduction, then cancels a first letter against an inverse last letter while possible: a
+/// conjugate of the word (w R w^-1 -> R), equal to the identity exactly when the word is.
+[[nodiscard]] ArcWord cyclically_reduced(const ArcWord& word);
+
+/// distance_to_identity of the word's product, evaluated well-conditioned: the word cyclically
+/// reduced, and every factor conjugated into the frame centred at the candidate point whose
+/// images under the word's prefixes stay closest to it (the prefixes of a vertex-cycle relator
+/// move that region least, so their matrices stay small and their rounding is not amplified by
+/// the square of their norms). Conjugation keeps "= I" exact, so this tests the relation.
+[[nodiscard]] double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
+                                          const std::vector<Complex>& candidates);
+
 /// The product of the arcs' pairings along `word`, left to right.
 [[nodiscard]] Mobius evaluate(const DomainPairings& pairings, const ArcWord& word);
 
@@ -87,21 +99,27 @@ struct HolonomyGroup {
   std::vector<Mobius> loop_holonomy;   ///< rho of each cut-graph loop.
   std::vector<ArcWord> generator_words;  ///< basis.generators in arc letters.
   std::vector<Mobius> generators;      ///< rho(a1), rho(b1), ...
-  /// ||rho(polygon word) - I|| (the word reduced in arc letters before multiplying): the domain
-  /// closes up around the root.
+  /// ||rho(polygon word) - I|| (the word cyclically reduced in arc letters before multiplying):
+  /// the domain closes up around the root.
   double polygon_residual = 0.0;
-  /// ||Π [a_i, b_i] - I|| for the canonical generators, the relator reduced in arc letters
-  /// before multiplying (what is left are the vertex cycles of the cut graph's branch points).
+  /// ||Π [a_i, b_i] - I|| for the canonical generators, the relator written in arc letters and
+  /// evaluated by conditioned_residual (cyclically reduced, in the best-conditioned frame). Cyclic reduction conjugates (the relator of the
+  /// canonical basis is a rotation A P A^-1 of the polygon's), so the test "= I" is unchanged,
+  /// but the conjugator's rounding, amplified by ||rho(A)||², is left out; what remains are the
+  /// vertex cycles of the cut graph's branch points.
   double relation_residual = 0.0;
   /// The same product multiplied from the generator matrices as they are (rounding of long
   /// products of large matrices included).
   double relation_residual_direct = 0.0;
 };
 
-/// Loop holonomies, the polygon word and the canonical generators as its words.
+/// Loop holonomies, the polygon word and the canonical generators as its words. `positions`
+/// (the layout of the sliced disk, optional) supplies the frame centres tried by
+/// conditioned_residual for the residuals.
 /// \throw TopologyError from the polygon word when the slice is not a disk.
 [[nodiscard]] HolonomyGroup holonomy_group(const Mesh& mesh, const CutGraph& cut,
                                            const SlicedMesh& sliced,
-                                           const DomainPairings& pairings);
+                                           const DomainPairings& pairings,
+                                           const Eigen::VectorXcd& positions = {});
 
 }  // namespace ricci

@@ -25,13 +25,23 @@ double angle_at_from(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeH
   return theta[0];
 }
 
-/// Places to_vertex(next(h)) given from(h) and to(h) at p and q.
-Complex place_across(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h,
-                     Complex p, Complex q) {
-  const Mobius to_centre = disk_to_centre(p, q);
-  const double l_pw = lengths[mesh.edge_handle(mesh.prev_halfedge_handle(h)).idx()];
-  const Complex at_centre = std::polar(disk_radius(l_pw), angle_at_from(mesh, lengths, h));
-  return to_centre.inverse()(at_centre);
+/// A face in its own frame: from(h) at 0, to(h) on the positive real axis, the third vertex
+/// above; z[k] is the position of the from-vertex of the k-th halfedge h, next(h), prev(h).
+struct CanonicalFace {
+  HalfedgeHandle h[3];
+  Complex z[3];
+};
+
+CanonicalFace canonical_face(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
+  CanonicalFace c;
+  c.h[0] = h;
+  c.h[1] = mesh.next_halfedge_handle(h);
+  c.h[2] = mesh.next_halfedge_handle(c.h[1]);
+  c.z[0] = 0.0;
+  c.z[1] = disk_radius(lengths[mesh.edge_handle(h).idx()]);
+  c.z[2] = std::polar(disk_radius(lengths[mesh.edge_handle(c.h[2]).idx()]),
+                      angle_at_from(mesh, lengths, h));
+  return c;
 }
 
 }  // namespace
@@ -111,31 +121,40 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
   }
   result.positions = Eigen::VectorXcd::Constant(mesh.n_vertices(), Complex(NAN, NAN));
   std::vector<char> placed(mesh.n_vertices(), 0), reached(mesh.n_faces(), 0);
+  // Faces are developed by composing frames: a face's frame maps its canonical placement (see
+  // CanonicalFace) into the disk, and a neighbour's frame is this frame times the Möbius map
+  // between the two canonical placements, computed from the lengths alone near the centre. Unlike
+  // placing each vertex from its two already-placed neighbours (whose rounding is amplified by
+  // the ratio of the triangle's sides at every step, a product that grows along a long front),
+  // the frames only accumulate one rounding per step.
+  struct Item {
+    HalfedgeHandle h;
+    Mobius frame;
+  };
   const FaceHandle seed(result.seed_face);
-  const HalfedgeHandle h0 = mesh.halfedge_handle(seed);
-  const int a = mesh.from_vertex_handle(h0).idx(), b = mesh.to_vertex_handle(h0).idx();
-  result.positions[a] = 0.0;
-  result.positions[b] = disk_radius(edge_lengths[mesh.edge_handle(h0).idx()]);
-  placed[a] = placed[b] = 1;
+  std::deque<Item> queue{{mesh.halfedge_handle(seed), Mobius::identity()}};
   reached[seed.idx()] = 1;
-  std::deque<HalfedgeHandle> queue{h0};  // a halfedge whose two ends are placed, in a new face
   int reached_count = 1;
   while (!queue.empty()) {
-    const HalfedgeHandle h = queue.front();
+    const Item item = queue.front();
     queue.pop_front();
-    const int w = mesh.to_vertex_handle(mesh.next_halfedge_handle(h)).idx();
-    if (!placed[w]) {
-      result.positions[w] =
-          place_across(mesh, edge_lengths, h, result.positions[mesh.from_vertex_handle(h).idx()],
-                       result.positions[mesh.to_vertex_handle(h).idx()]);
-      placed[w] = 1;
+    const CanonicalFace c = canonical_face(mesh, edge_lengths, item.h);
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.from_vertex_handle(c.h[k]).idx();
+      if (!placed[v]) {
+        result.positions[v] = item.frame(c.z[k]);
+        placed[v] = 1;
+      }
     }
-    for (auto g : mesh.fh_range(mesh.face_handle(h))) {
-      const HalfedgeHandle o = mesh.opposite_halfedge_handle(g);
+    for (int k = 0; k < 3; ++k) {
+      const HalfedgeHandle o = mesh.opposite_halfedge_handle(c.h[k]);
       if (mesh.is_boundary(o) || reached[mesh.face_handle(o).idx()]) continue;
       reached[mesh.face_handle(o).idx()] = 1;
       ++reached_count;
-      queue.push_back(o);
+      // In the neighbour's frame for o, from(o) = to(h_k) is at 0 and to(o) = from(h_k) on the
+      // positive axis: the map from that frame into ours is the inverse of disk_to_centre.
+      const Mobius into_ours = disk_to_centre(c.z[(k + 1) % 3], c.z[k]).inverse();
+      queue.push_back({o, Mobius::from_matrix((item.frame * into_ours).m)});
     }
   }
   if (reached_count != static_cast<int>(mesh.n_faces())) {

@@ -61,12 +61,13 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   t = Clock::now();
   if (u.geometry == Geometry::Hyperbolic) {
     u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry);
-    u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings);
+    u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings, u.positions);
   } else {
     // Translations carry the unit of length; the residuals are taken on the domain scaled to
     // unit size (scale-free), then the maps are conjugated back to the mesh's units.
     const double size = std::max(u.positions.cwiseAbs().maxCoeff(), 1e-300);
     u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions / size, u.geometry);
+    // Frame centres are disk isometries: in the plane the residual is taken as it is.
     u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings);
     const Mobius to_mesh = Mobius::from_matrix(Eigen::Vector2cd(size, 1.0).asDiagonal());
     auto back = [&](Mobius& m) { m = to_mesh * m * to_mesh.inverse(); };
