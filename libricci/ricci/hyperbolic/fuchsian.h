@@ -2,7 +2,7 @@
 // Side pairings of a fundamental domain laid out in the disk (H2) or the plane (E2), and the
 // holonomy representation of the fundamental group they generate: for a closed hyperbolic
 // surface the Fuchsian group, whose canonical generators a1 b1 ... ag bg satisfy
-// Π [a_i, b_i] = I (hyperbolic-and-real-projective-structure §3-4; discrete-surface-ricci-flow
+// Π [a_i, b_i] = I (hyperbolic-and-real-projective-structure §4.3; discrete-surface-ricci-flow
 // §V). Every map is a Mobius matrix (SU(1,1) in H2, Euclidean motions in E2).
 #include <vector>
 

@@ -19,7 +19,8 @@ namespace ricci {
 
 /// The 3x3 matrix L with hyperboloid(M(z)) = L hyperboloid(z) for a disk isometry M (SU(1,1)),
 /// acting on homogeneous Klein coordinates (x0 : x1 : x2); L^T J L = J with J = diag(1, -1, -1).
-/// From X(x) = ½ [[x0, x1 + i x2], [x1 - i x2, x0]] -> M X M^* (ALGORITHMS.md: SU(1,1) ≅ SO+(2,1)).
+/// From X(x) = ½ [[x0, x1 + i x2], [x1 - i x2, x0]] -> M X M^* (SU(1,1) -> SO+(2,1)); the same map
+/// up to scale as the paper's (1/λ) O T of §5.3.
 [[nodiscard]] Eigen::Matrix3d lorentz_matrix(const Mobius& map);
 
 /// The projective map L applied to the Klein point k: (L (1, Re k, Im k)) dehomogenised.

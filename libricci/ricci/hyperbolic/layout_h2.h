@@ -1,9 +1,11 @@
 #pragma once
 // Isometric placement of a hyperbolic, simply connected mesh in the Poincaré disk from its edge
-// lengths, by the Möbius-to-centre method (hyperbolic-and-real-projective-structure §4.2): each
-// new face is placed by moving its known edge to the centre (one end at 0, the other on the
-// positive real axis), constructing the third vertex there, where the disk metric is plain
-// polar coordinates (radius tanh(l/2) at the corner angle), and moving back.
+// lengths (hyperbolic-and-real-projective-structure §4.2, which intersects Euclidean images of
+// hyperbolic circles), by the Möbius-to-centre method instead: every face is constructed at the
+// centre (one edge from 0 along the positive real axis, the third vertex in polar coordinates,
+// radius tanh(l/2) at the corner angle), where the disk loses no digits, and moved out by its
+// frame, a Möbius map; a neighbour's frame is this frame times the map between the two centred
+// constructions, so rounding is not amplified from face to face.
 #include <Eigen/Core>
 
 #include "ricci/hyperbolic/mobius.h"
