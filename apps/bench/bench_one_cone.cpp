@@ -156,6 +156,12 @@ int run_one_cone_case(int argc, char** argv) {
     j["distortion"] = t.distortion;
     j["total"] = t.valence + t.flow + t.atlas;
     j["newton"] = r.flow.iterations;
+    j["factorizations"] = r.flow.factorizations;
+    const auto& ft = r.flow.timings;
+    j["flow_stages"] = {{"setup", ft.setup},         {"evaluation", ft.evaluation},
+                        {"assembly", ft.assembly},   {"analysis", ft.analysis},
+                        {"factorization", ft.factorization}, {"solve", ft.solve},
+                        {"last_attempt_total", ft.total}};
     j["curvature_error"] = r.flow.max_error;
     j["flipped"] = signs.flipped;
     j["zero_area"] = signs.zero;
