@@ -156,6 +156,12 @@ int run_one_cone_case(int argc, char** argv) {
     j["distortion"] = t.distortion;
     j["total"] = t.valence + t.flow + t.atlas;
     j["newton"] = r.flow.iterations;
+    j["factorizations"] = r.flow.factorizations;
+    const auto& ft = r.flow.timings;
+    j["flow_stages"] = {{"setup", ft.setup},         {"evaluation", ft.evaluation},
+                        {"assembly", ft.assembly},   {"analysis", ft.analysis},
+                        {"factorization", ft.factorization}, {"solve", ft.solve},
+                        {"last_attempt_total", ft.total}};
     j["curvature_error"] = r.flow.max_error;
     j["flipped"] = signs.flipped;
     j["zero_area"] = signs.zero;
@@ -186,6 +192,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["qc_mean"] = r.distortion.quasi_conformal_mean;
     j["qc_max"] = r.distortion.quasi_conformal_max;
     j["qc_p50"] = r.distortion.quasi_conformal_p50;
+    j["qc_area_mean"] = r.distortion.quasi_conformal_area_mean;
   } catch (const std::exception& e) {
     j["status"] = std::string("failed: ") + e.what();
   }
@@ -235,14 +242,14 @@ int run_one_cone_benchmark(int argc, char** argv) {
                "ratio = total / chol. flip/zero: faces\nof the layout with negative/zero signed area "
                "(double-double positions); dbl: faces with area\n<= 0 in the plain double chart "
                "coordinates; edge: max relative edge-length error of the\nlayout; trans: transition "
-               "residual / domain diameter; QC: quasi-conformal distortion vs the\ninput mesh (mean, median, max over faces); MB: "
+               "residual / domain diameter; QC: quasi-conformal distortion vs the\ninput mesh (mean, mean weighted by 3D area as Crane's tools report it,\nmedian, max over faces); MB: "
                "peak RSS of the process.\n\n";
   std::cout << std::left << std::setw(22) << "mesh" << std::right << std::setw(8) << "faces" << std::setw(6)
             << "cone" << std::setw(5) << "spl" << std::setw(7) << "read" << std::setw(7) << "choice"
             << std::setw(7) << "val" << std::setw(7) << "flow" << std::setw(7) << "atlas" << std::setw(7)
             << "total" << std::setw(7) << "chol" << std::setw(6) << "ratio" << std::setw(4) << "it"
             << std::setw(9) << "K err" << std::setw(5) << "flip" << std::setw(5) << "zero" << std::setw(5)
-            << "dbl" << std::setw(9) << "edge" << std::setw(9) << "trans" << std::setw(8) << "QC mean" << std::setw(7) << "QC p50"
+            << "dbl" << std::setw(9) << "edge" << std::setw(9) << "trans" << std::setw(8) << "QC mean" << std::setw(8) << "QC area" << std::setw(7) << "QC p50"
             << std::setw(10) << "QC max" << std::setw(7) << "MB"
             << "  metric\n";
   for (const Case& c : cases) {
@@ -278,7 +285,8 @@ int run_one_cone_benchmark(int argc, char** argv) {
               << j["curvature_error"].get<double>() << std::setw(5) << j["flipped"].get<int>() << std::setw(5)
               << j["zero_area"].get<int>() << std::setw(5) << j["degenerate_in_doubles"].get<int>()
               << std::setw(9) << j["edge_error"].get<double>() << std::setw(9) << j["transition"].get<double>()
-              << std::fixed << std::setprecision(3) << std::setw(8) << j["qc_mean"].get<double>() << std::setw(7)
+              << std::fixed << std::setprecision(3) << std::setw(8) << j["qc_mean"].get<double>() << std::setw(8)
+              << j["qc_area_mean"].get<double>() << std::setw(7)
               << j["qc_p50"].get<double>()
               << std::setprecision(1) << std::setw(10) << j["qc_max"].get<double>() << std::setprecision(0)
               << std::setw(7) << j["peak_mb"].get<double>() << "  " << j["metric"].get<std::string>()
