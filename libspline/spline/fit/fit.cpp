@@ -45,6 +45,18 @@ Eigen::Vector3d barycentric_in(const Eigen::Matrix<double, 3, 2>& p, const Eigen
   return {1.0 - l.x() - l.y(), l.x(), l.y()};
 }
 
+// True when the closest point lies on an edge of the domain's rim (an edge whose other face is
+// missing or outside the domain): the point is over the hole (or beyond an open boundary), which
+// the spline does not cover. A punctured sphere's hole has no faces in the mesh, so without this
+// the points of the removed star land on the rim and drag it (bunny: rim faces' RMS 4%).
+bool on_domain_rim(const ManifoldSplineSpace& space, int face, const Eigen::Vector3d& bary) {
+  for (int k = 0; k < 3; ++k) {
+    const int g = space.neighbour(face, k);
+    if ((g < 0 || !space.in_domain(g)) && bary[k] <= 1e-12) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& space,
@@ -86,11 +98,24 @@ std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
     area[d] = chart_area(p);
     for (int k = 0; k < 3; ++k) edges[d] += (p.row((k + 1) % 3) - p.row(k)).norm();
     if (!options.isometric_smoothing) continue;
-    Eigen::Vector3d du = Eigen::Vector3d::Zero(), dv = du;
-    for (const auto& s : space.evaluate_basis({face, Eigen::Vector3d::Constant(1.0 / 3.0)})) {
-      du += s.jet.gradient.x() * initial.row(s.function).transpose();
-      dv += s.jet.gradient.y() * initial.row(s.function).transpose();
-    }
+    // The face's own polynomial f^I (from its control points alone): exact for the piecewise-
+    // linear initial points, and unaffected by the missing functions next to the hole, where
+    // the spline itself is no partition of unity. Gradient from the blossom:
+    // P(u, ..., u, u + e) - p(u) = D_e p(u) / n.
+    const int n = space.degree();
+    const auto clouds = space.face_clouds(space.chart_of(face), face);
+    const BivariatePolynomial f = polynomial_from_control_points(
+        clouds[0], clouds[1], clouds[2],
+        initial.middleRows(static_cast<Eigen::Index>(d) * space.functions_per_face(),
+                           space.functions_per_face()));
+    const Eigen::Vector2d centre = p.colwise().mean().transpose();
+    const double step = std::sqrt(area[d]);
+    std::vector<Eigen::Vector2d> args(static_cast<std::size_t>(n), centre);
+    const Eigen::VectorXd at = blossom(f, args);
+    args.back() = centre + Eigen::Vector2d(step, 0.0);
+    const Eigen::Vector3d du = n * (blossom(f, args) - at) / step;
+    args.back() = centre + Eigen::Vector2d(0.0, step);
+    const Eigen::Vector3d dv = n * (blossom(f, args) - at) / step;
     jacobian[d] = du.cross(dv).norm();
   }
   if (options.isometric_smoothing) {
@@ -251,15 +276,23 @@ Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& st
 }
 
 FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint>& parameters,
-                     const Eigen::MatrixX3d& points, int iterations) {
+                     const Eigen::MatrixX3d& points, int iterations, int threads) {
+  const auto count = static_cast<int>(parameters.size());
+  Eigen::VectorXd distance = Eigen::VectorXd::Constant(count, -1.0);  // -1: skipped
+  threads = std::max(1, std::min(threads, std::max(count, 1)));
+  detail::run_workers(threads, [&](int t) {
+    for (int k = t; k < count; k += threads) {
+      if (parameters[k].face < 0 || !spline.space->in_domain(parameters[k].face)) continue;
+      const Eigen::Vector3d p = points.row(k).transpose();
+      distance[k] = project_to_spline(spline, parameters[k], p, iterations).distance;
+    }
+  });
   FitErrors errors;
   double sum = 0.0;
-  for (std::size_t k = 0; k < parameters.size(); ++k) {
-    if (parameters[k].face < 0 || !spline.space->in_domain(parameters[k].face)) continue;
-    const Eigen::Vector3d p = points.row(static_cast<Eigen::Index>(k)).transpose();
-    const double d = project_to_spline(spline, parameters[k], p, iterations).distance;
-    sum += d * d;
-    errors.max = std::max(errors.max, d);
+  for (int k = 0; k < count; ++k) {
+    if (distance[k] < 0.0) continue;
+    sum += distance[k] * distance[k];
+    errors.max = std::max(errors.max, distance[k]);
     ++errors.points;
   }
   if (errors.points > 0) errors.rms = std::sqrt(sum / errors.points);
@@ -307,10 +340,11 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   const auto closest = ricci::closest_points(mesh, data);
   std::vector<DomainPoint> parameters(closest.size());
   for (std::size_t k = 0; k < closest.size(); ++k) {
-    if (space->in_domain(closest[k].face))
-      parameters[k] = {closest[k].face, closest[k].barycentric};
-    else
-      parameters[k] = {-1, Eigen::Vector3d::Zero()};
+    const bool covered = space->in_domain(closest[k].face) &&
+                         !on_domain_rim(*space, closest[k].face, closest[k].barycentric);
+    parameters[k] = covered ? DomainPoint{closest[k].face, closest[k].barycentric}
+                            : DomainPoint{-1, Eigen::Vector3d::Zero()};
+    if (!covered) ++result.uncovered_points;
   }
   result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
   result.timings.parameters = seconds_since(t);

@@ -89,10 +89,12 @@ struct FitErrors {
   int points = 0;
   double rms = 0.0, max = 0.0;  ///< distances to the spline (after projection)
 };
-/// Distances of points (with parameters; face -1 skipped) to the spline after projection.
+/// Distances of points (with parameters; face -1 skipped) to the spline after projection, on
+/// `threads` workers.
 [[nodiscard]] FitErrors fit_errors(const ManifoldSpline& spline,
                                    const std::vector<DomainPoint>& parameters,
-                                   const Eigen::MatrixX3d& points, int iterations = 6);
+                                   const Eigen::MatrixX3d& points, int iterations = 6,
+                                   int threads = 2);
 
 struct ScanFitOptions {
   int domain_faces = 2000;  ///< target size of the simplified domain mesh
@@ -119,7 +121,11 @@ struct ScanFitTimings {
 struct ScanFitResult {
   ricci::OneConeAtlasResult atlas;  ///< atlas.problem.mesh is the spline's domain mesh
   ManifoldSpline spline;
-  std::vector<DomainPoint> vertex_parameters;  ///< by input vertex (face -1: in the hole)
+  /// By input vertex; face -1: not covered by the spline (closest point of the domain mesh in a
+  /// hole face, or on the rim of the domain: over a punctured sphere's hole or beyond an open
+  /// boundary). Those points are neither fitted nor measured.
+  std::vector<DomainPoint> vertex_parameters;
+  int uncovered_points = 0;  ///< vertices and face centroids of the input left out that way
   FitResult fit;
   FairResult fairing;
   ScanFitTimings timings;
@@ -127,7 +133,7 @@ struct ScanFitResult {
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the
 /// space, parameters of the scan's vertices and face centroids by closest point on the domain
-/// mesh, fit, then fair.
+/// mesh (points not covered by the spline left out, see vertex_parameters), fit, then fair.
 /// \throw as simplify_mesh, build_one_cone_atlas, fit_control_points, fair.
 [[nodiscard]] ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options = {});
 
