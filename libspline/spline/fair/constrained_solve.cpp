@@ -1,6 +1,7 @@
 #include "spline/fair/constrained_solve.h"
 
 #include <Eigen/CholmodSupport>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -152,6 +153,7 @@ ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::Matrix
     out.penalty = w;
     Eigen::MatrixX3d lambda = Eigen::MatrixX3d::Zero(rows, 3);
     const Eigen::MatrixX3d wcth = w * Eigen::MatrixX3d(cr.transpose() * h);
+    double previous = std::numeric_limits<double>::infinity();
     for (int it = 0; it < options.max_iterations; ++it) {
       e = solver.solve(Eigen::MatrixX3d(g - cr.transpose() * lambda + wcth));
       if (!e.allFinite()) break;
@@ -159,7 +161,11 @@ ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::Matrix
       lambda += w * residual;
       out.iterations = it + 1;
       const double scale = std::max((y0 + e).cwiseAbs().maxCoeff(), 1e-300);
-      if (residual.cwiseAbs().maxCoeff() <= options.tolerance * scale) break;
+      const double size = residual.cwiseAbs().maxCoeff();
+      if (size <= options.tolerance * scale) break;
+      // Stalled: the factorisation's rounding (cond(K + w C^T C) eps) is the floor.
+      if (size > 0.99 * previous) break;
+      previous = size;
     }
   }
   if (!e.allFinite()) throw ricci::SolverError("constrained solve: non-finite solution");

@@ -26,7 +26,9 @@ namespace spline {
 struct ConstrainedSolveOptions {
   double penalty = 1e6;     ///< w relative to the mean diagonal of K_r (lowered by 100 on failure)
   int max_iterations = 100;  ///< multiplier updates
-  double tolerance = 1e-12;  ///< stop when max |C_r y| <= tolerance * max |y|
+  /// Stop when max |C_r y| <= tolerance * max |y|, or when an update no longer reduces it (the
+  /// floor set by the factorisation's rounding, ~1e-10 relative on the fits).
+  double tolerance = 1e-12;
 };
 
 struct ConstrainedSolution {
