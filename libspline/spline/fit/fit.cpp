@@ -221,8 +221,8 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   }
   result.seconds_solve = seconds_since(solve_start);
 
-  const Eigen::MatrixX3d residual = detail::residuals_at_parameters(
-      space, rows, parameters, points, result.control_points, threads);
+  const Eigen::MatrixX3d residual =
+      detail::residuals_at_parameters(normal, rows, points, result.control_points);
   const Eigen::VectorXd distance = residual.rowwise().norm();
   result.rms_at_parameters = std::sqrt(distance.squaredNorm() / result.points);
   result.max_at_parameters = distance.maxCoeff();

@@ -78,12 +78,16 @@ class FaceAccumulator {
 // Data rows, then three thin-plate rows per quadrature point, of one face.
 void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vector<int>& reach,
                      const FaceRowsSpec& spec, const std::vector<DomainPoint>& parameters,
-                     const Eigen::MatrixX3d& points, FaceAccumulator& acc) {
+                     const Eigen::MatrixX3d& points, FaceAccumulator& acc, FaceDataRows& kept) {
   const int m = space.functions_per_face();
   acc.reset(static_cast<int>(reach.size()) * m);
   for (int k : spec.points) {
-    for (const auto& s : space.evaluate_basis(parameters[k]))
+    for (const auto& s : space.evaluate_basis(parameters[k])) {
       acc.add(local_column(reach, s.function, m), s.jet.value);
+      kept.function.push_back(s.function);
+      kept.value.push_back(s.jet.value);
+    }
+    kept.start.push_back(static_cast<int>(kept.function.size()));
     acc.end_row(points.row(k), true);
   }
   if (spec.thin_plate_weight <= 0.0) return;
@@ -156,6 +160,7 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
   // is ~95% zeros, so only its non-zeros are kept, and the sparse matrix is built once.
   std::vector<std::vector<Eigen::Triplet<double>>> entries(static_cast<std::size_t>(threads));
   std::vector<Eigen::MatrixX3d> rhs(static_cast<std::size_t>(threads));
+  std::vector<FaceDataRows> kept(static_cast<std::size_t>(faces));  // each face: one worker
   run_workers(threads, [&](int t) {
     auto& out = entries[t];
     rhs[t].setZero(space.function_count(), 3);
@@ -164,7 +169,8 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
       const FaceRowsSpec& spec = rows_by_face[d];
       if (spec.points.empty() && spec.thin_plate_weight <= 0.0) continue;
       const std::vector<int>& r = reach[d];
-      accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, acc);
+      accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, acc,
+                      kept[d]);
       const auto k = static_cast<int>(acc.gram.cols());
       std::vector<int> global(static_cast<std::size_t>(k));
       for (int c = 0; c < k; ++c) global[c] = r[c / m] * m + c % m;  // ascending with c
@@ -191,27 +197,25 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
   out.lower.resize(space.function_count(), space.function_count());
   out.lower.setFromTriplets(all.begin(), all.end());
   out.rhs = rhs[0] + anchor * initial;
+  out.data_rows = std::move(kept);
   return out;
 }
 
-Eigen::MatrixX3d residuals_at_parameters(const ManifoldSplineSpace& space,
+Eigen::MatrixX3d residuals_at_parameters(const NormalEquations& equations,
                                          const std::vector<FaceRowsSpec>& rows_by_face,
-                                         const std::vector<DomainPoint>& parameters,
                                          const Eigen::MatrixX3d& points,
-                                         const Eigen::MatrixX3d& control_points, int threads) {
+                                         const Eigen::MatrixX3d& control_points) {
   Eigen::MatrixX3d residual = Eigen::MatrixX3d::Zero(points.rows(), 3);
-  const int faces = static_cast<int>(rows_by_face.size());
-  threads = std::max(1, std::min(threads, faces));
-  run_workers(threads, [&](int t) {
-    for (int d = t; d < faces; d += threads) {
-      for (int k : rows_by_face[d].points) {  // each point belongs to one face: no race
-        Eigen::RowVector3d f = Eigen::RowVector3d::Zero();
-        for (const auto& s : space.evaluate_basis(parameters[k]))
-          f += s.jet.value * control_points.row(s.function);
-        residual.row(k) = f - points.row(k);
-      }
+  for (std::size_t d = 0; d < rows_by_face.size(); ++d) {
+    const FaceDataRows& rows = equations.data_rows[d];
+    const auto& listed = rows_by_face[d].points;
+    for (std::size_t i = 0; i < listed.size(); ++i) {
+      Eigen::RowVector3d f = Eigen::RowVector3d::Zero();
+      for (int e = rows.start[i]; e < rows.start[i + 1]; ++e)
+        f += rows.value[e] * control_points.row(rows.function[e]);
+      residual.row(listed[i]) = f - points.row(listed[i]);
     }
-  });
+  }
   return residual;
 }
 

@@ -22,9 +22,18 @@ struct FaceRowsSpec {
   double thin_plate_weight = 0.0;       ///< per unit of quadrature weight (0: no thin-plate rows)
 };
 
+/// The data rows of one face, kept so the residuals need no second evaluation: row i (the i-th
+/// point of the face) has entries start[i] .. start[i + 1] - 1.
+struct FaceDataRows {
+  std::vector<int> start{0};
+  std::vector<int> function;
+  std::vector<double> value;
+};
+
 struct NormalEquations {
   Eigen::SparseMatrix<double> lower;  ///< lower triangle of A^T A (+ anchor on the diagonal)
   Eigen::MatrixX3d rhs;               ///< A^T b (+ anchor * initial)
+  std::vector<FaceDataRows> data_rows;  ///< by domain face
 };
 
 /// Sum over faces (by domain index) of B_I^T B_I and B_I^T targets, plus anchor * I and
@@ -36,13 +45,11 @@ struct NormalEquations {
     const std::vector<DomainPoint>& parameters, const Eigen::MatrixX3d& points, double anchor,
     const Eigen::MatrixX3d& initial, int threads);
 
-/// F(u_k) - p_k for every point listed in rows_by_face (others: zero rows), in parallel.
-[[nodiscard]] Eigen::MatrixX3d residuals_at_parameters(const ManifoldSplineSpace& space,
+/// F(u_k) - p_k for every point listed in rows_by_face (others: zero rows), from the kept rows.
+[[nodiscard]] Eigen::MatrixX3d residuals_at_parameters(const NormalEquations& equations,
                                                        const std::vector<FaceRowsSpec>& rows_by_face,
-                                                       const std::vector<DomainPoint>& parameters,
                                                        const Eigen::MatrixX3d& points,
-                                                       const Eigen::MatrixX3d& control_points,
-                                                       int threads);
+                                                       const Eigen::MatrixX3d& control_points);
 
 /// Runs work(t) for t = 0..count-1 on count threads (inline when count == 1) and rethrows the
 /// first exception of the lowest-numbered worker.
