@@ -1,12 +1,12 @@
 #include "spline/fair/fair.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 #include <string>
 
 #include "ricci/mesh/errors.h"
 #include "spline/basis/blossom.h"
 #include "spline/basis/multi_index.h"
+#include "spline/fair/constrained_solve.h"
 
 namespace spline {
 namespace {
@@ -79,38 +79,18 @@ FairResult fair(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& contro
   result.control_points = control_points;
   if (c.rows() == 0) return result;
 
-  const double w = options.penalty;
-  Eigen::SparseMatrix<double> k = Eigen::SparseMatrix<double>(c.transpose()) * c;
-  k *= w;
-  Eigen::SparseMatrix<double> identity(k.rows(), k.cols());
+  // min |c~ - c|^2: K = I, b = c, reference c (a feasible c comes back to rounding).
+  Eigen::SparseMatrix<double> identity(c.cols(), c.cols());
   identity.setIdentity();
-  k += identity;
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
-  solver.cholmod().print = 0;  // libraries never print; failures are reported by info()
-  solver.compute(k);
-  if (solver.info() != Eigen::Success) {
-    throw ricci::SolverError("fair: CHOLMOD could not factor I + w C^T C (" +
-                             std::to_string(k.rows()) + " unknowns)");
-  }
-  // Unknown: the correction d = c~ - c, small when c is nearly feasible, so the solver's relative
-  // error (about cond(K) eps) costs little absolutely; a feasible c gives d = 0 to rounding.
-  const double scale = std::max(control_points.cwiseAbs().maxCoeff(), 1e-300);
-  const Eigen::MatrixX3d infeasibility = c * control_points;
-  Eigen::MatrixX3d lambda = Eigen::MatrixX3d::Zero(c.rows(), 3);
-  Eigen::MatrixX3d x = control_points;
-  for (int it = 0; it < options.max_iterations; ++it) {
-    const Eigen::MatrixX3d rhs = -Eigen::MatrixX3d(c.transpose() * (w * infeasibility + lambda));
-    const Eigen::MatrixX3d d = solver.solve(rhs);
-    if (!d.allFinite()) throw ricci::SolverError("fair: non-finite solution");
-    x = control_points + d;
-    const Eigen::MatrixX3d residual = infeasibility + c * d;
-    lambda += w * residual;
-    result.iterations = it + 1;
-    result.max_constraint_residual = residual.cwiseAbs().maxCoeff();
-    if (result.max_constraint_residual <= options.tolerance * scale) break;
-  }
-  result.control_points = x;
-  result.max_change = (x - control_points).rowwise().norm().maxCoeff();
+  ConstrainedSolveOptions solve;
+  solve.penalty = options.penalty;
+  solve.max_iterations = options.max_iterations;
+  solve.tolerance = options.tolerance;
+  const ConstrainedSolution s = solve_constrained(identity, control_points, c, control_points, solve);
+  result.control_points = s.x;
+  result.iterations = s.iterations;
+  result.max_constraint_residual = s.max_residual;
+  result.max_change = (s.x - control_points).rowwise().norm().maxCoeff();
   return result;
 }
 

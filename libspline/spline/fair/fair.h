@@ -8,12 +8,22 @@
 // chart of I, which holds both glued (edges across the cut included). r = 0 shares the control
 // points along edges (their arguments are knots of the edge's two clouds only).
 //
-// Solver: the constraints C c~ = 0 are linear and, taken over both orientations (I, J) and
-// (J, I), linearly dependent, so the KKT matrix [I C^T; C 0] is singular. We use the augmented
-// Lagrangian instead: (I + w C^T C) d = -C^T (w C c + lambda), c~ = c + d, lambda += w C c~, with
-// one CHOLMOD factorisation of the SPD matrix reused over the iterations; it converges to the exact
-// projection of c onto {C c~ = 0}, dependent rows and all. A global polynomial satisfies every
-// constraint, so it is returned unchanged.
+// Solver: solve_constrained (constrained_solve.h) with K = I: the rows c~_i = c~_j (all of r = 0,
+// and the beta_k = 0 rows of every r) merge unknowns exactly, so r = 0 is the closed form "mean
+// of the shared copies"; the beta_k >= 1 rows go to the method of multipliers (they are
+// redundant over (I, J) / (J, I), so the KKT matrix is singular). It converges to the exact
+// projection of c onto {C c~ = 0}. A global polynomial satisfies every constraint, so it is
+// returned unchanged.
+//
+// What the rows mean: for the edge (v0, v1) opposite v2 in I and each (n-1)-tuple a of knots of
+// the two edge clouds (first knots of each, beta_2 = 0 or 1), the affine map x -> P(a, x) of I's
+// blossom equals J's. r = 1 therefore makes the four distinct control points
+// P(a, t_{0,beta0}), P(a, t_{1,beta1}) (shared), P^I(a, v2) and P^J(a, v3) (Fig. 13's six
+// highlighted points, two pairs coinciding) images of one affine map: coplanar, with v3's
+// barycentric coordinates in (t_{0,beta0}, t_{1,beta1}, v2) (tests/spline/fair). With knot clouds
+// off the edge this is not C^1 of the pieces f^I, f^J across the edge line; counted like C^1
+// cubics (3V + F - E_interior for n = 3, r = 1, measured by rank), and r = n - 1 leaves only a
+// few global polynomials.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>
@@ -24,7 +34,7 @@ namespace spline {
 
 struct FairOptions {
   int r = 1;                 ///< rows of control points tied to each neighbour, in [0, n - 1]
-  double penalty = 1e8;      ///< w, relative to the identity term
+  double penalty = 1e8;      ///< w, relative to the mean class size (the reduced K's diagonal)
   int max_iterations = 50;   ///< augmented-Lagrangian updates
   double tolerance = 1e-12;  ///< stop when max |C c~| <= tolerance * max |c|
   /// By face: constraints only between two faces both marked (empty: all domain faces).

@@ -11,6 +11,8 @@
 #include "ricci/mesh/simplify.h"
 #include "ricci/topology/slice.h"
 #include "spline/basis/multi_index.h"
+#include "spline/fair/constrained_solve.h"
+#include "spline/fit/normal_equations.h"
 
 namespace spline {
 namespace {
@@ -18,19 +20,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Dunavant's 6-point rule, exact for degree 4 (the thin-plate integrand of a cubic piece has
-// degree 2, of a quintic 6): barycentric points and weights summing to one.
-struct QuadraturePoint {
-  Eigen::Vector3d bary;
-  double weight;
-};
-std::vector<QuadraturePoint> quadrature_rule() {
-  const double a = 0.445948490915965, wa = 0.223381589678011;
-  const double b = 0.091576213509771, wb = 0.109951743655322;
-  return {{{a, a, 1 - 2 * a}, wa}, {{a, 1 - 2 * a, a}, wa}, {{1 - 2 * a, a, a}, wa},
-          {{b, b, 1 - 2 * b}, wb}, {{b, 1 - 2 * b, b}, wb}, {{1 - 2 * b, b, b}, wb}};
 }
 
 double chart_area(const Eigen::Matrix<double, 3, 2>& p) {
@@ -54,6 +43,18 @@ Eigen::Vector3d barycentric_in(const Eigen::Matrix<double, 3, 2>& p, const Eigen
   m.col(1) = (p.row(2) - p.row(0)).transpose();
   const Eigen::Vector2d l = m.partialPivLu().solve(u - p.row(0).transpose());
   return {1.0 - l.x() - l.y(), l.x(), l.y()};
+}
+
+// True when the closest point lies on an edge of the domain's rim (an edge whose other face is
+// missing or outside the domain): the point is over the hole (or beyond an open boundary), which
+// the spline does not cover. A punctured sphere's hole has no faces in the mesh, so without this
+// the points of the removed star land on the rim and drag it (bunny: rim faces' RMS 4%).
+bool on_domain_rim(const ManifoldSplineSpace& space, int face, const Eigen::Vector3d& bary) {
+  for (int k = 0; k < 3; ++k) {
+    const int g = space.neighbour(face, k);
+    if ((g < 0 || !space.in_domain(g)) && bary[k] <= 1e-12) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -81,6 +82,72 @@ Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& spac
   return points;
 }
 
+namespace {
+
+// Thin-plate weight of each face (by domain index) per unit of quadrature weight: the scale of
+// FitOptions::smoothing times the face's chart area, over J_I when isometric (see FitOptions).
+std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
+                                       const Eigen::MatrixX3d& initial, const FitOptions& options,
+                                       int points) {
+  const int faces = space.domain_face_count();
+  std::vector<double> area(static_cast<std::size_t>(faces)), edges(area.size());
+  std::vector<double> jacobian(area.size(), 1.0);
+  for (int d = 0; d < faces; ++d) {
+    const int face = space.domain_faces()[d];
+    const auto p = space.atlas().face_positions(space.chart_of(face), face);
+    area[d] = chart_area(p);
+    for (int k = 0; k < 3; ++k) edges[d] += (p.row((k + 1) % 3) - p.row(k)).norm();
+    if (!options.isometric_smoothing) continue;
+    // The face's own polynomial f^I (from its control points alone): exact for the piecewise-
+    // linear initial points, and unaffected by the missing functions next to the hole, where
+    // the spline itself is no partition of unity. Gradient from the blossom:
+    // P(u, ..., u, u + e) - p(u) = D_e p(u) / n.
+    const int n = space.degree();
+    const auto clouds = space.face_clouds(space.chart_of(face), face);
+    const BivariatePolynomial f = polynomial_from_control_points(
+        clouds[0], clouds[1], clouds[2],
+        initial.middleRows(static_cast<Eigen::Index>(d) * space.functions_per_face(),
+                           space.functions_per_face()));
+    const Eigen::Vector2d centre = p.colwise().mean().transpose();
+    const double step = std::sqrt(area[d]);
+    std::vector<Eigen::Vector2d> args(static_cast<std::size_t>(n), centre);
+    const Eigen::VectorXd at = blossom(f, args);
+    args.back() = centre + Eigen::Vector2d(step, 0.0);
+    const Eigen::Vector3d du = n * (blossom(f, args) - at) / step;
+    args.back() = centre + Eigen::Vector2d(0.0, step);
+    const Eigen::Vector3d dv = n * (blossom(f, args) - at) / step;
+    jacobian[d] = du.cross(dv).norm();
+  }
+  if (options.isometric_smoothing) {
+    // A degenerate initial face (zero or non-finite area ratio) takes the median ratio.
+    std::vector<double> valid;
+    for (double j : jacobian) {
+      if (std::isfinite(j) && j > 0.0) valid.push_back(j);
+    }
+    double median = 1.0;
+    if (!valid.empty()) {
+      std::nth_element(valid.begin(), valid.begin() + valid.size() / 2, valid.end());
+      median = valid[valid.size() / 2];
+    }
+    for (double& j : jacobian) {
+      if (!(std::isfinite(j) && j > 1e-12 * median)) j = median;
+    }
+  }
+  // A and h of the surface: sum J_I A_I and the chart edges scaled by sqrt(J_I).
+  double total_area = 0.0, edge_sum = 0.0;
+  for (int d = 0; d < faces; ++d) {
+    total_area += jacobian[d] * area[d];
+    edge_sum += std::sqrt(jacobian[d]) * edges[d];
+  }
+  const double h = edge_sum / (3.0 * faces);
+  const double scale = options.smoothing * points / total_area * std::pow(h, 4);
+  std::vector<double> weights(static_cast<std::size_t>(faces));
+  for (int d = 0; d < faces; ++d) weights[d] = scale * area[d] / jacobian[d];
+  return weights;
+}
+
+}  // namespace
+
 FitResult fit_control_points(const ManifoldSplineSpace& space,
                              const std::vector<DomainPoint>& parameters,
                              const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
@@ -94,108 +161,70 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   }
   const auto start = Clock::now();
   FitResult result;
-  std::vector<Eigen::Triplet<double>> triplets;
-  std::vector<Eigen::Vector3d> targets;
-  int row = 0;
+  std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
   for (std::size_t k = 0; k < parameters.size(); ++k) {
     const DomainPoint& p = parameters[k];
-    if (p.face < 0 || !space.in_domain(p.face)) continue;
-    for (const auto& s : space.evaluate_basis(p))
-      triplets.emplace_back(row, s.function, s.jet.value);
-    targets.push_back(points.row(static_cast<Eigen::Index>(k)).transpose());
-    ++row;
+    if (p.face < 0 || p.face >= space.face_count() || !space.in_domain(p.face)) continue;
+    rows[space.domain_index(p.face)].points.push_back(static_cast<int>(k));
+    ++result.points;
   }
-  result.points = row;
-  if (row == 0) throw ricci::InvalidInputError("fit: no point lies in the spline's domain");
-
-  // Thin-plate rows, scaled so that lambda is dimensionless (see FitOptions).
-  double area = 0.0, edge_sum = 0.0;
-  for (int face : space.domain_faces()) {
-    const auto p = space.atlas().face_positions(space.chart_of(face), face);
-    area += chart_area(p);
-    for (int k = 0; k < 3; ++k) edge_sum += (p.row((k + 1) % 3) - p.row(k)).norm();
+  if (result.points == 0) throw ricci::InvalidInputError("fit: no point lies in the spline's domain");
+  if (options.smoothing > 0.0) {
+    const std::vector<double> w = thin_plate_weights(space, initial, options, result.points);
+    for (std::size_t d = 0; d < rows.size(); ++d) rows[d].thin_plate_weight = w[d];
   }
-  const double h = edge_sum / (3.0 * space.domain_face_count());
-  const double smoothing = options.smoothing * row / area * std::pow(h, 4);
-  const int data_rows = row;
-  if (smoothing > 0.0) {
-    const auto rule = quadrature_rule();
-    for (int face : space.domain_faces()) {
-      const double face_area = chart_area(space.atlas().face_positions(space.chart_of(face), face));
-      for (const auto& q : rule) {
-        const double w = std::sqrt(smoothing * face_area * q.weight);
-        for (const auto& s : space.evaluate_basis({face, q.bary})) {
-          triplets.emplace_back(row, s.function, w * s.jet.hessian[0]);
-          triplets.emplace_back(row + 1, s.function, w * std::sqrt(2.0) * s.jet.hessian[1]);
-          triplets.emplace_back(row + 2, s.function, w * s.jet.hessian[2]);
-        }
-        row += 3;
-      }
-    }
-  }
-  Eigen::SparseMatrix<double> design(row, space.function_count());
-  design.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::MatrixX3d rhs_points = Eigen::MatrixX3d::Zero(row, 3);
-  for (int k = 0; k < data_rows; ++k) rhs_points.row(k) = targets[k].transpose();
-
-  const double anchor = options.anchor * data_rows / space.function_count();
-  Eigen::SparseMatrix<double> normal = Eigen::SparseMatrix<double>(design.transpose()) * design;
-  Eigen::SparseMatrix<double> identity(normal.rows(), normal.cols());
-  identity.setIdentity();
-  normal += anchor * identity;
-  Eigen::MatrixX3d rhs = design.transpose() * rhs_points + anchor * initial;
+  const int threads = std::max(1, options.threads);
+  const double anchor = options.anchor * result.points / space.function_count();
+  detail::NormalEquations normal = detail::assemble_normal_equations(
+      space, rows, parameters, points, anchor, initial, threads);
   result.seconds_assemble = seconds_since(start);
 
   const auto solve_start = Clock::now();
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
-  solver.cholmod().print = 0;  // libraries never print; failures are reported by info()
-  solver.compute(normal);
-  // Rounding in A^T A can outweigh a tiny anchor where a sliver makes basis Hessians huge: raise
-  // the anchor to 1e-12, then 1e-10, of the largest diagonal entry before giving up.
-  for (double relative : {1e-12, 1e-10}) {
-    if (solver.info() == Eigen::Success) break;
-    const double shift = relative * normal.diagonal().maxCoeff();
-    normal += shift * identity;
-    rhs += shift * initial;
-    result.anchor_raised = true;
-    solver.compute(normal);
-  }
-  if (solver.info() != Eigen::Success) {
-    throw ricci::SolverError("fit: CHOLMOD could not factor the normal equations (" +
-                             std::to_string(normal.rows()) + " unknowns)");
-  }
-  if (options.constraint_r < 0) {
-    result.control_points = solver.solve(rhs);
-    if (!result.control_points.allFinite()) throw ricci::SolverError("fit: non-finite solution");
-  } else {
+  Eigen::SparseMatrix<double> constraints;
+  if (options.constraint_r >= 0) {
     FairOptions fair_options;
     fair_options.r = options.constraint_r;
-    const Eigen::SparseMatrix<double> c = fairing_constraints(space, fair_options);
-    const double w = options.constraint_penalty * normal.diagonal().mean();
-    Eigen::SparseMatrix<double> penalised =
-        normal + w * Eigen::SparseMatrix<double>(Eigen::SparseMatrix<double>(c.transpose()) * c);
-    solver.compute(penalised);
-    if (solver.info() != Eigen::Success) {
-      throw ricci::SolverError("fit: CHOLMOD could not factor the constrained normal equations");
+    constraints = fairing_constraints(space, fair_options);
+  } else {
+    constraints.resize(0, space.function_count());
+  }
+  ConstrainedSolveOptions solve_options;
+  solve_options.penalty = options.constraint_penalty;
+  solve_options.max_iterations = options.constraint_iterations;
+  Eigen::SparseMatrix<double> identity(normal.lower.rows(), normal.lower.cols());
+  identity.setIdentity();
+  // Rounding in A^T A can outweigh a tiny anchor where a sliver makes basis Hessians huge: raise
+  // the anchor to 1e-12, then 1e-10, of the largest diagonal entry before giving up.
+  const double largest = normal.lower.diagonal().maxCoeff();
+  for (double relative : {0.0, 1e-12, 1e-10}) {
+    if (relative > 0.0) {
+      normal.lower += relative * largest * identity;
+      normal.rhs += relative * largest * initial;
+      result.anchor_raised = true;
     }
-    Eigen::MatrixX3d lambda = Eigen::MatrixX3d::Zero(c.rows(), 3);
-    for (int it = 0; it < options.constraint_iterations; ++it) {
-      result.control_points = solver.solve(Eigen::MatrixX3d(rhs - c.transpose() * lambda));
-      if (!result.control_points.allFinite()) throw ricci::SolverError("fit: non-finite solution");
-      const Eigen::MatrixX3d residual = c * result.control_points;
-      lambda += w * residual;
-      result.max_constraint_residual = residual.cwiseAbs().maxCoeff();
-      if (result.max_constraint_residual <= 1e-12 * result.control_points.cwiseAbs().maxCoeff())
-        break;
+    try {
+      const ConstrainedSolution solution =
+          solve_constrained(normal.lower, normal.rhs, constraints, initial, solve_options);
+      result.control_points = solution.x;
+      result.max_constraint_residual = solution.max_residual;
+      result.constraint_iterations = solution.iterations;
+      result.reduced_unknowns = solution.reduced_unknowns;
+      result.constraint_rows = static_cast<int>(constraints.rows());
+      break;
+    } catch (const ricci::SolverError&) {
+      if (relative == 1e-10) {
+        throw ricci::SolverError("fit: CHOLMOD could not factor the normal equations (" +
+                                 std::to_string(normal.lower.rows()) + " unknowns, r = " +
+                                 std::to_string(options.constraint_r) + ")");
+      }
     }
   }
   result.seconds_solve = seconds_since(solve_start);
 
   const Eigen::MatrixX3d residual =
-      Eigen::MatrixX3d(design.topRows(data_rows) * result.control_points) -
-      rhs_points.topRows(data_rows);
+      detail::residuals_at_parameters(normal, rows, points, result.control_points);
   const Eigen::VectorXd distance = residual.rowwise().norm();
-  result.rms_at_parameters = std::sqrt(distance.squaredNorm() / data_rows);
+  result.rms_at_parameters = std::sqrt(distance.squaredNorm() / result.points);
   result.max_at_parameters = distance.maxCoeff();
   return result;
 }
@@ -247,15 +276,23 @@ Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& st
 }
 
 FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint>& parameters,
-                     const Eigen::MatrixX3d& points, int iterations) {
+                     const Eigen::MatrixX3d& points, int iterations, int threads) {
+  const auto count = static_cast<int>(parameters.size());
+  Eigen::VectorXd distance = Eigen::VectorXd::Constant(count, -1.0);  // -1: skipped
+  threads = std::max(1, std::min(threads, std::max(count, 1)));
+  detail::run_workers(threads, [&](int t) {
+    for (int k = t; k < count; k += threads) {
+      if (parameters[k].face < 0 || !spline.space->in_domain(parameters[k].face)) continue;
+      const Eigen::Vector3d p = points.row(k).transpose();
+      distance[k] = project_to_spline(spline, parameters[k], p, iterations).distance;
+    }
+  });
   FitErrors errors;
   double sum = 0.0;
-  for (std::size_t k = 0; k < parameters.size(); ++k) {
-    if (parameters[k].face < 0 || !spline.space->in_domain(parameters[k].face)) continue;
-    const Eigen::Vector3d p = points.row(static_cast<Eigen::Index>(k)).transpose();
-    const double d = project_to_spline(spline, parameters[k], p, iterations).distance;
-    sum += d * d;
-    errors.max = std::max(errors.max, d);
+  for (int k = 0; k < count; ++k) {
+    if (distance[k] < 0.0) continue;
+    sum += distance[k] * distance[k];
+    errors.max = std::max(errors.max, distance[k]);
     ++errors.points;
   }
   if (errors.points > 0) errors.rms = std::sqrt(sum / errors.points);
@@ -303,10 +340,11 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   const auto closest = ricci::closest_points(mesh, data);
   std::vector<DomainPoint> parameters(closest.size());
   for (std::size_t k = 0; k < closest.size(); ++k) {
-    if (space->in_domain(closest[k].face))
-      parameters[k] = {closest[k].face, closest[k].barycentric};
-    else
-      parameters[k] = {-1, Eigen::Vector3d::Zero()};
+    const bool covered = space->in_domain(closest[k].face) &&
+                         !on_domain_rim(*space, closest[k].face, closest[k].barycentric);
+    parameters[k] = covered ? DomainPoint{closest[k].face, closest[k].barycentric}
+                            : DomainPoint{-1, Eigen::Vector3d::Zero()};
+    if (!covered) ++result.uncovered_points;
   }
   result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
   result.timings.parameters = seconds_since(t);
@@ -319,7 +357,12 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
 
   result.spline.space = space;
   result.spline.control_points = result.fit.control_points;
-  if (options.fair_r >= 0) {
+  if (fit_options.constraint_r >= 0 && fit_options.constraint_r == options.fair_r) {
+    // Fitted inside the constraint set: eq. 14's projection would return the same points.
+    result.fairing.control_points = result.fit.control_points;
+    result.fairing.constraints = result.fit.constraint_rows;
+    result.fairing.max_constraint_residual = result.fit.max_constraint_residual;
+  } else if (options.fair_r >= 0) {
     t = stage("fair");
     FairOptions fair_options = options.fair;
     fair_options.r = options.fair_r;

@@ -25,22 +25,35 @@ namespace spline {
 
 struct FitOptions {
   /// lambda: weight of the thin-plate energy. The objective is
-  ///   sum_k |F(u_k) - p_k|^2 + lambda (N / A) h^4 int (|F_uu|^2 + 2 |F_uv|^2 + |F_vv|^2)
-  ///   + anchor (N / #functions) |c - c_0|^2,
-  /// N the number of points, A the domain's chart area, h its mean edge length in the chart, so
-  /// lambda compares a point residual with a second difference over one edge (dimensionless).
-  double smoothing = 1e-3;
+  ///   sum_k |F(u_k) - p_k|^2 + lambda (N / A) h^4 E(F) + anchor (N / #functions) |c - c_0|^2,
+  /// N the number of points, E the thin-plate energy int (|F_uu|^2 + 2 |F_uv|^2 + |F_vv|^2),
+  /// A the domain's area and h its mean edge length, so lambda compares a point residual with a
+  /// second difference over one edge (dimensionless). It keeps faces with few points determined;
+  /// measured (msp-bench spline-fit, ~2k-face domains, surface measure): 1e-3 -> 1e-5 lowers the
+  /// RMS everywhere (r = 1: camel 0.63% -> 0.36%, femur 0.32% -> 0.23% of the diagonal; free:
+  /// armadillo 0.09% -> 0.06%), 1e-6 changes little more.
+  double smoothing = 1e-5;
+  /// true: E, A and h are those of the surface, not of the charts: face I's part of E is
+  /// weighted by s_I^2 = 1 / J_I, J_I = |F0_u x F0_v| at I's centre for the initial surface F0
+  /// (the area ratio 3D / chart), which is the thin-plate energy in a locally isometric
+  /// parameterisation. The one-cone atlas shrinks parts of the surface by factors of 10-1000 in
+  /// the chart (genus 0: 1e4); measured in the chart the energy over-smooths them by s^-4 (elk,
+  /// r = 1: RMS 0.69% -> 0.22% of the diagonal with this on). false: chart measure.
+  bool isometric_smoothing = true;
   /// Keeps the normal matrix SPD where no point reaches a function (dimensionless, tiny).
   double anchor = 1e-8;
-  /// >= 0: fit subject to the fairing constraints of this r (fair.h, eq. 14's constraints) by
-  /// the augmented Lagrangian: the best constrained surface for the points, where fitting first
-  /// and projecting the control points afterwards (eq. 14) loses the fit. -1: unconstrained.
+  /// >= 0: fit subject to the fairing constraints of this r (fair.h, eq. 14's constraints): the
+  /// best constrained surface for the points, where fitting first and projecting the control
+  /// points afterwards (eq. 14) loses the fit. Solved by solve_constrained (constrained_solve.h).
+  /// -1: unconstrained.
   int constraint_r = -1;
-  /// w relative to the mean diagonal of the normal matrix. Moderate on purpose: the normal
-  /// matrix's smallest eigenvalues are the anchor's (1e-8), so a large w makes N + w C^T C
-  /// numerically indefinite; the iterations, not w, drive C c to zero.
-  double constraint_penalty = 1e3;
-  int constraint_iterations = 200;
+  /// w relative to the mean diagonal of the (reduced) normal matrix; lowered automatically when
+  /// the factorisation fails.
+  double constraint_penalty = 1e6;
+  int constraint_iterations = 100;
+  /// Worker threads of the assembly and of the residuals (the result does not depend on it
+  /// beyond rounding of the sum order).
+  int threads = 2;
 };
 
 struct FitResult {
@@ -50,7 +63,10 @@ struct FitResult {
   double max_at_parameters = 0.0;
   double seconds_assemble = 0.0, seconds_solve = 0.0;
   double max_constraint_residual = 0.0;  ///< max |C c| when constrained
-  bool anchor_raised = false;            ///< the factorisation needed a larger anchor (rounding)
+  int constraint_rows = 0;               ///< rows of C when constrained
+  int constraint_iterations = 0;         ///< multiplier updates when constrained
+  int reduced_unknowns = 0;  ///< unknowns after merging shared control points (constrained)
+  bool anchor_raised = false;  ///< the factorisation needed a larger anchor (rounding)
 };
 
 /// Least-squares fit (normal equations, CHOLMOD supernodal). Points whose face is -1 or outside
@@ -76,21 +92,24 @@ struct FitErrors {
   int points = 0;
   double rms = 0.0, max = 0.0;  ///< distances to the spline (after projection)
 };
-/// Distances of points (with parameters; face -1 skipped) to the spline after projection.
+/// Distances of points (with parameters; face -1 skipped) to the spline after projection, on
+/// `threads` workers.
 [[nodiscard]] FitErrors fit_errors(const ManifoldSpline& spline,
                                    const std::vector<DomainPoint>& parameters,
-                                   const Eigen::MatrixX3d& points, int iterations = 6);
+                                   const Eigen::MatrixX3d& points, int iterations = 6,
+                                   int threads = 2);
 
 struct ScanFitOptions {
   int domain_faces = 2000;  ///< target size of the simplified domain mesh
   int degree = 3;
   int fair_r = 1;  ///< fairing after the fit; -1 = none
-  /// Fit subject to the fairing constraints of fair_r (then fairing changes nothing); false:
-  /// fit freely, then fair by eq. 14 (projection of the control points). Measured (msp-bench
-  /// spline-fit): the constraint set is small (every cubic control point lies within r = 1 of
-  /// some edge), and projecting a free fit onto it in control-point norm loses the fit (elk:
-  /// RMS 0.15% -> 3.8% of the diagonal), while fitting inside it gives 0.70%; r = 0: 0.33%.
-  bool constrained_fit = true;
+  /// Fit subject to the fairing constraints of fair_r (then fairing changes nothing and is
+  /// skipped); false: fit freely, then fair by eq. 14 (projection of the control points).
+  /// Measured (msp-bench spline-fit, ~2k domain faces): the r = 1 space is C^1-cubic-like, about
+  /// F dimensions per coordinate (r = 0: V + 2E + F; free: 10 F), and projecting a free fit onto
+  /// it in control-point norm loses the fit (elk: RMS 7.9% of the diagonal, max 141%), while
+  /// fitting inside it gives 0.19%.
+  bool constrained_fit = true;  // (when true, fairing afterwards is skipped: it changes nothing)
   FitOptions fit;
   FairOptions fair;  ///< its r is replaced by fair_r
   KnotCloudOptions knots;
@@ -106,7 +125,11 @@ struct ScanFitTimings {
 struct ScanFitResult {
   ricci::OneConeAtlasResult atlas;  ///< atlas.problem.mesh is the spline's domain mesh
   ManifoldSpline spline;
-  std::vector<DomainPoint> vertex_parameters;  ///< by input vertex (face -1: in the hole)
+  /// By input vertex; face -1: not covered by the spline (closest point of the domain mesh in a
+  /// hole face, or on the rim of the domain: over a punctured sphere's hole or beyond an open
+  /// boundary). Those points are neither fitted nor measured.
+  std::vector<DomainPoint> vertex_parameters;
+  int uncovered_points = 0;  ///< vertices and face centroids of the input left out that way
   FitResult fit;
   FairResult fairing;
   ScanFitTimings timings;
@@ -114,7 +137,7 @@ struct ScanFitResult {
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the
 /// space, parameters of the scan's vertices and face centroids by closest point on the domain
-/// mesh, fit, then fair.
+/// mesh (points not covered by the spline left out, see vertex_parameters), fit, then fair.
 /// \throw as simplify_mesh, build_one_cone_atlas, fit_control_points, fair.
 [[nodiscard]] ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options = {});
 

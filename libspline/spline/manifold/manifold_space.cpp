@@ -195,6 +195,11 @@ std::unique_ptr<ManifoldSplineSpace::ChartSpace> ManifoldSplineSpace::build_char
     result->face_of_triangle.push_back(face);
     triangulation.triangles.push_back(triangle);
   }
+  result->triangles_at_vertex.resize(triangulation.positions.size());
+  for (std::size_t t = 0; t < triangulation.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k)
+      result->triangles_at_vertex[triangulation.triangles[t][k]].push_back(static_cast<int>(t));
+  }
   // A chart made only of hole faces has no space (nothing is evaluated there).
   if (!triangulation.triangles.empty()) {
     result->space = std::make_unique<PlanarDmsSpace>(std::move(triangulation), std::move(clouds));
@@ -279,6 +284,22 @@ std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(int char
     out.push_back({domain_index_[cs.face_of_triangle[s.triangle]] * m + s.beta, s.jet});
   }
   return out;
+}
+
+std::vector<int> ManifoldSplineSpace::reaching_faces(int face) const {
+  if (face < 0 || face >= face_count() || domain_index_[face] < 0) {
+    throw InvalidInputError("manifold spline: " + face_name(face) + " is not in the spline's domain");
+  }
+  const ChartSpace& cs = chart_space(chart_of(face));
+  const int row = atlas_.charts[chart_of(face)].slot(face);
+  const Eigen::Vector3i& own = cs.space->triangulation().triangles[cs.triangle_of_row[row]];
+  std::vector<int> faces;
+  for (int k = 0; k < 3; ++k) {
+    for (int t : cs.triangles_at_vertex[own[k]]) faces.push_back(cs.face_of_triangle[t]);
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
 }
 
 Eigen::MatrixXd ManifoldSplineSpace::control_points_of(const BivariatePolynomial& p,

@@ -107,6 +107,11 @@ class ManifoldSplineSpace {
                                                                    const Eigen::Vector2d& u,
                                                                    const TieBreak& tie = {}) const;
 
+  /// Domain faces whose functions can be non-zero on `face` (evaluated in chart_of(face)): the
+  /// faces sharing a chart vertex with it there, itself included; ascending. Every sample of
+  /// evaluate_basis on `face` (default chart) belongs to one of them.
+  [[nodiscard]] std::vector<int> reaching_faces(int face) const;
+
   /// Control points (function_count() x k) reproducing p (given in `chart`'s coordinates) on
   /// every domain face `chart` holds; rows of other faces are zero.
   [[nodiscard]] Eigen::MatrixXd control_points_of(const BivariatePolynomial& p, int chart) const;
@@ -138,6 +143,7 @@ struct ManifoldSplineSpace::ChartSpace {
   std::unique_ptr<PlanarDmsSpace> space;  ///< null when the chart holds no domain face
   std::vector<int> face_of_triangle;  ///< original face by local triangle
   std::vector<int> triangle_of_row;   ///< by row of Chart::faces: local triangle or -1
+  std::vector<std::vector<int>> triangles_at_vertex;  ///< by local vertex: its triangles
 };
 
 /// Position, derivatives (in the evaluating chart's frame) and unit normal of the surface.

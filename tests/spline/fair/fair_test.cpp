@@ -2,9 +2,13 @@
 // shares the edge control points, and the result is the nearest constrained point (projection).
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <random>
+#include <set>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/topology/slice.h"
+#include "spline/fair/constrained_solve.h"
 #include "spline/fair/fair.h"
 #include "spline/manifold/manifold_fixtures.h"
 
@@ -130,6 +134,172 @@ TEST(Fairing, MeetsTheConstraintsAndProjects) {
       EXPECT_GT(checked, 1000);
     }
   }
+}
+
+// Eq. 14's rows are C^r-like conditions: on a closed torus domain the space {C c = 0} has, per
+// coordinate, the dimension of the shared control points for r = 0 (V + 2E + F for cubics: one
+// per argument multiset) and of generic C^1 cubics for r = 1 (3V + F - E_interior, = F on a
+// torus), with a clear gap in the singular values (no near-dependent rows from the charts).
+TEST(Fairing, ConstraintSpaceHasTheDimensionOfSharedPointsAndC1Cubics) {
+  const auto space = small_space("genus1.off", 3, 150);
+  const ricci::Mesh& mesh = testing::small_atlas("genus1.off", 150).problem.mesh;
+  std::set<int> vertices;
+  std::set<std::pair<int, int>> edges;
+  int interior = 0;
+  for (int f : space->domain_faces()) {
+    const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(f));
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.from_vertex_handle(hs[k]).idx(), b = mesh.to_vertex_handle(hs[k]).idx();
+      vertices.insert(a);
+      edges.insert({std::min(a, b), std::max(a, b)});
+      const int g = space->neighbour(f, k);
+      if (g >= 0 && space->in_domain(g)) ++interior;
+    }
+  }
+  const int v = static_cast<int>(vertices.size()), e = static_cast<int>(edges.size());
+  const int f = space->domain_face_count();
+  interior /= 2;
+  ASSERT_GT(f, 100);
+  for (int r = 0; r <= 1; ++r) {
+    FairOptions options;
+    options.r = r;
+    const Eigen::SparseMatrix<double> c = fairing_constraints(*space, options);
+    const Eigen::MatrixXd ctc = Eigen::MatrixXd(Eigen::SparseMatrix<double>(c.transpose() * c));
+    const Eigen::VectorXd sigma =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(ctc, Eigen::EigenvaluesOnly)
+            .eigenvalues()
+            .cwiseMax(0.0)
+            .cwiseSqrt();
+    const auto below = [&](double t) {
+      return static_cast<int>((sigma.array() < t * sigma.maxCoeff()).count());
+    };
+    const int expected = r == 0 ? v + 2 * e + f : 3 * v + f - interior;
+    EXPECT_EQ(below(1e-6), expected) << "r=" << r;  // sqrt of eigenvalue rounding ~1e-8
+    EXPECT_EQ(below(1e-2), expected) << "r=" << r;  // the gap
+  }
+}
+
+// Fig. 13 on two triangles: fairing with only I and J active, r = 1. For each (p, q), p + q =
+// n - 1, with a = (t_{1,0..p-1}, t_{2,0..q-1}) the knots of the shared edge's clouds, the
+// control points P(a, t_{1,p}), P(a, t_{2,q}) (shared by I and J), P^I(a, v0) and P^J(a, v3) are
+// afterwards the images of four points under one affine map of the plane: coplanar (the paper's
+// six highlighted points, two pairs coinciding), and the fourth is the affine combination of the
+// other three with v3's barycentric coordinates. Random control points are neither.
+TEST(Fairing, RowsOfR1MakeFig13PointsAnAffineImageOnTwoTriangles) {
+  const int n = 3;
+  const auto space = small_space("genus2.off", n);
+  int face = -1;
+  for (int f : space->domain_faces()) {
+    const int g = space->neighbour(f, 0);
+    if (g >= 0 && space->in_domain(g)) {
+      face = f;
+      break;
+    }
+  }
+  ASSERT_GE(face, 0);
+  const int other = space->neighbour(face, 0);
+  const int chart = space->chart_of(face);
+  const auto own = space->face_clouds(chart, face);
+  const auto theirs = space->face_clouds(chart, other);
+  // J's corners at I's corners 1 and 2, and its apex.
+  std::array<int, 3> corner{-1, -1, -1};
+  for (int k = 0; k < 3; ++k) {
+    for (int a = 1; a <= 2; ++a) {
+      if ((theirs[k].knots[0] - own[a].knots[0]).norm() < 1e-12) corner[a] = k;
+    }
+  }
+  ASSERT_GE(corner[1], 0);
+  ASSERT_GE(corner[2], 0);
+  corner[0] = 3 - corner[1] - corner[2];
+  const Eigen::Vector2d v3 = theirs[corner[0]].knots[0];
+
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Eigen::MatrixX3d c(space->function_count(), 3);
+  for (Eigen::Index i = 0; i < c.rows(); ++i) c.row(i) << unit(rng), unit(rng), unit(rng);
+  FairOptions options;
+  options.r = 1;
+  options.active_faces.assign(static_cast<std::size_t>(space->face_count()), 0);
+  options.active_faces[face] = options.active_faces[other] = 1;
+  const FairResult result = fair(*space, c, options);
+  EXPECT_EQ(result.constraints, 2 * 7);  // each side: 4 rows beta_k = 0, 3 rows beta_k = 1
+
+  const auto point = [&](const Eigen::MatrixX3d& x, int f, const std::array<int, 3>& at,
+                         const Eigen::Vector3i& b) -> Eigen::Vector3d {
+    Eigen::Vector3i beta;
+    for (int k = 0; k < 3; ++k) beta[at[k]] = b[k];
+    return x.row(space->function_index(f, multi_index_position(beta))).transpose();
+  };
+  const std::array<int, 3> identity{0, 1, 2};
+  const double scale = c.cwiseAbs().maxCoeff();
+  double random_volume = 0.0;
+  for (int p = 0; p < n; ++p) {
+    const int q = n - 1 - p;
+    const Eigen::Vector2d x1 = own[1].knots[p], x2 = own[2].knots[q], x0 = own[0].knots[0];
+    // v3 = l0 x0 + l1 x1 + l2 x2.
+    Eigen::Matrix3d m;
+    m << x0.x(), x1.x(), x2.x(), x0.y(), x1.y(), x2.y(), 1.0, 1.0, 1.0;
+    const Eigen::Vector3d l = m.lu().solve(Eigen::Vector3d(v3.x(), v3.y(), 1.0));
+    for (const bool faired : {false, true}) {
+      const Eigen::MatrixX3d& x = faired ? result.control_points : c;
+      const Eigen::Vector3d i1 = point(x, face, identity, {0, p + 1, q});
+      const Eigen::Vector3d i2 = point(x, face, identity, {0, p, q + 1});
+      const Eigen::Vector3d i0 = point(x, face, identity, {1, p, q});
+      const Eigen::Vector3d j1 = point(x, other, corner, {0, p + 1, q});
+      const Eigen::Vector3d j2 = point(x, other, corner, {0, p, q + 1});
+      const Eigen::Vector3d j0 = point(x, other, corner, {1, p, q});
+      const double volume = std::abs((i2 - i1).cross(i0 - i1).dot(j0 - i1));
+      if (!faired) {
+        random_volume = std::max(random_volume, volume);
+        continue;
+      }
+      EXPECT_LT((i1 - j1).norm(), 1e-10 * scale) << "p=" << p;
+      EXPECT_LT((i2 - j2).norm(), 1e-10 * scale) << "p=" << p;
+      EXPECT_LT(volume, 1e-9 * std::pow(scale, 3)) << "p=" << p;
+      EXPECT_LT((j0 - (l[0] * i0 + l[1] * i1 + l[2] * i2)).norm(), 1e-9 * scale) << "p=" << p;
+    }
+  }
+  EXPECT_GT(random_volume, 1e-2 * std::pow(scale, 3));
+  // Faces other than I and J are not touched.
+  for (int f : space->domain_faces()) {
+    if (f == face || f == other) continue;
+    for (int b = 0; b < space->functions_per_face(); ++b) {
+      const int i = space->function_index(f, b);
+      ASSERT_EQ(result.control_points.row(i), c.row(i));
+    }
+  }
+}
+
+// solve_constrained: merged rows x_i = x_j are exact, the other rows reach the tolerance, and
+// the result is the KKT point (gradient K x - b orthogonal to the feasible set).
+TEST(ConstrainedSolve, MatchesADenseNullSpaceSolution) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const int n = 40;
+  Eigen::MatrixXd a(n + 10, n);
+  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = unit(rng);
+  const Eigen::MatrixXd k = a.transpose() * a;
+  Eigen::MatrixX3d b(n, 3);
+  for (Eigen::Index i = 0; i < b.size(); ++i) b.data()[i] = unit(rng);
+  // Rows: x0 = x1, x1 = x2 (merged), a general row, and the same general row twice (dependent).
+  std::vector<Eigen::Triplet<double>> t{{0, 0, 1.0},  {0, 1, -1.0}, {1, 1, 1.0}, {1, 2, -1.0},
+                                        {2, 3, 0.7},  {2, 4, -0.2}, {2, 5, 0.4}, {3, 3, 1.4},
+                                        {3, 4, -0.4}, {3, 5, 0.8},  {4, 6, 1.0}, {4, 9, 0.5}};
+  Eigen::SparseMatrix<double> c(5, n);
+  c.setFromTriplets(t.begin(), t.end());
+  const Eigen::SparseMatrix<double> lower = Eigen::MatrixXd(k.triangularView<Eigen::Lower>()).sparseView();
+  const ConstrainedSolution s = solve_constrained(lower, b, c, {});
+  EXPECT_EQ(s.merged_rows, 2);
+  EXPECT_EQ(s.reduced_unknowns, n - 2);
+  EXPECT_LT(s.max_residual, 1e-11);
+  // Null space of dense C, then the reduced normal equations.
+  const Eigen::MatrixXd cd = Eigen::MatrixXd(c);
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(cd);
+  const Eigen::MatrixXd z = lu.kernel();
+  ASSERT_EQ(z.cols(), n - 4);
+  const Eigen::MatrixXd y = (z.transpose() * k * z).ldlt().solve(z.transpose() * b);
+  const Eigen::MatrixXd x = z * y;
+  EXPECT_LT((s.x - x).cwiseAbs().maxCoeff(), 1e-9 * x.cwiseAbs().maxCoeff());
 }
 
 TEST(Fairing, BadInputThrows) {

@@ -8,6 +8,7 @@
 #include "ricci/mesh/simplify.h"
 #include "ricci/topology/slice.h"
 #include "spline/fit/fit.h"
+#include "spline/fit/normal_equations.h"
 #include "spline/manifold/manifold_fixtures.h"
 
 namespace spline {
@@ -143,6 +144,141 @@ TEST(Fit, ScanPipelineFitsTheBundledTorus) {
   EXPECT_LT(errors.rms, 2e-3 * diagonal);
   EXPECT_LT(errors.max, 1e-2 * diagonal);
   EXPECT_LT(result.fairing.max_constraint_residual, 1e-9 * diagonal);
+}
+
+// Random points near the piecewise-linear surface of a small space, with parameters.
+struct Samples {
+  std::vector<DomainPoint> parameters;
+  Eigen::MatrixX3d points;
+  Eigen::MatrixX3d initial;
+};
+Samples noisy_samples(const ManifoldSplineSpace& space, const ricci::Mesh& mesh, int per_face) {
+  Samples s;
+  s.initial = piecewise_linear_control_points(space, mesh);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.05 * mean_edge_3d(mesh));
+  for (int f : space.domain_faces()) {
+    for (int i = 0; i < per_face; ++i) s.parameters.push_back({f, random_barycentric(rng)});
+  }
+  s.points.resize(static_cast<Eigen::Index>(s.parameters.size()), 3);
+  for (std::size_t k = 0; k < s.parameters.size(); ++k) {
+    s.points.row(static_cast<Eigen::Index>(k)) =
+        (mesh_point(mesh, s.parameters[k].face, s.parameters[k].barycentric) +
+         Eigen::Vector3d(noise(rng), noise(rng), noise(rng)))
+            .transpose();
+  }
+  return s;
+}
+
+// The per-face Gram assembly equals A^T A + anchor I of the explicit design matrix (data rows
+// and thin-plate rows), on 1 and 2 threads.
+TEST(Fit, FaceBlockAssemblyEqualsTheDesignMatrixProduct) {
+  const auto space = small_space("genus2.off", 3);
+  const ricci::Mesh& mesh = small_atlas("genus2.off").problem.mesh;
+  const Samples s = noisy_samples(*space, mesh, 3);
+  std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space->domain_face_count()));
+  for (std::size_t k = 0; k < s.parameters.size(); ++k)
+    rows[space->domain_index(s.parameters[k].face)].points.push_back(static_cast<int>(k));
+  std::vector<Eigen::Triplet<double>> t;
+  int row = 0;
+  for (const auto& p : s.parameters) {
+    for (const auto& b : space->evaluate_basis(p)) t.emplace_back(row, b.function, b.jet.value);
+    ++row;
+  }
+  const int data_rows = row;
+  for (int d = 0; d < space->domain_face_count(); ++d) {
+    rows[d].thin_plate_weight = 0.5 + 0.01 * d;
+    for (const auto& q : detail::triangle_quadrature()) {
+      const auto samples = space->evaluate_basis({space->domain_faces()[d], q.bary});
+      double unity = 0.0;
+      for (const auto& b : samples) unity += b.jet.value;
+      if (std::abs(unity - 1.0) > 1e-9) continue;  // as the assembly: no energy off unity
+      const double w = std::sqrt(rows[d].thin_plate_weight * q.weight);
+      for (const auto& b : samples) {
+        t.emplace_back(row, b.function, w * b.jet.hessian[0]);
+        t.emplace_back(row + 1, b.function, w * std::sqrt(2.0) * b.jet.hessian[1]);
+        t.emplace_back(row + 2, b.function, w * b.jet.hessian[2]);
+      }
+      row += 3;
+    }
+  }
+  Eigen::SparseMatrix<double> a(row, space->function_count());
+  a.setFromTriplets(t.begin(), t.end());
+  Eigen::MatrixX3d targets = Eigen::MatrixX3d::Zero(row, 3);
+  targets.topRows(data_rows) = s.points;
+  const double anchor = 1e-3;
+  const Eigen::MatrixXd expected =
+      Eigen::MatrixXd(Eigen::SparseMatrix<double>(a.transpose() * a)) +
+      anchor * Eigen::MatrixXd::Identity(a.cols(), a.cols());
+  const Eigen::MatrixX3d expected_rhs = a.transpose() * targets + anchor * s.initial;
+  for (int threads : {1, 2}) {
+    const detail::NormalEquations ne = detail::assemble_normal_equations(
+        *space, rows, s.parameters, s.points, anchor, s.initial, threads);
+    const Eigen::MatrixXd lower = Eigen::MatrixXd(ne.lower);
+    EXPECT_LT((lower - Eigen::MatrixXd(expected.triangularView<Eigen::Lower>())).cwiseAbs().maxCoeff(),
+              1e-12 * expected.cwiseAbs().maxCoeff())
+        << threads;
+    EXPECT_EQ(Eigen::MatrixXd(lower.triangularView<Eigen::StrictlyUpper>()).cwiseAbs().maxCoeff(),
+              0.0);
+    EXPECT_LT((ne.rhs - expected_rhs).cwiseAbs().maxCoeff(),
+              1e-12 * expected_rhs.cwiseAbs().maxCoeff());
+  }
+}
+
+// lambda is dimensionless: scaling the points and the initial surface by s scales the fitted
+// control points by s (the surface's A and h scale with it), free and constrained.
+TEST(Fit, SmoothingIsInvariantUnderScaling) {
+  const auto space = small_space("genus2.off", 3);
+  const ricci::Mesh& mesh = small_atlas("genus2.off").problem.mesh;
+  const Samples s = noisy_samples(*space, mesh, 2);
+  for (int r : {-1, 1}) {
+    FitOptions options;
+    options.smoothing = 1e-2;
+    options.constraint_r = r;
+    const FitResult a = fit_control_points(*space, s.parameters, s.points, s.initial, options);
+    const FitResult b =
+        fit_control_points(*space, s.parameters, 7.0 * s.points, 7.0 * s.initial, options);
+    // Rounding: the normal matrix's condition (~1e8, the anchor) times eps. A weight off by a
+    // power of s would move the fit by ~1e-3 of the coordinates.
+    EXPECT_LT((b.control_points - 7.0 * a.control_points).cwiseAbs().maxCoeff(),
+              1e-6 * 7.0 * a.control_points.cwiseAbs().maxCoeff())
+        << "r=" << r;
+  }
+}
+
+// The constrained fit meets eq. 14's constraints, fairing it changes nothing, and it fits the
+// points better than the free fit projected afterwards (eq. 14 as the paper applies it).
+TEST(Fit, ConstrainedFitIsFeasibleAndBeatsProjectingAFreeFit) {
+  const auto space = small_space("genus2.off", 3);
+  const ricci::Mesh& mesh = small_atlas("genus2.off").problem.mesh;
+  const Samples s = noisy_samples(*space, mesh, 4);
+  const double scale = s.points.cwiseAbs().maxCoeff();
+  for (int r : {0, 1}) {
+    FitOptions options;
+    options.constraint_r = r;
+    const FitResult constrained =
+        fit_control_points(*space, s.parameters, s.points, s.initial, options);
+    EXPECT_LT(constrained.max_constraint_residual, 1e-10 * scale) << "r=" << r;
+    EXPECT_LT(constrained.reduced_unknowns, space->function_count());
+    FairOptions fair_options;
+    fair_options.r = r;
+    const FairResult again = fair(*space, constrained.control_points, fair_options);
+    EXPECT_LT(again.max_change, 1e-8 * scale) << "r=" << r;
+
+    options.constraint_r = -1;
+    const FitResult free = fit_control_points(*space, s.parameters, s.points, s.initial, options);
+    const FairResult projected = fair(*space, free.control_points, fair_options);
+    const ManifoldSpline faired{space, projected.control_points};
+    double sum = 0.0;
+    for (std::size_t k = 0; k < s.parameters.size(); ++k) {
+      sum += (faired.evaluate(s.parameters[k]).position -
+              s.points.row(static_cast<Eigen::Index>(k)).transpose())
+                 .squaredNorm();
+    }
+    const double projected_rms = std::sqrt(sum / static_cast<double>(s.parameters.size()));
+    EXPECT_LT(constrained.rms_at_parameters, projected_rms) << "r=" << r;
+    EXPECT_LE(free.rms_at_parameters, constrained.rms_at_parameters) << "r=" << r;
+  }
 }
 
 TEST(Fit, BadInputThrows) {

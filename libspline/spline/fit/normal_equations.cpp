@@ -1,0 +1,222 @@
+#include "spline/fit/normal_equations.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <functional>
+#include <stdexcept>
+#include <thread>
+
+namespace spline::detail {
+namespace {
+
+// Reaching faces of every domain face, as ascending domain indices.
+std::vector<std::vector<int>> reach_by_domain_index(const ManifoldSplineSpace& space) {
+  std::vector<std::vector<int>> reach;
+  reach.reserve(space.domain_faces().size());
+  for (int face : space.domain_faces()) {
+    std::vector<int> r = space.reaching_faces(face);
+    for (int& f : r) f = space.domain_index(f);  // ascending faces -> ascending indices
+    reach.push_back(std::move(r));
+  }
+  return reach;
+}
+
+// Local column of a global function among the reaching faces `reach` (ascending), m per face.
+int local_column(const std::vector<int>& reach, int function, int m) {
+  const int face = function / m;
+  const auto it = std::lower_bound(reach.begin(), reach.end(), face);
+  if (it == reach.end() || *it != face) {
+    throw std::logic_error("normal equations: a basis function outside the reaching faces");
+  }
+  return static_cast<int>(it - reach.begin()) * m + function % m;
+}
+
+// Accumulates the rows of one face into a dense local Gram matrix (lower triangle) and
+// right-hand side over the face's reaching functions. Rows are sparse (about a third of the
+// reaching functions are non-zero at a point), so each row adds only its own outer product.
+class FaceAccumulator {
+ public:
+  void reset(int columns) {
+    gram.setZero(columns, columns);
+    rhs.setZero(columns, 3);
+    row_.assign(static_cast<std::size_t>(columns), 0.0);
+    mark_.assign(static_cast<std::size_t>(columns), 0);
+    touched_.clear();
+  }
+  void add(int column, double value) {
+    if (!mark_[column]) {
+      mark_[column] = 1;
+      touched_.push_back(column);
+    }
+    row_[column] += value;
+  }
+  // Ends the row: gram += r r^T, rhs += r target^T.
+  void end_row(const Eigen::RowVector3d& target, bool has_target) {
+    for (int i : touched_) {
+      const double vi = row_[i];
+      for (int j : touched_) {
+        if (j <= i) gram(i, j) += vi * row_[j];
+      }
+      if (has_target) rhs.row(i) += vi * target;
+    }
+    for (int i : touched_) {
+      row_[i] = 0.0;
+      mark_[i] = 0;
+    }
+    touched_.clear();
+  }
+  Eigen::MatrixXd gram;
+  Eigen::MatrixX3d rhs;
+
+ private:
+  std::vector<double> row_;
+  std::vector<char> mark_;
+  std::vector<int> touched_;
+};
+
+// Data rows, then three thin-plate rows per quadrature point, of one face.
+void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vector<int>& reach,
+                     const FaceRowsSpec& spec, const std::vector<DomainPoint>& parameters,
+                     const Eigen::MatrixX3d& points, FaceAccumulator& acc, FaceDataRows& kept) {
+  const int m = space.functions_per_face();
+  acc.reset(static_cast<int>(reach.size()) * m);
+  for (int k : spec.points) {
+    for (const auto& s : space.evaluate_basis(parameters[k])) {
+      acc.add(local_column(reach, s.function, m), s.jet.value);
+      kept.function.push_back(s.function);
+      kept.value.push_back(s.jet.value);
+    }
+    kept.start.push_back(static_cast<int>(kept.function.size()));
+    acc.end_row(points.row(k), true);
+  }
+  if (spec.thin_plate_weight <= 0.0) return;
+  const Eigen::RowVector3d zero = Eigen::RowVector3d::Zero();
+  for (const auto& q : triangle_quadrature()) {
+    const double w = std::sqrt(spec.thin_plate_weight * q.weight);
+    const auto samples = space.evaluate_basis({face, q.bary});
+    // Next to the hole the functions of its faces are missing, so the basis is no partition of
+    // unity there: even a plane then needs curved combinations, which the energy would fight.
+    double unity = 0.0;
+    for (const auto& s : samples) unity += s.jet.value;
+    if (std::abs(unity - 1.0) > 1e-9) continue;
+    const double factors[3] = {w, w * std::sqrt(2.0), w};
+    for (int h = 0; h < 3; ++h) {
+      for (const auto& s : samples) {
+        if (s.jet.hessian[h] != 0.0)
+          acc.add(local_column(reach, s.function, m), factors[h] * s.jet.hessian[h]);
+      }
+      acc.end_row(zero, false);
+    }
+  }
+}
+
+}  // namespace
+
+void run_workers(int count, const std::function<void(int)>& work) {
+  if (count <= 1) {
+    work(0);
+    return;
+  }
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(count));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < count; ++t) {
+    pool.emplace_back([&, t] {
+      try {
+        work(t);
+      } catch (...) {
+        errors[t] = std::current_exception();
+      }
+    });
+  }
+  for (auto& th : pool) th.join();
+  for (const auto& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
+const std::vector<QuadraturePoint>& triangle_quadrature() {
+  static const std::vector<QuadraturePoint> rule = [] {
+    const double a = 0.445948490915965, wa = 0.223381589678011;
+    const double b = 0.091576213509771, wb = 0.109951743655322;
+    return std::vector<QuadraturePoint>{
+        {{a, a, 1 - 2 * a}, wa}, {{a, 1 - 2 * a, a}, wa}, {{1 - 2 * a, a, a}, wa},
+        {{b, b, 1 - 2 * b}, wb}, {{b, 1 - 2 * b, b}, wb}, {{1 - 2 * b, b, b}, wb}};
+  }();
+  return rule;
+}
+
+NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
+                                          const std::vector<FaceRowsSpec>& rows_by_face,
+                                          const std::vector<DomainPoint>& parameters,
+                                          const Eigen::MatrixX3d& points, double anchor,
+                                          const Eigen::MatrixX3d& initial, int threads) {
+  const int m = space.functions_per_face();
+  const int faces = space.domain_face_count();
+  const std::vector<std::vector<int>> reach = reach_by_domain_index(space);
+  threads = std::max(1, std::min(threads, faces));
+  // Per worker: the non-zero entries of its faces' local Gram matrices (lower triangle, global
+  // indices). Supports are small (knot clouds hug their vertices): a face's local Gram matrix
+  // is ~95% zeros, so only its non-zeros are kept, and the sparse matrix is built once.
+  std::vector<std::vector<Eigen::Triplet<double>>> entries(static_cast<std::size_t>(threads));
+  std::vector<Eigen::MatrixX3d> rhs(static_cast<std::size_t>(threads));
+  std::vector<FaceDataRows> kept(static_cast<std::size_t>(faces));  // each face: one worker
+  run_workers(threads, [&](int t) {
+    auto& out = entries[t];
+    rhs[t].setZero(space.function_count(), 3);
+    FaceAccumulator acc;
+    for (int d = t; d < faces; d += threads) {
+      const FaceRowsSpec& spec = rows_by_face[d];
+      if (spec.points.empty() && spec.thin_plate_weight <= 0.0) continue;
+      const std::vector<int>& r = reach[d];
+      accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, acc,
+                      kept[d]);
+      const auto k = static_cast<int>(acc.gram.cols());
+      std::vector<int> global(static_cast<std::size_t>(k));
+      for (int c = 0; c < k; ++c) global[c] = r[c / m] * m + c % m;  // ascending with c
+      for (int j = 0; j < k; ++j) {
+        rhs[t].row(global[j]) += acc.rhs.row(j);
+        for (int i = j; i < k; ++i) {
+          const double v = acc.gram(i, j);
+          if (v != 0.0) out.emplace_back(global[i], global[j], v);
+        }
+      }
+    }
+  });
+  std::size_t total = static_cast<std::size_t>(space.function_count());
+  for (const auto& e : entries) total += e.size();
+  std::vector<Eigen::Triplet<double>> all;
+  all.reserve(total);
+  for (int t = 0; t < threads; ++t) {
+    all.insert(all.end(), entries[t].begin(), entries[t].end());
+    std::vector<Eigen::Triplet<double>>().swap(entries[t]);
+    if (t > 0) rhs[0] += rhs[t];
+  }
+  for (int i = 0; i < space.function_count(); ++i) all.emplace_back(i, i, anchor);
+  NormalEquations out;
+  out.lower.resize(space.function_count(), space.function_count());
+  out.lower.setFromTriplets(all.begin(), all.end());
+  out.rhs = rhs[0] + anchor * initial;
+  out.data_rows = std::move(kept);
+  return out;
+}
+
+Eigen::MatrixX3d residuals_at_parameters(const NormalEquations& equations,
+                                         const std::vector<FaceRowsSpec>& rows_by_face,
+                                         const Eigen::MatrixX3d& points,
+                                         const Eigen::MatrixX3d& control_points) {
+  Eigen::MatrixX3d residual = Eigen::MatrixX3d::Zero(points.rows(), 3);
+  for (std::size_t d = 0; d < rows_by_face.size(); ++d) {
+    const FaceDataRows& rows = equations.data_rows[d];
+    const auto& listed = rows_by_face[d].points;
+    for (std::size_t i = 0; i < listed.size(); ++i) {
+      Eigen::RowVector3d f = Eigen::RowVector3d::Zero();
+      for (int e = rows.start[i]; e < rows.start[i + 1]; ++e)
+        f += rows.value[e] * control_points.row(rows.function[e]);
+      residual.row(listed[i]) = f - points.row(listed[i]);
+    }
+  }
+  return residual;
+}
+
+}  // namespace spline::detail
