@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "ricci/mesh/errors.h"
@@ -17,11 +18,31 @@ double orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eig
   return cross(b - a, c - a);
 }
 
-// Triangulates the strip between two closed counter-clockwise rings (outer a, inner b) given as
-// vertex ids into `points`: walk both rings once, each step closing a triangle with the shorter
-// of the two possible diagonals among those that are counter-clockwise.
-void stitch(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& a,
-            const std::vector<int>& b, std::vector<Eigen::Vector3i>& triangles) {
+// Polar angles of a closed ring around `center`, unwrapped to increase from about `start`.
+std::vector<double> unwrapped_angles(const std::vector<Eigen::Vector2d>& points,
+                                     const std::vector<int>& ring, int first,
+                                     const Eigen::Vector2d& center, double start) {
+  const int n = static_cast<int>(ring.size());
+  std::vector<double> angles(n + 1);
+  double previous = start;
+  for (int k = 0; k <= n; ++k) {
+    const Eigen::Vector2d d = points[ring[(first + k) % n]] - center;
+    double angle = std::atan2(d.y(), d.x());
+    while (angle < previous - M_PI) angle += 2.0 * M_PI;
+    while (angle > previous + M_PI) angle -= 2.0 * M_PI;
+    angles[k] = angle;
+    previous = angle;
+  }
+  return angles;
+}
+
+// Triangulates the strip between two closed counter-clockwise rings (outer a, inner b, both
+// star-shaped from `center`) given as vertex ids into `points`: walk both rings once in step by
+// polar angle (advance the ring whose next point comes first), taking the other diagonal when
+// the preferred triangle would not be counter-clockwise.
+void stitch(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
+            const std::vector<int>& a, const std::vector<int>& b,
+            std::vector<Eigen::Vector3i>& triangles) {
   const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
   // Start the inner ring at its point nearest to a[0].
   int j0 = 0;
@@ -31,21 +52,26 @@ void stitch(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& 
       j0 = j;
     }
   }
+  const Eigen::Vector2d d0 = points[a[0]] - center;
+  const double start = std::atan2(d0.y(), d0.x());
+  const auto angle_a = unwrapped_angles(points, a, 0, center, start);
+  const auto angle_b = unwrapped_angles(points, b, j0, center, start);
   auto A = [&](int i) { return a[i % na]; };
   auto B = [&](int j) { return b[(j0 + j) % nb]; };
   int i = 0, j = 0;
   while (i < na || j < nb) {
-    const bool can_a = i < na;
-    const bool can_b = j < nb;
     const double tiny = 1e-12 * (points[A(i)] - points[B(j)]).squaredNorm();
-    const bool valid_a = can_a && orientation(points[A(i)], points[A(i + 1)], points[B(j)]) > tiny;
-    const bool valid_b = can_b && orientation(points[A(i)], points[B(j + 1)], points[B(j)]) > tiny;
+    const bool valid_a = i < na && orientation(points[A(i)], points[A(i + 1)], points[B(j)]) > tiny;
+    const bool valid_b = j < nb && orientation(points[A(i)], points[B(j + 1)], points[B(j)]) > tiny;
     bool advance_a;
-    if (valid_a && valid_b) {
-      advance_a = (points[A(i + 1)] - points[B(j)]).squaredNorm() <=
-                  (points[A(i)] - points[B(j + 1)]).squaredNorm();
+    if (i >= na) {
+      advance_a = false;
+    } else if (j >= nb) {
+      advance_a = true;
+    } else if (valid_a && valid_b) {
+      advance_a = angle_a[i + 1] <= angle_b[j + 1];
     } else {
-      advance_a = valid_a || !can_b;
+      advance_a = valid_a;
     }
     if (advance_a) {
       triangles.emplace_back(A(i), A(i + 1), B(j));
@@ -70,10 +96,21 @@ PlanarTriangulation triangle_grid(const Eigen::Vector2d& lo, const Eigen::Vector
   }
   PlanarTriangulation t;
   auto id = [&](int i, int r) { return r * (columns + 1) + i; };
+  // A seeded jitter of 0.08 sides moves the vertices off the lattice: the knot-cloud rule turns
+  // each cloud away from its vertex's edge directions, and on an exact lattice those directions
+  // tie, so rounding (a translated or scaled hole) would pick other clouds and another patch.
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  auto jitter = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;  // in [-0.5, 0.5)
+  };
   for (int r = 0; r <= rows; ++r) {
-    const double shift = (r % 2) ? 0.5 * spacing : 0.0;
-    for (int i = 0; i <= columns; ++i)
-      t.positions.emplace_back(lo.x() - spacing + shift + i * spacing, lo.y() + r * row_height);
+    const double shift = (r % 2) ? 0.5 : 0.0;
+    for (int i = 0; i <= columns; ++i) {
+      const double x = -1.0 + shift + i + 0.16 * jitter();
+      const double y = (r + 0.16 * jitter() / std::sqrt(3.0) * 2.0) * 0.5 * std::sqrt(3.0);
+      t.positions.emplace_back(lo.x() + spacing * x, lo.y() + spacing * y);
+    }
   }
   for (int r = 0; r < rows; ++r) {
     for (int i = 0; i < columns; ++i) {
@@ -219,7 +256,7 @@ PlanarTriangulation nested_rings(const std::vector<Eigen::Vector2d>& outer,
       inner.push_back(static_cast<int>(t.positions.size()));
       t.positions.push_back(p);
     }
-    stitch(t.positions, ring, inner, t.triangles);
+    stitch(t.positions, center, ring, inner, t.triangles);
     ring = std::move(inner);
   }
   const int c = static_cast<int>(t.positions.size());
