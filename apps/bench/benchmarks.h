@@ -14,5 +14,6 @@ int run_dms_benchmark(int argc, char** argv);  // bench_dms.cpp
 int run_singularity_benchmark(int argc, char** argv);  // bench_singularity.cpp
 int run_topology_benchmark(int argc, char** argv);  // bench_topology.cpp
 int run_loop_benchmark(int argc, char** argv);    // bench_loop.cpp
+int run_fill_benchmark(int argc, char** argv);    // bench_fill.cpp
 
 }  // namespace msp::bench

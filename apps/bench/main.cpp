@@ -33,6 +33,8 @@ const Benchmark kBenchmarks[] = {
      "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
     {"singularity", msp::bench::run_singularity_benchmark,
      "automatic choice of the extraordinary point vs the paper's brute force (one flow per vertex)"},
+    {"fill", msp::bench::run_fill_benchmark,
+     "hole filling on fitted scans: per rim edges, seconds, max normal jump, position gaps"},
     {"topology", msp::bench::run_topology_benchmark,
      "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
 };

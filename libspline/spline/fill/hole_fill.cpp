@@ -8,16 +8,15 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
-#include "spline/fill/hole_fill.h"
 #include "spline/basis/blossom.h"
 #include "spline/basis/multi_index.h"
+#include "spline/fill/hole_fill.h"
 #include "spline/fill/patch_domain.h"
 
 namespace spline {
 namespace {
 
 using fill_detail::RimSample;
-
 
 // Dunavant's 6-point rule, exact for degree 4 (the thin-plate integrand of a cubic piece has
 // degree 2): barycentric points and weights summing to one.
@@ -57,9 +56,12 @@ double bounding_diagonal(const ricci::Mesh& mesh) {
 
 const char* kind_name(Rim::Kind kind) {
   switch (kind) {
-    case Rim::Kind::cone_hole: return "cone hole";
-    case Rim::Kind::boundary: return "boundary loop";
-    case Rim::Kind::excluded: return "excluded-face hole";
+    case Rim::Kind::cone_hole:
+      return "cone hole";
+    case Rim::Kind::boundary:
+      return "boundary loop";
+    case Rim::Kind::excluded:
+      return "excluded-face hole";
   }
   return "rim";
 }
@@ -72,13 +74,13 @@ std::string rim_name(const Rim& rim) {
 // Rows of the scalar least-squares problem for the height's control points.
 struct System {
   std::vector<Eigen::Triplet<double>> entries;
-  std::vector<double> targets;
+  std::vector<Eigen::Vector3d> targets;  // one column per right-hand side
 
   int next_row() const { return static_cast<int>(targets.size()); }
 
   // weight * (D_d h - target); d = nullptr: the value.
   void add(const std::vector<BasisSample>& basis, const PlanarDmsSpace& space,
-           const Eigen::Vector2d* direction, double target, double weight) {
+           const Eigen::Vector2d* direction, const Eigen::Vector3d& target, double weight) {
     const int row = next_row();
     for (const auto& s : basis) {
       const double d = direction ? s.jet.gradient.dot(*direction) : s.jet.value;
@@ -128,31 +130,33 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
           system.entries.emplace_back(row, space.function_index(s.triangle, s.beta),
                                       root * factors[r] * s.jet.hessian[r]);
         }
-        system.targets.push_back(0.0);
+        system.targets.push_back(Eigen::Vector3d::Zero());
       }
     }
   }
 }
 
-Eigen::VectorXd solve(const System& system, int functions, double anchor_value, const Rim& rim) {
+Eigen::MatrixX3d solve(const System& system, int functions, const Eigen::Vector3d& anchor_value,
+                       const Rim& rim) {
   Eigen::SparseMatrix<double> a(system.next_row(), functions);
   a.setFromTriplets(system.entries.begin(), system.entries.end());
-  const Eigen::Map<const Eigen::VectorXd> b(system.targets.data(), system.next_row());
+  Eigen::MatrixX3d b(system.next_row(), 3);
+  for (int i = 0; i < system.next_row(); ++i) b.row(i) = system.targets[i].transpose();
   Eigen::SparseMatrix<double> normal = a.transpose() * a;
-  Eigen::VectorXd rhs = a.transpose() * b;
-  // A tiny anchor towards the mean height keeps functions that reach nothing determined and
+  Eigen::MatrixX3d rhs = a.transpose() * b;
+  // A tiny anchor towards the mean value keeps functions that reach nothing determined and
   // moves with the data.
   const double anchor = 1e-12 * normal.diagonal().sum() / functions;
   for (int i = 0; i < functions; ++i) {
     normal.coeffRef(i, i) += anchor;
-    rhs[i] += anchor * anchor_value;
+    rhs.row(i) += anchor * anchor_value.transpose();
   }
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(normal);
   if (solver.info() != Eigen::Success) {
     throw ricci::SolverError("fill_rim: the normal equations of the " + rim_name(rim) +
                              " are not positive definite");
   }
-  Eigen::VectorXd x = solver.solve(rhs);
+  Eigen::MatrixX3d x = solver.solve(rhs);
   // One step of iterative refinement: the seam weights make the matrix ill-conditioned.
   x += solver.solve(rhs - normal * x);
   if (!x.allFinite())
@@ -200,7 +204,8 @@ Eigen::Vector3d plane_normal(const std::vector<std::vector<RimSample>>& samples)
     for (const auto& s : row) cov += (s.jet.position - mean) * (s.jet.position - mean).transpose();
   }
   const Eigen::Vector3d average = sum.normalized();
-  Eigen::Vector3d fitted = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+  Eigen::Vector3d fitted =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
   if (fitted.dot(average) < 0.0) fitted = -fitted;
   return smallest_cosine(samples, fitted) > smallest_cosine(samples, average) ? fitted : average;
 }
@@ -257,20 +262,16 @@ PatchPoint HoleFill::evaluate(const Eigen::Vector2d& u) const {
   return p;
 }
 
-HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, const Rim& rim,
-                  const FillOptions& options) {
-  check_options(options);
-  const int m = static_cast<int>(rim.edges.size());
-  if (m < 3) {
-    throw ricci::InvalidInputError("fill_rim: a rim needs at least 3 edges, got " +
-                                   std::to_string(m));
-  }
-  const int q = options.fit_samples_per_edge;
-  const auto samples = sample_edges(spline, rim, q);
+namespace {
 
+// The G1 height-field patch (hole_fill.h). \throw ricci::InvalidInputError when the rim is no
+// height field.
+HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSample>>& samples,
+                           const FillOptions& options) {
+  const int m = static_cast<int>(rim.edges.size());
+  const int q = options.fit_samples_per_edge;
   HoleFill fill;
   fill.rim = rim;
-  fill.diagonal = bounding_diagonal(domain_mesh);
   fill.normal = plane_normal(samples);
   const double cosine = smallest_cosine(samples, fill.normal);
   if (cosine < options.min_normal_cosine) {
@@ -346,9 +347,9 @@ HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, 
       const double height = (s.jet.position - fill.origin).dot(fill.normal);
       // G1: P_x = e1 + h_x n and P_y = e2 + h_y n orthogonal to the surface's normal.
       const double nn = s.jet.normal.dot(fill.normal);
-      system.add(basis, space, nullptr, height, w_position);
-      system.add(basis, space, &ex, -s.jet.normal.dot(e1) / nn, w_slope);
-      system.add(basis, space, &ey, -s.jet.normal.dot(e2) / nn, w_slope);
+      system.add(basis, space, nullptr, Eigen::Vector3d(height, 0, 0), w_position);
+      system.add(basis, space, &ex, Eigen::Vector3d(-s.jet.normal.dot(e1) / nn, 0, 0), w_slope);
+      system.add(basis, space, &ey, Eigen::Vector3d(-s.jet.normal.dot(e2) / nn, 0, 0), w_slope);
       mean_height += height;
     }
   }
@@ -356,7 +357,8 @@ HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, 
   const double radius = perimeter / (2.0 * M_PI);
   if (options.smoothing > 0.0)
     add_thin_plate_rows(system, space, options.smoothing * radius * radius);
-  const Eigen::VectorXd heights = solve(system, space.function_count(), mean_height, rim);
+  const Eigen::VectorXd heights =
+      solve(system, space.function_count(), Eigen::Vector3d(mean_height, 0, 0), rim).col(0);
 
   // The in-plane part: the control points of the identity (exact on D, an affine map).
   BivariatePolynomial identity;
@@ -371,6 +373,98 @@ HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, 
         (fill.origin + plane(f, 0) * e1 + plane(f, 1) * e2 + heights[f] * fill.normal).transpose();
   }
 
+  return fill;
+}
+
+// The fallback: D the rim laid out on a circle by 3D arc length (clockwise in rim order, always
+// convex), P fitted to the rim's positions only, with the thin-plate energy: watertight and
+// consistently oriented, not G1.
+HoleFill fill_positions(const Rim& rim, const std::vector<std::vector<RimSample>>& samples,
+                        const FillOptions& options) {
+  const int m = static_cast<int>(rim.edges.size());
+  const int q = options.fit_samples_per_edge;
+  HoleFill fill;
+  fill.rim = rim;
+  fill.g1 = false;
+  std::vector<double> lengths;
+  double total = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  fill.origin.setZero();
+  for (const auto& row : samples) {
+    double length = 0.0;
+    for (int i = 1; i <= q; ++i) length += (row[i].jet.position - row[i - 1].jet.position).norm();
+    for (int i = 0; i < q; ++i) {
+      normal += row[i].jet.normal;
+      fill.origin += row[i].jet.position;
+    }
+    lengths.push_back(length);
+    total += length;
+  }
+  fill.origin /= static_cast<double>(m) * q;
+  if (normal.norm() > 0.0) fill.normal = normal.normalized();
+  if (!(total > 0.0)) {
+    throw ricci::InvalidInputError("fill_rim: the " + rim_name(rim) + " has zero length");
+  }
+  // Each edge's angle mixes its share of the length (0.8) with an equal share (0.2): no edge
+  // takes half the circle, so D stays convex and non-degenerate.
+  const double radius = total / (2.0 * M_PI);
+  double share = 0.0;
+  for (int j = 0; j < m; ++j) {
+    const double angle = -2.0 * M_PI * share;
+    fill.corners.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+    share += 0.8 * lengths[j] / total + 0.2 / m;
+  }
+  std::vector<Eigen::Vector2d> polygon;  // counter-clockwise
+  for (int j = 0; j < m; ++j) {
+    const Eigen::Vector2d a = fill.corners[j], b = fill.corners[(j + 1) % m];
+    std::vector<Eigen::Vector2d> points, tangents;
+    for (int i = 0; i <= q; ++i) {
+      points.push_back(a + (b - a) * (static_cast<double>(i) / q));
+      tangents.push_back(b - a);
+    }
+    fill.boundary_points.push_back(std::move(points));
+    fill.boundary_tangents.push_back(std::move(tangents));
+  }
+  for (int j = m - 1; j >= 0; --j) polygon.push_back(fill.corners[j]);
+  const double perimeter = fill_detail::polygon_perimeter(polygon);
+  const int boundary_vertices =
+      std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
+  const double h = perimeter / boundary_vertices;
+  fill.space = patch_space(polygon, h, options.degree, options.knots);
+  const PlanarDmsSpace& space = *fill.space;
+  System system;
+  const double w_position = std::sqrt(options.position_weight / (static_cast<double>(m) * q));
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < q; ++i) {
+      system.add(space.evaluate_basis(fill.boundary_points[j][i]), space, nullptr,
+                 samples[j][i].jet.position, w_position);
+    }
+  }
+  add_thin_plate_rows(system, space, std::max(options.smoothing, 1e-2) * radius * radius);
+  fill.control_points = solve(system, space.function_count(), fill.origin, rim);
+  return fill;
+}
+
+}  // namespace
+
+HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, const Rim& rim,
+                  const FillOptions& options) {
+  check_options(options);
+  const int m = static_cast<int>(rim.edges.size());
+  if (m < 3) {
+    throw ricci::InvalidInputError("fill_rim: a rim needs at least 3 edges, got " +
+                                   std::to_string(m));
+  }
+  const auto samples = sample_edges(spline, rim, options.fit_samples_per_edge);
+  HoleFill fill;
+  try {
+    fill = fill_height_field(rim, samples, options);
+  } catch (const ricci::InvalidInputError& e) {
+    if (!options.fallback || rim.kind == Rim::Kind::boundary) throw;
+    fill = fill_positions(rim, samples, options);
+    fill.fallback_reason = e.what();
+  }
+  fill.diagonal = bounding_diagonal(domain_mesh);
   const SeamReport report = measure_seam(spline, fill, options.samples_per_edge);
   fill.max_normal_jump_deg = report.max_normal_jump_deg;
   fill.max_position_gap = report.max_position_gap;

@@ -18,8 +18,12 @@
 //    energy of h. One scalar sparse least-squares problem.
 //  - Orientation: P's normal (P_x x P_y) has a positive n component; the surface's normals along
 //    the rim do too (checked), so the two agree in orientation.
-// Requirements (else fill_rim throws): every surface normal along the rim makes an angle below
-// ~87 degrees with n, and the projected rim is a simple polygon, star-shaped from some point.
+// Requirements: every surface normal along the rim makes an angle below ~87 degrees with n, and
+// the projected rim is a simple polygon, star-shaped from some point. Otherwise a boundary loop
+// throws, and a cone or excluded-face hole gets the positions-only fallback (FillOptions::
+// fallback: watertight, not G1; measured: the fitted surface near the cone of most genus-2/3
+// scans at 1000 faces turns its normal by 90-170 degrees along the rim, which no G1 disk
+// follows).
 //
 // Rim sample convention (the weld shared with the tessellator): rim edge j is sampled at d + 1
 // points t_i = i / d, i = 0..d, linear in the barycentric coordinates of its domain face from the
@@ -27,6 +31,7 @@
 // the same surface point as sample (j + 1, 0).
 #include <Eigen/Core>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "ricci/mesh/mesh.h"
@@ -45,7 +50,9 @@ struct RimEdge {
   int corner = 0;
 };
 
-[[nodiscard]] inline int rim_edge_start_corner(const RimEdge& edge) { return (edge.corner + 1) % 3; }
+[[nodiscard]] inline int rim_edge_start_corner(const RimEdge& edge) {
+  return (edge.corner + 1) % 3;
+}
 [[nodiscard]] inline int rim_edge_end_corner(const RimEdge& edge) { return (edge.corner + 2) % 3; }
 
 /// Barycentric coordinates (face corner order) of the point at t in [0, 1] of the rim edge:
@@ -117,6 +124,10 @@ struct FillOptions {
   double smoothing = 1e-2;
   /// Smallest accepted cosine between the plane's normal and the surface's normals on the rim.
   double min_normal_cosine = 0.05;
+  /// Cone and excluded-face holes that are no height field are filled anyway by a patch fitted
+  /// to the rim's positions only over the rim laid out on a circle (watertight, consistently
+  /// oriented, NOT G1: HoleFill::g1 false, its fallback_reason says why). Boundary loops throw.
+  bool fallback = true;
   /// Boundary loops only: refuse (throw) when the loop's projection is not simple. Cone and
   /// excluded holes are always checked (a fold cannot be filled by a height field).
   bool require_simple_projection = true;
@@ -143,9 +154,14 @@ struct HoleFill {
   /// D's boundary: per rim edge, the projected rim at t = i / q (i = 0..q) and d/dt there; the
   /// boundary runs clockwise around D in rim order (viewed from `normal`).
   std::vector<std::vector<Eigen::Vector2d>> boundary_points, boundary_tangents;
-  std::vector<Eigen::Vector2d> corners;  ///< corners[j] = parameter(j, 0)
+  std::vector<Eigen::Vector2d> corners;              ///< corners[j] = parameter(j, 0)
   Eigen::Vector2d center = Eigen::Vector2d::Zero();  ///< D is star-shaped from this point
   double diagonal = 1.0;  ///< bounding-box diagonal of the domain mesh: unit of the gaps
+  /// False for the positions-only fallback (FillOptions::fallback); then `normal`/`axes` are
+  /// informative only (P is not a height field) and fallback_reason holds the height-field
+  /// failure.
+  bool g1 = true;
+  std::string fallback_reason;
 
   // Seam figures (measure_seam at FillOptions::samples_per_edge).
   double max_normal_jump_deg = 0.0;  ///< max angle between the surface's and patch's normals

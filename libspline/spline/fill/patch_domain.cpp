@@ -179,7 +179,8 @@ bool star_center(const std::vector<Eigen::Vector2d>& polygon, Eigen::Vector2d& c
   const int n = 12;
   for (int i = 1; i < n; ++i) {
     for (int j = 1; j < n; ++j)
-      candidates.emplace_back(lo.x() + (hi.x() - lo.x()) * i / n, lo.y() + (hi.y() - lo.y()) * j / n);
+      candidates.emplace_back(lo.x() + (hi.x() - lo.x()) * i / n,
+                              lo.y() + (hi.y() - lo.y()) * j / n);
   }
   double best = 0.0;
   bool found = false;

@@ -31,8 +31,8 @@ namespace spline::fill_detail {
 /// A regular grid of equilateral triangles (side `spacing`, counter-clockwise) covering the box
 /// [lo, hi]. Its knot clouds are jittered by make_knot_cloud, which breaks the grid's
 /// coincidences.
-[[nodiscard]] PlanarTriangulation triangle_grid(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
-                                                double spacing);
+[[nodiscard]] PlanarTriangulation triangle_grid(const Eigen::Vector2d& lo,
+                                                const Eigen::Vector2d& hi, double spacing);
 
 /// True when the closed polygon has no two non-adjacent edges meeting.
 [[nodiscard]] bool is_simple(const std::vector<Eigen::Vector2d>& polygon);
@@ -40,7 +40,8 @@ namespace spline::fill_detail {
 /// A point from which the closed counter-clockwise polygon is star-shaped (every edge seen
 /// counter-clockwise), tried among the area centroid, the vertex mean and a grid of points of its
 /// box; the best by the smallest normalised turn. False when none.
-[[nodiscard]] bool star_center(const std::vector<Eigen::Vector2d>& polygon, Eigen::Vector2d& center);
+[[nodiscard]] bool star_center(const std::vector<Eigen::Vector2d>& polygon,
+                               Eigen::Vector2d& center);
 
 /// Scales s = start, start - step, ... down to the last above 0.75 step (the fan then closes the
 /// rest: its triangles are about one ring step high).

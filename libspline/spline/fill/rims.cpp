@@ -11,9 +11,12 @@ namespace {
 
 int kind_rank(Rim::Kind kind) {
   switch (kind) {
-    case Rim::Kind::cone_hole: return 0;
-    case Rim::Kind::boundary: return 1;
-    case Rim::Kind::excluded: return 2;
+    case Rim::Kind::cone_hole:
+      return 0;
+    case Rim::Kind::boundary:
+      return 1;
+    case Rim::Kind::excluded:
+      return 2;
   }
   return 3;
 }
@@ -75,8 +78,8 @@ Regions initial_regions(const ManifoldSplineSpace& space, const ricci::Mesh& mes
     const int i = f.idx();
     regions.kept[i] = space.in_domain(i) ? 1 : 0;
     if (!regions.kept[i]) {
-      regions.rank[i] = kind_rank(space.atlas().in_domain[i] ? Rim::Kind::excluded
-                                                              : Rim::Kind::cone_hole);
+      regions.rank[i] =
+          kind_rank(space.atlas().in_domain[i] ? Rim::Kind::excluded : Rim::Kind::cone_hole);
     }
   }
   return regions;

@@ -180,8 +180,8 @@ TEST(FillRim, ReproducesAPlane) {
   for (const Rim& rim : rims) {
     EXPECT_EQ(rim.kind, Rim::Kind::boundary);
     // The outer loop's "hole" is the unbounded outside: it projects with the wrong orientation.
-    const double rim_x = c.spline.evaluate({rim.edges[0].face, rim_edge_barycentric(rim.edges[0], 0)})
-                             .position.x();
+    const double rim_x =
+        c.spline.evaluate({rim.edges[0].face, rim_edge_barycentric(rim.edges[0], 0)}).position.x();
     if (std::abs(rim_x) > 0.6) {
       EXPECT_THROW((void)fill_rim(c.spline, c.atlas.problem.mesh, rim), ricci::InvalidInputError);
       continue;
@@ -219,6 +219,28 @@ TEST(FillRim, MeetsFittedScansWithG1) {
     EXPECT_LT(fill.rms_position_gap, 1e-5) << path;
     const SeamReport report = measure_seam(fit.spline, fill, 37);
     EXPECT_LE(report.max_normal_jump_deg, 1.0);
+  }
+}
+
+// The fitted genus-3 surface turns its normal by more than 90 degrees along the cone's rim (a
+// fit problem near the 10 pi cone): no height field, so the positions-only fallback fills it,
+// watertight and oriented but not G1; it says so.
+TEST(FillRim, Genus3ConeHoleFallsBackToPositions) {
+  const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 1000);
+  const auto& mesh = fit.atlas.problem.mesh;
+  const auto rims = find_rims(*fit.spline.space, mesh);
+  ASSERT_EQ(rims.size(), 1u);
+  FillOptions options;
+  options.fallback = false;
+  EXPECT_THROW((void)fill_rim(fit.spline, mesh, rims[0], options), ricci::InvalidInputError);
+  const HoleFill fill = fill_rim(fit.spline, mesh, rims[0]);
+  EXPECT_FALSE(fill.g1);
+  EXPECT_NE(fill.fallback_reason.find("no height field"), std::string::npos);
+  EXPECT_LT(fill.max_position_gap, 5e-3);
+  const PatchTessellation t = tessellate_fill(fill, 2);
+  for (int f = 0; f < t.triangles.rows(); ++f) {
+    for (int c = 0; c < 3; ++c)
+      EXPECT_GE(t.triangles(f, c), -2 * static_cast<int>(rims[0].edges.size()));
   }
 }
 
@@ -296,9 +318,11 @@ TEST(TessellateFill, DiskGluedToTheRimWithTheSurfaceOrientation) {
       int rim_corner = 0;  // a rim sample index (< 0), or 0 for none
       for (int c = 0; c < 3; ++c) rim_corner = std::min(rim_corner, t.triangles(f, c));
       if (rim_corner == 0) {
-        const Eigen::Vector2d u = (t.parameters.row(t.triangles(f, 0)) +
-                                   t.parameters.row(t.triangles(f, 1)) +
-                                   t.parameters.row(t.triangles(f, 2))).transpose() / 3.0;
+        const Eigen::Vector2d u =
+            (t.parameters.row(t.triangles(f, 0)) + t.parameters.row(t.triangles(f, 1)) +
+             t.parameters.row(t.triangles(f, 2)))
+                .transpose() /
+            3.0;
         EXPECT_GT(n.dot(fill.evaluate(u).normal), 0.0) << "triangle " << f;
       } else {
         const int k = -(rim_corner + 1);
