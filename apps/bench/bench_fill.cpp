@@ -98,6 +98,8 @@ int run_fill_benchmark(int argc, char** argv) {
       fill_options.refinement = std::stoi(argv[++i]);
     else if (arg == "--samples" && i + 1 < argc)
       fill_options.fit_samples_per_edge = std::stoi(argv[++i]);
+    else if (arg == "--fill-boundaries")
+      fill_options.fallback_boundary = true;
     else if (arg == "--smoothing" && i + 1 < argc)
       fill_options.smoothing = std::stod(argv[++i]);
     else
@@ -108,7 +110,8 @@ int run_fill_benchmark(int argc, char** argv) {
       "Hole filling: fit_scan (~%d domain faces), find_rims (grow %d), fill_rim (refinement "
       "%d, %d fit samples per edge, smoothing %g);\njump: max normal angle (deg) at 100 samples "
       "per rim edge; gaps |P - S| / bbox diagonal; wall seconds.\noptions: --faces N --grow G "
-      "--refinement R --samples Q --smoothing S [models...]\n\n",
+      "--refinement R --samples Q --smoothing S --fill-boundaries (fallback for boundary loops) "
+      "[models...]\n\n",
       fit_options.domain_faces, rim_options.grow, fill_options.refinement,
       fill_options.fit_samples_per_edge, fill_options.smoothing);
   std::printf("%-28s %10s %-8s %5s %6s %6s %9s %10s %10s %6s %s\n", "model", "", "rim", "edges",

@@ -460,7 +460,9 @@ HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, 
   try {
     fill = fill_height_field(rim, samples, options);
   } catch (const ricci::InvalidInputError& e) {
-    if (!options.fallback || rim.kind == Rim::Kind::boundary) throw;
+    const bool allowed =
+        rim.kind == Rim::Kind::boundary ? options.fallback_boundary : options.fallback;
+    if (!allowed) throw;
     fill = fill_positions(rim, samples, options);
     fill.fallback_reason = e.what();
   }

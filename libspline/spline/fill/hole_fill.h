@@ -82,6 +82,7 @@ struct FindRimsOptions {
   /// domain, so the spline's partition of unity fails in a thin band along the domain's rim
   /// (measured on genus2.off at 1000 faces: sum of basis values 0.25-0.4 on the rim edges; the
   /// surface there collapses towards the origin) and within a cloud radius of the rim vertices.
+  /// Kept faces left as islands inside a grown hole are covered too (grow > 0 only).
   /// One layer puts every seam point more than a triangle height from the old rim vertices,
   /// beyond the clouds (radius < inradius / 2): the partition of unity holds on the seam
   /// (tested). 0: the rims are the domain's own (the cone's one-ring link, the boundary loops).
@@ -128,6 +129,9 @@ struct FillOptions {
   /// to the rim's positions only over the rim laid out on a circle (watertight, consistently
   /// oriented, NOT G1: HoleFill::g1 false, its fallback_reason says why). Boundary loops throw.
   bool fallback = true;
+  /// Apply the fallback to boundary loops too (e.g. the puncture the one-cone pipeline cuts
+  /// into a closed genus-0 scan, which the caller must close); off: they throw.
+  bool fallback_boundary = false;
   /// Boundary loops only: refuse (throw) when the loop's projection is not simple. Cone and
   /// excluded holes are always checked (a fold cannot be filled by a height field).
   bool require_simple_projection = true;
