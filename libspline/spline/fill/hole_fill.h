@@ -21,9 +21,11 @@
 // Requirements: every surface normal along the rim makes an angle below ~87 degrees with n, and
 // the projected rim is a simple polygon, star-shaped from some point. Otherwise a boundary loop
 // throws, and a cone or excluded-face hole gets the positions-only fallback (FillOptions::
-// fallback: watertight, not G1; measured: the fitted surface near the cone of most genus-2/3
-// scans at 1000 faces turns its normal by 90-170 degrees along the rim, which no G1 disk
-// follows).
+// fallback: watertight, not G1). Measured (msp-bench fill, 1000 faces): the height field fills
+// the cone holes of eight.off and genus2.off (< 1 degree) but not those of the genus-3 models
+// or most boundary loops, whose rim normals span more than a hemisphere (a rim around a thin
+// handle or a tube's end; on some scans also a wavy fit near the cone). Those need a
+// parametric G1 patch (not a height field): not done yet.
 //
 // Rim sample convention (the weld shared with the tessellator): rim edge j is sampled at d + 1
 // points t_i = i / d, i = 0..d, linear in the barycentric coordinates of its domain face from the

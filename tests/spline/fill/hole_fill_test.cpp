@@ -222,9 +222,8 @@ TEST(FillRim, MeetsFittedScansWithG1) {
   }
 }
 
-// The fitted genus-3 surface turns its normal by more than 90 degrees along the cone's rim (a
-// fit problem near the 10 pi cone): no height field, so the positions-only fallback fills it,
-// watertight and oriented but not G1; it says so.
+// On the fitted genus-3 surface the normals along the cone's rim span more than a hemisphere:
+// no height field, so the positions-only fallback fills it, watertight but not G1; it says so.
 TEST(FillRim, Genus3ConeHoleFallsBackToPositions) {
   const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 1000);
   const auto& mesh = fit.atlas.problem.mesh;
