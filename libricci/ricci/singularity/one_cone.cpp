@@ -1,13 +1,21 @@
 #include "ricci/singularity/one_cone.h"
 
+#include <algorithm>
 #include <cmath>
+#include <queue>
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/neighbourhoods.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/metric/subdivide.h"
+#include "ricci/singularity/open_target.h"
 
 namespace ricci {
 namespace {
+
+// Rings around a single cone whose edges start with tangent circles (cone_tangent_metric).
+constexpr int kConeTangentRings = 3;
 
 void check_vertex(const Mesh& mesh, int vertex) {
   if (vertex < 0 || vertex >= static_cast<int>(mesh.n_vertices())) {
@@ -85,11 +93,71 @@ std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kin
 
 namespace {
 
+// Vertex distance, in edges, from `cone` (capped at `rings`).
+std::vector<int> ring_depth(const MeshTables& t, int cone, int rings) {
+  std::vector<std::vector<int>> adjacent(static_cast<size_t>(t.num_vertices()));
+  for (int e = 0; e < t.num_edges(); ++e) {
+    adjacent[t.edge_vertices(e, 0)].push_back(t.edge_vertices(e, 1));
+    adjacent[t.edge_vertices(e, 1)].push_back(t.edge_vertices(e, 0));
+  }
+  std::vector<int> depth(static_cast<size_t>(t.num_vertices()), rings);
+  std::queue<int> queue;
+  depth[cone] = 0;
+  queue.push(cone);
+  while (!queue.empty()) {
+    const int v = queue.front();
+    queue.pop();
+    if (depth[v] + 1 >= rings) continue;
+    for (int w : adjacent[v]) {
+      if (depth[w] > depth[v] + 1) {
+        depth[w] = depth[v] + 1;
+        queue.push(w);
+      }
+    }
+  }
+  return depth;
+}
+
+}  // namespace
+
+CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
+                                        int rings, RadiusInit radii) {
+  CirclePackingMetric metric =
+      initial_metric(tables, lengths, Geometry::Euclidean, Scheme::CirclePacking, radii);
+  const std::vector<int> depth = ring_depth(tables, cone, rings);
+  for (int e = 0; e < tables.num_edges(); ++e) {
+    if (std::min(depth[tables.edge_vertices(e, 0)], depth[tables.edge_vertices(e, 1)]) < rings) {
+      metric.eta[e] = 1.0;
+    }
+  }
+  return metric;
+}
+
+namespace {
+
 // Runs the flow with each metric of one_cone_metric_order until one converges; failed runs are
 // appended to `failures`.
 FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options,
                        std::vector<std::string>& failures) {
   FlowResult result;
+  if (problem.kind == OneConeKind::SingleCone) {
+    // Thurston's angles from the mesh with tangent circles at the cone: the mesh-conformal
+    // circle packing often has no solution at a 10pi cone (genus3_100k), tangency near the cone
+    // weakens the existence condition as far as the combinatorial metric's, and the rest of the
+    // surface keeps the mesh's angles.
+    const std::string name = "circle-packing/mean, tangent within " + std::to_string(kConeTangentRings) +
+                             " rings of the cone: ";
+    const MeshTables tables = build_mesh_tables(problem.mesh);
+    const CirclePackingMetric initial = cone_tangent_metric(
+        tables, mesh_edge_lengths(problem.mesh), problem.cone, kConeTangentRings, RadiusInit::Mean);
+    try {
+      result = flow(tables, initial, problem.targets, options);
+      if (result.converged()) return result;
+      failures.push_back(name + to_string(result.status));
+    } catch (const InfeasibleTargetError& e) {
+      failures.push_back(name + e.what());
+    }
+  }
   for (auto [scheme, radii] : one_cone_metric_order(problem.kind)) {
     FlowOptions attempt = options;
     attempt.scheme = scheme;
@@ -103,18 +171,44 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options
 
 }  // namespace
 
+namespace {
+
+// The harmonic boundary target where every boundary angle stays positive (a sharp corner can
+// ask for more than pi), else the curvature spread by length.
+Targets open_surface_target(const Mesh& mesh) {
+  Targets harmonic = harmonic_boundary_target(mesh);
+  const double margin = 1e-3;
+  if ((harmonic.curvature.array() < M_PI - margin).all()) return harmonic;
+  return boundary_target(mesh, BoundaryMode::SpreadByLength);
+}
+
+// Boundary targets to try after the problem's own, for open surfaces.
+std::vector<std::pair<std::string, Targets>> alternative_boundary_targets(const OneConeProblem& problem) {
+  std::vector<std::pair<std::string, Targets>> out;
+  if (problem.kind != OneConeKind::OpenSurface) return out;
+  Targets by_length = boundary_target(problem.mesh, BoundaryMode::SpreadByLength);
+  if (by_length.curvature != problem.targets.curvature) {
+    out.emplace_back("boundary curvature spread by length", std::move(by_length));
+  }
+  if (problem.boundary_loops > 1) {
+    out.emplace_back("circle domain", boundary_target(problem.mesh, BoundaryMode::CircleDomain));
+  }
+  return out;
+}
+
+}  // namespace
+
 FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
   if (keep_metric) return flow(problem.mesh, problem.targets, options);
   std::vector<std::string> failures;
   FlowResult result = try_metrics(problem, options, failures);
-  if (!result.converged() && problem.kind == OneConeKind::OpenSurface && problem.boundary_loops > 1) {
-    // Spreading 2*pi*chi over all loops by length bends inner holes the wrong way on scans with
-    // many holes; a circle-domain split (round holes) is the natural second try.
-    OneConeProblem circle = problem;
-    circle.targets = boundary_target(problem.mesh, BoundaryMode::CircleDomain);
-    failures.push_back("boundary spread by length failed with every metric; trying a circle domain");
-    FlowResult second = try_metrics(circle, options, failures);
-    if (second.converged()) result = std::move(second);
+  for (auto& [name, targets] : alternative_boundary_targets(problem)) {
+    if (result.converged()) break;
+    OneConeProblem other = problem;
+    other.targets = std::move(targets);
+    failures.push_back("failed with every metric; trying the boundary target: " + name);
+    FlowResult next = try_metrics(other, options, failures);
+    if (next.converged()) result = std::move(next);
   }
   result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
   return result;
@@ -125,7 +219,9 @@ bool needs_singular_vertex(const Mesh& mesh) {
   return t.boundary_loops == 0 && t.genus != 1;
 }
 
-OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence) {
+namespace {
+
+OneConeProblem prepare_on(const Mesh& mesh, int vertex, const ValenceOptions& valence) {
   OneConeProblem problem;
   const SurfaceTopology topology = surface_topology(mesh);
   problem.genus = topology.genus;
@@ -135,7 +231,10 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
     problem.kind = problem.boundary_loops > 0 ? OneConeKind::OpenSurface : OneConeKind::FlatTorus;
     problem.mesh = mesh;
     problem.input_vertex = identity_map(n, 0);
-    problem.targets = single_cone_target(problem.mesh, 0);  // no cone on these topologies
+    // No cone on these topologies. Open surfaces: the harmonic boundary target keeps the
+    // boundary's lengths (least area distortion; the others are fall-backs in the solve).
+    problem.targets = problem.kind == OneConeKind::OpenSurface ? open_surface_target(problem.mesh)
+                                                                : single_cone_target(problem.mesh, 0);
     return problem;
   }
   check_vertex(mesh, vertex);
@@ -155,6 +254,30 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
   problem.valence_splits = modified.splits;
   problem.input_vertex = identity_map(n, modified.splits);
   problem.targets = single_cone_target(problem.mesh, vertex);
+  return problem;
+}
+
+}  // namespace
+
+OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence,
+                                bool refine_thin_handles) {
+  if (!refine_thin_handles) return prepare_on(mesh, vertex, valence);
+  // Thin handles first: a face whose neighbourhood wraps around one cannot get a chart.
+  Mesh refined;
+  int subdivisions = 0;
+  while (count_non_disk_face_neighbourhoods(subdivisions > 0 ? refined : mesh) > 0 &&
+         subdivisions < kMaxHandleSubdivisions) {
+    refined = subdivide_midpoint(subdivisions > 0 ? refined : mesh);
+    ++subdivisions;
+  }
+  if (subdivisions == 0) return prepare_on(mesh, vertex, valence);
+  OneConeProblem problem = prepare_on(refined, vertex, valence);
+  problem.subdivisions = subdivisions;
+  // Midpoint subdivision keeps the input's vertex indices and appends the midpoints.
+  const int n = static_cast<int>(mesh.n_vertices());
+  for (int& v : problem.input_vertex) {
+    if (v >= n) v = -1;
+  }
   return problem;
 }
 
