@@ -117,8 +117,9 @@ struct FillOptions {
   /// Samples per rim edge in the least-squares objective (and of D's Hermite boundary curve).
   /// Dense on purpose: between sparser samples the patch's slope wanders (the DMS functions'
   /// structure at the knot-cloud scale): eight.off, 24 samples: 0.23 degrees at the samples,
-  /// 2.2 between them; 64 samples: 0.44 overall.
-  int fit_samples_per_edge = 64;
+  /// 2.2 between them; 64: 0.44 (0.5-1.9 depending on the fitted surface); 96: 0.51 / 0.82 on
+  /// eight.off / genus2.off (after the merge of the composed-frame layout).
+  int fit_samples_per_edge = 96;
   double position_weight = 1e6;  ///< weight of the height rows (dimensionless, see hole_fill.cpp)
   double tangent_weight = 1e6;   ///< weight of the slope (G1) rows
   /// Weight of the thin-plate energy of the height. Measured on eight.off and genus2.off (cone

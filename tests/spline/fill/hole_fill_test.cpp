@@ -189,7 +189,7 @@ TEST(FillRim, ReproducesAPlane) {
     const HoleFill fill = fill_rim(c.spline, c.atlas.problem.mesh, rim);
     ++filled;
     EXPECT_LT(fill.max_normal_jump_deg, 1e-6);
-    // The gap is the boundary curve's Hermite interpolation in the plane (64 samples per edge),
+    // The gap is the boundary curve's Hermite interpolation in the plane (96 samples per edge),
     // the height being exact.
     EXPECT_LT(fill.max_position_gap, 1e-5);
     EXPECT_LT(std::abs(std::abs(fill.normal.dot(normal)) - 1.0), 1e-12);
