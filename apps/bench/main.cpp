@@ -33,6 +33,8 @@ const Benchmark kBenchmarks[] = {
      "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
     {"singularity", msp::bench::run_singularity_benchmark,
      "automatic choice of the extraordinary point vs the paper's brute force (one flow per vertex)"},
+    {"fill", msp::bench::run_fill_benchmark,
+     "hole filling on fitted scans: per rim edges, seconds, max normal jump, position gaps"},
     {"one-cone", msp::bench::run_one_cone_benchmark,
      "issue 8: whole one-cone pipeline per bench/genus 1-3 mesh vs one Cholesky [--million] [--metric M]"},
     {"one-cone-one", msp::bench::run_one_cone_case, "one row of 'one-cone' in this process"},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "ricci/mesh/errors.h"
@@ -17,11 +18,31 @@ double orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eig
   return cross(b - a, c - a);
 }
 
-// Triangulates the strip between two closed counter-clockwise rings (outer a, inner b) given as
-// vertex ids into `points`: walk both rings once, each step closing a triangle with the shorter
-// of the two possible diagonals among those that are counter-clockwise.
-void stitch(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& a,
-            const std::vector<int>& b, std::vector<Eigen::Vector3i>& triangles) {
+// Polar angles of a closed ring around `center`, unwrapped to increase from about `start`.
+std::vector<double> unwrapped_angles(const std::vector<Eigen::Vector2d>& points,
+                                     const std::vector<int>& ring, int first,
+                                     const Eigen::Vector2d& center, double start) {
+  const int n = static_cast<int>(ring.size());
+  std::vector<double> angles(n + 1);
+  double previous = start;
+  for (int k = 0; k <= n; ++k) {
+    const Eigen::Vector2d d = points[ring[(first + k) % n]] - center;
+    double angle = std::atan2(d.y(), d.x());
+    while (angle < previous - M_PI) angle += 2.0 * M_PI;
+    while (angle > previous + M_PI) angle -= 2.0 * M_PI;
+    angles[k] = angle;
+    previous = angle;
+  }
+  return angles;
+}
+
+// Triangulates the strip between two closed counter-clockwise rings (outer a, inner b, both
+// star-shaped from `center`) given as vertex ids into `points`: walk both rings once in step by
+// polar angle (advance the ring whose next point comes first), taking the other diagonal when
+// the preferred triangle would not be counter-clockwise.
+void stitch(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
+            const std::vector<int>& a, const std::vector<int>& b,
+            std::vector<Eigen::Vector3i>& triangles) {
   const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
   // Start the inner ring at its point nearest to a[0].
   int j0 = 0;
@@ -31,21 +52,26 @@ void stitch(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& 
       j0 = j;
     }
   }
+  const Eigen::Vector2d d0 = points[a[0]] - center;
+  const double start = std::atan2(d0.y(), d0.x());
+  const auto angle_a = unwrapped_angles(points, a, 0, center, start);
+  const auto angle_b = unwrapped_angles(points, b, j0, center, start);
   auto A = [&](int i) { return a[i % na]; };
   auto B = [&](int j) { return b[(j0 + j) % nb]; };
   int i = 0, j = 0;
   while (i < na || j < nb) {
-    const bool can_a = i < na;
-    const bool can_b = j < nb;
     const double tiny = 1e-12 * (points[A(i)] - points[B(j)]).squaredNorm();
-    const bool valid_a = can_a && orientation(points[A(i)], points[A(i + 1)], points[B(j)]) > tiny;
-    const bool valid_b = can_b && orientation(points[A(i)], points[B(j + 1)], points[B(j)]) > tiny;
+    const bool valid_a = i < na && orientation(points[A(i)], points[A(i + 1)], points[B(j)]) > tiny;
+    const bool valid_b = j < nb && orientation(points[A(i)], points[B(j + 1)], points[B(j)]) > tiny;
     bool advance_a;
-    if (valid_a && valid_b) {
-      advance_a = (points[A(i + 1)] - points[B(j)]).squaredNorm() <=
-                  (points[A(i)] - points[B(j + 1)]).squaredNorm();
+    if (i >= na) {
+      advance_a = false;
+    } else if (j >= nb) {
+      advance_a = true;
+    } else if (valid_a && valid_b) {
+      advance_a = angle_a[i + 1] <= angle_b[j + 1];
     } else {
-      advance_a = valid_a || !can_b;
+      advance_a = valid_a;
     }
     if (advance_a) {
       triangles.emplace_back(A(i), A(i + 1), B(j));
@@ -59,24 +85,115 @@ void stitch(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& 
 
 }  // namespace
 
-std::vector<Eigen::Vector2d> circle_layout(const std::vector<double>& lengths) {
-  const int m = static_cast<int>(lengths.size());
-  double total = 0.0;
-  for (double l : lengths) total += l;
-  if (m < 3 || !(total > 0.0) || !std::isfinite(total)) {
-    throw ricci::InvalidInputError("hole fill: a rim of " + std::to_string(m) +
-                                   " edges and length " + std::to_string(total) +
-                                   " cannot be laid out");
+PlanarTriangulation triangle_grid(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                                  double spacing) {
+  const double row_height = 0.5 * std::sqrt(3.0) * spacing;
+  const int columns = static_cast<int>(std::ceil((hi.x() - lo.x()) / spacing)) + 2;
+  const int rows = static_cast<int>(std::ceil((hi.y() - lo.y()) / row_height)) + 1;
+  if (columns * static_cast<double>(rows) > 4e6) {
+    throw ricci::InvalidInputError("hole fill: a patch grid of " + std::to_string(columns) + " x " +
+                                   std::to_string(rows) + " vertices is too large");
   }
-  const double radius = total / (2.0 * M_PI);
-  std::vector<Eigen::Vector2d> corners;
-  double share = 0.0;
-  for (int j = 0; j < m; ++j) {
-    const double angle = -2.0 * M_PI * share;  // clockwise in rim order
-    corners.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
-    share += 0.8 * lengths[j] / total + 0.2 / m;
+  PlanarTriangulation t;
+  auto id = [&](int i, int r) { return r * (columns + 1) + i; };
+  // A seeded jitter of 0.08 sides moves the vertices off the lattice: the knot-cloud rule turns
+  // each cloud away from its vertex's edge directions, and on an exact lattice those directions
+  // tie, so rounding (a translated or scaled hole) would pick other clouds and another patch.
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  auto jitter = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;  // in [-0.5, 0.5)
+  };
+  for (int r = 0; r <= rows; ++r) {
+    const double shift = (r % 2) ? 0.5 : 0.0;
+    for (int i = 0; i <= columns; ++i) {
+      const double x = -1.0 + shift + i + 0.16 * jitter();
+      const double y = (r + 0.16 * jitter() / std::sqrt(3.0) * 2.0) * 0.5 * std::sqrt(3.0);
+      t.positions.emplace_back(lo.x() + spacing * x, lo.y() + spacing * y);
+    }
   }
-  return corners;
+  for (int r = 0; r < rows; ++r) {
+    for (int i = 0; i < columns; ++i) {
+      if (r % 2 == 0) {  // this row unshifted, the next shifted right by half a side
+        t.triangles.emplace_back(id(i, r), id(i + 1, r), id(i, r + 1));
+        t.triangles.emplace_back(id(i + 1, r), id(i + 1, r + 1), id(i, r + 1));
+      } else {
+        t.triangles.emplace_back(id(i, r), id(i + 1, r + 1), id(i, r + 1));
+        t.triangles.emplace_back(id(i, r), id(i + 1, r), id(i + 1, r + 1));
+      }
+    }
+  }
+  return t;
+}
+
+bool is_simple(const std::vector<Eigen::Vector2d>& polygon) {
+  const int m = static_cast<int>(polygon.size());
+  auto side = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+    const double v = orientation(p, q, r);
+    return (v > 0) - (v < 0);
+  };
+  for (int i = 0; i < m; ++i) {
+    const Eigen::Vector2d a = polygon[i], b = polygon[(i + 1) % m];
+    for (int j = i + 2; j < m; ++j) {
+      if (i == 0 && j == m - 1) continue;  // adjacent through the wrap
+      const Eigen::Vector2d c = polygon[j], d = polygon[(j + 1) % m];
+      if (std::max(a.x(), b.x()) < std::min(c.x(), d.x()) ||
+          std::max(c.x(), d.x()) < std::min(a.x(), b.x()) ||
+          std::max(a.y(), b.y()) < std::min(c.y(), d.y()) ||
+          std::max(c.y(), d.y()) < std::min(a.y(), b.y())) {
+        continue;
+      }
+      if (side(a, b, c) * side(a, b, d) <= 0 && side(c, d, a) * side(c, d, b) <= 0) return false;
+    }
+  }
+  return true;
+}
+
+namespace {
+// Smallest sin of the angle each edge subtends from c (negative: c does not see it
+// counter-clockwise).
+double star_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& c) {
+  double worst = INFINITY;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d a = polygon[i] - c, b = polygon[(i + 1) % polygon.size()] - c;
+    worst = std::min(worst, cross(a, b) / (a.norm() * b.norm() + 1e-300));
+  }
+  return worst;
+}
+}  // namespace
+
+bool star_center(const std::vector<Eigen::Vector2d>& polygon, Eigen::Vector2d& center) {
+  std::vector<Eigen::Vector2d> candidates;
+  const double area = polygon_area(polygon);
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero(), mean = Eigen::Vector2d::Zero();
+  Eigen::Vector2d lo = polygon[0], hi = polygon[0];
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+    centroid += (a + b) * cross(a, b);
+    mean += a;
+    lo = lo.cwiseMin(a);
+    hi = hi.cwiseMax(a);
+  }
+  candidates.push_back(centroid / (6.0 * area));
+  candidates.push_back(mean / static_cast<double>(polygon.size()));
+  const int n = 12;
+  for (int i = 1; i < n; ++i) {
+    for (int j = 1; j < n; ++j)
+      candidates.emplace_back(lo.x() + (hi.x() - lo.x()) * i / n,
+                              lo.y() + (hi.y() - lo.y()) * j / n);
+  }
+  double best = 0.0;
+  bool found = false;
+  for (const auto& c : candidates) {
+    // The centroid and mean win ties (they come first): a centre well inside gives rounder rings.
+    const double margin = star_margin(polygon, c);
+    if (margin > best * (found ? 2.0 : 1.0)) {
+      best = margin;
+      center = c;
+      found = true;
+    }
+  }
+  return found;
 }
 
 double polygon_perimeter(const std::vector<Eigen::Vector2d>& polygon) {
@@ -140,7 +257,7 @@ PlanarTriangulation nested_rings(const std::vector<Eigen::Vector2d>& outer,
       inner.push_back(static_cast<int>(t.positions.size()));
       t.positions.push_back(p);
     }
-    stitch(t.positions, ring, inner, t.triangles);
+    stitch(t.positions, center, ring, inner, t.triangles);
     ring = std::move(inner);
   }
   const int c = static_cast<int>(t.positions.size());
@@ -165,6 +282,7 @@ RimSample sample_rim(const ManifoldSpline& spline, const RimEdge& edge, double t
   sample.chart_length = e.norm();
   const Eigen::Vector2d out = Eigen::Vector2d(e.y(), -e.x()) / sample.chart_length;
   sample.outward_derivative = out.x() * sample.jet.du + out.y() * sample.jet.dv;
+  sample.along_derivative = e.x() * sample.jet.du + e.y() * sample.jet.dv;
   return sample;
 }
 

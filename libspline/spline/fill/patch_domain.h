@@ -9,11 +9,6 @@
 
 namespace spline::fill_detail {
 
-/// Corners of D on a circle of perimeter-length ~ sum(lengths) centred at the origin, clockwise,
-/// corner j at the start of edge j; the angle of edge j mixes its share of the length (0.8) with
-/// an equal share (0.2), so no edge takes half the circle and D stays convex and non-degenerate.
-[[nodiscard]] std::vector<Eigen::Vector2d> circle_layout(const std::vector<double>& lengths);
-
 [[nodiscard]] double polygon_perimeter(const std::vector<Eigen::Vector2d>& polygon);
 /// Signed area (positive counter-clockwise).
 [[nodiscard]] double polygon_area(const std::vector<Eigen::Vector2d>& polygon);
@@ -33,6 +28,21 @@ namespace spline::fill_detail {
                                                const Eigen::Vector2d& center,
                                                const std::vector<double>& scales, double spacing);
 
+/// A regular grid of equilateral triangles (side `spacing`, counter-clockwise) covering the box
+/// [lo, hi]. Its knot clouds are jittered by make_knot_cloud, which breaks the grid's
+/// coincidences.
+[[nodiscard]] PlanarTriangulation triangle_grid(const Eigen::Vector2d& lo,
+                                                const Eigen::Vector2d& hi, double spacing);
+
+/// True when the closed polygon has no two non-adjacent edges meeting.
+[[nodiscard]] bool is_simple(const std::vector<Eigen::Vector2d>& polygon);
+
+/// A point from which the closed counter-clockwise polygon is star-shaped (every edge seen
+/// counter-clockwise), tried among the area centroid, the vertex mean and a grid of points of its
+/// box; the best by the smallest normalised turn. False when none.
+[[nodiscard]] bool star_center(const std::vector<Eigen::Vector2d>& polygon,
+                               Eigen::Vector2d& center);
+
 /// Scales s = start, start - step, ... down to the last above 0.75 step (the fan then closes the
 /// rest: its triangles are about one ring step high).
 [[nodiscard]] std::vector<double> ring_scales(double start, double step);
@@ -42,6 +52,7 @@ namespace spline::fill_detail {
 struct RimSample {
   SurfaceJet jet;
   Eigen::Vector3d outward_derivative;  ///< dS along the chart's unit normal leaving the face
+  Eigen::Vector3d along_derivative;    ///< dS/dt along the rim edge
   double chart_length = 0.0;           ///< the rim edge's length in the chart
 };
 [[nodiscard]] RimSample sample_rim(const ManifoldSpline& spline, const RimEdge& edge, double t);

@@ -11,9 +11,12 @@ namespace {
 
 int kind_rank(Rim::Kind kind) {
   switch (kind) {
-    case Rim::Kind::cone_hole: return 0;
-    case Rim::Kind::boundary: return 1;
-    case Rim::Kind::excluded: return 2;
+    case Rim::Kind::cone_hole:
+      return 0;
+    case Rim::Kind::boundary:
+      return 1;
+    case Rim::Kind::excluded:
+      return 2;
   }
   return 3;
 }
@@ -75,8 +78,8 @@ Regions initial_regions(const ManifoldSplineSpace& space, const ricci::Mesh& mes
     const int i = f.idx();
     regions.kept[i] = space.in_domain(i) ? 1 : 0;
     if (!regions.kept[i]) {
-      regions.rank[i] = kind_rank(space.atlas().in_domain[i] ? Rim::Kind::excluded
-                                                              : Rim::Kind::cone_hole);
+      regions.rank[i] =
+          kind_rank(space.atlas().in_domain[i] ? Rim::Kind::excluded : Rim::Kind::cone_hole);
     }
   }
   return regions;
@@ -109,6 +112,49 @@ void grow_once(Regions& regions, const ricci::Mesh& mesh) {
       int& r = regions.rank[f.idx()];
       r = std::min(r, vertex_rank[v.idx()]);
     }
+  }
+}
+
+// Kept faces cut off from the largest kept region by a grown hole (a face or two enclosed by
+// covered faces) are covered too: a rim around such an island would be filled by a disk over
+// the island. Their rank is the smallest rank of the faces around them.
+void cover_islands(Regions& regions, const ricci::Mesh& mesh) {
+  std::vector<int> component(mesh.n_faces(), -1);
+  std::vector<int> sizes;
+  for (auto f : mesh.faces()) {
+    if (!regions.kept[f.idx()] || component[f.idx()] >= 0) continue;
+    const int c = static_cast<int>(sizes.size());
+    sizes.push_back(0);
+    std::vector<int> stack{f.idx()};
+    component[f.idx()] = c;
+    while (!stack.empty()) {
+      const int g = stack.back();
+      stack.pop_back();
+      ++sizes[c];
+      for (auto h : mesh.ff_range(mesh.face_handle(g))) {
+        if (regions.kept[h.idx()] && component[h.idx()] < 0) {
+          component[h.idx()] = c;
+          stack.push_back(h.idx());
+        }
+      }
+    }
+  }
+  if (sizes.size() < 2) return;
+  const int largest =
+      static_cast<int>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+  std::vector<int> island_rank(sizes.size(), 3);
+  for (auto f : mesh.faces()) {
+    const int c = component[f.idx()];
+    if (c < 0 || c == largest) continue;
+    for (auto g : mesh.ff_range(f)) {
+      if (!regions.kept[g.idx()]) island_rank[c] = std::min(island_rank[c], regions.rank[g.idx()]);
+    }
+  }
+  for (auto f : mesh.faces()) {
+    const int c = component[f.idx()];
+    if (c < 0 || c == largest) continue;
+    regions.kept[f.idx()] = 0;
+    regions.rank[f.idx()] = island_rank[c];
   }
 }
 
@@ -175,6 +221,7 @@ std::vector<Rim> find_rims(const ManifoldSplineSpace& space, const ricci::Mesh& 
   }
   Regions regions = initial_regions(space, mesh);
   for (int layer = 0; layer < options.grow; ++layer) grow_once(regions, mesh);
+  if (options.grow > 0) cover_islands(regions, mesh);
 
   std::vector<char> visited(mesh.n_halfedges(), 0);
   std::vector<Rim> rims;

@@ -41,7 +41,7 @@ PatchTessellation tessellate_fill(const HoleFill& fill, int d) {
     throw ricci::InvalidInputError("tessellate_fill: density must be >= 1, got " +
                                    std::to_string(d));
   }
-  const int m = static_cast<int>(fill.corners.size());
+  const int m = static_cast<int>(fill.boundary_points.size());
   const int boundary = m * d;
   // The rim samples in rim order run clockwise around D; the rings want counter-clockwise, so
   // outer[k] is rim sample boundary - 1 - k.
@@ -50,7 +50,13 @@ PatchTessellation tessellate_fill(const HoleFill& fill, int d) {
     const int r = boundary - 1 - k;
     outer[k] = fill.parameter(r / d, static_cast<double>(r % d) / d);
   }
-  const std::vector<Eigen::Vector2d> shape(fill.corners.rbegin(), fill.corners.rend());
+  // Inner rings: copies of D's boundary scaled about the star centre (nested: D is star-shaped
+  // from it), counter-clockwise.
+  std::vector<Eigen::Vector2d> shape;
+  for (int j = m - 1; j >= 0; --j) {
+    const auto& points = fill.boundary_points[j];
+    for (int i = static_cast<int>(points.size()) - 1; i >= 1; --i) shape.push_back(points[i]);
+  }
   const double perimeter = fill_detail::polygon_perimeter(shape);
   const double spacing = perimeter / boundary;
   const double apothem = 2.0 * fill_detail::polygon_area(shape) / perimeter;

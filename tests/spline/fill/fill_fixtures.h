@@ -1,0 +1,32 @@
+#pragma once
+// Fitted manifold splines of real models (fit_scan on a simplified domain), built once per
+// binary: the surfaces whose rims the fill tests fill.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "ricci/mesh/io.h"
+#include "spline/fit/fit.h"
+
+namespace spline::testing {
+
+/// fit_scan of the model at `path` (absolute) with a domain of about `faces` faces.
+inline const ScanFitResult& fitted_scan(const std::string& path, int faces = 1000) {
+  static std::map<std::string, std::unique_ptr<ScanFitResult>> cache;
+  auto& slot = cache[path + "/" + std::to_string(faces)];
+  if (!slot) {
+    ScanFitOptions options;
+    options.domain_faces = faces;
+    slot = std::make_unique<ScanFitResult>(fit_scan(ricci::read_mesh(path), options));
+  }
+  return *slot;
+}
+
+inline std::string bundled_model(const std::string& name) {
+  return std::string(MSP_SOURCE_DIR) + "/models/" + name;
+}
+inline std::string shared_model(const std::string& name) {
+  return std::string(MSP_SHARED_MODELS) + "/" + name;
+}
+
+}  // namespace spline::testing
