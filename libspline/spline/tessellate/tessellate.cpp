@@ -1,10 +1,10 @@
 #include "spline/tessellate/tessellate.h"
 
+#include "spline/tessellate/parallel_for.h"
+
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <string>
-#include <thread>
 #include <unordered_map>
 
 #include "ricci/mesh/errors.h"
@@ -12,42 +12,6 @@
 
 namespace spline {
 namespace {
-
-int thread_count(int requested, std::size_t work) {
-  int n = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
-  n = std::max(1, n);
-  // Below a few hundred evaluations a thread costs more than it saves.
-  return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(n), 1 + work / 256));
-}
-
-// Runs body(i) for i in [0, count) on `threads` threads (static blocks); rethrows the first
-// exception of any thread after all have joined.
-template <class Body>
-void parallel_for(std::size_t count, int threads, const Body& body) {
-  const int n = thread_count(threads, count);
-  if (n <= 1) {
-    for (std::size_t i = 0; i < count; ++i) body(i);
-    return;
-  }
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(n));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < n; ++t) {
-    pool.emplace_back([&, t] {
-      try {
-        // Interleaved blocks: neighbouring samples share charts (cache) and cost.
-        for (std::size_t start = static_cast<std::size_t>(t) * 64; start < count;
-             start += static_cast<std::size_t>(n) * 64) {
-          for (std::size_t i = start; i < std::min(count, start + 64); ++i) body(i);
-        }
-      } catch (...) {
-        errors[static_cast<std::size_t>(t)] = std::current_exception();
-      }
-    });
-  }
-  for (auto& th : pool) th.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
-}
 
 // The surface jet at p; where du x dv vanishes (a degenerate control net) the normal is taken a
 // hair inside the face, the limit of the normals around the point.

@@ -1,0 +1,231 @@
+#include "msp/fit_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include <ricci/mesh/errors.h>
+#include <ricci/mesh/simplify.h>
+#include <spline/tessellate/parallel_for.h>
+
+namespace msp {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Eigen::MatrixX3d vertex_matrix(const ricci::Mesh& mesh) {
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  for (auto v : mesh.vertices()) points.row(v.idx()) = ricci::to_eigen(mesh.point(v)).transpose();
+  return points;
+}
+
+// Closed surfaces other than tori carry an extraordinary point; open ones and tori none.
+bool needs_singularity(const ricci::SurfaceTopology& t) {
+  return t.boundary_loops == 0 && t.genus != 1;
+}
+
+// The interior vertex of `domain` nearest to `point`.
+int nearest_interior_vertex(const ricci::Mesh& domain, const Eigen::Vector3d& point) {
+  int best = -1;
+  double best_distance = 0.0;
+  for (auto v : domain.vertices()) {
+    if (domain.is_boundary(v)) continue;
+    const double d = (ricci::to_eigen(domain.point(v)) - point).squaredNorm();
+    if (best < 0 || d < best_distance) {
+      best = v.idx();
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+// The user's singular vertex (an index of the input) as a vertex of the domain mesh fit_scan
+// will build: the simplification is deterministic, so running it here gives the same mesh.
+int domain_singular_vertex(const ricci::Mesh& dense, const FitRunOptions& options) {
+  const int v = options.singular_vertex;
+  if (v < 0) return -1;
+  if (v >= static_cast<int>(dense.n_vertices())) {
+    throw ricci::InvalidInputError("singular vertex " + std::to_string(v) +
+                                   " is out of range (the mesh has " +
+                                   std::to_string(dense.n_vertices()) + " vertices)");
+  }
+  if (dense.is_boundary(dense.vertex_handle(v))) {
+    throw ricci::InvalidInputError("singular vertex " + std::to_string(v) +
+                                   " lies on the boundary (the extraordinary point must be an "
+                                   "interior vertex)");
+  }
+  if (static_cast<int>(dense.n_faces()) <= options.domain_faces) return v;
+  ricci::SimplifyOptions simplify;
+  simplify.target_faces = options.domain_faces;
+  const ricci::Mesh domain = ricci::simplify_mesh(dense, simplify).mesh;
+  return nearest_interior_vertex(domain, ricci::to_eigen(dense.point(dense.vertex_handle(v))));
+}
+
+// Distances of the input's vertices to the spline (closest-point projection from their
+// parameters, in parallel); vertices over the cone's hole (face -1) are skipped.
+void measure_fit(const ricci::Mesh& dense, const spline::ScanFitResult& scan, FitRun& run) {
+  const Eigen::MatrixX3d points = vertex_matrix(dense);
+  std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
+  spline::parallel_for(distance.size(), 0, [&](std::size_t k) {
+    const spline::DomainPoint& start = scan.vertex_parameters[k];
+    if (start.face < 0) return;
+    distance[k] = spline::project_to_spline(scan.spline, start,
+                                            points.row(static_cast<Eigen::Index>(k)).transpose())
+                      .distance;
+  });
+  double sum = 0.0;
+  for (double d : distance) {
+    if (d < 0) continue;
+    sum += d * d;
+    run.fit_max = std::max(run.fit_max, d);
+    ++run.fit_points;
+  }
+  run.fit_rms = run.fit_points > 0 ? std::sqrt(sum / run.fit_points) : 0.0;
+  run.bbox_diagonal =
+      points.rows() > 0 ? (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm() : 0.0;
+}
+
+// Density: about 150k surface triangles in all, 2..8 samples per domain edge.
+int chosen_density(const FitRunOptions& options, int domain_faces) {
+  if (options.density > 0) return options.density;
+  const double d = std::sqrt(150000.0 / std::max(1, domain_faces));
+  return std::clamp(static_cast<int>(std::lround(d)), 2, 8);
+}
+
+}  // namespace
+
+int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
+
+FitRun run_fit_pipeline(const ricci::Mesh& dense, const FitRunOptions& options) {
+  FitRun run;
+  const auto total = Clock::now();
+  run.input = ricci::surface_topology(dense);
+  const int minimum = minimum_domain_faces(run.input.genus);
+  if (options.domain_faces < minimum) {
+    throw ricci::InvalidInputError(
+        "--domain-faces " + std::to_string(options.domain_faces) + " is too few for a genus-" +
+        std::to_string(run.input.genus) + " surface (at least " + std::to_string(minimum) + ")");
+  }
+  if (static_cast<int>(dense.n_faces()) < minimum) {
+    throw ricci::InvalidInputError("the mesh has " + std::to_string(dense.n_faces()) +
+                                   " faces, too few for a genus-" +
+                                   std::to_string(run.input.genus) + " spline domain (at least " +
+                                   std::to_string(minimum) + ")");
+  }
+
+  auto stage_start = Clock::now();
+  std::string stage;
+  auto begin = [&](const std::string& name) {
+    if (!stage.empty()) run.seconds.emplace_back(stage, seconds_since(stage_start));
+    stage = name;
+    stage_start = Clock::now();
+    if (options.progress) options.progress(name);
+  };
+
+  spline::ScanFitOptions scan;
+  scan.domain_faces = options.domain_faces;
+  scan.degree = options.degree;
+  scan.fair_r = options.fairness;
+  if (options.singular_vertex >= 0) {
+    begin("singularity");
+    if (needs_singularity(run.input)) {
+      scan.atlas.singular_vertex = domain_singular_vertex(dense, options);
+    } else {
+      (void)domain_singular_vertex(dense, options);  // checks range and boundary only
+    }
+  }
+  scan.progress = begin;
+  run.scan = spline::fit_scan(dense, scan);
+  const auto& problem = run.scan.atlas.problem;
+  run.singular_domain_vertex = problem.cone >= 0 ? run.scan.atlas.chosen_vertex : -1;
+
+  // TODO(fill): cap the cone hole (and the boundaries with --fill-boundaries) once
+  // spline/fill/hole_fill.h lands; the tessellation exposes the rim samples for the weld.
+  const ricci::Mesh& domain = problem.mesh;
+  begin("tessellate");
+  spline::TessellationOptions tess;
+  tess.density = chosen_density(options, run.scan.spline.space->domain_face_count());
+  run.tessellation = spline::tessellate(run.scan.spline, domain, tess);
+
+  begin("measure");
+  run.topology = spline::check_watertight(run.tessellation.triangles, run.tessellation.positions);
+  run.open_rims = run.topology.boundary_loops;
+  const int expected_loops = options.fill_boundaries ? 0 : run.input.boundary_loops;
+  run.watertight = run.topology.matches(run.input.genus, expected_loops);
+  run.edge_normal_jump_deg = spline::max_edge_normal_jump_deg(run.scan.spline, domain, 2);
+  measure_fit(dense, run.scan, run);
+  begin("");
+  run.seconds.emplace_back("total", seconds_since(total));
+  return run;
+}
+
+nlohmann::json fit_report_json(const std::string& path, const FitRun& run,
+                               const FitRunOptions& options) {
+  const auto& atlas = run.scan.atlas;
+  const auto& space = *run.scan.spline.space;
+  nlohmann::json singularities = nlohmann::json::array();
+  if (atlas.problem.cone >= 0) {
+    const double K = atlas.flow.curvature[atlas.problem.cone];
+    const auto p = atlas.problem.mesh.point(atlas.problem.mesh.vertex_handle(atlas.problem.cone));
+    singularities.push_back({{"domain_vertex", run.singular_domain_vertex},
+                             {"input_vertex", options.singular_vertex},
+                             {"position", {p[0], p[1], p[2]}},
+                             {"curvature", K},
+                             {"cone_angle", 2 * M_PI - K}});
+  } else if (atlas.problem.kind == ricci::OneConeKind::PuncturedSphere) {
+    singularities.push_back({{"domain_vertex", atlas.chosen_vertex},
+                             {"input_vertex", options.singular_vertex},
+                             {"removed_star", true}});
+  }
+  nlohmann::json seconds = nlohmann::json::object();
+  for (const auto& [name, s] : run.seconds) seconds[name] = s;
+  const double diag = std::max(run.bbox_diagonal, 1e-300);
+  const auto& t = run.topology;
+  return {
+      {"mesh", path},
+      {"input_vertices", run.input.vertices},
+      {"input_faces", run.input.faces},
+      {"genus", run.input.genus},
+      {"boundary_loops", run.input.boundary_loops},
+      {"singularities", singularities},
+      {"domain_faces", space.domain_face_count()},
+      {"domain_mesh_faces", atlas.problem.mesh.n_faces()},
+      {"control_points", space.function_count()},
+      {"degree", space.degree()},
+      {"fairness", options.fairness},
+      {"fit_rms", run.fit_rms},
+      {"fit_max", run.fit_max},
+      {"fit_rms_relative", run.fit_rms / diag},
+      {"fit_max_relative", run.fit_max / diag},
+      {"fit_points", run.fit_points},
+      {"bbox_diagonal", run.bbox_diagonal},
+      {"seam_normal_jump_max_deg", std::max(run.edge_normal_jump_deg, run.fill_normal_jump_deg)},
+      {"edge_normal_jump_max_deg", run.edge_normal_jump_deg},
+      {"fill_normal_jump_max_deg", run.fill_normal_jump_deg},
+      {"fill_position_gap", run.fill_position_gap},
+      {"filled_rims", run.filled_rims},
+      {"open_rims", run.open_rims},
+      {"watertight", run.watertight},
+      {"tessellation",
+       {{"density", run.tessellation.density},
+        {"vertices", t.vertices},
+        {"triangles", t.faces},
+        {"render_vertices", run.tessellation.uvs.rows()},
+        {"euler_characteristic", t.euler_characteristic},
+        {"boundary_loops", t.boundary_loops},
+        {"boundary_edges", t.boundary_edges},
+        {"nonmanifold_edges", t.nonmanifold_edges},
+        {"misoriented_edges", t.misoriented_edges},
+        {"nonmanifold_vertices", t.nonmanifold_vertices},
+        {"duplicate_positions", t.duplicate_positions}}},
+      {"fit_constraint_residual", run.scan.fit.max_constraint_residual},
+      {"seconds", seconds},
+  };
+}
+
+}  // namespace msp
