@@ -2,6 +2,7 @@
 // spline fit and fairing, hole filling, watertight tessellation, glTF export, JSON report).
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -98,8 +99,16 @@ void check_outputs(const Args& args) {
   if (auto ply = args.get("ply"); ply && !ends_with(*ply, ".ply"))
     throw UsageError("--ply must name a .ply file, not '" + *ply + "'");
   if (!glb && !args.has("obj") && !args.has("ply") && !args.has("json"))
-    throw UsageError("nothing to write: give -o OUT.glb (or --obj, --ply, --json)\nusage: " +
-                     std::string(kUsage));
+    throw UsageError("nothing to write: give -o OUT.glb (or --obj, --ply, --json)");
+  // A missing folder is found before the work, not after the first file is written.
+  for (const char* name : {"output", "obj", "ply", "json"}) {
+    const auto path = args.get(name);
+    if (!path) continue;
+    const std::filesystem::path folder = std::filesystem::path(*path).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder))
+      throw ricci::IOError("cannot write " + *path + ": folder " + folder.string() +
+                           " does not exist");
+  }
 }
 
 // Metadata of the glTF scene: the figures at the top, the whole report below.
