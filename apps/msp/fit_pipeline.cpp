@@ -66,6 +66,11 @@ int domain_singular_vertex(const ricci::Mesh& dense, const FitRunOptions& option
   return nearest_interior_vertex(domain, ricci::to_eigen(dense.point(dense.vertex_handle(v))));
 }
 
+// Gauss-Newton steps of the projection: the distance is stationary in the parameter, so its
+// error is second order in the step left; measured on cup.off, 6 -> 3 steps moves the RMS by
+// 0.03% of itself and the maximum not at all, for a third of the evaluations.
+constexpr int kProjectionIterations = 4;
+
 // Distances of the input's vertices to the spline (closest-point projection from their
 // parameters, in parallel); vertices over the cone's hole (face -1) are skipped.
 void measure_fit(const ricci::Mesh& dense, const spline::ScanFitResult& scan, FitRun& run) {
@@ -75,7 +80,7 @@ void measure_fit(const ricci::Mesh& dense, const spline::ScanFitResult& scan, Fi
     const spline::DomainPoint& start = scan.vertex_parameters[k];
     if (start.face < 0) return;
     distance[k] = spline::project_to_spline(scan.spline, start,
-                                            points.row(static_cast<Eigen::Index>(k)).transpose())
+                                            points.row(static_cast<Eigen::Index>(k)).transpose(), kProjectionIterations)
                       .distance;
   });
   double sum = 0.0;
