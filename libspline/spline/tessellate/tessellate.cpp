@@ -70,6 +70,13 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
   const ManifoldSplineSpace& space = *spline.space;
   if (static_cast<int>(mesh.n_faces()) != space.face_count())
     throw ricci::InvalidInputError("tessellate: the mesh is not the spline's domain mesh");
+  if (!options.skip_faces.empty() && options.skip_faces.size() != mesh.n_faces())
+    throw ricci::InvalidInputError("tessellate: skip_faces has " +
+                                   std::to_string(options.skip_faces.size()) + " entries for " +
+                                   std::to_string(mesh.n_faces()) + " faces");
+  std::vector<int> faces;
+  for (int f : space.domain_faces())
+    if (options.skip_faces.empty() || !options.skip_faces[static_cast<std::size_t>(f)]) faces.push_back(f);
 
   Tessellation out;
   out.density = d;
@@ -82,7 +89,7 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
   std::vector<DomainPoint>& params = out.parameters;
 
   // Samples: vertices and edges on first sight (evaluated from that face), then interiors.
-  for (int f : space.domain_faces()) {
+  for (int f : faces) {
     const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(f));
     auto& cv = out.face_corner_vertex_[static_cast<std::size_t>(f)];
     for (int k = 0; k < 3; ++k) cv[k] = mesh.to_vertex_handle(hs[k]).idx();
@@ -107,7 +114,7 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
   }
   const Layout layout{d};
   std::vector<int> interior_first(static_cast<std::size_t>(nf), -1);
-  for (int f : space.domain_faces()) {
+  for (int f : faces) {
     interior_first[static_cast<std::size_t>(f)] = static_cast<int>(params.size());
     for (int a1 = 1; a1 <= d - 2; ++a1) {
       for (int a2 = 1; a2 <= d - 1 - a1; ++a2) {
@@ -142,8 +149,8 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
     return it->second;
   };
 
-  out.triangles.reserve(static_cast<std::size_t>(space.domain_face_count()) * d * d);
-  for (int f : space.domain_faces()) {
+  out.triangles.reserve(faces.size() * static_cast<std::size_t>(d * d));
+  for (int f : faces) {
     const int slot = central.slot(f);
     if (slot < 0) throw ricci::InvalidInputError("tessellate: the central chart lacks face " + std::to_string(f));
     std::array<int, 3> chart_corner{};
@@ -205,8 +212,13 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
 }
 
 double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
-                                int samples_per_edge, int threads) {
+                                int samples_per_edge, int threads,
+                                const std::vector<char>& skip_faces) {
   const ManifoldSplineSpace& space = *spline.space;
+  auto kept = [&](ricci::FaceHandle f) {
+    return f.is_valid() && space.in_domain(f.idx()) &&
+           (skip_faces.empty() || !skip_faces[static_cast<std::size_t>(f.idx())]);
+  };
   struct Probe {
     DomainPoint a, b;
   };
@@ -215,9 +227,7 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
   for (auto e : mesh.edges()) {
     const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
     const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
-    if (!f0.is_valid() || !f1.is_valid() || !space.in_domain(f0.idx()) ||
-        !space.in_domain(f1.idx()))
-      continue;
+    if (!kept(f0) || !kept(f1)) continue;
     // Corner indices of the edge's ends in each face.
     auto corner_of = [&](ricci::FaceHandle f, ricci::VertexHandle v) {
       const auto hs = ricci::face_halfedges(mesh, f);

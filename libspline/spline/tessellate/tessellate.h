@@ -20,6 +20,9 @@ namespace spline {
 struct TessellationOptions {
   int density = 8;  ///< d >= 1: samples per domain edge - 1; d^2 triangles per domain face.
   int threads = 0;  ///< Evaluation threads; 0 = std::thread::hardware_concurrency().
+  /// By face, nonzero: not tessellated (a fill patch covers it, fill/hole_fill.h's
+  /// Rim::covered_faces). Empty: every domain face.
+  std::vector<char> skip_faces;
 };
 
 struct Tessellation {
@@ -29,18 +32,18 @@ struct Tessellation {
   Eigen::MatrixX3d normals;              ///< Unit (du x dv); a zero row only if F is singular.
   std::vector<DomainPoint> parameters;   ///< The domain point each position was evaluated at.
   std::vector<std::array<int, 3>> triangles;  ///< Position indices, counter-clockwise.
-  std::vector<int> triangle_face;             ///< Domain face of each triangle.
+  std::vector<int> triangle_face;  ///< Domain face of each triangle (-1 - r: fill patch r).
 
   /// Render vertices: a position with one central-chart uv (a cut vertex has several).
   std::vector<int> render_position;           ///< By render vertex: its position index.
   Eigen::MatrixX2d uvs;                       ///< By render vertex, central-chart coordinates.
   std::vector<std::array<int, 3>> render_triangles;  ///< Same triangles, render indices.
 
-  /// Position index of a domain vertex (-1 when no domain face touches it).
+  /// Position index of a domain vertex (-1 when no tessellated face touches it).
   [[nodiscard]] int vertex_sample(int vertex) const { return vertex_position_[vertex]; }
   /// Position index of sample i (0..d) of the edge opposite corner k of domain `face`, walking
   /// from corner k + 1 to corner k + 2 (the face's orientation) at barycentric t = i / d (the
-  /// rim sample convention of fill/hole_fill.h). \pre face is a domain face.
+  /// rim sample convention of fill/hole_fill.h). \pre face is a tessellated face.
   [[nodiscard]] int edge_sample(int face, int corner, int i) const;
 
   // Book-keeping for the lookups (filled by tessellate).
@@ -99,8 +102,10 @@ struct WatertightReport {
 /// point, over `samples_per_edge` points of every interior domain edge (each face evaluated in
 /// its own neighbourhood chart, derivatives carried to 3D: the frame does not matter). The
 /// spline is C^(n-1), so this measures rounding and the atlas' transitions.
+/// Faces flagged in `skip_faces` (by face, may be empty) are left out like non-domain faces.
 [[nodiscard]] double max_edge_normal_jump_deg(const ManifoldSpline& spline,
                                               const ricci::Mesh& mesh, int samples_per_edge = 4,
-                                              int threads = 0);
+                                              int threads = 0,
+                                              const std::vector<char>& skip_faces = {});
 
 }  // namespace spline

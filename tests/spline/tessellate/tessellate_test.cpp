@@ -16,6 +16,13 @@ namespace {
 using testing::small_atlas;
 using testing::small_space;
 
+TessellationOptions options(int density, int threads) {
+  TessellationOptions o;
+  o.density = density;
+  o.threads = threads;
+  return o;
+}
+
 struct Case {
   const ricci::Mesh* mesh;
   ManifoldSpline spline;
@@ -42,7 +49,7 @@ TEST(Tessellate, SamplesEveryVertexAndEdgeOnce) {
   const Case c = make_case("genus1.off");
   const auto& space = *c.spline.space;
   for (int d : {1, 2, 5}) {
-    const Tessellation t = tessellate(c.spline, *c.mesh, {d, 2});
+    const Tessellation t = tessellate(c.spline, *c.mesh, options(d, 2));
     const int F = space.domain_face_count();
     const long V = static_cast<long>(c.mesh->n_vertices()), E = static_cast<long>(c.mesh->n_edges());
     EXPECT_EQ(t.positions.rows(), V + E * (d - 1) + F * (d - 1) * (d - 2) / 2) << d;
@@ -53,7 +60,7 @@ TEST(Tessellate, SamplesEveryVertexAndEdgeOnce) {
 // A torus has no cone: the tessellation is a closed surface of genus 1, with no duplicates.
 TEST(Tessellate, GenusOneIsClosed) {
   const Case c = make_case("genus1.off");
-  const Tessellation t = tessellate(c.spline, *c.mesh, {4, 2});
+  const Tessellation t = tessellate(c.spline, *c.mesh, options(4, 2));
   const WatertightReport r = check_watertight(t.triangles, t.positions);
   EXPECT_TRUE(r.closed(1)) << r.boundary_edges << " " << r.euler_characteristic;
   EXPECT_EQ(r.duplicate_positions, 0);
@@ -64,7 +71,7 @@ TEST(Tessellate, GenusOneIsClosed) {
 TEST(Tessellate, GenusTwoLeavesTheConeHoleOpen) {
   const Case c = make_case("genus2.off");
   const int d = 3;
-  const Tessellation t = tessellate(c.spline, *c.mesh, {d, 2});
+  const Tessellation t = tessellate(c.spline, *c.mesh, options(d, 2));
   const WatertightReport r = check_watertight(t.triangles, t.positions);
   EXPECT_TRUE(r.matches(2, 1));
   EXPECT_FALSE(r.closed(2));
@@ -81,7 +88,7 @@ TEST(Tessellate, GenusTwoLeavesTheConeHoleOpen) {
 TEST(Tessellate, OpenModelKeepsItsBoundary) {
   const Case c = make_case("genus1_hole.off");
   const auto& problem = small_atlas("genus1_hole.off", 300).problem;
-  const Tessellation t = tessellate(c.spline, *c.mesh, {3, 2});
+  const Tessellation t = tessellate(c.spline, *c.mesh, options(3, 2));
   const WatertightReport r = check_watertight(t.triangles, t.positions);
   const int cone_hole = problem.cone >= 0 ? 1 : 0;
   EXPECT_TRUE(r.matches(problem.genus, problem.boundary_loops + cone_hole))
@@ -93,7 +100,7 @@ TEST(Tessellate, OpenModelKeepsItsBoundary) {
 TEST(Tessellate, EdgeSamplesAgreeFromBothFaces) {
   const Case c = make_case("genus2.off");
   const int d = 4;
-  const Tessellation t = tessellate(c.spline, *c.mesh, {d, 2});
+  const Tessellation t = tessellate(c.spline, *c.mesh, options(d, 2));
   const auto& space = *c.spline.space;
   const double diag = (t.positions.colwise().maxCoeff() - t.positions.colwise().minCoeff()).norm();
   int checked = 0;
@@ -127,7 +134,7 @@ TEST(Tessellate, EdgeSamplesAgreeFromBothFaces) {
 // and facing like the triangles (the input's orientation) but for a crease's fold or two.
 TEST(Tessellate, NormalsComeFromTheDerivatives) {
   const Case c = make_case("genus2.off");
-  const Tessellation t = tessellate(c.spline, *c.mesh, {3, 2});
+  const Tessellation t = tessellate(c.spline, *c.mesh, options(3, 2));
   const double h = 1e-5;
   double worst = 0.0;
   for (Eigen::Index i = 0; i < t.positions.rows(); i += 7) {
@@ -170,7 +177,7 @@ TEST(Tessellate, NoNormalJumpAcrossDomainEdges) {
 // they tile the domain faces' chart triangles exactly; render vertices split only at the cut.
 TEST(Tessellate, UvsTileTheCentralChart) {
   const Case c = make_case("genus2.off");
-  const Tessellation t = tessellate(c.spline, *c.mesh, {3, 2});
+  const Tessellation t = tessellate(c.spline, *c.mesh, options(3, 2));
   const auto& space = *c.spline.space;
   const ricci::Chart& central = space.atlas().charts[0];
   auto area = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& q) {
@@ -218,17 +225,34 @@ TEST(Tessellate, UvsTileTheCentralChart) {
 // Scaling the control points scales the positions and leaves the normals.
 TEST(Tessellate, ScalingInvariance) {
   Case c = make_case("genus1.off", 2);
-  const Tessellation a = tessellate(c.spline, *c.mesh, {2, 1});
+  const Tessellation a = tessellate(c.spline, *c.mesh, options(2, 1));
   c.spline.control_points *= 1e6;
-  const Tessellation b = tessellate(c.spline, *c.mesh, {2, 1});
+  const Tessellation b = tessellate(c.spline, *c.mesh, options(2, 1));
   EXPECT_LT((b.positions - 1e6 * a.positions).cwiseAbs().maxCoeff(),
             1e-9 * b.positions.cwiseAbs().maxCoeff());
   EXPECT_LT((b.normals - a.normals).cwiseAbs().maxCoeff(), 1e-9);
 }
 
+// Skipped faces (a fill patch's covered faces) leave a hole of their own: one more loop of
+// 3 d edges around one skipped interior face, and no samples of their own interior.
+TEST(Tessellate, SkippedFacesLeaveAHole) {
+  const Case c = make_case("genus1.off");
+  const int d = 3;
+  TessellationOptions opts = options(d, 2);
+  opts.skip_faces.assign(c.mesh->n_faces(), 0);
+  opts.skip_faces[17] = 1;
+  const Tessellation t = tessellate(c.spline, *c.mesh, opts);
+  const WatertightReport r = check_watertight(t.triangles, t.positions);
+  EXPECT_TRUE(r.matches(1, 1));
+  EXPECT_EQ(r.boundary_edges, 3 * d);
+  EXPECT_EQ(static_cast<int>(t.triangles.size()), (c.spline.space->domain_face_count() - 1) * d * d);
+  opts.skip_faces.pop_back();
+  EXPECT_THROW((void)tessellate(c.spline, *c.mesh, opts), ricci::InvalidInputError);
+}
+
 TEST(Tessellate, RefusesBadDensity) {
   const Case c = make_case("genus1.off", 2);
-  EXPECT_THROW((void)tessellate(c.spline, *c.mesh, {0, 1}), ricci::InvalidInputError);
+  EXPECT_THROW((void)tessellate(c.spline, *c.mesh, options(0, 1)), ricci::InvalidInputError);
 }
 
 // The check itself: a tetrahedron, then the ways a soup fails to be watertight.
