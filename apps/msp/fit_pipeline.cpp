@@ -1,5 +1,7 @@
 #include "msp/fit_pipeline.h"
 
+#include "msp/fit_fill.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -71,18 +73,26 @@ int domain_singular_vertex(const ricci::Mesh& dense, const FitRunOptions& option
 // 0.03% of itself and the maximum not at all, for a third of the evaluations.
 constexpr int kProjectionIterations = 4;
 
-// Distances of the input's vertices to the spline (closest-point projection from their
-// parameters, in parallel); vertices over the cone's hole (face -1) are skipped.
-void measure_fit(const ricci::Mesh& dense, const spline::ScanFitResult& scan, FitRun& run) {
+// Distances of the input's vertices to the surface shown: the spline by closest-point
+// projection from their parameters; vertices whose parameter is outside the tessellated faces
+// (the cone's star, a fill's covered faces) to the nearest fill patch. In parallel.
+void measure_fit(const ricci::Mesh& dense, const spline::ScanFitResult& scan,
+                 const std::vector<char>& skip, FitRun& run) {
   const Eigen::MatrixX3d points = vertex_matrix(dense);
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
+  std::vector<char> on_fill(distance.size(), 0);
   spline::parallel_for(distance.size(), 0, [&](std::size_t k) {
     const spline::DomainPoint& start = scan.vertex_parameters[k];
-    if (start.face < 0) return;
-    distance[k] = spline::project_to_spline(scan.spline, start,
-                                            points.row(static_cast<Eigen::Index>(k)).transpose(), kProjectionIterations)
-                      .distance;
+    const Eigen::Vector3d target = points.row(static_cast<Eigen::Index>(k)).transpose();
+    if (start.face >= 0 && !skip[static_cast<std::size_t>(start.face)]) {
+      distance[k] =
+          spline::project_to_spline(scan.spline, start, target, kProjectionIterations).distance;
+      return;
+    }
+    distance[k] = distance_to_fills(run, target, kProjectionIterations);
+    on_fill[k] = distance[k] >= 0;
   });
+  for (char c : on_fill) run.fit_points_on_fills += c;
   double sum = 0.0;
   for (double d : distance) {
     if (d < 0) continue;
@@ -149,21 +159,24 @@ FitRun run_fit_pipeline(const ricci::Mesh& dense, const FitRunOptions& options) 
   const auto& problem = run.scan.atlas.problem;
   run.singular_domain_vertex = problem.cone >= 0 ? run.scan.atlas.chosen_vertex : -1;
 
-  // TODO(fill): cap the cone hole (and the boundaries with --fill-boundaries) once
-  // spline/fill/hole_fill.h lands; the tessellation exposes the rim samples for the weld.
   const ricci::Mesh& domain = problem.mesh;
+  begin("fill");
+  const std::vector<char> skip = fill_rims(run, domain, options);
+
   begin("tessellate");
   spline::TessellationOptions tess;
   tess.density = chosen_density(options, run.scan.spline.space->domain_face_count());
+  tess.skip_faces = skip;
   run.tessellation = spline::tessellate(run.scan.spline, domain, tess);
+  append_fills(run);
 
   begin("measure");
   run.topology = spline::check_watertight(run.tessellation.triangles, run.tessellation.positions);
-  run.open_rims = run.topology.boundary_loops;
   const int expected_loops = options.fill_boundaries ? 0 : run.input.boundary_loops;
   run.watertight = run.topology.matches(run.input.genus, expected_loops);
-  run.edge_normal_jump_deg = spline::max_edge_normal_jump_deg(run.scan.spline, domain, 2);
-  measure_fit(dense, run.scan, run);
+  run.edge_normal_jump_deg = spline::max_edge_normal_jump_deg(run.scan.spline, domain, 1, 0, skip);
+  if (!fill_available()) run.open_rims = run.topology.boundary_loops;
+  measure_fit(dense, run.scan, skip, run);
   begin("");
   run.seconds.emplace_back("total", seconds_since(total));
   return run;
@@ -212,8 +225,10 @@ nlohmann::json fit_report_json(const std::string& path, const FitRun& run,
       {"seam_normal_jump_max_deg", std::max(run.edge_normal_jump_deg, run.fill_normal_jump_deg)},
       {"edge_normal_jump_max_deg", run.edge_normal_jump_deg},
       {"fill_normal_jump_max_deg", run.fill_normal_jump_deg},
-      {"fill_position_gap", run.fill_position_gap},
+      {"fill_position_gap_relative", run.fill_position_gap},
       {"filled_rims", run.filled_rims},
+      {"fill_failures", run.fill_failures},
+      {"fit_points_on_fills", run.fit_points_on_fills},
       {"open_rims", run.open_rims},
       {"watertight", run.watertight},
       {"tessellation",

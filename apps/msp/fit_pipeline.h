@@ -3,6 +3,7 @@
 // atlas, space, parameters, fit, fair), hole filling, watertight tessellation and the figures
 // that say whether it worked (distance to the scan, seam normal jumps, topology of the result).
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,21 +28,26 @@ struct FitRunOptions {
   std::function<void(const std::string& stage)> progress;
 };
 
+struct FitFills;
+
 struct FitRun {
   ricci::SurfaceTopology input;  ///< Of the input mesh.
   spline::ScanFitResult scan;
   int singular_domain_vertex = -1;  ///< Vertex of the domain (simplified) mesh, -1 when none.
+  std::shared_ptr<FitFills> fills;  ///< The rims and their patches (msp/fit_fill.h).
+  std::vector<std::string> fill_failures;  ///< Rims whose fill was refused, with the reason.
   spline::Tessellation tessellation;
   spline::WatertightReport topology;  ///< Of the tessellation (position indices).
   int filled_rims = 0;
-  int open_rims = 0;  ///< Rims left open (input boundaries without --fill-boundaries, ...).
+  int open_rims = 0;  ///< Rims left open (boundaries without --fill-boundaries, failures).
   bool watertight = false;  ///< Manifold, and the input's topology minus what was filled.
   double fit_rms = 0.0, fit_max = 0.0;  ///< Input vertices to the spline (projection).
-  int fit_points = 0;                   ///< Input vertices measured (those over the domain).
+  int fit_points = 0;                   ///< Input vertices measured.
+  int fit_points_on_fills = 0;          ///< Of those, measured against a fill patch.
   double bbox_diagonal = 0.0;           ///< Of the input.
   double edge_normal_jump_deg = 0.0;    ///< Across domain edges (the spline's own seams).
   double fill_normal_jump_deg = 0.0;    ///< Across the rims of the fill patches.
-  double fill_position_gap = 0.0;       ///< Largest gap between a patch and the spline.
+  double fill_position_gap = 0.0;  ///< Largest gap patch - spline over the domain diagonal.
   /// Wall-clock seconds by stage, in the order run (read and write are the caller's).
   std::vector<std::pair<std::string, double>> seconds;
 };
