@@ -108,8 +108,26 @@ void add_cut_path_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, doubl
   }
 }
 
+/// Develops exactly `hood` (the neighbourhood of `face`) as a chart of its own; returns its
+/// index, or -1 (and adds nothing) when even the neighbourhood is not one planar piece (it
+/// wraps around a handle).
+int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue, int face,
+                   const std::vector<int>& hood, AffineAtlas& atlas) {
+  Eigen::Matrix<double, 3, 2> seed_positions;
+  for (int k = 0; k < 3; ++k) {
+    seed_positions.row(k) = atlas.charts[0].positions.row(atlas.charts[0].corners(face, k));
+  }
+  Chart chart = detail::develop_chart(mesh, lengths, hood, face, seed_positions, glue);
+  if (!detail::holds_as_one_piece(mesh, chart, hood)) return -1;
+  chart.kind = ChartKind::face;
+  chart.source = face;
+  atlas.charts.push_back(std::move(chart));
+  return static_cast<int>(atlas.charts.size()) - 1;
+}
+
 /// Picks, for every domain face, the first chart holding its neighbourhood as one piece:
-/// central, then cut-path charts holding the face, then (built on demand) vertex charts.
+/// central, then cut-path charts holding the face, then (built on demand) vertex charts, then a
+/// chart of the face's own neighbourhood.
 void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue,
                                  AffineAtlas& atlas) {
   std::vector<std::vector<int>> charts_of_face(mesh.n_faces());
@@ -148,6 +166,7 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
         found = it->second;
       }
     }
+    if (found < 0) found = add_face_chart(mesh, lengths, glue, f.idx(), hood, atlas);
     atlas.neighbourhood_chart[f.idx()] = found;
     if (found < 0) ++atlas.uncovered_faces;
   }

@@ -21,12 +21,16 @@ enum class ChartKind {
   central,   ///< The laid-out fundamental domain (every face once).
   cut_path,  ///< Two-ring neighbourhood of one cut path (loop or boundary connector).
   vertex,    ///< Two-ring of one vertex: only where no other chart holds a face's neighbourhood.
+  /// The neighbourhood of one face (its vertices' stars): where even the vertex two-rings wrap
+  /// around a handle only a few edges thick (CAD meshes), so they develop into several pieces.
+  face,
 };
 
 /// One planar chart: a set of original faces, each placed once, with chart-local vertex copies.
 struct Chart {
   ChartKind kind = ChartKind::central;
-  /// cut_path: index into AffineAtlas::cut_paths(); vertex: the original vertex; central: -1.
+  /// cut_path: index into AffineAtlas::cut_paths(); vertex: the original vertex; face: the
+  /// original face; central: -1.
   int source = -1;
   std::vector<int> faces;  ///< Original face indices, ascending.
   /// Row r: chart vertices of the corners of faces[r], corner k = to_vertex of the k-th halfedge

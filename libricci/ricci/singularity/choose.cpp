@@ -125,7 +125,7 @@ std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const Singula
 }
 
 double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options) {
-  OneConeProblem problem = prepare_one_cone(mesh, vertex, options.valence);
+  OneConeProblem problem = prepare_one_cone(mesh, vertex, options.valence, false);
   FlowResult result = solve_one_cone_flow(problem, options.flow, options.keep_metric);
   if (!result.converged()) return kInfinity;
   return measure_distortion(problem.mesh, result.lengths).area_distortion;

@@ -4,7 +4,10 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/neighbourhoods.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/metric/subdivide.h"
+#include "ricci/singularity/open_target.h"
 
 namespace ricci {
 namespace {
@@ -103,18 +106,44 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options
 
 }  // namespace
 
+namespace {
+
+// The harmonic boundary target where every boundary angle stays positive (a sharp corner can
+// ask for more than pi), else the curvature spread by length.
+Targets open_surface_target(const Mesh& mesh) {
+  Targets harmonic = harmonic_boundary_target(mesh);
+  const double margin = 1e-3;
+  if ((harmonic.curvature.array() < M_PI - margin).all()) return harmonic;
+  return boundary_target(mesh, BoundaryMode::SpreadByLength);
+}
+
+// Boundary targets to try after the problem's own, for open surfaces.
+std::vector<std::pair<std::string, Targets>> alternative_boundary_targets(const OneConeProblem& problem) {
+  std::vector<std::pair<std::string, Targets>> out;
+  if (problem.kind != OneConeKind::OpenSurface) return out;
+  Targets by_length = boundary_target(problem.mesh, BoundaryMode::SpreadByLength);
+  if (by_length.curvature != problem.targets.curvature) {
+    out.emplace_back("boundary curvature spread by length", std::move(by_length));
+  }
+  if (problem.boundary_loops > 1) {
+    out.emplace_back("circle domain", boundary_target(problem.mesh, BoundaryMode::CircleDomain));
+  }
+  return out;
+}
+
+}  // namespace
+
 FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
   if (keep_metric) return flow(problem.mesh, problem.targets, options);
   std::vector<std::string> failures;
   FlowResult result = try_metrics(problem, options, failures);
-  if (!result.converged() && problem.kind == OneConeKind::OpenSurface && problem.boundary_loops > 1) {
-    // Spreading 2*pi*chi over all loops by length bends inner holes the wrong way on scans with
-    // many holes; a circle-domain split (round holes) is the natural second try.
-    OneConeProblem circle = problem;
-    circle.targets = boundary_target(problem.mesh, BoundaryMode::CircleDomain);
-    failures.push_back("boundary spread by length failed with every metric; trying a circle domain");
-    FlowResult second = try_metrics(circle, options, failures);
-    if (second.converged()) result = std::move(second);
+  for (auto& [name, targets] : alternative_boundary_targets(problem)) {
+    if (result.converged()) break;
+    OneConeProblem other = problem;
+    other.targets = std::move(targets);
+    failures.push_back("failed with every metric; trying the boundary target: " + name);
+    FlowResult next = try_metrics(other, options, failures);
+    if (next.converged()) result = std::move(next);
   }
   result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
   return result;
@@ -125,7 +154,9 @@ bool needs_singular_vertex(const Mesh& mesh) {
   return t.boundary_loops == 0 && t.genus != 1;
 }
 
-OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence) {
+namespace {
+
+OneConeProblem prepare_on(const Mesh& mesh, int vertex, const ValenceOptions& valence) {
   OneConeProblem problem;
   const SurfaceTopology topology = surface_topology(mesh);
   problem.genus = topology.genus;
@@ -135,7 +166,10 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
     problem.kind = problem.boundary_loops > 0 ? OneConeKind::OpenSurface : OneConeKind::FlatTorus;
     problem.mesh = mesh;
     problem.input_vertex = identity_map(n, 0);
-    problem.targets = single_cone_target(problem.mesh, 0);  // no cone on these topologies
+    // No cone on these topologies. Open surfaces: the harmonic boundary target keeps the
+    // boundary's lengths (least area distortion; the others are fall-backs in the solve).
+    problem.targets = problem.kind == OneConeKind::OpenSurface ? open_surface_target(problem.mesh)
+                                                                : single_cone_target(problem.mesh, 0);
     return problem;
   }
   check_vertex(mesh, vertex);
@@ -155,6 +189,30 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
   problem.valence_splits = modified.splits;
   problem.input_vertex = identity_map(n, modified.splits);
   problem.targets = single_cone_target(problem.mesh, vertex);
+  return problem;
+}
+
+}  // namespace
+
+OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence,
+                                bool refine_thin_handles) {
+  if (!refine_thin_handles) return prepare_on(mesh, vertex, valence);
+  // Thin handles first: a face whose neighbourhood wraps around one cannot get a chart.
+  Mesh refined;
+  int subdivisions = 0;
+  while (count_non_disk_face_neighbourhoods(subdivisions > 0 ? refined : mesh) > 0 &&
+         subdivisions < kMaxHandleSubdivisions) {
+    refined = subdivide_midpoint(subdivisions > 0 ? refined : mesh);
+    ++subdivisions;
+  }
+  if (subdivisions == 0) return prepare_on(mesh, vertex, valence);
+  OneConeProblem problem = prepare_on(refined, vertex, valence);
+  problem.subdivisions = subdivisions;
+  // Midpoint subdivision keeps the input's vertex indices and appends the midpoints.
+  const int n = static_cast<int>(mesh.n_vertices());
+  for (int& v : problem.input_vertex) {
+    if (v >= n) v = -1;
+  }
   return problem;
 }
 

@@ -6,7 +6,9 @@
 //                         modification;
 //   closed, genus 0   -> the chosen vertex's star is removed (a cone of 4*pi has no flat
 //                         realisation) and the new boundary carries the curvature 2*pi;
-//   open               -> flat interior, boundary curvature 2*pi*chi spread by boundary length.
+//   open               -> flat interior, all curvature (2*pi*chi) on the boundary, by default
+//                         where the boundary keeps its lengths (open_target.h); spread by
+//                         length or as a circle domain when that flow fails.
 #include <string>
 #include <vector>
 
@@ -30,15 +32,26 @@ struct OneConeProblem {
   std::vector<int> input_vertex;
   Targets targets;
   int valence_splits = 0;
+  /// Midpoint subdivisions applied first because some face's neighbourhood wrapped around a
+  /// thin handle (mesh/neighbourhoods.h); 0 on almost every mesh.
+  int subdivisions = 0;
   int genus = 0;
   int boundary_loops = 0;
 };
 
-/// Builds the problem around `vertex` (ignored for genus 1 and open surfaces).
+/// At most this many midpoint subdivisions are spent on thin handles.
+inline constexpr int kMaxHandleSubdivisions = 2;
+
+/// Builds the problem around `vertex` (ignored for genus 1 and open surfaces). When some face's
+/// neighbourhood is not a disk (a handle a few edges thick) the mesh is first subdivided, at
+/// most kMaxHandleSubdivisions times; input vertices keep their indices.
 /// \pre a connected oriented 2-manifold triangle mesh.
 /// \throw InvalidInputError for a vertex out of range or on the boundary when it is needed.
+/// `refine_thin_handles` = false skips that (the flow alone does not need it: the singularity
+/// choice's verifying flows run on the mesh as it is).
 [[nodiscard]] OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex,
-                                              const ValenceOptions& valence = {});
+                                              const ValenceOptions& valence = {},
+                                              bool refine_thin_handles = true);
 
 /// Default flow settings for one-cone problems (scheme and radii are chosen per problem by
 /// solve_one_cone_flow; tolerance 1e-10).

@@ -89,7 +89,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"closed_g3/elephant_cgal.off", 0}, Case{"models/genus3.off", 0},
                       Case{"open/head.off", -1}, Case{"open/eight_hole.off", -1},
                       Case{"open/intersection_quads.off", -1}, Case{"models/genus2_hole.off", -1},
-                      Case{"models/cap_open.off", -1}));
+                      Case{"models/cap_open.off", -1}, Case{"open/lion.off", -1},
+                      Case{"open/double-torus-3-holes_quad.off", -1},
+                      Case{"open/mech-holes-shark.off", -1}, Case{"closed_g2/joint.off", -1},
+                      Case{"closed_g2/femur.off", 1458}));
 
 TEST(OneConeAtlas, AutomaticChoiceRunsFewFlows) {
   ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));

@@ -1,0 +1,49 @@
+#pragma once
+// Internal to hole filling: the patch's planar domain D (a convex polygon) and triangulations of
+// nested copies of it (the patch's spline triangulation and its tessellation).
+#include <Eigen/Core>
+#include <vector>
+
+#include "spline/fill/hole_fill.h"
+#include "spline/planar/triangulation.h"
+
+namespace spline::fill_detail {
+
+/// Corners of D on a circle of perimeter-length ~ sum(lengths) centred at the origin, clockwise,
+/// corner j at the start of edge j; the angle of edge j mixes its share of the length (0.8) with
+/// an equal share (0.2), so no edge takes half the circle and D stays convex and non-degenerate.
+[[nodiscard]] std::vector<Eigen::Vector2d> circle_layout(const std::vector<double>& lengths);
+
+[[nodiscard]] double polygon_perimeter(const std::vector<Eigen::Vector2d>& polygon);
+/// Signed area (positive counter-clockwise).
+[[nodiscard]] double polygon_area(const std::vector<Eigen::Vector2d>& polygon);
+
+/// n points by arc length along the closed polygon scaled by s about `center`, from its corner 0.
+[[nodiscard]] std::vector<Eigen::Vector2d> sample_scaled_polygon(
+    const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& center, double scale,
+    int n);
+
+/// Triangulates the region bounded by `outer` (counter-clockwise points on a convex curve around
+/// `center`) with rings = copies of the convex counter-clockwise `shape` scaled about `center`
+/// by `scales` (decreasing, below the outer ring's), then a fan to the centre. Ring r gets about
+/// perimeter(shape) * scales[r] / spacing points. Vertex i of the result is outer[i] for
+/// i < outer.size(); triangles are counter-clockwise, each diagonal the shorter valid one.
+[[nodiscard]] PlanarTriangulation nested_rings(const std::vector<Eigen::Vector2d>& outer,
+                                               const std::vector<Eigen::Vector2d>& shape,
+                                               const Eigen::Vector2d& center,
+                                               const std::vector<double>& scales, double spacing);
+
+/// Scales s = start, start - step, ... down to the last above 0.75 step (the fan then closes the
+/// rest: its triangles are about one ring step high).
+[[nodiscard]] std::vector<double> ring_scales(double start, double step);
+
+/// The surrounding surface at rim sample (edge, t), evaluated in the edge's face one-sided
+/// (tie-break towards the face's interior), with the edge's chart geometry.
+struct RimSample {
+  SurfaceJet jet;
+  Eigen::Vector3d outward_derivative;  ///< dS along the chart's unit normal leaving the face
+  double chart_length = 0.0;           ///< the rim edge's length in the chart
+};
+[[nodiscard]] RimSample sample_rim(const ManifoldSpline& spline, const RimEdge& edge, double t);
+
+}  // namespace spline::fill_detail

@@ -1,0 +1,82 @@
+// Seam measurement and tessellation of a filled rim (hole_fill.h).
+#include <Eigen/Geometry>
+#include <cmath>
+#include <string>
+
+#include "ricci/mesh/errors.h"
+#include "spline/fill/hole_fill.h"
+#include "spline/fill/patch_domain.h"
+
+namespace spline {
+
+SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int samples_per_edge) {
+  if (samples_per_edge < 1) {
+    throw ricci::InvalidInputError("measure_seam: samples_per_edge must be >= 1, got " +
+                                   std::to_string(samples_per_edge));
+  }
+  SeamReport report;
+  double sum_squares = 0.0;
+  const int m = static_cast<int>(fill.rim.edges.size());
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i <= samples_per_edge; ++i) {
+      const double t = static_cast<double>(i) / samples_per_edge;
+      const auto s = fill_detail::sample_rim(spline, fill.rim.edges[j], t);
+      const PatchPoint p = fill.evaluate(fill.parameter(j, t));
+      // atan2 of |n1 x n2| and n1 . n2 stays accurate for tiny angles (acos does not).
+      const double angle =
+          std::atan2(s.jet.normal.cross(p.normal).norm(), s.jet.normal.dot(p.normal));
+      report.max_normal_jump_deg = std::max(report.max_normal_jump_deg, angle * 180.0 / M_PI);
+      const double gap = (p.position - s.jet.position).norm() / fill.diagonal;
+      report.max_position_gap = std::max(report.max_position_gap, gap);
+      sum_squares += gap * gap;
+      ++report.samples;
+    }
+  }
+  report.rms_position_gap = std::sqrt(sum_squares / std::max(report.samples, 1));
+  return report;
+}
+
+PatchTessellation tessellate_fill(const HoleFill& fill, int d) {
+  if (d < 1) {
+    throw ricci::InvalidInputError("tessellate_fill: density must be >= 1, got " +
+                                   std::to_string(d));
+  }
+  const int m = static_cast<int>(fill.corners.size());
+  const int boundary = m * d;
+  // The rim samples in rim order run clockwise around D; the rings want counter-clockwise, so
+  // outer[k] is rim sample boundary - 1 - k.
+  std::vector<Eigen::Vector2d> outer(boundary);
+  for (int k = 0; k < boundary; ++k) {
+    const int r = boundary - 1 - k;
+    outer[k] = fill.parameter(r / d, static_cast<double>(r % d) / d);
+  }
+  const std::vector<Eigen::Vector2d> shape(fill.corners.rbegin(), fill.corners.rend());
+  const double perimeter = fill_detail::polygon_perimeter(shape);
+  const double spacing = perimeter / boundary;
+  const double apothem = 2.0 * fill_detail::polygon_area(shape) / perimeter;
+  const double step = 0.5 * std::sqrt(3.0) * spacing / apothem;
+  const PlanarTriangulation t = fill_detail::nested_rings(
+      outer, shape, fill.center, fill_detail::ring_scales(1.0 - step, step), spacing);
+
+  PatchTessellation out;
+  const int interior = static_cast<int>(t.positions.size()) - boundary;
+  out.positions.resize(interior, 3);
+  out.normals.resize(interior, 3);
+  out.parameters.resize(interior, 2);
+  for (int i = 0; i < interior; ++i) {
+    const Eigen::Vector2d u = t.positions[boundary + i];
+    const PatchPoint p = fill.evaluate(u);
+    out.positions.row(i) = p.position.transpose();
+    out.normals.row(i) = p.normal.transpose();
+    out.parameters.row(i) = u.transpose();
+  }
+  auto index = [&](int v) { return v < boundary ? -(1 + (boundary - 1 - v)) : v - boundary; };
+  out.triangles.resize(static_cast<Eigen::Index>(t.triangles.size()), 3);
+  for (std::size_t k = 0; k < t.triangles.size(); ++k) {
+    for (int c = 0; c < 3; ++c)
+      out.triangles(static_cast<Eigen::Index>(k), c) = index(t.triangles[k][c]);
+  }
+  return out;
+}
+
+}  // namespace spline
