@@ -5,15 +5,10 @@
 
 #include <ricci/mesh/errors.h>
 
-#if __has_include(<spline/fill/hole_fill.h>)
 #include <spline/fill/hole_fill.h>
 #include <spline/tessellate/tessellate_fill.h>
-#define MSP_HAVE_FILL 1
-#endif
 
 namespace msp {
-
-#ifdef MSP_HAVE_FILL
 
 struct FitFills {
   std::vector<spline::Rim> rims;
@@ -61,8 +56,6 @@ double distance_to_patch(const spline::HoleFill& fill, const spline::PatchTessel
 }
 
 }  // namespace
-
-bool fill_available() { return true; }
 
 std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRunOptions& options) {
   const auto& space = *run.scan.spline.space;
@@ -113,23 +106,5 @@ double distance_to_fills(const FitRun& run, const Eigen::Vector3d& target, int i
   return best;
 }
 
-#else  // no fill/hole_fill.h in this build: every rim stays open
-
-struct FitFills {};
-
-bool fill_available() { return false; }
-
-std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRunOptions&) {
-  std::vector<char> skip(domain.n_faces(), 0);
-  for (int f = 0; f < static_cast<int>(domain.n_faces()); ++f)
-    skip[static_cast<std::size_t>(f)] = !run.scan.spline.space->in_domain(f);
-  return skip;
-}
-
-void append_fills(FitRun&) {}
-
-double distance_to_fills(const FitRun&, const Eigen::Vector3d&, int) { return -1.0; }
-
-#endif
 
 }  // namespace msp

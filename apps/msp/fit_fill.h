@@ -1,7 +1,6 @@
 #pragma once
 // The hole-filling stage of `msp fit` (libspline's fill/hole_fill.h): which rims are capped,
 // which faces the tessellation skips, welding the patches in, and distances to the patches.
-// Until fill/hole_fill.h is in the build, the stage leaves every rim open (fill_available()).
 #include <string>
 #include <vector>
 
@@ -11,9 +10,6 @@
 #include "msp/fit_pipeline.h"
 
 namespace msp {
-
-/// True when the build has hole filling.
-[[nodiscard]] bool fill_available();
 
 /// Caps the cone's hole and excluded-face holes (and the boundaries with fill_boundaries);
 /// fills run.fills, filled_rims, open_rims, fill_failures and the seam figures. Returns, by

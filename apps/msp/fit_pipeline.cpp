@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
+#include <unordered_map>
 
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/simplify.h>
@@ -105,6 +108,40 @@ void measure_fit(const ricci::Mesh& dense, const spline::ScanFitResult& scan,
       points.rows() > 0 ? (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm() : 0.0;
 }
 
+// The tessellation as a glTF reader sees it: float positions, equal ones welded.
+spline::WatertightReport float_welded_topology(const spline::Tessellation& t) {
+  struct Key {
+    float x, y, z;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      std::uint32_t b[3];
+      std::memcpy(b, &k, sizeof b);
+      return (std::size_t{b[0]} * 0x9E3779B1u) ^ (std::size_t{b[1]} * 0x85EBCA77u) ^ b[2];
+    }
+  };
+  std::unordered_map<Key, int, Hash> index;
+  std::vector<int> welded(static_cast<std::size_t>(t.positions.rows()));
+  std::vector<Key> keys;
+  for (Eigen::Index i = 0; i < t.positions.rows(); ++i) {
+    const Key k{static_cast<float>(t.positions(i, 0)), static_cast<float>(t.positions(i, 1)),
+                static_cast<float>(t.positions(i, 2))};
+    auto [it, inserted] = index.emplace(k, static_cast<int>(keys.size()));
+    if (inserted) keys.push_back(k);
+    welded[static_cast<std::size_t>(i)] = it->second;
+  }
+  Eigen::MatrixX3d positions(static_cast<Eigen::Index>(keys.size()), 3);
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    positions.row(static_cast<Eigen::Index>(i)) << keys[i].x, keys[i].y, keys[i].z;
+  std::vector<std::array<int, 3>> triangles;
+  triangles.reserve(t.triangles.size());
+  for (const auto& tri : t.triangles)
+    triangles.push_back({welded[static_cast<std::size_t>(tri[0])], welded[static_cast<std::size_t>(tri[1])],
+                         welded[static_cast<std::size_t>(tri[2])]});
+  return spline::check_watertight(triangles, positions);
+}
+
 // Density: about 150k surface triangles in all, 2..8 samples per domain edge.
 int chosen_density(const FitRunOptions& options, int domain_faces) {
   if (options.density > 0) return options.density;
@@ -173,9 +210,10 @@ FitRun run_fit_pipeline(const ricci::Mesh& dense, const FitRunOptions& options) 
   begin("measure");
   run.topology = spline::check_watertight(run.tessellation.triangles, run.tessellation.positions);
   const int expected_loops = options.fill_boundaries ? 0 : run.input.boundary_loops;
-  run.watertight = run.topology.matches(run.input.genus, expected_loops);
+  run.float_topology = float_welded_topology(run.tessellation);
+  run.watertight = run.topology.matches(run.input.genus, expected_loops) &&
+                   run.float_topology.matches(run.input.genus, expected_loops);
   run.edge_normal_jump_deg = spline::max_edge_normal_jump_deg(run.scan.spline, domain, 1, 0, skip);
-  if (!fill_available()) run.open_rims = run.topology.boundary_loops;
   measure_fit(dense, run.scan, skip, run);
   begin("");
   run.seconds.emplace_back("total", seconds_since(total));
@@ -242,7 +280,9 @@ nlohmann::json fit_report_json(const std::string& path, const FitRun& run,
         {"nonmanifold_edges", t.nonmanifold_edges},
         {"misoriented_edges", t.misoriented_edges},
         {"nonmanifold_vertices", t.nonmanifold_vertices},
-        {"duplicate_positions", t.duplicate_positions}}},
+        {"duplicate_positions", t.duplicate_positions},
+        {"float32_degenerate_triangles", run.float_topology.degenerate_triangles},
+        {"float32_nonmanifold_edges", run.float_topology.nonmanifold_edges}}},
       {"fit_constraint_residual", run.scan.fit.max_constraint_residual},
       {"seconds", seconds},
   };

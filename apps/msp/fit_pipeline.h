@@ -38,9 +38,14 @@ struct FitRun {
   std::vector<std::string> fill_failures;  ///< Rims whose fill was refused, with the reason.
   spline::Tessellation tessellation;
   spline::WatertightReport topology;  ///< Of the tessellation (position indices).
+  /// Of the tessellation as a file holds it: positions rounded to float and welded by value (a
+  /// surface that collapses somewhere shows degenerate triangles here, not in `topology`).
+  spline::WatertightReport float_topology;
   int filled_rims = 0;
   int open_rims = 0;  ///< Rims left open (boundaries without --fill-boundaries, failures).
-  bool watertight = false;  ///< Manifold, and the input's topology minus what was filled.
+  /// Manifold (as computed and as float32 welded by value), and the input's topology minus
+  /// what was filled.
+  bool watertight = false;
   double fit_rms = 0.0, fit_max = 0.0;  ///< Input vertices to the spline (projection).
   int fit_points = 0;                   ///< Input vertices measured.
   int fit_points_on_fills = 0;          ///< Of those, measured against a fill patch.

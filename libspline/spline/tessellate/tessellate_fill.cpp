@@ -1,4 +1,3 @@
-#if __has_include("spline/fill/hole_fill.h")
 #include "spline/tessellate/tessellate_fill.h"
 
 #include <cmath>
@@ -86,5 +85,3 @@ void append_fill(Tessellation& t, const HoleFill& fill, const PatchTessellation&
 }
 
 }  // namespace spline
-
-#endif

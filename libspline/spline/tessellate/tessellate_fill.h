@@ -2,8 +2,6 @@
 // Welding the hole-filling patches (fill/hole_fill.h) into a spline tessellation: the patch's rim
 // samples ARE the tessellation's edge samples of the rim edges (same convention: t = i / d from
 // the rim edge's start corner), so surface + patches are one closed welded surface.
-// Built only when fill/hole_fill.h is present (it lands from another branch).
-#if __has_include("spline/fill/hole_fill.h")
 #include "spline/fill/hole_fill.h"
 #include "spline/tessellate/tessellate.h"
 
@@ -21,5 +19,3 @@ void append_fill(Tessellation& t, const HoleFill& fill, const PatchTessellation&
                  int patch_index);
 
 }  // namespace spline
-
-#endif

@@ -9,6 +9,7 @@
 #include "spline/fit/fit.h"
 #include "spline/manifold/manifold_fixtures.h"
 #include "spline/tessellate/tessellate.h"
+#include "spline/tessellate/tessellate_fill.h"
 
 namespace spline {
 namespace {
@@ -248,6 +249,43 @@ TEST(Tessellate, SkippedFacesLeaveAHole) {
   EXPECT_EQ(static_cast<int>(t.triangles.size()), (c.spline.space->domain_face_count() - 1) * d * d);
   opts.skip_faces.pop_back();
   EXPECT_THROW((void)tessellate(c.spline, *c.mesh, opts), ricci::InvalidInputError);
+}
+
+// The cone's hole capped: the patch's rim samples are the surface's own edge samples, so the
+// welded surface is closed of genus 2 whatever the patch's shape; patch vertices get render
+// vertices of their own along the rim (a uv seam), never new positions there.
+TEST(Tessellate, FillPatchWeldsIntoAClosedSurface) {
+  const Case c = make_case("genus2.off");
+  const auto& space = *c.spline.space;
+  const auto rims = find_rims(space, *c.mesh);
+  ASSERT_EQ(rims.size(), 1u);
+  ASSERT_EQ(rims[0].kind, Rim::Kind::cone_hole);
+  const int d = 3;
+  TessellationOptions opts = options(d, 2);
+  opts.skip_faces.assign(c.mesh->n_faces(), 0);
+  for (int f = 0; f < static_cast<int>(c.mesh->n_faces()); ++f) opts.skip_faces[f] = !space.in_domain(f);
+  for (int f : rims[0].covered_faces) opts.skip_faces[f] = 1;
+  Tessellation t = tessellate(c.spline, *c.mesh, opts);
+  const WatertightReport open = check_watertight(t.triangles, t.positions);
+  EXPECT_TRUE(open.matches(2, 1));
+  EXPECT_EQ(open.boundary_edges, static_cast<int>(rims[0].edges.size()) * d);
+  const HoleFill fill = fill_rim(c.spline, *c.mesh, rims[0]);
+  const PatchTessellation patch = tessellate_fill(fill, d);
+  const auto positions_before = t.positions.rows();
+  const auto triangles_before = t.triangles.size();
+  append_fill(t, fill, patch, 0);
+  EXPECT_EQ(t.positions.rows(), positions_before + patch.positions.rows());
+  EXPECT_EQ(t.triangles.size(), triangles_before + static_cast<std::size_t>(patch.triangles.rows()));
+  const WatertightReport closed = check_watertight(t.triangles, t.positions);
+  EXPECT_TRUE(closed.closed(2)) << closed.boundary_edges << " " << closed.misoriented_edges;
+  ASSERT_EQ(t.render_position.size(), static_cast<std::size_t>(t.uvs.rows()));
+  for (std::size_t i = triangles_before; i < t.triangles.size(); ++i) {
+    EXPECT_EQ(t.triangle_face[i], -1);
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(t.render_position[t.render_triangles[i][k]], t.triangles[i][k]);
+  }
+  // A patch made at another density is refused.
+  Tessellation other = tessellate(c.spline, *c.mesh, opts);
+  EXPECT_THROW(append_fill(other, fill, tessellate_fill(fill, d + 2), 0), ricci::InvalidInputError);
 }
 
 TEST(Tessellate, RefusesBadDensity) {
