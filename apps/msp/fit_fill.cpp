@@ -66,12 +66,19 @@ std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRun
   fills->rims = spline::find_rims(space, domain);
   for (const auto& rim : fills->rims) {
     for (int f : rim.covered_faces) skip[static_cast<std::size_t>(f)] = 1;
-    if (rim.kind == spline::Rim::Kind::boundary && !options.fill_boundaries) {
+    // A closed input's domain boundary is the punctured sphere's removed star: always capped.
+    const bool input_boundary =
+        rim.kind == spline::Rim::Kind::boundary && run.input.boundary_loops > 0;
+    if (input_boundary && !options.fill_boundaries) {
       ++run.open_rims;
       continue;
     }
     try {
-      fills->fills.push_back(spline::fill_rim(run.scan.spline, domain, rim));
+      spline::FillOptions fill_options;
+      // The punctured sphere's hole is a cone hole in all but name: filled like one (its
+      // projection may fold; the patch is laid out on a circle either way).
+      fill_options.require_simple_projection = input_boundary;
+      fills->fills.push_back(spline::fill_rim(run.scan.spline, domain, rim, fill_options));
       const auto& fill = fills->fills.back();
       run.fill_normal_jump_deg = std::max(run.fill_normal_jump_deg, fill.max_normal_jump_deg);
       run.fill_position_gap = std::max(run.fill_position_gap, fill.max_position_gap);
