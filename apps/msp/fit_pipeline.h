@@ -55,6 +55,9 @@ struct FitRun {
   double fill_position_gap = 0.0;  ///< Largest gap patch - spline over the domain diagonal.
   /// Wall-clock seconds by stage, in the order run (read and write are the caller's).
   std::vector<std::pair<std::string, double>> seconds;
+  /// CPU seconds of the process (all threads) by stage: on a shared machine the wall clock
+  /// includes waiting for a core, this does not.
+  std::vector<std::pair<std::string, double>> cpu_seconds;
 };
 
 /// Minimum --domain-faces for a surface of this genus: the domain must hold the cone's star,
