@@ -1,5 +1,6 @@
 // msp fit MESH -o OUT.glb: the whole scan-to-glTF job of issue 6 (simplify, one-cone atlas,
 // spline fit and fairing, hole filling, watertight tessellation, glTF export, JSON report).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -93,7 +94,8 @@ FitRunOptions parse_options(const Args& args) {
 
 void check_outputs(const Args& args) {
   const auto glb = args.get("output");
-  if (glb && !ends_with(*glb, ".glb")) throw UsageError("-o must name a .glb file, not '" + *glb + "'");
+  if (glb && !ends_with(*glb, ".glb"))
+    throw UsageError("-o must name a .glb file, not '" + *glb + "'");
   if (auto obj = args.get("obj"); obj && !ends_with(*obj, ".obj"))
     throw UsageError("--obj must name an .obj file, not '" + *obj + "'");
   if (auto ply = args.get("ply"); ply && !ends_with(*ply, ".ply"))

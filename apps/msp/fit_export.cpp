@@ -75,7 +75,8 @@ gltf::Mesh surface_mesh(const spline::Tessellation& t, const FitSceneOptions& op
       options.checkerboard ? std::array<double, 4>{1, 1, 1, 1} : linear_colour({196, 178, 150});
   surface.material.double_sided = double_sided;
   if (options.checkerboard)
-    surface.material.texture = gltf::Texture{encode_png(checkerboard(options.texture)), true, false};
+    surface.material.texture =
+        gltf::Texture{encode_png(checkerboard(options.texture)), true, false};
   surface.extras = {{"uv", "central chart of the affine atlas, scaled into the unit square"},
                     {"uv_per_metric_unit", scale},
                     {"density", t.density}};
@@ -102,8 +103,8 @@ gltf::Mesh control_net_mesh(const spline::ManifoldSpline& spline) {
           --other[i];
           ++other[j];
           net.indices.push_back(static_cast<std::uint32_t>(from));
-          net.indices.push_back(
-              static_cast<std::uint32_t>(space.function_index(f, spline::multi_index_position(other))));
+          net.indices.push_back(static_cast<std::uint32_t>(
+              space.function_index(f, spline::multi_index_position(other))));
         }
       }
     }
@@ -118,7 +119,8 @@ gltf::Mesh domain_mesh_lines(const ricci::Mesh& mesh, const spline::ManifoldSpli
   lines.name = "domain mesh";
   lines.topology = gltf::Topology::lines;
   lines.positions.resize(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
-  for (auto v : mesh.vertices()) lines.positions.row(v.idx()) = ricci::to_eigen(mesh.point(v)).transpose();
+  for (auto v : mesh.vertices())
+    lines.positions.row(v.idx()) = ricci::to_eigen(mesh.point(v)).transpose();
   for (auto e : mesh.edges()) {
     const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
     const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
@@ -146,7 +148,8 @@ std::vector<int> halfedge_samples(const ricci::Mesh& mesh, const spline::Manifol
     for (int k = 0; k < 3; ++k) {
       if (hs[(k + 2) % 3] != g) continue;  // h_{k+2} is the edge opposite corner k
       std::vector<int> samples;
-      for (int i = 0; i <= d; ++i) samples.push_back(t.edge_sample(f.idx(), k, reversed ? d - i : i));
+      for (int i = 0; i <= d; ++i)
+        samples.push_back(t.edge_sample(f.idx(), k, reversed ? d - i : i));
       return samples;
     }
   }
@@ -177,7 +180,8 @@ void add_cut_loops(const FitRun& run, gltf::Scene& scene) {
     }
     if (points.empty()) continue;
     lines.positions.resize(static_cast<Eigen::Index>(points.size()), 3);
-    for (std::size_t i = 0; i < points.size(); ++i) lines.positions.row(static_cast<Eigen::Index>(i)) = points[i];
+    for (std::size_t i = 0; i < points.size(); ++i)
+      lines.positions.row(static_cast<Eigen::Index>(i)) = points[i];
     lines.material.name = lines.name;
     lines.material.base_color = linear_colour(loop_colour_rgb(static_cast<int>(loop)));
     lines.extras = {{"loop", loop}, {"name", names[loop]}};
@@ -189,7 +193,8 @@ void add_cut_loops(const FitRun& run, gltf::Scene& scene) {
     cone.name = "extraordinary point";
     cone.topology = gltf::Topology::points;
     cone.positions.resize(1, 3);
-    cone.positions.row(0) = ricci::to_eigen(problem.mesh.point(problem.mesh.vertex_handle(problem.cone))).transpose();
+    cone.positions.row(0) =
+        ricci::to_eigen(problem.mesh.point(problem.mesh.vertex_handle(problem.cone))).transpose();
     cone.material.name = "extraordinary point";
     cone.material.base_color = linear_colour({220, 30, 30});
     cone.extras = {{"domain_vertex", problem.cone},
@@ -223,10 +228,12 @@ std::string tessellation_obj(const spline::Tessellation& t) {
   out.precision(17);
   out << "# manifold spline tessellation (msp fit), density " << t.density << "\n";
   for (Eigen::Index i = 0; i < t.positions.rows(); ++i)
-    out << "v " << t.positions(i, 0) << " " << t.positions(i, 1) << " " << t.positions(i, 2) << "\n";
+    out << "v " << t.positions(i, 0) << " " << t.positions(i, 1) << " " << t.positions(i, 2)
+        << "\n";
   for (Eigen::Index i = 0; i < normals.rows(); ++i)
     out << "vn " << normals(i, 0) << " " << normals(i, 1) << " " << normals(i, 2) << "\n";
-  for (Eigen::Index i = 0; i < t.uvs.rows(); ++i) out << "vt " << t.uvs(i, 0) << " " << t.uvs(i, 1) << "\n";
+  for (Eigen::Index i = 0; i < t.uvs.rows(); ++i)
+    out << "vt " << t.uvs(i, 0) << " " << t.uvs(i, 1) << "\n";
   for (std::size_t f = 0; f < t.triangles.size(); ++f) {
     out << "f";
     for (int k = 0; k < 3; ++k) {
@@ -275,7 +282,8 @@ void write_bytes_atomically(const std::string& path, const std::vector<std::uint
     std::FILE* f = std::fopen(temp.c_str(), "wb");
     if (!f) throw ricci::IOError("cannot write " + path);
     const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
-    if (std::fclose(f) != 0 || written != bytes.size()) throw ricci::IOError("cannot write " + path);
+    if (std::fclose(f) != 0 || written != bytes.size())
+      throw ricci::IOError("cannot write " + path);
   });
 }
 

@@ -20,9 +20,12 @@ namespace {
 
 const char* rim_kind_name(spline::Rim::Kind kind) {
   switch (kind) {
-    case spline::Rim::Kind::cone_hole: return "cone hole";
-    case spline::Rim::Kind::boundary: return "boundary";
-    case spline::Rim::Kind::excluded: return "excluded faces";
+    case spline::Rim::Kind::cone_hole:
+      return "cone hole";
+    case spline::Rim::Kind::boundary:
+      return "boundary";
+    case spline::Rim::Kind::excluded:
+      return "excluded faces";
   }
   return "rim";
 }
@@ -110,11 +113,11 @@ double distance_to_fills(const FitRun& run, const Eigen::Vector3d& target, int i
   double best = -1.0;
   if (!run.fills) return best;
   for (std::size_t i = 0; i < run.fills->patches.size(); ++i) {
-    const double d = distance_to_patch(run.fills->fills[i], run.fills->patches[i], target, iterations);
+    const double d =
+        distance_to_patch(run.fills->fills[i], run.fills->patches[i], target, iterations);
     if (d >= 0 && (best < 0 || d < best)) best = d;
   }
   return best;
 }
-
 
 }  // namespace msp

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <ricci/mesh/mesh.h>
+#include <Eigen/Core>
 
 #include "msp/fit_pipeline.h"
 

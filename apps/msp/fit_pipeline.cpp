@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <unordered_map>
 
@@ -145,7 +145,8 @@ spline::WatertightReport float_welded_topology(const spline::Tessellation& t) {
   std::vector<std::array<int, 3>> triangles;
   triangles.reserve(t.triangles.size());
   for (const auto& tri : t.triangles)
-    triangles.push_back({welded[static_cast<std::size_t>(tri[0])], welded[static_cast<std::size_t>(tri[1])],
+    triangles.push_back({welded[static_cast<std::size_t>(tri[0])],
+                         welded[static_cast<std::size_t>(tri[1])],
                          welded[static_cast<std::size_t>(tri[2])]});
   return spline::check_watertight(triangles, positions);
 }
@@ -168,9 +169,9 @@ FitRun run_fit_pipeline(const ricci::Mesh& dense, const FitRunOptions& options) 
   run.input = ricci::surface_topology(dense);
   const int minimum = minimum_domain_faces(run.input.genus);
   if (options.domain_faces < minimum) {
-    throw ricci::InvalidInputError(
-        "--domain-faces " + std::to_string(options.domain_faces) + " is too few for a genus-" +
-        std::to_string(run.input.genus) + " surface (at least " + std::to_string(minimum) + ")");
+    throw ricci::InvalidInputError("--domain-faces " + std::to_string(options.domain_faces) +
+                                   " is too few for a genus-" + std::to_string(run.input.genus) +
+                                   " surface (at least " + std::to_string(minimum) + ")");
   }
   if (static_cast<int>(dense.n_faces()) < minimum) {
     throw ricci::InvalidInputError("the mesh has " + std::to_string(dense.n_faces()) +

@@ -52,7 +52,7 @@ struct FitRun {
   double bbox_diagonal = 0.0;           ///< Of the input.
   double edge_normal_jump_deg = 0.0;    ///< Across domain edges (the spline's own seams).
   double fill_normal_jump_deg = 0.0;    ///< Across the rims of the fill patches.
-  double fill_position_gap = 0.0;  ///< Largest gap patch - spline over the domain diagonal.
+  double fill_position_gap = 0.0;       ///< Largest gap patch - spline over the domain diagonal.
   /// Wall-clock seconds by stage, in the order run (read and write are the caller's).
   std::vector<std::pair<std::string, double>> seconds;
   /// CPU seconds of the process (all threads) by stage: on a shared machine the wall clock

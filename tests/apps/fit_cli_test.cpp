@@ -22,13 +22,16 @@ namespace fs = std::filesystem;
 using msp_test::run_msp;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("msp_fit_tests_" + std::to_string(::getpid())) / name;
+  const fs::path dir =
+      fs::temp_directory_path() / ("msp_fit_tests_" + std::to_string(::getpid())) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
 }
 
-std::string model(const std::string& name) { return std::string(MSP_SOURCE_DIR) + "/models/" + name; }
+std::string model(const std::string& name) {
+  return std::string(MSP_SOURCE_DIR) + "/models/" + name;
+}
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
@@ -82,9 +85,9 @@ void expect_validator_clean(const fs::path& glb) {
 
 // Every key of the report, seconds per stage and in total.
 void expect_report_keys(const nlohmann::json& r) {
-  for (const char* key : {"genus", "singularities", "domain_faces", "control_points", "degree",
-                          "fairness", "fit_rms", "fit_max", "bbox_diagonal",
-                          "seam_normal_jump_max_deg", "watertight", "seconds"}) {
+  for (const char* key :
+       {"genus", "singularities", "domain_faces", "control_points", "degree", "fairness", "fit_rms",
+        "fit_max", "bbox_diagonal", "seam_normal_jump_max_deg", "watertight", "seconds"}) {
     EXPECT_TRUE(r.contains(key)) << key;
   }
   for (const char* stage : {"read", "simplify", "atlas", "fit", "tessellate", "total"})
@@ -97,7 +100,8 @@ void expect_report_keys(const nlohmann::json& r) {
 
 const std::vector<std::string> kSmall = {"--domain-faces", "400", "--density", "3", "--quiet"};
 
-std::vector<std::string> args(std::vector<std::string> head, const std::vector<std::string>& tail = kSmall) {
+std::vector<std::string> args(std::vector<std::string> head,
+                              const std::vector<std::string>& tail = kSmall) {
   head.insert(head.end(), tail.begin(), tail.end());
   return head;
 }
@@ -250,10 +254,11 @@ TEST(FitCli, RefusesTooFewDomainFaces) {
                          1});
   // Without --quiet the progress line is closed before the error line.
   const fs::path dir = fresh_dir("few_loud");
-  const auto r = run_msp({"fit", model("genus2.off"), "--domain-faces", "10", "-o",
-                          (dir / "x.glb").string()});
+  const auto r =
+      run_msp({"fit", model("genus2.off"), "--domain-faces", "10", "-o", (dir / "x.glb").string()});
   EXPECT_EQ(r.exit_status, 1);
-  EXPECT_NE(r.err.find("\nmsp fit: error: --domain-faces 10 is too few"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\nmsp fit: error: --domain-faces 10 is too few"), std::string::npos)
+      << r.err;
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
@@ -263,18 +268,20 @@ TEST(FitCli, RefusesSingularVertexOnTheBoundary) {
   for (auto v : open.vertices())
     if (open.is_boundary(v)) boundary = v.idx();
   ASSERT_GE(boundary, 0);
-  expect_refused("boundary", {{model("genus1_hole.off"), "--singularity", std::to_string(boundary),
-                               "-o", "{OUT}/x.glb", "--quiet"},
-                              "singular vertex " + std::to_string(boundary) + " lies on the boundary",
-                              1});
-  expect_refused("range", {{model("genus2.off"), "--singularity", "999999", "-o", "{OUT}/x.glb",
-                            "--quiet"},
-                           "out of range",
-                           1});
+  expect_refused("boundary",
+                 {{model("genus1_hole.off"), "--singularity", std::to_string(boundary), "-o",
+                   "{OUT}/x.glb", "--quiet"},
+                  "singular vertex " + std::to_string(boundary) + " lies on the boundary",
+                  1});
+  expect_refused("range",
+                 {{model("genus2.off"), "--singularity", "999999", "-o", "{OUT}/x.glb", "--quiet"},
+                  "out of range",
+                  1});
 }
 
 TEST(FitCli, RefusesUnreadableFiles) {
-  expect_refused("missing", {{"/nonexistent/none.off", "-o", "{OUT}/x.glb", "--quiet"}, "none.off", 1});
+  expect_refused("missing",
+                 {{"/nonexistent/none.off", "-o", "{OUT}/x.glb", "--quiet"}, "none.off", 1});
   expect_refused("garbage", {{std::string(MSP_TEST_DATA) + "/bad/garbage.off", "-o", "{OUT}/x.glb",
                               "--json", "{OUT}/x.json", "--quiet"},
                              "garbage.off",
@@ -287,10 +294,15 @@ TEST(FitCli, RefusesBadCommandLines) {
                             1});
   expect_refused("ext", {{model("genus1.off"), "-o", "{OUT}/x.gltf"}, "-o must name a .glb", 2});
   expect_refused("none", {{model("genus1.off")}, "nothing to write", 2});
-  expect_refused("degree", {{model("genus1.off"), "-o", "{OUT}/x.glb", "--degree", "9"}, "--degree", 2});
-  expect_refused("fair", {{model("genus1.off"), "-o", "{OUT}/x.glb", "--fairness", "3"}, "--fairness", 2});
-  expect_refused("sing", {{model("genus1.off"), "-o", "{OUT}/x.glb", "--singularity", "x"}, "--singularity", 2});
-  expect_refused("unknown", {{model("genus1.off"), "-o", "{OUT}/x.glb", "--colour", "red"}, "--colour", 2});
+  expect_refused("degree",
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--degree", "9"}, "--degree", 2});
+  expect_refused("fair",
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--fairness", "3"}, "--fairness", 2});
+  expect_refused(
+      "sing",
+      {{model("genus1.off"), "-o", "{OUT}/x.glb", "--singularity", "x"}, "--singularity", 2});
+  expect_refused("unknown",
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--colour", "red"}, "--colour", 2});
 }
 
 }  // namespace

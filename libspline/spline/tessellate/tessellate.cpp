@@ -64,8 +64,8 @@ int Tessellation::edge_sample(int face, int corner, int i) const {
 Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                         const TessellationOptions& options) {
   const int d = options.density;
-  if (d < 1) throw ricci::InvalidInputError("tessellate: density must be >= 1, not " +
-                                            std::to_string(d));
+  if (d < 1)
+    throw ricci::InvalidInputError("tessellate: density must be >= 1, not " + std::to_string(d));
   if (!spline.space) throw ricci::InvalidInputError("tessellate: the spline has no space");
   const ManifoldSplineSpace& space = *spline.space;
   if (static_cast<int>(mesh.n_faces()) != space.face_count())
@@ -76,7 +76,8 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                                    std::to_string(mesh.n_faces()) + " faces");
   std::vector<int> faces;
   for (int f : space.domain_faces())
-    if (options.skip_faces.empty() || !options.skip_faces[static_cast<std::size_t>(f)]) faces.push_back(f);
+    if (options.skip_faces.empty() || !options.skip_faces[static_cast<std::size_t>(f)])
+      faces.push_back(f);
 
   Tessellation out;
   out.density = d;
@@ -139,8 +140,8 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
   std::unordered_map<std::uint64_t, int> render_of;
   std::vector<Eigen::Vector2d> uvs;
   auto render_vertex = [&](int position, int chart_vertex, const Eigen::Vector2d& uv) {
-    const std::uint64_t key =
-        static_cast<std::uint64_t>(position) * chart_vertices + static_cast<std::uint64_t>(chart_vertex + 1);
+    const std::uint64_t key = static_cast<std::uint64_t>(position) * chart_vertices +
+                              static_cast<std::uint64_t>(chart_vertex + 1);
     auto [it, inserted] = render_of.emplace(key, static_cast<int>(uvs.size()));
     if (inserted) {
       uvs.push_back(uv);
@@ -152,7 +153,9 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
   out.triangles.reserve(faces.size() * static_cast<std::size_t>(d * d));
   for (int f : faces) {
     const int slot = central.slot(f);
-    if (slot < 0) throw ricci::InvalidInputError("tessellate: the central chart lacks face " + std::to_string(f));
+    if (slot < 0)
+      throw ricci::InvalidInputError("tessellate: the central chart lacks face " +
+                                     std::to_string(f));
     std::array<int, 3> chart_corner{};
     std::array<Eigen::Vector2d, 3> x;
     for (int k = 0; k < 3; ++k) {
@@ -207,7 +210,8 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
     }
   }
   out.uvs.resize(static_cast<Eigen::Index>(uvs.size()), 2);
-  for (std::size_t i = 0; i < uvs.size(); ++i) out.uvs.row(static_cast<Eigen::Index>(i)) = uvs[i].transpose();
+  for (std::size_t i = 0; i < uvs.size(); ++i)
+    out.uvs.row(static_cast<Eigen::Index>(i)) = uvs[i].transpose();
   return out;
 }
 

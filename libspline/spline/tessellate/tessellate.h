@@ -29,14 +29,14 @@ struct Tessellation {
   int density = 0;
   /// Welded topology: one row per surface sample.
   Eigen::MatrixX3d positions;
-  Eigen::MatrixX3d normals;              ///< Unit (du x dv); a zero row only if F is singular.
-  std::vector<DomainPoint> parameters;   ///< The domain point each position was evaluated at.
+  Eigen::MatrixX3d normals;                   ///< Unit (du x dv); a zero row only if F is singular.
+  std::vector<DomainPoint> parameters;        ///< The domain point each position was evaluated at.
   std::vector<std::array<int, 3>> triangles;  ///< Position indices, counter-clockwise.
   std::vector<int> triangle_face;  ///< Domain face of each triangle (-1 - r: fill patch r).
 
   /// Render vertices: a position with one central-chart uv (a cut vertex has several).
-  std::vector<int> render_position;           ///< By render vertex: its position index.
-  Eigen::MatrixX2d uvs;                       ///< By render vertex, central-chart coordinates.
+  std::vector<int> render_position;  ///< By render vertex: its position index.
+  Eigen::MatrixX2d uvs;              ///< By render vertex, central-chart coordinates.
   std::vector<std::array<int, 3>> render_triangles;  ///< Same triangles, render indices.
 
   /// Position index of a domain vertex (-1 when no tessellated face touches it).
@@ -66,10 +66,10 @@ struct Tessellation {
 struct WatertightReport {
   int vertices = 0, edges = 0, faces = 0;  ///< Used positions, undirected edges, triangles.
   int euler_characteristic = 0;            ///< V - E + F.
-  int boundary_edges = 0;     ///< In one triangle only.
-  int boundary_loops = 0;     ///< Cycles of boundary edges (0 when they do not form cycles).
-  int nonmanifold_edges = 0;  ///< In three or more triangles.
-  int misoriented_edges = 0;  ///< Two triangles running the same way along it.
+  int boundary_edges = 0;                  ///< In one triangle only.
+  int boundary_loops = 0;        ///< Cycles of boundary edges (0 when they do not form cycles).
+  int nonmanifold_edges = 0;     ///< In three or more triangles.
+  int misoriented_edges = 0;     ///< Two triangles running the same way along it.
   int nonmanifold_vertices = 0;  ///< Triangles around the vertex not one fan.
   int degenerate_triangles = 0;  ///< Repeated index.
   int duplicate_positions = 0;   ///< Distinct used indices with bit-identical coordinates.
@@ -89,8 +89,7 @@ struct WatertightReport {
   /// A manifold surface of genus g with exactly `loops` boundary loops (chi = 2 - 2g - loops),
   /// i.e. the same topology as an input with those figures.
   [[nodiscard]] bool matches(int genus, int loops) const {
-    return manifold() && boundary_loops == loops &&
-           euler_characteristic == 2 - 2 * genus - loops;
+    return manifold() && boundary_loops == loops && euler_characteristic == 2 - 2 * genus - loops;
   }
 };
 
@@ -103,9 +102,8 @@ struct WatertightReport {
 /// its own neighbourhood chart, derivatives carried to 3D: the frame does not matter). The
 /// spline is C^(n-1), so this measures rounding and the atlas' transitions.
 /// Faces flagged in `skip_faces` (by face, may be empty) are left out like non-domain faces.
-[[nodiscard]] double max_edge_normal_jump_deg(const ManifoldSpline& spline,
-                                              const ricci::Mesh& mesh, int samples_per_edge = 4,
-                                              int threads = 0,
+[[nodiscard]] double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
+                                              int samples_per_edge = 4, int threads = 0,
                                               const std::vector<char>& skip_faces = {});
 
 }  // namespace spline

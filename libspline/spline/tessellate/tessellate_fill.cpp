@@ -13,7 +13,8 @@ double uv_per_length(const Tessellation& t) {
   double uv_area = 0.0, area = 0.0;
   for (std::size_t i = 0; i < t.render_triangles.size(); ++i) {
     const auto& r = t.render_triangles[i];
-    const Eigen::Vector2d a = t.uvs.row(r[1]) - t.uvs.row(r[0]), b = t.uvs.row(r[2]) - t.uvs.row(r[0]);
+    const Eigen::Vector2d a = t.uvs.row(r[1]) - t.uvs.row(r[0]),
+                          b = t.uvs.row(r[2]) - t.uvs.row(r[0]);
     uv_area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
     const auto& p = t.triangles[i];
     const Eigen::Vector3d e = t.positions.row(p[1]) - t.positions.row(p[0]),
@@ -48,7 +49,9 @@ void append_fill(Tessellation& t, const HoleFill& fill, const PatchTessellation&
                     .norm();
   }
   const double scale = uv_per_length(t) * (d_length > 0 ? rim_length / d_length : 1.0);
-  auto uv_of = [&](const Eigen::Vector2d& u) -> Eigen::Vector2d { return (u - fill.center) * scale; };
+  auto uv_of = [&](const Eigen::Vector2d& u) -> Eigen::Vector2d {
+    return (u - fill.center) * scale;
+  };
 
   const auto base = static_cast<int>(t.positions.rows());
   const auto render_base = static_cast<int>(t.uvs.rows());

@@ -136,8 +136,8 @@ WatertightReport check_watertight(const std::vector<std::array<int, 3>>& triangl
   r.nonmanifold_vertices = count_nonmanifold_vertices(valid, n);
 
   // Boundary loops: follow boundary_next where every boundary vertex has one way out.
-  const bool simple = std::all_of(boundary_out.begin(), boundary_out.end(),
-                                  [](int c) { return c <= 1; });
+  const bool simple =
+      std::all_of(boundary_out.begin(), boundary_out.end(), [](int c) { return c <= 1; });
   if (simple) {
     std::vector<char> seen(static_cast<std::size_t>(n), 0);
     for (int v = 0; v < n; ++v) {

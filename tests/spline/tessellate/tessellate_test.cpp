@@ -40,7 +40,8 @@ int interior_edges(const ricci::Mesh& mesh, const ManifoldSplineSpace& space) {
   for (auto e : mesh.edges()) {
     const auto f0 = mesh.face_handle(mesh.halfedge_handle(e, 0));
     const auto f1 = mesh.face_handle(mesh.halfedge_handle(e, 1));
-    count += f0.is_valid() && f1.is_valid() && space.in_domain(f0.idx()) && space.in_domain(f1.idx());
+    count +=
+        f0.is_valid() && f1.is_valid() && space.in_domain(f0.idx()) && space.in_domain(f1.idx());
   }
   return count;
 }
@@ -52,7 +53,8 @@ TEST(Tessellate, SamplesEveryVertexAndEdgeOnce) {
   for (int d : {1, 2, 5}) {
     const Tessellation t = tessellate(c.spline, *c.mesh, options(d, 2));
     const int F = space.domain_face_count();
-    const long V = static_cast<long>(c.mesh->n_vertices()), E = static_cast<long>(c.mesh->n_edges());
+    const long V = static_cast<long>(c.mesh->n_vertices()),
+               E = static_cast<long>(c.mesh->n_edges());
     EXPECT_EQ(t.positions.rows(), V + E * (d - 1) + F * (d - 1) * (d - 2) / 2) << d;
     EXPECT_EQ(static_cast<long>(t.triangles.size()), static_cast<long>(F) * d * d);
   }
@@ -145,7 +147,8 @@ TEST(Tessellate, NormalsComeFromTheDerivatives) {
     // Directions inside the face from p (one-sided at corners and edges).
     const Eigen::Vector3d centre = Eigen::Vector3d::Constant(1.0 / 3.0);
     for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d dir = (centre - p.barycentric + 0.2 * (Eigen::Vector3d::Unit(k) - centre)).normalized();
+      const Eigen::Vector3d dir =
+          (centre - p.barycentric + 0.2 * (Eigen::Vector3d::Unit(k) - centre)).normalized();
       const Eigen::Vector3d a = c.spline.evaluate({p.face, p.barycentric + h * dir}).position;
       const Eigen::Vector3d b = c.spline.evaluate({p.face, p.barycentric + 2 * h * dir}).position;
       const Eigen::Vector3d x = t.positions.row(i).transpose();
@@ -199,7 +202,8 @@ TEST(Tessellate, UvsTileTheCentralChart) {
   EXPECT_NEAR(uv_area, chart_area, 1e-12 * chart_area);
   ASSERT_EQ(t.render_position.size(), static_cast<std::size_t>(t.uvs.rows()));
   for (std::size_t i = 0; i < t.triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) ASSERT_EQ(t.render_position[t.render_triangles[i][k]], t.triangles[i][k]);
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(t.render_position[t.render_triangles[i][k]], t.triangles[i][k]);
   // Copies = extra chart copies of cut vertices plus d - 1 per extra side of each cut edge.
   std::vector<char> seen_vertex(central.positions.rows(), 0);
   long chart_vertices = 0;
@@ -210,12 +214,15 @@ TEST(Tessellate, UvsTileTheCentralChart) {
       seen_vertex[v] = 1;
     }
   long domain_vertices = 0;
-  for (int v = 0; v < static_cast<int>(c.mesh->n_vertices()); ++v) domain_vertices += t.vertex_sample(v) >= 0;
+  for (int v = 0; v < static_cast<int>(c.mesh->n_vertices()); ++v)
+    domain_vertices += t.vertex_sample(v) >= 0;
   long cut_edges = 0;
   for (auto e : c.mesh->edges()) {
     const auto f0 = c.mesh->face_handle(c.mesh->halfedge_handle(e, 0));
     const auto f1 = c.mesh->face_handle(c.mesh->halfedge_handle(e, 1));
-    if (!f0.is_valid() || !f1.is_valid() || !space.in_domain(f0.idx()) || !space.in_domain(f1.idx())) continue;
+    if (!f0.is_valid() || !f1.is_valid() || !space.in_domain(f0.idx()) ||
+        !space.in_domain(f1.idx()))
+      continue;
     cut_edges += space.atlas().cut.is_cut_edge[static_cast<std::size_t>(e.idx())] != 0;
   }
   EXPECT_GT(cut_edges, 0);
@@ -246,7 +253,8 @@ TEST(Tessellate, SkippedFacesLeaveAHole) {
   const WatertightReport r = check_watertight(t.triangles, t.positions);
   EXPECT_TRUE(r.matches(1, 1));
   EXPECT_EQ(r.boundary_edges, 3 * d);
-  EXPECT_EQ(static_cast<int>(t.triangles.size()), (c.spline.space->domain_face_count() - 1) * d * d);
+  EXPECT_EQ(static_cast<int>(t.triangles.size()),
+            (c.spline.space->domain_face_count() - 1) * d * d);
   opts.skip_faces.pop_back();
   EXPECT_THROW((void)tessellate(c.spline, *c.mesh, opts), ricci::InvalidInputError);
 }
@@ -263,7 +271,8 @@ TEST(Tessellate, FillPatchWeldsIntoAClosedSurface) {
   const int d = 3;
   TessellationOptions opts = options(d, 2);
   opts.skip_faces.assign(c.mesh->n_faces(), 0);
-  for (int f = 0; f < static_cast<int>(c.mesh->n_faces()); ++f) opts.skip_faces[f] = !space.in_domain(f);
+  for (int f = 0; f < static_cast<int>(c.mesh->n_faces()); ++f)
+    opts.skip_faces[f] = !space.in_domain(f);
   for (int f : rims[0].covered_faces) opts.skip_faces[f] = 1;
   Tessellation t = tessellate(c.spline, *c.mesh, opts);
   const WatertightReport open = check_watertight(t.triangles, t.positions);
@@ -275,13 +284,15 @@ TEST(Tessellate, FillPatchWeldsIntoAClosedSurface) {
   const auto triangles_before = t.triangles.size();
   append_fill(t, fill, patch, 0);
   EXPECT_EQ(t.positions.rows(), positions_before + patch.positions.rows());
-  EXPECT_EQ(t.triangles.size(), triangles_before + static_cast<std::size_t>(patch.triangles.rows()));
+  EXPECT_EQ(t.triangles.size(),
+            triangles_before + static_cast<std::size_t>(patch.triangles.rows()));
   const WatertightReport closed = check_watertight(t.triangles, t.positions);
   EXPECT_TRUE(closed.closed(2)) << closed.boundary_edges << " " << closed.misoriented_edges;
   ASSERT_EQ(t.render_position.size(), static_cast<std::size_t>(t.uvs.rows()));
   for (std::size_t i = triangles_before; i < t.triangles.size(); ++i) {
     EXPECT_EQ(t.triangle_face[i], -1);
-    for (int k = 0; k < 3; ++k) ASSERT_EQ(t.render_position[t.render_triangles[i][k]], t.triangles[i][k]);
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(t.render_position[t.render_triangles[i][k]], t.triangles[i][k]);
   }
   // A patch made at another density is refused.
   Tessellation other = tessellate(c.spline, *c.mesh, opts);
