@@ -7,8 +7,8 @@ set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 MSP="${1:-$ROOT/build/apps/msp}"
 SHARED="${2:-$ROOT/../shared/models}"
-echo "| mesh | F | genus | bdry | kind | cone angle/pi | splits | metric | Newton it. | max K error | transition residual | flipped | area distortion | angle ratio p05/p50/p95 | QC mean | s (choice/flow/atlas) |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| mesh | F | genus | bdry | kind | cone angle/pi | splits | metric | Newton it. | max K error | transition residual | flipped | uncovered | edge rel. error | area distortion | angle ratio p05/p50/p95 | QC mean | s (choice/flow/atlas) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for f in "$SHARED"/closed_g*/*.* "$SHARED"/open/*.* "$SHARED"/bench/*.obj "$ROOT"/models/*.off; do
   case "$f" in *.md|*.py) continue ;; esac
   faces=$("$MSP" info "$f" --json 2>/dev/null | python3 -c "import sys,json; print(json.load(sys.stdin)['faces'])" 2>/dev/null || echo 0)
@@ -27,6 +27,6 @@ except Exception:
 cone = d['singularities'][0].get('cone_angle') if d['singularities'] else None
 cone = f'{cone/math.pi:.3f}' if cone else '-'
 s = d['stage_seconds']
-print(f\"| {name} | {d['faces']} | {d['genus']} | {d['boundary_loops']} | {d['kind']} | {cone} | {d['valence_splits']} | {d['metric']} | {d['newton_iterations']} | {d['max_curvature_error']:.1e} | {d['transition_residual']:.1e} | {d['flipped_faces']} | {d['area_distortion']:.3g} | {d['angle_ratio_p05']:.2f}/{d['angle_ratio_p50']:.2f}/{d['angle_ratio_p95']:.2f} | {d['quasi_conformal_mean']:.3f} | {d['seconds']:.2f} ({s['choice']:.2f}/{s['flow']:.2f}/{s['atlas']:.2f}) |\")
+print(f\"| {name} | {d['faces']} | {d['genus']} | {d['boundary_loops']} | {d['kind']} | {cone} | {d['valence_splits']} | {d['metric']} | {d['newton_iterations']} | {d['max_curvature_error']:.1e} | {d['transition_residual']:.1e} | {d['flipped_faces']} | {d['uncovered_faces']} | {d['domain_length_error']:.1e} | {d['area_distortion']:.3g} | {d['angle_ratio_p05']:.2f}/{d['angle_ratio_p50']:.2f}/{d['angle_ratio_p95']:.2f} | {d['quasi_conformal_mean']:.3f} | {d['seconds']:.2f} ({s['choice']:.2f}/{s['flow']:.2f}/{s['atlas']:.2f}) |\")
 " "$name" "$faces"
 done

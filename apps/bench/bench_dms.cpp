@@ -11,6 +11,7 @@
 #include "bench/benchmarks.h"
 #include "spline/basis/planar_space.h"
 #include "spline/knots/knot_cloud.h"
+#include "spline/planar/perturbed_grid.h"
 
 namespace msp::bench {
 namespace {
@@ -25,38 +26,11 @@ double microseconds_since(Clock::time_point start) {
   return 1e6 * static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
 }
 
-spline::PlanarTriangulation jittered_grid(int m, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  spline::PlanarTriangulation t;
-  const double h = 1.0 / m;
-  for (int j = 0; j <= m; ++j) {
-    for (int i = 0; i <= m; ++i) {
-      Eigen::Vector2d p(i * h, j * h);
-      if (i > 0 && i < m && j > 0 && j < m) p += 0.3 * h * Eigen::Vector2d(unit(rng), unit(rng));
-      t.positions.push_back(p);
-    }
-  }
-  for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < m; ++i) {
-      const int a = j * (m + 1) + i, b = a + 1, c = a + m + 2, d = a + m + 1;
-      if (unit(rng) > 0.0) {
-        t.triangles.emplace_back(a, b, c);
-        t.triangles.emplace_back(a, c, d);
-      } else {
-        t.triangles.emplace_back(a, b, d);
-        t.triangles.emplace_back(b, c, d);
-      }
-    }
-  }
-  return t;
-}
-
 }  // namespace
 
 int run_dms_benchmark(int argc, char** argv) {
   const int m = argc > 0 ? std::atoi(argv[0]) : 16;
-  const spline::PlanarTriangulation t = jittered_grid(m, 7);
+  const spline::PlanarTriangulation t = spline::perturbed_grid(m, 0.3, 7);
   std::printf("jittered grid %dx%d, %zu triangles; points uniform in [0.2,0.8]^2; CPU time\n", m, m,
               t.triangles.size());
   std::printf("%6s %10s %12s %14s %12s %12s %14s %10s\n", "degree", "nodes/tri", "KB/tri",

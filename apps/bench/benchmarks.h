@@ -14,5 +14,8 @@ int run_dms_benchmark(int argc, char** argv);  // bench_dms.cpp
 int run_singularity_benchmark(int argc, char** argv);  // bench_singularity.cpp
 int run_topology_benchmark(int argc, char** argv);  // bench_topology.cpp
 int run_loop_benchmark(int argc, char** argv);    // bench_loop.cpp
+int run_one_cone_benchmark(int argc, char** argv);  // bench_one_cone.cpp
+int run_one_cone_case(int argc, char** argv);       // bench_one_cone.cpp
+int run_uniformize_benchmark(int argc, char** argv);  // bench_uniformize.cpp
 
 }  // namespace msp::bench

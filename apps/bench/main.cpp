@@ -33,8 +33,13 @@ const Benchmark kBenchmarks[] = {
      "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
     {"singularity", msp::bench::run_singularity_benchmark,
      "automatic choice of the extraordinary point vs the paper's brute force (one flow per vertex)"},
+    {"one-cone", msp::bench::run_one_cone_benchmark,
+     "issue 8: whole one-cone pipeline per bench/genus 1-3 mesh vs one Cholesky [--million] [--metric M]"},
+    {"one-cone-one", msp::bench::run_one_cone_case, "one row of 'one-cone' in this process"},
     {"topology", msp::bench::run_topology_benchmark,
      "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
+    {"uniformize", msp::bench::run_uniformize_benchmark,
+     "issue 7: uniformization (flow, cut, layout, Fuchsian group) at the Ricci-flow paper's Table I sizes"},
 };
 
 void usage() {

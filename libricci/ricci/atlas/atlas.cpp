@@ -51,8 +51,10 @@ void measure_domain_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths, Af
     const auto hs = face_halfedges(mesh, f);
     for (int k = 0; k < 3; ++k) {
       const double l = lengths[mesh.edge_handle(hs[k]).idx()];
-      const double d = (central.positions.row(central.corners(f.idx(), k)) -
-                        central.positions.row(central.corners(f.idx(), (k + 2) % 3)))
+      // The layout's double-double differences: the chart's doubles cannot hold edges near a
+      // large cone's copies away from the origin.
+      const double d = atlas.layout.edge_vector(central.corners(f.idx(), (k + 2) % 3),
+                                                central.corners(f.idx(), k))
                            .norm();
       worst = std::max(worst, std::abs(d - l) / l);
       worst_absolute = std::max(worst_absolute, std::abs(d - l));

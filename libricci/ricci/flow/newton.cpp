@@ -81,6 +81,9 @@ class NewtonSystem {
     return ok;
   }
 
+  // Refinement steps after each fresh factorisation's solve (2 near the answer, 0 far from it).
+  void set_refinements(int refinements) { refinements_ = refinements; }
+
   // Solves H x = rhs; returns false if no factorisation gave a finite solution.
   bool solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
     if (try_solve(H, rhs, x)) return true;
@@ -113,8 +116,10 @@ class NewtonSystem {
     t0 = Clock::now();
     x = factorization_->solve(rhs);
     // Iterative refinement: H's condition number grows with the mesh (it is a Laplacian), and
-    // on a million faces one triangular solve alone leaves the curvature at ~1e-10.
-    for (int refinement = 0; refinement < 2 && x.allFinite(); ++refinement) {
+    // on a million faces one triangular solve alone leaves the curvature at ~1e-10. Far from the
+    // answer a step accurate to ~1e-8 is as good (Newton's error there is the model's, not the
+    // solve's), and each refinement costs two triangular solves and a product.
+    for (int refinement = 0; refinement < refinements_ && x.allFinite(); ++refinement) {
       const Eigen::VectorXd residual = rhs - H.selfadjointView<Eigen::Lower>() * x;
       if (residual.norm() <= 1e-14 * rhs.norm()) break;
       x += factorization_->solve(residual);
@@ -126,6 +131,7 @@ class NewtonSystem {
   std::unique_ptr<SymmetricFactorization> factorization_;
   FlowTimings& timings_;
   bool factored_ = false;  // the factorisation holds a (possibly older) Hessian
+  int refinements_ = 2;
   int factorizations_ = 0;
 };
 
@@ -178,6 +184,41 @@ LineSearch line_search(const FlowRun& run, const FlowState& state, const Eigen::
   return search;
 }
 
+// One more Newton step after convergence when the error is still above 1e-12 (the tolerance,
+// 1e-10, can stop a step short of the rounding floor), kept only if it lowers the error: a
+// layout's closure error is the curvature error times the size of the loops it closes, up to
+// 1e3 times an edge. The step reuses the factorisation (no new numeric factorisation).
+void polish(const FlowRun& run, HessianAssembler& assembler, NewtonSystem& system, FlowState& state,
+            FlowResult& result) {
+  const MeshTables& t = run.tables;
+  const double error = max_error(state, run.target);
+  if (run.geometry != Geometry::Euclidean || result.iterations == 0 || error < 1e-12) return;
+  auto t0 = Clock::now();
+  const Eigen::SparseMatrix<double>& H = assembler.assemble(run.geometry, run.eta, state);
+  result.timings.assembly += seconds_since(t0);
+  const int n = assembler.num_unknowns();
+  Eigen::VectorXd rhs(n), reduced(n), step(t.num_vertices());
+  for (int v = 0; v < t.num_vertices(); ++v) {
+    if (assembler.unknown(v) >= 0) rhs[assembler.unknown(v)] = run.target[v] - state.curvature[v];
+  }
+  if (!system.solve_reusing(H, rhs, reduced)) return;
+  for (int v = 0; v < t.num_vertices(); ++v) {
+    step[v] = assembler.unknown(v) >= 0 ? reduced[assembler.unknown(v)] : 0.0;
+  }
+  step.array() -= step.mean();
+  t0 = Clock::now();
+  FlowState trial;
+  const bool valid = evaluate_flow_state(t, run.geometry, run.eta, state.u + step, trial);
+  result.timings.evaluation += seconds_since(t0);
+  if (!valid || !(max_error(trial, run.target) < error)) return;
+  std::swap(state, trial);
+  ++result.iterations;
+  result.error_history.push_back(max_error(state, run.target));
+  if (run.options.progress) {
+    run.options.progress({result.iterations, result.error_history.back(), 1.0, seconds_since(run.start)});
+  }
+}
+
 }  // namespace
 
 void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
@@ -196,6 +237,8 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   double merit = (state.curvature - run.target).squaredNorm();
   int crawling = 0;  // consecutive iterations whose step was cut hard by broken triangles
   int recent_broken = 0;  // iterations with broken trial triangles in the last window
+  int stagnant = 0;       // consecutive short steps that barely lowered the error
+  int stagnant_broken = 0;  // ... of which broke triangles at longer trial steps
   double lambda = 1.0;  // Levenberg-Marquardt damping factor (S2 only)
   bool last_step_full = false;
   result.error_history.push_back(error);
@@ -216,6 +259,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     const bool spherical = run.geometry == Geometry::Spherical;
     // Reuse the last factorisation once Newton is in its fast phase (full steps, small error).
     const bool reuse = last_step_full && error < 1e-2;
+    system.set_refinements(error < 1e-3 ? 2 : 0);
     if (spherical ? !levenberg_marquardt_step(H, rhs, lambda, result.timings, reduced_step)
                   : !((reuse && system.solve_reusing(H, rhs, reduced_step)) ||
                       system.solve(H, rhs, reduced_step))) {
@@ -251,6 +295,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     lambda = t_step == 1.0 ? std::max(lambda * 0.1, 1e-10) : std::min(lambda * 4.0, 1e4);
     std::swap(state, trial);
     merit = (state.curvature - run.target).squaredNorm();
+    const double previous_error = error;
     error = max_error(state, run.target);
     ++result.iterations;
     result.error_history.push_back(error);
@@ -273,6 +318,21 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
       }
       recent_broken = 0;
     }
+    // Short steps that gain under 2% each: the radii are heading to the boundary of the metric
+    // space (no solution with these edge quantities, e.g. Thurston's angles at a 10pi cone).
+    // Waiting for the ten-iteration window costs seconds on 100k faces before the next metric.
+    const bool short_step = t_step < 1.0 / 64 && error > 0.98 * previous_error;
+    stagnant = short_step ? stagnant + 1 : 0;
+    stagnant_broken = short_step ? stagnant_broken + (broken > 0 ? 1 : 0) : 0;
+    if (euclidean && stagnant >= 3) {
+      result.status = stagnant_broken > 0 ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
+      result.message = failure_message(run, state, result.status,
+                                       std::string("three short Newton steps in a row lowered the error by "
+                                                   "less than 2% each") +
+                                           (stagnant_broken > 0 ? " while longer ones broke triangles"
+                                                                : " (no solution for these edge quantities?)"));
+      return;
+    }
     if (crawling >= 8) {
       result.status = FlowStatus::TriangleInequality;
       result.message = failure_message(run, state, result.status,
@@ -281,6 +341,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     }
   }
   result.status = FlowStatus::Converged;
+  polish(run, assembler, system, state, result);
 }
 
 }  // namespace ricci::detail

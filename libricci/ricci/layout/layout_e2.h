@@ -11,12 +11,22 @@ namespace ricci {
 
 struct LayoutE2Options {
   /// Face placed first (vertex 0 at the origin, its first edge along +x); -1 = the face
-  /// farthest (in face hops) from the boundary, which keeps the growth front short.
+  /// farthest (in face hops) from the boundary, which keeps the growth front short, or, when the
+  /// face sizes span more than 2^8 (a large cone), the smallest face.
   int seed_face = -1;
 };
 
 struct LayoutE2Result {
   Eigen::MatrixX2d positions;  ///< #V by 2, by vertex index of the laid-out mesh.
+  /// Low parts of the double-double positions the growth computed: the developed position of
+  /// vertex v is positions(v) + positions_low(v) to ~1e-32 of the chart's size. Near a large
+  /// cone the flat metric's edges shrink like r^(angle/2pi - 1) (1e-17 of the chart at a 10pi
+  /// cone of a 100k-face mesh), far below the rounding of `positions` at the cone's copies away
+  /// from the origin; edge_vector keeps those edges to full relative precision.
+  Eigen::MatrixX2d positions_low;
+  /// The vector from vertex `from` to vertex `to`, from the double-double positions (relative
+  /// accuracy ~1e-16 of its own length however small, when positions_low is filled).
+  [[nodiscard]] Eigen::Vector2d edge_vector(int from, int to) const;
   int seed_face = -1;
   /// Smallest signed face area (positive = counter-clockwise, as in the mesh's orientation).
   double min_signed_area = 0.0;
@@ -29,7 +39,13 @@ struct LayoutE2Result {
 };
 
 /// Places the faces one by one, each new vertex at the intersection of two circles on the left
-/// of the known edge (counter-clockwise faces). Faces are grown breadth-first across edges.
+/// of the known edge (counter-clockwise faces), in double-double coordinates. Faces are grown
+/// breadth-first, except that faces below half the median size come first, smallest scale
+/// first (breadth-first among faces within a factor 16 in size):
+/// a vertex is placed through a chain of faces, and where two chains meet the metric's
+/// rounding-level curvature error shows up multiplied by the size of the loop they enclose.
+/// Growing the tiny faces at a large cone outwards from the cone keeps those loops as small as
+/// the faces, so every edge keeps ~1e-12 relative accuracy instead of ~1e-16 of the chart.
 /// \pre mesh is connected and simply connected (a disk, e.g. a SlicedMesh); lengths by edge
 ///      index satisfy the triangle inequality in every face.
 /// \throw InvalidInputError on bad lengths (naming the face), TopologyError if some face cannot
@@ -52,9 +68,9 @@ struct LayoutE2Result {
 /// half-angle formula. Clamped to [0, pi] when the triangle inequality fails.
 [[nodiscard]] double corner_angle_from_lengths(double opposite, double b, double c);
 
-/// Signed area, max relative length error, flipped faces and max vertex angle of `positions`
-/// against `edge_lengths` (fills those fields of `result`).
-void measure_layout(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
-                    const Eigen::MatrixX2d& positions, LayoutE2Result& result);
+/// Signed area, max relative length error, flipped faces and max vertex angle of the result's
+/// positions (double-double when positions_low is filled) against `edge_lengths` (fills those
+/// fields of `result`).
+void measure_layout(const Mesh& mesh, const Eigen::VectorXd& edge_lengths, LayoutE2Result& result);
 
 }  // namespace ricci

@@ -34,41 +34,7 @@ namespace {
 std::vector<std::vector<int>> orient_faces(const PolygonSoup& soup, int& flipped) {
   const detail::EdgeTable table = detail::build_edge_table(soup.faces, {});
   const size_t face_count = soup.faces.size();
-  // Adjacency across 2-face edges in CSR form: (neighbour, must it be flipped relative to us).
-  std::vector<size_t> begin(face_count + 1, 0);
-  for (size_t e = 0; e < table.edge_count(); ++e) {
-    if (table.side_count(e) != 2) continue;
-    ++begin[table.side(e, 0).face + 1];
-    ++begin[table.side(e, 1).face + 1];
-  }
-  for (size_t f = 0; f < face_count; ++f) begin[f + 1] += begin[f];
-  std::vector<std::pair<int, bool>> links(begin.back());
-  std::vector<size_t> fill(begin.begin(), begin.end() - 1);
-  for (size_t e = 0; e < table.edge_count(); ++e) {
-    if (table.side_count(e) != 2) continue;
-    const auto& s0 = table.side(e, 0);
-    const auto& s1 = table.side(e, 1);
-    const bool flip = s0.from == s1.from;
-    links[fill[s0.face]++] = {s1.face, flip};
-    links[fill[s1.face]++] = {s0.face, flip};
-  }
-  std::vector<signed char> reversed(face_count, -1);
-  std::vector<int> stack;
-  for (size_t seed = 0; seed < face_count; ++seed) {
-    if (reversed[seed] >= 0) continue;
-    reversed[seed] = 0;
-    stack.push_back(static_cast<int>(seed));
-    while (!stack.empty()) {
-      const int f = stack.back();
-      stack.pop_back();
-      for (size_t k = begin[f]; k < begin[f + 1]; ++k) {
-        const auto [g, flip] = links[k];
-        if (reversed[g] >= 0) continue;
-        reversed[g] = static_cast<signed char>(reversed[f] ^ flip);
-        stack.push_back(g);
-      }
-    }
-  }
+  const std::vector<signed char> reversed = detail::colour_orientation(table, face_count, {}).flipped;
   std::vector<std::vector<int>> faces = soup.faces;
   flipped = 0;
   for (size_t f = 0; f < face_count; ++f) {

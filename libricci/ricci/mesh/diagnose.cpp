@@ -145,52 +145,7 @@ void check_edges(Context& c) {
 /// 2-colours faces by "flipped or not" across every 2-face edge; a clash means non-orientable.
 void check_orientability(Context& c) {
   const EdgeTable& table = c.edges;
-  const size_t face_count = c.soup.faces.size();
-  // Adjacency over 2-face edges: (neighbour, edge, must the neighbour be flipped relative to us).
-  std::vector<size_t> begin(face_count + 1, 0);
-  for (size_t e = 0; e < table.edge_count(); ++e) {
-    if (table.side_count(e) != 2) continue;
-    ++begin[table.side(e, 0).face + 1];
-    ++begin[table.side(e, 1).face + 1];
-  }
-  for (size_t f = 0; f < face_count; ++f) begin[f + 1] += begin[f];
-  struct Link {
-    int face;
-    int edge;
-    bool flip;
-  };
-  std::vector<Link> links(begin.back());
-  std::vector<size_t> fill(begin.begin(), begin.end() - 1);
-  for (size_t e = 0; e < table.edge_count(); ++e) {
-    if (table.side_count(e) != 2) continue;
-    const auto& s0 = table.side(e, 0);
-    const auto& s1 = table.side(e, 1);
-    const bool flip = s0.from == s1.from;  // same direction: one of the two must turn over
-    links[fill[s0.face]++] = {s1.face, static_cast<int>(e), flip};
-    links[fill[s1.face]++] = {s0.face, static_cast<int>(e), flip};
-  }
-  std::vector<signed char> flipped(face_count, -1);
-  std::vector<int> stack;
-  int conflict_edge = -1;
-  for (size_t seed = 0; seed < face_count; ++seed) {
-    if (!c.use_face[seed] || flipped[seed] >= 0) continue;
-    flipped[seed] = 0;
-    stack.push_back(static_cast<int>(seed));
-    while (!stack.empty()) {
-      const int f = stack.back();
-      stack.pop_back();
-      for (size_t k = begin[f]; k < begin[f + 1]; ++k) {
-        const Link& link = links[k];
-        const signed char want = static_cast<signed char>(flipped[f] ^ link.flip);
-        if (flipped[link.face] < 0) {
-          flipped[link.face] = want;
-          stack.push_back(link.face);
-        } else if (flipped[link.face] != want && conflict_edge < 0) {
-          conflict_edge = link.edge;
-        }
-      }
-    }
-  }
+  const int conflict_edge = colour_orientation(table, c.soup.faces.size(), c.use_face).conflict_edge;
   c.d.orientable = conflict_edge < 0;
   if (conflict_edge >= 0)
     add_problem(c.d, MeshProblemKind::kNonOrientable, 1,

@@ -48,4 +48,54 @@ EdgeTable build_edge_table(const std::vector<std::vector<int>>& faces,
   return table;
 }
 
+OrientationColouring colour_orientation(const EdgeTable& table, size_t face_count,
+                                        const std::vector<char>& use_face) {
+  // Adjacency over 2-face edges in CSR form: (neighbour, edge, must it be flipped relative to us).
+  struct Link {
+    int face;
+    int edge;
+    bool flip;
+  };
+  std::vector<size_t> begin(face_count + 1, 0);
+  for (size_t e = 0; e < table.edge_count(); ++e) {
+    if (table.side_count(e) != 2) continue;
+    ++begin[table.side(e, 0).face + 1];
+    ++begin[table.side(e, 1).face + 1];
+  }
+  for (size_t f = 0; f < face_count; ++f) begin[f + 1] += begin[f];
+  std::vector<Link> links(begin.back());
+  std::vector<size_t> fill(begin.begin(), begin.end() - 1);
+  for (size_t e = 0; e < table.edge_count(); ++e) {
+    if (table.side_count(e) != 2) continue;
+    const auto& s0 = table.side(e, 0);
+    const auto& s1 = table.side(e, 1);
+    const bool flip = s0.from == s1.from;  // same direction: one of the two must turn over
+    links[fill[s0.face]++] = {s1.face, static_cast<int>(e), flip};
+    links[fill[s1.face]++] = {s0.face, static_cast<int>(e), flip};
+  }
+  OrientationColouring result;
+  result.flipped.assign(face_count, -1);
+  std::vector<int> stack;
+  for (size_t seed = 0; seed < face_count; ++seed) {
+    if ((!use_face.empty() && !use_face[seed]) || result.flipped[seed] >= 0) continue;
+    result.flipped[seed] = 0;
+    stack.push_back(static_cast<int>(seed));
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      for (size_t k = begin[f]; k < begin[f + 1]; ++k) {
+        const Link& link = links[k];
+        const auto want = static_cast<signed char>(result.flipped[f] ^ link.flip);
+        if (result.flipped[link.face] < 0) {
+          result.flipped[link.face] = want;
+          stack.push_back(link.face);
+        } else if (result.flipped[link.face] != want && result.conflict_edge < 0) {
+          result.conflict_edge = link.edge;
+        }
+      }
+    }
+  }
+  return result;
+}
+
 }  // namespace ricci::detail

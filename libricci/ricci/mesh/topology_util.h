@@ -55,4 +55,14 @@ struct EdgeTable {
 EdgeTable build_edge_table(const std::vector<std::vector<int>>& faces,
                            const std::vector<char>& use_face);
 
+/// Consistent orientation by 2-colouring faces across every 2-face edge: `flipped[f]` = 1 when
+/// face f must be reversed to agree with the first face of its component (-1 for faces not
+/// used); `conflict_edge` is the first edge where the colouring clashes (non-orientable), or -1.
+struct OrientationColouring {
+  std::vector<signed char> flipped;
+  int conflict_edge = -1;
+};
+[[nodiscard]] OrientationColouring colour_orientation(const EdgeTable& table, size_t face_count,
+                                                      const std::vector<char>& use_face);
+
 }  // namespace ricci::detail

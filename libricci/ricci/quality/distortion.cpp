@@ -84,6 +84,7 @@ DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& len
   }
   const Eigen::VectorXd original = embedded_lengths(mesh);
   std::vector<double> log_surface, log_flat, ratios, qc;
+  double area_weighted_qc = 0, total_area = 0;
   for (auto f : mesh.faces()) {
     if (!options.excluded_faces.empty() && options.excluded_faces[f.idx()]) continue;
     Lengths3 a = face_lengths(mesh, original, f), b = face_lengths(mesh, lengths, f);
@@ -98,6 +99,8 @@ DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& len
       ratios.push_back(after / before);
     }
     qc.push_back(quasi_conformal(a, b));
+    area_weighted_qc += heron_area(a) * qc.back();
+    total_area += heron_area(a);
   }
   DistortionReport report;
   report.faces = static_cast<int>(log_surface.size());
@@ -122,6 +125,9 @@ DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& len
   for (double x : qc) qc_sum += x;
   report.quasi_conformal_mean = qc_sum / static_cast<double>(qc.size());
   report.quasi_conformal_max = *std::max_element(qc.begin(), qc.end());
+  report.quasi_conformal_area_mean = area_weighted_qc / total_area;
+  report.quasi_conformal_p50 = percentile(qc, 0.50);
+  report.quasi_conformal_p95 = percentile(qc, 0.95);
   return report;
 }
 

@@ -23,6 +23,11 @@ struct DistortionReport {
   double angle_ratio_p05 = 1.0, angle_ratio_p50 = 1.0, angle_ratio_p95 = 1.0;
   /// Quasi-conformal distortion sigma_max / sigma_min of the per-face affine map: mean, max.
   double quasi_conformal_mean = 1.0, quasi_conformal_max = 1.0;
+  /// Mean weighted by the faces' 3D areas (the convention of Crane's group's tools (BFF, CEPS):
+  /// sum_f A_f qc_f / sum_f A_f), where slivers count by their area.
+  double quasi_conformal_area_mean = 1.0;
+  /// Its median and 95th percentile (the mean is dominated by a few slivers on scanned meshes).
+  double quasi_conformal_p50 = 1.0, quasi_conformal_p95 = 1.0;
   int faces = 0;  ///< Faces measured.
 };
 

@@ -131,6 +131,13 @@ double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityO
   return measure_distortion(problem.mesh, result.lengths).area_distortion;
 }
 
+int verified_count(int vertices, const SingularityOptions& options) {
+  // Small meshes: one flow per 20 vertices, but no more than about 4e4 / V flows (each costs
+  // O(V)), so the extra checks fade out by a few thousand vertices.
+  const int extra = std::min(vertices / 20, static_cast<int>(4e4 / std::max(vertices, 1)));
+  return std::max(options.verified_candidates, extra);
+}
+
 SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions& options) {
   auto start = std::chrono::steady_clock::now();
   SingularityChoice choice;
@@ -145,9 +152,28 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
       ++choice.flows_run;
     };
     std::vector<SingularityScore> ranked = rank_singularities(mesh, options);
-    for (int i = 0; i < std::min<int>(options.verified_candidates, static_cast<int>(ranked.size())); ++i) {
+    const int count = verified_count(static_cast<int>(mesh.n_vertices()), options);
+    for (int i = 0; i < std::min<int>(count, static_cast<int>(ranked.size())); ++i) {
       verify(ranked[static_cast<size_t>(i)].vertex);
     }
+    auto score_of = [&](int v) {
+      for (const auto& s : choice.verified) {
+        if (s.vertex == v) return s.area_distortion;
+      }
+      return kInfinity;
+    };
+    auto descend = [&](int centre) {
+      for (int round = 0; round < 10; ++round) {
+        int next = centre;
+        for (auto w : mesh.vv_range(mesh.vertex_handle(centre))) {
+          if (mesh.is_boundary(w)) continue;
+          verify(w.idx());
+          if (score_of(w.idx()) < score_of(next)) next = w.idx();
+        }
+        if (next == centre) break;
+        centre = next;
+      }
+    };
     auto best = [&] {
       return *std::min_element(choice.verified.begin(), choice.verified.end(),
                                [](const SingularityScore& a, const SingularityScore& b) {
@@ -155,13 +181,17 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
                                });
     };
     if (options.refine_in_one_ring && !choice.verified.empty()) {
-      // Greedy descent over one-rings until the best vertex beats all its neighbours.
-      for (int round = 0; round < 10; ++round) {
-        int centre = best().vertex;
-        for (auto w : mesh.vv_range(mesh.vertex_handle(centre))) {
-          if (!mesh.is_boundary(w)) verify(w.idx());
-        }
-        if (best().vertex == centre) break;
+      // Greedy descent over one-rings from the best few verified vertices (the linear model
+      // can misjudge a whole region, so one basin is not enough), each until its vertex beats
+      // all its neighbours.
+      std::vector<SingularityScore> starts = choice.verified;
+      std::sort(starts.begin(), starts.end(), [](const SingularityScore& a, const SingularityScore& b) {
+        return a.area_distortion < b.area_distortion;
+      });
+      starts.resize(std::min<std::size_t>(starts.size(), static_cast<std::size_t>(options.descent_starts)));
+      for (const SingularityScore& start : starts) {
+        if (!std::isfinite(start.area_distortion)) continue;
+        descend(start.vertex);
       }
     }
     if (choice.verified.empty() || !std::isfinite(best().area_distortion)) {

@@ -14,10 +14,14 @@
 namespace ricci {
 
 struct SingularityOptions {
-  /// Candidates from the linear ranking checked with a full flow.
+  /// Candidates from the linear ranking checked with a full flow: at least this many, more on
+  /// small meshes (min(V / 20, 4e4 / V)), where flows are cheap and the linear model's
+  /// ranking is noisiest.
   int verified_candidates = 8;
-  /// Then the one-ring of the best verified vertex is checked too (greedy local refinement).
+  /// Then greedy descent over one-rings (each step checks a vertex's neighbours and moves to
+  /// the best) from the `descent_starts` best verified vertices.
   bool refine_in_one_ring = true;
+  int descent_starts = 3;
   /// Above this many vertices, the linear model ranks a seeded random sample of this size.
   int max_ranked_vertices = 5000;
   /// Flow settings for the verifying flows (tolerance 1e-9 is plenty to compare distortions).
@@ -48,6 +52,9 @@ struct SingularityChoice {
 /// flow does not converge. The measure leaves out no face (the paper's definition).
 [[nodiscard]] double one_cone_area_distortion(const Mesh& mesh, int vertex,
                                               const SingularityOptions& options = {});
+
+/// Candidates verified with a flow for a mesh of this many vertices.
+[[nodiscard]] int verified_count(int vertices, const SingularityOptions& options);
 
 /// Predicted area distortion of every vertex (or a sample) by the linearised model.
 [[nodiscard]] std::vector<SingularityScore> rank_singularities(const Mesh& mesh,

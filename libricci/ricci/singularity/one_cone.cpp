@@ -1,6 +1,8 @@
 #include "ricci/singularity/one_cone.h"
 
+#include <algorithm>
 #include <cmath>
+#include <queue>
 #include <string>
 
 #include "ricci/mesh/errors.h"
@@ -11,6 +13,9 @@
 
 namespace ricci {
 namespace {
+
+// Rings around a single cone whose edges start with tangent circles (cone_tangent_metric).
+constexpr int kConeTangentRings = 3;
 
 void check_vertex(const Mesh& mesh, int vertex) {
   if (vertex < 0 || vertex >= static_cast<int>(mesh.n_vertices())) {
@@ -88,11 +93,71 @@ std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kin
 
 namespace {
 
+// Vertex distance, in edges, from `cone` (capped at `rings`).
+std::vector<int> ring_depth(const MeshTables& t, int cone, int rings) {
+  std::vector<std::vector<int>> adjacent(static_cast<size_t>(t.num_vertices()));
+  for (int e = 0; e < t.num_edges(); ++e) {
+    adjacent[t.edge_vertices(e, 0)].push_back(t.edge_vertices(e, 1));
+    adjacent[t.edge_vertices(e, 1)].push_back(t.edge_vertices(e, 0));
+  }
+  std::vector<int> depth(static_cast<size_t>(t.num_vertices()), rings);
+  std::queue<int> queue;
+  depth[cone] = 0;
+  queue.push(cone);
+  while (!queue.empty()) {
+    const int v = queue.front();
+    queue.pop();
+    if (depth[v] + 1 >= rings) continue;
+    for (int w : adjacent[v]) {
+      if (depth[w] > depth[v] + 1) {
+        depth[w] = depth[v] + 1;
+        queue.push(w);
+      }
+    }
+  }
+  return depth;
+}
+
+}  // namespace
+
+CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
+                                        int rings, RadiusInit radii) {
+  CirclePackingMetric metric =
+      initial_metric(tables, lengths, Geometry::Euclidean, Scheme::CirclePacking, radii);
+  const std::vector<int> depth = ring_depth(tables, cone, rings);
+  for (int e = 0; e < tables.num_edges(); ++e) {
+    if (std::min(depth[tables.edge_vertices(e, 0)], depth[tables.edge_vertices(e, 1)]) < rings) {
+      metric.eta[e] = 1.0;
+    }
+  }
+  return metric;
+}
+
+namespace {
+
 // Runs the flow with each metric of one_cone_metric_order until one converges; failed runs are
 // appended to `failures`.
 FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options,
                        std::vector<std::string>& failures) {
   FlowResult result;
+  if (problem.kind == OneConeKind::SingleCone) {
+    // Thurston's angles from the mesh with tangent circles at the cone: the mesh-conformal
+    // circle packing often has no solution at a 10pi cone (genus3_100k), tangency near the cone
+    // weakens the existence condition as far as the combinatorial metric's, and the rest of the
+    // surface keeps the mesh's angles.
+    const std::string name = "circle-packing/mean, tangent within " + std::to_string(kConeTangentRings) +
+                             " rings of the cone: ";
+    const MeshTables tables = build_mesh_tables(problem.mesh);
+    const CirclePackingMetric initial = cone_tangent_metric(
+        tables, mesh_edge_lengths(problem.mesh), problem.cone, kConeTangentRings, RadiusInit::Mean);
+    try {
+      result = flow(tables, initial, problem.targets, options);
+      if (result.converged()) return result;
+      failures.push_back(name + to_string(result.status));
+    } catch (const InfeasibleTargetError& e) {
+      failures.push_back(name + e.what());
+    }
+  }
   for (auto [scheme, radii] : one_cone_metric_order(problem.kind)) {
     FlowOptions attempt = options;
     attempt.scheme = scheme;

@@ -65,11 +65,19 @@ inline constexpr int kMaxHandleSubdivisions = 2;
 /// once the cone has valence >= 4 - 2K/pi, but it ignores the mesh's shape.
 [[nodiscard]] std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kind);
 
-/// Runs the flow with the metrics of one_cone_metric_order until one converges (the options'
+/// Runs the flow with the metrics of one_cone_metric_order until one converges (single cones
+/// first try cone_tangent_metric with 3 rings, then that order; the options'
 /// scheme and radii are overridden unless `keep_metric`). The result's failed_attempts lists the
 /// runs that did not converge. Returns the last attempt when none converged.
 [[nodiscard]] FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options,
                                              bool keep_metric = false);
+
+/// Thurston circle packing of the mesh (radii by `radii`, angles from its lengths clamped to
+/// [0, pi/2]) except on the edges within `rings` rings of `cone`, which get tangent circles
+/// (Phi = 0, as the combinatorial metric): the combinatorial metric's existence condition near
+/// the cone, the mesh's conformal structure elsewhere.
+[[nodiscard]] CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths,
+                                                      int cone, int rings, RadiusInit radii);
 
 /// Whether the mesh's topology asks for a singular vertex at all (closed, genus != 1).
 [[nodiscard]] bool needs_singular_vertex(const Mesh& mesh);

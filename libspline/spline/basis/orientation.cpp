@@ -50,6 +50,18 @@ constexpr double kOrientBound = (3.0 + 16.0 * kEpsilon) * kEpsilon;
 
 int sign_of(double x) { return (x > 0.0) - (x < 0.0); }
 
+// det[b - a, c - a] expanded into six exact products.
+Expansion exact_det2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  Expansion e;
+  e.add_product(a.x(), b.y());
+  e.add_product(-a.x(), c.y());
+  e.add_product(-a.y(), b.x());
+  e.add_product(a.y(), c.x());
+  e.add_product(b.x(), c.y());
+  e.add_product(-b.y(), c.x());
+  return e;
+}
+
 }  // namespace
 
 int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
@@ -58,27 +70,12 @@ int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   const double det = left - right;
   const double bound = kOrientBound * (std::abs(left) + std::abs(right));
   if (det > bound || -det > bound) return sign_of(det);
-  // det[b - a, c - a] expanded into six exact products.
-  Expansion e;
-  e.add_product(a.x(), b.y());
-  e.add_product(-a.x(), c.y());
-  e.add_product(-a.y(), b.x());
-  e.add_product(a.y(), c.x());
-  e.add_product(b.x(), c.y());
-  e.add_product(-b.y(), c.x());
-  return e.sign();
+  return exact_det2d(a, b, c).sign();
 }
 
 double accurate_det2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                       const Eigen::Vector2d& c) {
-  Expansion e;
-  e.add_product(a.x(), b.y());
-  e.add_product(-a.x(), c.y());
-  e.add_product(-a.y(), b.x());
-  e.add_product(a.y(), c.x());
-  e.add_product(b.x(), c.y());
-  e.add_product(-b.y(), c.x());
-  return e.approximate();
+  return exact_det2d(a, b, c).approximate();
 }
 
 int cross_sign(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& d) {

@@ -21,19 +21,18 @@ std::string resolve(const std::string& path) {
   return std::string(MSP_SHARED_MODELS) + "/" + path;
 }
 
-// Edge-length errors of the central chart against the flat metric: the largest absolute error
-// (relative to the domain diameter) and the largest relative error over edges longer than
-// 1e-4 of the diameter. Near a cone of angle 2*pi*(2g - 1) the flat metric shrinks like
-// r^(2g - 1): edges there are 1e-8 of the diameter or less and double-precision coordinates of
-// the global chart carry only eps * diameter absolute accuracy (the local charts are exact).
+// Edge-length errors of the laid-out fundamental domain against the flat metric: the largest
+// absolute error (relative to the domain diameter) and the largest relative error over every
+// edge. Near a cone of angle 2*pi*(2g - 1) the flat metric shrinks like r^(2g - 1), so edges
+// there are down to 1e-17 of the diameter: the layout's double-double positions (edge_vector)
+// keep them to full relative accuracy.
 struct LayoutErrors {
-  double absolute = 0.0, relative_long_edges = 0.0;
+  double absolute = 0.0, relative = 0.0;
 };
 
 LayoutErrors layout_errors(const ricci::OneConeAtlasResult& r) {
   const ricci::Mesh& m = r.problem.mesh;
   const auto& sliced = r.atlas.sliced;
-  const auto& P = r.atlas.layout.positions;
   LayoutErrors errors;
   for (auto e : sliced.mesh.edges()) {
     auto h = sliced.mesh.halfedge_handle(e, 0);
@@ -41,9 +40,9 @@ LayoutErrors layout_errors(const ricci::OneConeAtlasResult& r) {
     auto original = m.find_halfedge(m.vertex_handle(sliced.to_original_vertex[a]),
                                     m.vertex_handle(sliced.to_original_vertex[b]));
     double l = r.flow.lengths[m.edge_handle(original).idx()];
-    double error = std::abs((P.row(a) - P.row(b)).norm() - l);
+    double error = std::abs(r.atlas.layout.edge_vector(a, b).norm() - l);
     errors.absolute = std::max(errors.absolute, error / r.atlas.domain_diameter);
-    if (l > 1e-4 * r.atlas.domain_diameter) errors.relative_long_edges = std::max(errors.relative_long_edges, error / l);
+    errors.relative = std::max(errors.relative, error / l);
   }
   return errors;
 }
@@ -61,7 +60,7 @@ TEST_P(OneConeAtlasRegression, FlatOneConeAtlasIsExact) {
   EXPECT_EQ(r.atlas.layout.flipped_faces, 0) << c.path;
   LayoutErrors errors = layout_errors(r);
   EXPECT_LT(errors.absolute, 1e-11) << c.path;
-  EXPECT_LT(errors.relative_long_edges, 1e-9) << c.path;
+  EXPECT_LT(errors.relative, 1e-9) << c.path;
   EXPECT_LT(r.relative_transition_residual(), 1e-9) << c.path;
   EXPECT_EQ(r.atlas.uncovered_faces, 0) << c.path;
   const int chi = 2 - 2 * r.problem.genus - r.problem.boundary_loops;
@@ -99,7 +98,9 @@ TEST(OneConeAtlas, AutomaticChoiceRunsFewFlows) {
   ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh);
   EXPECT_GE(r.chosen_vertex, 0);
   EXPECT_GT(r.flows_for_choice, 0);
-  EXPECT_LT(r.flows_for_choice, 40);
+  // eight.off has 768 vertices; the greedy one-ring descent took 40 flows once single cones
+  // start with tangent circles near the cone (their area distortion differs slightly).
+  EXPECT_LT(r.flows_for_choice, 50);
   EXPECT_LT(r.flow.max_error, 1e-9);
 }
 

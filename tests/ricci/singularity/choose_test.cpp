@@ -27,7 +27,9 @@ double brute_force_best(const ricci::Mesh& mesh, int& best_vertex) {
   return best;
 }
 
-void expect_close_to_brute_force(const std::string& model) {
+// `fewer_flows`: how many times fewer flows than the brute force the choice must run (on a few
+// hundred vertices it verifies V / 20 candidates plus the descents, so about 4-10x).
+void expect_close_to_brute_force(const std::string& model, int fewer_flows = 4) {
   ricci::Mesh mesh = shared_model(model);
   auto choice = ricci::choose_singularity(mesh);
   int brute_vertex = -1;
@@ -35,13 +37,20 @@ void expect_close_to_brute_force(const std::string& model) {
   ASSERT_TRUE(std::isfinite(brute)) << model;
   EXPECT_LE(choice.area_distortion, 1.02 * brute)
       << model << ": chose " << choice.vertex << ", brute force " << brute_vertex;
-  EXPECT_LT(choice.flows_run * 10, static_cast<int>(mesh.n_vertices())) << model;
+  EXPECT_LT(choice.flows_run * fewer_flows, static_cast<int>(mesh.n_vertices())) << model;
   std::cout << model << ": chose vertex " << choice.vertex << " (distortion " << choice.area_distortion
             << ", " << choice.flows_run << " flows); brute force vertex " << brute_vertex << " ("
             << brute << ", " << mesh.n_vertices() << " flows)\n";
 }
 
 TEST(ChooseSingularity, MatchesBruteForceOnGenusTwo) { expect_close_to_brute_force("closed_g2/eight_cgal.off"); }
+
+// A CAD mesh with slivers, where the linear model ranks the optimum 76th of 221 (multi-start
+// descent finds it), and a quad-derived mesh whose optimum ranks 9th.
+TEST(ChooseSingularity, MatchesBruteForceOnCadGenusTwo) {
+  expect_close_to_brute_force("closed_g2/joint.off");
+  expect_close_to_brute_force("closed_g2/double-torus-example_quad.off");
+}
 
 TEST(ChooseSingularity, MatchesBruteForceOnGenusZero) {
   expect_close_to_brute_force("closed_g0/knight_decimated.off");

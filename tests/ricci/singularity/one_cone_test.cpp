@@ -44,6 +44,34 @@ TEST(OneCone, GenusThreeConeAngleIsTenPi) {
   EXPECT_NEAR(2 * M_PI - r.curvature[problem.cone], 10 * M_PI, 1e-9);
 }
 
+// The first single-cone metric: Thurston's angles of the mesh except tangent circles on every
+// edge within 3 rings of the cone; on genus3_100k it is the one that converges (bench one-cone).
+TEST(OneCone, ConeTangentMetricIsTangentNearTheConeAndTheMeshsPackingElsewhere) {
+  auto problem = ricci::prepare_one_cone(shared_model("closed_g3/genus3.off"), 100);
+  const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
+  const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
+  const auto packing = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean,
+                                             ricci::Scheme::CirclePacking, ricci::RadiusInit::Mean);
+  const auto blended = ricci::cone_tangent_metric(t, lengths, problem.cone, 3, ricci::RadiusInit::Mean);
+  std::vector<char> near(problem.mesh.n_vertices(), 0);  // within 2 rings: its edges reach ring 3
+  near[problem.cone] = 1;
+  for (auto v : ricci::ring_neighbourhood(problem.mesh, problem.mesh.vertex_handle(problem.cone), 2)) near[v.idx()] = 1;
+  int tangent = 0;
+  for (int e = 0; e < t.num_edges(); ++e) {
+    if (near[t.edge_vertices(e, 0)] || near[t.edge_vertices(e, 1)]) {
+      EXPECT_EQ(blended.eta[e], 1.0) << e;
+      ++tangent;
+    } else {
+      EXPECT_EQ(blended.eta[e], packing.eta[e]) << e;
+    }
+  }
+  EXPECT_GT(tangent, 3 * 20);  // the cone alone has valence >= 20
+  EXPECT_EQ(blended.gamma, packing.gamma);
+  auto r = expect_flow_reaches_target(problem);
+  EXPECT_TRUE(r.failed_attempts.empty()) << r.failed_attempts.front();
+  EXPECT_NEAR(2 * M_PI - r.curvature[problem.cone], 10 * M_PI, 1e-9);
+}
+
 TEST(OneCone, GenusOneIsAFlatTorusWithoutCone) {
   auto problem = ricci::prepare_one_cone(shared_model("closed_g1/knot1.off"), 0);
   EXPECT_EQ(problem.kind, ricci::OneConeKind::FlatTorus);

@@ -1,0 +1,299 @@
+// msp-bench one-cone / one-cone-one: the whole one-cone pipeline (valence modification, Ricci
+// flow, cut graph, layout, atlas) on the bench meshes of ../shared/models/bench and the genus 1-3
+// models, each mesh in a child process so that its peak memory is its own; the figures of
+// issue 8 against CEPS and Campen et al. (bench/README.md).
+#include <sys/resource.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <ricci/flow/linear_solver.h>
+#include <ricci/mesh/io.h>
+#include <ricci/metric/curvature.h>
+#include <ricci/metric/mesh_tables.h>
+#include <ricci/metric/subdivide.h>
+#include <ricci/pipeline/one_cone_atlas.h>
+
+#include "bench/benchmarks.h"
+#include "msp/cli.h"
+#include "msp/flow_options.h"
+
+namespace msp::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Sparse = Eigen::SparseMatrix<double>;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Lower triangle of the cotangent Laplacian plus 1e-8 times its mean diagonal (SPD without
+// pinning a vertex): the one linear system a single-solve method factorises.
+Sparse regularised_cotangent_laplacian(const ricci::Mesh& mesh) {
+  const ricci::MeshTables t = ricci::build_mesh_tables(mesh);
+  const Eigen::MatrixX3d angles =
+      ricci::corner_angles(t, ricci::mesh_edge_lengths(mesh), ricci::Geometry::Euclidean);
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(9 * static_cast<size_t>(t.num_faces()) + static_cast<size_t>(t.num_vertices()));
+  double diagonal = 0;
+  for (int f = 0; f < t.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int i = t.face_vertices(f, (k + 1) % 3), j = t.face_vertices(f, (k + 2) % 3);
+      const double w = 0.5 / std::tan(angles(f, k));
+      triplets.emplace_back(i, i, w);
+      triplets.emplace_back(j, j, w);
+      triplets.emplace_back(std::max(i, j), std::min(i, j), -w);
+      diagonal += 2 * w;
+    }
+  }
+  const double shift = 1e-8 * diagonal / t.num_vertices();
+  for (int v = 0; v < t.num_vertices(); ++v) triplets.emplace_back(v, v, shift);
+  Sparse L(t.num_vertices(), t.num_vertices());
+  L.setFromTriplets(triplets.begin(), triplets.end());
+  L.makeCompressed();
+  return L;
+}
+
+// Best of 3: CHOLMOD supernodal analyse + factorise + solve.
+double one_cholesky_seconds(const Sparse& L) {
+  double best = 1e300;
+  const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(L.rows());
+  for (int r = 0; r < 3; ++r) {
+    ricci::SymmetricFactorization solver(ricci::LinearSolver::CholmodSupernodal);
+    const auto t0 = Clock::now();
+    solver.analyze(L);
+    if (!solver.factorize(L)) throw std::runtime_error("cotangent Laplacian factorisation failed");
+    const Eigen::VectorXd x = solver.solve(rhs);
+    best = std::min(best, since(t0));
+    if (!x.allFinite()) throw std::runtime_error("cotangent Laplacian solve is not finite");
+  }
+  return best;
+}
+
+// Faces of the central chart with negative / zero signed area, from the layout's double-double
+// edge vectors, and those whose plain double corner positions give area <= 0.
+struct FaceSigns {
+  int flipped = 0, zero = 0, degenerate_in_doubles = 0;
+};
+
+FaceSigns face_signs(const ricci::LayoutE2Result& layout, const ricci::Mesh& sliced) {
+  FaceSigns s;
+  auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  for (auto f : sliced.faces()) {
+    int c[3], k = 0;
+    for (auto v : sliced.fv_range(f)) c[k++] = v.idx();
+    const double area = cross(layout.edge_vector(c[0], c[1]), layout.edge_vector(c[0], c[2]));
+    if (area < 0) ++s.flipped;
+    if (area == 0) ++s.zero;
+    const Eigen::Vector2d a = layout.positions.row(c[0]), b = layout.positions.row(c[1]),
+                          d = layout.positions.row(c[2]);
+    if (!(cross(b - a, d - a) > 0)) ++s.degenerate_in_doubles;
+  }
+  return s;
+}
+
+std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
+
+}  // namespace
+
+int run_one_cone_case(int argc, char** argv) {
+  Args args(argc, argv, {"verbose"});
+  args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings"});
+  args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R]");
+  const std::string path = args.positionals()[0];
+  auto t0 = Clock::now();
+  ricci::Mesh mesh = ricci::read_mesh(path);
+  for (int i = 0; i < args.get_int("levels", 0); ++i) mesh = ricci::subdivide_midpoint(mesh);
+  const double read = since(t0);
+
+  ricci::OneConeAtlasOptions options;
+  const std::string cone = args.get_or("cone", "auto");
+  options.singular_vertex = cone == "auto" ? -1 : std::stoi(cone);
+  if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
+  if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
+  options.keep_metric = args.has("metric") || args.has("radii");
+  options.valence.cone_valence_margin = args.get_int("cone-margin", options.valence.cone_valence_margin);
+  options.valence.ring_valence = args.get_int("ring-valence", options.valence.ring_valence);
+  options.valence.rings = args.get_int("rings", options.valence.rings);
+  if (args.has("verbose")) {
+    options.flow.progress = [](const ricci::FlowProgress& p) {
+      std::cerr << "  newton " << p.iteration << ": error " << p.max_error << ", step " << p.step << ", "
+                << p.seconds << " s\n";
+    };
+    options.progress = [t = Clock::now()](const std::string& stage) {
+      std::cerr << std::fixed << since(t) << " s: " << stage << std::defaultfloat << "\n";
+    };
+  }
+
+  nlohmann::json j;
+  j["mesh"] = path;
+  j["faces"] = mesh.n_faces();
+  j["read_seconds"] = read;
+  try {
+    const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
+    const auto& t = r.timings;
+    const FaceSigns signs = face_signs(r.atlas.layout, r.atlas.sliced.mesh);
+    j["status"] = "ok";
+    j["kind"] = ricci::to_string(r.problem.kind);
+    j["cone"] = r.chosen_vertex;
+    j["splits"] = r.problem.valence_splits;
+    j["metric"] = ricci::to_string(r.flow.metric.scheme);
+    j["failed_metrics"] = r.flow.failed_attempts.size();
+    j["choice"] = t.choice;
+    j["valence"] = t.valence;
+    j["flow"] = t.flow;
+    j["atlas"] = t.atlas;
+    j["distortion"] = t.distortion;
+    j["total"] = t.valence + t.flow + t.atlas;
+    j["newton"] = r.flow.iterations;
+    j["factorizations"] = r.flow.factorizations;
+    const auto& ft = r.flow.timings;
+    j["flow_stages"] = {{"setup", ft.setup},         {"evaluation", ft.evaluation},
+                        {"assembly", ft.assembly},   {"analysis", ft.analysis},
+                        {"factorization", ft.factorization}, {"solve", ft.solve},
+                        {"last_attempt_total", ft.total}};
+    j["curvature_error"] = r.flow.max_error;
+    j["flipped"] = signs.flipped;
+    j["zero_area"] = signs.zero;
+    j["degenerate_in_doubles"] = signs.degenerate_in_doubles;
+    j["edge_error"] = r.atlas.layout.max_relative_length_error;
+    j["transition"] = r.relative_transition_residual();
+    if (args.has("verbose")) {  // the worst edge of the layout, to see where closure error sits
+      const ricci::Mesh& sm = r.atlas.sliced.mesh;
+      double worst = 0;
+      int wa = 0, wb = 0;
+      double wl = 0;
+      const Eigen::VectorXd sl = ricci::sliced_edge_lengths(r.atlas.sliced, r.flow.lengths);
+      for (auto e : sm.edges()) {
+        const auto h = sm.halfedge_handle(e, 0);
+        const int a = sm.from_vertex_handle(h).idx(), b = sm.to_vertex_handle(h).idx();
+        const double err = std::abs(r.atlas.layout.edge_vector(a, b).norm() - sl[e.idx()]) / sl[e.idx()];
+        if (err > worst) { worst = err; wa = a; wb = b; wl = sl[e.idx()]; }
+      }
+      const int oa = r.atlas.sliced.to_original_vertex[wa], ob = r.atlas.sliced.to_original_vertex[wb];
+      std::cerr << "worst edge " << oa << "-" << ob << " rel " << worst << " length/diam " << wl / r.atlas.domain_diameter
+                << " K err " << r.flow.curvature[oa] - r.flow.target[oa] << " " << r.flow.curvature[ob] - r.flow.target[ob]
+                << " pos " << r.atlas.layout.positions.row(wa) << " seed " << r.atlas.layout.seed_face << "\n";
+      Eigen::VectorXd kerr = (r.flow.curvature - r.flow.target).cwiseAbs();
+      Eigen::Index worst_v;
+      kerr.maxCoeff(&worst_v);
+      std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
+    }
+    j["qc_mean"] = r.distortion.quasi_conformal_mean;
+    j["qc_max"] = r.distortion.quasi_conformal_max;
+    j["qc_p50"] = r.distortion.quasi_conformal_p50;
+    j["qc_area_mean"] = r.distortion.quasi_conformal_area_mean;
+  } catch (const std::exception& e) {
+    j["status"] = std::string("failed: ") + e.what();
+  }
+  t0 = Clock::now();
+  const double cholesky = one_cholesky_seconds(regularised_cotangent_laplacian(mesh));
+  j["cholesky"] = cholesky;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  j["peak_mb"] = usage.ru_maxrss / 1024.0;
+  std::cout << j.dump() << std::endl;
+  return 0;
+}
+
+int run_one_cone_benchmark(int argc, char** argv) {
+  Args args(argc, argv, {"million"});
+  args.require_known({"million", "metric", "radii", "only"});
+  struct Case {
+    std::string path, cone;
+    int levels;
+  };
+  const std::string m = models();
+  std::vector<Case> cases;
+  for (const char* name : {"torus_10k", "genus2_10k", "genus3_10k", "sphere_10k", "cap_10k", "torus_100k",
+                           "genus2_100k", "genus3_100k", "sphere_100k", "cap_100k"}) {
+    cases.push_back({m + "/bench/" + name + ".obj", "0", 0});  // vertex 0, as bench/README.md
+  }
+  for (const char* name : {"closed_g1/elk.off", "closed_g1/kitten_nf20k.off", "closed_g1/rocker-arm.off",
+                           "closed_g2/eight.off", "closed_g2/cup.off", "closed_g2/femur.off",
+                           "closed_g2/joint.off", "closed_g3/genus3.off", "closed_g3/block.off",
+                           "closed_g3/helmet.off", "closed_g3/elephant_cgal.off"}) {
+    cases.push_back({m + "/" + name, "auto", 0});
+  }
+  if (args.has("million")) {  // midpoint subdivision twice: 1.6M faces
+    cases.push_back({m + "/bench/torus_100k.obj", "0", 2});
+    cases.push_back({m + "/bench/genus2_100k.obj", "0", 2});
+  }
+  const std::string only = args.get_or("only", "");
+  std::string extra;
+  if (args.has("metric")) extra += " --metric " + *args.get("metric");
+  if (args.has("radii")) extra += " --radii " + *args.get("radii");
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+
+  std::cout << "One-cone pipeline per mesh, each in its own process. Seconds: read (OBJ/OFF), "
+               "choice (automatic\nsingularity, 'auto' rows only), valence, flow, atlas (cut graph "
+               "+ layout + charts +\ntransitions), total = valence + flow + atlas; chol = one CHOLMOD "
+               "analyse+factorise+solve of\nthe cotangent Laplacian of the same mesh (best of 3), "
+               "ratio = total / chol. flip/zero: faces\nof the layout with negative/zero signed area "
+               "(double-double positions); dbl: faces with area\n<= 0 in the plain double chart "
+               "coordinates; edge: max relative edge-length error of the\nlayout; trans: transition "
+               "residual / domain diameter; QC: quasi-conformal distortion vs the\ninput mesh (mean, mean weighted by 3D area as Crane's tools report it,\nmedian, max over faces); MB: "
+               "peak RSS of the process.\n\n";
+  std::cout << std::left << std::setw(22) << "mesh" << std::right << std::setw(8) << "faces" << std::setw(6)
+            << "cone" << std::setw(5) << "spl" << std::setw(7) << "read" << std::setw(7) << "choice"
+            << std::setw(7) << "val" << std::setw(7) << "flow" << std::setw(7) << "atlas" << std::setw(7)
+            << "total" << std::setw(7) << "chol" << std::setw(6) << "ratio" << std::setw(4) << "it"
+            << std::setw(9) << "K err" << std::setw(5) << "flip" << std::setw(5) << "zero" << std::setw(5)
+            << "dbl" << std::setw(9) << "edge" << std::setw(9) << "trans" << std::setw(8) << "QC mean" << std::setw(8) << "QC area" << std::setw(7) << "QC p50"
+            << std::setw(10) << "QC max" << std::setw(7) << "MB"
+            << "  metric\n";
+  for (const Case& c : cases) {
+    if (!only.empty() && c.path.find(only) == std::string::npos) continue;
+    const std::string command = "'" + self + "' one-cone-one '" + c.path + "' --cone " + c.cone +
+                                " --levels " + std::to_string(c.levels) + extra;
+    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+    if (!pipe) throw std::runtime_error("cannot start " + command);
+    std::string output;
+    char buffer[4096];
+    while (fgets(buffer, sizeof buffer, pipe.get())) output += buffer;
+    std::string name = c.path.substr(c.path.find_last_of('/') + 1);
+    if (c.levels) name += " /" + std::to_string(c.levels);
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(output);
+    } catch (const std::exception&) {
+      std::cout << std::left << std::setw(22) << name << " child failed: " << output << "\n";
+      continue;
+    }
+    std::cout << std::left << std::setw(22) << name << std::right << std::setw(8) << j["faces"].get<int>();
+    if (j["status"] != "ok") {
+      std::cout << "  " << j["status"].get<std::string>().substr(0, 200) << std::endl;
+      continue;
+    }
+    const double total = j["total"].get<double>(), chol = j["cholesky"].get<double>();
+    std::cout << std::setw(6) << j["cone"].get<int>() << std::setw(5) << j["splits"].get<int>() << std::fixed
+              << std::setprecision(2) << std::setw(7) << j["read_seconds"].get<double>() << std::setw(7)
+              << j["choice"].get<double>() << std::setw(7) << j["valence"].get<double>() << std::setw(7)
+              << j["flow"].get<double>() << std::setw(7) << j["atlas"].get<double>() << std::setw(7) << total
+              << std::setw(7) << chol << std::setprecision(1) << std::setw(6) << total / chol << std::setw(4)
+              << j["newton"].get<int>() << std::scientific << std::setprecision(1) << std::setw(9)
+              << j["curvature_error"].get<double>() << std::setw(5) << j["flipped"].get<int>() << std::setw(5)
+              << j["zero_area"].get<int>() << std::setw(5) << j["degenerate_in_doubles"].get<int>()
+              << std::setw(9) << j["edge_error"].get<double>() << std::setw(9) << j["transition"].get<double>()
+              << std::fixed << std::setprecision(3) << std::setw(8) << j["qc_mean"].get<double>() << std::setw(8)
+              << j["qc_area_mean"].get<double>() << std::setw(7)
+              << j["qc_p50"].get<double>()
+              << std::setprecision(1) << std::setw(10) << j["qc_max"].get<double>() << std::setprecision(0)
+              << std::setw(7) << j["peak_mb"].get<double>() << "  " << j["metric"].get<std::string>()
+              << (j["failed_metrics"].get<int>() ? " (after " + std::to_string(j["failed_metrics"].get<int>()) + " failed)" : "")
+              << std::endl;
+  }
+  return 0;
+}
+
+}  // namespace msp::bench

@@ -1,0 +1,277 @@
+#include "ricci/hyperbolic/fuchsian.h"
+
+#include <string>
+
+#include "ricci/mesh/errors.h"
+
+namespace ricci {
+namespace {
+
+/// P_e from the two copies of e's ends: right copy (x1, y1) onto left copy (x0, y0).
+Mobius pair_segments(Complex x0, Complex y0, Complex x1, Complex y1, Geometry geometry) {
+  if (geometry == Geometry::Hyperbolic) return disk_to_centre(x0, y0).inverse() * disk_to_centre(x1, y1);
+  return plane_to_centre(x0, y0).inverse() * plane_to_centre(x1, y1);
+}
+
+/// Walks every arc of the cut graph from a branch vertex (or anywhere on a cycle).
+std::vector<CutArc> trace_arcs(const Mesh& mesh, const std::vector<char>& is_cut) {
+  std::vector<int> valence(mesh.n_vertices(), 0);
+  for (auto e : mesh.edges()) {
+    if (!is_cut[e.idx()]) continue;
+    ++valence[mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx()];
+    ++valence[mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx()];
+  }
+  std::vector<char> done(mesh.n_edges(), 0);
+  std::vector<CutArc> arcs;
+  auto walk = [&](HalfedgeHandle h) {
+    CutArc arc;
+    while (true) {
+      arc.halfedges.push_back(h);
+      done[mesh.edge_handle(h).idx()] = 1;
+      const VertexHandle v = mesh.to_vertex_handle(h);
+      if (valence[v.idx()] != 2) break;
+      HalfedgeHandle next;
+      for (auto g : mesh.voh_range(v)) {
+        if (is_cut[mesh.edge_handle(g).idx()] && !done[mesh.edge_handle(g).idx()]) next = g;
+      }
+      if (!next.is_valid()) break;  // closed cycle
+      h = next;
+    }
+    arcs.push_back(std::move(arc));
+  };
+  for (auto v : mesh.vertices()) {
+    if (valence[v.idx()] == 2 || valence[v.idx()] == 0) continue;
+    for (auto g : mesh.voh_range(v)) {
+      if (is_cut[mesh.edge_handle(g).idx()] && !done[mesh.edge_handle(g).idx()]) walk(g);
+    }
+  }
+  for (auto e : mesh.edges()) {
+    if (is_cut[e.idx()] && !done[e.idx()]) walk(mesh.halfedge_handle(e, 0));
+  }
+  return arcs;
+}
+
+/// For every cut edge: its arc and the sign of P_e in that arc's letter.
+struct EdgeLetters {
+  std::vector<ArcLetter> letter;  // by edge index; arc -1 for uncut edges
+  EdgeLetters(const Mesh& mesh, const DomainPairings& p) : letter(mesh.n_edges(), {-1, 0}) {
+    for (size_t a = 0; a < p.arcs.size(); ++a) {
+      for (auto h : p.arcs[a].halfedges) {
+        const EdgeHandle e = mesh.edge_handle(h);
+        letter[e.idx()] = {static_cast<int>(a), h == mesh.halfedge_handle(e, 0) ? 1 : -1};
+      }
+    }
+  }
+};
+
+/// Develops clockwise around from_vertex(start) from face(start) to face(stop), appending the
+/// arcs crossed to `word`.
+void turn_clockwise(const Mesh& mesh, const EdgeLetters& letters, HalfedgeHandle start,
+                    HalfedgeHandle stop, ArcWord& word) {
+  for (auto g = start; g != stop;) {
+    const EdgeHandle e = mesh.edge_handle(g);
+    ArcLetter l = letters.letter[e.idx()];
+    if (l.arc >= 0) {
+      // Leaving face(halfedge(e, 0)) multiplies by P_e on the right, the other way by P_e^-1.
+      if (g != mesh.halfedge_handle(e, 0)) l.sign = -l.sign;
+      word.push_back(l);
+    }
+    g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
+  }
+}
+
+}  // namespace
+
+DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const SlicedMesh& sliced,
+                               const Eigen::VectorXcd& positions, Geometry geometry) {
+  if (geometry == Geometry::Spherical) {
+    throw InvalidInputError("domain_pairings: the sphere has no side pairings");
+  }
+  if (positions.size() != static_cast<Eigen::Index>(sliced.mesh.n_vertices()) ||
+      cut.is_cut_edge.size() != mesh.n_edges()) {
+    throw InvalidInputError("domain_pairings: positions or cut do not match the meshes");
+  }
+  DomainPairings result;
+  result.is_cut_edge = cut.is_cut_edge;
+  result.edge_pairing.assign(mesh.n_edges(), Mobius::identity());
+  for (const CutEdgeSides& s : sliced.cut_sides) {
+    const auto& sm = sliced.mesh;
+    const Complex x0 = positions[sm.from_vertex_handle(s.side[0]).idx()];
+    const Complex y0 = positions[sm.to_vertex_handle(s.side[0]).idx()];
+    // side[1] runs the other way (to -> from of the original halfedge 0).
+    const Complex y1 = positions[sm.from_vertex_handle(s.side[1]).idx()];
+    const Complex x1 = positions[sm.to_vertex_handle(s.side[1]).idx()];
+    result.edge_pairing[s.edge.idx()] = pair_segments(x0, y0, x1, y1, geometry);
+  }
+  result.arcs = trace_arcs(mesh, cut.is_cut_edge);
+  std::vector<int> loop_of_edge(mesh.n_edges(), -1);
+  for (size_t i = 0; i < cut.loops.size(); ++i) {
+    loop_of_edge[mesh.edge_handle(cut.loops[i].generator).idx()] = static_cast<int>(i);
+  }
+  for (CutArc& arc : result.arcs) {
+    std::vector<Mobius> maps;
+    for (auto h : arc.halfedges) {
+      const EdgeHandle e = mesh.edge_handle(h);
+      if (loop_of_edge[e.idx()] >= 0) arc.loop = loop_of_edge[e.idx()];
+      const Mobius& m = result.edge_pairing[e.idx()];
+      maps.push_back(h == mesh.halfedge_handle(e, 0) ? m : m.inverse());
+    }
+    for (const Mobius& m : maps) arc.spread = std::max(arc.spread, mobius_distance(m, maps[0]));
+    arc.pairing = mobius_mean(maps.data(), static_cast<int>(maps.size()));
+    result.max_spread = std::max(result.max_spread, arc.spread);
+  }
+  return result;
+}
+
+namespace {
+
+/// The point c among `candidates` whose images under the prefixes of `word` stay closest to it
+/// (smallest max over prefixes g of |g|_c, the norm of g in the frame centred at c).
+Complex best_frame_centre(const DomainPairings& pairings, const ArcWord& word,
+                          const std::vector<Complex>& candidates) {
+  Complex best = 0.0;
+  double best_size = INFINITY;
+  for (const Complex& c : candidates) {
+    const Mobius to_c = Mobius::from_rotation_point(0.0, c);
+    Mobius prefix;
+    double size = 0.0;
+    for (const ArcLetter& l : word) {
+      const Mobius& m = pairings.arcs[static_cast<size_t>(l.arc)].pairing;
+      prefix = prefix * (l.sign > 0 ? m : m.inverse());
+      size = std::max(size, (to_c * prefix * to_c.inverse()).m.norm());
+      if (size >= best_size) break;
+    }
+    if (size < best_size) {
+      best_size = size;
+      best = c;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
+                            const std::vector<Complex>& candidates) {
+  const ArcWord w = cyclically_reduced(word);
+  const Complex c = best_frame_centre(pairings, w, candidates);
+  const Mobius to_c = Mobius::from_rotation_point(0.0, c);
+  const Mobius from_c = to_c.inverse();
+  Mobius product;
+  for (const ArcLetter& l : w) {
+    const Mobius& m = pairings.arcs[static_cast<size_t>(l.arc)].pairing;
+    product = product * (to_c * (l.sign > 0 ? m : m.inverse()) * from_c);
+  }
+  return distance_to_identity(product);
+}
+
+ArcWord freely_reduced(const ArcWord& word) {
+  ArcWord out;
+  for (const ArcLetter& l : word) {
+    if (!out.empty() && out.back().arc == l.arc && out.back().sign == -l.sign) {
+      out.pop_back();
+    } else {
+      out.push_back(l);
+    }
+  }
+  return out;
+}
+
+ArcWord cyclically_reduced(const ArcWord& word) {
+  ArcWord w = freely_reduced(word);
+  size_t begin = 0, end = w.size();
+  while (end - begin >= 2 && w[begin].arc == w[end - 1].arc && w[begin].sign == -w[end - 1].sign) {
+    ++begin;
+    --end;
+  }
+  return ArcWord(w.begin() + static_cast<std::ptrdiff_t>(begin), w.begin() + static_cast<std::ptrdiff_t>(end));
+}
+
+Mobius evaluate(const DomainPairings& pairings, const ArcWord& word) {
+  Mobius product;
+  for (const ArcLetter& l : word) {
+    const Mobius& m = pairings.arcs.at(static_cast<size_t>(l.arc)).pairing;
+    product = product * (l.sign > 0 ? m : m.inverse());
+  }
+  return product;
+}
+
+std::vector<ArcWord> loop_arc_words(const Mesh& mesh, const CutGraph& cut,
+                                    const DomainPairings& pairings) {
+  if (cut.boundary_loop_count > 0) {
+    throw InvalidInputError("loop_arc_words: the surface has boundary (take its double cover)");
+  }
+  const EdgeLetters letters(mesh, pairings);
+  std::vector<ArcWord> result;
+  const HalfedgeHandle reference = *mesh.voh_range(cut.root).begin();
+  for (const CutPath& loop : cut.loops) {
+    const auto& hs = loop.halfedges;
+    ArcWord word;
+    turn_clockwise(mesh, letters, reference, hs.front(), word);
+    for (size_t k = 0; k + 1 < hs.size(); ++k) {
+      turn_clockwise(mesh, letters, mesh.next_halfedge_handle(hs[k]), hs[k + 1], word);
+    }
+    turn_clockwise(mesh, letters, mesh.next_halfedge_handle(hs.back()), reference, word);
+    result.push_back(freely_reduced(word));
+  }
+  return result;
+}
+
+ArcWord arc_word(const std::vector<ArcWord>& loop_words, const LoopWord& word) {
+  ArcWord out;
+  for (const PolygonLetter& l : word) {
+    if (l.kind != PolygonLetter::Kind::loop) continue;
+    const ArcWord& w = loop_words.at(static_cast<size_t>(l.index));
+    if (l.sign > 0) {
+      out.insert(out.end(), w.begin(), w.end());
+    } else {
+      for (auto it = w.rbegin(); it != w.rend(); ++it) out.push_back({it->arc, -it->sign});
+    }
+  }
+  return freely_reduced(out);
+}
+
+double relation_residual(const std::vector<Mobius>& generators) {
+  if (generators.size() % 2 != 0) {
+    throw InvalidInputError("relation_residual: an odd number of generators");
+  }
+  Mobius product;
+  for (size_t i = 0; i + 1 < generators.size(); i += 2) {
+    const Mobius& a = generators[i];
+    const Mobius& b = generators[i + 1];
+    product = product * a * b * a.inverse() * b.inverse();
+  }
+  return distance_to_identity(product);
+}
+
+HolonomyGroup holonomy_group(const Mesh& mesh, const CutGraph& cut, const SlicedMesh& sliced,
+                             const DomainPairings& pairings, const Eigen::VectorXcd& positions) {
+  HolonomyGroup group;
+  group.polygon = fundamental_polygon_word(mesh, cut, sliced);
+  group.loop_words = loop_arc_words(mesh, cut, pairings);
+  for (const ArcWord& w : group.loop_words) group.loop_holonomy.push_back(evaluate(pairings, w));
+  std::vector<Complex> candidates{0.0};
+  const Eigen::Index stride = std::max<Eigen::Index>(1, positions.size() / 64);
+  for (Eigen::Index i = 0; i < positions.size(); i += stride) candidates.push_back(positions[i]);
+  group.polygon_residual =
+      conditioned_residual(pairings, arc_word(group.loop_words, group.polygon.word), candidates);
+  group.basis = canonical_basis(group.polygon.word);
+  for (size_t i = 0; i < group.basis.generators.size(); ++i) {
+    group.generator_words.push_back(arc_word(group.loop_words, group.basis.generators[i]));
+    group.generators.push_back(evaluate(pairings, group.generator_words.back()));
+  }
+  ArcWord relation;
+  for (size_t i = 0; i + 1 < group.generator_words.size(); i += 2) {
+    const ArcWord& a = group.generator_words[i];
+    const ArcWord& b = group.generator_words[i + 1];
+    for (const ArcWord* w : {&a, &b}) relation.insert(relation.end(), w->begin(), w->end());
+    for (const ArcWord* w : {&a, &b}) {
+      for (auto it = w->rbegin(); it != w->rend(); ++it) relation.push_back({it->arc, -it->sign});
+    }
+  }
+  group.relation_residual = conditioned_residual(pairings, relation, candidates);
+  group.relation_residual_direct = relation_residual(group.generators);
+  return group;
+}
+
+}  // namespace ricci

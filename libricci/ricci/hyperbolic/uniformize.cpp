@@ -1,0 +1,135 @@
+#include "ricci/hyperbolic/uniformize.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "ricci/layout/layout_e2.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
+#include "ricci/topology/double_cover.h"
+
+namespace ricci {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+Geometry geometry_of_genus(int genus) {
+  return genus == 0 ? Geometry::Spherical : (genus == 1 ? Geometry::Euclidean : Geometry::Hyperbolic);
+}
+
+/// The flat torus: translations of the canonical generators and the modulus.
+void torus_modulus(Uniformization& u) {
+  for (const Mobius& g : u.group.generators) u.translations.push_back(g(0.0));
+  if (u.translations.size() != 2) return;
+  Complex tau = u.translations[1] / u.translations[0];
+  if (tau.imag() < 0) tau = u.translations[0] / u.translations[1];
+  u.modulus = tau;
+  u.reduced_modulus = reduce_modulus(tau);
+}
+
+/// Cut, slice, lay out the disk (H2 or E2) and build the holonomy group.
+void build_domain(Uniformization& u, const UniformizeOptions& options) {
+  auto t = Clock::now();
+  const int root = std::clamp(options.root_vertex, 0, static_cast<int>(u.surface.n_vertices()) - 1);
+  u.cut = compute_cut_graph(u.surface, VertexHandle(root), u.flow.lengths);
+  u.sliced = slice_along(u.surface, u.cut.is_cut_edge);
+  check_disk(u.sliced, "uniformize");
+  u.timings.cut = seconds_since(t);
+  t = Clock::now();
+  const Eigen::VectorXd lengths = sliced_edge_lengths(u.sliced, u.flow.lengths);
+  if (u.geometry == Geometry::Hyperbolic) {
+    u.layout = layout_h2(u.sliced.mesh, lengths, {options.seed_face});
+    u.positions = u.layout.positions;
+  } else {
+    LayoutE2Options e2;
+    e2.seed_face = options.seed_face;
+    const LayoutE2Result flat = layout_e2(u.sliced.mesh, lengths, e2);
+    u.positions.resize(flat.positions.rows());
+    for (Eigen::Index i = 0; i < flat.positions.rows(); ++i) {
+      u.positions[i] = Complex(flat.positions(i, 0), flat.positions(i, 1));
+    }
+    u.layout.seed_face = flat.seed_face;
+    u.layout.min_signed_area = flat.min_signed_area;
+    u.layout.flipped_faces = flat.flipped_faces;
+    u.layout.max_relative_length_error = flat.max_relative_length_error;
+    u.layout.max_radius = u.positions.cwiseAbs().maxCoeff();
+  }
+  u.timings.layout = seconds_since(t);
+  t = Clock::now();
+  if (u.geometry == Geometry::Hyperbolic) {
+    u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry);
+    u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings, u.positions);
+  } else {
+    // Translations carry the unit of length; the residuals are taken on the domain scaled to
+    // unit size (scale-free), then the maps are conjugated back to the mesh's units.
+    const double size = std::max(u.positions.cwiseAbs().maxCoeff(), 1e-300);
+    u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions / size, u.geometry);
+    // Frame centres are disk isometries: in the plane the residual is taken as it is.
+    u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings);
+    const Mobius to_mesh = Mobius::from_matrix(Eigen::Vector2cd(size, 1.0).asDiagonal());
+    auto back = [&](Mobius& m) { m = to_mesh * m * to_mesh.inverse(); };
+    for (Mobius& m : u.pairings.edge_pairing) back(m);
+    for (CutArc& a : u.pairings.arcs) back(a.pairing);
+    for (Mobius& m : u.group.loop_holonomy) back(m);
+    for (Mobius& m : u.group.generators) back(m);
+    torus_modulus(u);
+  }
+  u.timings.group = seconds_since(t);
+}
+
+}  // namespace
+
+Complex reduce_modulus(Complex tau) {
+  for (int it = 0; it < 100; ++it) {
+    tau -= std::round(tau.real());
+    if (std::norm(tau) >= 1.0 - 1e-15) break;
+    tau = -1.0 / tau;
+  }
+  return tau;
+}
+
+Uniformization uniformize(const Mesh& mesh, const UniformizeOptions& options) {
+  const auto start = Clock::now();
+  Uniformization u;
+  const SurfaceTopology topology = surface_topology(mesh);
+  if (!topology.manifold) throw TopologyError("uniformize: the mesh is not a 2-manifold");
+  if (topology.components != 1) {
+    throw TopologyError("uniformize: the mesh has " + std::to_string(topology.components) +
+                        " components (one expected)");
+  }
+  if (topology.boundary_loops > 0) {
+    auto t = Clock::now();
+    u.surface = double_cover(mesh).mesh;
+    u.doubled = true;
+    u.timings.double_cover = seconds_since(t);
+    u.genus = 2 * topology.genus + topology.boundary_loops - 1;
+  } else {
+    u.surface = mesh;
+    u.genus = topology.genus;
+  }
+  u.geometry = geometry_of_genus(u.genus);
+  FlowOptions flow_options = options.flow;
+  flow_options.geometry = u.geometry;
+  auto t = Clock::now();
+  u.flow = flow(u.surface, uniform_target(u.surface, u.geometry), flow_options);
+  u.timings.flow = seconds_since(t);
+  if (u.flow.converged()) {
+    if (u.geometry == Geometry::Spherical) {
+      t = Clock::now();
+      SphereLayoutOptions s;
+      s.seed_face = std::max(options.seed_face, 0);
+      s.centre = options.centre_sphere;
+      u.sphere = layout_sphere(u.surface, u.flow.lengths, s);
+      u.timings.layout = seconds_since(t);
+    } else {
+      build_domain(u, options);
+    }
+  }
+  u.timings.total = seconds_since(start);
+  return u;
+}
+
+}  // namespace ricci

@@ -1,0 +1,136 @@
+// Hyperbolic uniformization of closed genus >= 2 models: Poincaré-disk layout, side pairings,
+// Fuchsian generators and their relation, seed-face independence, Klein transitions.
+#include <gtest/gtest.h>
+
+#include <ricci/hyperbolic/klein.h>
+#include <ricci/hyperbolic/uniformize.h>
+#include <ricci/mesh/io.h>
+
+namespace ricci {
+namespace {
+
+std::string shared_model(const std::string& name) { return std::string(MSP_SHARED_MODELS) + "/" + name; }
+
+struct ModelCase {
+  const char* path;
+  /// Bound on the relation residual. The side spread, layout closure and seed-face mismatch are
+  /// held to 1e-9 on every model; the relation multiplies ~50 side pairings whose partial
+  /// products grow with the domain (their rounding is amplified by the square of their norms):
+  /// genus 2 stays below 1e-9, helmet (genus 3) measures 1.6e-9 and fertility (genus 4) 4.8e-8.
+  double relation_tolerance;
+  /// Bound on the seed-face mismatch (hyperbolic distance between the two layouts' points and
+  /// the pairings' images): 1e-9, fertility 1e-8 (it measures 2.2e-9; its domain reaches
+  /// |z| = 0.995, where a disk coordinate's last bit is 1e-14 in hyperbolic distance).
+  double seed_tolerance = 1e-9;
+};
+
+void PrintTo(const ModelCase& c, std::ostream* os) { *os << c.path; }
+
+class HyperbolicModel : public ::testing::TestWithParam<ModelCase> {};
+
+TEST_P(HyperbolicModel, DomainGroupAndRelation) {
+  const Mesh mesh = read_mesh(shared_model(GetParam().path));
+  const Uniformization u = uniformize(mesh);
+  ASSERT_TRUE(u.converged()) << u.flow.message;
+  EXPECT_EQ(u.geometry, Geometry::Hyperbolic);
+  EXPECT_LT(u.flow.max_error, 1e-10);
+  // The disk layout is an embedding isometric to the flow metric.
+  EXPECT_EQ(u.layout.flipped_faces, 0);
+  EXPECT_GT(u.layout.min_signed_area, 0.0);
+  EXPECT_LT(u.layout.max_relative_length_error, 1e-9);
+  EXPECT_LT(u.layout.max_radius, 1.0);
+  // Every edge of a side gives the same pairing; the domain closes up around the root.
+  EXPECT_LT(u.pairings.max_spread, 1e-9);
+  const double tolerance = GetParam().relation_tolerance;
+  EXPECT_LT(u.group.polygon_residual, tolerance);
+  ASSERT_EQ(static_cast<int>(u.group.generators.size()), 2 * u.genus);
+  EXPECT_LT(u.group.relation_residual, tolerance);
+  // The relation is not trivially met: every generator moves points (no identity maps) and
+  // consecutive generators do not commute.
+  for (size_t i = 0; i < u.group.generators.size(); ++i) {
+    EXPECT_GT(distance_to_identity(u.group.generators[i]), 0.1) << "generator " << i;
+  }
+  const Mobius& a = u.group.generators[0];
+  const Mobius& b = u.group.generators[1];
+  EXPECT_GT(mobius_distance(a * b, b * a), 0.1);
+  // Hyperbolic elements (|trace| > 2): deck transformations of a closed surface have no fixed
+  // point inside the disk.
+  for (const Mobius& g : u.group.generators) EXPECT_GT(std::abs(g.m.trace().real()), 2.0);
+  // Klein transitions are Lorentz and act as the Möbius maps do.
+  const Eigen::Matrix3d J = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  for (const Mobius& g : u.group.generators) {
+    const Eigen::Matrix3d L = lorentz_matrix(g);
+    EXPECT_LT((L.transpose() * J * L - J).norm() / L.squaredNorm(), 1e-9);
+    for (int v = 0; v < 3; ++v) {
+      const Complex z = u.positions[v * 7 % u.positions.size()];
+      EXPECT_LT(std::abs(apply_projective(L, klein_from_poincare(z)) - klein_from_poincare(g(z))), 1e-9);
+    }
+  }
+}
+
+/// max over vertices of d_H(T(b_v), a_v) with T the isometry that matches b's first edge to a's.
+double layout_mismatch(const Mesh& sliced, const Eigen::VectorXcd& a, const Eigen::VectorXcd& b,
+                       Mobius* t) {
+  const auto h = sliced.halfedge_handle(FaceHandle(0));
+  const int i = sliced.from_vertex_handle(h).idx(), j = sliced.to_vertex_handle(h).idx();
+  *t = disk_to_centre(a[i], a[j]).inverse() * disk_to_centre(b[i], b[j]);
+  double worst = 0.0;
+  for (Eigen::Index v = 0; v < a.size(); ++v) worst = std::max(worst, disk_distance((*t)(b[v]), a[v]));
+  return worst;
+}
+
+TEST_P(HyperbolicModel, SeedFaceIndependence) {
+  const Mesh mesh = read_mesh(shared_model(GetParam().path));
+  UniformizeOptions first, second;
+  first.seed_face = -1;
+  const Uniformization a = uniformize(mesh, first);
+  ASSERT_TRUE(a.converged());
+  second.seed_face = static_cast<int>(a.sliced.mesh.n_faces()) / 3;
+  ASSERT_NE(second.seed_face, a.layout.seed_face);
+  const Uniformization b = uniformize(mesh, second);
+  ASSERT_TRUE(b.converged());
+  Mobius t;
+  EXPECT_LT(layout_mismatch(a.sliced.mesh, a.positions, b.positions, &t), GetParam().seed_tolerance);
+  // The side pairings agree: P_a = t P_b t^-1, measured where they act, on the copies of the
+  // arcs' vertices (comparing the matrices themselves, or the generators' images far outside
+  // the domain, mostly measures how large they are: entries grow like e^{d/2}).
+  ASSERT_EQ(a.pairings.arcs.size(), b.pairings.arcs.size());
+  std::vector<int> side_of_edge(mesh.n_edges(), -1);
+  for (size_t k = 0; k < a.sliced.cut_sides.size(); ++k) {
+    side_of_edge[a.sliced.cut_sides[k].edge.idx()] = static_cast<int>(k);
+  }
+  const Mesh& sm = a.sliced.mesh;
+  for (size_t arc = 0; arc < a.pairings.arcs.size(); ++arc) {
+    const Mobius& pa = a.pairings.arcs[arc].pairing;
+    const Mobius& pb = b.pairings.arcs[arc].pairing;
+    double worst = 0.0;
+    for (auto h : a.pairings.arcs[arc].halfedges) {
+      const EdgeHandle e = mesh.edge_handle(h);
+      const CutEdgeSides& sides = a.sliced.cut_sides[side_of_edge[e.idx()]];
+      const HalfedgeHandle right = sides.side[h == mesh.halfedge_handle(e, 0) ? 1 : 0];
+      for (int v : {sm.from_vertex_handle(right).idx(), sm.to_vertex_handle(right).idx()}) {
+        worst = std::max(worst, disk_distance(pa(a.positions[v]), t(pb(b.positions[v]))));
+      }
+    }
+    EXPECT_LT(worst, GetParam().seed_tolerance) << "arc " << arc;
+  }
+  // The generators are the same words in those pairings, so they agree as group elements.
+  ASSERT_EQ(a.group.generator_words.size(), b.group.generator_words.size());
+  for (size_t k = 0; k < a.group.generator_words.size(); ++k) {
+    ASSERT_EQ(a.group.generator_words[k].size(), b.group.generator_words[k].size());
+    for (size_t i = 0; i < a.group.generator_words[k].size(); ++i) {
+      EXPECT_EQ(a.group.generator_words[k][i].arc, b.group.generator_words[k][i].arc);
+      EXPECT_EQ(a.group.generator_words[k][i].sign, b.group.generator_words[k][i].sign);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Genus2To4, HyperbolicModel,
+                         ::testing::Values(ModelCase{"closed_g2/eight.off", 1e-9},
+                                           ModelCase{"closed_g2/eight_cgal.off", 1e-9},
+                                           ModelCase{"closed_g2/cup.off", 1e-9},
+                                           ModelCase{"closed_g3/helmet.off", 3e-9},
+                                           ModelCase{"closed_g4plus/fertility.off", 1e-7, 1e-8}));
+
+}  // namespace
+}  // namespace ricci
