@@ -1,0 +1,290 @@
+#include "msp/fit_export.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+#include <ricci/mesh/errors.h>
+#include <ricci/topology/slice.h>
+#include <spline/basis/multi_index.h>
+
+#include "msp/cli.h"
+#include "msp/svg_cover.h"
+
+namespace msp {
+namespace {
+
+std::array<double, 4> linear_colour(std::array<int, 3> srgb) {
+  std::array<double, 4> out{0, 0, 0, 1};
+  for (size_t c = 0; c < 3; ++c) {
+    const double s = srgb[c] / 255.0;
+    out[c] = s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+  }
+  return out;
+}
+
+// Unit normals by position; a zero normal (singular parametrisation) takes the area-weighted
+// normal of its triangles so every exported normal is a unit vector.
+Eigen::MatrixX3d safe_normals(const spline::Tessellation& t) {
+  Eigen::MatrixX3d n = t.normals;
+  Eigen::MatrixX3d area = Eigen::MatrixX3d::Zero(n.rows(), 3);
+  bool any_zero = false;
+  for (Eigen::Index i = 0; i < n.rows(); ++i) any_zero = any_zero || !(n.row(i).norm() > 0.5);
+  if (!any_zero) return n;
+  for (const auto& tri : t.triangles) {
+    const Eigen::RowVector3d a = t.positions.row(tri[0]), b = t.positions.row(tri[1]),
+                             c = t.positions.row(tri[2]);
+    const Eigen::RowVector3d cross = (b - a).cross(c - a);
+    for (int v : tri) area.row(v) += cross;
+  }
+  for (Eigen::Index i = 0; i < n.rows(); ++i) {
+    if (n.row(i).norm() > 0.5) continue;
+    const double len = area.row(i).norm();
+    n.row(i) = len > 0 ? Eigen::RowVector3d(area.row(i) / len) : Eigen::RowVector3d(0, 0, 1);
+  }
+  return n;
+}
+
+gltf::Mesh surface_mesh(const spline::Tessellation& t, const FitSceneOptions& options,
+                        bool double_sided) {
+  const Eigen::MatrixX3d normals = safe_normals(t);
+  gltf::Mesh surface;
+  surface.name = "surface";
+  const auto n = static_cast<Eigen::Index>(t.render_position.size());
+  surface.positions.resize(n, 3);
+  surface.normals.resize(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    surface.positions.row(i) = t.positions.row(t.render_position[static_cast<std::size_t>(i)]);
+    surface.normals.row(i) = normals.row(t.render_position[static_cast<std::size_t>(i)]);
+  }
+  // The central chart scaled into the unit square, v pointing down the image (as msp atlas).
+  const Eigen::RowVector2d lo = t.uvs.colwise().minCoeff(), hi = t.uvs.colwise().maxCoeff();
+  const double side = (hi - lo).maxCoeff();
+  const double scale = side > 0 && std::isfinite(side) ? 1.0 / side : 1.0;
+  surface.uvs.resize(n, 2);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    surface.uvs(i, 0) = (t.uvs(i, 0) - lo.x()) * scale;
+    surface.uvs(i, 1) = 1.0 - (t.uvs(i, 1) - lo.y()) * scale;
+  }
+  surface.indices.reserve(3 * t.render_triangles.size());
+  for (const auto& tri : t.render_triangles)
+    for (int v : tri) surface.indices.push_back(static_cast<std::uint32_t>(v));
+  surface.material.name = options.checkerboard ? "checkerboard" : "spline";
+  surface.material.base_color =
+      options.checkerboard ? std::array<double, 4>{1, 1, 1, 1} : linear_colour({196, 178, 150});
+  surface.material.double_sided = double_sided;
+  if (options.checkerboard)
+    surface.material.texture =
+        gltf::Texture{encode_png(checkerboard(options.texture)), true, false};
+  surface.extras = {{"uv", "central chart of the affine atlas, scaled into the unit square"},
+                    {"uv_per_metric_unit", scale},
+                    {"density", t.density}};
+  return surface;
+}
+
+// The control points of each domain face joined along the lattice of multi-indices.
+gltf::Mesh control_net_mesh(const spline::ManifoldSpline& spline) {
+  const auto& space = *spline.space;
+  const int n = space.degree();
+  gltf::Mesh net;
+  net.name = "control net";
+  net.topology = gltf::Topology::lines;
+  net.positions = spline.control_points;
+  const auto betas = spline::multi_indices(n);
+  for (int f : space.domain_faces()) {
+    for (const auto& beta : betas) {
+      const int from = space.function_index(f, spline::multi_index_position(beta));
+      // Steps e_j - e_i with i < j: each lattice edge once.
+      for (int i = 0; i < 3; ++i) {
+        if (beta[i] == 0) continue;
+        for (int j = i + 1; j < 3; ++j) {
+          Eigen::Vector3i other = beta;
+          --other[i];
+          ++other[j];
+          net.indices.push_back(static_cast<std::uint32_t>(from));
+          net.indices.push_back(static_cast<std::uint32_t>(
+              space.function_index(f, spline::multi_index_position(other))));
+        }
+      }
+    }
+  }
+  net.material.name = "control net";
+  net.material.base_color = linear_colour({40, 90, 200});
+  return net;
+}
+
+gltf::Mesh domain_mesh_lines(const ricci::Mesh& mesh, const spline::ManifoldSplineSpace& space) {
+  gltf::Mesh lines;
+  lines.name = "domain mesh";
+  lines.topology = gltf::Topology::lines;
+  lines.positions.resize(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  for (auto v : mesh.vertices())
+    lines.positions.row(v.idx()) = ricci::to_eigen(mesh.point(v)).transpose();
+  for (auto e : mesh.edges()) {
+    const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+    const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
+    const bool in = (f0.is_valid() && space.in_domain(f0.idx())) ||
+                    (f1.is_valid() && space.in_domain(f1.idx()));
+    if (!in) continue;
+    lines.indices.push_back(static_cast<std::uint32_t>(mesh.from_vertex_handle(h0).idx()));
+    lines.indices.push_back(static_cast<std::uint32_t>(mesh.to_vertex_handle(h0).idx()));
+  }
+  lines.material.name = "domain mesh";
+  lines.material.base_color = linear_colour({30, 30, 30});
+  return lines;
+}
+
+// The samples of a domain-mesh halfedge on the surface, from its from-vertex to its to-vertex
+// (empty when neither of its faces is a domain face).
+std::vector<int> halfedge_samples(const ricci::Mesh& mesh, const spline::ManifoldSplineSpace& space,
+                                  const spline::Tessellation& t, ricci::HalfedgeHandle h) {
+  const int d = t.density;
+  for (bool reversed : {false, true}) {
+    const auto g = reversed ? mesh.opposite_halfedge_handle(h) : h;
+    const auto f = mesh.face_handle(g);
+    if (!f.is_valid() || !space.in_domain(f.idx())) continue;
+    const auto hs = ricci::face_halfedges(mesh, f);
+    for (int k = 0; k < 3; ++k) {
+      if (hs[(k + 2) % 3] != g) continue;  // h_{k+2} is the edge opposite corner k
+      std::vector<int> samples;
+      for (int i = 0; i <= d; ++i)
+        samples.push_back(t.edge_sample(f.idx(), k, reversed ? d - i : i));
+      return samples;
+    }
+  }
+  return {};
+}
+
+void add_cut_loops(const FitRun& run, gltf::Scene& scene) {
+  const auto& atlas = run.scan.atlas.atlas;
+  const ricci::Mesh& mesh = run.scan.atlas.problem.mesh;
+  const auto& space = *run.scan.spline.space;
+  const auto& t = run.tessellation;
+  const Eigen::MatrixX3d normals = safe_normals(t);
+  const double lift = 2e-3 * run.bbox_diagonal;
+  const auto names = loop_names(atlas);
+  for (std::size_t loop = 0; loop < atlas.cut.loops.size(); ++loop) {
+    gltf::Mesh lines;
+    lines.name = "cut loop " + names[loop];
+    lines.topology = gltf::Topology::lines;
+    std::vector<Eigen::RowVector3d> points;
+    for (const auto h : atlas.cut.loops[loop].halfedges) {
+      const auto samples = halfedge_samples(mesh, space, t, h);
+      for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
+        for (int p : {samples[i], samples[i + 1]}) {
+          lines.indices.push_back(static_cast<std::uint32_t>(points.size()));
+          points.push_back(t.positions.row(p) + lift * normals.row(p));
+        }
+      }
+    }
+    if (points.empty()) continue;
+    lines.positions.resize(static_cast<Eigen::Index>(points.size()), 3);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      lines.positions.row(static_cast<Eigen::Index>(i)) = points[i];
+    lines.material.name = lines.name;
+    lines.material.base_color = linear_colour(loop_colour_rgb(static_cast<int>(loop)));
+    lines.extras = {{"loop", loop}, {"name", names[loop]}};
+    scene.meshes.push_back(std::move(lines));
+  }
+  const auto& problem = run.scan.atlas.problem;
+  if (problem.cone >= 0) {
+    gltf::Mesh cone;
+    cone.name = "extraordinary point";
+    cone.topology = gltf::Topology::points;
+    cone.positions.resize(1, 3);
+    cone.positions.row(0) =
+        ricci::to_eigen(problem.mesh.point(problem.mesh.vertex_handle(problem.cone))).transpose();
+    cone.material.name = "extraordinary point";
+    cone.material.base_color = linear_colour({220, 30, 30});
+    cone.extras = {{"domain_vertex", problem.cone},
+                   {"note", "the cone's star lies outside the spline domain (filled hole)"}};
+    scene.meshes.push_back(std::move(cone));
+  }
+}
+
+void put(std::vector<std::uint8_t>& out, const void* data, std::size_t bytes) {
+  const auto* p = static_cast<const std::uint8_t*>(data);
+  out.insert(out.end(), p, p + bytes);
+}
+
+}  // namespace
+
+gltf::Scene fit_scene(const FitRun& run, const FitSceneOptions& options) {
+  gltf::Scene scene;
+  scene.name = "fit";
+  scene.extras = options.extras;
+  scene.meshes.push_back(surface_mesh(run.tessellation, options, !run.watertight));
+  if (options.control_net) scene.meshes.push_back(control_net_mesh(run.scan.spline));
+  if (options.domain)
+    scene.meshes.push_back(domain_mesh_lines(run.scan.atlas.problem.mesh, *run.scan.spline.space));
+  if (options.cut_loops) add_cut_loops(run, scene);
+  return scene;
+}
+
+std::string tessellation_obj(const spline::Tessellation& t) {
+  const Eigen::MatrixX3d normals = safe_normals(t);
+  std::ostringstream out;
+  out.precision(17);
+  out << "# manifold spline tessellation (msp fit), density " << t.density << "\n";
+  for (Eigen::Index i = 0; i < t.positions.rows(); ++i)
+    out << "v " << t.positions(i, 0) << " " << t.positions(i, 1) << " " << t.positions(i, 2)
+        << "\n";
+  for (Eigen::Index i = 0; i < normals.rows(); ++i)
+    out << "vn " << normals(i, 0) << " " << normals(i, 1) << " " << normals(i, 2) << "\n";
+  for (Eigen::Index i = 0; i < t.uvs.rows(); ++i)
+    out << "vt " << t.uvs(i, 0) << " " << t.uvs(i, 1) << "\n";
+  for (std::size_t f = 0; f < t.triangles.size(); ++f) {
+    out << "f";
+    for (int k = 0; k < 3; ++k) {
+      const int p = t.triangles[f][k] + 1, uv = t.render_triangles[f][k] + 1;
+      out << " " << p << "/" << uv << "/" << p;
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::vector<std::uint8_t> tessellation_ply(const spline::Tessellation& t) {
+  static_assert(sizeof(float) == 4 && sizeof(double) == 8, "IEEE sizes");
+  const Eigen::MatrixX3d normals = safe_normals(t);
+  std::ostringstream header;
+  header << "ply\nformat binary_little_endian 1.0\ncomment manifold spline tessellation (msp fit)\n"
+         << "element vertex " << t.positions.rows() << "\n"
+         << "property double x\nproperty double y\nproperty double z\n"
+         << "property float nx\nproperty float ny\nproperty float nz\n"
+         << "element face " << t.triangles.size() << "\n"
+         << "property list uchar int vertex_indices\nend_header\n";
+  std::vector<std::uint8_t> out;
+  const std::string h = header.str();
+  put(out, h.data(), h.size());
+  // Little-endian hosts only (x86-64, arm64): the bytes are written as they are in memory.
+  for (Eigen::Index i = 0; i < t.positions.rows(); ++i) {
+    for (int c = 0; c < 3; ++c) put(out, &t.positions(i, c), 8);
+    for (int c = 0; c < 3; ++c) {
+      const float n = static_cast<float>(normals(i, c));
+      put(out, &n, 4);
+    }
+  }
+  for (const auto& tri : t.triangles) {
+    const std::uint8_t three = 3;
+    put(out, &three, 1);
+    for (int v : tri) {
+      const std::int32_t index = v;
+      put(out, &index, 4);
+    }
+  }
+  return out;
+}
+
+void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  write_file_atomically(path, [&](const std::string& temp) {
+    std::FILE* f = std::fopen(temp.c_str(), "wb");
+    if (!f) throw ricci::IOError("cannot write " + path);
+    const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
+    if (std::fclose(f) != 0 || written != bytes.size())
+      throw ricci::IOError("cannot write " + path);
+  });
+}
+
+}  // namespace msp

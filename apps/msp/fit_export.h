@@ -1,0 +1,40 @@
+#pragma once
+// Outputs of `msp fit`: the tessellated spline as a glTF scene (surface with atlas texture
+// coordinates, optional checkerboard, control net, domain mesh, cut loops, extraordinary point,
+// metadata in extras) and as OBJ or PLY.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <spline/tessellate/tessellate.h>
+#include <nlohmann/json.hpp>
+
+#include "msp/fit_pipeline.h"
+#include "msp/gltf_writer.h"
+#include "msp/texture_image.h"
+
+namespace msp {
+
+struct FitSceneOptions {
+  bool checkerboard = false;  ///< Texture the surface with a checkerboard over the atlas.
+  CheckerboardOptions texture;
+  bool control_net = false;  ///< Lines of each domain face's control-point net.
+  bool domain = false;       ///< Lines of the domain mesh's edges.
+  bool cut_loops = false;    ///< The cut loops on the surface and the extraordinary point.
+  nlohmann::json extras;     ///< Scene metadata.
+};
+
+/// The scene "fit": mesh "surface" (render vertices: positions, unit normals, uvs = central
+/// chart scaled into [0, 1]^2), and the optional line/point meshes.
+[[nodiscard]] gltf::Scene fit_scene(const FitRun& run, const FitSceneOptions& options = {});
+
+/// Wavefront OBJ text: v/vn by position index (welded), vt by render vertex, faces v/vt/vn.
+[[nodiscard]] std::string tessellation_obj(const spline::Tessellation& t);
+
+/// Binary little-endian PLY: welded vertices (double x y z, float nx ny nz), triangles.
+[[nodiscard]] std::vector<std::uint8_t> tessellation_ply(const spline::Tessellation& t);
+
+/// Writes bytes through a temporary file renamed into place. \throw ricci::IOError.
+void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
+
+}  // namespace msp

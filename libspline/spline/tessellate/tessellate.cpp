@@ -1,0 +1,260 @@
+#include "spline/tessellate/tessellate.h"
+
+#include "spline/tessellate/parallel_for.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include "ricci/mesh/errors.h"
+#include "ricci/topology/slice.h"
+
+namespace spline {
+namespace {
+
+// The surface jet at p; where du x dv vanishes (a degenerate control net) the normal is taken a
+// hair inside the face, the limit of the normals around the point.
+SurfaceJet evaluate_with_normal(const ManifoldSpline& spline, const DomainPoint& p) {
+  SurfaceJet jet = spline.evaluate(p);
+  if (jet.normal.squaredNorm() == 0.0) {
+    DomainPoint inside = p;
+    inside.barycentric = 0.999 * p.barycentric + Eigen::Vector3d::Constant(0.001 / 3.0);
+    jet.normal = spline.evaluate(inside).normal;
+  }
+  return jet;
+}
+
+Eigen::Vector3d corner_bary(int k) {
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  b[k] = 1.0;
+  return b;
+}
+
+// Barycentric coordinates of the point at t from corner `from` to corner `to`.
+Eigen::Vector3d edge_bary(int from, int to, double t) {
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  b[from] = 1.0 - t;
+  b[to] = t;
+  return b;
+}
+
+struct Layout {
+  int d;
+  // Interior samples of a face: lattice (a0, a1, a2), all > 0, in the order a1 = 1.., a2 = 1..
+  [[nodiscard]] int interior_count() const { return (d - 1) * (d - 2) / 2; }
+  [[nodiscard]] int interior_offset(int a1, int a2) const {
+    // Row a1 (1..d-2) holds a2 = 1 .. d-1-a1: (d - 1 - a1) entries.
+    int offset = 0;
+    for (int r = 1; r < a1; ++r) offset += d - 1 - r;
+    return offset + (a2 - 1);
+  }
+};
+
+}  // namespace
+
+int Tessellation::edge_sample(int face, int corner, int i) const {
+  const int next = (corner + 1) % 3, after = (corner + 2) % 3;
+  if (i == 0) return vertex_position_[face_corner_vertex_[face][next]];
+  if (i == density) return vertex_position_[face_corner_vertex_[face][after]];
+  const int canonical = face_edge_reversed_[face][corner] ? density - i : i;
+  return face_edge_first_[face][corner] + canonical - 1;
+}
+
+Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
+                        const TessellationOptions& options) {
+  const int d = options.density;
+  if (d < 1)
+    throw ricci::InvalidInputError("tessellate: density must be >= 1, not " + std::to_string(d));
+  if (!spline.space) throw ricci::InvalidInputError("tessellate: the spline has no space");
+  const ManifoldSplineSpace& space = *spline.space;
+  if (static_cast<int>(mesh.n_faces()) != space.face_count())
+    throw ricci::InvalidInputError("tessellate: the mesh is not the spline's domain mesh");
+  if (!options.skip_faces.empty() && options.skip_faces.size() != mesh.n_faces())
+    throw ricci::InvalidInputError("tessellate: skip_faces has " +
+                                   std::to_string(options.skip_faces.size()) + " entries for " +
+                                   std::to_string(mesh.n_faces()) + " faces");
+  std::vector<int> faces;
+  for (int f : space.domain_faces())
+    if (options.skip_faces.empty() || !options.skip_faces[static_cast<std::size_t>(f)])
+      faces.push_back(f);
+
+  Tessellation out;
+  out.density = d;
+  const int nf = static_cast<int>(mesh.n_faces());
+  out.vertex_position_.assign(mesh.n_vertices(), -1);
+  out.face_edge_first_.assign(static_cast<std::size_t>(nf), {-1, -1, -1});
+  out.face_edge_reversed_.assign(static_cast<std::size_t>(nf), {0, 0, 0});
+  out.face_corner_vertex_.assign(static_cast<std::size_t>(nf), {-1, -1, -1});
+  std::vector<int> edge_first(mesh.n_edges(), -1), edge_start(mesh.n_edges(), -1);
+  std::vector<DomainPoint>& params = out.parameters;
+
+  // Samples: vertices and edges on first sight (evaluated from that face), then interiors.
+  for (int f : faces) {
+    const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(f));
+    auto& cv = out.face_corner_vertex_[static_cast<std::size_t>(f)];
+    for (int k = 0; k < 3; ++k) cv[k] = mesh.to_vertex_handle(hs[k]).idx();
+    for (int k = 0; k < 3; ++k) {
+      if (out.vertex_position_[cv[k]] < 0) {
+        out.vertex_position_[cv[k]] = static_cast<int>(params.size());
+        params.push_back({f, corner_bary(k)});
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      const int from = (k + 1) % 3, to = (k + 2) % 3;
+      // h_{k+2} runs from corner k + 1 to corner k + 2: the edge opposite corner k.
+      const int e = mesh.edge_handle(hs[to]).idx();
+      if (edge_first[e] < 0) {
+        edge_first[e] = static_cast<int>(params.size());
+        edge_start[e] = cv[from];
+        for (int i = 1; i < d; ++i) params.push_back({f, edge_bary(from, to, double(i) / d)});
+      }
+      out.face_edge_first_[static_cast<std::size_t>(f)][k] = edge_first[e];
+      out.face_edge_reversed_[static_cast<std::size_t>(f)][k] = edge_start[e] != cv[from];
+    }
+  }
+  const Layout layout{d};
+  std::vector<int> interior_first(static_cast<std::size_t>(nf), -1);
+  for (int f : faces) {
+    interior_first[static_cast<std::size_t>(f)] = static_cast<int>(params.size());
+    for (int a1 = 1; a1 <= d - 2; ++a1) {
+      for (int a2 = 1; a2 <= d - 1 - a1; ++a2) {
+        params.push_back({f, Eigen::Vector3d(d - a1 - a2, a1, a2) / d});
+      }
+    }
+  }
+
+  const auto np = static_cast<Eigen::Index>(params.size());
+  out.positions.resize(np, 3);
+  out.normals.resize(np, 3);
+  parallel_for(params.size(), options.threads, [&](std::size_t i) {
+    const SurfaceJet jet = evaluate_with_normal(spline, params[i]);
+    out.positions.row(static_cast<Eigen::Index>(i)) = jet.position.transpose();
+    out.normals.row(static_cast<Eigen::Index>(i)) = jet.normal.transpose();
+  });
+
+  // Render vertices keyed by (position, central-chart vertex at the canonical start): the two
+  // sides of a cut have different chart copies of their vertices.
+  const ricci::Chart& central = space.atlas().charts.at(0);
+  const auto chart_vertices = static_cast<std::uint64_t>(central.positions.rows()) + 1;
+  std::unordered_map<std::uint64_t, int> render_of;
+  std::vector<Eigen::Vector2d> uvs;
+  auto render_vertex = [&](int position, int chart_vertex, const Eigen::Vector2d& uv) {
+    const std::uint64_t key = static_cast<std::uint64_t>(position) * chart_vertices +
+                              static_cast<std::uint64_t>(chart_vertex + 1);
+    auto [it, inserted] = render_of.emplace(key, static_cast<int>(uvs.size()));
+    if (inserted) {
+      uvs.push_back(uv);
+      out.render_position.push_back(position);
+    }
+    return it->second;
+  };
+
+  out.triangles.reserve(faces.size() * static_cast<std::size_t>(d * d));
+  for (int f : faces) {
+    const int slot = central.slot(f);
+    if (slot < 0)
+      throw ricci::InvalidInputError("tessellate: the central chart lacks face " +
+                                     std::to_string(f));
+    std::array<int, 3> chart_corner{};
+    std::array<Eigen::Vector2d, 3> x;
+    for (int k = 0; k < 3; ++k) {
+      chart_corner[k] = central.corners(slot, k);
+      x[k] = central.positions.row(chart_corner[k]).transpose();
+    }
+    // Position and render index of lattice point (a0, a1, a2), a0 + a1 + a2 = d.
+    auto sample = [&](int a0, int a1, int a2) -> std::pair<int, int> {
+      const std::array<int, 3> a = {a0, a1, a2};
+      int zeros = 0, zero = -1, one = -1;
+      for (int k = 0; k < 3; ++k) {
+        if (a[k] == 0) {
+          ++zeros;
+          zero = k;
+        } else {
+          one = k;
+        }
+      }
+      if (zeros == 2) {
+        const int p = out.vertex_position_[out.face_corner_vertex_[f][one]];
+        return {p, render_vertex(p, chart_corner[one], x[one])};
+      }
+      if (zeros == 1) {
+        const int from = (zero + 1) % 3, to = (zero + 2) % 3;
+        const int i = a[to];
+        const int p = out.edge_sample(f, zero, i);
+        // uv from the canonical start so both faces on one side compute the same bits.
+        const bool reversed = out.face_edge_reversed_[f][zero];
+        const int start = reversed ? to : from, end = reversed ? from : to;
+        const double t = double(reversed ? d - i : i) / d;
+        return {p, render_vertex(p, chart_corner[start], (1.0 - t) * x[start] + t * x[end])};
+      }
+      const int p = interior_first[f] + layout.interior_offset(a1, a2);
+      const Eigen::Vector3d b = Eigen::Vector3d(a0, a1, a2) / d;
+      return {p, render_vertex(p, -1, b[0] * x[0] + b[1] * x[1] + b[2] * x[2])};
+    };
+    for (int a1 = 0; a1 < d; ++a1) {
+      for (int a2 = 0; a2 < d - a1; ++a2) {
+        const int a0 = d - a1 - a2;
+        const auto p = sample(a0, a1, a2), q = sample(a0 - 1, a1 + 1, a2),
+                   r = sample(a0 - 1, a1, a2 + 1);
+        out.triangles.push_back({p.first, q.first, r.first});
+        out.render_triangles.push_back({p.second, q.second, r.second});
+        out.triangle_face.push_back(f);
+        if (a0 >= 2) {
+          const auto s = sample(a0 - 2, a1 + 1, a2 + 1);
+          out.triangles.push_back({q.first, s.first, r.first});
+          out.render_triangles.push_back({q.second, s.second, r.second});
+          out.triangle_face.push_back(f);
+        }
+      }
+    }
+  }
+  out.uvs.resize(static_cast<Eigen::Index>(uvs.size()), 2);
+  for (std::size_t i = 0; i < uvs.size(); ++i)
+    out.uvs.row(static_cast<Eigen::Index>(i)) = uvs[i].transpose();
+  return out;
+}
+
+double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
+                                int samples_per_edge, int threads,
+                                const std::vector<char>& skip_faces) {
+  const ManifoldSplineSpace& space = *spline.space;
+  auto kept = [&](ricci::FaceHandle f) {
+    return f.is_valid() && space.in_domain(f.idx()) &&
+           (skip_faces.empty() || !skip_faces[static_cast<std::size_t>(f.idx())]);
+  };
+  struct Probe {
+    DomainPoint a, b;
+  };
+  std::vector<Probe> probes;
+  const int s = std::max(1, samples_per_edge);
+  for (auto e : mesh.edges()) {
+    const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+    const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
+    if (!kept(f0) || !kept(f1)) continue;
+    // Corner indices of the edge's ends in each face.
+    auto corner_of = [&](ricci::FaceHandle f, ricci::VertexHandle v) {
+      const auto hs = ricci::face_halfedges(mesh, f);
+      for (int k = 0; k < 3; ++k)
+        if (mesh.to_vertex_handle(hs[k]) == v) return k;
+      return -1;
+    };
+    const auto va = mesh.from_vertex_handle(h0), vb = mesh.to_vertex_handle(h0);
+    const int a0 = corner_of(f0, va), b0 = corner_of(f0, vb);
+    const int a1 = corner_of(f1, va), b1 = corner_of(f1, vb);
+    for (int i = 0; i < s; ++i) {
+      const double t = (i + 0.5) / s;
+      probes.push_back({{f0.idx(), edge_bary(a0, b0, t)}, {f1.idx(), edge_bary(a1, b1, t)}});
+    }
+  }
+  std::vector<double> angle(probes.size(), 0.0);
+  parallel_for(probes.size(), threads, [&](std::size_t i) {
+    const Eigen::Vector3d na = spline.evaluate(probes[i].a).normal;
+    const Eigen::Vector3d nb = spline.evaluate(probes[i].b).normal;
+    if (na.squaredNorm() == 0 || nb.squaredNorm() == 0) return;
+    angle[i] = std::atan2(na.cross(nb).norm(), na.dot(nb)) * 180.0 / M_PI;
+  });
+  return angle.empty() ? 0.0 : *std::max_element(angle.begin(), angle.end());
+}
+
+}  // namespace spline

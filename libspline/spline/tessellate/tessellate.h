@@ -1,0 +1,109 @@
+#pragma once
+// Watertight tessellation of a manifold spline (issue 6): every domain face's spline piece is
+// sampled on the regular barycentric grid of density d (d + 1 samples per domain edge, d^2
+// triangles per face). Every domain vertex is evaluated once and every domain edge's d - 1
+// interior samples once, so faces sharing a vertex or an edge share the very same sample:
+// welded by construction (no cracks, no T-junctions). Normals come from the exact derivatives
+// (du x dv in the evaluating chart, counter-clockwise like the domain faces); texture
+// coordinates from the atlas' central chart, which has seams along the cut: the welded topology
+// (position indices) is kept apart from the render vertices (position + uv), which split there.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "ricci/mesh/mesh.h"
+#include "spline/manifold/manifold_space.h"
+
+namespace spline {
+
+struct TessellationOptions {
+  int density = 8;  ///< d >= 1: samples per domain edge - 1; d^2 triangles per domain face.
+  int threads = 0;  ///< Evaluation threads; 0 = std::thread::hardware_concurrency().
+  /// By face, nonzero: not tessellated (a fill patch covers it, fill/hole_fill.h's
+  /// Rim::covered_faces). Empty: every domain face.
+  std::vector<char> skip_faces;
+};
+
+struct Tessellation {
+  int density = 0;
+  /// Welded topology: one row per surface sample.
+  Eigen::MatrixX3d positions;
+  Eigen::MatrixX3d normals;                   ///< Unit (du x dv); a zero row only if F is singular.
+  std::vector<DomainPoint> parameters;        ///< The domain point each position was evaluated at.
+  std::vector<std::array<int, 3>> triangles;  ///< Position indices, counter-clockwise.
+  std::vector<int> triangle_face;  ///< Domain face of each triangle (-1 - r: fill patch r).
+
+  /// Render vertices: a position with one central-chart uv (a cut vertex has several).
+  std::vector<int> render_position;  ///< By render vertex: its position index.
+  Eigen::MatrixX2d uvs;              ///< By render vertex, central-chart coordinates.
+  std::vector<std::array<int, 3>> render_triangles;  ///< Same triangles, render indices.
+
+  /// Position index of a domain vertex (-1 when no tessellated face touches it).
+  [[nodiscard]] int vertex_sample(int vertex) const { return vertex_position_[vertex]; }
+  /// Position index of sample i (0..d) of the edge opposite corner k of domain `face`, walking
+  /// from corner k + 1 to corner k + 2 (the face's orientation) at barycentric t = i / d (the
+  /// rim sample convention of fill/hole_fill.h). \pre face is a tessellated face.
+  [[nodiscard]] int edge_sample(int face, int corner, int i) const;
+
+  // Book-keeping for the lookups (filled by tessellate).
+  std::vector<int> vertex_position_;  ///< By domain-mesh vertex.
+  /// By face (3 per face): first interior sample of the edge opposite corner k, and whether the
+  /// edge's canonical direction runs against the face (then sample i is d - i canonically).
+  std::vector<std::array<int, 3>> face_edge_first_;
+  std::vector<std::array<char, 3>> face_edge_reversed_;
+  std::vector<std::array<int, 3>> face_corner_vertex_;  ///< By face: domain vertex of corner k.
+};
+
+/// Samples `spline` over every domain face at density d.
+/// \pre `mesh` is the domain mesh the spline's space was built on.
+/// \throw ricci::InvalidInputError for density < 1 or a mesh of another size;
+///        as ManifoldSpline::evaluate.
+[[nodiscard]] Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
+                                      const TessellationOptions& options = {});
+
+/// What a triangle soup (by position index) is topologically.
+struct WatertightReport {
+  int vertices = 0, edges = 0, faces = 0;  ///< Used positions, undirected edges, triangles.
+  int euler_characteristic = 0;            ///< V - E + F.
+  int boundary_edges = 0;                  ///< In one triangle only.
+  int boundary_loops = 0;        ///< Cycles of boundary edges (0 when they do not form cycles).
+  int nonmanifold_edges = 0;     ///< In three or more triangles.
+  int misoriented_edges = 0;     ///< Two triangles running the same way along it.
+  int nonmanifold_vertices = 0;  ///< Triangles around the vertex not one fan.
+  int degenerate_triangles = 0;  ///< Repeated index.
+  int duplicate_positions = 0;   ///< Distinct used indices with bit-identical coordinates.
+  int unused_positions = 0;      ///< Rows no triangle uses.
+  int non_finite_positions = 0;
+
+  /// An oriented 2-manifold (possibly with boundary) without duplicate or stray positions.
+  [[nodiscard]] bool manifold() const {
+    return nonmanifold_edges == 0 && misoriented_edges == 0 && nonmanifold_vertices == 0 &&
+           degenerate_triangles == 0 && duplicate_positions == 0 && unused_positions == 0 &&
+           non_finite_positions == 0 && faces > 0;
+  }
+  /// A closed oriented 2-manifold of genus g (Euler characteristic 2 - 2g).
+  [[nodiscard]] bool closed(int genus) const {
+    return manifold() && boundary_edges == 0 && euler_characteristic == 2 - 2 * genus;
+  }
+  /// A manifold surface of genus g with exactly `loops` boundary loops (chi = 2 - 2g - loops),
+  /// i.e. the same topology as an input with those figures.
+  [[nodiscard]] bool matches(int genus, int loops) const {
+    return manifold() && boundary_loops == loops && euler_characteristic == 2 - 2 * genus - loops;
+  }
+};
+
+/// Topology of the triangles over `positions` (one connected component assumed for the genus).
+[[nodiscard]] WatertightReport check_watertight(const std::vector<std::array<int, 3>>& triangles,
+                                                const Eigen::MatrixX3d& positions);
+
+/// Largest angle (degrees) between the normals two adjacent domain faces give at the same
+/// point, over `samples_per_edge` points of every interior domain edge (each face evaluated in
+/// its own neighbourhood chart, derivatives carried to 3D: the frame does not matter). The
+/// spline is C^(n-1), so this measures rounding and the atlas' transitions.
+/// Faces flagged in `skip_faces` (by face, may be empty) are left out like non-domain faces.
+[[nodiscard]] double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
+                                              int samples_per_edge = 4, int threads = 0,
+                                              const std::vector<char>& skip_faces = {});
+
+}  // namespace spline
