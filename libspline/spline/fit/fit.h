@@ -40,6 +40,13 @@ struct FitOptions {
   /// the chart (genus 0: 1e4); measured in the chart the energy over-smooths them by s^-4 (elk,
   /// r = 1: RMS 0.69% -> 0.22% of the diagonal with this on). false: chart measure.
   bool isometric_smoothing = true;
+  /// Faces within `rim_rings` (edge-adjacency) rings of the domain's rim (the cone's hole, open
+  /// boundaries) use at least this smoothing: their functions lack neighbours (no partition of
+  /// unity) and few points reach them, so with 1e-5 the surface there swings its normal by up
+  /// to 150 degrees within a face, which no G1 hole filling can meet (eight.off: seam 152 deg
+  /// with 1e-5 everywhere, < 1 deg with this).
+  double rim_smoothing = 1e-3;
+  int rim_rings = 3;
   /// Keeps the normal matrix SPD where no point reaches a function (dimensionless, tiny).
   double anchor = 1e-8;
   /// >= 0: fit subject to the fairing constraints of this r (fair.h, eq. 14's constraints): the
