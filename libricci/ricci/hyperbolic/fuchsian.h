@@ -27,6 +27,9 @@ struct CutArc {
   /// (so pairing(domain) is the neighbour of the domain across the left side): the mean of the
   /// per-edge maps.
   Mobius pairing;
+  /// `pairing` in extended precision: the relator residuals and the generators are multiplied
+  /// from these (long words of large matrices amplify double rounding to 1e-8 on genus 4).
+  MobiusL precise_pairing;
   /// max over the arc's edges of mobius_distance(edge map, first edge map): the paper's
   /// "generators from different edges of the same side agree" check.
   double spread = 0.0;
@@ -43,11 +46,14 @@ struct DomainPairings {
 
 /// Pairings of every cut edge from the layout of the sliced disk (positions by sliced vertex
 /// index; in the disk for Hyperbolic, the plane for Euclidean), grouped into arcs.
+/// `precise_positions` (optional, the same in extended precision, e.g. from layout_h2) are used
+/// instead of `positions` when given.
 /// \pre `sliced` is `mesh` cut along `cut.is_cut_edge`, closed mesh; geometry is Hyperbolic or
 ///      Euclidean. \throw InvalidInputError for the spherical geometry or a size mismatch.
 [[nodiscard]] DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut,
                                              const SlicedMesh& sliced,
-                                             const Eigen::VectorXcd& positions, Geometry geometry);
+                                             const Eigen::VectorXcd& positions, Geometry geometry,
+                                             const std::vector<ComplexL>& precise_positions = {});
 
 /// A letter of a word in the arcs' pairings: arcs[arc].pairing^sign.
 struct ArcLetter {
@@ -72,7 +78,8 @@ using ArcWord = std::vector<ArcLetter>;
 [[nodiscard]] double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
                                           const std::vector<Complex>& candidates);
 
-/// The product of the arcs' pairings along `word`, left to right.
+/// The product of the arcs' pairings along `word`, left to right (multiplied in extended
+/// precision from the precise pairings, rounded to double at the end).
 [[nodiscard]] Mobius evaluate(const DomainPairings& pairings, const ArcWord& word);
 
 /// rho(loop i) for every loop of the cut graph as a reduced word in the arc pairings, based at

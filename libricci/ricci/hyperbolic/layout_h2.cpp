@@ -11,25 +11,30 @@
 namespace ricci {
 namespace {
 
-/// Corner angle at from_vertex(h) of h's face, from the face's hyperbolic lengths.
-double angle_at_from(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
+/// Corner angle at from_vertex(h) of h's face, from the face's hyperbolic lengths, in extended
+/// precision by the half-angle formula tan²(θ0/2) = sinh(s-l1) sinh(s-l2) / (sinh s sinh(s-l0))
+/// (s the half perimeter), which loses no digits for thin or small triangles.
+long double angle_at_from(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
   const HalfedgeHandle h1 = mesh.next_halfedge_handle(h), h2 = mesh.next_halfedge_handle(h1);
   // Triangle with vertices 0 = from(h), 1 = to(h), 2 = to(h1); l[k] opposite vertex k.
-  const double l[3] = {lengths[mesh.edge_handle(h1).idx()], lengths[mesh.edge_handle(h2).idx()],
-                       lengths[mesh.edge_handle(h).idx()]};
-  double theta[3];
-  if (!triangle_angles(Geometry::Hyperbolic, l, theta)) {
+  const long double l0 = lengths[mesh.edge_handle(h1).idx()];
+  const long double l1 = lengths[mesh.edge_handle(h2).idx()];
+  const long double l2 = lengths[mesh.edge_handle(h).idx()];
+  const long double s = 0.5L * (l0 + l1 + l2);
+  if (!(s - l0 > 0 && s - l1 > 0 && s - l2 > 0)) {
     throw InvalidInputError("layout_h2: face " + std::to_string(mesh.face_handle(h).idx()) +
                             " violates the hyperbolic triangle inequality");
   }
-  return theta[0];
+  const long double num = std::sinh(s - l1) * std::sinh(s - l2);
+  const long double den = std::sinh(s) * std::sinh(s - l0);
+  return 2.0L * std::atan2(std::sqrt(num), std::sqrt(den));
 }
 
 /// A face in its own frame: from(h) at 0, to(h) on the positive real axis, the third vertex
 /// above; z[k] is the position of the from-vertex of the k-th halfedge h, next(h), prev(h).
 struct CanonicalFace {
   HalfedgeHandle h[3];
-  Complex z[3];
+  ComplexL z[3];
 };
 
 CanonicalFace canonical_face(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
@@ -37,9 +42,9 @@ CanonicalFace canonical_face(const Mesh& mesh, const Eigen::VectorXd& lengths, H
   c.h[0] = h;
   c.h[1] = mesh.next_halfedge_handle(h);
   c.h[2] = mesh.next_halfedge_handle(c.h[1]);
-  c.z[0] = 0.0;
-  c.z[1] = disk_radius(lengths[mesh.edge_handle(h).idx()]);
-  c.z[2] = std::polar(disk_radius(lengths[mesh.edge_handle(c.h[2]).idx()]),
+  c.z[0] = 0.0L;
+  c.z[1] = std::tanh(0.5L * static_cast<long double>(lengths[mesh.edge_handle(h).idx()]));
+  c.z[2] = std::polar(std::tanh(0.5L * static_cast<long double>(lengths[mesh.edge_handle(c.h[2]).idx()])),
                       angle_at_from(mesh, lengths, h));
   return c;
 }
@@ -129,10 +134,11 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
   // the frames only accumulate one rounding per step.
   struct Item {
     HalfedgeHandle h;
-    Mobius frame;
+    MobiusL frame;
   };
   const FaceHandle seed(result.seed_face);
-  std::deque<Item> queue{{mesh.halfedge_handle(seed), Mobius::identity()}};
+  result.precise_positions.assign(mesh.n_vertices(), ComplexL(NAN, NAN));
+  std::deque<Item> queue{{mesh.halfedge_handle(seed), MobiusL()}};
   reached[seed.idx()] = 1;
   int reached_count = 1;
   while (!queue.empty()) {
@@ -142,7 +148,8 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
     for (int k = 0; k < 3; ++k) {
       const int v = mesh.from_vertex_handle(c.h[k]).idx();
       if (!placed[v]) {
-        result.positions[v] = item.frame(c.z[k]);
+        result.precise_positions[static_cast<size_t>(v)] = item.frame(c.z[k]);
+        result.positions[v] = Complex(result.precise_positions[static_cast<size_t>(v)]);
         placed[v] = 1;
       }
     }
@@ -153,8 +160,8 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
       ++reached_count;
       // In the neighbour's frame for o, from(o) = to(h_k) is at 0 and to(o) = from(h_k) on the
       // positive axis: the map from that frame into ours is the inverse of disk_to_centre.
-      const Mobius into_ours = disk_to_centre(c.z[(k + 1) % 3], c.z[k]).inverse();
-      queue.push_back({o, Mobius::from_matrix((item.frame * into_ours).m)});
+      const MobiusL into_ours = disk_to_centre(c.z[(k + 1) % 3], c.z[k]).inverse();
+      queue.push_back({o, MobiusL::from_matrix((item.frame * into_ours).m)});
     }
   }
   if (reached_count != static_cast<int>(mesh.n_faces())) {

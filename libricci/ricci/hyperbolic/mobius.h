@@ -53,6 +53,42 @@ struct Mobius {
 /// The Euclidean motion taking p to 0 and q onto the positive real axis. \pre p != q.
 [[nodiscard]] Mobius plane_to_centre(Complex p, Complex q);
 
+/// Extended precision for the disk layout's frames, the side pairings and the relators' products
+/// (x86-64 long double: 64-bit mantissa, 2^11 times finer than double). The generators are
+/// words of ~50 pairings whose partial products reach norm ~1e3 on genus 3-4 domains, so
+/// rounding in double (of the pairings, from layout coordinates near the rim, and of the
+/// products) is amplified to 1e-9..1e-7; in long double it stays below 1e-11. Outputs stay double.
+using ComplexL = std::complex<long double>;
+
+/// A Möbius map in extended precision (same conventions as Mobius).
+struct MobiusL {
+  Eigen::Matrix<ComplexL, 2, 2> m = Eigen::Matrix<ComplexL, 2, 2>::Identity();
+
+  MobiusL() = default;
+  explicit MobiusL(const Eigen::Matrix<ComplexL, 2, 2>& matrix) : m(matrix) {}
+  explicit MobiusL(const Mobius& a) : m(a.m.cast<ComplexL>()) {}
+  /// The matrix scaled to determinant 1. \pre det(matrix) != 0.
+  [[nodiscard]] static MobiusL from_matrix(const Eigen::Matrix<ComplexL, 2, 2>& matrix);
+  /// z -> e^{iθ} (z - z0) / (1 - conj(z0) z). \pre |z0| < 1.
+  [[nodiscard]] static MobiusL from_rotation_point(long double theta, ComplexL z0);
+  [[nodiscard]] ComplexL operator()(ComplexL z) const {
+    return (m(0, 0) * z + m(0, 1)) / (m(1, 0) * z + m(1, 1));
+  }
+  [[nodiscard]] MobiusL operator*(const MobiusL& other) const { return MobiusL(m * other.m); }
+  [[nodiscard]] MobiusL inverse() const;
+  /// Rounded to double.
+  [[nodiscard]] Mobius to_double() const { return {m.cast<Complex>()}; }
+};
+
+/// disk_to_centre in extended precision.
+[[nodiscard]] MobiusL disk_to_centre(ComplexL p, ComplexL q);
+/// plane_to_centre in extended precision.
+[[nodiscard]] MobiusL plane_to_centre(ComplexL p, ComplexL q);
+/// mobius_mean in extended precision. \pre not empty.
+[[nodiscard]] MobiusL mobius_mean(const MobiusL* maps, int count);
+/// distance_to_identity in extended precision (rounded to double at the end).
+[[nodiscard]] double distance_to_identity(const MobiusL& a);
+
 /// Hyperbolic distance in the Poincaré disk, 2 atanh(|z - w| / |1 - conj(z) w|).
 [[nodiscard]] double disk_distance(Complex z, Complex w);
 

@@ -60,7 +60,8 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   u.timings.layout = seconds_since(t);
   t = Clock::now();
   if (u.geometry == Geometry::Hyperbolic) {
-    u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry);
+    u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry,
+                                 u.layout.precise_positions);
     u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings, u.positions);
   } else {
     // Translations carry the unit of length; the residuals are taken on the domain scaled to
@@ -72,7 +73,10 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
     const Mobius to_mesh = Mobius::from_matrix(Eigen::Vector2cd(size, 1.0).asDiagonal());
     auto back = [&](Mobius& m) { m = to_mesh * m * to_mesh.inverse(); };
     for (Mobius& m : u.pairings.edge_pairing) back(m);
-    for (CutArc& a : u.pairings.arcs) back(a.pairing);
+    for (CutArc& a : u.pairings.arcs) {
+      back(a.pairing);
+      a.precise_pairing = MobiusL(to_mesh) * a.precise_pairing * MobiusL(to_mesh.inverse());
+    }
     for (Mobius& m : u.group.loop_holonomy) back(m);
     for (Mobius& m : u.group.generators) back(m);
     torus_modulus(u);
