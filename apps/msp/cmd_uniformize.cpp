@@ -82,6 +82,11 @@ nlohmann::json result_json(const std::string& path, const ricci::Mesh& mesh,
     j["polygon_residual"] = u.group.polygon_residual;
     j["relation_residual_direct"] = u.group.relation_residual_direct;
     j["side_spread"] = u.pairings.max_spread;
+    if (u.geometry == ricci::Geometry::Hyperbolic) {
+      j["polish"] = {{"curvature_error_before", u.polish.error_before},
+                     {"curvature_error_after", u.polish.error_after},
+                     {"iterations", u.polish.iterations}};
+    }
     j["sides"] = 2 * u.pairings.arcs.size();
     j["layout"] = {{"seed_face", u.layout.seed_face},
                    {"flipped_faces", u.layout.flipped_faces},

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "ricci/mesh/errors.h"
-#include "ricci/metric/geometry.h"
+#include "ricci/hyperbolic/polish_h2.h"
 
 namespace ricci {
 namespace {
@@ -14,20 +14,17 @@ namespace {
 /// Corner angle at from_vertex(h) of h's face, from the face's hyperbolic lengths, in extended
 /// precision by the half-angle formula tan²(θ0/2) = sinh(s-l1) sinh(s-l2) / (sinh s sinh(s-l0))
 /// (s the half perimeter), which loses no digits for thin or small triangles.
-long double angle_at_from(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
+long double angle_at_from(const Mesh& mesh, const LengthsL& lengths, HalfedgeHandle h) {
   const HalfedgeHandle h1 = mesh.next_halfedge_handle(h), h2 = mesh.next_halfedge_handle(h1);
   // Triangle with vertices 0 = from(h), 1 = to(h), 2 = to(h1); l[k] opposite vertex k.
-  const long double l0 = lengths[mesh.edge_handle(h1).idx()];
-  const long double l1 = lengths[mesh.edge_handle(h2).idx()];
-  const long double l2 = lengths[mesh.edge_handle(h).idx()];
-  const long double s = 0.5L * (l0 + l1 + l2);
-  if (!(s - l0 > 0 && s - l1 > 0 && s - l2 > 0)) {
+  const long double l[3] = {lengths[mesh.edge_handle(h1).idx()], lengths[mesh.edge_handle(h2).idx()],
+                            lengths[mesh.edge_handle(h).idx()]};
+  long double theta[3];
+  if (!hyperbolic_angles_l(l, theta)) {
     throw InvalidInputError("layout_h2: face " + std::to_string(mesh.face_handle(h).idx()) +
                             " violates the hyperbolic triangle inequality");
   }
-  const long double num = std::sinh(s - l1) * std::sinh(s - l2);
-  const long double den = std::sinh(s) * std::sinh(s - l0);
-  return 2.0L * std::atan2(std::sqrt(num), std::sqrt(den));
+  return theta[0];
 }
 
 /// A face in its own frame: from(h) at 0, to(h) on the positive real axis, the third vertex
@@ -37,14 +34,14 @@ struct CanonicalFace {
   ComplexL z[3];
 };
 
-CanonicalFace canonical_face(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
+CanonicalFace canonical_face(const Mesh& mesh, const LengthsL& lengths, HalfedgeHandle h) {
   CanonicalFace c;
   c.h[0] = h;
   c.h[1] = mesh.next_halfedge_handle(h);
   c.h[2] = mesh.next_halfedge_handle(c.h[1]);
   c.z[0] = 0.0L;
-  c.z[1] = std::tanh(0.5L * static_cast<long double>(lengths[mesh.edge_handle(h).idx()]));
-  c.z[2] = std::polar(std::tanh(0.5L * static_cast<long double>(lengths[mesh.edge_handle(c.h[2]).idx()])),
+  c.z[1] = std::tanh(0.5L * lengths[mesh.edge_handle(h).idx()]);
+  c.z[2] = std::polar(std::tanh(0.5L * lengths[mesh.edge_handle(c.h[2]).idx()]),
                       angle_at_from(mesh, lengths, h));
   return c;
 }
@@ -94,6 +91,11 @@ Complex hyperbolic_centre(const Eigen::VectorXcd& points, int iterations) {
 }
 
 LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                         const LayoutH2Options& options) {
+  return layout_h2(mesh, LengthsL(edge_lengths.cast<long double>()), options);
+}
+
+LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
                          const LayoutH2Options& options) {
   if (options.seed_face < 0 && options.recentre) {
     LayoutH2Options first = options;
@@ -169,7 +171,7 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
                         " faces cannot be reached from seed face " +
                         std::to_string(result.seed_face) + " (mesh not connected)");
   }
-  measure_layout_h2(mesh, edge_lengths, result.positions, result);
+  measure_layout_h2(mesh, edge_lengths.cast<double>(), result.positions, result);
   return result;
 }
 

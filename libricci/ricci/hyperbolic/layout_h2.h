@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "ricci/hyperbolic/mobius.h"
+#include "ricci/hyperbolic/polish_h2.h"
 #include "ricci/mesh/mesh.h"
 
 namespace ricci {
@@ -48,6 +49,11 @@ struct LayoutH2Result {
 /// \throw InvalidInputError on bad lengths or seed (naming the face); TopologyError when a face
 ///        cannot be reached from the seed.
 [[nodiscard]] LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                                       const LayoutH2Options& options = {});
+
+/// The same from extended-precision lengths (e.g. polish_h2_lengths'), which the frames use
+/// as they are.
+[[nodiscard]] LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
                                        const LayoutH2Options& options = {});
 
 /// Orientation, closure and radius of `positions` against `edge_lengths` (fills those fields).

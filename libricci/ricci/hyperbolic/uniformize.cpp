@@ -41,7 +41,13 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   t = Clock::now();
   const Eigen::VectorXd lengths = sliced_edge_lengths(u.sliced, u.flow.lengths);
   if (u.geometry == Geometry::Hyperbolic) {
-    u.layout = layout_h2(u.sliced.mesh, lengths, {options.seed_face});
+    // The flow's metric in extended precision (see polish_h2.h), carried onto the sliced edges.
+    u.polish = polish_h2_lengths(u.surface, u.flow.lengths, u.flow.target);
+    LengthsL precise(u.sliced.mesh.n_edges());
+    for (auto e : u.sliced.mesh.edges()) {
+      precise[e.idx()] = u.polish.lengths[u.sliced.to_original_edge[static_cast<size_t>(e.idx())]];
+    }
+    u.layout = layout_h2(u.sliced.mesh, precise, {options.seed_face});
     u.positions = u.layout.positions;
   } else {
     LayoutE2Options e2;
