@@ -136,6 +136,56 @@ DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const Slic
 
 namespace {
 
+#ifdef __SIZEOF_FLOAT128__
+__extension__ typedef __float128 ProductReal;  // 113-bit mantissa, software arithmetic
+#else
+typedef long double ProductReal;
+#endif
+
+/// A 2x2 complex matrix in ProductReal: the relators are multiplied in it. Their partial
+/// products reach norm ~1e6 on elephant_cgal, and the rounding of each product, amplified by
+/// the square of that norm, left 2e-8 in long double.
+struct ProductMatrix {
+  ProductReal re[2][2] = {{1, 0}, {0, 1}}, im[2][2] = {{0, 0}, {0, 0}};
+
+  ProductMatrix() = default;
+  explicit ProductMatrix(const MobiusL& a) {
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        re[i][j] = a.m(i, j).real();
+        im[i][j] = a.m(i, j).imag();
+      }
+    }
+  }
+  ProductMatrix operator*(const ProductMatrix& b) const {
+    ProductMatrix c;
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        c.re[i][j] = re[i][0] * b.re[0][j] - im[i][0] * b.im[0][j] + re[i][1] * b.re[1][j] -
+                     im[i][1] * b.im[1][j];
+        c.im[i][j] = re[i][0] * b.im[0][j] + im[i][0] * b.re[0][j] + re[i][1] * b.im[1][j] +
+                     im[i][1] * b.re[1][j];
+      }
+    }
+    return c;
+  }
+  /// min over the sign of ||M -+ I||_F.
+  [[nodiscard]] double distance_to_identity() const {
+    long double minus = 0, plus = 0;
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        const ProductReal id = i == j ? 1 : 0;
+        const long double dm = static_cast<long double>(re[i][j] - id);
+        const long double dp = static_cast<long double>(re[i][j] + id);
+        const long double di = static_cast<long double>(im[i][j]);
+        minus += dm * dm + di * di;
+        plus += dp * dp + di * di;
+      }
+    }
+    return static_cast<double>(std::sqrt(std::min(minus, plus)));
+  }
+};
+
 /// The point c among `candidates` whose images under the prefixes of `word` stay closest to it
 /// (smallest max over prefixes g of |g|_c, the norm of g in the frame centred at c).
 Complex best_frame_centre(const DomainPairings& pairings, const ArcWord& word,
@@ -168,12 +218,13 @@ double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
   const Complex c = best_frame_centre(pairings, w, candidates);
   const MobiusL to_c = MobiusL::from_rotation_point(0.0L, ComplexL(c));
   const MobiusL from_c = to_c.inverse();
-  MobiusL product;
+  ProductMatrix product;
   for (const ArcLetter& l : w) {
     const MobiusL& m = pairings.arcs[static_cast<size_t>(l.arc)].precise_pairing;
-    product = product * (to_c * (l.sign > 0 ? m : m.inverse()) * from_c);
+    product = product * (ProductMatrix(to_c) * ProductMatrix(l.sign > 0 ? m : m.inverse()) *
+                         ProductMatrix(from_c));
   }
-  return distance_to_identity(product);
+  return product.distance_to_identity();
 }
 
 ArcWord freely_reduced(const ArcWord& word) {
