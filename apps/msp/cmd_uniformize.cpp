@@ -73,7 +73,7 @@ nlohmann::json result_json(const std::string& path, const ricci::Mesh& mesh,
   j["seconds"] = u.timings.total;
   j["timings"] = {{"double_cover", u.timings.double_cover}, {"flow", u.timings.flow},
                   {"cut", u.timings.cut}, {"layout", u.timings.layout},
-                  {"group", u.timings.group}};
+                  {"polish", u.timings.polish}, {"group", u.timings.group}};
   if (u.geometry == ricci::Geometry::Spherical) {
     j["sphere"] = {{"max_radius_error", u.sphere.max_radius_error},
                    {"flipped_faces", u.sphere.flipped_faces},

@@ -21,7 +21,8 @@ bool hyperbolic_angles_l(const long double l[3], long double theta[3]) {
   const long double ss = std::sinh(s);
   for (int k = 0; k < 3; ++k) {
     // tan²(θk/2) = sinh(s - l_{k+1}) sinh(s - l_{k+2}) / (sinh s sinh(s - l_k)).
-    theta[k] = 2.0L * std::atan2(std::sqrt(sh[(k + 1) % 3] * sh[(k + 2) % 3]), std::sqrt(ss * sh[k]));
+    theta[k] =
+        2.0L * std::atan2(std::sqrt(sh[(k + 1) % 3] * sh[(k + 2) % 3]), std::sqrt(ss * sh[k]));
   }
   return true;
 }
@@ -55,9 +56,9 @@ LengthsL scaled(const Mesh& mesh, const LengthsL& base_sinh, const LengthsL& u) 
   LengthsL l(base_sinh.size());
   for (auto e : mesh.edges()) {
     const auto h = mesh.halfedge_handle(e, 0);
-    const long double s = std::exp(0.5L * (u[mesh.from_vertex_handle(h).idx()] +
-                                           u[mesh.to_vertex_handle(h).idx()])) *
-                          base_sinh[e.idx()];
+    const long double s =
+        std::exp(0.5L * (u[mesh.from_vertex_handle(h).idx()] + u[mesh.to_vertex_handle(h).idx()])) *
+        base_sinh[e.idx()];
     l[e.idx()] = 2.0L * std::asinh(s);
   }
   return l;
@@ -89,7 +90,8 @@ PolishH2Result polish_h2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
     std::vector<Eigen::Triplet<double>> triplets;
     for (size_t f = 0; f < faces.size(); ++f) {
       const FaceCorners& c = faces[f];
-      const long double l[3] = {result.lengths[c.e[0]], result.lengths[c.e[1]], result.lengths[c.e[2]]};
+      const long double l[3] = {result.lengths[c.e[0]], result.lengths[c.e[1]],
+                                result.lengths[c.e[2]]};
       long double theta[3];
       if (!hyperbolic_angles_l(l, theta)) {
         throw InvalidInputError("polish_h2_lengths: face " + std::to_string(f) +

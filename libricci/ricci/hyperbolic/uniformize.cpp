@@ -42,7 +42,9 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   const Eigen::VectorXd lengths = sliced_edge_lengths(u.sliced, u.flow.lengths);
   if (u.geometry == Geometry::Hyperbolic) {
     // The flow's metric in extended precision (see polish_h2.h), carried onto the sliced edges.
+    const auto polish_start = Clock::now();
     u.polish = polish_h2_lengths(u.surface, u.flow.lengths, u.flow.target);
+    u.timings.polish = seconds_since(polish_start);
     LengthsL precise(u.sliced.mesh.n_edges());
     for (auto e : u.sliced.mesh.edges()) {
       precise[e.idx()] = u.polish.lengths[u.sliced.to_original_edge[static_cast<size_t>(e.idx())]];

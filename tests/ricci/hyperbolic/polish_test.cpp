@@ -28,7 +28,8 @@ TEST(HyperbolicAnglesL, EquilateralAndDefect) {
   ASSERT_TRUE(hyperbolic_angles_l(l, theta));
   for (int k = 0; k < 3; ++k) {
     const long double a = l[k], b = l[(k + 1) % 3], c = l[(k + 2) % 3];
-    const long double cos_k = (std::cosh(b) * std::cosh(c) - std::cosh(a)) / (std::sinh(b) * std::sinh(c));
+    const long double cos_k =
+        (std::cosh(b) * std::cosh(c) - std::cosh(a)) / (std::sinh(b) * std::sinh(c));
     EXPECT_LT(std::abs(std::cos(theta[k]) - cos_k), 1e-17L);
   }
   EXPECT_LT(theta[0] + theta[1] + theta[2], 3.141592653589793238L);
@@ -58,7 +59,8 @@ TEST(PolishH2, RemovesTheFlowsDefectsWithATinyChange) {
   EXPECT_LT(p.error_after, 1e-17);
   EXPECT_GE(p.iterations, 1);
   for (Eigen::Index e = 0; e < p.lengths.size(); ++e) {
-    EXPECT_LT(std::abs(static_cast<double>(p.lengths[e]) - f.flow.lengths[e]) / f.flow.lengths[e], 1e-12);
+    EXPECT_LT(std::abs(static_cast<double>(p.lengths[e]) - f.flow.lengths[e]) / f.flow.lengths[e],
+              1e-12);
   }
 }
 
@@ -75,7 +77,8 @@ TEST(PolishH2, ConformalPerturbationConvergesBackToTheSameMetric) {
   Eigen::VectorXd perturbed(f.flow.lengths.size());
   for (auto e : f.mesh.edges()) {
     const auto h = f.mesh.halfedge_handle(e, 0);
-    const double s = std::exp(0.5 * (u[f.mesh.from_vertex_handle(h).idx()] + u[f.mesh.to_vertex_handle(h).idx()]));
+    const double s = std::exp(
+        0.5 * (u[f.mesh.from_vertex_handle(h).idx()] + u[f.mesh.to_vertex_handle(h).idx()]));
     perturbed[e.idx()] = 2.0 * std::asinh(s * std::sinh(0.5 * f.flow.lengths[e.idx()]));
   }
   PolishH2Options options;
@@ -85,14 +88,16 @@ TEST(PolishH2, ConformalPerturbationConvergesBackToTheSameMetric) {
   EXPECT_LT(p.error_after, 1e-17);
   double worst = 0.0;
   for (Eigen::Index e = 0; e < p.lengths.size(); ++e) {
-    worst = std::max(worst, static_cast<double>(std::abs(p.lengths[e] - reference.lengths[e]) / reference.lengths[e]));
+    worst = std::max(worst, static_cast<double>(std::abs(p.lengths[e] - reference.lengths[e]) /
+                                                reference.lengths[e]));
   }
   EXPECT_LT(worst, 1e-15);
 }
 
 TEST(PolishH2, BadInputThrows) {
   const Flowed f = flowed_eight();
-  EXPECT_THROW((void)polish_h2_lengths(f.mesh, Eigen::VectorXd::Ones(3), f.flow.target), InvalidInputError);
+  EXPECT_THROW((void)polish_h2_lengths(f.mesh, Eigen::VectorXd::Ones(3), f.flow.target),
+               InvalidInputError);
   Eigen::VectorXd broken = f.flow.lengths;
   const auto h = f.mesh.halfedge_handle(FaceHandle(0));
   broken[f.mesh.edge_handle(h).idx()] = 100.0;  // longer than the other two sides together
