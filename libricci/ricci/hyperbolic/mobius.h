@@ -53,11 +53,13 @@ struct Mobius {
 /// The Euclidean motion taking p to 0 and q onto the positive real axis. \pre p != q.
 [[nodiscard]] Mobius plane_to_centre(Complex p, Complex q);
 
-/// Extended precision for the disk layout's frames, the side pairings and the relators' products
-/// (x86-64 long double: 64-bit mantissa, 2^11 times finer than double). The generators are
-/// words of ~50 pairings whose partial products reach norm ~1e3 on genus 3-4 domains, so
-/// rounding in double (of the pairings, from layout coordinates near the rim, and of the
-/// products) is amplified to 1e-9..1e-7; in long double it stays below 1e-11. Outputs stay double.
+/// Extended precision for the disk layout's frames and the side pairings (x86-64 long double:
+/// 64-bit mantissa, 2^11 times finer than double). The relator is a word of ~50 pairings whose
+/// partial products reach norm 1e3..1e6 on genus 3-4 domains, so an error in a pairing shows in
+/// the relation residual multiplied by the square of that norm; the pairings come from layout
+/// coordinates near the rim, where double keeps 1e-14 in hyperbolic distance. (The larger part
+/// was the metric's angle defects, see polish_h2.h; the products themselves are multiplied in
+/// __float128, see fuchsian.cpp.) Outputs stay double.
 using ComplexL = std::complex<long double>;
 
 /// A Möbius map in extended precision (same conventions as Mobius).
