@@ -9,7 +9,8 @@ namespace {
 
 /// P_e from the two copies of e's ends: right copy (x1, y1) onto left copy (x0, y0).
 MobiusL pair_segments(ComplexL x0, ComplexL y0, ComplexL x1, ComplexL y1, Geometry geometry) {
-  if (geometry == Geometry::Hyperbolic) return disk_to_centre(x0, y0).inverse() * disk_to_centre(x1, y1);
+  if (geometry == Geometry::Hyperbolic)
+    return disk_to_centre(x0, y0).inverse() * disk_to_centre(x1, y1);
   return plane_to_centre(x0, y0).inverse() * plane_to_centre(x1, y1);
 }
 
@@ -246,7 +247,8 @@ ArcWord cyclically_reduced(const ArcWord& word) {
     ++begin;
     --end;
   }
-  return ArcWord(w.begin() + static_cast<std::ptrdiff_t>(begin), w.begin() + static_cast<std::ptrdiff_t>(end));
+  return ArcWord(w.begin() + static_cast<std::ptrdiff_t>(begin),
+                 w.begin() + static_cast<std::ptrdiff_t>(end));
 }
 
 Mobius evaluate(const DomainPairings& pairings, const ArcWord& word) {

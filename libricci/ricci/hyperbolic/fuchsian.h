@@ -104,18 +104,18 @@ using ArcWord = std::vector<ArcLetter>;
 struct HolonomyGroup {
   FundamentalPolygon polygon;
   CanonicalBasis basis;
-  std::vector<ArcWord> loop_words;     ///< rho of each cut-graph loop, in arc letters.
-  std::vector<Mobius> loop_holonomy;   ///< rho of each cut-graph loop.
+  std::vector<ArcWord> loop_words;       ///< rho of each cut-graph loop, in arc letters.
+  std::vector<Mobius> loop_holonomy;     ///< rho of each cut-graph loop.
   std::vector<ArcWord> generator_words;  ///< basis.generators in arc letters.
-  std::vector<Mobius> generators;      ///< rho(a1), rho(b1), ...
+  std::vector<Mobius> generators;        ///< rho(a1), rho(b1), ...
   /// ||rho(polygon word) - I|| (the word cyclically reduced in arc letters before multiplying):
   /// the domain closes up around the root.
   double polygon_residual = 0.0;
   /// ||Π [a_i, b_i] - I|| for the canonical generators, the relator written in arc letters and
-  /// evaluated by conditioned_residual (cyclically reduced, in the best-conditioned frame). Cyclic reduction conjugates (the relator of the
-  /// canonical basis is a rotation A P A^-1 of the polygon's), so the test "= I" is unchanged,
-  /// but the conjugator's rounding, amplified by ||rho(A)||², is left out; what remains are the
-  /// vertex cycles of the cut graph's branch points.
+  /// evaluated by conditioned_residual (cyclically reduced, in the best-conditioned frame). Cyclic
+  /// reduction conjugates (the relator of the canonical basis is a rotation A P A^-1 of the
+  /// polygon's), so the test "= I" is unchanged, but the conjugator's rounding, amplified by
+  /// ||rho(A)||², is left out; what remains are the vertex cycles of the cut graph's branch points.
   double relation_residual = 0.0;
   /// The same product multiplied from the generator matrices as they are (rounding of long
   /// products of large matrices included).
@@ -127,8 +127,7 @@ struct HolonomyGroup {
 /// conditioned_residual for the residuals.
 /// \throw TopologyError from the polygon word when the slice is not a disk.
 [[nodiscard]] HolonomyGroup holonomy_group(const Mesh& mesh, const CutGraph& cut,
-                                           const SlicedMesh& sliced,
-                                           const DomainPairings& pairings,
+                                           const SlicedMesh& sliced, const DomainPairings& pairings,
                                            const Eigen::VectorXcd& positions = {});
 
 }  // namespace ricci

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "ricci/mesh/errors.h"
 #include "ricci/hyperbolic/polish_h2.h"
+#include "ricci/mesh/errors.h"
 
 namespace ricci {
 namespace {
@@ -17,7 +17,8 @@ namespace {
 long double angle_at_from(const Mesh& mesh, const LengthsL& lengths, HalfedgeHandle h) {
   const HalfedgeHandle h1 = mesh.next_halfedge_handle(h), h2 = mesh.next_halfedge_handle(h1);
   // Triangle with vertices 0 = from(h), 1 = to(h), 2 = to(h1); l[k] opposite vertex k.
-  const long double l[3] = {lengths[mesh.edge_handle(h1).idx()], lengths[mesh.edge_handle(h2).idx()],
+  const long double l[3] = {lengths[mesh.edge_handle(h1).idx()],
+                            lengths[mesh.edge_handle(h2).idx()],
                             lengths[mesh.edge_handle(h).idx()]};
   long double theta[3];
   if (!hyperbolic_angles_l(l, theta)) {
@@ -117,8 +118,8 @@ LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
     return layout_h2(mesh, edge_lengths, first);
   }
   if (edge_lengths.size() != static_cast<Eigen::Index>(mesh.n_edges())) {
-    throw InvalidInputError("layout_h2: " + std::to_string(edge_lengths.size()) +
-                            " lengths for " + std::to_string(mesh.n_edges()) + " edges");
+    throw InvalidInputError("layout_h2: " + std::to_string(edge_lengths.size()) + " lengths for " +
+                            std::to_string(mesh.n_edges()) + " edges");
   }
   LayoutH2Result result;
   result.seed_face = options.seed_face >= 0 ? options.seed_face : central_face_of(mesh);

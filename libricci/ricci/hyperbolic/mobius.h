@@ -1,9 +1,10 @@
 #pragma once
 // Möbius maps z -> (a z + b) / (c z + d) as 2x2 complex matrices of determinant 1 (defined up to
 // sign). Orientation-preserving isometries of the Poincaré disk are the SU(1,1) ones,
-// [[a, b], [conj b, conj a]] with |a|² - |b|² = 1, equivalently z -> e^{iθ} (z - z0) / (1 - conj(z0) z)
-// (hyperbolic-and-real-projective-structure §4.3, eq. 14). Euclidean motions are [[e^{iθ/2}, t e^{-iθ/2}],
-// [0, e^{-iθ/2}]], so one type carries the side pairings of the H2 and E2 domains alike.
+// [[a, b], [conj b, conj a]] with |a|² - |b|² = 1, equivalently z -> e^{iθ} (z - z0) / (1 -
+// conj(z0) z) (hyperbolic-and-real-projective-structure §4.3, eq. 14). Euclidean motions are
+// [[e^{iθ/2}, t e^{-iθ/2}], [0, e^{-iθ/2}]], so one type carries the side pairings of the H2 and E2
+// domains alike.
 #include <complex>
 
 #include <Eigen/Core>

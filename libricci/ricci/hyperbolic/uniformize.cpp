@@ -17,7 +17,8 @@ double seconds_since(Clock::time_point t) {
 }
 
 Geometry geometry_of_genus(int genus) {
-  return genus == 0 ? Geometry::Spherical : (genus == 1 ? Geometry::Euclidean : Geometry::Hyperbolic);
+  return genus == 0 ? Geometry::Spherical
+                    : (genus == 1 ? Geometry::Euclidean : Geometry::Hyperbolic);
 }
 
 /// The flat torus: translations of the canonical generators and the modulus.

@@ -9,7 +9,9 @@
 namespace ricci {
 namespace {
 
-std::string shared_model(const std::string& name) { return std::string(MSP_SHARED_MODELS) + "/" + name; }
+std::string shared_model(const std::string& name) {
+  return std::string(MSP_SHARED_MODELS) + "/" + name;
+}
 
 struct ModelCase {
   const char* path;
@@ -18,6 +20,8 @@ struct ModelCase {
   /// Bound on the seed-face mismatch (hyperbolic distance between the two layouts' points and
   /// the pairings' images).
   double seed_tolerance = 1e-9;
+  /// Bound on the layout's relative edge-length error (measured on the double positions).
+  double length_tolerance = 1e-9;
 };
 
 void PrintTo(const ModelCase& c, std::ostream* os) { *os << c.path; }
@@ -37,7 +41,7 @@ TEST_P(HyperbolicModel, DomainGroupAndRelation) {
   // The disk layout is an embedding isometric to the flow metric.
   EXPECT_EQ(u.layout.flipped_faces, 0);
   EXPECT_GT(u.layout.min_signed_area, 0.0);
-  EXPECT_LT(u.layout.max_relative_length_error, 1e-9);
+  EXPECT_LT(u.layout.max_relative_length_error, GetParam().length_tolerance);
   EXPECT_LT(u.layout.max_radius, 1.0);
   // Every edge of a side gives the same pairing; the domain closes up around the root.
   EXPECT_LT(u.pairings.max_spread, 1e-9);
@@ -69,7 +73,8 @@ TEST_P(HyperbolicModel, DomainGroupAndRelation) {
       points.push_back(u.positions[u.sliced.mesh.from_vertex_handle(h).idx()]);
     }
     for (const Complex& z : points) {
-      EXPECT_LT(std::abs(apply_projective(L, klein_from_poincare(z)) - klein_from_poincare(g(z))), 1e-12)
+      EXPECT_LT(std::abs(apply_projective(L, klein_from_poincare(z)) - klein_from_poincare(g(z))),
+                1e-12)
           << "|z| " << std::abs(z);
     }
   }
@@ -77,7 +82,8 @@ TEST_P(HyperbolicModel, DomainGroupAndRelation) {
 
 /// Hyperbolic distance in the disk, in extended precision.
 double disk_distance_l(ComplexL z, ComplexL w) {
-  return static_cast<double>(2.0L * std::atanh(std::abs(z - w) / std::abs(1.0L - std::conj(z) * w)));
+  return static_cast<double>(2.0L *
+                             std::atanh(std::abs(z - w) / std::abs(1.0L - std::conj(z) * w)));
 }
 
 /// max over vertices of d_H(T(b_v), a_v) with T the isometry that matches b's copy of `face`'s
@@ -90,7 +96,8 @@ double layout_mismatch(const Mesh& sliced, int face, const Eigen::VectorXcd& a,
   const int i = sliced.from_vertex_handle(h).idx(), j = sliced.to_vertex_handle(h).idx();
   *t = disk_to_centre(a[i], a[j]).inverse() * disk_to_centre(b[i], b[j]);
   double worst = 0.0;
-  for (Eigen::Index v = 0; v < a.size(); ++v) worst = std::max(worst, disk_distance((*t)(b[v]), a[v]));
+  for (Eigen::Index v = 0; v < a.size(); ++v)
+    worst = std::max(worst, disk_distance((*t)(b[v]), a[v]));
   return worst;
 }
 
@@ -123,7 +130,8 @@ TEST_P(HyperbolicModel, SeedFaceIndependence) {
   const auto seed_h = sm.halfedge_handle(FaceHandle(a.layout.seed_face));
   const size_t s0 = static_cast<size_t>(sm.from_vertex_handle(seed_h).idx());
   const size_t s1 = static_cast<size_t>(sm.to_vertex_handle(seed_h).idx());
-  const MobiusL tl = disk_to_centre(pos_a[s0], pos_a[s1]).inverse() * disk_to_centre(pos_b[s0], pos_b[s1]);
+  const MobiusL tl =
+      disk_to_centre(pos_a[s0], pos_a[s1]).inverse() * disk_to_centre(pos_b[s0], pos_b[s1]);
   for (size_t arc = 0; arc < a.pairings.arcs.size(); ++arc) {
     const MobiusL& pa = a.pairings.arcs[arc].precise_pairing;
     const MobiusL& pb = b.pairings.arcs[arc].precise_pairing;
@@ -150,17 +158,18 @@ TEST_P(HyperbolicModel, SeedFaceIndependence) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Genus2To4, HyperbolicModel,
-                         ::testing::Values(ModelCase{"closed_g2/eight.off"},
-                                           ModelCase{"closed_g2/eight_cgal.off"},
-                                           ModelCase{"closed_g2/cup.off"},
-                                           ModelCase{"closed_g2/femur.off"},
-                                           ModelCase{"closed_g3/helmet.off"},
-                                           ModelCase{"closed_g3/block.off"},
-                                           ModelCase{"closed_g3/genus3.off"},
-                                           ModelCase{"closed_g3/elephant_cgal.off"},
-                                           ModelCase{"closed_g4plus/fertility.off"},
-                                           ModelCase{"closed_g4plus/anchor.off"}));
+INSTANTIATE_TEST_SUITE_P(
+    Genus2To4, HyperbolicModel,
+    ::testing::Values(ModelCase{"closed_g2/eight.off"}, ModelCase{"closed_g2/eight_cgal.off"},
+                      ModelCase{"closed_g2/cup.off"},
+                      // femur's shortest edge is 1.8e-13 (hyperbolic):
+                      // a double coordinate at |z| = 0.98 is already
+                      // 3e-15 in distance, 1% of that edge.
+                      ModelCase{"closed_g2/femur.off", 1e-9, 1e-9, 2e-2},
+                      ModelCase{"closed_g3/helmet.off"}, ModelCase{"closed_g3/block.off"},
+                      ModelCase{"closed_g3/genus3.off"}, ModelCase{"closed_g3/elephant_cgal.off"},
+                      ModelCase{"closed_g4plus/fertility.off"},
+                      ModelCase{"closed_g4plus/anchor.off"}));
 
 }  // namespace
 }  // namespace ricci
