@@ -88,7 +88,7 @@ using ArcWord = std::vector<ArcLetter>;
 /// the root: develop the faces along the loop's left side from a fixed face at the root back to
 /// it, recording every cut arc crossed (crossing an arc from its left face to its right face
 /// multiplies by its pairing on the right). rho(w1 w2) = rho(w1) rho(w2).
-/// \pre closed surface. 	hrow InvalidInputError for a surface with boundary.
+/// \pre closed surface. \throw InvalidInputError for a surface with boundary.
 [[nodiscard]] std::vector<ArcWord> loop_arc_words(const Mesh& mesh, const CutGraph& cut,
                                                   const DomainPairings& pairings);
 
