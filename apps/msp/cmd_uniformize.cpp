@@ -73,7 +73,7 @@ nlohmann::json result_json(const std::string& path, const ricci::Mesh& mesh,
   j["seconds"] = u.timings.total;
   j["timings"] = {{"double_cover", u.timings.double_cover}, {"flow", u.timings.flow},
                   {"cut", u.timings.cut}, {"layout", u.timings.layout},
-                  {"group", u.timings.group}};
+                  {"polish", u.timings.polish}, {"group", u.timings.group}};
   if (u.geometry == ricci::Geometry::Spherical) {
     j["sphere"] = {{"max_radius_error", u.sphere.max_radius_error},
                    {"flipped_faces", u.sphere.flipped_faces},
@@ -82,6 +82,11 @@ nlohmann::json result_json(const std::string& path, const ricci::Mesh& mesh,
     j["polygon_residual"] = u.group.polygon_residual;
     j["relation_residual_direct"] = u.group.relation_residual_direct;
     j["side_spread"] = u.pairings.max_spread;
+    if (u.geometry == ricci::Geometry::Hyperbolic) {
+      j["polish"] = {{"curvature_error_before", u.polish.error_before},
+                     {"curvature_error_after", u.polish.error_after},
+                     {"iterations", u.polish.iterations}};
+    }
     j["sides"] = 2 * u.pairings.arcs.size();
     j["layout"] = {{"seed_face", u.layout.seed_face},
                    {"flipped_faces", u.layout.flipped_faces},

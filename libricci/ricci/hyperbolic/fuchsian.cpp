@@ -8,8 +8,9 @@ namespace ricci {
 namespace {
 
 /// P_e from the two copies of e's ends: right copy (x1, y1) onto left copy (x0, y0).
-Mobius pair_segments(Complex x0, Complex y0, Complex x1, Complex y1, Geometry geometry) {
-  if (geometry == Geometry::Hyperbolic) return disk_to_centre(x0, y0).inverse() * disk_to_centre(x1, y1);
+MobiusL pair_segments(ComplexL x0, ComplexL y0, ComplexL x1, ComplexL y1, Geometry geometry) {
+  if (geometry == Geometry::Hyperbolic)
+    return disk_to_centre(x0, y0).inverse() * disk_to_centre(x1, y1);
   return plane_to_centre(x0, y0).inverse() * plane_to_centre(x1, y1);
 }
 
@@ -83,25 +84,33 @@ void turn_clockwise(const Mesh& mesh, const EdgeLetters& letters, HalfedgeHandle
 }  // namespace
 
 DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const SlicedMesh& sliced,
-                               const Eigen::VectorXcd& positions, Geometry geometry) {
+                               const Eigen::VectorXcd& positions, Geometry geometry,
+                               const std::vector<ComplexL>& precise_positions) {
   if (geometry == Geometry::Spherical) {
     throw InvalidInputError("domain_pairings: the sphere has no side pairings");
   }
   if (positions.size() != static_cast<Eigen::Index>(sliced.mesh.n_vertices()) ||
-      cut.is_cut_edge.size() != mesh.n_edges()) {
+      cut.is_cut_edge.size() != mesh.n_edges() ||
+      (!precise_positions.empty() && precise_positions.size() != sliced.mesh.n_vertices())) {
     throw InvalidInputError("domain_pairings: positions or cut do not match the meshes");
   }
   DomainPairings result;
   result.is_cut_edge = cut.is_cut_edge;
   result.edge_pairing.assign(mesh.n_edges(), Mobius::identity());
+  std::vector<MobiusL> precise_edge_pairing(mesh.n_edges());
+  auto position = [&](VertexHandle v) {
+    return precise_positions.empty() ? ComplexL(positions[v.idx()])
+                                     : precise_positions[static_cast<size_t>(v.idx())];
+  };
   for (const CutEdgeSides& s : sliced.cut_sides) {
     const auto& sm = sliced.mesh;
-    const Complex x0 = positions[sm.from_vertex_handle(s.side[0]).idx()];
-    const Complex y0 = positions[sm.to_vertex_handle(s.side[0]).idx()];
+    const ComplexL x0 = position(sm.from_vertex_handle(s.side[0]));
+    const ComplexL y0 = position(sm.to_vertex_handle(s.side[0]));
     // side[1] runs the other way (to -> from of the original halfedge 0).
-    const Complex y1 = positions[sm.from_vertex_handle(s.side[1]).idx()];
-    const Complex x1 = positions[sm.to_vertex_handle(s.side[1]).idx()];
-    result.edge_pairing[s.edge.idx()] = pair_segments(x0, y0, x1, y1, geometry);
+    const ComplexL y1 = position(sm.from_vertex_handle(s.side[1]));
+    const ComplexL x1 = position(sm.to_vertex_handle(s.side[1]));
+    precise_edge_pairing[s.edge.idx()] = pair_segments(x0, y0, x1, y1, geometry);
+    result.edge_pairing[s.edge.idx()] = precise_edge_pairing[s.edge.idx()].to_double();
   }
   result.arcs = trace_arcs(mesh, cut.is_cut_edge);
   std::vector<int> loop_of_edge(mesh.n_edges(), -1);
@@ -109,21 +118,74 @@ DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const Slic
     loop_of_edge[mesh.edge_handle(cut.loops[i].generator).idx()] = static_cast<int>(i);
   }
   for (CutArc& arc : result.arcs) {
-    std::vector<Mobius> maps;
+    std::vector<MobiusL> maps;
     for (auto h : arc.halfedges) {
       const EdgeHandle e = mesh.edge_handle(h);
       if (loop_of_edge[e.idx()] >= 0) arc.loop = loop_of_edge[e.idx()];
-      const Mobius& m = result.edge_pairing[e.idx()];
+      const MobiusL& m = precise_edge_pairing[e.idx()];
       maps.push_back(h == mesh.halfedge_handle(e, 0) ? m : m.inverse());
     }
-    for (const Mobius& m : maps) arc.spread = std::max(arc.spread, mobius_distance(m, maps[0]));
-    arc.pairing = mobius_mean(maps.data(), static_cast<int>(maps.size()));
+    for (const MobiusL& m : maps) {
+      arc.spread = std::max(arc.spread, mobius_distance(m.to_double(), maps[0].to_double()));
+    }
+    arc.precise_pairing = mobius_mean(maps.data(), static_cast<int>(maps.size()));
+    arc.pairing = arc.precise_pairing.to_double();
     result.max_spread = std::max(result.max_spread, arc.spread);
   }
   return result;
 }
 
 namespace {
+
+#ifdef __SIZEOF_FLOAT128__
+__extension__ typedef __float128 ProductReal;  // 113-bit mantissa, software arithmetic
+#else
+typedef long double ProductReal;
+#endif
+
+/// A 2x2 complex matrix in ProductReal: the relators are multiplied in it. Their partial
+/// products reach norm ~1e6 on elephant_cgal, and the rounding of each product, amplified by
+/// the square of that norm, left 2e-8 in long double.
+struct ProductMatrix {
+  ProductReal re[2][2] = {{1, 0}, {0, 1}}, im[2][2] = {{0, 0}, {0, 0}};
+
+  ProductMatrix() = default;
+  explicit ProductMatrix(const MobiusL& a) {
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        re[i][j] = a.m(i, j).real();
+        im[i][j] = a.m(i, j).imag();
+      }
+    }
+  }
+  ProductMatrix operator*(const ProductMatrix& b) const {
+    ProductMatrix c;
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        c.re[i][j] = re[i][0] * b.re[0][j] - im[i][0] * b.im[0][j] + re[i][1] * b.re[1][j] -
+                     im[i][1] * b.im[1][j];
+        c.im[i][j] = re[i][0] * b.im[0][j] + im[i][0] * b.re[0][j] + re[i][1] * b.im[1][j] +
+                     im[i][1] * b.re[1][j];
+      }
+    }
+    return c;
+  }
+  /// min over the sign of ||M -+ I||_F.
+  [[nodiscard]] double distance_to_identity() const {
+    long double minus = 0, plus = 0;
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        const ProductReal id = i == j ? 1 : 0;
+        const long double dm = static_cast<long double>(re[i][j] - id);
+        const long double dp = static_cast<long double>(re[i][j] + id);
+        const long double di = static_cast<long double>(im[i][j]);
+        minus += dm * dm + di * di;
+        plus += dp * dp + di * di;
+      }
+    }
+    return static_cast<double>(std::sqrt(std::min(minus, plus)));
+  }
+};
 
 /// The point c among `candidates` whose images under the prefixes of `word` stay closest to it
 /// (smallest max over prefixes g of |g|_c, the norm of g in the frame centred at c).
@@ -155,14 +217,15 @@ double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
                             const std::vector<Complex>& candidates) {
   const ArcWord w = cyclically_reduced(word);
   const Complex c = best_frame_centre(pairings, w, candidates);
-  const Mobius to_c = Mobius::from_rotation_point(0.0, c);
-  const Mobius from_c = to_c.inverse();
-  Mobius product;
+  const MobiusL to_c = MobiusL::from_rotation_point(0.0L, ComplexL(c));
+  const MobiusL from_c = to_c.inverse();
+  ProductMatrix product;
   for (const ArcLetter& l : w) {
-    const Mobius& m = pairings.arcs[static_cast<size_t>(l.arc)].pairing;
-    product = product * (to_c * (l.sign > 0 ? m : m.inverse()) * from_c);
+    const MobiusL& m = pairings.arcs[static_cast<size_t>(l.arc)].precise_pairing;
+    product = product * (ProductMatrix(to_c) * ProductMatrix(l.sign > 0 ? m : m.inverse()) *
+                         ProductMatrix(from_c));
   }
-  return distance_to_identity(product);
+  return product.distance_to_identity();
 }
 
 ArcWord freely_reduced(const ArcWord& word) {
@@ -184,16 +247,17 @@ ArcWord cyclically_reduced(const ArcWord& word) {
     ++begin;
     --end;
   }
-  return ArcWord(w.begin() + static_cast<std::ptrdiff_t>(begin), w.begin() + static_cast<std::ptrdiff_t>(end));
+  return ArcWord(w.begin() + static_cast<std::ptrdiff_t>(begin),
+                 w.begin() + static_cast<std::ptrdiff_t>(end));
 }
 
 Mobius evaluate(const DomainPairings& pairings, const ArcWord& word) {
-  Mobius product;
+  MobiusL product;
   for (const ArcLetter& l : word) {
-    const Mobius& m = pairings.arcs.at(static_cast<size_t>(l.arc)).pairing;
+    const MobiusL& m = pairings.arcs.at(static_cast<size_t>(l.arc)).precise_pairing;
     product = product * (l.sign > 0 ? m : m.inverse());
   }
-  return product;
+  return MobiusL::from_matrix(product.m).to_double();
 }
 
 std::vector<ArcWord> loop_arc_words(const Mesh& mesh, const CutGraph& cut,

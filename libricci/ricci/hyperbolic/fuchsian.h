@@ -27,6 +27,9 @@ struct CutArc {
   /// (so pairing(domain) is the neighbour of the domain across the left side): the mean of the
   /// per-edge maps.
   Mobius pairing;
+  /// `pairing` in extended precision: the relator residuals and the generators are multiplied
+  /// from these (long words of large matrices amplify double rounding to 1e-8 on genus 4).
+  MobiusL precise_pairing;
   /// max over the arc's edges of mobius_distance(edge map, first edge map): the paper's
   /// "generators from different edges of the same side agree" check.
   double spread = 0.0;
@@ -43,11 +46,14 @@ struct DomainPairings {
 
 /// Pairings of every cut edge from the layout of the sliced disk (positions by sliced vertex
 /// index; in the disk for Hyperbolic, the plane for Euclidean), grouped into arcs.
+/// `precise_positions` (optional, the same in extended precision, e.g. from layout_h2) are used
+/// instead of `positions` when given.
 /// \pre `sliced` is `mesh` cut along `cut.is_cut_edge`, closed mesh; geometry is Hyperbolic or
 ///      Euclidean. \throw InvalidInputError for the spherical geometry or a size mismatch.
 [[nodiscard]] DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut,
                                              const SlicedMesh& sliced,
-                                             const Eigen::VectorXcd& positions, Geometry geometry);
+                                             const Eigen::VectorXcd& positions, Geometry geometry,
+                                             const std::vector<ComplexL>& precise_positions = {});
 
 /// A letter of a word in the arcs' pairings: arcs[arc].pairing^sign.
 struct ArcLetter {
@@ -69,17 +75,20 @@ using ArcWord = std::vector<ArcLetter>;
 /// images under the word's prefixes stay closest to it (the prefixes of a vertex-cycle relator
 /// move that region least, so their matrices stay small and their rounding is not amplified by
 /// the square of their norms). Conjugation keeps "= I" exact, so this tests the relation.
+/// The precise pairings are conjugated and multiplied in __float128 (long double where the
+/// compiler has none): in long double the conjugation's rounding left 2e-8 on elephant_cgal.
 [[nodiscard]] double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
                                           const std::vector<Complex>& candidates);
 
-/// The product of the arcs' pairings along `word`, left to right.
+/// The product of the arcs' pairings along `word`, left to right (multiplied in extended
+/// precision from the precise pairings, rounded to double at the end).
 [[nodiscard]] Mobius evaluate(const DomainPairings& pairings, const ArcWord& word);
 
 /// rho(loop i) for every loop of the cut graph as a reduced word in the arc pairings, based at
 /// the root: develop the faces along the loop's left side from a fixed face at the root back to
 /// it, recording every cut arc crossed (crossing an arc from its left face to its right face
 /// multiplies by its pairing on the right). rho(w1 w2) = rho(w1) rho(w2).
-/// \pre closed surface. 	hrow InvalidInputError for a surface with boundary.
+/// \pre closed surface. \throw InvalidInputError for a surface with boundary.
 [[nodiscard]] std::vector<ArcWord> loop_arc_words(const Mesh& mesh, const CutGraph& cut,
                                                   const DomainPairings& pairings);
 
@@ -95,18 +104,18 @@ using ArcWord = std::vector<ArcLetter>;
 struct HolonomyGroup {
   FundamentalPolygon polygon;
   CanonicalBasis basis;
-  std::vector<ArcWord> loop_words;     ///< rho of each cut-graph loop, in arc letters.
-  std::vector<Mobius> loop_holonomy;   ///< rho of each cut-graph loop.
+  std::vector<ArcWord> loop_words;       ///< rho of each cut-graph loop, in arc letters.
+  std::vector<Mobius> loop_holonomy;     ///< rho of each cut-graph loop.
   std::vector<ArcWord> generator_words;  ///< basis.generators in arc letters.
-  std::vector<Mobius> generators;      ///< rho(a1), rho(b1), ...
+  std::vector<Mobius> generators;        ///< rho(a1), rho(b1), ...
   /// ||rho(polygon word) - I|| (the word cyclically reduced in arc letters before multiplying):
   /// the domain closes up around the root.
   double polygon_residual = 0.0;
   /// ||Π [a_i, b_i] - I|| for the canonical generators, the relator written in arc letters and
-  /// evaluated by conditioned_residual (cyclically reduced, in the best-conditioned frame). Cyclic reduction conjugates (the relator of the
-  /// canonical basis is a rotation A P A^-1 of the polygon's), so the test "= I" is unchanged,
-  /// but the conjugator's rounding, amplified by ||rho(A)||², is left out; what remains are the
-  /// vertex cycles of the cut graph's branch points.
+  /// evaluated by conditioned_residual (cyclically reduced, in the best-conditioned frame). Cyclic
+  /// reduction conjugates (the relator of the canonical basis is a rotation A P A^-1 of the
+  /// polygon's), so the test "= I" is unchanged, but the conjugator's rounding, amplified by
+  /// ||rho(A)||², is left out; what remains are the vertex cycles of the cut graph's branch points.
   double relation_residual = 0.0;
   /// The same product multiplied from the generator matrices as they are (rounding of long
   /// products of large matrices included).
@@ -118,8 +127,7 @@ struct HolonomyGroup {
 /// conditioned_residual for the residuals.
 /// \throw TopologyError from the polygon word when the slice is not a disk.
 [[nodiscard]] HolonomyGroup holonomy_group(const Mesh& mesh, const CutGraph& cut,
-                                           const SlicedMesh& sliced,
-                                           const DomainPairings& pairings,
+                                           const SlicedMesh& sliced, const DomainPairings& pairings,
                                            const Eigen::VectorXcd& positions = {});
 
 }  // namespace ricci

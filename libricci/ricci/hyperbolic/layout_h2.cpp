@@ -5,20 +5,23 @@
 #include <string>
 #include <vector>
 
+#include "ricci/hyperbolic/polish_h2.h"
 #include "ricci/mesh/errors.h"
-#include "ricci/metric/geometry.h"
 
 namespace ricci {
 namespace {
 
-/// Corner angle at from_vertex(h) of h's face, from the face's hyperbolic lengths.
-double angle_at_from(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
+/// Corner angle at from_vertex(h) of h's face, from the face's hyperbolic lengths, in extended
+/// precision by the half-angle formula tan²(θ0/2) = sinh(s-l1) sinh(s-l2) / (sinh s sinh(s-l0))
+/// (s the half perimeter), which loses no digits for thin or small triangles.
+long double angle_at_from(const Mesh& mesh, const LengthsL& lengths, HalfedgeHandle h) {
   const HalfedgeHandle h1 = mesh.next_halfedge_handle(h), h2 = mesh.next_halfedge_handle(h1);
   // Triangle with vertices 0 = from(h), 1 = to(h), 2 = to(h1); l[k] opposite vertex k.
-  const double l[3] = {lengths[mesh.edge_handle(h1).idx()], lengths[mesh.edge_handle(h2).idx()],
-                       lengths[mesh.edge_handle(h).idx()]};
-  double theta[3];
-  if (!triangle_angles(Geometry::Hyperbolic, l, theta)) {
+  const long double l[3] = {lengths[mesh.edge_handle(h1).idx()],
+                            lengths[mesh.edge_handle(h2).idx()],
+                            lengths[mesh.edge_handle(h).idx()]};
+  long double theta[3];
+  if (!hyperbolic_angles_l(l, theta)) {
     throw InvalidInputError("layout_h2: face " + std::to_string(mesh.face_handle(h).idx()) +
                             " violates the hyperbolic triangle inequality");
   }
@@ -29,17 +32,17 @@ double angle_at_from(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeH
 /// above; z[k] is the position of the from-vertex of the k-th halfedge h, next(h), prev(h).
 struct CanonicalFace {
   HalfedgeHandle h[3];
-  Complex z[3];
+  ComplexL z[3];
 };
 
-CanonicalFace canonical_face(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
+CanonicalFace canonical_face(const Mesh& mesh, const LengthsL& lengths, HalfedgeHandle h) {
   CanonicalFace c;
   c.h[0] = h;
   c.h[1] = mesh.next_halfedge_handle(h);
   c.h[2] = mesh.next_halfedge_handle(c.h[1]);
-  c.z[0] = 0.0;
-  c.z[1] = disk_radius(lengths[mesh.edge_handle(h).idx()]);
-  c.z[2] = std::polar(disk_radius(lengths[mesh.edge_handle(c.h[2]).idx()]),
+  c.z[0] = 0.0L;
+  c.z[1] = std::tanh(0.5L * lengths[mesh.edge_handle(h).idx()]);
+  c.z[2] = std::polar(std::tanh(0.5L * lengths[mesh.edge_handle(c.h[2]).idx()]),
                       angle_at_from(mesh, lengths, h));
   return c;
 }
@@ -90,6 +93,11 @@ Complex hyperbolic_centre(const Eigen::VectorXcd& points, int iterations) {
 
 LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
                          const LayoutH2Options& options) {
+  return layout_h2(mesh, LengthsL(edge_lengths.cast<long double>()), options);
+}
+
+LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
+                         const LayoutH2Options& options) {
   if (options.seed_face < 0 && options.recentre) {
     LayoutH2Options first = options;
     first.recentre = false;
@@ -110,8 +118,8 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
     return layout_h2(mesh, edge_lengths, first);
   }
   if (edge_lengths.size() != static_cast<Eigen::Index>(mesh.n_edges())) {
-    throw InvalidInputError("layout_h2: " + std::to_string(edge_lengths.size()) +
-                            " lengths for " + std::to_string(mesh.n_edges()) + " edges");
+    throw InvalidInputError("layout_h2: " + std::to_string(edge_lengths.size()) + " lengths for " +
+                            std::to_string(mesh.n_edges()) + " edges");
   }
   LayoutH2Result result;
   result.seed_face = options.seed_face >= 0 ? options.seed_face : central_face_of(mesh);
@@ -129,10 +137,11 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
   // the frames only accumulate one rounding per step.
   struct Item {
     HalfedgeHandle h;
-    Mobius frame;
+    MobiusL frame;
   };
   const FaceHandle seed(result.seed_face);
-  std::deque<Item> queue{{mesh.halfedge_handle(seed), Mobius::identity()}};
+  result.precise_positions.assign(mesh.n_vertices(), ComplexL(NAN, NAN));
+  std::deque<Item> queue{{mesh.halfedge_handle(seed), MobiusL()}};
   reached[seed.idx()] = 1;
   int reached_count = 1;
   while (!queue.empty()) {
@@ -142,7 +151,8 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
     for (int k = 0; k < 3; ++k) {
       const int v = mesh.from_vertex_handle(c.h[k]).idx();
       if (!placed[v]) {
-        result.positions[v] = item.frame(c.z[k]);
+        result.precise_positions[static_cast<size_t>(v)] = item.frame(c.z[k]);
+        result.positions[v] = Complex(result.precise_positions[static_cast<size_t>(v)]);
         placed[v] = 1;
       }
     }
@@ -153,8 +163,8 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
       ++reached_count;
       // In the neighbour's frame for o, from(o) = to(h_k) is at 0 and to(o) = from(h_k) on the
       // positive axis: the map from that frame into ours is the inverse of disk_to_centre.
-      const Mobius into_ours = disk_to_centre(c.z[(k + 1) % 3], c.z[k]).inverse();
-      queue.push_back({o, Mobius::from_matrix((item.frame * into_ours).m)});
+      const MobiusL into_ours = disk_to_centre(c.z[(k + 1) % 3], c.z[k]).inverse();
+      queue.push_back({o, MobiusL::from_matrix((item.frame * into_ours).m)});
     }
   }
   if (reached_count != static_cast<int>(mesh.n_faces())) {
@@ -162,7 +172,7 @@ LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
                         " faces cannot be reached from seed face " +
                         std::to_string(result.seed_face) + " (mesh not connected)");
   }
-  measure_layout_h2(mesh, edge_lengths, result.positions, result);
+  measure_layout_h2(mesh, edge_lengths.cast<double>(), result.positions, result);
   return result;
 }
 

@@ -6,9 +6,12 @@
 // radius tanh(l/2) at the corner angle), where the disk loses no digits, and moved out by its
 // frame, a Möbius map; a neighbour's frame is this frame times the map between the two centred
 // constructions, so rounding is not amplified from face to face.
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "ricci/hyperbolic/mobius.h"
+#include "ricci/hyperbolic/polish_h2.h"
 #include "ricci/mesh/mesh.h"
 
 namespace ricci {
@@ -26,6 +29,10 @@ struct LayoutH2Options {
 
 struct LayoutH2Result {
   Eigen::VectorXcd positions;  ///< By vertex index of the laid-out mesh; |z| < 1.
+  /// The same in extended precision (frames are composed in long double): the side pairings
+  /// are computed from these, since rounding a coordinate near the rim to double moves it by
+  /// ~1e-14 in hyperbolic distance, which the generators' long words amplify.
+  std::vector<ComplexL> precise_positions;
   int seed_face = -1;
   /// Smallest signed (Euclidean) area of a face's vertex triangle: positive = counter-clockwise,
   /// which for the disk's geodesic triangles is the hyperbolic orientation too.
@@ -42,6 +49,11 @@ struct LayoutH2Result {
 /// \throw InvalidInputError on bad lengths or seed (naming the face); TopologyError when a face
 ///        cannot be reached from the seed.
 [[nodiscard]] LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                                       const LayoutH2Options& options = {});
+
+/// The same from extended-precision lengths (e.g. polish_h2_lengths'), which the frames use
+/// as they are.
+[[nodiscard]] LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
                                        const LayoutH2Options& options = {});
 
 /// Orientation, closure and radius of `positions` against `edge_lengths` (fills those fields).

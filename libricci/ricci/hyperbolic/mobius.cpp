@@ -61,4 +61,53 @@ double disk_distance(Complex z, Complex w) {
   return 2.0 * std::atanh(std::abs(z - w) / std::abs(1.0 - std::conj(z) * w));
 }
 
+MobiusL MobiusL::from_matrix(const Eigen::Matrix<ComplexL, 2, 2>& matrix) {
+  return MobiusL(matrix / std::sqrt(matrix.determinant()));
+}
+
+MobiusL MobiusL::from_rotation_point(long double theta, ComplexL z0) {
+  const ComplexL half = std::polar(1.0L, 0.5L * theta);
+  const long double s = std::sqrt((1.0L - std::abs(z0)) * (1.0L + std::abs(z0)));
+  Eigen::Matrix<ComplexL, 2, 2> m;
+  m << half / s, -half * z0 / s, -std::conj(half * z0) / s, std::conj(half) / s;
+  return MobiusL(m);
+}
+
+MobiusL MobiusL::inverse() const {
+  Eigen::Matrix<ComplexL, 2, 2> r;
+  r << m(1, 1), -m(0, 1), -m(1, 0), m(0, 0);
+  return MobiusL(r);
+}
+
+MobiusL disk_to_centre(ComplexL p, ComplexL q) {
+  const ComplexL tq = (q - p) / (1.0L - std::conj(p) * q);
+  return MobiusL::from_rotation_point(-std::arg(tq), p);
+}
+
+MobiusL plane_to_centre(ComplexL p, ComplexL q) {
+  const long double phi = -std::arg(q - p);
+  const ComplexL half = std::polar(1.0L, 0.5L * phi);
+  Eigen::Matrix<ComplexL, 2, 2> m;
+  m << half, -std::polar(1.0L, phi) * p / half, 0.0L, 1.0L / half;
+  return MobiusL(m);
+}
+
+MobiusL mobius_mean(const MobiusL* maps, int count) {
+  Eigen::Matrix<ComplexL, 2, 2> sum = maps[0].m;
+  for (int k = 1; k < count; ++k) {
+    const bool flip = (maps[k].m - maps[0].m).norm() > (maps[k].m + maps[0].m).norm();
+    if (flip) {
+      sum -= maps[k].m;
+    } else {
+      sum += maps[k].m;
+    }
+  }
+  return MobiusL::from_matrix(sum);
+}
+
+double distance_to_identity(const MobiusL& a) {
+  const Eigen::Matrix<ComplexL, 2, 2> id = Eigen::Matrix<ComplexL, 2, 2>::Identity();
+  return static_cast<double>(std::min((a.m - id).norm(), (a.m + id).norm()));
+}
+
 }  // namespace ricci

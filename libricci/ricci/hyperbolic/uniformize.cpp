@@ -17,7 +17,8 @@ double seconds_since(Clock::time_point t) {
 }
 
 Geometry geometry_of_genus(int genus) {
-  return genus == 0 ? Geometry::Spherical : (genus == 1 ? Geometry::Euclidean : Geometry::Hyperbolic);
+  return genus == 0 ? Geometry::Spherical
+                    : (genus == 1 ? Geometry::Euclidean : Geometry::Hyperbolic);
 }
 
 /// The flat torus: translations of the canonical generators and the modulus.
@@ -41,7 +42,15 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   t = Clock::now();
   const Eigen::VectorXd lengths = sliced_edge_lengths(u.sliced, u.flow.lengths);
   if (u.geometry == Geometry::Hyperbolic) {
-    u.layout = layout_h2(u.sliced.mesh, lengths, {options.seed_face});
+    // The flow's metric in extended precision (see polish_h2.h), carried onto the sliced edges.
+    const auto polish_start = Clock::now();
+    u.polish = polish_h2_lengths(u.surface, u.flow.lengths, u.flow.target);
+    u.timings.polish = seconds_since(polish_start);
+    LengthsL precise(u.sliced.mesh.n_edges());
+    for (auto e : u.sliced.mesh.edges()) {
+      precise[e.idx()] = u.polish.lengths[u.sliced.to_original_edge[static_cast<size_t>(e.idx())]];
+    }
+    u.layout = layout_h2(u.sliced.mesh, precise, {options.seed_face});
     u.positions = u.layout.positions;
   } else {
     LayoutE2Options e2;
@@ -60,7 +69,8 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   u.timings.layout = seconds_since(t);
   t = Clock::now();
   if (u.geometry == Geometry::Hyperbolic) {
-    u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry);
+    u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry,
+                                 u.layout.precise_positions);
     u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings, u.positions);
   } else {
     // Translations carry the unit of length; the residuals are taken on the domain scaled to
@@ -72,7 +82,10 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
     const Mobius to_mesh = Mobius::from_matrix(Eigen::Vector2cd(size, 1.0).asDiagonal());
     auto back = [&](Mobius& m) { m = to_mesh * m * to_mesh.inverse(); };
     for (Mobius& m : u.pairings.edge_pairing) back(m);
-    for (CutArc& a : u.pairings.arcs) back(a.pairing);
+    for (CutArc& a : u.pairings.arcs) {
+      back(a.pairing);
+      a.precise_pairing = MobiusL(to_mesh) * a.precise_pairing * MobiusL(to_mesh.inverse());
+    }
     for (Mobius& m : u.group.loop_holonomy) back(m);
     for (Mobius& m : u.group.generators) back(m);
     torus_modulus(u);

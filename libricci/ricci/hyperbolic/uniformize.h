@@ -15,6 +15,7 @@
 #include "ricci/flow/flow.h"
 #include "ricci/hyperbolic/fuchsian.h"
 #include "ricci/hyperbolic/layout_h2.h"
+#include "ricci/hyperbolic/polish_h2.h"
 #include "ricci/spherical/sphere_layout.h"
 #include "ricci/topology/cut_graph.h"
 #include "ricci/topology/slice.h"
@@ -42,7 +43,8 @@ struct UniformizeOptions {
 
 /// Seconds per stage.
 struct UniformizeTimings {
-  double double_cover = 0, flow = 0, cut = 0, layout = 0, group = 0, total = 0;
+  /// polish (H2: the metric in extended precision) is part of layout.
+  double double_cover = 0, flow = 0, cut = 0, layout = 0, polish = 0, group = 0, total = 0;
 };
 
 struct Uniformization {
@@ -57,6 +59,9 @@ struct Uniformization {
   CutGraph cut;
   SlicedMesh sliced;
   Eigen::VectorXcd positions;
+  /// H2: the flow's lengths polished in extended precision (what the disk layout uses), with
+  /// the curvature error before and after.
+  PolishH2Result polish;
   LayoutH2Result layout;  ///< Orientation and closure figures (H2; E2 fills the same fields).
   DomainPairings pairings;
   HolonomyGroup group;
