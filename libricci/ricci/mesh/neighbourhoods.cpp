@@ -1,5 +1,6 @@
 #include "ricci/mesh/neighbourhoods.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace ricci {
@@ -25,9 +26,9 @@ struct DistinctCounter {
 
 }  // namespace
 
-int count_non_disk_face_neighbourhoods(const Mesh& mesh) {
+std::vector<char> non_disk_face_neighbourhoods(const Mesh& mesh) {
   DistinctCounter faces(mesh.n_faces()), edges(mesh.n_edges()), vertices(mesh.n_vertices());
-  int count = 0;
+  std::vector<char> flagged(mesh.n_faces(), 0);
   for (auto f : mesh.faces()) {
     faces.start(f.idx());
     edges.start(f.idx());
@@ -41,9 +42,14 @@ int count_non_disk_face_neighbourhoods(const Mesh& mesh) {
         }
       }
     }
-    if (vertices.count - edges.count + faces.count != 1) ++count;
+    flagged[f.idx()] = vertices.count - edges.count + faces.count != 1;
   }
-  return count;
+  return flagged;
+}
+
+int count_non_disk_face_neighbourhoods(const Mesh& mesh) {
+  const std::vector<char> flagged = non_disk_face_neighbourhoods(mesh);
+  return static_cast<int>(std::count(flagged.begin(), flagged.end(), 1));
 }
 
 }  // namespace ricci

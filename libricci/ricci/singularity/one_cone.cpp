@@ -263,11 +263,14 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
                                 bool refine_thin_handles) {
   if (!refine_thin_handles) return prepare_on(mesh, vertex, valence);
   // Thin handles first: a face whose neighbourhood wraps around one cannot get a chart.
+  // Only the faces whose neighbourhood wraps are split (red-green), so the mesh grows by the
+  // thin parts alone (a simplified horse's legs), not four-fold.
   Mesh refined;
   int subdivisions = 0;
-  while (count_non_disk_face_neighbourhoods(subdivisions > 0 ? refined : mesh) > 0 &&
-         subdivisions < kMaxHandleSubdivisions) {
-    refined = subdivide_midpoint(subdivisions > 0 ? refined : mesh);
+  while (subdivisions < kMaxHandleSubdivisions) {
+    const std::vector<char> wrapped = non_disk_face_neighbourhoods(subdivisions > 0 ? refined : mesh);
+    if (std::find(wrapped.begin(), wrapped.end(), 1) == wrapped.end()) break;
+    refined = subdivide_midpoint_locally(subdivisions > 0 ? refined : mesh, wrapped);
     ++subdivisions;
   }
   if (subdivisions == 0) return prepare_on(mesh, vertex, valence);

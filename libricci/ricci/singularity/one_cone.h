@@ -32,19 +32,19 @@ struct OneConeProblem {
   std::vector<int> input_vertex;
   Targets targets;
   int valence_splits = 0;
-  /// Midpoint subdivisions applied first because some face's neighbourhood wrapped around a
-  /// thin handle (mesh/neighbourhoods.h); 0 on almost every mesh.
+  /// Rounds of local midpoint subdivision applied first because some face's neighbourhood
+  /// wrapped around a thin handle or tube (mesh/neighbourhoods.h); 0 on most meshes.
   int subdivisions = 0;
   int genus = 0;
   int boundary_loops = 0;
 };
 
-/// At most this many midpoint subdivisions are spent on thin handles.
-inline constexpr int kMaxHandleSubdivisions = 2;
+/// At most this many rounds of local midpoint subdivision are spent on thin handles.
+inline constexpr int kMaxHandleSubdivisions = 3;
 
 /// Builds the problem around `vertex` (ignored for genus 1 and open surfaces). When some face's
-/// neighbourhood is not a disk (a handle a few edges thick) the mesh is first subdivided, at
-/// most kMaxHandleSubdivisions times; input vertices keep their indices.
+/// neighbourhood is not a disk (a handle a few edges thick) those faces are first subdivided
+/// (red-green), at most kMaxHandleSubdivisions rounds; input vertices keep their indices.
 /// \pre a connected oriented 2-manifold triangle mesh.
 /// \throw InvalidInputError for a vertex out of range or on the boundary when it is needed.
 /// `refine_thin_handles` = false skips that (the flow alone does not need it: the singularity
