@@ -1,5 +1,7 @@
 #include "ricci/pipeline/one_cone_atlas.h"
 
+#include "ricci/metric/polish_e2.h"
+
 #include <algorithm>
 #include <chrono>
 
@@ -60,6 +62,11 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
   result.timings.flow = seconds_since(t);
   if (!result.flow.converged()) throw SolverError(result.flow.message);
+  // The layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it
+  // closes: remove it in long double first (metric/polish_e2.h).
+  result.polish = polish_e2_lengths(result.problem.mesh, result.flow.lengths,
+                                    result.problem.targets.curvature);
+  result.flow.lengths = result.polish.lengths;
 
   report("cut graph, layout and atlas");
   t = Clock::now();

@@ -8,6 +8,7 @@
 #include "ricci/atlas/atlas.h"
 #include "ricci/flow/flow.h"
 #include "ricci/mesh/mesh.h"
+#include "ricci/metric/polish_e2.h"
 #include "ricci/quality/distortion.h"
 #include "ricci/singularity/choose.h"
 #include "ricci/singularity/one_cone.h"
@@ -35,7 +36,11 @@ struct OneConeAtlasTimings {
 
 struct OneConeAtlasResult {
   OneConeProblem problem;  ///< The (valence-modified or punctured) mesh and its targets.
+  /// The flow's result; its `lengths` are replaced by the polished ones (below).
   FlowResult flow;
+  /// Long-double polish of the flow's lengths before the layout (error_before/after: max
+  /// |K - K̄| evaluated in long double).
+  PolishE2Result polish;
   AffineAtlas atlas;
   DistortionReport distortion;
   int chosen_vertex = -1;       ///< Input vertex of the singularity, -1 when none.

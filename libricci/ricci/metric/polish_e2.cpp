@@ -1,0 +1,97 @@
+#include "ricci/metric/polish_e2.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include "ricci/mesh/errors.h"
+#include "ricci/metric/mesh_tables.h"
+
+namespace ricci {
+namespace {
+
+constexpr long double kPi = 3.141592653589793238462643383279502884L;
+using VectorL = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+
+// Angles of a Euclidean triangle with sides l (l[k] opposite corner k) by the half-angle
+// formula tan^2(theta_k / 2) = (s - l_{k+1})(s - l_{k+2}) / (s (s - l_k)). False if degenerate.
+bool angles_l(const long double l[3], long double theta[3]) {
+  const long double s = 0.5L * (l[0] + l[1] + l[2]);
+  const long double d[3] = {s - l[0], s - l[1], s - l[2]};
+  if (!(d[0] > 0 && d[1] > 0 && d[2] > 0)) return false;
+  for (int k = 0; k < 3; ++k) {
+    theta[k] = 2.0L * std::atan2(std::sqrt(d[(k + 1) % 3] * d[(k + 2) % 3]), std::sqrt(s * d[k]));
+  }
+  return true;
+}
+
+// Residual K - target in long double (and, when `triplets`, the cotangent Laplacian).
+VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::VectorXd& target,
+                    std::vector<Eigen::Triplet<double>>* triplets) {
+  VectorL r(t.num_vertices());
+  for (int v = 0; v < t.num_vertices(); ++v) {
+    r[v] = (t.is_boundary_vertex[v] ? kPi : 2.0L * kPi) - static_cast<long double>(target[v]);
+  }
+  for (int f = 0; f < t.num_faces(); ++f) {
+    const long double l[3] = {lengths[t.face_edges(f, 0)], lengths[t.face_edges(f, 1)],
+                              lengths[t.face_edges(f, 2)]};
+    long double theta[3];
+    if (!angles_l(l, theta)) {
+      throw InvalidInputError("polish_e2_lengths: face " + std::to_string(f) +
+                              " violates the triangle inequality");
+    }
+    for (int k = 0; k < 3; ++k) r[t.face_vertices(f, k)] -= theta[k];
+    if (!triplets) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int i = t.face_vertices(f, (k + 1) % 3), j = t.face_vertices(f, (k + 2) % 3);
+      const double w = 0.5 / std::tan(static_cast<double>(theta[k]));
+      triplets->emplace_back(i, i, w);
+      triplets->emplace_back(j, j, w);
+      triplets->emplace_back(i, j, -w);
+      triplets->emplace_back(j, i, -w);
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                                 const Eigen::VectorXd& target, int max_iterations) {
+  const MeshTables t = build_mesh_tables(mesh);
+  if (lengths.size() != t.num_edges() || target.size() != t.num_vertices()) {
+    throw InvalidInputError("polish_e2_lengths: lengths or target do not match the mesh");
+  }
+  const VectorL base = lengths.cast<long double>();
+  VectorL current = base, u = VectorL::Zero(t.num_vertices());
+  std::vector<Eigen::Triplet<double>> triplets;
+  VectorL r = residual_of(t, current, target, &triplets);
+  triplets.emplace_back(0, 0, 1.0);  // the E2 gauge: a uniform du only rescales
+  Eigen::SparseMatrix<double> laplacian(t.num_vertices(), t.num_vertices());
+  laplacian.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+  PolishE2Result result;
+  result.lengths = lengths;
+  result.error_before = result.error_after = static_cast<double>(r.cwiseAbs().maxCoeff());
+  if (solver.info() != Eigen::Success) return result;
+  for (int it = 1; it <= max_iterations && result.error_after > 0.0; ++it) {
+    const long double scale = r.cwiseAbs().maxCoeff();  // keeps the residual's digits in double
+    const Eigen::VectorXd du = solver.solve((r / scale).cast<double>());
+    u -= du.cast<long double>() * scale;
+    for (int e = 0; e < t.num_edges(); ++e) {
+      current[e] = std::exp(0.5L * (u[t.edge_vertices(e, 0)] + u[t.edge_vertices(e, 1)])) * base[e];
+    }
+    r = residual_of(t, current, target, nullptr);
+    const double error = static_cast<double>(r.cwiseAbs().maxCoeff());
+    if (!(error < result.error_after)) break;
+    result.error_after = error;
+    result.iterations = it;
+    result.lengths = current.cast<double>();
+  }
+  return result;
+}
+
+}  // namespace ricci

@@ -1,0 +1,31 @@
+#pragma once
+// Extended-precision polish of a flat metric's edge lengths. Newton on the Ricci energy stops
+// where double evaluation of the curvature stops improving (max |K - K̄| ~ 1e-12 on scans with
+// slivers or many boundary loops), and the layout multiplies that leftover defect by the size of
+// the loops it closes (beetle: relative edge errors of 1e-7 in the central chart). A few steps of
+// mixed-precision refinement (curvature in long double, the cotangent Laplacian factored once
+// in double) bring the defect to the rounding of the lengths themselves. The polish_h2 of the
+// hyperbolic room does the same for H2.
+#include <Eigen/Core>
+
+#include "ricci/mesh/mesh.h"
+
+namespace ricci {
+
+struct PolishE2Result {
+  Eigen::VectorXd lengths;  ///< By edge index.
+  /// max |K - K̄| evaluated in long double before and after, and the steps taken.
+  double error_before = 0.0, error_after = 0.0;
+  int iterations = 0;
+};
+
+/// Vertex scaling l'_ij = e^{(u_i + u_j) / 2} l_ij solving K(u) = target (interior: 2 pi minus
+/// the angle sum; boundary: pi minus it), each step solving (L + e_0 e_0^T) du = -(K - target)
+/// with L the cotangent Laplacian at the given lengths (dK/du), factored once; the residual is
+/// evaluated in long double. Returns the given lengths when a step does not improve.
+/// \pre lengths close to a solution (a converged flow's); target sums to 2 pi chi.
+/// \throw InvalidInputError on a size mismatch or a face violating the triangle inequality.
+[[nodiscard]] PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                                               const Eigen::VectorXd& target, int max_iterations = 6);
+
+}  // namespace ricci
