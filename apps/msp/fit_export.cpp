@@ -136,14 +136,15 @@ gltf::Mesh domain_mesh_lines(const ricci::Mesh& mesh, const spline::ManifoldSpli
 }
 
 // The samples of a domain-mesh halfedge on the surface, from its from-vertex to its to-vertex
-// (empty when neither of its faces is a domain face).
+// (empty when neither of its faces is a tessellated domain face).
 std::vector<int> halfedge_samples(const ricci::Mesh& mesh, const spline::ManifoldSplineSpace& space,
                                   const spline::Tessellation& t, ricci::HalfedgeHandle h) {
   const int d = t.density;
   for (bool reversed : {false, true}) {
     const auto g = reversed ? mesh.opposite_halfedge_handle(h) : h;
     const auto f = mesh.face_handle(g);
-    if (!f.is_valid() || !space.in_domain(f.idx())) continue;
+    // Faces covered by a fill patch were not tessellated: their samples do not exist.
+    if (!f.is_valid() || !space.in_domain(f.idx()) || !t.tessellated(f.idx())) continue;
     const auto hs = ricci::face_halfedges(mesh, f);
     for (int k = 0; k < 3; ++k) {
       if (hs[(k + 2) % 3] != g) continue;  // h_{k+2} is the edge opposite corner k

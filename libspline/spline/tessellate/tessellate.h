@@ -41,6 +41,8 @@ struct Tessellation {
 
   /// Position index of a domain vertex (-1 when no tessellated face touches it).
   [[nodiscard]] int vertex_sample(int vertex) const { return vertex_position_[vertex]; }
+  /// True when `face` was tessellated (a domain face not skipped, e.g. not covered by a fill).
+  [[nodiscard]] bool tessellated(int face) const { return face_corner_vertex_[face][0] >= 0; }
   /// Position index of sample i (0..d) of the edge opposite corner k of domain `face`, walking
   /// from corner k + 1 to corner k + 2 (the face's orientation) at barycentric t = i / d (the
   /// rim sample convention of fill/hole_fill.h). \pre face is a tessellated face.

@@ -255,6 +255,11 @@ TEST(Tessellate, SkippedFacesLeaveAHole) {
   EXPECT_EQ(r.boundary_edges, 3 * d);
   EXPECT_EQ(static_cast<int>(t.triangles.size()),
             (c.spline.space->domain_face_count() - 1) * d * d);
+  // A skipped face has no samples of its own (callers must ask before edge_sample).
+  EXPECT_FALSE(t.tessellated(17));
+  EXPECT_TRUE(t.tessellated(c.spline.space->domain_faces().front() == 17
+                                ? c.spline.space->domain_faces()[1]
+                                : c.spline.space->domain_faces().front()));
   opts.skip_faces.pop_back();
   EXPECT_THROW((void)tessellate(c.spline, *c.mesh, opts), ricci::InvalidInputError);
 }
