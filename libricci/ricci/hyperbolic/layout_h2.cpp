@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ricci/hyperbolic/polish_h2.h"
+#include "ricci/layout/layout_e2.h"
 #include "ricci/mesh/errors.h"
 
 namespace ricci {
@@ -48,32 +49,6 @@ CanonicalFace canonical_face(const Mesh& mesh, const LengthsL& lengths, Halfedge
 }
 
 }  // namespace
-
-int central_face_of(const Mesh& mesh) {
-  std::vector<int> depth(mesh.n_faces(), -1);
-  std::deque<FaceHandle> queue;
-  for (auto f : mesh.faces()) {
-    for (auto h : mesh.fh_range(f)) {
-      if (mesh.is_boundary(mesh.opposite_halfedge_handle(h)) && depth[f.idx()] < 0) {
-        depth[f.idx()] = 0;
-        queue.push_back(f);
-      }
-    }
-  }
-  if (queue.empty()) return 0;
-  FaceHandle last = queue.front();
-  while (!queue.empty()) {
-    last = queue.front();
-    queue.pop_front();
-    for (auto g : mesh.ff_range(last)) {
-      if (depth[g.idx()] < 0) {
-        depth[g.idx()] = depth[last.idx()] + 1;
-        queue.push_back(g);
-      }
-    }
-  }
-  return last.idx();
-}
 
 Complex hyperbolic_centre(const Eigen::VectorXcd& points, int iterations) {
   Complex c = 0.0;

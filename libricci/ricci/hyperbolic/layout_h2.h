@@ -63,7 +63,4 @@ void measure_layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
 /// Approximate centre (minimising the largest hyperbolic distance) of the points.
 [[nodiscard]] Complex hyperbolic_centre(const Eigen::VectorXcd& points, int iterations = 60);
 
-/// The face farthest in face hops from the mesh's boundary (face 0 for a closed mesh).
-[[nodiscard]] int central_face_of(const Mesh& mesh);
-
 }  // namespace ricci

@@ -36,33 +36,6 @@ void check_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths) {
   }
 }
 
-/// The face farthest, in hops across edges, from the boundary: seeding there halves the depth
-/// of the growth compared with a boundary seed, and closure error grows with depth.
-int central_face(const Mesh& mesh) {
-  std::vector<int> depth(mesh.n_faces(), -1);
-  std::deque<FaceHandle> queue;
-  for (auto f : mesh.faces()) {
-    for (auto h : mesh.fh_range(f)) {
-      if (mesh.is_boundary(mesh.opposite_halfedge_handle(h)) && depth[f.idx()] < 0) {
-        depth[f.idx()] = 0;
-        queue.push_back(f);
-      }
-    }
-  }
-  if (queue.empty()) return 0;
-  FaceHandle last = queue.front();
-  while (!queue.empty()) {
-    last = queue.front();
-    queue.pop_front();
-    for (auto g : mesh.ff_range(last)) {
-      if (depth[g.idx()] < 0) {
-        depth[g.idx()] = depth[last.idx()] + 1;
-        queue.push_back(g);
-      }
-    }
-  }
-  return last.idx();
-}
 
 // Longest edge of each face.
 std::vector<double> face_sizes(const Mesh& mesh, const Eigen::VectorXd& lengths) {
@@ -95,7 +68,7 @@ double median_size(std::vector<double> size) {
 int default_seed(const Mesh& mesh, const std::vector<double>& size) {
   const auto [lo, hi] = std::minmax_element(size.begin(), size.end());
   if (*hi > 256.0 * *lo) return static_cast<int>(lo - size.begin());
-  return central_face(mesh);
+  return central_face_of(mesh);
 }
 
 double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
@@ -146,6 +119,32 @@ Eigen::Vector2d third_vertex_offset(const Eigen::Vector2d& ab, double l_ac, doub
 }
 
 }  // namespace
+
+int central_face_of(const Mesh& mesh) {
+  std::vector<int> depth(mesh.n_faces(), -1);
+  std::deque<FaceHandle> queue;
+  for (auto f : mesh.faces()) {
+    for (auto h : mesh.fh_range(f)) {
+      if (mesh.is_boundary(mesh.opposite_halfedge_handle(h)) && depth[f.idx()] < 0) {
+        depth[f.idx()] = 0;
+        queue.push_back(f);
+      }
+    }
+  }
+  if (queue.empty()) return 0;
+  FaceHandle last = queue.front();
+  while (!queue.empty()) {
+    last = queue.front();
+    queue.pop_front();
+    for (auto g : mesh.ff_range(last)) {
+      if (depth[g.idx()] < 0) {
+        depth[g.idx()] = depth[last.idx()] + 1;
+        queue.push_back(g);
+      }
+    }
+  }
+  return last.idx();
+}
 
 double corner_angle_from_lengths(double opposite, double b, double c) {
   // Half-angle form tan(theta/2) = sqrt((s-b)(s-c) / (s(s-a))): accurate for needles, where

@@ -73,4 +73,9 @@ struct LayoutE2Result {
 /// fields of `result`).
 void measure_layout(const Mesh& mesh, const Eigen::VectorXd& edge_lengths, LayoutE2Result& result);
 
+/// The face farthest, in hops across edges, from the mesh's boundary (face 0 for a closed
+/// mesh): seeding a layout there halves the depth of the growth compared with a boundary seed,
+/// and closure error grows with depth. Shared by the E2 and H2 layouts.
+[[nodiscard]] int central_face_of(const Mesh& mesh);
+
 }  // namespace ricci
