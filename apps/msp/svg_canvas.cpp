@@ -76,4 +76,30 @@ std::string svg_escape(const std::string& text) {
   return out;
 }
 
+std::string captioned_svg(const SvgCanvas& canvas, const std::vector<std::string>& lines,
+                          int text_size) {
+  const double line_height = 19,
+               caption_height = line_height * static_cast<double>(lines.size()) + 12;
+  const std::string w = svg_number(canvas.width()),
+                    h = svg_number(canvas.height() + caption_height);
+  std::string svg = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + w + "\" height=\"" + h +
+         "\" viewBox=\"0 0 " + w + " " + h + "\">\n";
+  svg += "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
+  svg += "<g font-family=\"DejaVu Sans, sans-serif\" fill=\"#222\">\n";
+  for (size_t i = 0; i < lines.size(); ++i) {
+    svg += "<text x=\"10\" y=\"" + svg_number(line_height * static_cast<double>(i + 1)) +
+           "\" font-size=\"" +
+           (i == 0 ? std::string("16\" font-weight=\"bold") : std::to_string(text_size)) +
+           "\">" + svg_escape(lines[i]) + "</text>\n";
+  }
+  svg += "</g>\n";
+  svg += "<svg x=\"0\" y=\"" + svg_number(caption_height) + "\" width=\"" + w + "\" height=\"" +
+         svg_number(canvas.height()) + "\" viewBox=\"0 0 " + w + " " + svg_number(canvas.height()) +
+         "\" overflow=\"hidden\">\n";
+  svg += canvas.body();
+  svg += "</svg>\n</svg>\n";
+  return svg;
+}
+
 }  // namespace msp

@@ -2,6 +2,7 @@
 // A minimal SVG canvas: maps a box of the plane (y up) onto pixels (y down) and collects
 // elements; coordinates are written with one decimal, enough at 1000 px and small on disk.
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -37,5 +38,11 @@ class SvgCanvas {
 [[nodiscard]] std::string svg_number(double value);
 /// Escapes &, <, >, " for text and attribute values.
 [[nodiscard]] std::string svg_escape(const std::string& text);
+
+/// A whole SVG document: `lines` of caption on top (the first in bold 16 px, the others in
+/// `text_size` px, 19 px apart) and the canvas's drawing below them in a nested viewport,
+/// which clips whatever the drawing puts outside the canvas.
+[[nodiscard]] std::string captioned_svg(const SvgCanvas& canvas,
+                                        const std::vector<std::string>& lines, int text_size);
 
 }  // namespace msp
