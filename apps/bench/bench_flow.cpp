@@ -25,6 +25,7 @@
 #include <ricci/metric/subdivide.h>
 
 #include "bench/benchmarks.h"
+#include "bench/child_run.h"
 #include "msp/cli.h"
 
 namespace msp::bench {
@@ -179,8 +180,7 @@ int run_flow_benchmark(int argc, char** argv) {
     std::string path;
     int levels;
   };
-  // popen runs a shell, whose /proc/self/exe is the shell: resolve ours first.
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string self = self_executable();
   const std::string m = models();
   std::vector<Case> cases = {{m + "/closed_g1/elk.off", 0},        {m + "/closed_g1/knot1.off", 0},
                              {m + "/bench/torus_10k.obj", 0},      {m + "/closed_g1/kitten_nf20k.off", 0},
@@ -205,20 +205,14 @@ int run_flow_benchmark(int argc, char** argv) {
   for (const Case& c : cases) {
     const std::string command = "'" + self + "' flow-one '" + c.path + "' --levels " +
                                 std::to_string(c.levels) + " --gradient-max-faces " + gradient_max;
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-    if (!pipe) throw std::runtime_error("cannot start " + command);
-    std::string output;
-    char buffer[4096];
-    while (fgets(buffer, sizeof buffer, pipe.get())) output += buffer;
-    std::string name = c.path.substr(c.path.find_last_of('/') + 1);
-    if (c.levels) name += " /" + std::to_string(c.levels);
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(output);
-    } catch (const std::exception&) {
-      std::cout << std::left << std::setw(26) << name << " failed (child output: " << output << ")\n";
+    const ChildResult child = run_child(command);
+    const std::string name = case_label(c.path, c.levels);
+    if (!child.parsed) {
+      std::cout << std::left << std::setw(26) << name << " failed (child output: " << child.output
+                << ")\n";
       continue;
     }
+    const nlohmann::json& j = child.json;
     const double ratio = j["newton_seconds"].get<double>() / j["cholesky_seconds"].get<double>();
     const double cpu_ratio =
         j["newton_cpu_seconds"].get<double>() / j["cholesky_cpu_seconds"].get<double>();

@@ -25,6 +25,7 @@
 #include <ricci/pipeline/one_cone_atlas.h>
 
 #include "bench/benchmarks.h"
+#include "bench/child_run.h"
 #include "msp/cli.h"
 #include "msp/flow_options.h"
 
@@ -233,7 +234,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
   std::string extra;
   if (args.has("metric")) extra += " --metric " + *args.get("metric");
   if (args.has("radii")) extra += " --radii " + *args.get("radii");
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string self = self_executable();
 
   std::cout << "One-cone pipeline per mesh, each in its own process. Seconds: read (OBJ/OFF), "
                "choice (automatic\nsingularity, 'auto' rows only), valence, flow, atlas (cut graph "
@@ -256,20 +257,13 @@ int run_one_cone_benchmark(int argc, char** argv) {
     if (!only.empty() && c.path.find(only) == std::string::npos) continue;
     const std::string command = "'" + self + "' one-cone-one '" + c.path + "' --cone " + c.cone +
                                 " --levels " + std::to_string(c.levels) + extra;
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-    if (!pipe) throw std::runtime_error("cannot start " + command);
-    std::string output;
-    char buffer[4096];
-    while (fgets(buffer, sizeof buffer, pipe.get())) output += buffer;
-    std::string name = c.path.substr(c.path.find_last_of('/') + 1);
-    if (c.levels) name += " /" + std::to_string(c.levels);
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(output);
-    } catch (const std::exception&) {
-      std::cout << std::left << std::setw(22) << name << " child failed: " << output << "\n";
+    const ChildResult child = run_child(command);
+    const std::string name = case_label(c.path, c.levels);
+    if (!child.parsed) {
+      std::cout << std::left << std::setw(22) << name << " child failed: " << child.output << "\n";
       continue;
     }
+    const nlohmann::json& j = child.json;
     std::cout << std::left << std::setw(22) << name << std::right << std::setw(8) << j["faces"].get<int>();
     if (j["status"] != "ok") {
       std::cout << "  " << j["status"].get<std::string>().substr(0, 200) << std::endl;
