@@ -113,4 +113,14 @@ void write_text_atomically(const std::string& path, const std::string& text) {
   });
 }
 
+void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  write_file_atomically(path, [&](const std::string& temp) {
+    std::FILE* f = std::fopen(temp.c_str(), "wb");
+    if (!f) throw ricci::IOError("cannot write " + path);
+    const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
+    if (std::fclose(f) != 0 || written != bytes.size())
+      throw ricci::IOError("cannot write " + path);
+  });
+}
+
 }  // namespace msp

@@ -1,6 +1,7 @@
 #pragma once
 // Small command-line helpers shared by the msp subcommands: argument parsing, error reporting
 // and atomic file output.
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
@@ -42,5 +43,7 @@ class Args {
 void write_file_atomically(const std::string& path,
                            const std::function<void(const std::string& temp_path)>& write);
 void write_text_atomically(const std::string& path, const std::string& text);
+/// Binary bytes, the same way. \throw ricci::IOError.
+void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
 
 }  // namespace msp

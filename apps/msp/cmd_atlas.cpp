@@ -61,17 +61,6 @@ void write_pictures(const Args& args, const std::string& path,
   }
 }
 
-int parse_singularity(const std::string& s) {
-  if (s == "auto") return -1;
-  try {
-    size_t used = 0;
-    int v = std::stoi(s, &used);
-    if (used == s.size() && v >= 0) return v;
-  } catch (const std::logic_error&) {
-  }
-  throw UsageError("--singularity must be auto or a vertex index, not '" + s + "'");
-}
-
 // The fundamental polygon's boundary word, e.g. "a0 a1 a0^-1 a1^-1" (b: boundary loops).
 std::string polygon_word_text(const ricci::FundamentalPolygon& polygon) {
   std::string text;
@@ -141,6 +130,7 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh,
            {{"choice", t.choice},
             {"valence", t.valence},
             {"flow", t.flow},
+            {"polish", t.polish},
             {"atlas", t.atlas},
             {"distortion", t.distortion}}}};
 }

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
+#include "msp/flow_options.h"
 #include "msp/commands.h"
 #include "msp/fit_export.h"
 #include "msp/fit_pipeline.h"
@@ -63,17 +64,6 @@ class Progress {
   bool open_ = false;
   Clock::time_point started_;
 };
-
-int parse_singularity(const std::string& s) {
-  if (s == "auto") return -1;
-  try {
-    size_t used = 0;
-    int v = std::stoi(s, &used);
-    if (used == s.size() && v >= 0) return v;
-  } catch (const std::logic_error&) {
-  }
-  throw UsageError("--singularity must be auto or a vertex index, not '" + s + "'");
-}
 
 FitRunOptions parse_options(const Args& args) {
   FitRunOptions o;

@@ -15,15 +15,6 @@
 namespace msp {
 namespace {
 
-std::array<double, 4> linear_colour(std::array<int, 3> srgb) {
-  std::array<double, 4> out{0, 0, 0, 1};
-  for (size_t c = 0; c < 3; ++c) {
-    const double s = srgb[c] / 255.0;
-    out[c] = s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
-  }
-  return out;
-}
-
 // Unit normals by position; a zero normal (singular parametrisation) takes the area-weighted
 // normal of its triangles so every exported normal is a unit vector.
 Eigen::MatrixX3d safe_normals(const spline::Tessellation& t) {
@@ -72,7 +63,7 @@ gltf::Mesh surface_mesh(const spline::Tessellation& t, const FitSceneOptions& op
     for (int v : tri) surface.indices.push_back(static_cast<std::uint32_t>(v));
   surface.material.name = options.checkerboard ? "checkerboard" : "spline";
   surface.material.base_color =
-      options.checkerboard ? std::array<double, 4>{1, 1, 1, 1} : linear_colour({196, 178, 150});
+      options.checkerboard ? std::array<double, 4>{1, 1, 1, 1} : gltf::linear_colour({196, 178, 150});
   surface.material.double_sided = double_sided;
   if (options.checkerboard)
     surface.material.texture =
@@ -110,7 +101,7 @@ gltf::Mesh control_net_mesh(const spline::ManifoldSpline& spline) {
     }
   }
   net.material.name = "control net";
-  net.material.base_color = linear_colour({40, 90, 200});
+  net.material.base_color = gltf::linear_colour({40, 90, 200});
   return net;
 }
 
@@ -131,7 +122,7 @@ gltf::Mesh domain_mesh_lines(const ricci::Mesh& mesh, const spline::ManifoldSpli
     lines.indices.push_back(static_cast<std::uint32_t>(mesh.to_vertex_handle(h0).idx()));
   }
   lines.material.name = "domain mesh";
-  lines.material.base_color = linear_colour({30, 30, 30});
+  lines.material.base_color = gltf::linear_colour({30, 30, 30});
   return lines;
 }
 
@@ -184,7 +175,7 @@ void add_cut_loops(const FitRun& run, gltf::Scene& scene) {
     for (std::size_t i = 0; i < points.size(); ++i)
       lines.positions.row(static_cast<Eigen::Index>(i)) = points[i];
     lines.material.name = lines.name;
-    lines.material.base_color = linear_colour(loop_colour_rgb(static_cast<int>(loop)));
+    lines.material.base_color = gltf::linear_colour(loop_colour_rgb(static_cast<int>(loop)));
     lines.extras = {{"loop", loop}, {"name", names[loop]}};
     scene.meshes.push_back(std::move(lines));
   }
@@ -197,7 +188,7 @@ void add_cut_loops(const FitRun& run, gltf::Scene& scene) {
     cone.positions.row(0) =
         ricci::to_eigen(problem.mesh.point(problem.mesh.vertex_handle(problem.cone))).transpose();
     cone.material.name = "extraordinary point";
-    cone.material.base_color = linear_colour({220, 30, 30});
+    cone.material.base_color = gltf::linear_colour({220, 30, 30});
     cone.extras = {{"domain_vertex", problem.cone},
                    {"note", "the cone's star lies outside the spline domain (filled hole)"}};
     scene.meshes.push_back(std::move(cone));
@@ -276,16 +267,6 @@ std::vector<std::uint8_t> tessellation_ply(const spline::Tessellation& t) {
     }
   }
   return out;
-}
-
-void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  write_file_atomically(path, [&](const std::string& temp) {
-    std::FILE* f = std::fopen(temp.c_str(), "wb");
-    if (!f) throw ricci::IOError("cannot write " + path);
-    const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
-    if (std::fclose(f) != 0 || written != bytes.size())
-      throw ricci::IOError("cannot write " + path);
-  });
 }
 
 }  // namespace msp

@@ -34,7 +34,4 @@ struct FitSceneOptions {
 /// Binary little-endian PLY: welded vertices (double x y z, float nx ny nz), triangles.
 [[nodiscard]] std::vector<std::uint8_t> tessellation_ply(const spline::Tessellation& t);
 
-/// Writes bytes through a temporary file renamed into place. \throw ricci::IOError.
-void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
-
 }  // namespace msp

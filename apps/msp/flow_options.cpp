@@ -1,5 +1,7 @@
 #include "msp/flow_options.h"
 
+#include <stdexcept>
+
 #include "msp/cli.h"
 
 namespace msp {
@@ -31,6 +33,18 @@ ricci::LinearSolver parse_solver(const std::string& s) {
     if (s == ricci::to_string(k)) return k;
   }
   throw UsageError("unknown --solver '" + s + "'");
+}
+
+
+int parse_singularity(const std::string& s) {
+  if (s == "auto") return -1;
+  try {
+    size_t used = 0;
+    int v = std::stoi(s, &used);
+    if (used == s.size() && v >= 0) return v;
+  } catch (const std::logic_error&) {
+  }
+  throw UsageError("--singularity must be auto or a vertex index, not '" + s + "'");
 }
 
 }  // namespace msp

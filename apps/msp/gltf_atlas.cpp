@@ -38,15 +38,6 @@ double bounding_diagonal(const Eigen::MatrixX3d& p) {
   return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
 }
 
-std::array<double, 4> linear_colour(std::array<int, 3> srgb) {
-  std::array<double, 4> out{0, 0, 0, 1};
-  for (size_t c = 0; c < 3; ++c) {
-    const double s = srgb[c] / 255.0;
-    out[c] = s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
-  }
-  return out;
-}
-
 gltf::Mesh loop_lines(const ricci::OneConeAtlasResult& result, size_t loop, const std::string& name,
                       const Eigen::MatrixX3d& normals, double lift) {
   const ricci::Mesh& mesh = result.problem.mesh;
@@ -67,19 +58,9 @@ gltf::Mesh loop_lines(const ricci::OneConeAtlasResult& result, size_t loop, cons
     lines.indices.push_back(static_cast<std::uint32_t>(2 * i + 1));
   }
   lines.material.name = lines.name;
-  lines.material.base_color = linear_colour(loop_colour_rgb(static_cast<int>(loop)));
+  lines.material.base_color = gltf::linear_colour(loop_colour_rgb(static_cast<int>(loop)));
   lines.extras = {{"loop", loop}, {"name", name}};
   return lines;
-}
-
-void write_binary(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  write_file_atomically(path, [&](const std::string& temp) {
-    std::FILE* f = std::fopen(temp.c_str(), "wb");
-    if (!f) throw ricci::IOError("cannot write " + path);
-    const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
-    if (std::fclose(f) != 0 || written != bytes.size())
-      throw ricci::IOError("cannot write " + path);
-  });
 }
 
 }  // namespace
@@ -176,7 +157,7 @@ void write_checkerboard_obj(const ricci::OneConeAtlasResult& result, const std::
   const fs::path folder = obj.has_parent_path() ? obj.parent_path() : fs::path(".");
   const std::string mtl_name = stem + ".mtl", png_name = stem + "_checker.png";
 
-  write_binary((folder / png_name).string(), encode_png(checkerboard(texture)));
+  write_bytes_atomically((folder / png_name).string(), encode_png(checkerboard(texture)));
   write_text_atomically((folder / mtl_name).string(),
                         "# msp atlas checkerboard\nnewmtl checkerboard\nKa 0 0 0\nKd 1 1 1\nKs 0 0 "
                         "0\nillum 1\nmap_Kd " +

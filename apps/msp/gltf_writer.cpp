@@ -299,4 +299,13 @@ void write_glb(const Scene& scene, const std::string& path) {
   });
 }
 
+std::array<double, 4> linear_colour(std::array<int, 3> srgb) {
+  std::array<double, 4> out{0, 0, 0, 1};
+  for (size_t c = 0; c < 3; ++c) {
+    const double s = srgb[c] / 255.0;
+    out[c] = s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+  }
+  return out;
+}
+
 }  // namespace msp::gltf

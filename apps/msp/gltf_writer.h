@@ -68,4 +68,7 @@ void write_glb(const Scene& scene, const std::string& path);
 /// The same file as bytes (for tests and streaming).
 [[nodiscard]] std::vector<std::uint8_t> glb_bytes(const Scene& scene);
 
+/// An opaque colour given as 8-bit sRGB, as linear RGBA factors (what base_color holds).
+[[nodiscard]] std::array<double, 4> linear_colour(std::array<int, 3> srgb);
+
 }  // namespace msp::gltf

@@ -28,6 +28,11 @@ struct SymmetricFactorization::Impl {
   Eigen::CholmodSimplicialLDLT<Sparse, Eigen::Lower> cholmod_simplicial;
 };
 
+LinearSolver resolve_linear_solver(LinearSolver kind, Eigen::Index unknowns) {
+  if (kind != LinearSolver::Auto) return kind;
+  return unknowns < 20000 ? LinearSolver::EigenLDLT : LinearSolver::CholmodSupernodal;
+}
+
 SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
     : kind_(kind == LinearSolver::Auto ? LinearSolver::CholmodSupernodal : kind),
       impl_(std::make_unique<Impl>()) {

@@ -20,6 +20,12 @@ enum class LinearSolver {
 
 std::string to_string(LinearSolver solver);
 
+/// The factorisation Auto stands for at this size (others are returned as they are). Measured
+/// (msp-bench solvers): CHOLMOD supernodal factorises a 100k-face Hessian 6-8x faster than the
+/// simplicial ones, but below ~20k unknowns its BLAS overhead makes Eigen's LDLT as fast or
+/// faster.
+[[nodiscard]] LinearSolver resolve_linear_solver(LinearSolver kind, Eigen::Index unknowns);
+
 /// A factorisation of a symmetric matrix given by its lower triangle (compressed columns).
 class SymmetricFactorization {
  public:

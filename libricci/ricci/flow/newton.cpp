@@ -32,7 +32,7 @@ double max_abs_diagonal(const Eigen::SparseMatrix<double>& lower) {
 class NewtonSystem {
  public:
   NewtonSystem(LinearSolver kind, const Eigen::SparseMatrix<double>& pattern, FlowTimings& timings)
-      : factorization_(std::make_unique<SymmetricFactorization>(resolve(kind, pattern.rows()))),
+      : factorization_(std::make_unique<SymmetricFactorization>(resolve_linear_solver(kind, pattern.rows()))),
         timings_(timings) {
     const auto t0 = Clock::now();
     factorization_->analyze(pattern);
@@ -40,14 +40,6 @@ class NewtonSystem {
   }
 
   LinearSolver kind() const { return factorization_->kind(); }
-
-  // Measured (msp-bench solvers): CHOLMOD supernodal factorises a 100k-face Hessian 6-8x faster
-  // than the simplicial ones, but below ~20k unknowns its BLAS overhead makes Eigen's LDLT as
-  // fast or faster.
-  static LinearSolver resolve(LinearSolver kind, Eigen::Index unknowns) {
-    if (kind != LinearSolver::Auto) return kind;
-    return unknowns < 20000 ? LinearSolver::EigenLDLT : LinearSolver::CholmodSupernodal;
-  }
 
   int factorizations() const { return factorizations_; }
 

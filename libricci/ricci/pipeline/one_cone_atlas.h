@@ -31,7 +31,7 @@ struct OneConeAtlasOptions {
 
 /// Wall-clock seconds of each stage.
 struct OneConeAtlasTimings {
-  double choice = 0, valence = 0, flow = 0, atlas = 0, distortion = 0, total = 0;
+  double choice = 0, valence = 0, flow = 0, polish = 0, atlas = 0, distortion = 0, total = 0;
 };
 
 struct OneConeAtlasResult {
