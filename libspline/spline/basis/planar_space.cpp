@@ -75,7 +75,7 @@ void PlanarDmsSpace::build_grid() {
   }
 }
 
-std::vector<int> PlanarDmsSpace::candidate_triangles(const Eigen::Vector2d& u) const {
+std::vector<int> PlanarDmsSpace::grid_triangles(const Eigen::Vector2d& u) const {
   std::vector<int> result;
   if (cells_.empty() || !u.allFinite()) return result;
   const Eigen::Vector2d g = (u - grid_origin_) / cell_size_;
@@ -88,12 +88,20 @@ std::vector<int> PlanarDmsSpace::candidate_triangles(const Eigen::Vector2d& u) c
     for (int x = x0; x <= x1; ++x) {
       for (int t : cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) +
                           static_cast<std::size_t>(x)]) {
-        if (bases_[static_cast<std::size_t>(t)].in_hull(u)) result.push_back(t);
+        result.push_back(t);
       }
     }
   }
   std::sort(result.begin(), result.end());
   result.erase(std::unique(result.begin(), result.end()), result.end());
+  return result;
+}
+
+std::vector<int> PlanarDmsSpace::candidate_triangles(const Eigen::Vector2d& u) const {
+  std::vector<int> result = grid_triangles(u);
+  result.erase(std::remove_if(result.begin(), result.end(),
+                              [&](int t) { return !bases_[static_cast<std::size_t>(t)].in_hull(u); }),
+               result.end());
   return result;
 }
 
@@ -109,19 +117,41 @@ std::vector<BasisFunctionId> PlanarDmsSpace::support(const Eigen::Vector2d& u) c
 }
 
 std::vector<BasisSample> PlanarDmsSpace::evaluate_basis(const Eigen::Vector2d& u,
-                                                        const TieBreak& tie) const {
+                                                        const TieBreak& tie,
+                                                        BasisDerivatives derivatives) const {
   std::vector<BasisSample> result;
-  std::vector<Jet> jets, scratch;
-  for (int t : candidate_triangles(u)) {
-    bases_[static_cast<std::size_t>(t)].evaluate(u, tie, jets, scratch);
+  evaluate_basis_of(u, grid_triangles(u), tie, derivatives, result);
+  return result;
+}
+
+void PlanarDmsSpace::evaluate_basis_of(const Eigen::Vector2d& u, const std::vector<int>& triangles,
+                                       const TieBreak& tie, BasisDerivatives derivatives,
+                                       std::vector<BasisSample>& out) const {
+  // Per-thread scratch: evaluation is called per point in hot loops, and the DAG state is a few
+  // KB (allocating it per call cost as much as a cheap evaluation).
+  thread_local std::vector<Jet> jets, jet_scratch;
+  thread_local std::vector<double> values, value_scratch;
+  for (int t : triangles) {
+    const TriangleBasis& basis = bases_[static_cast<std::size_t>(t)];
+    if (!basis.in_hull(u)) continue;
+    if (derivatives == BasisDerivatives::none) {
+      basis.evaluate_values(u, tie, values, value_scratch);
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        if (values[i] == 0.0) continue;
+        BasisSample sample{t, static_cast<int>(i), Jet{}};
+        sample.jet.value = values[i];
+        out.push_back(sample);
+      }
+      continue;
+    }
+    basis.evaluate(u, tie, jets, jet_scratch);
     for (std::size_t i = 0; i < jets.size(); ++i) {
       const Jet& j = jets[i];
       if (j.value != 0.0 || !j.gradient.isZero(0.0) || !j.hessian.isZero(0.0)) {
-        result.push_back({t, static_cast<int>(i), j});
+        out.push_back({t, static_cast<int>(i), j});
       }
     }
   }
-  return result;
 }
 
 void PlanarDmsSpace::check_rows(const Eigen::MatrixXd& control_points) const {

@@ -68,9 +68,18 @@ class PlanarDmsSpace {
   /// Triangles whose clouds' convex hull contains u (candidates for non-zero functions).
   [[nodiscard]] std::vector<int> candidate_triangles(const Eigen::Vector2d& u) const;
 
-  /// All basis functions with a non-zero value or derivative at u.
-  [[nodiscard]] std::vector<BasisSample> evaluate_basis(const Eigen::Vector2d& u,
-                                                        const TieBreak& tie = {}) const;
+  /// All basis functions with a non-zero value or derivative at u (BasisDerivatives::none:
+  /// with a non-zero value, and the jets hold values only).
+  [[nodiscard]] std::vector<BasisSample> evaluate_basis(
+      const Eigen::Vector2d& u, const TieBreak& tie = {},
+      BasisDerivatives derivatives = BasisDerivatives::second) const;
+
+  /// As evaluate_basis, over the given triangles only (ascending; those whose clouds' hull does
+  /// not contain u are skipped): appends to `out`. For callers that know which triangles can
+  /// matter (a manifold space keeps the ones around a point's face).
+  void evaluate_basis_of(const Eigen::Vector2d& u, const std::vector<int>& triangles,
+                         const TieBreak& tie, BasisDerivatives derivatives,
+                         std::vector<BasisSample>& out) const;
 
   /// sum c_{I,beta} N_{I,beta} at u; control_points has function_count() rows, k columns.
   /// \throw ricci::InvalidInputError on a wrong row count.
@@ -89,6 +98,9 @@ class PlanarDmsSpace {
 
  private:
   void build_grid();
+  // Triangles whose cloud box meets u's grid cell (or a neighbouring one when u is on a cell
+  // border), ascending: a superset of candidate_triangles(u).
+  [[nodiscard]] std::vector<int> grid_triangles(const Eigen::Vector2d& u) const;
   void check_rows(const Eigen::MatrixXd& control_points) const;
 
   PlanarTriangulation triangulation_;

@@ -1,5 +1,6 @@
 #include "spline/basis/simplex_spline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -51,6 +52,12 @@ SimplexSplineDag::SimplexSplineDag(std::vector<Eigen::Vector2d> knots) : knots_(
 }
 
 int SimplexSplineDag::add(std::uint32_t mask) {
+  const int id = add_node(mask);
+  nodes_[static_cast<std::size_t>(id)].root = true;
+  return id;
+}
+
+int SimplexSplineDag::add_node(std::uint32_t mask) {
   if (const auto it = index_.find(mask); it != index_.end()) return it->second;
   const int count = popcount(mask);
   if (count < 3 || (knots_.size() < 32 && (mask >> knots_.size()) != 0)) {
@@ -119,7 +126,7 @@ void SimplexSplineDag::set_recurrence(std::uint32_t mask, Triple t, Node& node) 
   put_longest_opposite_first(knots_, t.a, t.b, t.c);
   const int triple[3] = {t.a, t.b, t.c};
   for (int k = 0; k < 3; ++k) {
-    const int child = add(mask & ~(1u << triple[k]));
+    const int child = add_node(mask & ~(1u << triple[k]));
     node.child[k] = nodes_[static_cast<std::size_t>(child)].kind == Kind::zero
                         ? kNoChild
                         : static_cast<std::uint16_t>(child);
@@ -144,37 +151,105 @@ std::size_t SimplexSplineDag::memory_bytes() const {
   return nodes_.capacity() * sizeof(Node) + knots_.capacity() * sizeof(Eigen::Vector2d);
 }
 
+// Everything an evaluation at u computes once per knot or knot pair instead of once per node.
+// The numbers are the very ones a node would compute itself (same operations in the same order),
+// so evaluation is bit for bit what the plain per-node recurrence gives.
+struct SimplexSplineDag::PointState {
+  PointState(const std::vector<Eigen::Vector2d>& knots, const Eigen::Vector2d& at,
+             const TieBreak& tie_break)
+      : knots_(knots), u(at), tie(tie_break), count(static_cast<int>(knots.size())) {
+    for (int i = 0; i < count; ++i) {
+      offset[i] = u - knots[static_cast<std::size_t>(i)];
+      distance2[i] = offset[i].squaredNorm();
+    }
+    std::fill(side, side + count * count, std::int8_t{0});
+  }
+
+  // lambda_k(u) of a recurrence node: g_k . (u - s), s the end of the edge opposite x_k nearer
+  // to u (see Node).
+  double lambda(const Node& node, int k, const Eigen::Vector2d& g_k) const {
+    const int p = node.knot[(k + 1) % 3], q = node.knot[(k + 2) % 3];
+    return g_k.dot(distance2[p] <= distance2[q] ? offset[p] : offset[q]);
+  }
+
+  // left_of(x_p, x_q, u, tie), each directed knot line decided once (left_of is antisymmetric).
+  bool left(int p, int q) {
+    std::int8_t& s = side[p * count + q];
+    if (s == 0) {
+      const bool l = left_of(knots_[static_cast<std::size_t>(p)],
+                             knots_[static_cast<std::size_t>(q)], u, tie);
+      s = l ? 1 : -1;
+      side[q * count + p] = static_cast<std::int8_t>(-s);
+    }
+    return s > 0;
+  }
+
+  // in_half_open_triangle of a base node's ccw triangle.
+  bool in_base(const Node& node) {
+    return left(node.knot[0], node.knot[1]) && left(node.knot[1], node.knot[2]) &&
+           left(node.knot[2], node.knot[0]);
+  }
+
+  const std::vector<Eigen::Vector2d>& knots_;
+  const Eigen::Vector2d u;
+  const TieBreak& tie;
+  const int count;
+  Eigen::Vector2d offset[32];
+  double distance2[32];
+  std::int8_t side[32 * 32];
+};
+
 void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,
                                 std::vector<Jet>& jets) const {
-  jets.assign(nodes_.size(), Jet{});
+  jets.resize(nodes_.size());
+  PointState state(knots_, u, tie);
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
     const Node& node = nodes_[id];
-    if (node.kind == Kind::zero || outside(node, u)) continue;
     Jet& jet = jets[id];
+    jet = Jet{};
+    if (node.kind == Kind::zero || outside(node, u)) continue;
     if (node.kind == Kind::base) {
-      if (in_half_open_triangle(knots_[node.knot[0]], knots_[node.knot[1]], knots_[node.knot[2]],
-                                u, tie)) {
-        jet.value = node.data[0];
-      }
+      if (state.in_base(node)) jet.value = node.data[0];
       continue;
     }
     const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
     const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
-    const double lambda[3] = {barycentric(node, 0, g[0], u), barycentric(node, 1, g[1], u),
-                              barycentric(node, 2, g[2], u)};
     double hxx = 0.0, hxy = 0.0, hyy = 0.0;
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
       const Jet& c = jets[node.child[k]];
-      jet.value += lambda[k] * c.value;
+      jet.value += state.lambda(node, k, g[k]) * c.value;
       jet.gradient += g[k] * c.value;
+      if (!node.root) continue;
       hxx += g[k].x() * c.gradient.x();
       hxy += 0.5 * (g[k].x() * c.gradient.y() + g[k].y() * c.gradient.x());
       hyy += g[k].y() * c.gradient.y();
     }
     const double n = node.degree;
     jet.gradient *= n;
-    jet.hessian = n * Eigen::Vector3d(hxx, hxy, hyy);
+    if (node.root) jet.hessian = n * Eigen::Vector3d(hxx, hxy, hyy);
+  }
+}
+
+void SimplexSplineDag::evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie,
+                                       std::vector<double>& values) const {
+  values.resize(nodes_.size());
+  PointState state(knots_, u, tie);
+  for (std::size_t id = 0; id < nodes_.size(); ++id) {
+    const Node& node = nodes_[id];
+    double& value = values[id];
+    value = 0.0;
+    if (node.kind == Kind::zero || outside(node, u)) continue;
+    if (node.kind == Kind::base) {
+      if (state.in_base(node)) value = node.data[0];
+      continue;
+    }
+    const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
+    const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+    for (int k = 0; k < 3; ++k) {
+      if (node.child[k] == kNoChild) continue;
+      value += state.lambda(node, k, g[k]) * values[node.child[k]];
+    }
   }
 }
 
@@ -184,27 +259,23 @@ void SimplexSplineDag::evaluate_directional(const Eigen::Vector2d& u,
                                             std::vector<double>& table) const {
   const std::size_t stride = static_cast<std::size_t>(max_order) + 1;
   table.assign(nodes_.size() * stride, 0.0);
+  PointState state(knots_, u, tie);
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
     const Node& node = nodes_[id];
     if (node.kind == Kind::zero || outside(node, u)) continue;
     double* out = &table[id * stride];
     if (node.kind == Kind::base) {
-      if (in_half_open_triangle(knots_[node.knot[0]], knots_[node.knot[1]], knots_[node.knot[2]],
-                                u, tie)) {
-        out[0] = node.data[0];
-      }
+      if (state.in_base(node)) out[0] = node.data[0];
       continue;
     }
     const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
     const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
-    const double lambda[3] = {barycentric(node, 0, g[0], u), barycentric(node, 1, g[1], u),
-                              barycentric(node, 2, g[2], u)};
     const double mb = g_b.dot(direction), mc = g_c.dot(direction);
     const double mu[3] = {-mb - mc, mb, mc};
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
       const double* c = &table[static_cast<std::size_t>(node.child[k]) * stride];
-      out[0] += lambda[k] * c[0];
+      out[0] += state.lambda(node, k, g[k]) * c[0];
       for (std::size_t order = 1; order < stride; ++order) out[order] += mu[k] * c[order - 1];
     }
     for (std::size_t order = 1; order < stride; ++order) out[order] *= node.degree;

@@ -54,7 +54,9 @@ class SimplexSplineDag {
   /// (A DAG holds at most 65535 nodes: far more than 32 knots of degree <= 7 need.)
   explicit SimplexSplineDag(std::vector<Eigen::Vector2d> knots);
 
-  /// Adds M(. | {knots[i] : bit i of mask}) (at least 3 bits) and returns its node id.
+  /// Adds M(. | {knots[i] : bit i of mask}) (at least 3 bits) and returns its node id. The node
+  /// is a root: evaluate() gives its Hessian (the Hessians of the other nodes are not needed by
+  /// the recurrence, and are skipped).
   int add(std::uint32_t mask);
 
   [[nodiscard]] int node_count() const { return static_cast<int>(nodes_.size()); }
@@ -67,8 +69,14 @@ class SimplexSplineDag {
   [[nodiscard]] std::size_t memory_bytes() const;
   [[nodiscard]] const std::vector<Eigen::Vector2d>& knots() const { return knots_; }
 
-  /// Evaluates every node at u: jets[id] is then M, grad M and Hessian of M for node id.
+  /// Evaluates every node at u: jets[id] is then M and grad M for node id, and the Hessian of M
+  /// for the roots (ids returned by add(); zero for the other nodes).
   void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& jets) const;
+
+  /// Values only: values[id] = M(u | X_id) for every node (the same numbers as evaluate()'s, at
+  /// about a third of the cost).
+  void evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie,
+                       std::vector<double>& values) const;
 
   /// Directional derivatives D_d^k M for k = 0..max_order of every node at u:
   /// table[id * (max_order + 1) + k].
@@ -91,6 +99,7 @@ class SimplexSplineDag {
     std::uint8_t knot[3] = {0, 0, 0};  // base: ccw triangle; recurrence: the triple (a, b, c)
     Kind kind = Kind::zero;
     std::uint8_t degree = 0;
+    bool root = false;  // added by add(): its Hessian is wanted
   };
   struct Triple {
     int a = -1, b = -1, c = -1;
@@ -99,12 +108,11 @@ class SimplexSplineDag {
   Triple largest_triple(std::uint32_t mask, Node& node) const;
   // Adds the children X \ x_k and the barycentric gradients of the triple to node.
   void set_recurrence(std::uint32_t mask, Triple triple, Node& node);
-  double barycentric(const Node& node, int k, const Eigen::Vector2d& g_k,
-                     const Eigen::Vector2d& u) const {
-    const Eigen::Vector2d wp = u - knots_[node.knot[(k + 1) % 3]];
-    const Eigen::Vector2d wq = u - knots_[node.knot[(k + 2) % 3]];
-    return g_k.dot(wp.squaredNorm() <= wq.squaredNorm() ? wp : wq);
-  }
+  // add() without marking the node a root.
+  int add_node(std::uint32_t mask);
+  // Per-point scratch of one evaluation (simplex_spline.cpp): u - x_i for every knot, and the
+  // sides of u of the directed knot lines already decided by base triangles.
+  struct PointState;
   bool outside(const Node& node, const Eigen::Vector2d& u) const {
     // Strictly outside the closed box: u and its perturbation lie outside the knots' hull.
     return u.x() < node.box[0] || u.y() < node.box[1] || u.x() > node.box[2] ||

@@ -130,6 +130,15 @@ void TriangleBasis::evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std:
   }
 }
 
+void TriangleBasis::evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie,
+                                    std::vector<double>& out, std::vector<double>& scratch) const {
+  dag_.evaluate_values(u, tie, scratch);
+  out.resize(roots_.size());
+  for (std::size_t i = 0; i < roots_.size(); ++i) {
+    out[i] = scales_[i] * scratch[static_cast<std::size_t>(roots_[i])];
+  }
+}
+
 void TriangleBasis::evaluate_directional(const Eigen::Vector2d& u,
                                          const Eigen::Vector2d& direction, int max_order,
                                          const TieBreak& tie, std::vector<double>& out,

@@ -8,12 +8,17 @@
 // as the clouds shrink to their vertices N_{I,beta} tends to the Bernstein polynomial
 // B_beta on I: both integrate to |d| / ((n + 1)(n + 2)).
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "spline/basis/simplex_spline.h"
 #include "spline/knots/knot_cloud.h"
 
 namespace spline {
+
+/// What an evaluation of basis functions computes: values only (e.g. the rows of a least-squares
+/// fit), or values, gradients and Hessians.
+enum class BasisDerivatives : std::uint8_t { none, second };
 
 /// The (n + 1)(n + 2)/2 basis functions of one triangle from the clouds of its three vertices,
 /// given in one planar frame (a chart), all evaluated together through one shared DAG.
@@ -49,6 +54,10 @@ class TriangleBasis {
   /// Jets of all functions at u, in multi_indices(n) order. scratch is reused storage.
   void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,
                 std::vector<Jet>& scratch) const;
+
+  /// Values only of all functions at u (the same numbers as evaluate()'s values).
+  void evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<double>& out,
+                       std::vector<double>& scratch) const;
 
   /// D_d^k N for k = 0..max_order of all functions: out[i * (max_order + 1) + k].
   void evaluate_directional(const Eigen::Vector2d& u, const Eigen::Vector2d& direction,

@@ -82,7 +82,7 @@ void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vect
   const int m = space.functions_per_face();
   acc.reset(static_cast<int>(reach.size()) * m);
   for (int k : spec.points) {
-    for (const auto& s : space.evaluate_basis(parameters[k])) {
+    for (const auto& s : space.evaluate_basis(parameters[k], -1, {}, BasisDerivatives::none)) {
       acc.add(local_column(reach, s.function, m), s.jet.value);
       kept.function.push_back(s.function);
       kept.value.push_back(s.jet.value);

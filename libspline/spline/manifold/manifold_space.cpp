@@ -200,6 +200,19 @@ std::unique_ptr<ManifoldSplineSpace::ChartSpace> ManifoldSplineSpace::build_char
     for (int k = 0; k < 3; ++k)
       result->triangles_at_vertex[triangulation.triangles[t][k]].push_back(static_cast<int>(t));
   }
+  result->around_start.push_back(0);
+  std::vector<int> around;
+  for (const Eigen::Vector3i& own : triangulation.triangles) {
+    around.clear();
+    for (int k = 0; k < 3; ++k) {
+      const auto& star = result->triangles_at_vertex[own[k]];
+      around.insert(around.end(), star.begin(), star.end());
+    }
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    result->around.insert(result->around.end(), around.begin(), around.end());
+    result->around_start.push_back(static_cast<int>(result->around.size()));
+  }
   // A chart made only of hole faces has no space (nothing is evaluated there).
   if (!triangulation.triangles.empty()) {
     result->space = std::make_unique<PlanarDmsSpace>(std::move(triangulation), std::move(clouds));
@@ -249,38 +262,39 @@ std::array<KnotCloud, 3> ManifoldSplineSpace::face_clouds(int chart, int face) c
   return {clouds[t[0]], clouds[t[1]], clouds[t[2]]};
 }
 
-std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis(const DomainPoint& point,
-                                                                     int chart,
-                                                                     const TieBreak& tie) const {
+std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis(
+    const DomainPoint& point, int chart, const TieBreak& tie, BasisDerivatives derivatives) const {
   if (point.face < 0 || point.face >= face_count() || domain_index_[point.face] < 0) {
     throw InvalidInputError("manifold spline: " + face_name(point.face) +
                             " is not in the spline's domain");
   }
   if (chart < 0) chart = chart_of(point.face);
   return evaluate_basis_at(chart, point.face, chart_point(chart, point.face, point.barycentric),
-                           tie);
+                           tie, derivatives);
 }
 
-std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(int chart, int face,
-                                                                        const Eigen::Vector2d& u,
-                                                                        const TieBreak& tie) const {
+std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(
+    int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie,
+    BasisDerivatives derivatives) const {
   const ChartSpace& cs = chart_space(chart);
   const int row = atlas_.charts[chart].slot(face);
   if (row < 0 || cs.triangle_of_row[row] < 0) {
     throw InvalidInputError("manifold spline: chart " + std::to_string(chart) +
                             " holds no domain " + face_name(face));
   }
-  const auto& triangles = cs.space->triangulation().triangles;
-  const Eigen::Vector3i own = triangles[cs.triangle_of_row[row]];
+  // Only the triangles sharing a vertex with the face's (clouds stay inside their vertex stars;
+  // in a self-overlapping chart the other sheets' triangles are left out too).
+  const int own = cs.triangle_of_row[row];
+  thread_local std::vector<int> around;
+  thread_local std::vector<BasisSample> samples;
+  around.assign(cs.around.begin() + cs.around_start[own],
+                cs.around.begin() + cs.around_start[own + 1]);
+  samples.clear();
+  cs.space->evaluate_basis_of(u, around, tie, derivatives, samples);
   const int m = functions_per_face();
   std::vector<ManifoldBasisSample> out;
-  for (const BasisSample& s : cs.space->evaluate_basis(u, tie)) {
-    const Eigen::Vector3i& t = triangles[s.triangle];
-    bool shares = false;
-    for (int a = 0; a < 3 && !shares; ++a) {
-      shares = t[a] == own[0] || t[a] == own[1] || t[a] == own[2];
-    }
-    if (!shares) continue;  // another sheet of a self-overlapping chart
+  out.reserve(samples.size());
+  for (const BasisSample& s : samples) {
     out.push_back({domain_index_[cs.face_of_triangle[s.triangle]] * m + s.beta, s.jet});
   }
   return out;

@@ -97,15 +97,17 @@ class ManifoldSplineSpace {
 
   /// All functions non-zero at the point (value or derivatives), jets in `chart`'s frame
   /// (chart -1: chart_of(face)). `tie` picks the side of knot lines (one-sided derivatives).
+  /// BasisDerivatives::none: the functions with a non-zero value, values only (about a third of
+  /// the cost; the values are the same numbers).
   /// \throw ricci::InvalidInputError for a face outside the domain or a chart not holding it.
-  [[nodiscard]] std::vector<ManifoldBasisSample> evaluate_basis(const DomainPoint& point,
-                                                                int chart = -1,
-                                                                const TieBreak& tie = {}) const;
+  [[nodiscard]] std::vector<ManifoldBasisSample> evaluate_basis(
+      const DomainPoint& point, int chart = -1, const TieBreak& tie = {},
+      BasisDerivatives derivatives = BasisDerivatives::second) const;
   /// Same at a point u given in `chart`'s coordinates near `face` (u may leave the face slightly:
   /// any point of the face's neighbourhood is evaluated correctly).
-  [[nodiscard]] std::vector<ManifoldBasisSample> evaluate_basis_at(int chart, int face,
-                                                                   const Eigen::Vector2d& u,
-                                                                   const TieBreak& tie = {}) const;
+  [[nodiscard]] std::vector<ManifoldBasisSample> evaluate_basis_at(
+      int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie = {},
+      BasisDerivatives derivatives = BasisDerivatives::second) const;
 
   /// Domain faces whose functions can be non-zero on `face` (evaluated in chart_of(face)): the
   /// faces sharing a chart vertex with it there, itself included; ascending. Every sample of
@@ -144,6 +146,9 @@ struct ManifoldSplineSpace::ChartSpace {
   std::vector<int> face_of_triangle;  ///< original face by local triangle
   std::vector<int> triangle_of_row;   ///< by row of Chart::faces: local triangle or -1
   std::vector<std::vector<int>> triangles_at_vertex;  ///< by local vertex: its triangles
+  /// By local triangle t: the triangles sharing a vertex with t (t included), ascending, in
+  /// around[around_start[t] .. around_start[t + 1]): the only ones whose functions can reach t.
+  std::vector<int> around_start, around;
 };
 
 /// Position, derivatives (in the evaluating chart's frame) and unit normal of the surface.
