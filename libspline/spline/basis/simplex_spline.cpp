@@ -36,6 +36,13 @@ void put_longest_opposite_first(const std::vector<Eigen::Vector2d>& knots, int& 
   }
 }
 
+// The largest float <= x (x finite): the box of a node only culls, so a float box rounded
+// outwards is enough.
+float float_below(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) <= x ? f : std::nextafter(f, -std::numeric_limits<float>::infinity());
+}
+
 }  // namespace
 
 SimplexSplineDag::SimplexSplineDag(std::vector<Eigen::Vector2d> knots) : knots_(std::move(knots)) {
@@ -57,8 +64,37 @@ int SimplexSplineDag::add(std::uint32_t mask) {
   return id;
 }
 
+void SimplexSplineDag::prepare_build_caches() {
+  if (!areas_.empty()) return;
+  const std::size_t k = knots_.size();
+  areas_.assign(k * k * k, 0.0);
+  dets_.assign(k * k * k, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t x = 0; x < k; ++x) {
+    for (std::size_t y = x + 1; y < k; ++y) {
+      const Eigen::Vector2d e1 = knots_[y] - knots_[x];
+      for (std::size_t z = y + 1; z < k; ++z) {
+        areas_[(x * k + y) * k + z] = std::abs(cross(e1, knots_[z] - knots_[x]));
+      }
+    }
+  }
+  if (k <= kDirectIndexKnots) direct_index_.assign(std::size_t{1} << k, 0);
+}
+
+double SimplexSplineDag::determinant(int a, int b, int c) {
+  const std::size_t k = knots_.size();
+  double& det = dets_[(static_cast<std::size_t>(a) * k + static_cast<std::size_t>(b)) * k +
+                      static_cast<std::size_t>(c)];
+  if (std::isnan(det)) det = accurate_det2d(knots_[a], knots_[b], knots_[c]);
+  return det;
+}
+
 int SimplexSplineDag::add_node(std::uint32_t mask) {
-  if (const auto it = index_.find(mask); it != index_.end()) return it->second;
+  prepare_build_caches();
+  if (!direct_index_.empty()) {
+    if (mask < direct_index_.size() && direct_index_[mask] != 0) return direct_index_[mask] - 1;
+  } else if (const auto it = index_.find(mask); it != index_.end()) {
+    return it->second;
+  }
   const int count = popcount(mask);
   if (count < 3 || (knots_.size() < 32 && (mask >> knots_.size()) != 0)) {
     throw ricci::InvalidInputError("simplex spline: knot subset needs at least 3 valid knots");
@@ -76,13 +112,17 @@ int SimplexSplineDag::add_node(std::uint32_t mask) {
     node.knot[0] = static_cast<std::uint8_t>(t.a);
     node.knot[1] = static_cast<std::uint8_t>(orientation > 0 ? t.b : t.c);
     node.knot[2] = static_cast<std::uint8_t>(orientation > 0 ? t.c : t.b);
-    node.data[0] = 1.0 / std::abs(accurate_det2d(knots_[t.a], knots_[t.b], knots_[t.c]));
+    node.data[0] = 1.0 / std::abs(determinant(t.a, t.b, t.c));
   } else if (orientation != 0) {
     set_recurrence(mask, t, node);
   }
   const int id = static_cast<int>(nodes_.size());
   nodes_.push_back(node);
-  index_.emplace(mask, id);
+  if (!direct_index_.empty()) {
+    direct_index_[mask] = static_cast<std::uint16_t>(id + 1);
+  } else {
+    index_.emplace(mask, id);
+  }
   return id;
 }
 
@@ -98,20 +138,21 @@ SimplexSplineDag::Triple SimplexSplineDag::largest_triple(std::uint32_t mask, No
       hi = hi.cwiseMax(knots_[i]);
     }
   }
-  const float inf = std::numeric_limits<float>::infinity();
-  node.box[0] = std::nextafter(static_cast<float>(lo.x()), -inf);
-  node.box[1] = std::nextafter(static_cast<float>(lo.y()), -inf);
-  node.box[2] = std::nextafter(static_cast<float>(hi.x()), inf);
-  node.box[3] = std::nextafter(static_cast<float>(hi.y()), inf);
+  node.box[0] = float_below(lo.x());
+  node.box[1] = float_below(lo.y());
+  node.box[2] = -float_below(-hi.x());
+  node.box[3] = -float_below(-hi.y());
   // The triple of largest area keeps the barycentric coordinates bounded (|lambda| <= 3 on the
   // hull of the subset) and so the recurrence well conditioned.
   Triple best;
   double best_area = 0.0;
+  const std::size_t k = knots_.size();
   for (int x = 0; x < size; ++x) {
     for (int y = x + 1; y < size; ++y) {
-      const Eigen::Vector2d e1 = knots_[members[y]] - knots_[members[x]];
+      const double* row = &areas_[(static_cast<std::size_t>(members[x]) * k +
+                                   static_cast<std::size_t>(members[y])) * k];
       for (int z = y + 1; z < size; ++z) {
-        const double area = std::abs(cross(e1, knots_[members[z]] - knots_[members[x]]));
+        const double area = row[members[z]];
         if (area > best_area) {
           best_area = area;
           best = Triple{members[x], members[y], members[z]};
@@ -134,7 +175,7 @@ void SimplexSplineDag::set_recurrence(std::uint32_t mask, Triple t, Node& node) 
   }
   // g_b, g_c from the edges opposite b and c, each without cancellation.
   const Eigen::Vector2d e1 = knots_[t.b] - knots_[t.a], e2 = knots_[t.c] - knots_[t.a];
-  const double det = accurate_det2d(knots_[t.a], knots_[t.b], knots_[t.c]);
+  const double det = determinant(t.a, t.b, t.c);
   node.kind = Kind::recurrence;
   node.data[0] = e2.y() / det;
   node.data[1] = -e2.x() / det;
@@ -144,6 +185,9 @@ void SimplexSplineDag::set_recurrence(std::uint32_t mask, Triple t, Node& node) 
 
 void SimplexSplineDag::release_index() {
   std::unordered_map<std::uint32_t, int>().swap(index_);
+  std::vector<std::uint16_t>().swap(direct_index_);
+  std::vector<double>().swap(areas_);
+  std::vector<double>().swap(dets_);
   nodes_.shrink_to_fit();
 }
 

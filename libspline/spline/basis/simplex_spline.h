@@ -119,9 +119,18 @@ class SimplexSplineDag {
            u.y() > node.box[3];
   }
 
+  // Build-time caches, dropped by release_index(): subset -> node (a direct table up to
+  // kDirectIndexKnots knots, a hash map above), |det| of every ascending knot triple (the
+  // largest-triple search) and the accurate determinant of every ordered triple used.
+  static constexpr std::size_t kDirectIndexKnots = 15;
+  void prepare_build_caches();
+  double determinant(int a, int b, int c);
+
   std::vector<Eigen::Vector2d> knots_;
   std::vector<Node> nodes_;
   std::unordered_map<std::uint32_t, int> index_;
+  std::vector<std::uint16_t> direct_index_;  // mask -> id + 1, 0 when absent
+  std::vector<double> areas_, dets_;         // by (x * knots + y) * knots + z
 };
 
 /// M_DMS(u | knots) with gradient and Hessian (3 to 32 knots).
