@@ -13,6 +13,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/mesh/simplify.h"
+#include "ricci/mesh/simplify_quadric.h"
 
 namespace ricci {
 namespace {
@@ -63,8 +64,16 @@ SimplifyResult simplify_mesh(const Mesh& dense, const SimplifyOptions& options) 
   }
   SimplifyResult result;
   result.faces_before = static_cast<int>(dense.n_faces());
-  SurfaceMesh mesh = cgal::to_surface_mesh(dense);
-  if (options.target_faces < result.faces_before) collapse_to(mesh, options.target_faces);
+  SurfaceMesh mesh;
+  if (options.target_faces < result.faces_before &&
+      options.collapse == SimplifyOptions::Collapse::quadric) {
+    Mesh decimated = dense;
+    quadric_decimate(decimated, options.target_faces);
+    mesh = cgal::to_surface_mesh(decimated);
+  } else {
+    mesh = cgal::to_surface_mesh(dense);
+    if (options.target_faces < result.faces_before) collapse_to(mesh, options.target_faces);
+  }
   if (options.remesh_iterations > 0) remesh(mesh, options.target_faces, options.remesh_iterations);
   result.mesh = cgal::from_surface_mesh(mesh);
   result.faces_after = static_cast<int>(result.mesh.n_faces());
