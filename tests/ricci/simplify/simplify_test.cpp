@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "ricci/mesh/errors.h"
@@ -36,6 +37,38 @@ TEST(Simplify, KeepsGenusOnRealScans) {
 
 TEST(Simplify, KeepsBoundariesOfOpenScans) {
   expect_simplified_with_same_topology("open/lion.off", 2000, 2.0);
+}
+
+// Largest distance from the result's vertices to the dense surface, over the bbox diagonal.
+double max_deviation(const ricci::Mesh& dense, const ricci::Mesh& result) {
+  Eigen::MatrixX3d queries(result.n_vertices(), 3);
+  for (auto v : result.vertices()) queries.row(v.idx()) = ricci::to_eigen(result.point(v)).transpose();
+  Eigen::MatrixX3d points(dense.n_vertices(), 3);
+  for (auto v : dense.vertices()) points.row(v.idx()) = ricci::to_eigen(dense.point(v)).transpose();
+  double worst = 0.0;
+  for (const auto& p : ricci::closest_points(dense, queries)) worst = std::max(worst, p.distance);
+  return worst / (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+}
+
+// The library's quadric collapse (the default) against CGAL's edge_collapse with the same
+// policies: same topology, and the shape kept as closely (vertices within 0.5% of the diagonal
+// of the scan, and not more than 1.5x CGAL's deviation plus 0.05%).
+TEST(Simplify, OwnQuadricCollapseKeepsTheShapeLikeCgal) {
+  for (const char* model : {"closed_g1/kitten_nf20k.off", "closed_g2/cup.off", "open/lion.off"}) {
+    const ricci::Mesh dense = shared_model(model);
+    ricci::SimplifyOptions options;
+    options.target_faces = 2000;
+    options.remesh_iterations = 0;
+    const auto own = ricci::simplify_mesh(dense, options);
+    options.collapse = ricci::SimplifyOptions::Collapse::cgal;
+    const auto cgal = ricci::simplify_mesh(dense, options);
+    EXPECT_EQ(euler_characteristic(own.mesh), euler_characteristic(dense)) << model;
+    EXPECT_NEAR(own.faces_after, 2000, 20) << model;
+    const double a = max_deviation(dense, own.mesh), b = max_deviation(dense, cgal.mesh);
+    EXPECT_LT(a, 5e-3) << model;
+    RecordProperty(std::string("deviation_") + model, std::to_string(a) + " (CGAL " + std::to_string(b) + ")");
+    EXPECT_LT(a, 1.5 * b + 5e-4) << model << ": CGAL " << b;
+  }
 }
 
 TEST(Simplify, RefusesTinyTargets) {
