@@ -22,6 +22,10 @@ namespace SMS = CGAL::Surface_mesh_simplification;
 namespace PMP = CGAL::Polygon_mesh_processing;
 using cgal::SurfaceMesh;
 
+// Collapse::staged: the own quadric collapse down to this many times the target, CGAL's from
+// there (see SimplifyOptions).
+constexpr int kStageFactor = 4;
+
 void collapse_to(SurfaceMesh& mesh, int target_faces) {
   using Policies = SMS::GarlandHeckbert_plane_policies<SurfaceMesh, cgal::Kernel>;
   Policies policies(mesh);
@@ -65,15 +69,17 @@ SimplifyResult simplify_mesh(const Mesh& dense, const SimplifyOptions& options) 
   SimplifyResult result;
   result.faces_before = static_cast<int>(dense.n_faces());
   SurfaceMesh mesh;
-  if (options.target_faces < result.faces_before &&
-      options.collapse == SimplifyOptions::Collapse::quadric) {
+  const int target = options.target_faces;
+  using Collapse = SimplifyOptions::Collapse;
+  const int first_stage = options.collapse == Collapse::quadric ? target : kStageFactor * target;
+  if (options.collapse != Collapse::cgal && first_stage < result.faces_before) {
     Mesh decimated = dense;
-    quadric_decimate(decimated, options.target_faces);
+    quadric_decimate(decimated, first_stage);
     mesh = cgal::to_surface_mesh(decimated);
   } else {
     mesh = cgal::to_surface_mesh(dense);
-    if (options.target_faces < result.faces_before) collapse_to(mesh, options.target_faces);
   }
+  if (target < static_cast<int>(mesh.number_of_faces())) collapse_to(mesh, target);
   if (options.remesh_iterations > 0) remesh(mesh, options.target_faces, options.remesh_iterations);
   result.mesh = cgal::from_surface_mesh(mesh);
   result.faces_after = static_cast<int>(result.mesh.n_faces());
