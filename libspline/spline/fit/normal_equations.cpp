@@ -35,21 +35,45 @@ int local_column(const std::vector<int>& reach, int function, int m) {
 // Accumulates the rows of one face into a dense local Gram matrix (lower triangle) and
 // right-hand side over the face's reaching functions. Rows are sparse (about a third of the
 // reaching functions are non-zero at a point), so each row adds only its own outer product.
+// Only the columns some row of the face touched are zeroed again and read out (face_columns):
+// a face's rows reach about half of its reaching functions, and clearing and scanning the whole
+// dense matrix per face cost as much as the rows themselves.
 class FaceAccumulator {
  public:
   void reset(int columns) {
-    gram.setZero(columns, columns);
-    rhs.setZero(columns, 3);
+    columns_ = columns;
+    if (gram.rows() < columns) {  // grows to the largest face; a face uses the top-left block
+      gram.setZero(columns, columns);
+      rhs.setZero(columns, 3);
+    } else {
+      for (int j : face_columns_) {
+        rhs.row(j).setZero();
+        for (int i : face_columns_) gram(i, j) = 0.0;
+      }
+    }
+    for (int j : face_columns_) in_face_[j] = 0;
+    face_columns_.clear();
     row_.assign(static_cast<std::size_t>(columns), 0.0);
     mark_.assign(static_cast<std::size_t>(columns), 0);
+    in_face_.resize(static_cast<std::size_t>(columns), 0);
     touched_.clear();
   }
   void add(int column, double value) {
     if (!mark_[column]) {
       mark_[column] = 1;
       touched_.push_back(column);
+      if (!in_face_[column]) {
+        in_face_[column] = 1;
+        face_columns_.push_back(column);
+      }
     }
     row_[column] += value;
+  }
+  int columns() const { return columns_; }
+  /// The columns touched since reset(), ascending (all other entries are zero).
+  const std::vector<int>& face_columns() {
+    std::sort(face_columns_.begin(), face_columns_.end());
+    return face_columns_;
   }
   // Ends the row: gram += r r^T, rhs += r target^T.
   void end_row(const Eigen::RowVector3d& target, bool has_target) {
@@ -71,8 +95,9 @@ class FaceAccumulator {
 
  private:
   std::vector<double> row_;
-  std::vector<char> mark_;
-  std::vector<int> touched_;
+  std::vector<char> mark_, in_face_;
+  std::vector<int> touched_, face_columns_;
+  int columns_ = 0;
 };
 
 // Data rows, then three thin-plate rows per quadrature point, of one face.
@@ -171,12 +196,16 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
       const std::vector<int>& r = reach[d];
       accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, acc,
                       kept[d]);
-      const auto k = static_cast<int>(acc.gram.cols());
+      const int k = acc.columns();
       std::vector<int> global(static_cast<std::size_t>(k));
       for (int c = 0; c < k; ++c) global[c] = r[c / m] * m + c % m;  // ascending with c
-      for (int j = 0; j < k; ++j) {
+      // Ascending j, then i >= j, as a scan of the whole lower triangle would emit them.
+      const std::vector<int>& columns = acc.face_columns();
+      for (std::size_t jj = 0; jj < columns.size(); ++jj) {
+        const int j = columns[jj];
         rhs[t].row(global[j]) += acc.rhs.row(j);
-        for (int i = j; i < k; ++i) {
+        for (std::size_t ii = jj; ii < columns.size(); ++ii) {
+          const int i = columns[ii];
           const double v = acc.gram(i, j);
           if (v != 0.0) out.emplace_back(global[i], global[j], v);
         }
