@@ -1,7 +1,8 @@
 // msp-bench dms [grid_size]: cost of the DMS basis on a jittered grid triangulation of [0,1]^2.
 // Per degree: DAG nodes and bytes per triangle, build time per triangle, time per point for all
-// non-zero basis functions with gradients and Hessians (evaluate_basis), for a spline with 3D
-// control points (evaluate), and the worst partition-of-unity error seen.
+// non-zero basis functions with gradients and Hessians (evaluate_basis), values only
+// (BasisDerivatives::none, as the fit's data rows use), for a spline with 3D control points
+// (evaluate), and the worst partition-of-unity error seen.
 #include <ctime>
 #include <cmath>
 #include <cstdio>
@@ -33,8 +34,9 @@ int run_dms_benchmark(int argc, char** argv) {
   const spline::PlanarTriangulation t = spline::perturbed_grid(m, 0.3, 7);
   std::printf("jittered grid %dx%d, %zu triangles; points uniform in [0.2,0.8]^2; CPU time\n", m, m,
               t.triangles.size());
-  std::printf("%6s %10s %12s %14s %12s %12s %14s %10s\n", "degree", "nodes/tri", "KB/tri",
-              "build us/tri", "functions", "basis us/pt", "spline us/pt", "max|PU-1|");
+  std::printf("%6s %10s %12s %14s %12s %12s %13s %14s %10s\n", "degree", "nodes/tri", "KB/tri",
+              "build us/tri", "functions", "basis us/pt", "values us/pt", "spline us/pt",
+              "max|PU-1|");
   for (int n = 2; n <= 5; ++n) {
     const std::vector<spline::KnotCloud> clouds = spline::make_knot_clouds(t, n);
     const auto build_start = Clock::now();
@@ -59,16 +61,27 @@ int run_dms_benchmark(int argc, char** argv) {
       functions += static_cast<double>(samples.size());
     }
     const double per_point = microseconds_since(basis_start) / static_cast<double>(points.size());
+    double value_sum = 0.0;
+    const auto values_start = Clock::now();
+    for (const Eigen::Vector2d& u : points) {
+      for (const spline::BasisSample& s :
+           space.evaluate_basis(u, {}, spline::BasisDerivatives::none)) {
+        value_sum += s.jet.value;
+      }
+    }
+    const double values_per_point =
+        microseconds_since(values_start) / static_cast<double>(points.size());
     const Eigen::MatrixXd control = Eigen::MatrixXd::Random(space.function_count(), 3);
     double checksum = 0.0;
     const auto spline_start = Clock::now();
     for (const Eigen::Vector2d& u : points) checksum += space.evaluate(control, u).value.sum();
     const double spline_per_point =
         microseconds_since(spline_start) / static_cast<double>(points.size());
-    std::printf("%6d %10.0f %12.1f %14.1f %12.1f %12.1f %14.1f %10.2e%s\n", n,
+    std::printf("%6d %10.0f %12.1f %14.1f %12.1f %12.1f %13.1f %14.1f %10.2e%s\n", n,
                 nodes / space.triangle_count(), bytes / space.triangle_count() / 1024.0, build,
-                functions / static_cast<double>(points.size()), per_point, spline_per_point, worst,
-                std::isfinite(checksum) ? "" : " (non-finite!)");
+                functions / static_cast<double>(points.size()), per_point, values_per_point,
+                spline_per_point, worst,
+                std::isfinite(checksum + value_sum) ? "" : " (non-finite!)");
   }
   return 0;
 }

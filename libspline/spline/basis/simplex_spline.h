@@ -73,8 +73,9 @@ class SimplexSplineDag {
   /// for the roots (ids returned by add(); zero for the other nodes).
   void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& jets) const;
 
-  /// Values only: values[id] = M(u | X_id) for every node (the same numbers as evaluate()'s, at
-  /// about a third of the cost).
+  /// Values only: values[id] = M(u | X_id) for every node (the same numbers as evaluate()'s;
+  /// 15-20% cheaper: the pass over the nodes, their culling and the base cases' predicates
+  /// dominate, not the derivative arithmetic).
   void evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie,
                        std::vector<double>& values) const;
 
