@@ -329,6 +329,36 @@ FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint
   return errors;
 }
 
+CorrectedParameters correct_parameters(const ManifoldSpline& spline,
+                                       const std::vector<DomainPoint>& parameters,
+                                       const Eigen::MatrixX3d& points, int iterations,
+                                       int threads) {
+  if (static_cast<Eigen::Index>(parameters.size()) != points.rows()) {
+    throw ricci::InvalidInputError("correct_parameters: " + std::to_string(parameters.size()) +
+                                   " parameters for " + std::to_string(points.rows()) + " points");
+  }
+  const ManifoldSplineSpace& space = *spline.space;
+  CorrectedParameters result;
+  result.parameters = parameters;
+  const auto count = static_cast<int>(parameters.size());
+  std::vector<char> moved(parameters.size(), 0);
+  threads = std::max(1, std::min(threads, std::max(count, 1)));
+  detail::run_workers(threads, [&](int t) {
+    for (int k = t; k < count; k += threads) {
+      const DomainPoint& start = parameters[k];
+      if (start.face < 0 || !space.in_domain(start.face)) continue;
+      const Projection p =
+          project_to_spline(spline, start, points.row(k).transpose(), iterations);
+      if (on_domain_rim(space, p.point.face, p.point.barycentric)) continue;
+      if (p.point.face == start.face && p.point.barycentric == start.barycentric) continue;
+      result.parameters[k] = p.point;
+      moved[k] = 1;
+    }
+  });
+  for (char m : moved) result.moved += m;
+  return result;
+}
+
 ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) {
   const auto total_start = Clock::now();
   const auto stage = [&](const char* name) {
@@ -387,6 +417,18 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
 
   result.spline.space = space;
   result.spline.control_points = result.fit.control_points;
+  if (options.parameter_corrections > 0) t = stage("correction");
+  for (int round = 0; round < options.parameter_corrections; ++round) {
+    parameters = correct_parameters(result.spline, parameters, data, 6, fit_options.threads)
+                     .parameters;
+    result.fit = fit_control_points(*space, parameters, data, initial, fit_options);
+    result.spline.control_points = result.fit.control_points;
+    ++result.corrections;
+  }
+  if (options.parameter_corrections > 0) {
+    result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
+    result.timings.correction = seconds_since(t);
+  }
   if (fit_options.constraint_r >= 0 && fit_options.constraint_r == options.fair_r) {
     // Fitted inside the constraint set: eq. 14's projection would return the same points.
     result.fairing.control_points = result.fit.control_points;

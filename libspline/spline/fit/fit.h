@@ -106,6 +106,20 @@ struct FitErrors {
                                    const Eigen::MatrixX3d& points, int iterations = 6,
                                    int threads = 2);
 
+/// Parameter correction (Hoschek's remedy for poor foot points): each point's parameter moved to
+/// its closest point on `spline` (project_to_spline from the current parameter). A projection
+/// that ends on the domain's rim (clamped there: the point lies over the hole or beyond an open
+/// boundary) keeps the old parameter, so the set of fitted points never changes. Points with
+/// face -1 stay -1. Runs on `threads` workers.
+struct CorrectedParameters {
+  std::vector<DomainPoint> parameters;
+  int moved = 0;  ///< points whose parameter changed
+};
+[[nodiscard]] CorrectedParameters correct_parameters(const ManifoldSpline& spline,
+                                                     const std::vector<DomainPoint>& parameters,
+                                                     const Eigen::MatrixX3d& points,
+                                                     int iterations = 6, int threads = 2);
+
 struct ScanFitOptions {
   int domain_faces = 2000;  ///< target size of the simplified domain mesh
   int degree = 3;
@@ -117,6 +131,11 @@ struct ScanFitOptions {
   /// it in control-point norm loses the fit (elk: RMS 7.9% of the diagonal, max 141%), while
   /// fitting inside it gives 0.19%.
   bool constrained_fit = true;  // (when true, fairing afterwards is skipped: it changes nothing)
+  /// Rounds of parameter correction (correct_parameters, then refit) after the first fit. The
+  /// first parameters are closest points on the piecewise-linear domain mesh, which lies up to
+  /// 1% of the diagonal off the surface where the simplification is coarse for the curvature;
+  /// there the tangential part of the foot-point error is fitted as if it were shape.
+  int parameter_corrections = 0;
   FitOptions fit;
   FairOptions fair;  ///< its r is replaced by fair_r
   KnotCloudOptions knots;
@@ -127,6 +146,7 @@ struct ScanFitOptions {
 
 struct ScanFitTimings {
   double simplify = 0, atlas = 0, space = 0, parameters = 0, fit = 0, fair = 0, total = 0;
+  double correction = 0;  ///< parameter correction: projections and refits after the first fit
 };
 
 struct ScanFitResult {
@@ -140,6 +160,7 @@ struct ScanFitResult {
   FitResult fit;
   FairResult fairing;
   ScanFitTimings timings;
+  int corrections = 0;  ///< parameter-correction rounds run
 };
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the
