@@ -132,6 +132,7 @@ void print_breakdown(const spline::ScanFitResult& result, const Eigen::MatrixX3d
   struct Sample {
     double spline, at_parameter, domain;
     int ring;
+    Eigen::Index vertex;
   };
   std::vector<Sample> samples;
   for (Eigen::Index k = 0; k < vertices.rows(); ++k) {
@@ -140,7 +141,7 @@ void print_breakdown(const spline::ScanFitResult& result, const Eigen::MatrixX3d
     const Eigen::Vector3d x = vertices.row(k).transpose();
     const auto projection = spline::project_to_spline(result.spline, p, x);
     samples.push_back({projection.distance, (result.spline.evaluate(p).position - x).norm(),
-                       domain_distance[k].distance, rings[space.domain_index(p.face)]});
+                       domain_distance[k].distance, rings[space.domain_index(p.face)], k});
   }
   const auto rms = [&](auto member, auto keep) {
     double sum = 0.0;
@@ -153,6 +154,9 @@ void print_breakdown(const spline::ScanFitResult& result, const Eigen::MatrixX3d
   const auto spline_d = [](const Sample& s) { return s.spline; };
   double total = 0.0;
   for (const auto& s : samples) total += s.spline * s.spline;
+  std::printf("  last fit: assemble %.2f s, solve %.2f s, %d multiplier iterations, %d rounds\n",
+              result.fit.seconds_assemble, result.fit.seconds_solve,
+              result.fit.constraint_iterations, result.corrections);
   std::printf("  breakdown (%% of diagonal): spline rms %.4f, at parameters %.4f, domain mesh %.4f\n",
               rms(spline_d, all), rms([](const Sample& s) { return s.at_parameter; }, all),
               rms([](const Sample& s) { return s.domain; }, all));
@@ -181,6 +185,23 @@ void print_breakdown(const spline::ScanFitResult& result, const Eigen::MatrixX3d
   const double q99 = sp[sp.size() * 99 / 100], q90 = sp[sp.size() * 9 / 10];
   group("worst 1% spline", [&](const Sample& s) { return s.spline > q99; });
   group("worst 10% spline", [&](const Sample& s) { return s.spline > q90; });
+  std::vector<Sample> worst = samples;
+  std::sort(worst.begin(), worst.end(),
+            [](const Sample& a, const Sample& b) { return a.spline > b.spline; });
+  spline::ManifoldSpline unity{result.spline.space,
+                               Eigen::MatrixX3d::Ones(space.function_count(), 3)};
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, worst.size()); ++i) {
+    const Sample& s = worst[i];
+    const auto& p = result.vertex_parameters[s.vertex];
+    const auto jet = result.spline.evaluate(p);
+    std::printf("    sum of basis %.4f |F_u| %.3g |F_v| %.3g |F_uu| %.3g\n", unity.evaluate(p).position.x(),
+                jet.du.norm(), jet.dv.norm(), jet.duu.norm());
+    std::printf("    worst vertex %6td: spline %.4f at parameter %.4f domain %.4f ring %d face %d "
+                "bary (%.3f %.3f %.3f)\n",
+                static_cast<std::ptrdiff_t>(s.vertex), 100 * s.spline / diag,
+                100 * s.at_parameter / diag, 100 * s.domain / diag, s.ring, p.face,
+                p.barycentric[0], p.barycentric[1], p.barycentric[2]);
+  }
 }
 
 }  // namespace
@@ -274,6 +295,10 @@ int run_spline_fit_benchmark(int argc, char** argv) {
       options.degree = std::stoi(argv[++i]);
     else if (arg == "--lambda" && i + 1 < argc)
       options.fit.smoothing = std::stod(argv[++i]);
+    else if (arg == "--rim-lambda" && i + 1 < argc)
+      options.fit.rim_smoothing = std::stod(argv[++i]);
+    else if (arg == "--correct-steps" && i + 1 < argc)
+      options.correction_iterations = std::stoi(argv[++i]);
     else if (arg == "--correct" && i + 1 < argc)
       options.parameter_corrections = std::stoi(argv[++i]);
     else if (arg == "--breakdown")
@@ -301,7 +326,7 @@ int run_spline_fit_benchmark(int argc, char** argv) {
       "diagonal, in %%. free = no constraint, no fairing.\nSeconds (wall) of the first r's "
       "stages; 'errors' = projection of the vertices.\n"
       "options: --faces N --degree n --r R (only this r; -1 = free) --lambda L --project "
-      "--correct K (parameter-correction rounds) --breakdown\n\n",
+      "--correct K (parameter-correction rounds) --rim-lambda L --breakdown\n\n",
       options.domain_faces, options.degree, options.fit.smoothing,
       options.constrained_fit ? "subject to eq. 14's constraints of r (constrained fit)"
                               : "then fairing of r by eq. 14's projection");

@@ -178,10 +178,18 @@ std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
 
 }  // namespace
 
-FitResult fit_control_points(const ManifoldSplineSpace& space,
-                             const std::vector<DomainPoint>& parameters,
-                             const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
-                             const FitOptions& options) {
+namespace {
+
+// The parts of a fit that do not depend on the points' parameters: the thin-plate rows and the
+// anchor (as normal equations), and the constraint matrix. Parameter correction refits with new
+// parameters many times over the same space, so these are built once.
+struct FitSetup {
+  detail::NormalEquations regulariser;  // thin-plate + anchor; no data rows
+  Eigen::SparseMatrix<double> constraints;
+};
+
+void check_sizes(const ManifoldSplineSpace& space, const std::vector<DomainPoint>& parameters,
+                 const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial) {
   if (static_cast<Eigen::Index>(parameters.size()) != points.rows() ||
       initial.rows() != space.function_count()) {
     throw ricci::InvalidInputError("fit: " + std::to_string(parameters.size()) + " parameters, " +
@@ -189,35 +197,65 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
                                    std::to_string(initial.rows()) + " initial control points for " +
                                    std::to_string(space.function_count()) + " functions");
   }
-  const auto start = Clock::now();
-  FitResult result;
+}
+
+// Data rows by domain face; counts the points in the domain.
+std::vector<detail::FaceRowsSpec> data_rows(const ManifoldSplineSpace& space,
+                                            const std::vector<DomainPoint>& parameters,
+                                            int& count) {
   std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
+  count = 0;
   for (std::size_t k = 0; k < parameters.size(); ++k) {
     const DomainPoint& p = parameters[k];
     if (p.face < 0 || p.face >= space.face_count() || !space.in_domain(p.face)) continue;
     rows[space.domain_index(p.face)].points.push_back(static_cast<int>(k));
-    ++result.points;
+    ++count;
   }
-  if (result.points == 0) throw ricci::InvalidInputError("fit: no point lies in the spline's domain");
+  if (count == 0) throw ricci::InvalidInputError("fit: no point lies in the spline's domain");
+  return rows;
+}
+
+// `points` scales the thin-plate and anchor terms (FitOptions: both are relative to the number
+// of points), so the setup belongs to one point count.
+FitSetup make_fit_setup(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& initial,
+                        const FitOptions& options, int points) {
+  FitSetup setup;
+  std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
   if (options.smoothing > 0.0) {
-    const std::vector<double> w = thin_plate_weights(space, initial, options, result.points);
+    const std::vector<double> w = thin_plate_weights(space, initial, options, points);
     for (std::size_t d = 0; d < rows.size(); ++d) rows[d].thin_plate_weight = w[d];
   }
-  const int threads = std::max(1, options.threads);
-  const double anchor = options.anchor * result.points / space.function_count();
-  detail::NormalEquations normal = detail::assemble_normal_equations(
-      space, rows, parameters, points, anchor, initial, threads);
-  result.seconds_assemble = seconds_since(start);
-
-  const auto solve_start = Clock::now();
-  Eigen::SparseMatrix<double> constraints;
+  const double anchor = options.anchor * points / space.function_count();
+  setup.regulariser = detail::assemble_normal_equations(space, rows, {}, Eigen::MatrixX3d(0, 3),
+                                                        anchor, initial,
+                                                        std::max(1, options.threads));
   if (options.constraint_r >= 0) {
     FairOptions fair_options;
     fair_options.r = options.constraint_r;
-    constraints = fairing_constraints(space, fair_options);
+    setup.constraints = fairing_constraints(space, fair_options);
   } else {
-    constraints.resize(0, space.function_count());
+    setup.constraints.resize(0, space.function_count());
   }
+  return setup;
+}
+
+// The fit with a prepared setup. `reference`: the multipliers' starting point (feasible ideally:
+// the previous round's solution converges in fewer updates).
+FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup,
+                         const std::vector<DomainPoint>& parameters,
+                         const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
+                         const Eigen::MatrixX3d& reference, const FitOptions& options) {
+  const auto start = Clock::now();
+  FitResult result;
+  const std::vector<detail::FaceRowsSpec> rows = data_rows(space, parameters, result.points);
+  const int threads = std::max(1, options.threads);
+  detail::NormalEquations normal = detail::assemble_normal_equations(
+      space, rows, parameters, points, 0.0, initial, threads);
+  normal.lower += setup.regulariser.lower;
+  normal.rhs += setup.regulariser.rhs;
+  result.seconds_assemble = seconds_since(start);
+
+  const auto solve_start = Clock::now();
   ConstrainedSolveOptions solve_options;
   solve_options.penalty = options.constraint_penalty;
   solve_options.max_iterations = options.constraint_iterations;
@@ -234,12 +272,12 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
     }
     try {
       const ConstrainedSolution solution =
-          solve_constrained(normal.lower, normal.rhs, constraints, initial, solve_options);
+          solve_constrained(normal.lower, normal.rhs, setup.constraints, reference, solve_options);
       result.control_points = solution.x;
       result.max_constraint_residual = solution.max_residual;
       result.constraint_iterations = solution.iterations;
       result.reduced_unknowns = solution.reduced_unknowns;
-      result.constraint_rows = static_cast<int>(constraints.rows());
+      result.constraint_rows = static_cast<int>(setup.constraints.rows());
       break;
     } catch (const ricci::SolverError&) {
       if (relative == 1e-10) {
@@ -256,6 +294,23 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   const Eigen::VectorXd distance = residual.rowwise().norm();
   result.rms_at_parameters = std::sqrt(distance.squaredNorm() / result.points);
   result.max_at_parameters = distance.maxCoeff();
+  return result;
+}
+
+}  // namespace
+
+FitResult fit_control_points(const ManifoldSplineSpace& space,
+                             const std::vector<DomainPoint>& parameters,
+                             const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
+                             const FitOptions& options) {
+  check_sizes(space, parameters, points, initial);
+  const auto start = Clock::now();
+  int count = 0;
+  (void)data_rows(space, parameters, count);
+  const FitSetup setup = make_fit_setup(space, initial, options, count);
+  const double setup_seconds = seconds_since(start);
+  FitResult result = fit_with_setup(space, setup, parameters, points, initial, initial, options);
+  result.seconds_assemble += setup_seconds;
   return result;
 }
 
@@ -412,16 +467,23 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   t = stage("fit");
   FitOptions fit_options = options.fit;
   if (options.constrained_fit && options.fair_r >= 0) fit_options.constraint_r = options.fair_r;
-  result.fit = fit_control_points(*space, parameters, data, initial, fit_options);
+  check_sizes(*space, parameters, data, initial);
+  int count = 0;
+  (void)data_rows(*space, parameters, count);
+  // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
+  const FitSetup setup = make_fit_setup(*space, initial, fit_options, count);
+  result.fit = fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options);
   result.timings.fit = seconds_since(t);
 
   result.spline.space = space;
   result.spline.control_points = result.fit.control_points;
   if (options.parameter_corrections > 0) t = stage("correction");
   for (int round = 0; round < options.parameter_corrections; ++round) {
-    parameters = correct_parameters(result.spline, parameters, data, 6, fit_options.threads)
+    parameters = correct_parameters(result.spline, parameters, data,
+                                    options.correction_iterations, fit_options.threads)
                      .parameters;
-    result.fit = fit_control_points(*space, parameters, data, initial, fit_options);
+    result.fit = fit_with_setup(*space, setup, parameters, data, initial,
+                                result.fit.control_points, fit_options);
     result.spline.control_points = result.fit.control_points;
     ++result.corrections;
   }
