@@ -378,21 +378,23 @@ TEST(Fit, ParameterCorrectionLowersTheErrorOfAFitToExactData) {
   EXPECT_LT(rms[3], 0.6 * rms[0]);
 }
 
-// Regression (issue 5): elk, a real scan, at degree 3, r = 1 on a ~1000-face domain had a fit
-// RMS of 0.255% of the diagonal with closest-point parameters on the domain mesh; with the
-// default parameter correction it is 0.180%.
-TEST(Fit, ScanPipelineFitsElkBelowTwoPerMilleAtR1) {
-  const ricci::Mesh dense = ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g1/elk.off");
+// Regression (issue 5): femur, a real scan, at degree 3, r = 1 on a ~2000-face domain had a fit
+// RMS of 0.205% of the diagonal with closest-point parameters on the domain mesh; with the
+// default parameter correction it is 0.170%.
+TEST(Fit, ScanPipelineFitsFemurBelowTwoPerMilleAtR1) {
+  const ricci::Mesh dense =
+      ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/femur.off");
   ScanFitOptions options;
-  options.domain_faces = 1000;
+  options.domain_faces = 2000;
   options.fair_r = 1;
   const ScanFitResult result = fit_scan(dense, options);
-  EXPECT_EQ(result.corrections, 2);
+  EXPECT_EQ(result.corrections, 1);
   Eigen::MatrixX3d points(static_cast<Eigen::Index>(dense.n_vertices()), 3);
   for (auto v : dense.vertices()) points.row(v.idx()) = ricci::to_eigen(dense.point(v)).transpose();
   const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
   const FitErrors errors = fit_errors(result.spline, result.vertex_parameters, points);
-  EXPECT_EQ(errors.points, static_cast<int>(dense.n_vertices()));  // genus 1: no hole
+  // Only the vertices over the cone's hole (their closest domain point on its rim) are left out.
+  EXPECT_GT(errors.points, static_cast<int>(0.98 * static_cast<double>(dense.n_vertices())));
   EXPECT_LT(errors.rms, 2e-3 * diagonal);
   EXPECT_LT(errors.max, 2e-2 * diagonal);
   EXPECT_LT(result.fit.max_constraint_residual, 1e-9 * diagonal);
