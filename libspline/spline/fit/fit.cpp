@@ -57,6 +57,34 @@ bool on_domain_rim(const ManifoldSplineSpace& space, int face, const Eigen::Vect
   return false;
 }
 
+// By mesh vertex: 1 for the corners of rim edges (see on_domain_rim). A vertex of the rim is
+// also a corner of faces that touch the rim only there, whose edge test cannot see it.
+std::vector<char> rim_vertices(const ManifoldSplineSpace& space, const ricci::Mesh& mesh) {
+  std::vector<char> rim(mesh.n_vertices(), 0);
+  for (int face : space.domain_faces()) {
+    const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
+    for (int k = 0; k < 3; ++k) {
+      const int g = space.neighbour(face, k);
+      if (g >= 0 && space.in_domain(g)) continue;
+      for (int c : {(k + 1) % 3, (k + 2) % 3}) rim[mesh.to_vertex_handle(hs[c]).idx()] = 1;
+    }
+  }
+  return rim;
+}
+
+// True when the point is a rim vertex, seen from any face around it. There the functions of the
+// missing faces are missing too: the basis sums to 0.2-0.5 (knight, whose domain is the input
+// itself, so every rim vertex is a data point), and fitting such a point inflates the control
+// points into spikes of up to 47% of the diagonal.
+bool at_rim_vertex(const ricci::Mesh& mesh, const std::vector<char>& rim, int face,
+                   const Eigen::Vector3d& bary) {
+  const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
+  for (int c = 0; c < 3; ++c) {
+    if (bary[c] > 1.0 - 1e-9 && rim[mesh.to_vertex_handle(hs[c]).idx()]) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& space,
@@ -454,9 +482,11 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   }
   const auto closest = ricci::closest_points(mesh, data);
   std::vector<DomainPoint> parameters(closest.size());
+  const std::vector<char> rim = rim_vertices(*space, mesh);
   for (std::size_t k = 0; k < closest.size(); ++k) {
     const bool covered = space->in_domain(closest[k].face) &&
-                         !on_domain_rim(*space, closest[k].face, closest[k].barycentric);
+                         !on_domain_rim(*space, closest[k].face, closest[k].barycentric) &&
+                         !at_rim_vertex(mesh, rim, closest[k].face, closest[k].barycentric);
     parameters[k] = covered ? DomainPoint{closest[k].face, closest[k].barycentric}
                             : DomainPoint{-1, Eigen::Vector3d::Zero()};
     if (!covered) ++result.uncovered_points;
