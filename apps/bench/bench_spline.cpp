@@ -97,30 +97,6 @@ double evaluation_microseconds(const spline::ManifoldSpline& s, int samples) {
 }
 
 
-// Rings (across edges) from the domain's rim by domain index; -1 when there is no rim.
-std::vector<int> rim_rings(const spline::ManifoldSplineSpace& space) {
-  std::vector<int> ring(static_cast<std::size_t>(space.domain_face_count()), -1);
-  std::vector<int> queue;
-  for (int d = 0; d < space.domain_face_count(); ++d) {
-    const int face = space.domain_faces()[d];
-    for (int k = 0; k < 3; ++k) {
-      const int g = space.neighbour(face, k);
-      if (g < 0 || !space.in_domain(g)) ring[d] = 0;
-    }
-    if (ring[d] == 0) queue.push_back(face);
-  }
-  for (std::size_t i = 0; i < queue.size(); ++i) {
-    const int face = queue[i];
-    for (int k = 0; k < 3; ++k) {
-      const int g = space.neighbour(face, k);
-      if (g < 0 || !space.in_domain(g) || ring[space.domain_index(g)] >= 0) continue;
-      ring[space.domain_index(g)] = ring[space.domain_index(face)] + 1;
-      queue.push_back(g);
-    }
-  }
-  return ring;
-}
-
 // --breakdown: where the squared error of the spline comes from. Per input vertex: distance to
 // the spline (projection), to the domain mesh (the simplification's own error) and at the
 // parameter (no projection); grouped by rim ring and by domain-mesh distance.
@@ -128,7 +104,7 @@ void print_breakdown(const spline::ScanFitResult& result, const Eigen::MatrixX3d
                      double diag) {
   const auto& space = *result.spline.space;
   const auto domain_distance = ricci::closest_points(result.atlas.problem.mesh, vertices);
-  const std::vector<int> rings = rim_rings(space);
+  const std::vector<int> rings = spline::domain_rim_rings(space);
   struct Sample {
     double spline, at_parameter, domain;
     int ring;
@@ -320,16 +296,18 @@ int run_spline_fit_benchmark(int argc, char** argv) {
   }
   std::printf(
       "Scan fit (spline::fit_scan): simplify to ~%d faces, one-cone atlas, degree %d, fit "
-      "(lambda %g) to vertices + face centroids, %s;\nerrors: distance of every input vertex "
+      "(lambda %g) to vertices + face centroids, %s, %d parameter-correction round(s);\nerrors: distance of every input vertex "
       "covered by the spline (not over the cone's hole / the puncture; 'uncov': input vertices "
       "and face centroids left out of fit and errors)\nafter projection onto the spline (Gauss-Newton), RMS / max over the bbox "
       "diagonal, in %%. free = no constraint, no fairing.\nSeconds (wall) of the first r's "
-      "stages; 'errors' = projection of the vertices.\n"
+      "stages; 'corr' = the correction rounds (projections + refits); 'errors' = projection of "
+      "the vertices.\n"
       "options: --faces N --degree n --r R (only this r; -1 = free) --lambda L --project "
       "--correct K (parameter-correction rounds) --rim-lambda L --breakdown\n\n",
       options.domain_faces, options.degree, options.fit.smoothing,
       options.constrained_fit ? "subject to eq. 14's constraints of r (constrained fit)"
-                              : "then fairing of r by eq. 14's projection");
+                              : "then fairing of r by eq. 14's projection",
+      options.parameter_corrections);
   std::printf("%-36s %6s %6s %6s %6s", "model", "V", "dom_F", "Nc", "uncov");
   for (int r : rs) {
     const std::string name = r < 0 ? "free" : "r=" + std::to_string(r);

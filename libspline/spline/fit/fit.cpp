@@ -112,31 +112,6 @@ Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& spac
 
 namespace {
 
-// By domain index: rings (across edges) from a face with a missing or non-domain neighbour
-// (0 for those), -1 when no rim exists.
-std::vector<int> rim_distance(const ManifoldSplineSpace& space) {
-  std::vector<int> ring(static_cast<std::size_t>(space.domain_face_count()), -1);
-  std::vector<int> queue;
-  for (int d = 0; d < space.domain_face_count(); ++d) {
-    const int face = space.domain_faces()[d];
-    for (int k = 0; k < 3; ++k) {
-      const int g = space.neighbour(face, k);
-      if (g < 0 || !space.in_domain(g)) ring[d] = 0;
-    }
-    if (ring[d] == 0) queue.push_back(face);
-  }
-  for (std::size_t i = 0; i < queue.size(); ++i) {
-    const int face = queue[i];
-    for (int k = 0; k < 3; ++k) {
-      const int g = space.neighbour(face, k);
-      if (g < 0 || !space.in_domain(g) || ring[space.domain_index(g)] >= 0) continue;
-      ring[space.domain_index(g)] = ring[space.domain_index(face)] + 1;
-      queue.push_back(g);
-    }
-  }
-  return ring;
-}
-
 // Thin-plate weight of each face (by domain index) per unit of quadrature weight: the scale of
 // FitOptions::smoothing times the face's chart area, over J_I when isometric (see FitOptions).
 std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
@@ -194,7 +169,7 @@ std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
   }
   const double h = edge_sum / (3.0 * faces);
   const double scale = points / total_area * std::pow(h, 4);
-  const std::vector<int> rings = rim_distance(space);
+  const std::vector<int> rings = domain_rim_rings(space);
   std::vector<double> weights(static_cast<std::size_t>(faces));
   for (int d = 0; d < faces; ++d) {
     const bool near_rim = rings[d] >= 0 && rings[d] < options.rim_rings;
@@ -410,6 +385,29 @@ FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint
   }
   if (errors.points > 0) errors.rms = std::sqrt(sum / errors.points);
   return errors;
+}
+
+std::vector<int> domain_rim_rings(const ManifoldSplineSpace& space) {
+  std::vector<int> ring(static_cast<std::size_t>(space.domain_face_count()), -1);
+  std::vector<int> queue;
+  for (int d = 0; d < space.domain_face_count(); ++d) {
+    const int face = space.domain_faces()[d];
+    for (int k = 0; k < 3; ++k) {
+      const int g = space.neighbour(face, k);
+      if (g < 0 || !space.in_domain(g)) ring[d] = 0;
+    }
+    if (ring[d] == 0) queue.push_back(face);
+  }
+  for (std::size_t i = 0; i < queue.size(); ++i) {
+    const int face = queue[i];
+    for (int k = 0; k < 3; ++k) {
+      const int g = space.neighbour(face, k);
+      if (g < 0 || !space.in_domain(g) || ring[space.domain_index(g)] >= 0) continue;
+      ring[space.domain_index(g)] = ring[space.domain_index(face)] + 1;
+      queue.push_back(g);
+    }
+  }
+  return ring;
 }
 
 CorrectedParameters correct_parameters(const ManifoldSpline& spline,

@@ -106,6 +106,10 @@ struct FitErrors {
                                    const Eigen::MatrixX3d& points, int iterations = 6,
                                    int threads = 2);
 
+/// By domain index: rings (across edges) from the domain's rim, 0 for a face with a missing or
+/// non-domain neighbour, -1 everywhere when there is no rim (closed surface without a hole).
+[[nodiscard]] std::vector<int> domain_rim_rings(const ManifoldSplineSpace& space);
+
 /// Parameter correction (Hoschek's remedy for poor foot points): each point's parameter moved to
 /// its closest point on `spline` (project_to_spline from the current parameter). A projection
 /// that ends on the domain's rim (clamped there: the point lies over the hole or beyond an open
