@@ -167,9 +167,10 @@ struct ScanFitTimings {
 struct ScanFitResult {
   ricci::OneConeAtlasResult atlas;  ///< atlas.problem.mesh is the spline's domain mesh
   ManifoldSpline spline;
-  /// By input vertex; face -1: not covered by the spline (closest point of the domain mesh in a
-  /// hole face, or on the rim of the domain: over a punctured sphere's hole or beyond an open
-  /// boundary). Those points are neither fitted nor measured.
+  /// By input vertex, after the parameter corrections; face -1: not covered by the spline
+  /// (closest point of the domain mesh in a hole face, or on the rim of the domain, an edge or a
+  /// vertex of it: over a punctured sphere's hole or beyond an open boundary). Those points are
+  /// neither fitted nor measured.
   std::vector<DomainPoint> vertex_parameters;
   int uncovered_points = 0;  ///< vertices and face centroids of the input left out that way
   FitResult fit;
@@ -180,7 +181,8 @@ struct ScanFitResult {
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the
 /// space, parameters of the scan's vertices and face centroids by closest point on the domain
-/// mesh (points not covered by the spline left out, see vertex_parameters), fit, then fair.
+/// mesh (points not covered by the spline left out, see vertex_parameters), fit, correct the
+/// parameters and refit (parameter_corrections rounds), then fair.
 /// \throw as simplify_mesh, build_one_cone_atlas, fit_control_points, fair.
 [[nodiscard]] ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options = {});
 
