@@ -96,6 +96,90 @@ double evaluation_microseconds(const spline::ManifoldSpline& s, int samples) {
   return 1e6 * seconds / samples;
 }
 
+
+// --breakdown: where the squared error of the spline comes from. Per input vertex: distance to
+// the spline (projection), to the domain mesh (the simplification's own error) and at the
+// parameter (no projection); grouped by rim ring and by domain-mesh distance.
+void print_breakdown(const spline::ScanFitResult& result, const Eigen::MatrixX3d& vertices,
+                     double diag) {
+  const auto& space = *result.spline.space;
+  const auto domain_distance = ricci::closest_points(result.atlas.problem.mesh, vertices);
+  const std::vector<int> rings = spline::domain_rim_rings(space);
+  struct Sample {
+    double spline, at_parameter, domain;
+    int ring;
+    Eigen::Index vertex;
+  };
+  std::vector<Sample> samples;
+  for (Eigen::Index k = 0; k < vertices.rows(); ++k) {
+    const auto& p = result.vertex_parameters[k];
+    if (p.face < 0) continue;
+    const Eigen::Vector3d x = vertices.row(k).transpose();
+    const auto projection = spline::project_to_spline(result.spline, p, x);
+    samples.push_back({projection.distance, (result.spline.evaluate(p).position - x).norm(),
+                       domain_distance[k].distance, rings[space.domain_index(p.face)], k});
+  }
+  const auto rms = [&](auto member, auto keep) {
+    double sum = 0.0;
+    int n = 0;
+    for (const auto& s : samples)
+      if (keep(s)) sum += member(s) * member(s), ++n;
+    return n > 0 ? 100.0 * std::sqrt(sum / n) / diag : 0.0;
+  };
+  const auto all = [](const Sample&) { return true; };
+  const auto spline_d = [](const Sample& s) { return s.spline; };
+  double total = 0.0;
+  for (const auto& s : samples) total += s.spline * s.spline;
+  std::printf("  last fit: assemble %.2f s, solve %.2f s, %d multiplier iterations, %d rounds\n",
+              result.fit.seconds_assemble, result.fit.seconds_solve,
+              result.fit.constraint_iterations, result.corrections);
+  std::printf("  breakdown (%% of diagonal): spline rms %.4f, at parameters %.4f, domain mesh %.4f\n",
+              rms(spline_d, all), rms([](const Sample& s) { return s.at_parameter; }, all),
+              rms([](const Sample& s) { return s.domain; }, all));
+  const auto group = [&](const char* name, auto keep) {
+    int n = 0;
+    double sum = 0.0;
+    for (const auto& s : samples)
+      if (keep(s)) sum += s.spline * s.spline, ++n;
+    std::printf("    %-28s points %6d (%5.1f%%)  spline rms %.4f  share of sum sq %5.1f%%  domain rms %.4f\n",
+                name, n, 100.0 * n / samples.size(), rms(spline_d, keep), 100.0 * sum / total,
+                rms([](const Sample& s) { return s.domain; }, keep));
+  };
+  group("rim ring 0-2", [](const Sample& s) { return s.ring >= 0 && s.ring <= 2; });
+  group("rim ring 3-5", [](const Sample& s) { return s.ring >= 3 && s.ring <= 5; });
+  group("rim ring 6+", [](const Sample& s) { return s.ring >= 6 || s.ring < 0; });
+  std::vector<double> dom;
+  for (const auto& s : samples) dom.push_back(s.domain);
+  std::sort(dom.begin(), dom.end());
+  const double p90 = dom[dom.size() * 9 / 10], p50 = dom[dom.size() / 2];
+  group("domain dist <= median", [&](const Sample& s) { return s.domain <= p50; });
+  group("domain dist median..p90", [&](const Sample& s) { return s.domain > p50 && s.domain <= p90; });
+  group("domain dist > p90", [&](const Sample& s) { return s.domain > p90; });
+  std::vector<double> sp;
+  for (const auto& s : samples) sp.push_back(s.spline);
+  std::sort(sp.begin(), sp.end());
+  const double q99 = sp[sp.size() * 99 / 100], q90 = sp[sp.size() * 9 / 10];
+  group("worst 1% spline", [&](const Sample& s) { return s.spline > q99; });
+  group("worst 10% spline", [&](const Sample& s) { return s.spline > q90; });
+  std::vector<Sample> worst = samples;
+  std::sort(worst.begin(), worst.end(),
+            [](const Sample& a, const Sample& b) { return a.spline > b.spline; });
+  spline::ManifoldSpline unity{result.spline.space,
+                               Eigen::MatrixX3d::Ones(space.function_count(), 3)};
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, worst.size()); ++i) {
+    const Sample& s = worst[i];
+    const auto& p = result.vertex_parameters[s.vertex];
+    const auto jet = result.spline.evaluate(p);
+    std::printf("    sum of basis %.4f |F_u| %.3g |F_v| %.3g |F_uu| %.3g\n", unity.evaluate(p).position.x(),
+                jet.du.norm(), jet.dv.norm(), jet.duu.norm());
+    std::printf("    worst vertex %6td: spline %.4f at parameter %.4f domain %.4f ring %d face %d "
+                "bary (%.3f %.3f %.3f)\n",
+                static_cast<std::ptrdiff_t>(s.vertex), 100 * s.spline / diag,
+                100 * s.at_parameter / diag, 100 * s.domain / diag, s.ring, p.face,
+                p.barycentric[0], p.barycentric[1], p.barycentric[2]);
+  }
+}
+
 }  // namespace
 
 int run_spline_benchmark(int, char**) {
@@ -176,6 +260,7 @@ int run_spline_fit_benchmark(int argc, char** argv) {
   std::vector<std::string> models;
   spline::ScanFitOptions options;
   std::vector<int> rs{1, 0, -1};
+  bool breakdown = false;
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--r" && i + 1 < argc)
@@ -186,6 +271,14 @@ int run_spline_fit_benchmark(int argc, char** argv) {
       options.degree = std::stoi(argv[++i]);
     else if (arg == "--lambda" && i + 1 < argc)
       options.fit.smoothing = std::stod(argv[++i]);
+    else if (arg == "--rim-lambda" && i + 1 < argc)
+      options.fit.rim_smoothing = std::stod(argv[++i]);
+    else if (arg == "--correct-steps" && i + 1 < argc)
+      options.correction_iterations = std::stoi(argv[++i]);
+    else if (arg == "--correct" && i + 1 < argc)
+      options.parameter_corrections = std::stoi(argv[++i]);
+    else if (arg == "--breakdown")
+      breakdown = true;
     else if (arg == "--project")
       options.constrained_fit = false;
     else
@@ -203,21 +296,25 @@ int run_spline_fit_benchmark(int argc, char** argv) {
   }
   std::printf(
       "Scan fit (spline::fit_scan): simplify to ~%d faces, one-cone atlas, degree %d, fit "
-      "(lambda %g) to vertices + face centroids, %s;\nerrors: distance of every input vertex "
+      "(lambda %g) to vertices + face centroids, %s, %d parameter-correction round(s);\nerrors: distance of every input vertex "
       "covered by the spline (not over the cone's hole / the puncture; 'uncov': input vertices "
       "and face centroids left out of fit and errors)\nafter projection onto the spline (Gauss-Newton), RMS / max over the bbox "
       "diagonal, in %%. free = no constraint, no fairing.\nSeconds (wall) of the first r's "
-      "stages; 'errors' = projection of the vertices.\n"
-      "options: --faces N --degree n --r R (only this r; -1 = free) --lambda L --project\n\n",
+      "stages; 'corr' = the correction rounds (projections + refits); 'errors' = projection of "
+      "the vertices.\n"
+      "options: --faces N --degree n --r R (only this r; -1 = free) --lambda L --project "
+      "--correct K (parameter-correction rounds) --rim-lambda L --breakdown\n\n",
       options.domain_faces, options.degree, options.fit.smoothing,
       options.constrained_fit ? "subject to eq. 14's constraints of r (constrained fit)"
-                              : "then fairing of r by eq. 14's projection");
+                              : "then fairing of r by eq. 14's projection",
+      options.parameter_corrections);
   std::printf("%-36s %6s %6s %6s %6s", "model", "V", "dom_F", "Nc", "uncov");
   for (int r : rs) {
     const std::string name = r < 0 ? "free" : "r=" + std::to_string(r);
     std::printf(" %8s_rms %8s_max", name.c_str(), name.c_str());
   }
-  std::printf(" %6s %6s %6s %6s %6s %6s\n", "simpl", "atlas", "space", "param", "fit", "errors");
+  std::printf(" %6s %6s %6s %6s %6s %6s %6s\n", "simpl", "atlas", "space", "param", "fit", "corr",
+              "errors");
   for (const std::string& path : models) {
     const std::string name = std::filesystem::path(path).parent_path().filename().string() + "/" +
                              std::filesystem::path(path).filename().string();
@@ -238,6 +335,7 @@ int run_spline_fit_benchmark(int argc, char** argv) {
         std::snprintf(cell, sizeof cell, " %11.4f %12.4f", 100 * errors.rms / diag,
                       100 * errors.max / diag);
         cells += cell;
+        if (breakdown) print_breakdown(result, vertices, diag);
         if (i == 0) {
           first = result.timings;
           first_errors = watch.wall_seconds();
@@ -246,9 +344,10 @@ int run_spline_fit_benchmark(int argc, char** argv) {
           uncovered = result.uncovered_points;
         }
       }
-      std::printf("%-36s %6zu %6d %6d %6d%s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f\n", name.c_str(),
-                  dense.n_vertices(), faces, functions, uncovered, cells.c_str(), first.simplify,
-                  first.atlas, first.space, first.parameters, first.fit, first_errors);
+      std::printf("%-36s %6zu %6d %6d %6d%s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f\n",
+                  name.c_str(), dense.n_vertices(), faces, functions, uncovered, cells.c_str(),
+                  first.simplify, first.atlas, first.space, first.parameters, first.fit,
+                  first.correction, first_errors);
     } catch (const std::exception& e) {
       std::printf("%-36s error: %s\n", name.c_str(), e.what());
     }

@@ -57,6 +57,34 @@ bool on_domain_rim(const ManifoldSplineSpace& space, int face, const Eigen::Vect
   return false;
 }
 
+// By mesh vertex: 1 for the corners of rim edges (see on_domain_rim). A vertex of the rim is
+// also a corner of faces that touch the rim only there, whose edge test cannot see it.
+std::vector<char> rim_vertices(const ManifoldSplineSpace& space, const ricci::Mesh& mesh) {
+  std::vector<char> rim(mesh.n_vertices(), 0);
+  for (int face : space.domain_faces()) {
+    const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
+    for (int k = 0; k < 3; ++k) {
+      const int g = space.neighbour(face, k);
+      if (g >= 0 && space.in_domain(g)) continue;
+      for (int c : {(k + 1) % 3, (k + 2) % 3}) rim[mesh.to_vertex_handle(hs[c]).idx()] = 1;
+    }
+  }
+  return rim;
+}
+
+// True when the point is a rim vertex, seen from any face around it. There the functions of the
+// missing faces are missing too: the basis sums to 0.2-0.5 (knight, whose domain is the input
+// itself, so every rim vertex is a data point), and fitting such a point inflates the control
+// points into spikes of up to 47% of the diagonal.
+bool at_rim_vertex(const ricci::Mesh& mesh, const std::vector<char>& rim, int face,
+                   const Eigen::Vector3d& bary) {
+  const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
+  for (int c = 0; c < 3; ++c) {
+    if (bary[c] > 1.0 - 1e-9 && rim[mesh.to_vertex_handle(hs[c]).idx()]) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& space,
@@ -83,31 +111,6 @@ Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& spac
 }
 
 namespace {
-
-// By domain index: rings (across edges) from a face with a missing or non-domain neighbour
-// (0 for those), -1 when no rim exists.
-std::vector<int> rim_distance(const ManifoldSplineSpace& space) {
-  std::vector<int> ring(static_cast<std::size_t>(space.domain_face_count()), -1);
-  std::vector<int> queue;
-  for (int d = 0; d < space.domain_face_count(); ++d) {
-    const int face = space.domain_faces()[d];
-    for (int k = 0; k < 3; ++k) {
-      const int g = space.neighbour(face, k);
-      if (g < 0 || !space.in_domain(g)) ring[d] = 0;
-    }
-    if (ring[d] == 0) queue.push_back(face);
-  }
-  for (std::size_t i = 0; i < queue.size(); ++i) {
-    const int face = queue[i];
-    for (int k = 0; k < 3; ++k) {
-      const int g = space.neighbour(face, k);
-      if (g < 0 || !space.in_domain(g) || ring[space.domain_index(g)] >= 0) continue;
-      ring[space.domain_index(g)] = ring[space.domain_index(face)] + 1;
-      queue.push_back(g);
-    }
-  }
-  return ring;
-}
 
 // Thin-plate weight of each face (by domain index) per unit of quadrature weight: the scale of
 // FitOptions::smoothing times the face's chart area, over J_I when isometric (see FitOptions).
@@ -166,7 +169,7 @@ std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
   }
   const double h = edge_sum / (3.0 * faces);
   const double scale = points / total_area * std::pow(h, 4);
-  const std::vector<int> rings = rim_distance(space);
+  const std::vector<int> rings = domain_rim_rings(space);
   std::vector<double> weights(static_cast<std::size_t>(faces));
   for (int d = 0; d < faces; ++d) {
     const bool near_rim = rings[d] >= 0 && rings[d] < options.rim_rings;
@@ -178,10 +181,18 @@ std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
 
 }  // namespace
 
-FitResult fit_control_points(const ManifoldSplineSpace& space,
-                             const std::vector<DomainPoint>& parameters,
-                             const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
-                             const FitOptions& options) {
+namespace {
+
+// The parts of a fit that do not depend on the points' parameters: the thin-plate rows and the
+// anchor (as normal equations), and the constraint matrix. Parameter correction refits with new
+// parameters many times over the same space, so these are built once.
+struct FitSetup {
+  detail::NormalEquations regulariser;  // thin-plate + anchor; no data rows
+  Eigen::SparseMatrix<double> constraints;
+};
+
+void check_sizes(const ManifoldSplineSpace& space, const std::vector<DomainPoint>& parameters,
+                 const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial) {
   if (static_cast<Eigen::Index>(parameters.size()) != points.rows() ||
       initial.rows() != space.function_count()) {
     throw ricci::InvalidInputError("fit: " + std::to_string(parameters.size()) + " parameters, " +
@@ -189,35 +200,65 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
                                    std::to_string(initial.rows()) + " initial control points for " +
                                    std::to_string(space.function_count()) + " functions");
   }
-  const auto start = Clock::now();
-  FitResult result;
+}
+
+// Data rows by domain face; counts the points in the domain.
+std::vector<detail::FaceRowsSpec> data_rows(const ManifoldSplineSpace& space,
+                                            const std::vector<DomainPoint>& parameters,
+                                            int& count) {
   std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
+  count = 0;
   for (std::size_t k = 0; k < parameters.size(); ++k) {
     const DomainPoint& p = parameters[k];
     if (p.face < 0 || p.face >= space.face_count() || !space.in_domain(p.face)) continue;
     rows[space.domain_index(p.face)].points.push_back(static_cast<int>(k));
-    ++result.points;
+    ++count;
   }
-  if (result.points == 0) throw ricci::InvalidInputError("fit: no point lies in the spline's domain");
+  if (count == 0) throw ricci::InvalidInputError("fit: no point lies in the spline's domain");
+  return rows;
+}
+
+// `points` scales the thin-plate and anchor terms (FitOptions: both are relative to the number
+// of points), so the setup belongs to one point count.
+FitSetup make_fit_setup(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& initial,
+                        const FitOptions& options, int points) {
+  FitSetup setup;
+  std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
   if (options.smoothing > 0.0) {
-    const std::vector<double> w = thin_plate_weights(space, initial, options, result.points);
+    const std::vector<double> w = thin_plate_weights(space, initial, options, points);
     for (std::size_t d = 0; d < rows.size(); ++d) rows[d].thin_plate_weight = w[d];
   }
-  const int threads = std::max(1, options.threads);
-  const double anchor = options.anchor * result.points / space.function_count();
-  detail::NormalEquations normal = detail::assemble_normal_equations(
-      space, rows, parameters, points, anchor, initial, threads);
-  result.seconds_assemble = seconds_since(start);
-
-  const auto solve_start = Clock::now();
-  Eigen::SparseMatrix<double> constraints;
+  const double anchor = options.anchor * points / space.function_count();
+  setup.regulariser = detail::assemble_normal_equations(space, rows, {}, Eigen::MatrixX3d(0, 3),
+                                                        anchor, initial,
+                                                        std::max(1, options.threads));
   if (options.constraint_r >= 0) {
     FairOptions fair_options;
     fair_options.r = options.constraint_r;
-    constraints = fairing_constraints(space, fair_options);
+    setup.constraints = fairing_constraints(space, fair_options);
   } else {
-    constraints.resize(0, space.function_count());
+    setup.constraints.resize(0, space.function_count());
   }
+  return setup;
+}
+
+// The fit with a prepared setup. `reference`: the multipliers' starting point (feasible ideally:
+// the previous round's solution converges in fewer updates).
+FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup,
+                         const std::vector<DomainPoint>& parameters,
+                         const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
+                         const Eigen::MatrixX3d& reference, const FitOptions& options) {
+  const auto start = Clock::now();
+  FitResult result;
+  const std::vector<detail::FaceRowsSpec> rows = data_rows(space, parameters, result.points);
+  const int threads = std::max(1, options.threads);
+  detail::NormalEquations normal = detail::assemble_normal_equations(
+      space, rows, parameters, points, 0.0, initial, threads);
+  normal.lower += setup.regulariser.lower;
+  normal.rhs += setup.regulariser.rhs;
+  result.seconds_assemble = seconds_since(start);
+
+  const auto solve_start = Clock::now();
   ConstrainedSolveOptions solve_options;
   solve_options.penalty = options.constraint_penalty;
   solve_options.max_iterations = options.constraint_iterations;
@@ -234,12 +275,12 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
     }
     try {
       const ConstrainedSolution solution =
-          solve_constrained(normal.lower, normal.rhs, constraints, initial, solve_options);
+          solve_constrained(normal.lower, normal.rhs, setup.constraints, reference, solve_options);
       result.control_points = solution.x;
       result.max_constraint_residual = solution.max_residual;
       result.constraint_iterations = solution.iterations;
       result.reduced_unknowns = solution.reduced_unknowns;
-      result.constraint_rows = static_cast<int>(constraints.rows());
+      result.constraint_rows = static_cast<int>(setup.constraints.rows());
       break;
     } catch (const ricci::SolverError&) {
       if (relative == 1e-10) {
@@ -256,6 +297,23 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   const Eigen::VectorXd distance = residual.rowwise().norm();
   result.rms_at_parameters = std::sqrt(distance.squaredNorm() / result.points);
   result.max_at_parameters = distance.maxCoeff();
+  return result;
+}
+
+}  // namespace
+
+FitResult fit_control_points(const ManifoldSplineSpace& space,
+                             const std::vector<DomainPoint>& parameters,
+                             const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
+                             const FitOptions& options) {
+  check_sizes(space, parameters, points, initial);
+  const auto start = Clock::now();
+  int count = 0;
+  (void)data_rows(space, parameters, count);
+  const FitSetup setup = make_fit_setup(space, initial, options, count);
+  const double setup_seconds = seconds_since(start);
+  FitResult result = fit_with_setup(space, setup, parameters, points, initial, initial, options);
+  result.seconds_assemble += setup_seconds;
   return result;
 }
 
@@ -329,6 +387,59 @@ FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint
   return errors;
 }
 
+std::vector<int> domain_rim_rings(const ManifoldSplineSpace& space) {
+  std::vector<int> ring(static_cast<std::size_t>(space.domain_face_count()), -1);
+  std::vector<int> queue;
+  for (int d = 0; d < space.domain_face_count(); ++d) {
+    const int face = space.domain_faces()[d];
+    for (int k = 0; k < 3; ++k) {
+      const int g = space.neighbour(face, k);
+      if (g < 0 || !space.in_domain(g)) ring[d] = 0;
+    }
+    if (ring[d] == 0) queue.push_back(face);
+  }
+  for (std::size_t i = 0; i < queue.size(); ++i) {
+    const int face = queue[i];
+    for (int k = 0; k < 3; ++k) {
+      const int g = space.neighbour(face, k);
+      if (g < 0 || !space.in_domain(g) || ring[space.domain_index(g)] >= 0) continue;
+      ring[space.domain_index(g)] = ring[space.domain_index(face)] + 1;
+      queue.push_back(g);
+    }
+  }
+  return ring;
+}
+
+CorrectedParameters correct_parameters(const ManifoldSpline& spline,
+                                       const std::vector<DomainPoint>& parameters,
+                                       const Eigen::MatrixX3d& points, int iterations,
+                                       int threads) {
+  if (static_cast<Eigen::Index>(parameters.size()) != points.rows()) {
+    throw ricci::InvalidInputError("correct_parameters: " + std::to_string(parameters.size()) +
+                                   " parameters for " + std::to_string(points.rows()) + " points");
+  }
+  const ManifoldSplineSpace& space = *spline.space;
+  CorrectedParameters result;
+  result.parameters = parameters;
+  const auto count = static_cast<int>(parameters.size());
+  std::vector<char> moved(parameters.size(), 0);
+  threads = std::max(1, std::min(threads, std::max(count, 1)));
+  detail::run_workers(threads, [&](int t) {
+    for (int k = t; k < count; k += threads) {
+      const DomainPoint& start = parameters[k];
+      if (start.face < 0 || !space.in_domain(start.face)) continue;
+      const Projection p =
+          project_to_spline(spline, start, points.row(k).transpose(), iterations);
+      if (on_domain_rim(space, p.point.face, p.point.barycentric)) continue;
+      if (p.point.face == start.face && p.point.barycentric == start.barycentric) continue;
+      result.parameters[k] = p.point;
+      moved[k] = 1;
+    }
+  });
+  for (char m : moved) result.moved += m;
+  return result;
+}
+
 ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) {
   const auto total_start = Clock::now();
   const auto stage = [&](const char* name) {
@@ -369,9 +480,11 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   }
   const auto closest = ricci::closest_points(mesh, data);
   std::vector<DomainPoint> parameters(closest.size());
+  const std::vector<char> rim = rim_vertices(*space, mesh);
   for (std::size_t k = 0; k < closest.size(); ++k) {
     const bool covered = space->in_domain(closest[k].face) &&
-                         !on_domain_rim(*space, closest[k].face, closest[k].barycentric);
+                         !on_domain_rim(*space, closest[k].face, closest[k].barycentric) &&
+                         !at_rim_vertex(mesh, rim, closest[k].face, closest[k].barycentric);
     parameters[k] = covered ? DomainPoint{closest[k].face, closest[k].barycentric}
                             : DomainPoint{-1, Eigen::Vector3d::Zero()};
     if (!covered) ++result.uncovered_points;
@@ -382,11 +495,30 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   t = stage("fit");
   FitOptions fit_options = options.fit;
   if (options.constrained_fit && options.fair_r >= 0) fit_options.constraint_r = options.fair_r;
-  result.fit = fit_control_points(*space, parameters, data, initial, fit_options);
+  check_sizes(*space, parameters, data, initial);
+  int count = 0;
+  (void)data_rows(*space, parameters, count);
+  // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
+  const FitSetup setup = make_fit_setup(*space, initial, fit_options, count);
+  result.fit = fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options);
   result.timings.fit = seconds_since(t);
 
   result.spline.space = space;
   result.spline.control_points = result.fit.control_points;
+  if (options.parameter_corrections > 0) t = stage("correction");
+  for (int round = 0; round < options.parameter_corrections; ++round) {
+    parameters = correct_parameters(result.spline, parameters, data,
+                                    options.correction_iterations, fit_options.threads)
+                     .parameters;
+    result.fit = fit_with_setup(*space, setup, parameters, data, initial,
+                                result.fit.control_points, fit_options);
+    result.spline.control_points = result.fit.control_points;
+    ++result.corrections;
+  }
+  if (options.parameter_corrections > 0) {
+    result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
+    result.timings.correction = seconds_since(t);
+  }
   if (fit_options.constraint_r >= 0 && fit_options.constraint_r == options.fair_r) {
     // Fitted inside the constraint set: eq. 14's projection would return the same points.
     result.fairing.control_points = result.fit.control_points;
