@@ -180,8 +180,7 @@ std::vector<int> holes_around(const Holes& holes, const Loops& loops, const ricc
 // kept faces around a vertex form more than one fan, or two holes meet) and Euler
 // characteristic V - E + F + (boundary loops, each capped by a disk) = 1. A disk's rim is then
 // one simple loop sharing no vertex with another rim.
-std::vector<char> holes_are_disks(const Holes& holes, const Loops& loops,
-                                  const ricci::Mesh& mesh) {
+std::vector<char> holes_are_disks(const Holes& holes, const Loops& loops, const ricci::Mesh& mesh) {
   std::vector<int> chi(static_cast<std::size_t>(holes.count), 0);
   std::vector<char> pinched(static_cast<std::size_t>(holes.count), 0);
   for (int f = 0; f < static_cast<int>(holes.of_face.size()); ++f) {
@@ -338,13 +337,37 @@ void grow_face_by_face(Regions& regions, const ricci::Mesh& mesh, const Loops& l
 }
 
 // One layer (grow_once and cover_islands), undone and redone face by face on every hole it
-// leaves no disk.
-void grow_layer(Regions& regions, const ricci::Mesh& mesh, const Loops& loops) {
+// leaves no disk (or that merges a boundary loop's hole with another, unless allowed).
+void grow_layer(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
+                const RimMergeOptions& merge) {
   const std::vector<char> before = regions.kept;
+  const Holes old_holes = label_holes(regions, mesh, loops);
   grow_once(regions, mesh);
   cover_islands(regions, mesh);
   const Holes holes = label_holes(regions, mesh, loops);
-  const std::vector<char> disk = holes_are_disks(holes, loops, mesh);
+  std::vector<char> disk = holes_are_disks(holes, loops, mesh);
+  if (!merge.boundary_loops) {
+    // A new hole joining several old ones, one of them holding a boundary loop: undone.
+    std::vector<char> old_has_loop(static_cast<std::size_t>(old_holes.count), 0);
+    for (int l : old_holes.of_loop) old_has_loop[l] = 1;
+    std::vector<int> first(static_cast<std::size_t>(holes.count), -1);
+    std::vector<char> has_loop(static_cast<std::size_t>(holes.count), 0),
+        joins(static_cast<std::size_t>(holes.count), 0);
+    auto note = [&](int now, int was) {
+      if (was < 0) return;
+      has_loop[now] = has_loop[now] || old_has_loop[was];
+      if (first[now] < 0) first[now] = was;
+      joins[now] = joins[now] || first[now] != was;
+    };
+    for (std::size_t f = 0; f < before.size(); ++f) {
+      if (holes.of_face[f] >= 0) note(holes.of_face[f], old_holes.of_face[f]);
+    }
+    for (std::size_t l = 0; l < holes.of_loop.size(); ++l)
+      note(holes.of_loop[l], old_holes.of_loop[l]);
+    for (int h = 0; h < holes.count; ++h) {
+      if (joins[h] && has_loop[h]) disk[h] = 0;
+    }
+  }
   std::vector<int> undone;
   for (int f = 0; f < static_cast<int>(before.size()); ++f) {
     if (before[f] && !regions.kept[f] && !disk[holes.of_face[f]]) {
@@ -407,7 +430,8 @@ std::vector<int> rim_vertices(const Rim& rim, const ricci::Mesh& mesh) {
 }
 
 std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& domain,
-                           const std::vector<char>& atlas_domain, const FindRimsOptions& options) {
+                           const std::vector<char>& atlas_domain, const FindRimsOptions& options,
+                           const RimMergeOptions& merge) {
   const std::size_t faces = mesh.n_faces();
   if (domain.size() != faces || atlas_domain.size() != faces) {
     throw ricci::InvalidInputError("find_rims: the mesh has " + std::to_string(faces) +
@@ -420,7 +444,7 @@ std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& dom
   }
   Regions regions = initial_regions(domain, atlas_domain);
   const Loops loops = boundary_loops(mesh);
-  for (int layer = 0; layer < options.grow; ++layer) grow_layer(regions, mesh, loops);
+  for (int layer = 0; layer < options.grow; ++layer) grow_layer(regions, mesh, loops, merge);
 
   std::vector<char> visited(mesh.n_halfedges(), 0);
   std::vector<Rim> rims;

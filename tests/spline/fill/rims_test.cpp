@@ -252,6 +252,20 @@ TEST(Rims, OpenScansWithNearbyLoops) {
     EXPECT_LT(static_cast<int>(rims.size()), loops) << model << ": nearby loops merge";
     for (const Rim& rim : rims) EXPECT_EQ(rim.kind, Rim::Kind::boundary) << model;
     expect_closable(mesh, domain, rims, 0, model);
+    // Loops left open keep a rim each (`msp fit` without --fill-boundaries), still grown.
+    RimMergeOptions apart;
+    apart.boundary_loops = false;
+    const auto separate = find_rims(mesh, domain, domain, {}, apart);
+    EXPECT_EQ(static_cast<int>(separate.size()), loops) << model;
+    expect_closable(mesh, domain, separate, 0, model + " apart");
+    std::size_t covered = 0;
+    for (const Rim& rim : separate) {
+      EXPECT_FALSE(rim.covered_faces.empty()) << model;
+      covered += rim.covered_faces.size();
+    }
+    std::size_t merged_covered = 0;
+    for (const Rim& rim : rims) merged_covered += rim.covered_faces.size();
+    EXPECT_LT(covered, merged_covered) << model << ": the bands between loops stay";
   }
 }
 
