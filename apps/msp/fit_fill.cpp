@@ -6,6 +6,7 @@
 #include <ricci/mesh/errors.h>
 
 #include <spline/fill/hole_fill.h>
+#include <spline/fill/rims.h>
 #include <spline/tessellate/tessellate_fill.h>
 
 namespace msp {
@@ -66,15 +67,23 @@ std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRun
   std::vector<char> skip(domain.n_faces(), 0);
   for (int f = 0; f < static_cast<int>(domain.n_faces()); ++f)
     skip[static_cast<std::size_t>(f)] = !space.in_domain(f);
-  fills->rims = spline::find_rims(space, domain);
+  // Nearby boundary loops merge into one hole only when they will be capped: left open, every
+  // input loop keeps its own rim, so the surface keeps the input's boundary loops.
+  std::vector<char> in_domain(domain.n_faces(), 0);
+  for (int f = 0; f < static_cast<int>(domain.n_faces()); ++f) in_domain[f] = space.in_domain(f);
+  spline::RimMergeOptions merge;
+  merge.boundary_loops = options.fill_boundaries || run.input.boundary_loops == 0;
+  fills->rims = spline::find_rims(domain, in_domain, space.atlas().in_domain, {}, merge);
   for (const auto& rim : fills->rims) {
     // Skipped even when the rim stays open: the spline collapses in that band (open/holes.off
-    // with the band kept: fit max 27% of the diagonal, 1.8% without it). Growing can merge two
-    // nearby boundary loops into one rim, so an open surface may lose a loop (beetle.off).
+    // with the band kept: fit max 27% of the diagonal, 1.8% without it). With
+    // --fill-boundaries, growing merges boundary loops a ring or two apart into one hole (a
+    // disk: spline/fill/rims.h), so there can be fewer rims than loops (beetle.off: 11, 4).
     for (int f : rim.covered_faces) skip[static_cast<std::size_t>(f)] = 1;
     // A closed input's domain boundary is the punctured sphere's removed star: always capped.
     const bool input_boundary =
         rim.kind == spline::Rim::Kind::boundary && run.input.boundary_loops > 0;
+    if (input_boundary) ++run.boundary_rims;
     if (input_boundary && !options.fill_boundaries) {
       ++run.open_rims;
       continue;
@@ -82,10 +91,16 @@ std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRun
     try {
       spline::FillOptions fill_options;
       // The punctured sphere's hole is a cone hole in all but name: filled like one (its
-      // projection may fold; the patch is laid out on a circle either way).
+      // projection may fold; the patch is laid out on a circle either way). Without the
+      // fallback its fold left the only rim of camel.off and knight_decimated.off open.
       fill_options.require_simple_projection = input_boundary;
+      // Boundary loops the user asked to cap are capped too when no height field fits them
+      // (most of them, e.g. beetle.off's merged ones): watertight, not G1, counted in
+      // fallback_fills.
+      fill_options.fallback_boundary = true;
       fills->fills.push_back(spline::fill_rim(run.scan.spline, domain, rim, fill_options));
       const auto& fill = fills->fills.back();
+      if (!fill.g1) ++run.fallback_fills;
       run.fill_normal_jump_deg = std::max(run.fill_normal_jump_deg, fill.max_normal_jump_deg);
       run.fill_position_gap = std::max(run.fill_position_gap, fill.max_position_gap);
     } catch (const ricci::InvalidInputError& e) {

@@ -225,7 +225,9 @@ FitRun run_fit_pipeline(const ricci::Mesh& dense, const FitRunOptions& options) 
 
   begin("measure");
   run.topology = spline::check_watertight(run.tessellation.triangles, run.tessellation.positions);
-  const int expected_loops = options.fill_boundaries ? 0 : run.input.boundary_loops;
+  // The rims left open on purpose: each is one boundary loop of the result (nearby input loops
+  // merged into one rim count once).
+  const int expected_loops = run.open_rims - static_cast<int>(run.fill_failures.size());
   run.float_topology = float_welded_topology(run.tessellation);
   run.watertight = run.topology.matches(run.input.genus, expected_loops) &&
                    run.float_topology.matches(run.input.genus, expected_loops);
@@ -287,6 +289,8 @@ nlohmann::json fit_report_json(const std::string& path, const FitRun& run,
       {"fill_failures", run.fill_failures},
       {"fit_points_on_fills", run.fit_points_on_fills},
       {"open_rims", run.open_rims},
+      {"boundary_rims", run.boundary_rims},
+      {"fallback_fills", run.fallback_fills},
       {"watertight", run.watertight},
       {"tessellation",
        {{"density", run.tessellation.density},

@@ -43,8 +43,12 @@ struct FitRun {
   spline::WatertightReport float_topology;
   int filled_rims = 0;
   int open_rims = 0;  ///< Rims left open (boundaries without --fill-boundaries, failures).
-  /// Manifold (as computed and as float32 welded by value), and the input's topology minus
-  /// what was filled.
+  /// Rims along the input's boundary loops: with --fill-boundaries fewer than its loops where
+  /// loops a ring or two apart merged into one hole (spline/fill/rims.h); without, one per loop.
+  int boundary_rims = 0;
+  int fallback_fills = 0;  ///< Filled rims whose patch is the positions-only fallback (not G1).
+  /// Manifold (as computed and as float32 welded by value) of the input's genus, with one
+  /// boundary loop per rim left open on purpose (a failed fill leaves one more: not watertight).
   bool watertight = false;
   double fit_rms = 0.0, fit_max = 0.0;  ///< Input vertices to the spline (projection).
   int fit_points = 0;                   ///< Input vertices measured.

@@ -5,6 +5,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/topology/slice.h"
 #include "spline/fill/hole_fill.h"
+#include "spline/fill/rims.h"
 
 namespace spline {
 namespace {
@@ -70,19 +71,147 @@ ricci::HalfedgeHandle next_rim_halfedge(const Regions& regions, const ricci::Mes
                              std::to_string(mesh.to_vertex_handle(h).idx()));
 }
 
-Regions initial_regions(const ManifoldSplineSpace& space, const ricci::Mesh& mesh) {
+Regions initial_regions(const std::vector<char>& domain, const std::vector<char>& atlas_domain) {
   Regions regions;
-  regions.kept.assign(mesh.n_faces(), 0);
-  regions.rank.assign(mesh.n_faces(), 3);
-  for (auto f : mesh.faces()) {
-    const int i = f.idx();
-    regions.kept[i] = space.in_domain(i) ? 1 : 0;
+  regions.kept.assign(domain.size(), 0);
+  regions.rank.assign(domain.size(), 3);
+  for (std::size_t i = 0; i < domain.size(); ++i) {
+    regions.kept[i] = domain[i] ? 1 : 0;
     if (!regions.kept[i]) {
-      regions.rank[i] =
-          kind_rank(space.atlas().in_domain[i] ? Rim::Kind::excluded : Rim::Kind::cone_hole);
+      regions.rank[i] = kind_rank(atlas_domain[i] ? Rim::Kind::excluded : Rim::Kind::cone_hole);
     }
   }
   return regions;
+}
+
+// The mesh's boundary loops: by halfedge, the loop of a boundary halfedge (-1 otherwise).
+struct Loops {
+  std::vector<int> of_halfedge;
+  int count = 0;
+};
+
+Loops boundary_loops(const ricci::Mesh& mesh) {
+  Loops loops;
+  loops.of_halfedge.assign(mesh.n_halfedges(), -1);
+  for (auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h) || loops.of_halfedge[h.idx()] >= 0) continue;
+    auto c = h;
+    do {
+      loops.of_halfedge[c.idx()] = loops.count;
+      c = mesh.next_halfedge_handle(c);
+    } while (c != h && loops.of_halfedge[c.idx()] < 0);
+    ++loops.count;
+  }
+  return loops;
+}
+
+// Holes: connected components of the faces not kept and the boundary loops, joined across
+// edges (holes meeting at a vertex only stay apart: that vertex is a pinch, see hole_is_disk).
+struct Holes {
+  std::vector<int> of_face;  // by face: its hole, -1 for kept faces
+  std::vector<int> of_loop;  // by boundary loop
+  std::vector<int> rank;     // by hole: smallest rank of its faces and loops
+  int count = 0;
+};
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+Holes label_holes(const Regions& regions, const ricci::Mesh& mesh, const Loops& loops) {
+  const int faces = static_cast<int>(mesh.n_faces());
+  std::vector<int> parent(static_cast<std::size_t>(faces + loops.count));
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  auto node = [&](ricci::HalfedgeHandle h) {  // the hole side of h, -1 when kept
+    if (mesh.is_boundary(h)) return faces + loops.of_halfedge[h.idx()];
+    const int f = mesh.face_handle(h).idx();
+    return regions.kept[f] ? -1 : f;
+  };
+  for (auto e : mesh.edges()) {
+    const int a = node(mesh.halfedge_handle(e, 0)), b = node(mesh.halfedge_handle(e, 1));
+    if (a >= 0 && b >= 0) parent[find_root(parent, a)] = find_root(parent, b);
+  }
+  Holes holes;
+  holes.of_face.assign(static_cast<std::size_t>(faces), -1);
+  holes.of_loop.assign(static_cast<std::size_t>(loops.count), -1);
+  std::vector<int> label(parent.size(), -1);
+  auto label_of = [&](int i) {
+    int& l = label[find_root(parent, i)];
+    if (l < 0) {
+      l = holes.count++;
+      holes.rank.push_back(3);
+    }
+    return l;
+  };
+  for (int f = 0; f < faces; ++f) {
+    if (regions.kept[f]) continue;
+    const int l = holes.of_face[f] = label_of(f);
+    holes.rank[l] = std::min(holes.rank[l], regions.rank[f]);
+  }
+  for (int i = 0; i < loops.count; ++i) {
+    const int l = holes.of_loop[i] = label_of(faces + i);
+    holes.rank[l] = std::min(holes.rank[l], kind_rank(Rim::Kind::boundary));
+  }
+  return holes;
+}
+
+// The hole on the far side of h (its opposite's face or boundary loop), -1 when that is kept.
+int hole_across(const Holes& holes, const Loops& loops, const ricci::Mesh& mesh,
+                ricci::HalfedgeHandle h) {
+  const auto o = mesh.opposite_halfedge_handle(h);
+  if (mesh.is_boundary(o)) return holes.of_loop[loops.of_halfedge[o.idx()]];
+  return holes.of_face[mesh.face_handle(o).idx()];
+}
+
+// The holes around a vertex, in turn order (one entry per face slot; boundary gaps give their
+// loop's hole, kept faces -1).
+std::vector<int> holes_around(const Holes& holes, const Loops& loops, const ricci::Mesh& mesh,
+                              ricci::VertexHandle v) {
+  std::vector<int> around;
+  for (auto h : mesh.voh_range(v)) {
+    around.push_back(mesh.is_boundary(h) ? holes.of_loop[loops.of_halfedge[h.idx()]]
+                                         : holes.of_face[mesh.face_handle(h).idx()]);
+  }
+  return around;
+}
+
+// By hole: whether a patch can close it. The hole must be a disk: no pinch vertex (where the
+// kept faces around a vertex form more than one fan, or two holes meet) and Euler
+// characteristic V - E + F + (boundary loops, each capped by a disk) = 1. A disk's rim is then
+// one simple loop sharing no vertex with another rim.
+std::vector<char> holes_are_disks(const Holes& holes, const Loops& loops, const ricci::Mesh& mesh) {
+  std::vector<int> chi(static_cast<std::size_t>(holes.count), 0);
+  std::vector<char> pinched(static_cast<std::size_t>(holes.count), 0);
+  for (int f = 0; f < static_cast<int>(holes.of_face.size()); ++f) {
+    if (holes.of_face[f] >= 0) ++chi[holes.of_face[f]];
+  }
+  for (int l : holes.of_loop) ++chi[l];
+  std::vector<int> touched;
+  for (auto v : mesh.vertices()) {
+    const auto around = holes_around(holes, loops, mesh, v);
+    touched.assign(around.begin(), around.end());
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    int changes = 0;
+    for (std::size_t i = 0; i < around.size(); ++i)
+      changes += around[i] != around[(i + 1) % around.size()];
+    for (int l : touched) {
+      if (l < 0) continue;
+      ++chi[l];
+      // A hole and the kept faces alternate once (two changes); all faces in one hole: none.
+      if (changes > 2) pinched[l] = 1;
+    }
+  }
+  for (auto e : mesh.edges()) {
+    const int a = hole_across(holes, loops, mesh, mesh.halfedge_handle(e, 0));
+    const int b = hole_across(holes, loops, mesh, mesh.halfedge_handle(e, 1));
+    if (a >= 0) --chi[a];
+    if (b >= 0 && b != a) --chi[b];
+  }
+  std::vector<char> disk(static_cast<std::size_t>(holes.count), 0);
+  for (int l = 0; l < holes.count; ++l) disk[l] = !pinched[l] && chi[l] == 1;
+  return disk;
 }
 
 // One layer: every kept face touching a rim vertex is covered, with the rank of that vertex's
@@ -158,11 +287,103 @@ void cover_islands(Regions& regions, const ricci::Mesh& mesh) {
   }
 }
 
+// The one hole kept face f can join while that hole stays a disk apart from every other hole,
+// or -1. f's sides on holes must all be on one hole and form one arc of f's boundary: one edge
+// (f's third vertex then touches no hole) or two or three edges; no vertex of f may touch
+// another hole. Each such step keeps the hole a disk, its rim simple and the rims disjoint.
+int joinable_hole(const Holes& holes, const Loops& loops, const ricci::Mesh& mesh, int face) {
+  int hole = -1, sides = 0;
+  ricci::HalfedgeHandle side;
+  for (auto h : ricci::face_halfedges(mesh, mesh.face_handle(face))) {
+    const int l = hole_across(holes, loops, mesh, h);
+    if (l < 0) continue;
+    if (hole >= 0 && l != hole) return -1;
+    hole = l;
+    side = h;
+    ++sides;
+  }
+  if (sides == 0) return -1;
+  for (auto v : mesh.fv_range(mesh.face_handle(face))) {
+    for (int l : holes_around(holes, loops, mesh, v)) {
+      if (l >= 0 && l != hole) return -1;
+    }
+  }
+  if (sides == 1) {
+    const auto opposite = mesh.to_vertex_handle(mesh.next_halfedge_handle(side));
+    for (int l : holes_around(holes, loops, mesh, opposite)) {
+      if (l >= 0) return -1;
+    }
+  }
+  return hole;
+}
+
+// Covers the candidate faces one at a time (ascending, repeated until none joins) where
+// joinable_hole allows it.
+void grow_face_by_face(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
+                       const std::vector<int>& candidates) {
+  Holes holes = label_holes(regions, mesh, loops);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int f : candidates) {
+      if (!regions.kept[f]) continue;
+      const int hole = joinable_hole(holes, loops, mesh, f);
+      if (hole < 0) continue;
+      regions.kept[f] = 0;
+      regions.rank[f] = holes.rank[hole];
+      holes.of_face[f] = hole;
+      changed = true;
+    }
+  }
+}
+
+// One layer (grow_once and cover_islands), undone and redone face by face on every hole it
+// leaves no disk (or that merges a boundary loop's hole with another, unless allowed).
+void grow_layer(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
+                const RimMergeOptions& merge) {
+  const std::vector<char> before = regions.kept;
+  const Holes old_holes = label_holes(regions, mesh, loops);
+  grow_once(regions, mesh);
+  cover_islands(regions, mesh);
+  const Holes holes = label_holes(regions, mesh, loops);
+  std::vector<char> disk = holes_are_disks(holes, loops, mesh);
+  if (!merge.boundary_loops) {
+    // A new hole joining several old ones, one of them holding a boundary loop: undone.
+    std::vector<char> old_has_loop(static_cast<std::size_t>(old_holes.count), 0);
+    for (int l : old_holes.of_loop) old_has_loop[l] = 1;
+    std::vector<int> first(static_cast<std::size_t>(holes.count), -1);
+    std::vector<char> has_loop(static_cast<std::size_t>(holes.count), 0),
+        joins(static_cast<std::size_t>(holes.count), 0);
+    auto note = [&](int now, int was) {
+      if (was < 0) return;
+      has_loop[now] = has_loop[now] || old_has_loop[was];
+      if (first[now] < 0) first[now] = was;
+      joins[now] = joins[now] || first[now] != was;
+    };
+    for (std::size_t f = 0; f < before.size(); ++f) {
+      if (holes.of_face[f] >= 0) note(holes.of_face[f], old_holes.of_face[f]);
+    }
+    for (std::size_t l = 0; l < holes.of_loop.size(); ++l)
+      note(holes.of_loop[l], old_holes.of_loop[l]);
+    for (int h = 0; h < holes.count; ++h) {
+      if (joins[h] && has_loop[h]) disk[h] = 0;
+    }
+  }
+  std::vector<int> undone;
+  for (int f = 0; f < static_cast<int>(before.size()); ++f) {
+    if (before[f] && !regions.kept[f] && !disk[holes.of_face[f]]) {
+      regions.kept[f] = 1;
+      regions.rank[f] = 3;
+      undone.push_back(f);
+    }
+  }
+  if (!undone.empty()) grow_face_by_face(regions, mesh, loops, undone);
+}
+
 // Covered domain faces reachable from the faces across the rim through covered faces.
-std::vector<int> covered_inside(const ManifoldSplineSpace& space, const Regions& regions,
+std::vector<int> covered_inside(const std::vector<char>& domain, const Regions& regions,
                                 const ricci::Mesh& mesh,
                                 const std::vector<ricci::HalfedgeHandle>& loop) {
-  auto covered = [&](int f) { return !regions.kept[f] && space.in_domain(f); };
+  auto covered = [&](int f) { return !regions.kept[f] && domain[f]; };
   std::vector<char> seen(mesh.n_faces(), 0);
   std::vector<int> stack, faces;
   for (auto h : loop) {
@@ -208,26 +429,29 @@ std::vector<int> rim_vertices(const Rim& rim, const ricci::Mesh& mesh) {
   return vertices;
 }
 
-std::vector<Rim> find_rims(const ManifoldSplineSpace& space, const ricci::Mesh& mesh,
-                           const FindRimsOptions& options) {
-  if (static_cast<int>(mesh.n_faces()) != space.face_count()) {
-    throw ricci::InvalidInputError("find_rims: the mesh has " + std::to_string(mesh.n_faces()) +
-                                   " faces, the spline space " +
-                                   std::to_string(space.face_count()));
+std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& domain,
+                           const std::vector<char>& atlas_domain, const FindRimsOptions& options,
+                           const RimMergeOptions& merge) {
+  const std::size_t faces = mesh.n_faces();
+  if (domain.size() != faces || atlas_domain.size() != faces) {
+    throw ricci::InvalidInputError("find_rims: the mesh has " + std::to_string(faces) +
+                                   " faces, the domain masks " + std::to_string(domain.size()) +
+                                   " and " + std::to_string(atlas_domain.size()));
   }
   if (options.grow < 0) {
     throw ricci::InvalidInputError("find_rims: grow must be >= 0, got " +
                                    std::to_string(options.grow));
   }
-  Regions regions = initial_regions(space, mesh);
-  for (int layer = 0; layer < options.grow; ++layer) grow_once(regions, mesh);
-  if (options.grow > 0) cover_islands(regions, mesh);
+  Regions regions = initial_regions(domain, atlas_domain);
+  const Loops loops = boundary_loops(mesh);
+  for (int layer = 0; layer < options.grow; ++layer) grow_layer(regions, mesh, loops, merge);
 
   std::vector<char> visited(mesh.n_halfedges(), 0);
   std::vector<Rim> rims;
   // Faces ascending, so each loop starts at its smallest face's rim edge.
-  for (int face : space.domain_faces()) {
-    for (auto h : ricci::face_halfedges(mesh, mesh.face_handle(face))) {
+  for (auto fh : mesh.faces()) {
+    if (!domain[fh.idx()]) continue;
+    for (auto h : ricci::face_halfedges(mesh, fh)) {
       if (visited[h.idx()] || !is_rim_halfedge(regions, mesh, h)) continue;
       std::vector<ricci::HalfedgeHandle> loop;
       int rank = 3;
@@ -239,7 +463,7 @@ std::vector<Rim> find_rims(const ManifoldSplineSpace& space, const ricci::Mesh& 
       Rim rim;
       rim.kind = kind_of_rank(rank);
       for (auto c : loop) rim.edges.push_back(rim_edge_of(mesh, c));
-      rim.covered_faces = covered_inside(space, regions, mesh, loop);
+      rim.covered_faces = covered_inside(domain, regions, mesh, loop);
       rims.push_back(std::move(rim));
     }
   }
@@ -247,6 +471,18 @@ std::vector<Rim> find_rims(const ManifoldSplineSpace& space, const ricci::Mesh& 
     return kind_rank(a.kind) < kind_rank(b.kind);
   });
   return rims;
+}
+
+std::vector<Rim> find_rims(const ManifoldSplineSpace& space, const ricci::Mesh& mesh,
+                           const FindRimsOptions& options) {
+  if (static_cast<int>(mesh.n_faces()) != space.face_count()) {
+    throw ricci::InvalidInputError("find_rims: the mesh has " + std::to_string(mesh.n_faces()) +
+                                   " faces, the spline space " +
+                                   std::to_string(space.face_count()));
+  }
+  std::vector<char> domain(mesh.n_faces(), 0);
+  for (int f = 0; f < space.face_count(); ++f) domain[f] = space.in_domain(f) ? 1 : 0;
+  return find_rims(mesh, domain, space.atlas().in_domain, options);
 }
 
 }  // namespace spline

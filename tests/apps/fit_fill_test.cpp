@@ -1,0 +1,103 @@
+// `msp fit` hole filling as a user sees it: the report's watertight, open_rims, filled_rims and
+// boundary_rims agree with the topology of the surface written to the OBJ, for an open model
+// with and without --fill-boundaries and for a closed genus-0 model (the punctured sphere).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <ricci/mesh/io.h>
+#include <ricci/mesh/primitives.h>
+#include <nlohmann/json.hpp>
+
+#include "apps/info_subprocess.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct FitOutput {
+  nlohmann::json report;
+  ricci::SurfaceTopology surface;  ///< Of the OBJ (the welded tessellation).
+};
+
+FitOutput run_fit(const std::string& model, const std::string& name, bool fill_boundaries) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("msp_fit_fill_tests_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::vector<std::string> args = {"fit",
+                                   model,
+                                   "-o",
+                                   (dir / "x.glb").string(),
+                                   "--json",
+                                   (dir / "x.json").string(),
+                                   "--obj",
+                                   (dir / "x.obj").string(),
+                                   "--domain-faces",
+                                   "400",
+                                   "--density",
+                                   "3",
+                                   "--quiet"};
+  if (fill_boundaries) args.push_back("--fill-boundaries");
+  const auto r = msp_test::run_msp(args);
+  EXPECT_EQ(r.exit_status, 0) << r.err;
+  FitOutput out;
+  std::ifstream in(dir / "x.json");
+  out.report = nlohmann::json::parse(in);
+  out.surface = ricci::surface_topology(ricci::read_mesh((dir / "x.obj").string()));
+  fs::remove_all(dir);
+  return out;
+}
+
+// Without --fill-boundaries the boundary rims stay open, one per input loop: the surface keeps
+// the input's genus and boundary loops.
+TEST(FitFill, OpenModelKeepsOneLoopPerOpenRim) {
+  const FitOutput out =
+      run_fit(std::string(MSP_SOURCE_DIR) + "/models/genus2_two_holes.off", "open", false);
+  const auto& r = out.report;
+  EXPECT_TRUE(r["watertight"].get<bool>()) << r.dump(1);
+  EXPECT_EQ(r["boundary_loops"], 2);
+  EXPECT_EQ(r["boundary_rims"], 2);
+  EXPECT_EQ(r["open_rims"], r["boundary_rims"]);
+  EXPECT_TRUE(r["fill_failures"].empty());
+  EXPECT_EQ(out.surface.genus, 2);
+  EXPECT_EQ(out.surface.boundary_loops, 2);
+  EXPECT_EQ(r["tessellation"]["boundary_loops"], r["open_rims"]);
+}
+
+// With --fill-boundaries every rim is capped (a positions-only patch where no height field fits,
+// counted in fallback_fills; nearby loops may share a rim): a closed surface of the input's
+// genus.
+TEST(FitFill, FillBoundariesClosesTheSurface) {
+  const FitOutput out =
+      run_fit(std::string(MSP_SOURCE_DIR) + "/models/genus2_two_holes.off", "filled", true);
+  const auto& r = out.report;
+  EXPECT_TRUE(r["watertight"].get<bool>()) << r.dump(1);
+  EXPECT_EQ(r["open_rims"], 0);
+  EXPECT_GE(r["boundary_rims"].get<int>(), 1);
+  EXPECT_LE(r["boundary_rims"].get<int>(), 2);
+  EXPECT_GE(r["filled_rims"].get<int>(), r["boundary_rims"].get<int>());
+  EXPECT_LE(r["fallback_fills"].get<int>(), r["filled_rims"].get<int>());
+  EXPECT_EQ(out.surface.genus, 2);
+  EXPECT_EQ(out.surface.boundary_loops, 0);
+}
+
+// A closed genus-0 input is punctured by the one-cone pipeline; the puncture is one rim, always
+// capped (without --fill-boundaries too): a closed sphere. The knight's puncture is no height
+// field (its rim normals span more than a hemisphere): main left it open.
+TEST(FitFill, PuncturedSphereIsCapped) {
+  const FitOutput out =
+      run_fit(std::string(MSP_SHARED_MODELS) + "/closed_g0/knight_decimated.off", "sphere", false);
+  const auto& r = out.report;
+  EXPECT_TRUE(r["watertight"].get<bool>()) << r.dump(1);
+  EXPECT_EQ(r["filled_rims"], 1);
+  EXPECT_EQ(r["open_rims"], 0);
+  EXPECT_EQ(r["boundary_rims"], 0);
+  EXPECT_EQ(out.surface.genus, 0);
+  EXPECT_EQ(out.surface.boundary_loops, 0);
+}
+
+}  // namespace
