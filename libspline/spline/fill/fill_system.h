@@ -61,7 +61,8 @@ struct System {
 };
 
 /// Rows whose sum of squares is weight * the thin-plate energy int |H|^2 (thin_plate_rule) over
-/// every triangle of the space.
+/// the triangles of the space, leaving out the quadrature points where the partition of unity
+/// fails (the grid's outer margin).
 void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight);
 
 /// Lays D out as the rim developed into the plane: a curve through q + 1 points per rim edge

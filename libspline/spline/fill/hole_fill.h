@@ -134,7 +134,7 @@ struct FillOptions {
   FillMethod method = FillMethod::automatic;
   /// FillMethod::automatic: a height field whose seam jump exceeds this also tries the
   /// parametric patch.
-  double target_jump_deg = 0.5;
+  double target_jump_deg = 1.0;
   int degree = 3;  ///< degree of the patch's DMS spline, 1..kMaxDmsDegree
   /// Patch triangulation edges per rim edge along D's boundary: the patch's triangles (a
   /// regular grid over D) have sides of about (rim length in the plane) / (refinement * edges).

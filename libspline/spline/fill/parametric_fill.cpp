@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "ricci/mesh/errors.h"
+#include "spline/basis/multi_index.h"
 #include "spline/fill/fill_system.h"
 
 namespace spline::fill_detail {
@@ -32,7 +33,7 @@ struct TangentRows {
 
 // Solves min |A_s x_c - b_c|^2 (each coordinate c) + |A_t x|^2 for the control points.
 Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent, int functions,
-                               const Eigen::Vector3d& anchor_value, const Rim& rim) {
+                               const Eigen::MatrixX3d& anchor_value, const Rim& rim) {
   Eigen::SparseMatrix<double> a(scalar.next_row(), functions);
   a.setFromTriplets(scalar.entries.begin(), scalar.entries.end());
   Eigen::MatrixX3d b(scalar.next_row(), 3);
@@ -57,12 +58,15 @@ Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent,
   normal += blocks;
   Eigen::VectorXd rhs(3 * functions);
   for (int c = 0; c < 3; ++c) rhs.segment(c * functions, functions) = block_rhs.col(c);
-  // A tiny anchor towards the rim's mean point keeps functions that reach nothing determined.
-  const double anchor = 1e-12 * normal.diagonal().sum() / (3.0 * functions);
+  // A small anchor towards the reference (the affine map best fitting the rim) determines the
+  // functions that reach nothing and the combinations the thin-plate quadrature does not see.
+  // Towards a constant instead, it bends those combinations between the quadrature points
+  // whenever the patch is not constant (measured: a planar hole's patch tilted 6 degrees).
+  const double anchor = 1e-9 * normal.diagonal().sum() / (3.0 * functions);
   for (int c = 0; c < 3; ++c) {
     for (int f = 0; f < functions; ++f) {
       normal.coeffRef(c * functions + f, c * functions + f) += anchor;
-      rhs[c * functions + f] += anchor * anchor_value[c];
+      rhs[c * functions + f] += anchor * anchor_value(f, c);
     }
   }
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(normal);
@@ -78,6 +82,35 @@ Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent,
   Eigen::MatrixX3d points(functions, 3);
   for (int c = 0; c < 3; ++c) points.col(c) = x.segment(c * functions, functions);
   return points;
+}
+
+// Control points of the affine map u -> o + M u fitting the rim's samples at D's boundary points
+// in the least-squares sense.
+Eigen::MatrixX3d affine_reference(const HoleFill& fill,
+                                  const std::vector<std::vector<RimSample>>& samples,
+                                  const PlanarDmsSpace& space) {
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d rhs = Eigen::Matrix3d::Zero();
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    for (std::size_t i = 0; i + 1 < samples[j].size(); ++i) {
+      const Eigen::Vector2d u = fill.boundary_points[j][i];
+      const Eigen::Vector3d row(1.0, u.x(), u.y());
+      normal += row * row.transpose();
+      rhs += row * samples[j][i].jet.position.transpose();
+    }
+  }
+  const Eigen::Matrix3d map = normal.ldlt().solve(rhs);  // rows: o, M e_x, M e_y
+  BivariatePolynomial identity;
+  identity.degree = 1;
+  identity.coefficients = Eigen::MatrixXd::Zero(3, 2);
+  identity.coefficients(monomial_index(1, 0), 0) = 1.0;
+  identity.coefficients(monomial_index(0, 1), 1) = 1.0;
+  const Eigen::MatrixXd plane = space.control_points_of(identity);
+  Eigen::MatrixX3d reference(space.function_count(), 3);
+  for (int f = 0; f < space.function_count(); ++f) {
+    reference.row(f) = map.row(0) + plane(f, 0) * map.row(1) + plane(f, 1) * map.row(2);
+  }
+  return reference;
 }
 
 }  // namespace
@@ -142,7 +175,7 @@ HoleFill fill_parametric(const Rim& rim, const std::vector<std::vector<RimSample
   if (options.smoothing > 0.0)
     add_thin_plate_rows(scalar, space, options.smoothing * radius * radius);
   fill.control_points =
-      solve_coupled(scalar, tangent_rows, space.function_count(), fill.origin, rim);
+      solve_coupled(scalar, tangent_rows, space.function_count(), affine_reference(fill, samples, space), rim);
   return fill;
 }
 

@@ -203,6 +203,48 @@ TEST(FillRim, ReproducesAPlane) {
   EXPECT_EQ(filled, 1);
 }
 
+// The parametric patch over a planar hole: D is the rim developed into the plane, which for a
+// planar rim is the rim itself up to a rigid motion (corner distances kept), and P is the plane
+// (every target lies in it, so the least squares keeps the normal component at zero).
+TEST(FillRim, ParametricPatchReproducesAPlane) {
+  const PlaneCase& c = plane_case();
+  const auto rims = find_rims(*c.space, c.atlas.problem.mesh);
+  const Eigen::Vector3d normal = Eigen::Vector3d(-0.3, 0.2, 1.0).normalized();
+  FillOptions options;
+  options.method = FillMethod::parametric;
+  int filled = 0;
+  for (const Rim& rim : rims) {
+    const double rim_x =
+        c.spline.evaluate({rim.edges[0].face, rim_edge_barycentric(rim.edges[0], 0)}).position.x();
+    if (std::abs(rim_x) > 0.6) continue;  // the outer loop
+    const HoleFill fill = fill_rim(c.spline, c.atlas.problem.mesh, rim, options);
+    ++filled;
+    EXPECT_TRUE(fill.g1);
+    // Not 1e-12: the thin plate leaves out the quadrature points where the partition of unity
+    // holds only to 1e-9: the patch is planar to ~4e-6 of the hole's size (1e-4 degrees at
+    // the seam).
+    EXPECT_LT(fill.max_normal_jump_deg, 1e-3);
+    EXPECT_LT(fill.max_position_gap, 1e-6);
+    const int m = static_cast<int>(rim.edges.size());
+    for (int j = 0; j < m; ++j) {
+      for (int k = j + 1; k < m; ++k) {
+        const Eigen::Vector3d a =
+            c.spline.evaluate({rim.edges[j].face, rim_edge_barycentric(rim.edges[j], 0)}).position;
+        const Eigen::Vector3d b =
+            c.spline.evaluate({rim.edges[k].face, rim_edge_barycentric(rim.edges[k], 0)}).position;
+        EXPECT_NEAR((fill.corners[j] - fill.corners[k]).norm(), (a - b).norm(), 1e-9);
+      }
+    }
+    for (int k = 0; k < 50; ++k) {
+      const Eigen::Vector2d u = fill.center + 0.2 * Eigen::Vector2d::Random();
+      const PatchPoint p = fill.evaluate(u);
+      EXPECT_NEAR((p.position - Eigen::Vector3d(0, 0, 0.5)).dot(normal), 0.0, 1e-5);
+      EXPECT_GT(p.normal.dot(normal), 1.0 - 1e-9);
+    }
+  }
+  EXPECT_EQ(filled, 1);
+}
+
 // Real fitted scans: the patch meets the surface with a normal jump below 1 degree at 100
 // samples per rim edge.
 TEST(FillRim, MeetsFittedScansWithG1) {
