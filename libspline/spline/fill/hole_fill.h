@@ -37,12 +37,14 @@
 //    across it the tangent-plane vector S_t x n / |D_t| pointing into the hole, which fixes the
 //    orientation (P_x x P_y along n) and keeps P from folding; plus the thin plate. One sparse
 //    least-squares problem in 3 x (function count) unknowns.
-// Measured (msp-bench fill --faces 2000 --per-edge): genus3.off's cone hole 180 -> ~3 degrees,
-// bunny_igl.off's puncture ~1.1 degrees. What is left is the surface itself: its normal turns
-// by up to 1.6 degrees within 1/100 of a rim edge next to the rim's vertices (the fitted DMS
-// spline's structure at the knot-cloud scale), faster than a patch of a few triangles per rim
-// edge follows. Only a positions-only patch (FillMethod::height_field with
-// FillOptions::fallback) is not G1: HoleFill::g1 false.
+// Measured (msp fit defaults, 2000 faces; msp-bench fill --faces 2000 --per-edge for the
+// surface): genus3.off's cone hole 180 -> 3.4 degrees, bunny_igl.off 1.0, horse 0.84. What is
+// left is the surface itself: next to the rim's vertices its normal turns by 1.5-4.4 degrees
+// within 1/100 of a rim edge on the scans (bunny_npm_closed: a 4.4 degree step where the seam
+// jump is 4.9), by 60-95 degrees on joint.off and elephant_cgal.off (creased: their seams
+// stay at ~180), faster than a patch of a few triangles per rim edge can turn (refinement 6:
+// bunny_igl 1.0 -> 0.82 at 4x the cost). Only a positions-only patch (FillMethod::height_field
+// with FillOptions::fallback) is not G1: HoleFill::g1 false.
 //
 // Rim sample convention (the weld shared with the tessellator): rim edge j is sampled at d + 1
 // points t_i = i / d, i = 0..d, linear in the barycentric coordinates of its domain face from the
@@ -167,11 +169,13 @@ struct FillOptions {
   double smoothing = 1e-2;
   /// Smallest accepted cosine between the plane's normal and the surface's normals on the rim.
   double min_normal_cosine = 0.05;
-  /// Cone and excluded-face holes that are no height field are filled anyway by a patch fitted
-  /// to the rim's positions only over the rim laid out on a circle (watertight, consistently
-  /// oriented, NOT G1: HoleFill::g1 false, its fallback_reason says why). Boundary loops throw.
+  /// FillMethod::height_field: cone and excluded-face holes that are no height field are filled
+  /// anyway by a patch fitted to the rim's positions only over the rim laid out on a circle
+  /// (watertight, consistently oriented, NOT G1: HoleFill::g1 false, its fallback_reason says
+  /// why). Boundary loops throw. (FillMethod::automatic makes the parametric patch instead.)
   bool fallback = true;
-  /// Apply the fallback to boundary loops too (e.g. the puncture the one-cone pipeline cuts
+  /// Apply the fallback (automatic: the parametric patch, even when it folds over a loop around
+  /// the surface's outside) to boundary loops too (e.g. the puncture the one-cone pipeline cuts
   /// into a closed genus-0 scan, which the caller must close); off: they throw.
   bool fallback_boundary = false;
   /// Boundary loops only: refuse (throw) when the loop's projection is not simple. Cone and
