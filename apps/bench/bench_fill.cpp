@@ -3,6 +3,7 @@
 // position gaps over the bounding-box diagonal; a rim that cannot be filled prints the reason.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -51,7 +52,7 @@ std::vector<std::string> default_models() {
 
 void fill_model(const std::string& path, const spline::ScanFitOptions& fit_options,
                 const spline::FindRimsOptions& rim_options,
-                const spline::FillOptions& fill_options) {
+                const spline::FillOptions& fill_options, bool per_edge) {
   const std::string name = std::filesystem::path(path).filename().string();
   const auto start = Clock::now();
   spline::ScanFitResult fit;
@@ -74,6 +75,26 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
       std::printf(" %6.2f %9.4f %10.2e %10.2e %6d %s\n", seconds_since(t), fill.max_normal_jump_deg,
                   fill.max_position_gap, fill.rms_position_gap, fill.space->triangle_count(),
                   fill.g1 ? "G1" : "C0 fallback");
+      if (per_edge) {
+        for (std::size_t j = 0; j < rim.edges.size(); ++j) {
+          double worst = 0, worst_t = 0, change = 0, change_t = 0;
+          Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+          for (int i = 0; i <= 100; ++i) {
+            const double tt = i / 100.0;
+            const auto e = rim.edges[j];
+            const auto sj = fit.spline.evaluate({e.face, spline::rim_edge_barycentric(e, tt)});
+            const auto p = fill.evaluate(fill.parameter(static_cast<int>(j), tt));
+            const double a = std::atan2(sj.normal.cross(p.normal).norm(), sj.normal.dot(p.normal)) * 180 / M_PI;
+            if (a > worst) { worst = a; worst_t = tt; }
+            if (i > 0) {
+              const double c = std::atan2(sj.normal.cross(previous).norm(), sj.normal.dot(previous)) * 180 / M_PI;
+              if (c > change) { change = c; change_t = tt; }
+            }
+            previous = sj.normal;
+          }
+          std::printf("   edge %zu worst %.3f at t %.2f  surface normal step max %.3f at %.2f\n", j, worst, worst_t, change, change_t);
+        }
+      }
     } catch (const std::exception& e) {
       std::printf(" %6.2f  not filled: %s\n", seconds_since(t), e.what());
     }
@@ -88,6 +109,7 @@ int run_fill_benchmark(int argc, char** argv) {
   spline::FindRimsOptions rim_options;
   spline::FillOptions fill_options;
   std::vector<std::string> models;
+  bool per_edge = false;
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--faces" && i + 1 < argc)
@@ -98,6 +120,19 @@ int run_fill_benchmark(int argc, char** argv) {
       fill_options.refinement = std::stoi(argv[++i]);
     else if (arg == "--samples" && i + 1 < argc)
       fill_options.fit_samples_per_edge = std::stoi(argv[++i]);
+    else if (arg == "--method" && i + 1 < argc) {
+      const std::string m = argv[++i];
+      fill_options.method = m == "height"       ? spline::FillMethod::height_field
+                            : m == "parametric" ? spline::FillMethod::parametric
+                                                : spline::FillMethod::automatic;
+    } else if (arg == "--cross" && i + 1 < argc)
+      fill_options.cross_weight = std::stod(argv[++i]);
+    else if (arg == "--tangent" && i + 1 < argc)
+      fill_options.tangent_weight = std::stod(argv[++i]);
+    else if (arg == "--max-boundary" && i + 1 < argc)
+      fill_options.max_boundary_vertices = std::stoi(argv[++i]);
+    else if (arg == "--per-edge")
+      per_edge = true;
     else if (arg == "--fill-boundaries")
       fill_options.fallback_boundary = true;
     else if (arg == "--smoothing" && i + 1 < argc)
@@ -110,13 +145,14 @@ int run_fill_benchmark(int argc, char** argv) {
       "Hole filling: fit_scan (~%d domain faces), find_rims (grow %d), fill_rim (refinement "
       "%d, %d fit samples per edge, smoothing %g);\njump: max normal angle (deg) at 100 samples "
       "per rim edge; gaps |P - S| / bbox diagonal; wall seconds.\noptions: --faces N --grow G "
-      "--refinement R --samples Q --smoothing S --fill-boundaries (fallback for boundary loops) "
+      "--refinement R --samples Q --smoothing S --method auto|height|parametric --cross W "
+      "--tangent W --max-boundary B --per-edge (worst jump and surface normal step per rim edge) --fill-boundaries (fallback for boundary loops) "
       "[models...]\n\n",
       fit_options.domain_faces, rim_options.grow, fill_options.refinement,
       fill_options.fit_samples_per_edge, fill_options.smoothing);
   std::printf("%-28s %10s %-8s %5s %6s %6s %9s %10s %10s %6s %s\n", "model", "", "rim", "edges",
               "cover", "s", "jump_deg", "max_gap", "rms_gap", "tris", "patch");
-  for (const auto& path : models) fill_model(path, fit_options, rim_options, fill_options);
+  for (const auto& path : models) fill_model(path, fit_options, rim_options, fill_options, per_edge);
   return 0;
 }
 

@@ -11,31 +11,23 @@
 #include "spline/basis/blossom.h"
 #include "spline/basis/multi_index.h"
 #include "spline/fill/hole_fill.h"
+#include "spline/fill/fill_system.h"
 #include "spline/fill/patch_domain.h"
 
 namespace spline {
 namespace {
 
+using fill_detail::add_thin_plate_rows;
+using fill_detail::patch_space;
+using fill_detail::System;
+using fill_detail::rim_name;
 using fill_detail::RimSample;
-
-// Dunavant's 6-point rule, exact for degree 4 (the thin-plate integrand of a cubic piece has
-// degree 2): barycentric points and weights summing to one.
-struct QuadraturePoint {
-  Eigen::Vector3d bary;
-  double weight;
-};
-std::vector<QuadraturePoint> quadrature_rule() {
-  const double a = 0.445948490915965, wa = 0.223381589678011;
-  const double b = 0.091576213509771, wb = 0.109951743655322;
-  return {{{a, a, 1 - 2 * a}, wa}, {{a, 1 - 2 * a, a}, wa}, {{1 - 2 * a, a, a}, wa},
-          {{b, b, 1 - 2 * b}, wb}, {{b, 1 - 2 * b, b}, wb}, {{1 - 2 * b, b, b}, wb}};
-}
 
 void check_options(const FillOptions& o) {
   const bool ok = o.degree >= 1 && o.degree <= kMaxDmsDegree && o.refinement >= 1 &&
                   o.max_boundary_vertices >= 8 && o.samples_per_edge >= 1 &&
-                  o.fit_samples_per_edge >= 1 && o.position_weight > 0.0 &&
-                  o.tangent_weight >= 0.0 && o.smoothing >= 0.0 && o.min_normal_cosine > 0.0 &&
+                  o.fit_samples_per_edge >= 1 && o.parametric_samples_per_edge >= 1 && o.position_weight > 0.0 &&
+                  o.tangent_weight >= 0.0 && o.cross_weight >= 0.0 && o.smoothing >= 0.0 && o.min_normal_cosine > 0.0 &&
                   o.min_normal_cosine < 1.0;
   if (!ok) {
     throw ricci::InvalidInputError(
@@ -52,88 +44,6 @@ double bounding_diagonal(const ricci::Mesh& mesh) {
     hi = hi.cwiseMax(p);
   }
   return (hi - lo).norm();
-}
-
-const char* kind_name(Rim::Kind kind) {
-  switch (kind) {
-    case Rim::Kind::cone_hole:
-      return "cone hole";
-    case Rim::Kind::boundary:
-      return "boundary loop";
-    case Rim::Kind::excluded:
-      return "excluded-face hole";
-  }
-  return "rim";
-}
-
-std::string rim_name(const Rim& rim) {
-  return std::string(kind_name(rim.kind)) + " of " + std::to_string(rim.edges.size()) +
-         " edges starting at face " + std::to_string(rim.edges[0].face);
-}
-
-// Rows of the scalar least-squares problem for the height's control points.
-struct System {
-  std::vector<Eigen::Triplet<double>> entries;
-  std::vector<Eigen::Vector3d> targets;  // one column per right-hand side
-
-  int next_row() const { return static_cast<int>(targets.size()); }
-
-  // weight * (D_d h - target); d = nullptr: the value.
-  void add(const std::vector<BasisSample>& basis, const PlanarDmsSpace& space,
-           const Eigen::Vector2d* direction, const Eigen::Vector3d& target, double weight) {
-    const int row = next_row();
-    for (const auto& s : basis) {
-      const double d = direction ? s.jet.gradient.dot(*direction) : s.jet.value;
-      entries.emplace_back(row, space.function_index(s.triangle, s.beta), weight * d);
-    }
-    targets.push_back(weight * target);
-  }
-};
-
-// Thin-plate quadrature points of one triangle (barycentric, weight relative to its area): the
-// 6-point rule on the triangle and again on its corner sub-triangles of ratio 0.3 and 0.1. Why
-// the corners: a DMS spline can carry spikes within the knot clouds (radius < inradius / 2
-// around each vertex) that no point of the plain rule sees; measured on eight.off, a fit whose
-// quadrature missed them put values 300 times the hole's size between the seam samples (the
-// plain rule's thin-plate energy 165, densely sampled 1e11).
-std::vector<QuadraturePoint> thin_plate_rule() {
-  const auto base = quadrature_rule();
-  std::vector<QuadraturePoint> rule = base;
-  for (double ratio : {0.3, 0.1}) {
-    for (int corner = 0; corner < 3; ++corner) {
-      for (const auto& q : base) {
-        QuadraturePoint p;
-        p.bary = ratio * q.bary;
-        p.bary[corner] += 1.0 - ratio;
-        p.weight = ratio * ratio * q.weight;
-        rule.push_back(p);
-      }
-    }
-  }
-  return rule;
-}
-
-void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight) {
-  const auto rule = thin_plate_rule();
-  const auto& t = space.triangulation();
-  const double factors[3] = {1.0, std::sqrt(2.0), 1.0};
-  for (int k = 0; k < space.triangle_count(); ++k) {
-    const Eigen::Vector3i v = t.triangles[k];
-    const Eigen::Vector2d a = t.positions[v[0]], b = t.positions[v[1]], c = t.positions[v[2]];
-    const double area = 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-    for (const auto& q : rule) {
-      const double root = std::sqrt(weight * area * q.weight);
-      const auto basis = space.evaluate_basis(q.bary[0] * a + q.bary[1] * b + q.bary[2] * c);
-      for (int r = 0; r < 3; ++r) {
-        const int row = system.next_row();
-        for (const auto& s : basis) {
-          system.entries.emplace_back(row, space.function_index(s.triangle, s.beta),
-                                      root * factors[r] * s.jet.hessian[r]);
-        }
-        system.targets.push_back(Eigen::Vector3d::Zero());
-      }
-    }
-  }
 }
 
 Eigen::MatrixX3d solve(const System& system, int functions, const Eigen::Vector3d& anchor_value,
@@ -215,21 +125,6 @@ Eigen::Vector2d hermite(const Eigen::Vector2d& p0, const Eigen::Vector2d& m0,
   const double s2 = s * s, s3 = s2 * s;
   return (2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * p1 +
          (s3 - s2) * m1;
-}
-
-// Triangle grid over D's box with a margin of two triangle sides.
-std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vector2d>& boundary,
-                                                  double spacing, int degree,
-                                                  const KnotCloudOptions& knots) {
-  Eigen::Vector2d lo = boundary[0], hi = boundary[0];
-  for (const auto& p : boundary) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(2.0 * spacing);
-  PlanarTriangulation t = fill_detail::triangle_grid(lo - margin, hi + margin, spacing);
-  auto clouds = make_knot_clouds(t, degree, knots);
-  return std::make_shared<const PlanarDmsSpace>(std::move(t), std::move(clouds));
 }
 
 }  // namespace
@@ -386,52 +281,14 @@ HoleFill fill_positions(const Rim& rim, const std::vector<std::vector<RimSample>
   HoleFill fill;
   fill.rim = rim;
   fill.g1 = false;
-  std::vector<double> lengths;
-  double total = 0.0;
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  fill.origin.setZero();
-  for (const auto& row : samples) {
-    double length = 0.0;
-    for (int i = 1; i <= q; ++i) length += (row[i].jet.position - row[i - 1].jet.position).norm();
-    for (int i = 0; i < q; ++i) {
-      normal += row[i].jet.normal;
-      fill.origin += row[i].jet.position;
-    }
-    lengths.push_back(length);
-    total += length;
-  }
-  fill.origin /= static_cast<double>(m) * q;
-  if (normal.norm() > 0.0) fill.normal = normal.normalized();
-  if (!(total > 0.0)) {
-    throw ricci::InvalidInputError("fill_rim: the " + rim_name(rim) + " has zero length");
-  }
-  // Each edge's angle mixes its share of the length (0.8) with an equal share (0.2): no edge
-  // takes half the circle, so D stays convex and non-degenerate.
-  const double radius = total / (2.0 * M_PI);
-  double share = 0.0;
-  for (int j = 0; j < m; ++j) {
-    const double angle = -2.0 * M_PI * share;
-    fill.corners.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
-    share += 0.8 * lengths[j] / total + 0.2 / m;
-  }
-  std::vector<Eigen::Vector2d> polygon;  // counter-clockwise
-  for (int j = 0; j < m; ++j) {
-    const Eigen::Vector2d a = fill.corners[j], b = fill.corners[(j + 1) % m];
-    std::vector<Eigen::Vector2d> points, tangents;
-    for (int i = 0; i <= q; ++i) {
-      points.push_back(a + (b - a) * (static_cast<double>(i) / q));
-      tangents.push_back(b - a);
-    }
-    fill.boundary_points.push_back(std::move(points));
-    fill.boundary_tangents.push_back(std::move(tangents));
-  }
-  for (int j = m - 1; j >= 0; --j) polygon.push_back(fill.corners[j]);
+  const std::vector<Eigen::Vector2d> polygon = fill_detail::layout_on_circle(samples, fill);
   const double perimeter = fill_detail::polygon_perimeter(polygon);
   const int boundary_vertices =
       std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
   const double h = perimeter / boundary_vertices;
   fill.space = patch_space(polygon, h, options.degree, options.knots);
   const PlanarDmsSpace& space = *fill.space;
+  const double radius = perimeter / (2.0 * M_PI);
   System system;
   const double w_position = std::sqrt(options.position_weight / (static_cast<double>(m) * q));
   for (int j = 0; j < m; ++j) {
@@ -456,22 +313,54 @@ HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, 
                                    std::to_string(m));
   }
   const auto samples = sample_edges(spline, rim, options.fit_samples_per_edge);
+  const double diagonal = bounding_diagonal(domain_mesh);
+  auto measured = [&](HoleFill fill) {
+    fill.diagonal = diagonal;
+    const SeamReport report = measure_seam(spline, fill, options.samples_per_edge);
+    fill.max_normal_jump_deg = report.max_normal_jump_deg;
+    fill.max_position_gap = report.max_position_gap;
+    fill.rms_position_gap = report.rms_position_gap;
+    fill.seam_samples = report.samples;
+    return fill;
+  };
+  auto parametric_fill = [&]() {
+    return measured(fill_detail::fill_parametric(
+        rim, sample_edges(spline, rim, options.parametric_samples_per_edge), options));
+  };
+  if (options.method == FillMethod::parametric) return parametric_fill();
+  // Boundary loops: the parametric patch only where the caller asks for a cap whatever the
+  // projection (a closed input's puncture: require_simple_projection off) or for fallbacks;
+  // an open disk's outer loop, around the surface's outside, has no sensible cap.
+  const bool parametric_allowed =
+      rim.kind != Rim::Kind::boundary || !options.require_simple_projection ||
+      options.fallback_boundary;
   HoleFill fill;
   try {
-    fill = fill_height_field(rim, samples, options);
+    fill = measured(fill_height_field(rim, samples, options));
   } catch (const ricci::InvalidInputError& e) {
-    const bool allowed =
-        rim.kind == Rim::Kind::boundary ? options.fallback_boundary : options.fallback;
+    const bool allowed = (options.method == FillMethod::automatic && parametric_allowed) ||
+                         (rim.kind == Rim::Kind::boundary ? options.fallback_boundary
+                                                          : options.fallback);
     if (!allowed) throw;
-    fill = fill_positions(rim, samples, options);
+    if (options.method == FillMethod::automatic && parametric_allowed) {
+      HoleFill parametric = parametric_fill();
+      // A boundary loop around the surface's outside (an open disk's outer loop) has no cap
+      // meeting it with the surface's orientation: the patch folds over (~180 degrees).
+      if (rim.kind == Rim::Kind::boundary && !options.fallback_boundary &&
+          parametric.max_normal_jump_deg > 90.0) {
+        throw;
+      }
+      return parametric;
+    }
+    fill = measured(fill_positions(rim, samples, options));
     fill.fallback_reason = e.what();
+    return fill;
   }
-  fill.diagonal = bounding_diagonal(domain_mesh);
-  const SeamReport report = measure_seam(spline, fill, options.samples_per_edge);
-  fill.max_normal_jump_deg = report.max_normal_jump_deg;
-  fill.max_position_gap = report.max_position_gap;
-  fill.rms_position_gap = report.rms_position_gap;
-  fill.seam_samples = report.samples;
+  if (options.method == FillMethod::automatic && parametric_allowed &&
+      fill.max_normal_jump_deg > options.target_jump_deg) {
+    HoleFill parametric = parametric_fill();
+    if (parametric.max_normal_jump_deg < fill.max_normal_jump_deg) return parametric;
+  }
   return fill;
 }
 

@@ -19,13 +19,32 @@
 //  - Orientation: P's normal (P_x x P_y) has a positive n component; the surface's normals along
 //    the rim do too (checked), so the two agree in orientation.
 // Requirements: every surface normal along the rim makes an angle below ~87 degrees with n, and
-// the projected rim is a simple polygon, star-shaped from some point. Otherwise a boundary loop
-// throws, and a cone or excluded-face hole gets the positions-only fallback (FillOptions::
-// fallback: watertight, not G1). Measured (msp-bench fill, 1000 faces): the height field fills
-// the cone holes of eight.off and genus2.off (< 1 degree) but not those of the genus-3 models
-// or most boundary loops, whose rim normals span more than a hemisphere (a rim around a thin
-// handle or a tube's end; on some scans also a wavy fit near the cone). Those need a
-// parametric G1 patch (not a height field): not done yet.
+// the projected rim is a simple polygon, star-shaped from some point.
+//
+// The parametric G1 patch (FillMethod::parametric; FillMethod::automatic uses it where the
+// height field fails or misses FillOptions::target_jump_deg, keeping the better of the two):
+//  - D is the rim developed into the plane (fill_system.h layout_by_development): a curve with
+//    the rim's 3D sample spacing that turns as the rim turns on the surface (along the edges and
+//    at the corners), the hole's curvature spread along it so that it turns once. So D's corners
+//    are convex or reflex where the rim's are: the patch's Jacobian, a linear map at a corner,
+//    cannot turn a convex angle of D into a reflex one of the rim without folding (a convex D
+//    folds: 180 degrees on bunny_igl.off and genus3.off). A D that is not simple or not
+//    star-shaped falls back to the rim laid out on a circle.
+//  - P has three coordinates, fitted at FillOptions::parametric_samples_per_edge samples per
+//    rim edge to the surface's position, to n . D_d P = 0 for D's two boundary directions d
+//    (both derivatives in the surface's tangent plane: G1; rows coupling the coordinates), and,
+//    softly (cross_weight), to an in-plane Jacobian: along D's boundary the rim's derivative,
+//    across it the tangent-plane vector S_t x n / |D_t| pointing into the hole, which fixes the
+//    orientation (P_x x P_y along n) and keeps P from folding; plus the thin plate. One sparse
+//    least-squares problem in 3 x (function count) unknowns.
+// Measured (msp fit defaults, 2000 faces; msp-bench fill --faces 2000 --per-edge for the
+// surface): genus3.off's cone hole 180 -> 3.4 degrees, bunny_igl.off 1.0, horse 0.84. What is
+// left is the surface itself: next to the rim's vertices its normal turns by 1.5-4.4 degrees
+// within 1/100 of a rim edge on the scans (bunny_npm_closed: a 4.4 degree step where the seam
+// jump is 4.9), by 60-95 degrees on joint.off and elephant_cgal.off (creased: their seams
+// stay at ~180), faster than a patch of a few triangles per rim edge can turn (refinement 6:
+// bunny_igl 1.0 -> 0.82 at 4x the cost). Only a positions-only patch (FillMethod::height_field
+// with FillOptions::fallback) is not G1: HoleFill::g1 false.
 //
 // Rim sample convention (the weld shared with the tessellator): rim edge j is sampled at d + 1
 // points t_i = i / d, i = 0..d, linear in the barycentric coordinates of its domain face from the
@@ -104,7 +123,20 @@ struct FindRimsOptions {
 [[nodiscard]] std::vector<Rim> find_rims(const ManifoldSplineSpace& space, const ricci::Mesh& mesh,
                                          const FindRimsOptions& options = {});
 
+/// Which patch fill_rim makes.
+enum class FillMethod {
+  /// The height field when it exists and meets the surface within FillOptions::target_jump_deg;
+  /// otherwise the parametric patch too, keeping the one with the smaller seam jump.
+  automatic,
+  height_field,  ///< the height field only (with the positions-only fallback)
+  parametric,    ///< the parametric G1 patch only
+};
+
 struct FillOptions {
+  FillMethod method = FillMethod::automatic;
+  /// FillMethod::automatic: a height field whose seam jump exceeds this also tries the
+  /// parametric patch.
+  double target_jump_deg = 1.0;
   int degree = 3;  ///< degree of the patch's DMS spline, 1..kMaxDmsDegree
   /// Patch triangulation edges per rim edge along D's boundary: the patch's triangles (a
   /// regular grid over D) have sides of about (rim length in the plane) / (refinement * edges).
@@ -122,17 +154,28 @@ struct FillOptions {
   int fit_samples_per_edge = 96;
   double position_weight = 1e6;  ///< weight of the height rows (dimensionless, see hole_fill.cpp)
   double tangent_weight = 1e6;   ///< weight of the slope (G1) rows
+  /// Parametric patch only: weight of the soft in-plane derivative rows (the rim's derivative
+  /// along D's boundary, a tangent-plane vector into the hole across it). Low on purpose: they
+  /// only keep P from folding; G1 comes from the tangent rows.
+  double cross_weight = 1e5;
+  /// Parametric patch: samples per rim edge in its least-squares objective. Denser than the
+  /// height field's: with 96, bunny_igl.off's patch (2000 faces) tilts 2.9 degrees between
+  /// samples, with 200 1.1; a finer patch (refinement 6, 10) needs still more (the DMS
+  /// functions' structure at the knot-cloud scale).
+  int parametric_samples_per_edge = 200;
   /// Weight of the thin-plate energy of the height. Measured on eight.off and genus2.off (cone
   /// holes, 1000 faces): 1e-4 / 1e-3 let the slope wander between samples (1.5 / 1.1 degrees),
   /// 1 fights the seam (2-3 degrees), 1e-2 gives 0.44 / 0.48.
   double smoothing = 1e-2;
   /// Smallest accepted cosine between the plane's normal and the surface's normals on the rim.
   double min_normal_cosine = 0.05;
-  /// Cone and excluded-face holes that are no height field are filled anyway by a patch fitted
-  /// to the rim's positions only over the rim laid out on a circle (watertight, consistently
-  /// oriented, NOT G1: HoleFill::g1 false, its fallback_reason says why). Boundary loops throw.
+  /// FillMethod::height_field: cone and excluded-face holes that are no height field are filled
+  /// anyway by a patch fitted to the rim's positions only over the rim laid out on a circle
+  /// (watertight, consistently oriented, NOT G1: HoleFill::g1 false, its fallback_reason says
+  /// why). Boundary loops throw. (FillMethod::automatic makes the parametric patch instead.)
   bool fallback = true;
-  /// Apply the fallback to boundary loops too (e.g. the puncture the one-cone pipeline cuts
+  /// Apply the fallback (automatic: the parametric patch, even when it folds over a loop around
+  /// the surface's outside) to boundary loops too (e.g. the puncture the one-cone pipeline cuts
   /// into a closed genus-0 scan, which the caller must close); off: they throw.
   bool fallback_boundary = false;
   /// Boundary loops only: refuse (throw) when the loop's projection is not simple. Cone and

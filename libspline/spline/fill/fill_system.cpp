@@ -1,0 +1,244 @@
+#include "spline/fill/fill_system.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ricci/mesh/errors.h"
+
+namespace spline::fill_detail {
+namespace {
+
+// Dunavant's 6-point rule, exact for degree 4 (the thin-plate integrand of a cubic piece has
+// degree 2): barycentric points and weights summing to one.
+std::vector<QuadraturePoint> quadrature_rule() {
+  const double a = 0.445948490915965, wa = 0.223381589678011;
+  const double b = 0.091576213509771, wb = 0.109951743655322;
+  return {{{a, a, 1 - 2 * a}, wa}, {{a, 1 - 2 * a, a}, wa}, {{1 - 2 * a, a, a}, wa},
+          {{b, b, 1 - 2 * b}, wb}, {{b, 1 - 2 * b, b}, wb}, {{1 - 2 * b, b, b}, wb}};
+}
+
+const char* kind_name(Rim::Kind kind) {
+  switch (kind) {
+    case Rim::Kind::cone_hole:
+      return "cone hole";
+    case Rim::Kind::boundary:
+      return "boundary loop";
+    case Rim::Kind::excluded:
+      return "excluded-face hole";
+  }
+  return "rim";
+}
+
+// The rim's mean point and mean normal; the 3D length of every edge (polyline through samples).
+double rim_frame(const std::vector<std::vector<RimSample>>& samples, HoleFill& fill,
+                 std::vector<double>& lengths) {
+  const int m = static_cast<int>(samples.size());
+  const int q = static_cast<int>(samples[0].size()) - 1;
+  double total = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  fill.origin.setZero();
+  lengths.clear();
+  for (const auto& row : samples) {
+    double length = 0.0;
+    for (int i = 1; i <= q; ++i) length += (row[i].jet.position - row[i - 1].jet.position).norm();
+    for (int i = 0; i < q; ++i) {
+      normal += row[i].jet.normal;
+      fill.origin += row[i].jet.position;
+    }
+    lengths.push_back(length);
+    total += length;
+  }
+  fill.origin /= static_cast<double>(m) * q;
+  if (normal.norm() > 0.0) fill.normal = normal.normalized();
+  if (!(total > 0.0)) {
+    throw ricci::InvalidInputError("fill_rim: the " + rim_name(fill.rim) + " has zero length");
+  }
+  return total;
+}
+
+// D's boundary data from its corners (chords, clockwise in rim order); returns the polygon
+// counter-clockwise.
+std::vector<Eigen::Vector2d> set_chords(HoleFill& fill, int q) {
+  const int m = static_cast<int>(fill.corners.size());
+  fill.boundary_points.clear();
+  fill.boundary_tangents.clear();
+  for (int j = 0; j < m; ++j) {
+    const Eigen::Vector2d a = fill.corners[j], b = fill.corners[(j + 1) % m];
+    std::vector<Eigen::Vector2d> points, tangents;
+    for (int i = 0; i <= q; ++i) {
+      points.push_back(a + (b - a) * (static_cast<double>(i) / q));
+      tangents.push_back(b - a);
+    }
+    fill.boundary_points.push_back(std::move(points));
+    fill.boundary_tangents.push_back(std::move(tangents));
+  }
+  std::vector<Eigen::Vector2d> polygon;  // counter-clockwise
+  for (int j = m - 1; j >= 0; --j) polygon.push_back(fill.corners[j]);
+  return polygon;
+}
+
+}  // namespace
+
+std::vector<QuadraturePoint> thin_plate_rule() {
+  const auto base = quadrature_rule();
+  std::vector<QuadraturePoint> rule = base;
+  for (double ratio : {0.3, 0.1}) {
+    for (int corner = 0; corner < 3; ++corner) {
+      for (const auto& q : base) {
+        QuadraturePoint p;
+        p.bary = ratio * q.bary;
+        p.bary[corner] += 1.0 - ratio;
+        p.weight = ratio * ratio * q.weight;
+        rule.push_back(p);
+      }
+    }
+  }
+  return rule;
+}
+
+std::string rim_name(const Rim& rim) {
+  return std::string(kind_name(rim.kind)) + " of " + std::to_string(rim.edges.size()) +
+         " edges starting at face " + std::to_string(rim.edges[0].face);
+}
+
+std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vector2d>& boundary,
+                                                  double spacing, int degree,
+                                                  const KnotCloudOptions& knots) {
+  Eigen::Vector2d lo = boundary[0], hi = boundary[0];
+  for (const auto& p : boundary) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(2.0 * spacing);
+  PlanarTriangulation t = triangle_grid(lo - margin, hi + margin, spacing);
+  auto clouds = make_knot_clouds(t, degree, knots);
+  return std::make_shared<const PlanarDmsSpace>(std::move(t), std::move(clouds));
+}
+
+std::vector<Eigen::Vector2d> layout_on_circle(const std::vector<std::vector<RimSample>>& samples,
+                                              HoleFill& fill) {
+  const int m = static_cast<int>(samples.size());
+  const int q = static_cast<int>(samples[0].size()) - 1;
+  std::vector<double> lengths;
+  const double total = rim_frame(samples, fill, lengths);
+  const double radius = total / (2.0 * M_PI);
+  double share = 0.0;
+  fill.corners.clear();
+  for (int j = 0; j < m; ++j) {
+    const double angle = -2.0 * M_PI * share;
+    fill.corners.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+    share += 0.8 * lengths[j] / total + 0.2 / m;
+  }
+  fill.center.setZero();
+  return set_chords(fill, q);
+}
+
+std::vector<Eigen::Vector2d> layout_by_development(
+    const std::vector<std::vector<RimSample>>& samples, HoleFill& fill) {
+  const int m = static_cast<int>(samples.size());
+  const int q = static_cast<int>(samples[0].size()) - 1;
+  std::vector<double> arc;
+  const double length = rim_frame(samples, fill, arc);
+  // Clockwise turn (seen from the normal: towards the hole) from tangent a to tangent b.
+  auto turn = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& n) {
+    return -std::atan2(n.dot(a.cross(b)), a.dot(b));
+  };
+  // The rim's turns: along each edge between samples, and at each corner (edge j's t = 1 to
+  // edge j + 1's t = 0).
+  std::vector<std::vector<double>> step(m, std::vector<double>(q)), inner(m, std::vector<double>(q));
+  std::vector<double> corner(m);
+  double total = 0.0;
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < q; ++i) {
+      const RimSample& a = samples[j][i];
+      const RimSample& b = samples[j][i + 1];
+      step[j][i] = (b.jet.position - a.jet.position).norm();
+      inner[j][i] = turn(a.along_derivative, b.along_derivative, (a.jet.normal + b.jet.normal).normalized());
+      total += inner[j][i];
+    }
+    const RimSample& next = samples[(j + 1) % m][0];
+    corner[j] = turn(samples[j][q].along_derivative, next.along_derivative, next.jet.normal);
+    total += corner[j];
+  }
+  // The hole's curvature: spread uniformly by arc length along the edges so that D turns once.
+  const double extra = (2.0 * M_PI - total) / length;
+  fill.corners.clear();
+  fill.boundary_points.assign(m, std::vector<Eigen::Vector2d>(q + 1));
+  fill.boundary_tangents.assign(m, std::vector<Eigen::Vector2d>(q + 1));
+  std::vector<std::vector<double>> arc_at(m, std::vector<double>(q + 1));
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  double angle = 0.0, s = 0.0;
+  auto direction = [](double phi) { return Eigen::Vector2d(std::cos(phi), std::sin(phi)); };
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i <= q; ++i) {
+      fill.boundary_points[j][i] = point;
+      fill.boundary_tangents[j][i] = samples[j][i].along_derivative.norm() * direction(angle);
+      arc_at[j][i] = s;
+      if (i == q) break;
+      const double next = angle - (inner[j][i] + extra * step[j][i]);
+      point += step[j][i] * direction(0.5 * (angle + next));
+      s += step[j][i];
+      angle = next;
+    }
+    angle -= corner[j];
+  }
+  // Close it: subtract the gap linearly in arc length (a constant added to dD/ds).
+  const Eigen::Vector2d gap = point;
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i <= q; ++i) {
+      fill.boundary_points[j][i] -= gap * (arc_at[j][i] / s);
+      fill.boundary_tangents[j][i] -= gap * (samples[j][i].along_derivative.norm() / s);
+    }
+    fill.corners.push_back(fill.boundary_points[j][0]);
+  }
+  std::vector<Eigen::Vector2d> polygon;  // counter-clockwise
+  for (int j = m - 1; j >= 0; --j) {
+    for (int i = q; i >= 1; --i) polygon.push_back(fill.boundary_points[j][i]);
+  }
+  if (!(polygon_area(polygon) > 0.0) || !is_simple(polygon)) return {};
+  Eigen::Vector2d center;
+  if (!star_center(polygon, center)) return {};
+  fill.center = center;
+  return polygon;
+}
+
+void System::add(const std::vector<BasisSample>& basis, const PlanarDmsSpace& space,
+                 const Eigen::Vector2d* direction, const Eigen::Vector3d& target, double weight) {
+  const int row = next_row();
+  for (const auto& s : basis) {
+    const double d = direction ? s.jet.gradient.dot(*direction) : s.jet.value;
+    entries.emplace_back(row, space.function_index(s.triangle, s.beta), weight * d);
+  }
+  targets.push_back(weight * target);
+}
+
+void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight) {
+  const auto rule = thin_plate_rule();
+  const auto& t = space.triangulation();
+  const double factors[3] = {1.0, std::sqrt(2.0), 1.0};
+  for (int k = 0; k < space.triangle_count(); ++k) {
+    const Eigen::Vector3i v = t.triangles[k];
+    const Eigen::Vector2d a = t.positions[v[0]], b = t.positions[v[1]], c = t.positions[v[2]];
+    const double area = 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    for (const auto& q : rule) {
+      const double root = std::sqrt(weight * area * q.weight);
+      const auto basis = space.evaluate_basis(q.bary[0] * a + q.bary[1] * b + q.bary[2] * c);
+      // Near the grid's outer rim functions are missing: there the spline reproduces no affine
+      // map, so an affine patch would pay thin-plate energy and bend to avoid it (measured: a
+      // planar hole's parametric patch tilted 6 degrees). Those points are left out.
+      double sum = 0.0;
+      for (const auto& s : basis) sum += s.jet.value;
+      if (std::abs(sum - 1.0) > 1e-9) continue;
+      for (int r = 0; r < 3; ++r) {
+        const int row = system.next_row();
+        for (const auto& s : basis) {
+          system.entries.emplace_back(row, space.function_index(s.triangle, s.beta),
+                                      root * factors[r] * s.jet.hessian[r]);
+        }
+        system.targets.push_back(Eigen::Vector3d::Zero());
+      }
+    }
+  }
+}
+
+}  // namespace spline::fill_detail

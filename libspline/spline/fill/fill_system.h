@@ -1,0 +1,89 @@
+#pragma once
+// Internal to hole filling: pieces shared by the height-field patch (hole_fill.cpp) and the
+// parametric G1 patch (parametric_fill.cpp): the thin-plate quadrature, the patch's spline space
+// over a triangle grid, D laid out on a circle, rim names for messages.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "spline/basis/planar_space.h"
+#include "spline/fill/hole_fill.h"
+#include "spline/fill/patch_domain.h"
+
+namespace spline::fill_detail {
+
+/// A quadrature point of a triangle: barycentric coordinates, weight relative to the area.
+struct QuadraturePoint {
+  Eigen::Vector3d bary;
+  double weight;
+};
+
+/// Thin-plate quadrature points of one triangle: Dunavant's 6-point rule (exact for degree 4)
+/// on the triangle and again on its corner sub-triangles of ratio 0.3 and 0.1. Why the corners:
+/// a DMS spline can carry spikes within the knot clouds (radius < inradius / 2 around each
+/// vertex) that no point of the plain rule sees; measured on eight.off, a fit whose quadrature
+/// missed them put values 300 times the hole's size between the seam samples (the plain rule's
+/// thin-plate energy 165, densely sampled 1e11).
+[[nodiscard]] std::vector<QuadraturePoint> thin_plate_rule();
+
+/// "cone hole of 24 edges starting at face 17": names a rim in messages.
+[[nodiscard]] std::string rim_name(const Rim& rim);
+
+/// The patch's planar DMS space: a triangle grid of side `spacing` over the box of `boundary`
+/// with a margin of two sides (so every function reaching D is present: partition of unity).
+[[nodiscard]] std::shared_ptr<const PlanarDmsSpace> patch_space(
+    const std::vector<Eigen::Vector2d>& boundary, double spacing, int degree,
+    const KnotCloudOptions& knots);
+
+/// Lays D out on a circle (radius: the rim's 3D length / 2 pi, so D's lengths are about the
+/// surface's): rim edge j becomes the chord corners[j] -> corners[j + 1], clockwise in rim
+/// order, each edge's angle mixing its share of the 3D length (0.8) with an equal share (0.2) so
+/// that no edge takes half the circle (D stays convex and non-degenerate). Sets fill.corners,
+/// boundary_points/boundary_tangents (q + 1 points per edge, linear), origin (the rim's mean
+/// point), normal (mean rim normal) and center (0). Returns D's boundary counter-clockwise.
+/// \throw ricci::InvalidInputError when the rim has zero length.
+[[nodiscard]] std::vector<Eigen::Vector2d> layout_on_circle(
+    const std::vector<std::vector<RimSample>>& samples, HoleFill& fill);
+
+/// Rows of a least-squares problem whose unknowns are one scalar per basis function, with three
+/// right-hand sides (x, y, z or one used column).
+struct System {
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<Eigen::Vector3d> targets;  ///< one column per right-hand side
+
+  [[nodiscard]] int next_row() const { return static_cast<int>(targets.size()); }
+
+  /// The row weight * (D_d f - target); direction nullptr: the value f.
+  void add(const std::vector<BasisSample>& basis, const PlanarDmsSpace& space,
+           const Eigen::Vector2d* direction, const Eigen::Vector3d& target, double weight);
+};
+
+/// Rows whose sum of squares is weight * the thin-plate energy int |H|^2 (thin_plate_rule) over
+/// the triangles of the space, leaving out the quadrature points where the partition of unity
+/// fails (the grid's outer margin).
+void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight);
+
+/// Lays D out as the rim developed into the plane: a curve through q + 1 points per rim edge
+/// with the 3D distances between consecutive samples, turning between them as the rim turns on
+/// the surface (the signed angle between consecutive derivatives about the normal, at the
+/// corners too), plus the hole's curvature spread evenly by arc length so that D turns once, the
+/// closing gap then removed linearly in arc length. boundary_tangents: dD/dt with |dD/dt| =
+/// |dS/dt|. Why: at a corner the patch's Jacobian maps D's two edge directions to the
+/// surface's, and a linear map keeping the orientation keeps an angle convex or reflex; along an
+/// edge it rotates as the rim's tangent does. A convex D (layout_on_circle) folds the patch at
+/// the reflex corners of a scalloped rim (measured: 180 degrees on bunny_igl.off, genus3.off).
+/// Sets what layout_on_circle sets (center: a point D is star-shaped from). Returns D's
+/// boundary counter-clockwise, or an empty vector when it is not simple or not star-shaped.
+[[nodiscard]] std::vector<Eigen::Vector2d> layout_by_development(
+    const std::vector<std::vector<RimSample>>& samples, HoleFill& fill);
+
+/// The parametric G1 patch (parametric_fill.cpp; hole_fill.h says what it solves).
+/// \throw ricci::InvalidInputError when the rim has zero length; ricci::SolverError when the
+///        normal equations cannot be factorised.
+[[nodiscard]] HoleFill fill_parametric(const Rim& rim,
+                                       const std::vector<std::vector<RimSample>>& samples,
+                                       const FillOptions& options);
+
+}  // namespace spline::fill_detail

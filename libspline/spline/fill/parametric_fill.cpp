@@ -1,0 +1,182 @@
+// The parametric G1 patch of hole_fill.h: D the rim laid out on a circle, P = sum c_f N_f with
+// three coordinates, fitted to the surface's position, tangent plane and (softly) a
+// cross-boundary derivative along the rim, plus the thin-plate energy.
+#include <Eigen/CholmodSupport>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <cmath>
+
+#include "ricci/mesh/errors.h"
+#include "spline/basis/multi_index.h"
+#include "spline/fill/fill_system.h"
+
+namespace spline::fill_detail {
+namespace {
+
+// Rows coupling the three coordinates: weight * n . D_d P (unknown c * F + f for coordinate c
+// of function f). Their target is 0 (D_d P in the surface's tangent plane).
+struct TangentRows {
+  std::vector<Eigen::Triplet<double>> entries;
+  int rows = 0;
+
+  void add(const std::vector<BasisSample>& basis, const PlanarDmsSpace& space,
+           const Eigen::Vector2d& direction, const Eigen::Vector3d& normal, double weight) {
+    const int functions = space.function_count();
+    for (const auto& s : basis) {
+      const int f = space.function_index(s.triangle, s.beta);
+      const double d = weight * s.jet.gradient.dot(direction);
+      for (int c = 0; c < 3; ++c) entries.emplace_back(rows, c * functions + f, d * normal[c]);
+    }
+    ++rows;
+  }
+};
+
+// Solves min |A_s x_c - b_c|^2 (each coordinate c) + |A_t x|^2 for the control points.
+Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent, int functions,
+                               const Eigen::MatrixX3d& anchor_value, const Rim& rim) {
+  Eigen::SparseMatrix<double> a(scalar.next_row(), functions);
+  a.setFromTriplets(scalar.entries.begin(), scalar.entries.end());
+  Eigen::MatrixX3d b(scalar.next_row(), 3);
+  for (int i = 0; i < scalar.next_row(); ++i) b.row(i) = scalar.targets[i].transpose();
+  const Eigen::SparseMatrix<double> block = a.transpose() * a;
+  const Eigen::MatrixX3d block_rhs = a.transpose() * b;
+
+  Eigen::SparseMatrix<double> t(tangent.rows, 3 * functions);
+  t.setFromTriplets(tangent.entries.begin(), tangent.entries.end());
+  Eigen::SparseMatrix<double> normal = t.transpose() * t;
+  std::vector<Eigen::Triplet<double>> diagonal_blocks;
+  diagonal_blocks.reserve(3 * static_cast<std::size_t>(block.nonZeros()));
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < block.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(block, k); it; ++it)
+        diagonal_blocks.emplace_back(c * functions + it.row(), c * functions + it.col(),
+                                     it.value());
+    }
+  }
+  Eigen::SparseMatrix<double> blocks(3 * functions, 3 * functions);
+  blocks.setFromTriplets(diagonal_blocks.begin(), diagonal_blocks.end());
+  normal += blocks;
+  Eigen::VectorXd rhs(3 * functions);
+  for (int c = 0; c < 3; ++c) rhs.segment(c * functions, functions) = block_rhs.col(c);
+  // A small anchor towards the reference (the affine map best fitting the rim) determines the
+  // functions that reach nothing and the combinations the thin-plate quadrature does not see.
+  // Towards a constant instead, it bends those combinations between the quadrature points
+  // whenever the patch is not constant (measured: a planar hole's patch tilted 6 degrees).
+  const double anchor = 1e-9 * normal.diagonal().sum() / (3.0 * functions);
+  for (int c = 0; c < 3; ++c) {
+    for (int f = 0; f < functions; ++f) {
+      normal.coeffRef(c * functions + f, c * functions + f) += anchor;
+      rhs[c * functions + f] += anchor * anchor_value(f, c);
+    }
+  }
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(normal);
+  if (solver.info() != Eigen::Success) {
+    throw ricci::SolverError("fill_rim: the normal equations of the parametric patch of the " +
+                             rim_name(rim) + " are not positive definite");
+  }
+  Eigen::VectorXd x = solver.solve(rhs);
+  // One step of iterative refinement: the seam weights make the matrix ill-conditioned.
+  x += solver.solve(rhs - normal * x);
+  if (!x.allFinite())
+    throw ricci::SolverError("fill_rim: the patch solve produced non-finite control points");
+  Eigen::MatrixX3d points(functions, 3);
+  for (int c = 0; c < 3; ++c) points.col(c) = x.segment(c * functions, functions);
+  return points;
+}
+
+// Control points of the affine map u -> o + M u fitting the rim's samples at D's boundary points
+// in the least-squares sense.
+Eigen::MatrixX3d affine_reference(const HoleFill& fill,
+                                  const std::vector<std::vector<RimSample>>& samples,
+                                  const PlanarDmsSpace& space) {
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d rhs = Eigen::Matrix3d::Zero();
+  for (std::size_t j = 0; j < samples.size(); ++j) {
+    for (std::size_t i = 0; i + 1 < samples[j].size(); ++i) {
+      const Eigen::Vector2d u = fill.boundary_points[j][i];
+      const Eigen::Vector3d row(1.0, u.x(), u.y());
+      normal += row * row.transpose();
+      rhs += row * samples[j][i].jet.position.transpose();
+    }
+  }
+  const Eigen::Matrix3d map = normal.ldlt().solve(rhs);  // rows: o, M e_x, M e_y
+  BivariatePolynomial identity;
+  identity.degree = 1;
+  identity.coefficients = Eigen::MatrixXd::Zero(3, 2);
+  identity.coefficients(monomial_index(1, 0), 0) = 1.0;
+  identity.coefficients(monomial_index(0, 1), 1) = 1.0;
+  const Eigen::MatrixXd plane = space.control_points_of(identity);
+  Eigen::MatrixX3d reference(space.function_count(), 3);
+  for (int f = 0; f < space.function_count(); ++f) {
+    reference.row(f) = map.row(0) + plane(f, 0) * map.row(1) + plane(f, 1) * map.row(2);
+  }
+  return reference;
+}
+
+}  // namespace
+
+HoleFill fill_parametric(const Rim& rim, const std::vector<std::vector<RimSample>>& samples,
+                         const FillOptions& options) {
+  const int m = static_cast<int>(rim.edges.size());
+  const int q = static_cast<int>(samples[0].size()) - 1;
+  HoleFill fill;
+  fill.rim = rim;
+  std::vector<Eigen::Vector2d> polygon = layout_by_development(samples, fill);
+  if (polygon.empty()) polygon = layout_on_circle(samples, fill);
+  const double perimeter = polygon_perimeter(polygon);
+  const int boundary_vertices =
+      std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
+  const double h = perimeter / boundary_vertices;
+  fill.space = patch_space(polygon, h, options.degree, options.knots);
+  const PlanarDmsSpace& space = *fill.space;
+  // An orthonormal frame around the mean normal (informative: P is no height field).
+  const Eigen::Vector3d helper =
+      std::abs(fill.normal.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  fill.axes.col(0) = helper.cross(fill.normal).normalized();
+  fill.axes.col(1) = fill.normal.cross(fill.axes.col(0));
+
+  // Weights: position rows in units of length; derivative rows (dimensionless: D's lengths are
+  // about the surface's) scaled by h to match; R^2 int |H|^2 likewise. So the patch scales with
+  // the mesh.
+  const double count = static_cast<double>(m) * q;
+  const double w_position = std::sqrt(options.position_weight / count);
+  // The derivative rows' length scale: the mean rim edge, not h (a finer patch must not weaken
+  // them against the thin plate).
+  const double scale = perimeter / m;
+  const double w_tangent = std::sqrt(options.tangent_weight / count) * scale;
+  const double w_cross = std::sqrt(options.cross_weight / count) * scale;
+  System scalar;
+  TangentRows tangent_rows;
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < q; ++i) {  // t = 1 is the next edge's t = 0
+      const RimSample& s = samples[j][i];
+      const Eigen::Vector3d n = s.jet.normal;
+      const Eigen::Vector2d tangent = fill.boundary_tangents[j][i];
+      const double speed = tangent.norm();
+      const Eigen::Vector2d along = tangent / speed;
+      // D runs clockwise in rim order: its inside is on the right of `along`.
+      const Eigen::Vector2d inward(along.y(), -along.x());
+      const auto basis = space.evaluate_basis(fill.boundary_points[j][i]);
+      scalar.add(basis, space, nullptr, s.jet.position, w_position);
+      // G1: both derivatives of P in the surface's tangent plane.
+      tangent_rows.add(basis, space, along, n, w_tangent);
+      tangent_rows.add(basis, space, inward, n, w_tangent);
+      // The in-plane Jacobian, softly: along D's boundary the rim's own derivative; across it
+      // the tangent-plane vector of the same length pointing into the hole, rate x n (with D's
+      // clockwise boundary this makes P_x x P_y point along n: the surface's orientation). It
+      // keeps P from folding or collapsing.
+      const Eigen::Vector3d rate = s.along_derivative / speed;
+      const Eigen::Vector3d across = rate.cross(n);
+      scalar.add(basis, space, &along, rate, w_cross);
+      scalar.add(basis, space, &inward, across, w_cross);
+    }
+  }
+  const double radius = perimeter / (2.0 * M_PI);
+  if (options.smoothing > 0.0)
+    add_thin_plate_rows(scalar, space, options.smoothing * radius * radius);
+  fill.control_points =
+      solve_coupled(scalar, tangent_rows, space.function_count(), affine_reference(fill, samples, space), rim);
+  return fill;
+}
+
+}  // namespace spline::fill_detail
