@@ -109,7 +109,8 @@ std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
-  args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings"});
+  args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
+                      "polish-threshold"});
   args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R]");
   const std::string path = args.positionals()[0];
   auto t0 = Clock::now();
@@ -123,6 +124,7 @@ int run_one_cone_case(int argc, char** argv) {
   if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
   options.keep_metric = args.has("metric") || args.has("radii");
+  if (args.has("polish-threshold")) options.polish_threshold = std::stod(*args.get("polish-threshold"));
   options.valence.cone_valence_margin = args.get_int("cone-margin", options.valence.cone_valence_margin);
   options.valence.ring_valence = args.get_int("ring-valence", options.valence.ring_valence);
   options.valence.rings = args.get_int("rings", options.valence.rings);
@@ -165,6 +167,10 @@ int run_one_cone_case(int argc, char** argv) {
                         {"factorization", ft.factorization}, {"solve", ft.solve},
                         {"last_attempt_total", ft.total}};
     j["curvature_error"] = r.flow.max_error;
+    j["polish_before"] = r.polish.error_before;
+    j["polish_after"] = r.polish.error_after;
+    j["polish_iterations"] = r.polish.iterations;
+    j["polished"] = r.polished;
     j["flipped"] = signs.flipped;
     j["zero_area"] = signs.zero;
     j["degenerate_in_doubles"] = signs.degenerate_in_doubles;

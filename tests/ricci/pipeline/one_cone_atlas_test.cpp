@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "ricci/mesh/io.h"
@@ -105,6 +106,36 @@ TEST(OneConeAtlas, AutomaticChoiceRunsFewFlows) {
   // start with tangent circles near the cone (their area distortion differs slightly).
   EXPECT_LT(r.flows_for_choice, 50);
   EXPECT_LT(r.flow.max_error, 1e-9);
+}
+
+}  // namespace
+
+namespace {
+
+// The polish is gated on the flow's double-precision defect: it runs exactly when that defect
+// reaches options.polish_threshold, and a skipped polish hands the flow's lengths on unchanged.
+TEST(OneConeAtlas, PolishRunsOnlyAboveItsThreshold) {
+  ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  options.polish_threshold = 0.0;
+  const ricci::OneConeAtlasResult always = ricci::build_one_cone_atlas(mesh, options);
+  EXPECT_TRUE(always.polished);
+  EXPECT_LE(always.polish.error_after, always.polish.error_before);
+
+  options.polish_threshold = std::numeric_limits<double>::infinity();
+  const ricci::OneConeAtlasResult never = ricci::build_one_cone_atlas(mesh, options);
+  EXPECT_FALSE(never.polished);
+  EXPECT_EQ(never.polish.iterations, 0);
+  EXPECT_EQ(never.polish.error_after, never.flow.max_error);
+  EXPECT_EQ(never.flow.lengths, never.polish.lengths);
+  EXPECT_EQ(never.atlas.layout.flipped_faces, 0);
+  EXPECT_LT(never.relative_transition_residual(), 1e-9);
+
+  options.polish_threshold = 0.5 * never.flow.max_error;  // just below the defect: polishes
+  EXPECT_TRUE(ricci::build_one_cone_atlas(mesh, options).polished);
+  options.polish_threshold = 2.0 * never.flow.max_error;  // just above: skips
+  EXPECT_FALSE(ricci::build_one_cone_atlas(mesh, options).polished);
 }
 
 }  // namespace
