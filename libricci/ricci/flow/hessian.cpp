@@ -1,7 +1,6 @@
 #include "ricci/flow/hessian.h"
 
 #include <algorithm>
-#include <utility>
 
 #include "ricci/mesh/errors.h"
 
@@ -41,12 +40,9 @@ void face_angle_derivatives(const MeshTables& t, Geometry g, const FlowState& s,
   if (g == Geometry::Euclidean) {
     // Power centre: for edge k (between i and j) h_k = (d_ik - d_ij cos θ_i)/sin θ_i, where
     // d_ij = ∂l_ij/∂u_i is the distance from v_i to the foot of the power centre on edge ij.
-    // The same h_k follows from corner j; take the corner with the larger sine, since a needle's
-    // tiny angle would divide by a sine that rounds to 0 (a 6π cone on a million faces).
     double w[3];
     for (int k = 0; k < 3; ++k) {
-      int i = (k + 1) % 3, j = (k + 2) % 3;
-      if (sn[j] > sn[i]) std::swap(i, j);
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
       const double d_ij = dl_du_at(t, d0, d1, f, k, v[i]);  // edge ij is opposite k
       const double d_ik = dl_du_at(t, d0, d1, f, j, v[i]);  // edge ik is opposite j
       w[k] = (d_ik - d_ij * c[i]) / (sn[i] * l[k]);
