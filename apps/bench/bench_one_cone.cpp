@@ -103,13 +103,58 @@ FaceSigns face_signs(const ricci::LayoutE2Result& layout, const ricci::Mesh& sli
   return s;
 }
 
+// Ring distance (in edges) of every vertex from `source`.
+std::vector<int> ring_distance(const ricci::Mesh& mesh, int source) {
+  std::vector<int> depth(mesh.n_vertices(), -1);
+  std::vector<int> queue{source};
+  depth[static_cast<size_t>(source)] = 0;
+  for (size_t i = 0; i < queue.size(); ++i) {
+    for (auto w : mesh.vv_range(mesh.vertex_handle(queue[i]))) {
+      if (depth[static_cast<size_t>(w.idx())] < 0) {
+        depth[static_cast<size_t>(w.idx())] = depth[static_cast<size_t>(queue[i])] + 1;
+        queue.push_back(w.idx());
+      }
+    }
+  }
+  return depth;
+}
+
+// Where the flow's line searches broke triangles: the first broken face per Newton iteration,
+// its ring distance from the cone and its smallest and largest 3D corner angles (slivers of
+// the input have one near 0 and one near pi).
+void print_broken_trials(const ricci::OneConeAtlasResult& r) {
+  const ricci::Mesh& mesh = r.problem.mesh;
+  const std::vector<int> depth = r.problem.cone >= 0 ? ring_distance(mesh, r.problem.cone) : std::vector<int>();
+  for (const ricci::BrokenTrial& b : r.flow.broken_faces) {
+    const auto f = mesh.face_handle(b.face);
+    int ring = 1 << 30;
+    std::vector<Eigen::Vector3d> p;
+    for (auto v : mesh.fv_range(f)) {
+      if (!depth.empty()) ring = std::min(ring, depth[static_cast<size_t>(v.idx())]);
+      p.emplace_back(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]);
+    }
+    double lo = M_PI, hi = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d a = p[static_cast<size_t>((k + 1) % 3)] - p[static_cast<size_t>(k)],
+                            c = p[static_cast<size_t>((k + 2) % 3)] - p[static_cast<size_t>(k)];
+      const double angle = std::atan2(a.cross(c).norm(), a.dot(c));
+      lo = std::min(lo, angle);
+      hi = std::max(hi, angle);
+    }
+    std::cerr << "  newton " << b.iteration << ": " << b.trials << " trials broke triangles, first face "
+              << b.face << " (ring " << (depth.empty() ? -1 : ring) << " from the cone, 3D angles " << lo
+              << " .. " << hi << ")\n";
+  }
+}
+
 std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 
 }  // namespace
 
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
-  args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings"});
+  args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
+                      "polish-threshold"});
   args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R]");
   const std::string path = args.positionals()[0];
   auto t0 = Clock::now();
@@ -123,6 +168,7 @@ int run_one_cone_case(int argc, char** argv) {
   if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
   options.keep_metric = args.has("metric") || args.has("radii");
+  if (args.has("polish-threshold")) options.polish_threshold = std::stod(*args.get("polish-threshold"));
   options.valence.cone_valence_margin = args.get_int("cone-margin", options.valence.cone_valence_margin);
   options.valence.ring_valence = args.get_int("ring-valence", options.valence.ring_valence);
   options.valence.rings = args.get_int("rings", options.valence.rings);
@@ -165,6 +211,10 @@ int run_one_cone_case(int argc, char** argv) {
                         {"factorization", ft.factorization}, {"solve", ft.solve},
                         {"last_attempt_total", ft.total}};
     j["curvature_error"] = r.flow.max_error;
+    j["polish_before"] = r.polish.error_before;
+    j["polish_after"] = r.polish.error_after;
+    j["polish_iterations"] = r.polish.iterations;
+    j["polished"] = r.polished;
     j["flipped"] = signs.flipped;
     j["zero_area"] = signs.zero;
     j["degenerate_in_doubles"] = signs.degenerate_in_doubles;
@@ -190,6 +240,7 @@ int run_one_cone_case(int argc, char** argv) {
       Eigen::Index worst_v;
       kerr.maxCoeff(&worst_v);
       std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
+      print_broken_trials(r);
     }
     j["qc_mean"] = r.distortion.quasi_conformal_mean;
     j["qc_max"] = r.distortion.quasi_conformal_max;

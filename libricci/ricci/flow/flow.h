@@ -72,6 +72,17 @@ struct FlowOptions {
   std::function<void(const FlowProgress&)> progress;
 };
 
+/// A Newton iteration whose line search broke triangles (for diagnosis: where the metric runs
+/// into the boundary of the admissible radii).
+struct BrokenTrial {
+  int iteration = 0;  ///< 1-based Newton iteration
+  int face = -1;      ///< first face whose triangle inequality failed in that line search
+  int trials = 0;     ///< trial steps of that line search that broke some triangle
+};
+
+/// At most this many BrokenTrial records are kept per run.
+inline constexpr size_t kMaxBrokenFacesRecorded = 64;
+
 /// Where the solve's time went (seconds).
 struct FlowTimings {
   double setup = 0;          ///< tables, initial metric, target check
@@ -106,6 +117,8 @@ struct FlowResult {
   /// The factorisation actually used (after any fallback).
   LinearSolver solver = LinearSolver::Auto;
   FlowTimings timings;
+  /// Newton iterations whose line search broke triangles, with the first face broken.
+  std::vector<BrokenTrial> broken_faces;
   /// One line per run that did not converge before the reported one (fall-back mode).
   std::vector<std::string> failed_attempts;
 

@@ -153,27 +153,50 @@ struct LineSearch {
   bool accepted = false;
   double step = 1.0;  // fraction of the Newton step taken
   int broken = 0;     // trials that broke a triangle
+  int first_broken_face = -1;  // the face that broke the first such trial
 };
 
 // Backtracking: halve the step while a triangle breaks or ½‖K - K̄‖² does not fall by Armijo's
 // rule (its slope along the Newton step is -‖K - K̄‖²; the Levenberg-Marquardt step of S2 only
-// promises some decrease). On success `trial` holds the new state.
+// promises some decrease). When the Ricci energy E (∇E = K - K̄) is convex, the energy decides
+// instead: a trial is taken where E's slope along the step, φ'(t) = δu·(K - K̄), is still <= 0
+// (E fell all the way there; the first such halving is within a factor 2 of the line minimum),
+// or where the residual falls and φ'(t) is small next to |φ'(0)| (the quadratic phase, where
+// φ'(1) = O(|δu|³)). The residual alone accepts overshoots: at a 6π cone on 160k+ faces the
+// first full step (δu up to 33 at the cone) lowers ‖K - K̄‖ while it blows up radii elsewhere
+// (K = 5.3 at vertices whose target is 0), and the next Hessian is singular. On success
+// `trial` holds the new state.
 LineSearch line_search(const FlowRun& run, const FlowState& state, const Eigen::VectorXd& step,
-                       double merit, bool spherical, FlowState& trial) {
+                       double merit, bool spherical, bool convex, FlowState& trial) {
   LineSearch search;
+  const double initial_slope = convex ? step.dot(state.curvature - run.target) : 0.0;
   for (int halving = 0; halving <= run.options.max_step_halvings; ++halving, search.step *= 0.5) {
     if (!evaluate_flow_state(run.tables, run.geometry, run.eta, state.u + search.step * step, trial)) {
       ++search.broken;
+      if (search.first_broken_face < 0) search.first_broken_face = trial.bad_face;
       continue;
     }
     const double trial_merit = (trial.curvature - run.target).squaredNorm();
     const double wanted = spherical ? merit : (1.0 - 1e-4 * search.step) * merit;
-    if (trial_merit <= wanted || max_error(trial, run.target) < run.options.tolerance) {
+    bool accept = trial_merit <= wanted;
+    if (convex) {
+      // The energy's slope along the step, from φ'(0) = -δu·H·δu < 0; φ' increases (convexity).
+      const double slope = step.dot(trial.curvature - run.target);
+      accept = slope <= 0.0 || (accept && slope <= 0.1 * std::abs(initial_slope));
+    }
+    if (accept || max_error(trial, run.target) < run.options.tolerance) {
       search.accepted = true;
       return search;
     }
   }
   return search;
+}
+
+// Thurston's weights (η = cos Φ, Φ ∈ [0, π/2]) make the E2 energy convex in u (Chow-Luo);
+// inversive distances outside [0, 1] need not.
+bool convex_energy(const FlowRun& run) {
+  return run.geometry == Geometry::Euclidean && run.eta.size() > 0 && run.eta.minCoeff() >= 0.0 &&
+         run.eta.maxCoeff() <= 1.0;
 }
 
 // One more Newton step after convergence when the error is still above 1e-12 (the tolerance,
@@ -232,6 +255,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   int stagnant = 0;       // consecutive short steps that barely lowered the error
   int stagnant_broken = 0;  // ... of which broke triangles at longer trial steps
   double lambda = 1.0;  // Levenberg-Marquardt damping factor (S2 only)
+  const bool convex = convex_energy(run);
   bool last_step_full = false;
   result.error_history.push_back(error);
   while (error >= o.tolerance) {
@@ -268,7 +292,10 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     if (euclidean) step.array() -= step.mean();
 
     t0 = Clock::now();
-    const LineSearch search = line_search(run, state, step, merit, spherical, trial);
+    const LineSearch search = line_search(run, state, step, merit, spherical, convex, trial);
+    if (search.first_broken_face >= 0 && result.broken_faces.size() < kMaxBrokenFacesRecorded) {
+      result.broken_faces.push_back({result.iterations + 1, search.first_broken_face, search.broken});
+    }
     result.timings.evaluation += seconds_since(t0);
     const double t_step = search.step;
     const int broken = search.broken;

@@ -12,6 +12,11 @@ namespace ricci {
 
 namespace {
 
+// Largest change of a log-radius per Levenberg-Marquardt step. Unbounded steps let the radii
+// of sliver vertices run off to 1e-89 (genus2_100k), where every circle packing of their faces
+// is degenerate in double precision.
+constexpr double kMaxLogStep = 0.5;
+
 // Residual of one edge and the clamped weight it uses; 0 when some Φ ∈ [0, π/2] fits exactly.
 struct EdgeFit {
   double residual = 0;
@@ -87,7 +92,7 @@ Eigen::VectorXd fit_circle_packing_radii(const MeshTables& t, const EdgeLengths&
         damping *= 10;
         continue;
       }
-      const Eigen::VectorXd step = solver.solve(rhs);
+      const Eigen::VectorXd step = solver.solve(rhs).cwiseMax(-kMaxLogStep).cwiseMin(kMaxLogStep);
       Eigen::VectorXd trial(nv);
       for (int v = 0; v < nv; ++v) {
         trial[v] = radius_from_u(g, u_from_radius(g, gamma[v]) + step[v]);

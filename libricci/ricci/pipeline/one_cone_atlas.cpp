@@ -65,9 +65,15 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   // The layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it
   // closes: remove it in long double first (metric/polish_e2.h).
   t = Clock::now();
-  result.polish = polish_e2_lengths(result.problem.mesh, result.flow.lengths,
-                                    result.problem.targets.curvature);
-  result.flow.lengths = result.polish.lengths;
+  if (result.flow.max_error >= options.polish_threshold) {
+    result.polish = polish_e2_lengths(result.problem.mesh, result.flow.lengths,
+                                      result.problem.targets.curvature);
+    result.flow.lengths = result.polish.lengths;
+    result.polished = true;
+  } else {
+    result.polish.lengths = result.flow.lengths;
+    result.polish.error_before = result.polish.error_after = result.flow.max_error;
+  }
   result.timings.polish = seconds_since(t);
 
   report("cut graph, layout and atlas");

@@ -25,6 +25,13 @@ struct OneConeAtlasOptions {
   ValenceOptions valence;
   SingularityOptions choice;
   AtlasOptions atlas;
+  /// The long-double polish (metric/polish_e2.h) runs only when the flow's max |K - K̄|,
+  /// evaluated in double, is at least this. Measured (msp-bench one-cone-one): genus2_100k ends
+  /// Newton at 2.3e-14 and genus3_100k at 5.7e-13, where the polish (0.4-0.6 s at 100k faces)
+  /// moves the layout's relative edge error only from 5.6e-12 to 8e-12 and 5.8e-11 to 2.7e-11;
+  /// beetle ends at 1.03e-12 and needs it (1.1e-7 -> 3.8e-8), camel at 8e-15 does not
+  /// (1.3e-11 without). 0 always polishes; infinity never does.
+  double polish_threshold = 8e-13;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;
 };
@@ -39,8 +46,10 @@ struct OneConeAtlasResult {
   /// The flow's result; its `lengths` are replaced by the polished ones (below).
   FlowResult flow;
   /// Long-double polish of the flow's lengths before the layout (error_before/after: max
-  /// |K - K̄| evaluated in long double).
+  /// |K - K̄| evaluated in long double). When skipped (polish_threshold), error_before and
+  /// error_after hold the flow's double-precision defect and iterations is 0.
   PolishE2Result polish;
+  bool polished = false;  ///< Whether the polish ran.
   AffineAtlas atlas;
   DistortionReport distortion;
   int chosen_vertex = -1;       ///< Input vertex of the singularity, -1 when none.
