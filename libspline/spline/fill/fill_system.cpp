@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "ricci/mesh/errors.h"
+#include "spline/basis/blossom.h"
+#include "spline/basis/multi_index.h"
 
 namespace spline::fill_detail {
 namespace {
@@ -210,6 +212,15 @@ void System::add(const std::vector<BasisSample>& basis, const PlanarDmsSpace& sp
     entries.emplace_back(row, space.function_index(s.triangle, s.beta), weight * d);
   }
   targets.push_back(weight * target);
+}
+
+Eigen::MatrixXd identity_control_points(const PlanarDmsSpace& space) {
+  BivariatePolynomial identity;
+  identity.degree = 1;
+  identity.coefficients = Eigen::MatrixXd::Zero(3, 2);
+  identity.coefficients(monomial_index(1, 0), 0) = 1.0;
+  identity.coefficients(monomial_index(0, 1), 1) = 1.0;
+  return space.control_points_of(identity);
 }
 
 void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight) {

@@ -65,6 +65,10 @@ struct System {
 /// fails (the grid's outer margin).
 void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight);
 
+/// The control points of the identity map (x, y) -> (x, y) of the space's plane: one row of two
+/// coordinates per function; exact, so a patch built on them is affine where they are.
+[[nodiscard]] Eigen::MatrixXd identity_control_points(const PlanarDmsSpace& space);
+
 /// Lays D out as the rim developed into the plane: a curve through q + 1 points per rim edge
 /// with the 3D distances between consecutive samples, turning between them as the rim turns on
 /// the surface (the signed angle between consecutive derivatives about the normal, at the

@@ -18,6 +18,7 @@ namespace spline {
 namespace {
 
 using fill_detail::add_thin_plate_rows;
+using fill_detail::identity_control_points;
 using fill_detail::patch_space;
 using fill_detail::System;
 using fill_detail::rim_name;
@@ -256,12 +257,7 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
       solve(system, space.function_count(), Eigen::Vector3d(mean_height, 0, 0), rim).col(0);
 
   // The in-plane part: the control points of the identity (exact on D, an affine map).
-  BivariatePolynomial identity;
-  identity.degree = 1;
-  identity.coefficients = Eigen::MatrixXd::Zero(3, 2);
-  identity.coefficients(monomial_index(1, 0), 0) = 1.0;
-  identity.coefficients(monomial_index(0, 1), 1) = 1.0;
-  const Eigen::MatrixXd plane = space.control_points_of(identity);
+  const Eigen::MatrixXd plane = identity_control_points(space);
   fill.control_points.resize(space.function_count(), 3);
   for (int f = 0; f < space.function_count(); ++f) {
     fill.control_points.row(f) =

@@ -100,12 +100,7 @@ Eigen::MatrixX3d affine_reference(const HoleFill& fill,
     }
   }
   const Eigen::Matrix3d map = normal.ldlt().solve(rhs);  // rows: o, M e_x, M e_y
-  BivariatePolynomial identity;
-  identity.degree = 1;
-  identity.coefficients = Eigen::MatrixXd::Zero(3, 2);
-  identity.coefficients(monomial_index(1, 0), 0) = 1.0;
-  identity.coefficients(monomial_index(0, 1), 1) = 1.0;
-  const Eigen::MatrixXd plane = space.control_points_of(identity);
+  const Eigen::MatrixXd plane = identity_control_points(space);
   Eigen::MatrixX3d reference(space.function_count(), 3);
   for (int f = 0; f < space.function_count(); ++f) {
     reference.row(f) = map.row(0) + plane(f, 0) * map.row(1) + plane(f, 1) * map.row(2);
