@@ -3,6 +3,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -202,19 +203,29 @@ void check_sizes(const ManifoldSplineSpace& space, const std::vector<DomainPoint
   }
 }
 
-// Data rows by domain face; counts the points in the domain.
+bool in_spline_domain(const ManifoldSplineSpace& space, const DomainPoint& p) {
+  return p.face >= 0 && p.face < space.face_count() && space.in_domain(p.face);
+}
+
+// The number of points in the domain. \throw ricci::InvalidInputError when there is none.
+int domain_point_count(const ManifoldSplineSpace& space,
+                       const std::vector<DomainPoint>& parameters) {
+  const auto count = static_cast<int>(std::count_if(
+      parameters.begin(), parameters.end(),
+      [&](const DomainPoint& p) { return in_spline_domain(space, p); }));
+  if (count == 0) throw ricci::InvalidInputError("fit: no point lies in the spline's domain");
+  return count;
+}
+
+// Data rows by domain face.
 std::vector<detail::FaceRowsSpec> data_rows(const ManifoldSplineSpace& space,
-                                            const std::vector<DomainPoint>& parameters,
-                                            int& count) {
+                                            const std::vector<DomainPoint>& parameters) {
   std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
-  count = 0;
   for (std::size_t k = 0; k < parameters.size(); ++k) {
     const DomainPoint& p = parameters[k];
-    if (p.face < 0 || p.face >= space.face_count() || !space.in_domain(p.face)) continue;
+    if (!in_spline_domain(space, p)) continue;
     rows[space.domain_index(p.face)].points.push_back(static_cast<int>(k));
-    ++count;
   }
-  if (count == 0) throw ricci::InvalidInputError("fit: no point lies in the spline's domain");
   return rows;
 }
 
@@ -242,6 +253,14 @@ FitSetup make_fit_setup(const ManifoldSplineSpace& space, const Eigen::MatrixX3d
   return setup;
 }
 
+// Checks the sizes and builds the setup for these points (their count scales the regulariser).
+FitSetup prepare_fit(const ManifoldSplineSpace& space, const std::vector<DomainPoint>& parameters,
+                     const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
+                     const FitOptions& options) {
+  check_sizes(space, parameters, points, initial);
+  return make_fit_setup(space, initial, options, domain_point_count(space, parameters));
+}
+
 // The fit with a prepared setup. `reference`: the multipliers' starting point (feasible ideally:
 // the previous round's solution converges in fewer updates).
 FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup,
@@ -250,7 +269,8 @@ FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup
                          const Eigen::MatrixX3d& reference, const FitOptions& options) {
   const auto start = Clock::now();
   FitResult result;
-  const std::vector<detail::FaceRowsSpec> rows = data_rows(space, parameters, result.points);
+  result.points = domain_point_count(space, parameters);
+  const std::vector<detail::FaceRowsSpec> rows = data_rows(space, parameters);
   const int threads = std::max(1, options.threads);
   detail::NormalEquations normal = detail::assemble_normal_equations(
       space, rows, parameters, points, 0.0, initial, threads);
@@ -306,11 +326,8 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
                              const std::vector<DomainPoint>& parameters,
                              const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
                              const FitOptions& options) {
-  check_sizes(space, parameters, points, initial);
   const auto start = Clock::now();
-  int count = 0;
-  (void)data_rows(space, parameters, count);
-  const FitSetup setup = make_fit_setup(space, initial, options, count);
+  const FitSetup setup = prepare_fit(space, parameters, points, initial, options);
   const double setup_seconds = seconds_since(start);
   FitResult result = fit_with_setup(space, setup, parameters, points, initial, initial, options);
   result.seconds_assemble += setup_seconds;
@@ -495,11 +512,8 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   t = stage("fit");
   FitOptions fit_options = options.fit;
   if (options.constrained_fit && options.fair_r >= 0) fit_options.constraint_r = options.fair_r;
-  check_sizes(*space, parameters, data, initial);
-  int count = 0;
-  (void)data_rows(*space, parameters, count);
   // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
-  const FitSetup setup = make_fit_setup(*space, initial, fit_options, count);
+  const FitSetup setup = prepare_fit(*space, parameters, data, initial, fit_options);
   result.fit = fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options);
   result.timings.fit = seconds_since(t);
 
