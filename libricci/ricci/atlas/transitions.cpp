@@ -1,17 +1,12 @@
 // Transition maps between overlapping charts and the side pairings of the cut graph's arcs.
 #include <algorithm>
 #include <map>
-#include <numeric>
 
 #include "ricci/atlas/chart_develop.h"
+#include "ricci/mesh/topology_util.h"
 
 namespace ricci::detail {
 namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
 
 int local_index(const std::vector<int>& sorted, int face) {
   const auto it = std::lower_bound(sorted.begin(), sorted.end(), face);
@@ -39,8 +34,7 @@ bool glued(const Mesh& mesh, const Chart& chart, int f, int k, int g) {
 void fit_pair(const Mesh& mesh, AffineAtlas& atlas, int a, int b, const std::vector<int>& faces) {
   const Chart& ca = atlas.charts[a];
   const Chart& cb = atlas.charts[b];
-  std::vector<int> parent(faces.size());
-  std::iota(parent.begin(), parent.end(), 0);
+  DisjointSets sets(faces.size());
   for (size_t i = 0; i < faces.size(); ++i) {
     const auto hs = face_halfedges(mesh, FaceHandle(faces[i]));
     for (int k = 0; k < 3; ++k) {
@@ -51,12 +45,12 @@ void fit_pair(const Mesh& mesh, AffineAtlas& atlas, int a, int b, const std::vec
           !glued(mesh, cb, faces[i], k, g.idx())) {
         continue;
       }
-      parent[find_root(parent, static_cast<int>(i))] = find_root(parent, j);
+      sets.unite(static_cast<int>(i), j);
     }
   }
   std::map<int, std::vector<int>> pieces;
   for (size_t i = 0; i < faces.size(); ++i) {
-    pieces[find_root(parent, static_cast<int>(i))].push_back(faces[i]);
+    pieces[sets.find(static_cast<int>(i))].push_back(faces[i]);
   }
   for (auto& [root, piece] : pieces) {
     std::vector<std::pair<int, int>> pairs;

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/topology_util.h"
 #include "ricci/topology/slice.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/rims.h"
@@ -114,15 +115,10 @@ struct Holes {
   int count = 0;
 };
 
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
 Holes label_holes(const Regions& regions, const ricci::Mesh& mesh, const Loops& loops) {
   const int faces = static_cast<int>(mesh.n_faces());
-  std::vector<int> parent(static_cast<std::size_t>(faces + loops.count));
-  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  const auto nodes = static_cast<std::size_t>(faces + loops.count);
+  ricci::detail::DisjointSets sets(nodes);
   auto node = [&](ricci::HalfedgeHandle h) {  // the hole side of h, -1 when kept
     if (mesh.is_boundary(h)) return faces + loops.of_halfedge[h.idx()];
     const int f = mesh.face_handle(h).idx();
@@ -130,14 +126,14 @@ Holes label_holes(const Regions& regions, const ricci::Mesh& mesh, const Loops& 
   };
   for (auto e : mesh.edges()) {
     const int a = node(mesh.halfedge_handle(e, 0)), b = node(mesh.halfedge_handle(e, 1));
-    if (a >= 0 && b >= 0) parent[find_root(parent, a)] = find_root(parent, b);
+    if (a >= 0 && b >= 0) sets.unite(a, b);
   }
   Holes holes;
   holes.of_face.assign(static_cast<std::size_t>(faces), -1);
   holes.of_loop.assign(static_cast<std::size_t>(loops.count), -1);
-  std::vector<int> label(parent.size(), -1);
+  std::vector<int> label(nodes, -1);
   auto label_of = [&](int i) {
-    int& l = label[find_root(parent, i)];
+    int& l = label[sets.find(i)];
     if (l < 0) {
       l = holes.count++;
       holes.rank.push_back(3);
