@@ -108,7 +108,32 @@ struct FindRimsOptions {
   /// beyond the clouds (radius < inradius / 2): the partition of unity holds on the seam
   /// (tested). 0: the rims are the domain's own (the cone's one-ring link, the boundary loops).
   int grow = 1;
+  /// Cone hole only, after the `grow` layers: more layers (the cone hole alone, face by face as
+  /// in rims.h, so it stays a disk apart from the other holes) while a face on its rim has a
+  /// chart scale (chart_scale_by_face) that differs from an edge neighbour's by more than this
+  /// factor. Why: near a cone of angle 2 pi alpha the flat metric scales like rho^(alpha - 1),
+  /// so the first rings around a cone of 6 pi or 10 pi are shrunk in the chart by factors that
+  /// change 4-13 times from one face to the next (elephant_cgal.off, 2000 faces: 12.9, 7.1, 3.9
+  /// on rings 0, 2, 3; the scans' 2-4 everywhere); there the fitted spline folds (its normal
+  /// turns by 16-150 degrees within 1/100 of an edge in rings 0-6, 1 degree elsewhere) and holds
+  /// most of the fit error. Covering those rings puts their points on the smooth patch and the
+  /// seam on better-conditioned faces: elephant_cgal (`msp fit` defaults, one extra layer) fit
+  /// RMS 0.215% -> 0.159% of the diagonal, max 4.6% -> 2.1%; no other genus 0-3 model grows.
+  /// Its seam stays at ~170 degrees: the spline folds up to ring 6 (a fourth layer: 16 degrees,
+  /// a fifth merges too much into the patch). <= 1: off.
+  double max_cone_rim_scale_ratio = 5.0;
+  int max_cone_layers = 3;  ///< cap on those extra layers
+  /// ... and on the domain faces the cone hole may cover (a coarse domain, e.g. joint.off's 540
+  /// faces, distorted everywhere, would otherwise lose a large part of its spline to the patch).
+  double max_cone_cover_fraction = 0.08;
 };
+
+/// By face: the chart's length scale over the surface's, sqrt(chart area / 3D area) of the
+/// domain mesh's triangle in its chart (the conformal factor e^-u of the flat metric, face by
+/// face); 0 for faces outside the space's domain or degenerate ones.
+/// \pre `mesh` is the mesh the space was built on.
+[[nodiscard]] std::vector<double> chart_scale_by_face(const ManifoldSplineSpace& space,
+                                                      const ricci::Mesh& mesh);
 /// Mesh vertex index of each rim edge's start vertex (so vertex j is shared by edges j - 1, j).
 /// \pre `mesh` is the space's domain mesh.
 [[nodiscard]] std::vector<int> rim_vertices(const Rim& rim, const ricci::Mesh& mesh);

@@ -1,5 +1,8 @@
 // Rims: closed loops of domain edges with exactly one domain face (hole_fill.h).
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <string>
 
 #include "ricci/mesh/errors.h"
@@ -375,6 +378,60 @@ void grow_layer(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
   if (!undone.empty()) grow_face_by_face(regions, mesh, loops, undone);
 }
 
+// The largest factor between face f's chart scale and an edge neighbour's (1 when no
+// neighbour has a scale).
+double worst_scale_ratio(const std::vector<double>& chart_scale, const ricci::Mesh& mesh, int f) {
+  double worst = 1.0;
+  const double s = chart_scale[static_cast<std::size_t>(f)];
+  if (!(s > 0.0)) return worst;
+  for (auto g : mesh.ff_range(mesh.face_handle(f))) {
+    const double t = chart_scale[static_cast<std::size_t>(g.idx())];
+    if (t > 0.0) worst = std::max(worst, std::max(s / t, t / s));
+  }
+  return worst;
+}
+
+// Extra layers of the cone hole (FindRimsOptions::max_cone_rim_scale_ratio): while a face on
+// its rim is badly conditioned, every kept face touching a vertex of its rim joins it face by
+// face (grow_face_by_face keeps every hole a disk apart from the others); a layer that would
+// cover more than max_cone_cover_fraction of the domain is undone and the growth stops.
+void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
+                                    const std::vector<char>& domain,
+                                    const std::vector<double>& chart_scale,
+                                    const FindRimsOptions& options) {
+  if (chart_scale.empty() || !(options.max_cone_rim_scale_ratio > 1.0)) return;
+  const int cone = kind_rank(Rim::Kind::cone_hole);
+  const auto domain_faces = std::count(domain.begin(), domain.end(), 1);
+  for (int layer = 0; layer < options.max_cone_layers; ++layer) {
+    double worst = 1.0;
+    std::vector<char> on_rim(mesh.n_vertices(), 0);
+    for (auto h : mesh.halfedges()) {
+      if (!is_rim_halfedge(regions, mesh, h) || rank_of(regions, mesh, h) != cone) continue;
+      worst = std::max(worst, worst_scale_ratio(chart_scale, mesh, mesh.face_handle(h).idx()));
+      on_rim[mesh.from_vertex_handle(h).idx()] = on_rim[mesh.to_vertex_handle(h).idx()] = 1;
+    }
+    if (worst <= options.max_cone_rim_scale_ratio) return;
+    std::vector<int> candidates;
+    for (auto v : mesh.vertices()) {
+      if (!on_rim[v.idx()]) continue;
+      for (auto f : mesh.vf_range(v)) {
+        if (regions.kept[f.idx()]) candidates.push_back(f.idx());
+      }
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    const Regions before = regions;
+    grow_face_by_face(regions, mesh, loops, candidates);
+    std::ptrdiff_t covered = 0;
+    for (std::size_t f = 0; f < domain.size(); ++f)
+      covered += domain[f] && !regions.kept[f] && regions.rank[f] == cone;
+    if (covered > options.max_cone_cover_fraction * static_cast<double>(domain_faces)) {
+      regions = before;
+      return;
+    }
+  }
+}
+
 // Covered domain faces reachable from the faces across the rim through covered faces.
 std::vector<int> covered_inside(const std::vector<char>& domain, const Regions& regions,
                                 const ricci::Mesh& mesh,
@@ -427,12 +484,14 @@ std::vector<int> rim_vertices(const Rim& rim, const ricci::Mesh& mesh) {
 
 std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& domain,
                            const std::vector<char>& atlas_domain, const FindRimsOptions& options,
-                           const RimMergeOptions& merge) {
+                           const RimMergeOptions& merge, const std::vector<double>& chart_scale) {
   const std::size_t faces = mesh.n_faces();
-  if (domain.size() != faces || atlas_domain.size() != faces) {
+  if (domain.size() != faces || atlas_domain.size() != faces ||
+      !(chart_scale.empty() || chart_scale.size() == faces)) {
     throw ricci::InvalidInputError("find_rims: the mesh has " + std::to_string(faces) +
                                    " faces, the domain masks " + std::to_string(domain.size()) +
-                                   " and " + std::to_string(atlas_domain.size()));
+                                   " and " + std::to_string(atlas_domain.size()) +
+                                   ", the chart scales " + std::to_string(chart_scale.size()));
   }
   if (options.grow < 0) {
     throw ricci::InvalidInputError("find_rims: grow must be >= 0, got " +
@@ -441,6 +500,7 @@ std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& dom
   Regions regions = initial_regions(domain, atlas_domain);
   const Loops loops = boundary_loops(mesh);
   for (int layer = 0; layer < options.grow; ++layer) grow_layer(regions, mesh, loops, merge);
+  grow_cone_hole_while_distorted(regions, mesh, loops, domain, chart_scale, options);
 
   std::vector<char> visited(mesh.n_halfedges(), 0);
   std::vector<Rim> rims;
@@ -478,7 +538,28 @@ std::vector<Rim> find_rims(const ManifoldSplineSpace& space, const ricci::Mesh& 
   }
   std::vector<char> domain(mesh.n_faces(), 0);
   for (int f = 0; f < space.face_count(); ++f) domain[f] = space.in_domain(f) ? 1 : 0;
-  return find_rims(mesh, domain, space.atlas().in_domain, options);
+  return find_rims(mesh, domain, space.atlas().in_domain, options, {},
+                   chart_scale_by_face(space, mesh));
+}
+
+std::vector<double> chart_scale_by_face(const ManifoldSplineSpace& space, const ricci::Mesh& mesh) {
+  if (static_cast<int>(mesh.n_faces()) != space.face_count()) {
+    throw ricci::InvalidInputError("chart_scale_by_face: the mesh has " +
+                                   std::to_string(mesh.n_faces()) + " faces, the spline space " +
+                                   std::to_string(space.face_count()));
+  }
+  std::vector<double> scale(mesh.n_faces(), 0.0);
+  for (int f : space.domain_faces()) {
+    const Eigen::Matrix<double, 3, 2> p = space.atlas().face_positions(space.chart_of(f), f);
+    const Eigen::Vector2d a = (p.row(1) - p.row(0)).transpose(), b = (p.row(2) - p.row(0)).transpose();
+    const double chart_area = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    Eigen::Vector3d corner[3];
+    int k = 0;
+    for (auto v : mesh.fv_range(mesh.face_handle(f))) corner[k++] = ricci::to_eigen(mesh.point(v));
+    const double area = 0.5 * (corner[1] - corner[0]).cross(corner[2] - corner[0]).norm();
+    if (chart_area > 0.0 && area > 0.0) scale[static_cast<std::size_t>(f)] = std::sqrt(chart_area / area);
+  }
+  return scale;
 }
 
 }  // namespace spline

@@ -32,10 +32,14 @@ struct RimMergeOptions {
 /// breaks that (a hole grown around a handle, a hole touching itself or another hole at a
 /// vertex), the layer is undone on that hole and redone face by face, taking a face only when
 /// it keeps the hole a disk apart from every other hole.
-/// \throw ricci::InvalidInputError when a mask's size is not the face count or grow < 0.
+/// `chart_scale` (chart_scale_by_face, or empty: no extra layers) drives the cone hole's extra
+/// layers (FindRimsOptions::max_cone_rim_scale_ratio).
+/// \throw ricci::InvalidInputError when a mask's or chart_scale's size is not the face count or
+///        grow < 0.
 [[nodiscard]] std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& domain,
                                          const std::vector<char>& atlas_domain,
                                          const FindRimsOptions& options = {},
-                                         const RimMergeOptions& merge = {});
+                                         const RimMergeOptions& merge = {},
+                                         const std::vector<double>& chart_scale = {});
 
 }  // namespace spline

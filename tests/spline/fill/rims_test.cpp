@@ -5,7 +5,9 @@
 // beetle and bunny scans with nearby boundary loops, the punctured sphere) and on random holes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <random>
 #include <set>
 #include <string>
@@ -267,6 +269,99 @@ TEST(Rims, OpenScansWithNearbyLoops) {
     for (const Rim& rim : rims) merged_covered += rim.covered_faces.size();
     EXPECT_LT(covered, merged_covered) << model << ": the bands between loops stay";
   }
+}
+
+// Edge-adjacency rings of the faces around the hole (-1 for the hole's faces).
+std::vector<int> rings_around(const ricci::Mesh& mesh, const std::vector<char>& domain) {
+  std::vector<int> ring(mesh.n_faces(), -2), front;
+  for (auto f : mesh.faces()) {
+    if (!domain[f.idx()]) {
+      ring[f.idx()] = -1;
+      front.push_back(f.idx());
+    }
+  }
+  for (int r = 0; !front.empty(); ++r) {
+    std::vector<int> next;
+    for (int f : front) {
+      for (auto g : mesh.ff_range(mesh.face_handle(f))) {
+        if (ring[g.idx()] != -2) continue;
+        ring[g.idx()] = r;
+        next.push_back(g.idx());
+      }
+    }
+    front = std::move(next);
+  }
+  return ring;
+}
+
+double worst_neighbour_ratio(const ricci::Mesh& mesh, const std::vector<double>& scale, int f) {
+  double worst = 1.0;
+  for (auto g : mesh.ff_range(mesh.face_handle(f))) {
+    if (scale[g.idx()] > 0.0)
+      worst = std::max(worst, std::max(scale[f] / scale[g.idx()], scale[g.idx()] / scale[f]));
+  }
+  return worst;
+}
+
+std::size_t covered_count(const std::vector<Rim>& rims) {
+  std::size_t covered = 0;
+  for (const Rim& rim : rims) covered += rim.covered_faces.size();
+  return covered;
+}
+
+// A cone hole whose first four rings are shrunk in the chart by a factor 10 per ring (the flat
+// metric next to a cone of large angle): the hole grows until no face on its rim differs from a
+// neighbour by more than max_cone_rim_scale_ratio, and stays closable. Without chart scales,
+// with a uniform scale, with no extra layers allowed, or with a cover cap below one layer, it
+// is the plain `grow` result; an excluded-face hole never takes the extra layers.
+TEST(Rims, DistortedConeHoleGrowsUntilItsRimIsWellConditioned) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  const auto domain = g.domain_without({{{0, 0}}, {{0, 1}}, {{1, 0}}, {{1, 1}}});
+  const std::vector<char> cone_atlas = domain;  // the hole is outside the atlas: a cone hole
+  const auto ring = rings_around(g.mesh, domain);
+  std::vector<double> scale(g.mesh.n_faces(), 0.0), uniform(g.mesh.n_faces(), 0.0);
+  for (std::size_t f = 0; f < scale.size(); ++f) {
+    if (!domain[f]) continue;
+    scale[f] = std::pow(10.0, -std::max(0, 3 - ring[f]));
+    uniform[f] = 1.0;
+  }
+  const FindRimsOptions options;
+  const auto plain = find_rims(g.mesh, domain, cone_atlas, options);
+  const auto grown = find_rims(g.mesh, domain, cone_atlas, options, {}, scale);
+  ASSERT_EQ(plain.size(), 1u);
+  ASSERT_EQ(grown.size(), 1u);
+  EXPECT_EQ(grown[0].kind, Rim::Kind::cone_hole);
+  expect_closable(g.mesh, domain, grown, 1, "distorted cone hole");
+  EXPECT_GT(grown[0].covered_faces.size(), plain[0].covered_faces.size());
+  for (const RimEdge& e : grown[0].edges) {
+    EXPECT_LE(worst_neighbour_ratio(g.mesh, scale, e.face), options.max_cone_rim_scale_ratio)
+        << "rim face " << e.face << " on ring " << ring[e.face];
+  }
+  // Some face of the plain rim was badly conditioned: that is what made the hole grow.
+  double plain_worst = 1.0;
+  for (const RimEdge& e : plain[0].edges)
+    plain_worst = std::max(plain_worst, worst_neighbour_ratio(g.mesh, scale, e.face));
+  EXPECT_GT(plain_worst, options.max_cone_rim_scale_ratio);
+
+  const auto same = [&](const std::vector<Rim>& rims, const std::string& what) {
+    ASSERT_EQ(rims.size(), 1u) << what;
+    EXPECT_EQ(rims[0].covered_faces, plain[0].covered_faces) << what;
+  };
+  same(find_rims(g.mesh, domain, cone_atlas, options, {}, uniform), "uniform scale");
+  FindRimsOptions no_layers;
+  no_layers.max_cone_layers = 0;
+  same(find_rims(g.mesh, domain, cone_atlas, no_layers, {}, scale), "no extra layers");
+  FindRimsOptions capped;
+  const auto domain_faces = static_cast<double>(std::count(domain.begin(), domain.end(), 1));
+  capped.max_cone_cover_fraction = static_cast<double>(covered_count(plain)) / domain_faces;
+  same(find_rims(g.mesh, domain, cone_atlas, capped, {}, scale), "cover cap");
+  const std::vector<char> excluded_atlas(g.mesh.n_faces(), 1);
+  const auto excluded = find_rims(g.mesh, domain, excluded_atlas, options, {}, scale);
+  ASSERT_EQ(excluded.size(), 1u);
+  EXPECT_EQ(excluded[0].kind, Rim::Kind::excluded);
+  EXPECT_EQ(excluded[0].covered_faces, plain[0].covered_faces);
+  EXPECT_THROW((void)find_rims(g.mesh, domain, cone_atlas, options, {}, {1.0, 2.0}),
+               ricci::InvalidInputError);
 }
 
 // A closed genus-0 scan: the one-cone pipeline punctures it (removes a vertex star); the grown
