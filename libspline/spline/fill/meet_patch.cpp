@@ -1,0 +1,163 @@
+// meet_patches: the surface next to the rims moved to meet the patches (meet_patch.h).
+#include "spline/fill/meet_patch.h"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include "ricci/mesh/errors.h"
+
+namespace spline {
+namespace {
+
+// The basis at a rim sample, evaluated like fill_detail::sample_rim: in the face's chart, the
+// tie broken towards the kept face.
+std::vector<ManifoldBasisSample> rim_basis(const ManifoldSplineSpace& space, const RimEdge& edge,
+                                           double t) {
+  const int chart = space.chart_of(edge.face);
+  const Eigen::Matrix<double, 3, 2> corners = space.atlas().face_positions(chart, edge.face);
+  const Eigen::Vector2d a = corners.row(rim_edge_start_corner(edge)).transpose();
+  const Eigen::Vector2d b = corners.row(rim_edge_end_corner(edge)).transpose();
+  TieBreak tie;
+  tie.direction = (corners.row(edge.corner).transpose() - 0.5 * (a + b)).normalized();
+  return space.evaluate_basis({edge.face, rim_edge_barycentric(edge, t)}, chart, tie);
+}
+
+// One rim sample: the basis there, the surface's derivatives and the patch's normal.
+struct Sample {
+  std::vector<ManifoldBasisSample> basis;
+  Eigen::Vector3d derivative[2];
+  Eigen::Vector3d patch_normal;
+};
+
+std::vector<Sample> rim_samples(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
+                                int per_edge) {
+  std::vector<Sample> samples;
+  for (const HoleFill& fill : fills) {
+    if (!fill.g1) continue;  // a positions-only patch has no normals worth meeting
+    for (int j = 0; j < static_cast<int>(fill.rim.edges.size()); ++j) {
+      const RimEdge& edge = fill.rim.edges[j];
+      for (int i = 0; i <= per_edge; ++i) {
+        const double t = static_cast<double>(i) / per_edge;
+        Sample s;
+        s.basis = rim_basis(*spline.space, edge, t);
+        const SurfaceJet jet =
+            combine(s.basis, spline.control_points, spline.space->chart_of(edge.face));
+        s.derivative[0] = jet.du;
+        s.derivative[1] = jet.dv;
+        s.patch_normal = fill.evaluate(fill.parameter(j, t)).normal;
+        if (!s.patch_normal.isZero()) samples.push_back(std::move(s));
+      }
+    }
+  }
+  return samples;
+}
+
+double mean_rim_edge_length(const ManifoldSpline& spline, const std::vector<HoleFill>& fills) {
+  double sum = 0.0;
+  int count = 0;
+  for (const HoleFill& fill : fills) {
+    for (const RimEdge& e : fill.rim.edges) {
+      const Eigen::Vector3d a = spline.evaluate({e.face, rim_edge_barycentric(e, 0.0)}).position;
+      const Eigen::Vector3d b = spline.evaluate({e.face, rim_edge_barycentric(e, 1.0)}).position;
+      sum += (b - a).norm();
+      ++count;
+    }
+  }
+  return count > 0 && sum > 0.0 ? sum / count : 1.0;
+}
+
+// The moved functions (unknown k: function functions[k]) and the direction each moves along:
+// the patch normals where it is non-zero, weighted by its value.
+struct Moved {
+  std::vector<int> functions;
+  std::unordered_map<int, int> unknown;
+  std::vector<Eigen::Vector3d> direction;
+};
+
+Moved moved_functions(const std::vector<Sample>& samples) {
+  Moved moved;
+  for (const Sample& s : samples) {
+    for (const auto& b : s.basis) {
+      const auto [it, added] =
+          moved.unknown.try_emplace(b.function, static_cast<int>(moved.functions.size()));
+      if (added) {
+        moved.functions.push_back(b.function);
+        moved.direction.emplace_back(Eigen::Vector3d::Zero());
+      }
+      moved.direction[it->second] += std::abs(b.jet.value) * s.patch_normal;
+    }
+  }
+  for (auto& d : moved.direction) {
+    if (d.norm() > 0.0) d.normalize();
+  }
+  return moved;
+}
+
+}  // namespace
+
+MeetPatchResult meet_patches(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
+                             const MeetPatchOptions& options) {
+  if (options.samples_per_edge < 1 || !(options.position_weight >= 0.0) ||
+      !(options.change_weight > 0.0)) {
+    throw ricci::InvalidInputError(
+        "meet_patches: options out of range (samples_per_edge >= 1, position_weight >= 0, "
+        "change_weight > 0)");
+  }
+  MeetPatchResult result;
+  result.control_points = spline.control_points;
+  const std::vector<Sample> samples = rim_samples(spline, fills, options.samples_per_edge);
+  const Moved moved = moved_functions(samples);
+  const int unknowns = static_cast<int>(moved.functions.size());
+  if (unknowns == 0) return result;
+  const double h = mean_rim_edge_length(spline, fills);
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<double> targets;
+  for (const Sample& s : samples) {
+    for (int d = 0; d < 2; ++d) {
+      const double length = s.derivative[d].norm();
+      if (!(length > 0.0)) continue;
+      const auto row = static_cast<int>(targets.size());
+      for (const auto& b : s.basis) {
+        const int k = moved.unknown.at(b.function);
+        entries.emplace_back(row, k, s.patch_normal.dot(moved.direction[k]) * b.jet.gradient[d] / length);
+      }
+      targets.push_back(-s.patch_normal.dot(s.derivative[d]) / length);
+    }
+    // The rim stays where the patch is welded to it (its normal offset is what could move).
+    const auto row = static_cast<int>(targets.size());
+    for (const auto& b : s.basis) {
+      const int k = moved.unknown.at(b.function);
+      entries.emplace_back(row, k, options.position_weight * b.jet.value *
+                                        s.patch_normal.dot(moved.direction[k]) / h);
+    }
+    targets.push_back(0.0);
+  }
+  for (int k = 0; k < unknowns; ++k) {
+    entries.emplace_back(static_cast<int>(targets.size()), k, options.change_weight / h);
+    targets.push_back(0.0);
+  }
+  Eigen::SparseMatrix<double> a(static_cast<Eigen::Index>(targets.size()), unknowns);
+  a.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(targets.data(), a.rows());
+  const Eigen::SparseMatrix<double> normal = a.transpose() * a;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
+  if (solver.info() != Eigen::Success)
+    throw ricci::SolverError("meet_patches: the normal equations cannot be factorised");
+  const Eigen::VectorXd rhs = a.transpose() * b;
+  Eigen::VectorXd change = solver.solve(rhs);
+  change += solver.solve(rhs - normal * change);  // one refinement step: the weights span 1e3
+  if (!change.allFinite())
+    throw ricci::SolverError("meet_patches: the solve produced non-finite control points");
+  for (int k = 0; k < unknowns; ++k) {
+    result.control_points.row(moved.functions[k]) += change[k] * moved.direction[k].transpose();
+    result.max_change = std::max(result.max_change, std::abs(change[k]) / h);
+  }
+  result.moved_functions = unknowns;
+  return result;
+}
+
+}  // namespace spline

@@ -1,0 +1,48 @@
+#pragma once
+// The surface next to the filled rims moved to meet the patches (the second half of a G1 fill).
+//
+// fill_rim fits the patch to the surface; what limits the seam after that is the surface: next
+// to the rim's vertices its normal turns by 1.5-8 degrees within 1/100 of a rim edge (the DMS
+// pieces of the faces around a vertex join within its knot cloud), faster than a patch of a few
+// triangles per rim edge can turn. So the surface's control points near the rims are moved a
+// little, all rims in one least-squares problem:
+//   rows n_P . D_d S(c + dc) = 0 for the chart's two axes d (S's tangent plane contains the
+//     patch's normal n_P: the surface meets the fixed patch tangentially), scaled by 1 / |D_d S|
+//     (so a row is the sine of the angle it removes), at samples_per_edge samples per rim edge;
+//   rows S(c + dc) = S(c) at the same samples (the rim, where patch and surface are welded,
+//     stays in place);
+//   change_weight * |dc| / h for every moved control point (h: the rims' mean 3D edge length):
+//     the smallest change.
+// Unknowns: the control points of the functions that are non-zero at some sample (their
+// supports reach at most a ring beyond the rim; those of covered faces only change what the
+// patch hides). The spline stays C^2 (any control points give a smooth DMS spline); its fit to
+// the data changes only next to the rims.
+#include <Eigen/Core>
+#include <vector>
+
+#include "spline/fill/hole_fill.h"
+#include "spline/manifold/manifold_space.h"
+
+namespace spline {
+
+struct MeetPatchOptions {
+  int samples_per_edge = 200;  ///< tangency and position samples per rim edge
+  double position_weight = 1.0;  ///< of the rows keeping S on the rim (per unit of h)
+  /// Of the smallest-change rows; small, so that the tangency rows win, but non-zero so that
+  /// functions the rows do not determine stay put.
+  double change_weight = 0.1;
+};
+
+struct MeetPatchResult {
+  Eigen::MatrixX3d control_points;  ///< the spline's, with the rims' neighbourhood moved
+  int moved_functions = 0;
+  double max_change = 0.0;  ///< max |dc| / h
+};
+
+/// \pre every fill was made by fill_rim on `spline`'s space and mesh.
+/// \throw ricci::InvalidInputError on bad options; ricci::SolverError when the solve fails.
+[[nodiscard]] MeetPatchResult meet_patches(const ManifoldSpline& spline,
+                                           const std::vector<HoleFill>& fills,
+                                           const MeetPatchOptions& options = {});
+
+}  // namespace spline

@@ -1,0 +1,89 @@
+// The surface next to a filled rim moved to meet the patch (spline/fill/meet_patch.h): the seam's
+// normal jump drops, also between the samples the rows use; the rim stays where it was; the
+// surface away from the rim does not move; bad options throw.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+
+#include "ricci/mesh/errors.h"
+#include "spline/fill/fill_fixtures.h"
+#include "spline/fill/hole_fill.h"
+#include "spline/fill/meet_patch.h"
+#include "spline/fit/fit.h"
+
+namespace spline {
+namespace {
+
+TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
+  // The bundled genus-3 surface at msp fit's 2000 faces: a parametric patch over a 16-edge cone
+  // hole, whose seam the surface limits (its normal turns fast next to the rim's vertices).
+  const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 2000);
+  const auto& mesh = fit.atlas.problem.mesh;
+  const auto rims = find_rims(*fit.spline.space, mesh);
+  ASSERT_EQ(rims.size(), 1u);
+  const HoleFill fill = fill_rim(fit.spline, mesh, rims[0]);
+  const MeetPatchResult met = meet_patches(fit.spline, {fill});
+  ManifoldSpline moved = fit.spline;
+  moved.control_points = met.control_points;
+  EXPECT_GT(met.moved_functions, 0);
+  // A small correction, not a new surface: the kept faces move by little against a rim edge h.
+  const std::set<int> covered(rims[0].covered_faces.begin(), rims[0].covered_faces.end());
+  double rim_length = 0.0, largest_move = 0.0;
+  for (const RimEdge& e : rims[0].edges) {
+    rim_length += (fit.spline.evaluate({e.face, rim_edge_barycentric(e, 1.0)}).position -
+                   fit.spline.evaluate({e.face, rim_edge_barycentric(e, 0.0)}).position)
+                      .norm();
+  }
+  const double h = rim_length / static_cast<double>(rims[0].edges.size());
+  for (int face : fit.spline.space->domain_faces()) {
+    if (covered.count(face)) continue;
+    for (const Eigen::Vector3d& bary :
+         {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0.5, 0.5, 0), Eigen::Vector3d(0.2, 0.3, 0.5)}) {
+      const DomainPoint p{face, bary};
+      largest_move = std::max(
+          largest_move, (moved.evaluate(p).position - fit.spline.evaluate(p).position).norm());
+    }
+  }
+  // Measured: 0.033 h (0.19 h for the control points), next to the rim's vertices.
+  EXPECT_LT(largest_move, 0.05 * h);
+  // 37 and 100 samples per edge: 37 lies off the rows' grid of 200.
+  for (int per_edge : {37, 100}) {
+    const SeamReport before = measure_seam(fit.spline, fill, per_edge);
+    const SeamReport after = measure_seam(moved, fill, per_edge);
+    EXPECT_LT(after.max_normal_jump_deg, 0.75 * before.max_normal_jump_deg) << per_edge;
+    EXPECT_LT(after.max_position_gap, before.max_position_gap + 1e-5) << per_edge;
+  }
+  // Far from the rim (a face no moved function reaches) the surface is the same.
+  int checked = 0;
+  for (int face : fit.spline.space->domain_faces()) {
+    bool untouched = true;
+    for (int g : fit.spline.space->reaching_faces(face)) {
+      for (int b = 0; b < fit.spline.space->functions_per_face() && untouched; ++b) {
+        const int f = fit.spline.space->function_index(g, b);
+        untouched = fit.spline.control_points.row(f) == met.control_points.row(f);
+      }
+    }
+    if (!untouched) continue;
+    const DomainPoint p{face, Eigen::Vector3d(0.2, 0.3, 0.5)};
+    EXPECT_EQ(fit.spline.evaluate(p).position, moved.evaluate(p).position);
+    ++checked;
+  }
+  EXPECT_GT(checked, fit.spline.space->domain_face_count() / 2);
+}
+
+TEST(MeetPatches, BadOptionsThrow) {
+  const auto& fit = testing::fitted_scan(testing::shared_model("closed_g2/eight.off"), 1000);
+  MeetPatchOptions bad;
+  bad.samples_per_edge = 0;
+  EXPECT_THROW((void)meet_patches(fit.spline, {}, bad), ricci::InvalidInputError);
+  bad = {};
+  bad.change_weight = 0.0;
+  EXPECT_THROW((void)meet_patches(fit.spline, {}, bad), ricci::InvalidInputError);
+  // No fills: nothing moves.
+  EXPECT_EQ(meet_patches(fit.spline, {}).control_points, fit.spline.control_points);
+}
+
+}  // namespace
+}  // namespace spline
