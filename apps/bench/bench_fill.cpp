@@ -13,6 +13,7 @@
 #include "bench/benchmarks.h"
 #include "ricci/mesh/io.h"
 #include "spline/fill/hole_fill.h"
+#include "spline/fill/meet_patch.h"
 #include "spline/fit/fit.h"
 
 namespace msp::bench {
@@ -50,9 +51,54 @@ std::vector<std::string> default_models() {
   return models;
 }
 
+// Angle (degrees) between two unit normals; atan2 stays accurate for tiny angles.
+double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
+}
+
+// The fitted surface's own roughness at the knot clouds' scale, by ring from the domain's rim
+// (domain_rim_rings; 7 = 7 or more): per face, the largest normal turn between consecutive
+// 1/100 steps along its three edges (just inside the face); median, 90th percentile and max.
+void print_surface_steps(const spline::ScanFitResult& fit) {
+  const auto& space = *fit.spline.space;
+  const std::vector<int> rings = spline::domain_rim_rings(space);
+  constexpr int kRings = 8;
+  std::vector<std::vector<double>> by_ring(kRings);
+  for (int d = 0; d < space.domain_face_count(); ++d) {
+    const int face = space.domain_faces()[d];
+    double worst = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+      for (int i = 0; i <= 100; ++i) {
+        Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+        bary[(k + 1) % 3] = 1.0 - i / 100.0;
+        bary[(k + 2) % 3] = i / 100.0;
+        bary = 0.999 * bary + Eigen::Vector3d::Constant(0.001 / 3.0);
+        const Eigen::Vector3d normal = fit.spline.evaluate({face, bary}).normal;
+        if (i > 0) worst = std::max(worst, angle_deg(normal, previous));
+        previous = normal;
+      }
+    }
+    by_ring[std::clamp(rings[d], 0, kRings - 1)].push_back(worst);
+  }
+  for (int r = 0; r < kRings; ++r) {
+    auto& steps = by_ring[r];
+    if (steps.empty()) continue;
+    std::sort(steps.begin(), steps.end());
+    std::printf("   ring %d%s: %4zu faces, normal step per 1/100 edge median %.3f p90 %.3f max %.3f\n",
+                r, r == kRings - 1 ? "+" : " ", steps.size(), steps[steps.size() / 2],
+                steps[steps.size() * 9 / 10], steps.back());
+  }
+}
+
+struct FillBenchFlags {
+  bool per_edge = false;       ///< worst jump and surface normal step per rim edge
+  bool surface_steps = false;  ///< print_surface_steps
+};
+
 void fill_model(const std::string& path, const spline::ScanFitOptions& fit_options,
                 const spline::FindRimsOptions& rim_options,
-                const spline::FillOptions& fill_options, bool per_edge) {
+                const spline::FillOptions& fill_options, const FillBenchFlags& flags) {
   const std::string name = std::filesystem::path(path).filename().string();
   const auto start = Clock::now();
   spline::ScanFitResult fit;
@@ -64,8 +110,10 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
   }
   const double fit_seconds = seconds_since(start);
   const auto& mesh = fit.atlas.problem.mesh;
+  if (flags.surface_steps) print_surface_steps(fit);
   const auto rims = spline::find_rims(*fit.spline.space, mesh, rim_options);
   if (rims.empty()) std::printf("%-28s fit %5.1fs  no rims\n", name.c_str(), fit_seconds);
+  std::vector<spline::HoleFill> fills;
   for (const auto& rim : rims) {
     const auto t = Clock::now();
     std::printf("%-28s fit %5.1fs  %-8s %5zu %6zu", name.c_str(), fit_seconds, kind_name(rim.kind),
@@ -75,7 +123,8 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
       std::printf(" %6.2f %9.4f %10.2e %10.2e %6d %s\n", seconds_since(t), fill.max_normal_jump_deg,
                   fill.max_position_gap, fill.rms_position_gap, fill.space->triangle_count(),
                   fill.g1 ? "G1" : "C0 fallback");
-      if (per_edge) {
+      fills.push_back(fill);
+      if (flags.per_edge) {
         for (std::size_t j = 0; j < rim.edges.size(); ++j) {
           double worst = 0, worst_t = 0, change = 0, change_t = 0;
           Eigen::Vector3d previous = Eigen::Vector3d::Zero();
@@ -99,6 +148,17 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
       std::printf(" %6.2f  not filled: %s\n", seconds_since(t), e.what());
     }
   }
+  if (fills.empty()) return;
+  // What msp fit shows: the surface moved to meet the patches (meet_patch.h).
+  const auto t = Clock::now();
+  spline::ManifoldSpline met = fit.spline;
+  met.control_points = spline::meet_patches(fit.spline, fills).control_points;
+  for (std::size_t i = 0; i < fills.size(); ++i) {
+    const spline::SeamReport seam = spline::measure_seam(met, fills[i]);
+    std::printf("%-28s   after meet_patches: rim %zu jump_deg %.4f max_gap %.2e (%.2fs)\n",
+                name.c_str(), i, seam.max_normal_jump_deg, seam.max_position_gap,
+                seconds_since(t));
+  }
 }
 
 }  // namespace
@@ -109,7 +169,7 @@ int run_fill_benchmark(int argc, char** argv) {
   spline::FindRimsOptions rim_options;
   spline::FillOptions fill_options;
   std::vector<std::string> models;
-  bool per_edge = false;
+  FillBenchFlags flags;
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--faces" && i + 1 < argc)
@@ -132,7 +192,9 @@ int run_fill_benchmark(int argc, char** argv) {
     else if (arg == "--max-boundary" && i + 1 < argc)
       fill_options.max_boundary_vertices = std::stoi(argv[++i]);
     else if (arg == "--per-edge")
-      per_edge = true;
+      flags.per_edge = true;
+    else if (arg == "--surface-steps")
+      flags.surface_steps = true;
     else if (arg == "--fill-boundaries")
       fill_options.fallback_boundary = true;
     else if (arg == "--smoothing" && i + 1 < argc)
@@ -146,13 +208,13 @@ int run_fill_benchmark(int argc, char** argv) {
       "%d, %d fit samples per edge, smoothing %g);\njump: max normal angle (deg) at 100 samples "
       "per rim edge; gaps |P - S| / bbox diagonal; wall seconds.\noptions: --faces N --grow G "
       "--refinement R --samples Q --smoothing S --method auto|height|parametric --cross W "
-      "--tangent W --max-boundary B --per-edge (worst jump and surface normal step per rim edge) --fill-boundaries (fallback for boundary loops) "
+      "--tangent W --max-boundary B --per-edge (worst jump and surface normal step per rim edge) --surface-steps (the surface's normal step per 1/100 edge by ring from the rim) --fill-boundaries (fallback for boundary loops) "
       "[models...]\n\n",
       fit_options.domain_faces, rim_options.grow, fill_options.refinement,
       fill_options.fit_samples_per_edge, fill_options.smoothing);
   std::printf("%-28s %10s %-8s %5s %6s %6s %9s %10s %10s %6s %s\n", "model", "", "rim", "edges",
               "cover", "s", "jump_deg", "max_gap", "rms_gap", "tris", "patch");
-  for (const auto& path : models) fill_model(path, fit_options, rim_options, fill_options, per_edge);
+  for (const auto& path : models) fill_model(path, fit_options, rim_options, fill_options, flags);
   return 0;
 }
 
