@@ -14,6 +14,7 @@
 #include "ricci/mesh/io.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/meet_patch.h"
+#include "spline/fill/rims.h"
 #include "spline/fit/fit.h"
 
 namespace msp::bench {
@@ -111,7 +112,14 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
   const double fit_seconds = seconds_since(start);
   const auto& mesh = fit.atlas.problem.mesh;
   if (flags.surface_steps) print_surface_steps(fit);
-  const auto rims = spline::find_rims(*fit.spline.space, mesh, rim_options);
+  // As msp fit: the cone hole also grows past faces where the spline folds.
+  const auto& space = *fit.spline.space;
+  std::vector<char> in_domain(mesh.n_faces(), 0);
+  for (int f = 0; f < space.face_count(); ++f) in_domain[f] = space.in_domain(f) ? 1 : 0;
+  const auto rims = spline::find_rims(
+      mesh, in_domain, space.atlas().in_domain, rim_options, {},
+      spline::chart_scale_by_face(space, mesh),
+      [&fit](int face) { return spline::max_normal_step_deg(fit.spline, face); });
   if (rims.empty()) std::printf("%-28s fit %5.1fs  no rims\n", name.c_str(), fit_seconds);
   std::vector<spline::HoleFill> fills;
   for (const auto& rim : rims) {

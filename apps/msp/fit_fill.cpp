@@ -93,8 +93,12 @@ std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRun
   for (int f = 0; f < static_cast<int>(domain.n_faces()); ++f) in_domain[f] = space.in_domain(f);
   spline::RimMergeOptions merge;
   merge.boundary_loops = options.fill_boundaries || run.input.boundary_loops == 0;
+  // The cone hole grows past faces where the chart is badly conditioned or the spline folds.
+  const auto normal_step = [&run](int face) {
+    return spline::max_normal_step_deg(run.scan.spline, face);
+  };
   fills->rims = spline::find_rims(domain, in_domain, space.atlas().in_domain, {}, merge,
-                                  spline::chart_scale_by_face(space, domain));
+                                  spline::chart_scale_by_face(space, domain), normal_step);
   for (const auto& rim : fills->rims) {
     // Skipped even when the rim stays open: the spline collapses in that band (open/holes.off
     // with the band kept: fit max 27% of the diagonal, 1.8% without it). With

@@ -128,6 +128,15 @@ struct FindRimsOptions {
   /// Its seam stays at ~170 degrees: the spline folds up to ring 6 (a fourth layer: 16 degrees,
   /// a fifth merges too much into the patch). <= 1: off.
   double max_cone_rim_scale_ratio = 5.0;
+  /// ... or while the fitted spline folds on a face of its rim: its normal turns by more than
+  /// this between points 1/100 of an edge apart along one of the face's edges
+  /// (max_normal_step_deg; given to find_rims as a function). A smooth fit turns by ~1 degree
+  /// there (the scans' median 0.4-0.5, 90th percentile 1.5, largest next to a rim 8); next to
+  /// the 10 pi cone of elephant_cgal.off and block.off the spline folds over rings 0-6 (16-150
+  /// degrees), and no patch can meet a fold (their seams: 170-180 degrees). Measured with
+  /// meet_patches (msp-bench fill --faces 2000, grow 1 / 3): block.off 169 -> 3.8 degrees,
+  /// elephant_cgal.off 179 -> 15.
+  double max_cone_rim_normal_step_deg = 20.0;
   int max_cone_layers = 3;  ///< cap on those extra layers
   /// ... and on the domain faces the cone hole may cover (a coarse domain, e.g. joint.off's 540
   /// faces, distorted everywhere, would otherwise lose a large part of its spline to the patch).
@@ -140,6 +149,12 @@ struct FindRimsOptions {
 /// \pre `mesh` is the mesh the space was built on.
 [[nodiscard]] std::vector<double> chart_scale_by_face(const ManifoldSplineSpace& space,
                                                       const ricci::Mesh& mesh);
+
+/// The largest angle (degrees) between the spline's normals at consecutive points 1/steps of an
+/// edge apart along the three edges of domain face `face` (just inside it, 1e-3 of the way to
+/// its centre): a crease or fold shows as tens of degrees, a smooth fit as about one.
+/// \throw ricci::InvalidInputError when steps < 1 or the face is outside the domain.
+[[nodiscard]] double max_normal_step_deg(const ManifoldSpline& spline, int face, int steps = 100);
 /// Mesh vertex index of each rim edge's start vertex (so vertex j is shared by edges j - 1, j).
 /// \pre `mesh` is the space's domain mesh.
 [[nodiscard]] std::vector<int> rim_vertices(const Rim& rim, const ricci::Mesh& mesh);

@@ -391,26 +391,33 @@ double worst_scale_ratio(const std::vector<double>& chart_scale, const ricci::Me
   return worst;
 }
 
-// Extra layers of the cone hole (FindRimsOptions::max_cone_rim_scale_ratio): while a face on
-// its rim is badly conditioned, every kept face touching a vertex of its rim joins it face by
+// Extra layers of the cone hole (FindRimsOptions::max_cone_rim_scale_ratio and
+// max_cone_rim_normal_step_deg): while a face on its rim is badly conditioned or folded, every kept face touching a vertex of its rim joins it face by
 // face (grow_face_by_face keeps every hole a disk apart from the others); a layer that would
 // cover more than max_cone_cover_fraction of the domain is undone and the growth stops.
 void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
                                     const std::vector<char>& domain,
                                     const std::vector<double>& chart_scale,
+                                    const std::function<double(int)>& normal_step_deg,
                                     const FindRimsOptions& options) {
-  if (chart_scale.empty() || !(options.max_cone_rim_scale_ratio > 1.0)) return;
+  const bool by_scale = !chart_scale.empty() && options.max_cone_rim_scale_ratio > 1.0;
+  const bool by_folds = static_cast<bool>(normal_step_deg);
+  if (!by_scale && !by_folds) return;
   const int cone = kind_rank(Rim::Kind::cone_hole);
   const auto domain_faces = std::count(domain.begin(), domain.end(), 1);
   for (int layer = 0; layer < options.max_cone_layers; ++layer) {
-    double worst = 1.0;
+    bool poor = false;
     std::vector<char> on_rim(mesh.n_vertices(), 0);
     for (auto h : mesh.halfedges()) {
       if (!is_rim_halfedge(regions, mesh, h) || rank_of(regions, mesh, h) != cone) continue;
-      worst = std::max(worst, worst_scale_ratio(chart_scale, mesh, mesh.face_handle(h).idx()));
       on_rim[mesh.from_vertex_handle(h).idx()] = on_rim[mesh.to_vertex_handle(h).idx()] = 1;
+      if (poor) continue;
+      const int f = mesh.face_handle(h).idx();
+      poor = (by_scale &&
+              worst_scale_ratio(chart_scale, mesh, f) > options.max_cone_rim_scale_ratio) ||
+             (by_folds && normal_step_deg(f) > options.max_cone_rim_normal_step_deg);
     }
-    if (worst <= options.max_cone_rim_scale_ratio) return;
+    if (!poor) return;
     std::vector<int> candidates;
     for (auto v : mesh.vertices()) {
       if (!on_rim[v.idx()]) continue;
@@ -484,7 +491,8 @@ std::vector<int> rim_vertices(const Rim& rim, const ricci::Mesh& mesh) {
 
 std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& domain,
                            const std::vector<char>& atlas_domain, const FindRimsOptions& options,
-                           const RimMergeOptions& merge, const std::vector<double>& chart_scale) {
+                           const RimMergeOptions& merge, const std::vector<double>& chart_scale,
+                           const std::function<double(int)>& normal_step_deg) {
   const std::size_t faces = mesh.n_faces();
   if (domain.size() != faces || atlas_domain.size() != faces ||
       !(chart_scale.empty() || chart_scale.size() == faces)) {
@@ -500,7 +508,8 @@ std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& dom
   Regions regions = initial_regions(domain, atlas_domain);
   const Loops loops = boundary_loops(mesh);
   for (int layer = 0; layer < options.grow; ++layer) grow_layer(regions, mesh, loops, merge);
-  grow_cone_hole_while_distorted(regions, mesh, loops, domain, chart_scale, options);
+  grow_cone_hole_while_distorted(regions, mesh, loops, domain, chart_scale, normal_step_deg,
+                                 options);
 
   std::vector<char> visited(mesh.n_halfedges(), 0);
   std::vector<Rim> rims;

@@ -1,6 +1,7 @@
 #pragma once
 // Rim finding on plain face masks (the work behind find_rims of hole_fill.h), for callers and
 // tests that have a mesh and a domain but no spline space.
+#include <functional>
 #include <vector>
 
 #include "ricci/mesh/mesh.h"
@@ -32,14 +33,15 @@ struct RimMergeOptions {
 /// breaks that (a hole grown around a handle, a hole touching itself or another hole at a
 /// vertex), the layer is undone on that hole and redone face by face, taking a face only when
 /// it keeps the hole a disk apart from every other hole.
-/// `chart_scale` (chart_scale_by_face, or empty: no extra layers) drives the cone hole's extra
-/// layers (FindRimsOptions::max_cone_rim_scale_ratio).
+/// `chart_scale` (chart_scale_by_face, or empty) and `normal_step_deg` (by face, e.g.
+/// max_normal_step_deg of the fitted spline, or empty) drive the cone hole's extra layers
+/// (FindRimsOptions::max_cone_rim_scale_ratio, max_cone_rim_normal_step_deg).
 /// \throw ricci::InvalidInputError when a mask's or chart_scale's size is not the face count or
 ///        grow < 0.
-[[nodiscard]] std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& domain,
-                                         const std::vector<char>& atlas_domain,
-                                         const FindRimsOptions& options = {},
-                                         const RimMergeOptions& merge = {},
-                                         const std::vector<double>& chart_scale = {});
+[[nodiscard]] std::vector<Rim> find_rims(
+    const ricci::Mesh& mesh, const std::vector<char>& domain,
+    const std::vector<char>& atlas_domain, const FindRimsOptions& options = {},
+    const RimMergeOptions& merge = {}, const std::vector<double>& chart_scale = {},
+    const std::function<double(int face)>& normal_step_deg = {});
 
 }  // namespace spline

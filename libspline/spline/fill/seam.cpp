@@ -1,5 +1,6 @@
 // Seam measurement and tessellation of a filled rim (hole_fill.h).
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -34,6 +35,32 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
   }
   report.rms_position_gap = std::sqrt(sum_squares / std::max(report.samples, 1));
   return report;
+}
+
+double max_normal_step_deg(const ManifoldSpline& spline, int face, int steps) {
+  if (steps < 1 || face < 0 || face >= spline.space->face_count() ||
+      !spline.space->in_domain(face)) {
+    throw ricci::InvalidInputError("max_normal_step_deg: steps must be >= 1 and face " +
+                                   std::to_string(face) + " a domain face");
+  }
+  double worst = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+    for (int i = 0; i <= steps; ++i) {
+      Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+      bary[(k + 1) % 3] = 1.0 - static_cast<double>(i) / steps;
+      bary[(k + 2) % 3] = static_cast<double>(i) / steps;
+      // Just inside the face: on the edge itself the face's tie-break would pick a neighbour.
+      bary = 0.999 * bary + Eigen::Vector3d::Constant(1e-3 / 3.0);
+      const Eigen::Vector3d normal = spline.evaluate({face, bary}).normal;
+      if (i > 0) {
+        worst = std::max(worst, std::atan2(normal.cross(previous).norm(), normal.dot(previous)) *
+                                    180.0 / M_PI);
+      }
+      previous = normal;
+    }
+  }
+  return worst;
 }
 
 PatchTessellation tessellate_fill(const HoleFill& fill, int d) {

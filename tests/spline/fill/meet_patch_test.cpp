@@ -73,6 +73,25 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
   EXPECT_GT(checked, fit.spline.space->domain_face_count() / 2);
 }
 
+// max_normal_step_deg: about a degree on a smooth fitted surface away from the hole, tens of
+// degrees where the spline collapses next to the domain's rim (its partition of unity fails on
+// the cone's one-ring link); bad faces throw.
+TEST(MaxNormalStep, SmallOnASmoothFitLargeWhereTheSplineCollapses) {
+  const auto& fit = testing::fitted_scan(testing::bundled_model("genus2.off"), 1000);
+  const auto rings = domain_rim_rings(*fit.spline.space);
+  double far = 0.0, next_to_rim = 0.0;
+  for (int d = 0; d < fit.spline.space->domain_face_count(); ++d) {
+    const int face = fit.spline.space->domain_faces()[d];
+    if (rings[d] >= 3 && d % 10 == 0) far = std::max(far, max_normal_step_deg(fit.spline, face));
+    if (rings[d] == 0) next_to_rim = std::max(next_to_rim, max_normal_step_deg(fit.spline, face));
+  }
+  EXPECT_LT(far, 3.0);
+  EXPECT_GT(next_to_rim, 20.0);
+  EXPECT_THROW((void)max_normal_step_deg(fit.spline, -1), ricci::InvalidInputError);
+  EXPECT_THROW((void)max_normal_step_deg(fit.spline, fit.spline.space->domain_faces()[0], 0),
+               ricci::InvalidInputError);
+}
+
 TEST(MeetPatches, BadOptionsThrow) {
   const auto& fit = testing::fitted_scan(testing::shared_model("closed_g2/eight.off"), 1000);
   MeetPatchOptions bad;

@@ -364,6 +364,29 @@ TEST(Rims, DistortedConeHoleGrowsUntilItsRimIsWellConditioned) {
                ricci::InvalidInputError);
 }
 
+// The same hole on a surface whose spline "folds" on the first four rings (a normal step of 90
+// degrees there, 1 elsewhere): the hole grows until no rim face folds; the chart scale plays no
+// part, and an excluded-face hole again takes no extra layer.
+TEST(Rims, ConeHoleGrowsPastFolds) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  const auto domain = g.domain_without({{{0, 0}}, {{0, 1}}, {{1, 0}}, {{1, 1}}});
+  const auto ring = rings_around(g.mesh, domain);
+  const auto step = [&ring](int face) { return ring[face] <= 3 ? 90.0 : 1.0; };
+  const FindRimsOptions options;
+  const auto plain = find_rims(g.mesh, domain, domain, options);
+  const auto grown = find_rims(g.mesh, domain, domain, options, {}, {}, step);
+  ASSERT_EQ(grown.size(), 1u);
+  expect_closable(g.mesh, domain, grown, 1, "folded cone hole");
+  EXPECT_GT(grown[0].covered_faces.size(), plain[0].covered_faces.size());
+  for (const RimEdge& e : plain[0].edges) EXPECT_LE(ring[e.face], 3);  // it had to grow
+  for (const RimEdge& e : grown[0].edges)
+    EXPECT_LE(step(e.face), options.max_cone_rim_normal_step_deg) << "ring " << ring[e.face];
+  const std::vector<char> excluded_atlas(g.mesh.n_faces(), 1);
+  const auto excluded = find_rims(g.mesh, domain, excluded_atlas, options, {}, {}, step);
+  ASSERT_EQ(excluded.size(), 1u);
+  EXPECT_EQ(excluded[0].covered_faces, plain[0].covered_faces);
+}
+
 // A closed genus-0 scan: the one-cone pipeline punctures it (removes a vertex star); the grown
 // puncture is exactly one rim, and the kept faces plus its patch form a sphere.
 TEST(Rims, PuncturedSphereHasOneRim) {
