@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include <ricci/mesh/errors.h>
 
@@ -79,6 +81,72 @@ void move_surface_to_patches(FitRun& run, std::vector<spline::HoleFill>& fills) 
   }
 }
 
+// The rims, and the cone hole's patch when one was made while choosing them.
+struct ChosenRims {
+  std::vector<spline::Rim> rims;
+  int cone = -1;  ///< index of the cone hole's rim, -1 without one
+  std::optional<spline::HoleFill> cone_fill;
+};
+
+// The cone hole grows past faces where the chart is badly conditioned or the spline folds
+// (FindRimsOptions). A cone patch that still flips (a seam above 90 degrees: the patch folds
+// where the rim turns too fast for it) is retried on the hole grown by one and then two more
+// layers (within FindRimsOptions' caps), keeping the smallest seam. Measured (msp-bench fill
+// --faces 2000, then meet_patches): block.off 169 degrees, one more layer 2.4.
+ChosenRims choose_rims(const FitRun& run, const ricci::Mesh& domain,
+                       const std::vector<char>& in_domain, const spline::RimMergeOptions& merge,
+                       const spline::FillOptions& cone_options) {
+  const auto& space = *run.scan.spline.space;
+  const std::vector<double> scale = spline::chart_scale_by_face(space, domain);
+  const auto normal_step = [&run](int face) {
+    return spline::max_normal_step_deg(run.scan.spline, face);
+  };
+  const auto find = [&](int extra_layers) {
+    spline::FindRimsOptions rim_options;
+    rim_options.extra_cone_layers = extra_layers;
+    return spline::find_rims(domain, in_domain, space.atlas().in_domain, rim_options, merge,
+                             scale, normal_step);
+  };
+  const auto cone_of = [](const std::vector<spline::Rim>& rims) {
+    for (std::size_t i = 0; i < rims.size(); ++i) {
+      if (rims[i].kind == spline::Rim::Kind::cone_hole) return static_cast<int>(i);
+    }
+    return -1;
+  };
+  ChosenRims chosen;
+  chosen.rims = find(0);
+  chosen.cone = cone_of(chosen.rims);
+  if (chosen.cone < 0) return chosen;
+  chosen.cone_fill =
+      spline::fill_rim(run.scan.spline, domain, chosen.rims[chosen.cone], cone_options);
+  constexpr double kFlipped = 90.0;
+  for (int extra = 1; extra <= 2 && chosen.cone_fill->max_normal_jump_deg > kFlipped; ++extra) {
+    std::vector<spline::Rim> rims = find(extra);
+    const int cone = cone_of(rims);
+    if (cone < 0 || rims[cone].covered_faces == chosen.rims[chosen.cone].covered_faces) break;
+    spline::HoleFill fill = spline::fill_rim(run.scan.spline, domain, rims[cone], cone_options);
+    if (fill.max_normal_jump_deg < chosen.cone_fill->max_normal_jump_deg) {
+      chosen.rims = std::move(rims);
+      chosen.cone = cone;
+      chosen.cone_fill = std::move(fill);
+    }
+  }
+  return chosen;
+}
+
+spline::FillOptions fill_options_for(bool input_boundary) {
+  spline::FillOptions fill_options;
+  // The punctured sphere's hole is a cone hole in all but name: filled like one (its
+  // projection may fold; the patch is laid out on a circle either way). Without the
+  // fallback its fold left the only rim of camel.off and knight_decimated.off open.
+  fill_options.require_simple_projection = input_boundary;
+  // Boundary loops the user asked to cap are capped too when no height field fits them
+  // (most of them, e.g. beetle.off's merged ones): watertight, not G1, counted in
+  // fallback_fills.
+  fill_options.fallback_boundary = true;
+  return fill_options;
+}
+
 }  // namespace
 
 std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRunOptions& options) {
@@ -93,13 +161,10 @@ std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRun
   for (int f = 0; f < static_cast<int>(domain.n_faces()); ++f) in_domain[f] = space.in_domain(f);
   spline::RimMergeOptions merge;
   merge.boundary_loops = options.fill_boundaries || run.input.boundary_loops == 0;
-  // The cone hole grows past faces where the chart is badly conditioned or the spline folds.
-  const auto normal_step = [&run](int face) {
-    return spline::max_normal_step_deg(run.scan.spline, face);
-  };
-  fills->rims = spline::find_rims(domain, in_domain, space.atlas().in_domain, {}, merge,
-                                  spline::chart_scale_by_face(space, domain), normal_step);
-  for (const auto& rim : fills->rims) {
+  ChosenRims chosen = choose_rims(run, domain, in_domain, merge, fill_options_for(false));
+  fills->rims = std::move(chosen.rims);
+  for (std::size_t r = 0; r < fills->rims.size(); ++r) {
+    const spline::Rim& rim = fills->rims[r];
     // Skipped even when the rim stays open: the spline collapses in that band (open/holes.off
     // with the band kept: fit max 27% of the diagonal, 1.8% without it). With
     // --fill-boundaries, growing merges boundary loops a ring or two apart into one hole (a
@@ -114,16 +179,10 @@ std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRun
       continue;
     }
     try {
-      spline::FillOptions fill_options;
-      // The punctured sphere's hole is a cone hole in all but name: filled like one (its
-      // projection may fold; the patch is laid out on a circle either way). Without the
-      // fallback its fold left the only rim of camel.off and knight_decimated.off open.
-      fill_options.require_simple_projection = input_boundary;
-      // Boundary loops the user asked to cap are capped too when no height field fits them
-      // (most of them, e.g. beetle.off's merged ones): watertight, not G1, counted in
-      // fallback_fills.
-      fill_options.fallback_boundary = true;
-      fills->fills.push_back(spline::fill_rim(run.scan.spline, domain, rim, fill_options));
+      fills->fills.push_back(static_cast<int>(r) == chosen.cone
+                                 ? *chosen.cone_fill
+                                 : spline::fill_rim(run.scan.spline, domain, rim,
+                                                    fill_options_for(input_boundary)));
       const auto& fill = fills->fills.back();
       if (!fill.g1) ++run.fallback_fills;
       run.fill_normal_jump_deg = std::max(run.fill_normal_jump_deg, fill.max_normal_jump_deg);

@@ -138,6 +138,10 @@ struct FindRimsOptions {
   /// elephant_cgal.off 179 -> 15.
   double max_cone_rim_normal_step_deg = 20.0;
   int max_cone_layers = 3;  ///< cap on those extra layers
+  /// The first this many of those layers are taken whatever the rim's faces (still within the
+  /// caps): for a retry on a bigger hole when a patch cannot meet the rim (msp fit does when a
+  /// cone patch flips).
+  int extra_cone_layers = 0;
   /// ... and on the domain faces the cone hole may cover (a coarse domain, e.g. joint.off's 540
   /// faces, distorted everywhere, would otherwise lose a large part of its spline to the patch).
   double max_cone_cover_fraction = 0.08;

@@ -402,7 +402,7 @@ void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, c
                                     const FindRimsOptions& options) {
   const bool by_scale = !chart_scale.empty() && options.max_cone_rim_scale_ratio > 1.0;
   const bool by_folds = static_cast<bool>(normal_step_deg);
-  if (!by_scale && !by_folds) return;
+  if (!by_scale && !by_folds && options.extra_cone_layers <= 0) return;
   const int cone = kind_rank(Rim::Kind::cone_hole);
   const auto domain_faces = std::count(domain.begin(), domain.end(), 1);
   for (int layer = 0; layer < options.max_cone_layers; ++layer) {
@@ -417,7 +417,7 @@ void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, c
               worst_scale_ratio(chart_scale, mesh, f) > options.max_cone_rim_scale_ratio) ||
              (by_folds && normal_step_deg(f) > options.max_cone_rim_normal_step_deg);
     }
-    if (!poor) return;
+    if (!poor && layer >= options.extra_cone_layers) return;
     std::vector<int> candidates;
     for (auto v : mesh.vertices()) {
       if (!on_rim[v.idx()]) continue;
