@@ -86,9 +86,10 @@ void print_surface_steps(const spline::ScanFitResult& fit) {
     auto& steps = by_ring[r];
     if (steps.empty()) continue;
     std::sort(steps.begin(), steps.end());
-    std::printf("   ring %d%s: %4zu faces, normal step per 1/100 edge median %.3f p90 %.3f max %.3f\n",
-                r, r == kRings - 1 ? "+" : " ", steps.size(), steps[steps.size() / 2],
-                steps[steps.size() * 9 / 10], steps.back());
+    std::printf(
+        "   ring %d%s: %4zu faces, normal step per 1/100 edge median %.3f p90 %.3f max %.3f\n", r,
+        r == kRings - 1 ? "+" : " ", steps.size(), steps[steps.size() / 2],
+        steps[steps.size() * 9 / 10], steps.back());
   }
 }
 
@@ -141,15 +142,20 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
             const auto e = rim.edges[j];
             const auto sj = fit.spline.evaluate({e.face, spline::rim_edge_barycentric(e, tt)});
             const auto p = fill.evaluate(fill.parameter(static_cast<int>(j), tt));
-            const double a = std::atan2(sj.normal.cross(p.normal).norm(), sj.normal.dot(p.normal)) * 180 / M_PI;
-            if (a > worst) { worst = a; worst_t = tt; }
-            if (i > 0) {
-              const double c = std::atan2(sj.normal.cross(previous).norm(), sj.normal.dot(previous)) * 180 / M_PI;
-              if (c > change) { change = c; change_t = tt; }
+            const double a = angle_deg(sj.normal, p.normal);
+            if (a > worst) {
+              worst = a;
+              worst_t = tt;
+            }
+            const double c = i > 0 ? angle_deg(sj.normal, previous) : 0.0;
+            if (c > change) {
+              change = c;
+              change_t = tt;
             }
             previous = sj.normal;
           }
-          std::printf("   edge %zu worst %.3f at t %.2f  surface normal step max %.3f at %.2f\n", j, worst, worst_t, change, change_t);
+          std::printf("   edge %zu worst %.3f at t %.2f  surface normal step max %.3f at %.2f\n", j,
+                      worst, worst_t, change, change_t);
         }
       }
     } catch (const std::exception& e) {
@@ -216,7 +222,9 @@ int run_fill_benchmark(int argc, char** argv) {
       "%d, %d fit samples per edge, smoothing %g);\njump: max normal angle (deg) at 100 samples "
       "per rim edge; gaps |P - S| / bbox diagonal; wall seconds.\noptions: --faces N --grow G "
       "--refinement R --samples Q --smoothing S --method auto|height|parametric --cross W "
-      "--tangent W --max-boundary B --per-edge (worst jump and surface normal step per rim edge) --surface-steps (the surface's normal step per 1/100 edge by ring from the rim) --fill-boundaries (fallback for boundary loops) "
+      "--tangent W --max-boundary B --per-edge (worst jump and surface normal step per rim "
+      "edge) --surface-steps (the surface's normal step per 1/100 edge by ring from the rim) "
+      "--fill-boundaries (fallback for boundary loops) "
       "[models...]\n\n",
       fit_options.domain_faces, rim_options.grow, fill_options.refinement,
       fill_options.fit_samples_per_edge, fill_options.smoothing);

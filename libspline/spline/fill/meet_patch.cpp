@@ -123,7 +123,8 @@ MeetPatchResult meet_patches(const ManifoldSpline& spline, const std::vector<Hol
       const auto row = static_cast<int>(targets.size());
       for (const auto& b : s.basis) {
         const int k = moved.unknown.at(b.function);
-        entries.emplace_back(row, k, s.patch_normal.dot(moved.direction[k]) * b.jet.gradient[d] / length);
+        entries.emplace_back(
+            row, k, s.patch_normal.dot(moved.direction[k]) * b.jet.gradient[d] / length);
       }
       targets.push_back(-s.patch_normal.dot(s.derivative[d]) / length);
     }

@@ -392,9 +392,10 @@ double worst_scale_ratio(const std::vector<double>& chart_scale, const ricci::Me
 }
 
 // Extra layers of the cone hole (FindRimsOptions::max_cone_rim_scale_ratio and
-// max_cone_rim_normal_step_deg): while a face on its rim is badly conditioned or folded, every kept face touching a vertex of its rim joins it face by
-// face (grow_face_by_face keeps every hole a disk apart from the others); a layer that would
-// cover more than max_cone_cover_fraction of the domain is undone and the growth stops.
+// max_cone_rim_normal_step_deg): while a face on its rim is badly conditioned or folded (and
+// for the first extra_cone_layers layers), every kept face touching a vertex of its rim joins it
+// face by face (grow_face_by_face keeps every hole a disk apart from the others); a layer that
+// would cover more than max_cone_cover_fraction of the domain is undone and the growth stops.
 void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
                                     const std::vector<char>& domain,
                                     const std::vector<double>& chart_scale,
@@ -560,13 +561,15 @@ std::vector<double> chart_scale_by_face(const ManifoldSplineSpace& space, const 
   std::vector<double> scale(mesh.n_faces(), 0.0);
   for (int f : space.domain_faces()) {
     const Eigen::Matrix<double, 3, 2> p = space.atlas().face_positions(space.chart_of(f), f);
-    const Eigen::Vector2d a = (p.row(1) - p.row(0)).transpose(), b = (p.row(2) - p.row(0)).transpose();
+    const Eigen::Vector2d a = (p.row(1) - p.row(0)).transpose();
+    const Eigen::Vector2d b = (p.row(2) - p.row(0)).transpose();
     const double chart_area = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
     Eigen::Vector3d corner[3];
     int k = 0;
     for (auto v : mesh.fv_range(mesh.face_handle(f))) corner[k++] = ricci::to_eigen(mesh.point(v));
     const double area = 0.5 * (corner[1] - corner[0]).cross(corner[2] - corner[0]).norm();
-    if (chart_area > 0.0 && area > 0.0) scale[static_cast<std::size_t>(f)] = std::sqrt(chart_area / area);
+    if (chart_area > 0.0 && area > 0.0)
+      scale[static_cast<std::size_t>(f)] = std::sqrt(chart_area / area);
   }
   return scale;
 }
