@@ -147,6 +147,29 @@ void print_broken_trials(const ricci::OneConeAtlasResult& r) {
   }
 }
 
+// "FAR:NEAR:RINGS[,...]" with FAR inversive-distance|circle-packing, NEAR circle-packing|tangent.
+std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
+  std::vector<ricci::ConeRingMetric> rules;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    std::stringstream fields(item);
+    std::string far, near, rings;
+    std::getline(fields, far, ':');
+    std::getline(fields, near, ':');
+    std::getline(fields, rings, ':');
+    std::string needle;
+    std::getline(fields, needle, ':');
+    ricci::ConeRingMetric rule;
+    if (!needle.empty()) rule.needle_angle = std::stod(needle) * M_PI / 180.0;
+    rule.far = parse_scheme(far);
+    rule.near = near == "tangent" ? ricci::Scheme::Combinatorial : parse_scheme(near);
+    rule.rings = std::stoi(rings);
+    rules.push_back(rule);
+  }
+  return rules;
+}
+
 std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 
 }  // namespace
@@ -154,7 +177,7 @@ std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
-                      "polish-threshold"});
+                      "polish-threshold", "flat-flips", "ring-metric", "continuation"});
   args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R]");
   const std::string path = args.positionals()[0];
   auto t0 = Clock::now();
@@ -172,6 +195,12 @@ int run_one_cone_case(int argc, char** argv) {
   options.valence.cone_valence_margin = args.get_int("cone-margin", options.valence.cone_valence_margin);
   options.valence.ring_valence = args.get_int("ring-valence", options.valence.ring_valence);
   options.valence.rings = args.get_int("rings", options.valence.rings);
+  if (args.has("flat-flips")) {  // degrees between the faces' normals
+    options.flip_flat_edges = true;
+    options.flat_flips.max_normal_angle = std::stod(*args.get("flat-flips")) * M_PI / 180.0;
+  }
+  options.continuation.stages = args.get_int("continuation", 1);
+  if (args.has("ring-metric")) options.cone_ring_metrics = parse_ring_metrics(*args.get("ring-metric"));
   if (args.has("verbose")) {
     options.flow.progress = [](const ricci::FlowProgress& p) {
       std::cerr << "  newton " << p.iteration << ": error " << p.max_error << ", step " << p.step << ", "
@@ -194,6 +223,9 @@ int run_one_cone_case(int argc, char** argv) {
     j["kind"] = ricci::to_string(r.problem.kind);
     j["cone"] = r.chosen_vertex;
     j["splits"] = r.problem.valence_splits;
+    j["flat_flips"] = r.flat_flips.flips;
+    j["non_delaunay_left"] = r.flat_flips.non_delaunay_left;
+    j["flips_seconds"] = t.flips;
     j["metric"] = ricci::to_string(r.flow.metric.scheme);
     j["failed_metrics"] = r.flow.failed_attempts.size();
     j["choice"] = t.choice;
@@ -241,6 +273,7 @@ int run_one_cone_case(int argc, char** argv) {
       kerr.maxCoeff(&worst_v);
       std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
       print_broken_trials(r);
+      for (const std::string& failure : r.flow.failed_attempts) std::cerr << "failed: " << failure << "\n";
     }
     j["qc_mean"] = r.distortion.quasi_conformal_mean;
     j["qc_max"] = r.distortion.quasi_conformal_max;

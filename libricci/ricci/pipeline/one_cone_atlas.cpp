@@ -52,14 +52,30 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     result.timings.choice = seconds_since(t);
   }
 
-  report("valence modification");
   auto t = Clock::now();
-  result.problem = prepare_one_cone(mesh, result.chosen_vertex, options.valence);
+  Mesh flipped;
+  if (options.flip_flat_edges) {
+    report("flat edge flips");
+    flipped = mesh;
+    result.flat_flips = flip_flat_edges_to_delaunay(flipped, options.flat_flips);
+  }
+  result.timings.flips = seconds_since(t);
+
+  report("valence modification");
+  t = Clock::now();
+  result.problem = prepare_one_cone(options.flip_flat_edges ? flipped : mesh, result.chosen_vertex, options.valence);
   result.timings.valence = seconds_since(t);
 
   report("Ricci flow");
   t = Clock::now();
-  result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
+  if (result.problem.kind == OneConeKind::SingleCone && !options.cone_ring_metrics.empty()) {
+    result.flow = solve_cone_ring_flow(result.problem, options.cone_ring_metrics, options.flow, options.continuation);
+  }
+  if (!result.flow.converged()) {
+    std::vector<std::string> failures = result.flow.failed_attempts;
+    result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
+    result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(), failures.end());
+  }
   result.timings.flow = seconds_since(t);
   if (!result.flow.converged()) throw SolverError(result.flow.message);
   // The layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it

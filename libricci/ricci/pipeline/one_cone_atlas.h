@@ -7,6 +7,7 @@
 
 #include "ricci/atlas/atlas.h"
 #include "ricci/flow/flow.h"
+#include "ricci/mesh/flat_flips.h"
 #include "ricci/mesh/mesh.h"
 #include "ricci/metric/polish_e2.h"
 #include "ricci/quality/distortion.h"
@@ -22,6 +23,14 @@ struct OneConeAtlasOptions {
   /// (one_cone_metric_order) unless `keep_metric`, which forces flow.scheme and flow.radii.
   FlowOptions flow = one_cone_flow_options();
   bool keep_metric = false;
+  /// Delaunay flips of the edges between coplanar faces (mesh/flat_flips.h) before the valence
+  /// modification: the surface stays, its caps and slivers go.
+  bool flip_flat_edges = false;
+  FlatFlipOptions flat_flips;
+  /// Single cones: metrics tried in turn (solve_cone_ring_flow) before solve_one_cone_flow's.
+  std::vector<ConeRingMetric> cone_ring_metrics;
+  /// Continuation stages for the cone-ring metrics' flows (1 = the plain flow).
+  ContinuationOptions continuation{1};
   ValenceOptions valence;
   SingularityOptions choice;
   AtlasOptions atlas;
@@ -38,11 +47,12 @@ struct OneConeAtlasOptions {
 
 /// Wall-clock seconds of each stage.
 struct OneConeAtlasTimings {
-  double choice = 0, valence = 0, flow = 0, polish = 0, atlas = 0, distortion = 0, total = 0;
+  double choice = 0, flips = 0, valence = 0, flow = 0, polish = 0, atlas = 0, distortion = 0, total = 0;
 };
 
 struct OneConeAtlasResult {
-  OneConeProblem problem;  ///< The (valence-modified or punctured) mesh and its targets.
+  OneConeProblem problem;  ///< The (flipped, valence-modified or punctured) mesh and its targets.
+  FlatFlipResult flat_flips;  ///< What flip_flat_edges did (zeros when off).
   /// The flow's result; its `lengths` are replaced by the polished ones (below).
   FlowResult flow;
   /// Long-double polish of the flow's lengths before the layout (error_before/after: max

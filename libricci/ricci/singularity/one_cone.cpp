@@ -120,17 +120,36 @@ std::vector<int> ring_depth(const MeshTables& t, int cone, int rings) {
 
 }  // namespace
 
-CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
-                                        int rings, RadiusInit radii) {
-  CirclePackingMetric metric =
-      initial_metric(tables, lengths, Geometry::Euclidean, Scheme::CirclePacking, radii);
-  const std::vector<int> depth = ring_depth(tables, cone, rings);
+CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
+                                     const ConeRingMetric& rule) {
+  CirclePackingMetric metric = initial_metric(tables, lengths, Geometry::Euclidean, rule.far, rule.radii);
+  const std::vector<int> depth = ring_depth(tables, cone, rule.rings);
+  std::vector<char> near(static_cast<size_t>(tables.num_edges()), 0);
   for (int e = 0; e < tables.num_edges(); ++e) {
-    if (std::min(depth[tables.edge_vertices(e, 0)], depth[tables.edge_vertices(e, 1)]) < rings) {
-      metric.eta[e] = 1.0;
+    near[e] = std::min(depth[tables.edge_vertices(e, 0)], depth[tables.edge_vertices(e, 1)]) < rule.rings;
+  }
+  for (int f = 0; f < tables.num_faces() && rule.needle_angle > 0; ++f) {
+    const double l[3] = {lengths[tables.face_edges(f, 0)], lengths[tables.face_edges(f, 1)],
+                         lengths[tables.face_edges(f, 2)]};
+    double theta[3];
+    if (triangle_angles(Geometry::Euclidean, l, theta) &&
+        std::min({theta[0], theta[1], theta[2]}) >= rule.needle_angle) {
+      continue;
     }
+    for (int k = 0; k < 3; ++k) near[tables.face_edges(f, k)] = 1;
+  }
+  for (int e = 0; e < tables.num_edges(); ++e) {
+    if (!near[e]) continue;
+    // Thurston's angle is the inversive distance clamped to [0, pi/2]: the same circles where
+    // they overlap by less than a right angle.
+    metric.eta[e] = rule.near == Scheme::Combinatorial ? 1.0 : std::clamp(metric.eta[e], 0.0, 1.0);
   }
   return metric;
+}
+
+CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
+                                        int rings, RadiusInit radii) {
+  return cone_ring_metric(tables, lengths, cone, {Scheme::CirclePacking, Scheme::Combinatorial, rings, radii});
 }
 
 namespace {
@@ -197,6 +216,39 @@ std::vector<std::pair<std::string, Targets>> alternative_boundary_targets(const 
 }
 
 }  // namespace
+
+std::string to_string(const ConeRingMetric& rule) {
+  return to_string(rule.far) + "/" + radius_name(rule.radii) + ", " +
+         (rule.near == Scheme::Combinatorial ? std::string("tangent") : to_string(rule.near)) + " within " +
+         std::to_string(rule.rings) + " rings of the cone";
+}
+
+FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector<ConeRingMetric>& rules,
+                                const FlowOptions& options, const ContinuationOptions& continuation) {
+  if (problem.kind != OneConeKind::SingleCone) {
+    throw InvalidInputError("a cone-ring metric needs a single-cone problem, not " + to_string(problem.kind));
+  }
+  FlowResult result;
+  std::vector<std::string> failures;
+  const MeshTables tables = build_mesh_tables(problem.mesh);
+  const EdgeLengths lengths = mesh_edge_lengths(problem.mesh);
+  for (const ConeRingMetric& rule : rules) {
+    try {
+      const CirclePackingMetric initial = cone_ring_metric(tables, lengths, problem.cone, rule);
+      // Mixing clamped and free weights in one face can break it before the flow starts: the
+      // continuation's first curvature evaluation throws InvalidInputError then.
+      result = flow_by_continuation(tables, initial, problem.targets, options, continuation);
+      if (result.converged()) break;
+      failures.push_back(to_string(rule) + ": " + to_string(result.status));
+    } catch (const InfeasibleTargetError& e) {
+      failures.push_back(to_string(rule) + ": " + e.what());
+    } catch (const InvalidInputError& e) {
+      failures.push_back(to_string(rule) + ": " + e.what());
+    }
+  }
+  result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
+  return result;
+}
 
 FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
   if (keep_metric) return flow(problem.mesh, problem.targets, options);
