@@ -162,6 +162,9 @@ std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
     std::getline(fields, needle, ':');
     ricci::ConeRingMetric rule;
     if (!needle.empty()) rule.needle_angle = std::stod(needle) * M_PI / 180.0;
+    std::string nonnegative;
+    std::getline(fields, nonnegative, ':');
+    rule.nonnegative_inversive_distance = nonnegative == "nonnegative";
     rule.far = parse_scheme(far);
     rule.near = near == "tangent" ? ricci::Scheme::Combinatorial : parse_scheme(near);
     rule.rings = std::stoi(rings);

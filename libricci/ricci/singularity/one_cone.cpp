@@ -16,6 +16,8 @@ namespace {
 
 // Rings around a single cone whose edges start with tangent circles (cone_tangent_metric).
 constexpr int kConeTangentRings = 3;
+// Stages of the continuation tried when the flow to the cone stalls in one go.
+constexpr int kConeContinuationStages = 4;
 
 void check_vertex(const Mesh& mesh, int vertex) {
   if (vertex < 0 || vertex >= static_cast<int>(mesh.n_vertices())) {
@@ -120,9 +122,41 @@ std::vector<int> ring_depth(const MeshTables& t, int cone, int rings) {
 
 }  // namespace
 
+namespace {
+
+// Shrinks both radii of every edge with γ_a² + γ_b² > l² (inversive distance below 0) until
+// none is left, then recomputes the inversive distances (the lengths are kept).
+void make_inversive_distances_nonnegative(const MeshTables& tables, const EdgeLengths& lengths,
+                                          CirclePackingMetric& metric) {
+  constexpr int kMaxPasses = 200;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    bool changed = false;
+    for (int e = 0; e < tables.num_edges(); ++e) {
+      double& a = metric.gamma[tables.edge_vertices(e, 0)];
+      double& b = metric.gamma[tables.edge_vertices(e, 1)];
+      const double reach = std::hypot(a, b);
+      if (reach <= lengths[e]) continue;
+      const double scale = lengths[e] / reach * (1.0 - 1e-12);
+      a *= scale;
+      b *= scale;
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  for (int e = 0; e < tables.num_edges(); ++e) {
+    metric.eta[e] = circle_edge_eta(Geometry::Euclidean, metric.gamma[tables.edge_vertices(e, 0)],
+                                    metric.gamma[tables.edge_vertices(e, 1)], lengths[e]);
+  }
+}
+
+}  // namespace
+
 CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
                                      const ConeRingMetric& rule) {
   CirclePackingMetric metric = initial_metric(tables, lengths, Geometry::Euclidean, rule.far, rule.radii);
+  if (rule.far == Scheme::InversiveDistance && rule.nonnegative_inversive_distance) {
+    make_inversive_distances_nonnegative(tables, lengths, metric);
+  }
   const std::vector<int> depth = ring_depth(tables, cone, rule.rings);
   std::vector<char> near(static_cast<size_t>(tables.num_edges()), 0);
   for (int e = 0; e < tables.num_edges(); ++e) {
@@ -173,6 +207,13 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options
       result = flow(tables, initial, problem.targets, options);
       if (result.converged()) return result;
       failures.push_back(name + to_string(result.status));
+      // The same metric with the cone reached in stages: genus2_100k refined to 1.6M faces
+      // stalls at error 3 in one go (Newton's first steps are cut to 1/2048 by the line search)
+      // and converges in kConeContinuationStages stages.
+      result = flow_by_continuation(tables, initial, problem.targets, options,
+                                    ContinuationOptions{kConeContinuationStages});
+      if (result.converged()) return result;
+      failures.push_back(name + "by continuation: " + to_string(result.status));
     } catch (const InfeasibleTargetError& e) {
       failures.push_back(name + e.what());
     }

@@ -86,6 +86,9 @@ struct ConeRingMetric {
   /// wherever they are: the inversive distance of a needle's short edge sits near -1, where its
   /// length is most sensitive to the radii (0 = none).
   double needle_angle = 0.0;
+  /// Shrink the radii where two circles overlap by more than a right angle (I < 0) until every
+  /// inversive distance is >= 0, the regime where the energy is locally convex (Guo 2011).
+  bool nonnegative_inversive_distance = false;
 };
 
 /// The initial metric of `rule` on the mesh of `tables` with lengths `lengths`.
