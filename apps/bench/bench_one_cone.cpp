@@ -180,7 +180,7 @@ std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
-                      "polish-threshold", "flat-flips", "ring-metric", "continuation"});
+                      "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings"});
   args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R]");
   const std::string path = args.positionals()[0];
   auto t0 = Clock::now();
@@ -201,6 +201,15 @@ int run_one_cone_case(int argc, char** argv) {
   if (args.has("flat-flips")) {  // degrees between the faces' normals
     options.flip_flat_edges = true;
     options.flat_flips.max_normal_angle = std::stod(*args.get("flat-flips")) * M_PI / 180.0;
+  }
+  if (args.has("flip-deviation")) {  // fraction of the median edge length
+    options.flip_flat_edges = true;
+    options.flat_flips.max_relative_deviation = std::stod(*args.get("flip-deviation"));
+  }
+  options.flat_flips.protected_rings = args.get_int("protect-rings", 0);
+  if (args.has("collapse")) {  // edges below this fraction of the median length
+    options.collapse_short_edges = true;
+    options.short_edges.relative_length = std::stod(*args.get("collapse"));
   }
   options.continuation.stages = args.get_int("continuation", 1);
   if (args.has("ring-metric")) options.cone_ring_metrics = parse_ring_metrics(*args.get("ring-metric"));
@@ -227,6 +236,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["cone"] = r.chosen_vertex;
     j["splits"] = r.problem.valence_splits;
     j["flat_flips"] = r.flat_flips.flips;
+    j["collapses"] = r.short_edges.collapses;
     j["non_delaunay_left"] = r.flat_flips.non_delaunay_left;
     j["flips_seconds"] = t.flips;
     j["metric"] = ricci::to_string(r.flow.metric.scheme);
@@ -268,6 +278,12 @@ int run_one_cone_case(int argc, char** argv) {
         if (err > worst) { worst = err; wa = a; wb = b; wl = sl[e.idx()]; }
       }
       const int oa = r.atlas.sliced.to_original_vertex[wa], ob = r.atlas.sliced.to_original_vertex[wb];
+      if (r.problem.cone >= 0) {
+        const std::vector<int> rings = ring_distance(r.problem.mesh, r.problem.cone);
+        std::cerr << "worst edge rings from the cone " << rings[static_cast<size_t>(oa)] << ", valences "
+                  << r.problem.mesh.valence(r.problem.mesh.vertex_handle(oa)) << " "
+                  << r.problem.mesh.valence(r.problem.mesh.vertex_handle(ob)) << "\n";
+      }
       std::cerr << "worst edge " << oa << "-" << ob << " rel " << worst << " length/diam " << wl / r.atlas.domain_diameter
                 << " K err " << r.flow.curvature[oa] - r.flow.target[oa] << " " << r.flow.curvature[ob] - r.flow.target[ob]
                 << " pos " << r.atlas.layout.positions.row(wa) << " seed " << r.atlas.layout.seed_face << "\n";
@@ -276,6 +292,19 @@ int run_one_cone_case(int argc, char** argv) {
       kerr.maxCoeff(&worst_v);
       std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
       print_broken_trials(r);
+      {
+        const ricci::MeshTables tables = ricci::build_mesh_tables(r.problem.mesh);
+        const Eigen::MatrixX3d angles = ricci::corner_angles(tables, r.flow.lengths, ricci::Geometry::Euclidean);
+        Eigen::Index worst_face = 0, worst_corner = 0;
+        const double smallest = angles.minCoeff(&worst_face, &worst_corner);
+        const Eigen::VectorXd k = ricci::vertex_curvature(tables, r.flow.lengths, ricci::Geometry::Euclidean);
+        Eigen::VectorXd defect = (k - r.problem.targets.curvature).cwiseAbs();
+        Eigen::Index worst_vertex = 0;
+        std::cerr << "curvature of the final lengths on the problem mesh: max |K - target| "
+                  << defect.maxCoeff(&worst_vertex) << " at " << worst_vertex << "\n";
+        std::cerr << "metric's smallest corner angle " << smallest << " (face " << worst_face << "), largest "
+                  << angles.maxCoeff() << ", corners below 1e-4: " << (angles.array() < 1e-4).count() << "\n";
+      }
       for (const std::string& failure : r.flow.failed_attempts) std::cerr << "failed: " << failure << "\n";
     }
     j["qc_mean"] = r.distortion.quasi_conformal_mean;

@@ -1,5 +1,6 @@
 #include "ricci/mesh/flat_flips.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -23,6 +24,12 @@ struct EdgeQuad {
     const Eigen::Vector3d n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
     return std::atan2(n1.cross(n2).norm(), n1.dot(n2));
   }
+  // Distance between the lines of the two diagonals ab and cd: how far the flip moves the surface.
+  double diagonal_distance() const {
+    const Eigen::Vector3d n = (b - a).cross(d - c);
+    const double norm = n.norm();
+    return norm > 0 ? std::abs((c - a).dot(n)) / norm : 0.0;
+  }
   // Whether the faces after the flip, (c, d, b) and (d, c, a), face the way the old ones do.
   bool flip_keeps_orientation() const {
     const Eigen::Vector3d n = (b - a).cross(c - a) + (a - b).cross(d - b);
@@ -44,18 +51,59 @@ bool is_non_delaunay(const Mesh& mesh, EdgeHandle e, double margin) {
 
 // Whether flipping e keeps a 2-manifold with every vertex of valence >= 3 and the surface in
 // place, and makes the edge Delaunay.
-bool can_flip(const Mesh& mesh, EdgeHandle e, const EdgeQuad& quad, const FlatFlipOptions& options) {
+bool can_flip(const Mesh& mesh, EdgeHandle e, const EdgeQuad& quad, const FlatFlipOptions& options,
+              double max_deviation) {
   if (!mesh.is_flip_ok(e)) return false;
   const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0);
   if (mesh.valence(mesh.from_vertex_handle(h0)) <= 3 || mesh.valence(mesh.to_vertex_handle(h0)) <= 3) return false;
-  return quad.normal_angle() <= options.max_normal_angle && quad.flip_keeps_orientation() &&
-         quad.flipped_opposite_angle_sum() < M_PI;
+  const bool flat = quad.normal_angle() <= options.max_normal_angle || quad.diagonal_distance() <= max_deviation;
+  return flat && quad.flip_keeps_orientation() && quad.flipped_opposite_angle_sum() < M_PI;
+}
+
+double median_edge_length(const Mesh& mesh) {
+  std::vector<double> lengths;
+  lengths.reserve(mesh.n_edges());
+  for (auto e : mesh.edges()) lengths.push_back(mesh.calc_edge_length(e));
+  if (lengths.empty()) return 0.0;
+  auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), middle, lengths.end());
+  return *middle;
+}
+
+// 1 for the vertices within `rings` rings of `center` (none when center < 0).
+std::vector<char> protected_vertices(const Mesh& mesh, int center, int rings) {
+  std::vector<char> inside(mesh.n_vertices(), 0);
+  if (center < 0) return inside;
+  std::vector<VertexHandle> front{mesh.vertex_handle(center)};
+  inside[static_cast<size_t>(center)] = 1;
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<VertexHandle> next;
+    for (VertexHandle v : front) {
+      for (VertexHandle w : mesh.vv_range(v)) {
+        if (!inside[static_cast<size_t>(w.idx())]) {
+          inside[static_cast<size_t>(w.idx())] = 1;
+          next.push_back(w);
+        }
+      }
+    }
+    front = std::move(next);
+  }
+  return inside;
+}
+
+bool touches(const Mesh& mesh, EdgeHandle e, const std::vector<char>& inside) {
+  const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+  for (HalfedgeHandle h : {h0, h1, mesh.next_halfedge_handle(h0), mesh.next_halfedge_handle(h1)}) {
+    if (inside[static_cast<size_t>(mesh.to_vertex_handle(h).idx())]) return true;
+  }
+  return false;
 }
 
 }  // namespace
 
 FlatFlipResult flip_flat_edges_to_delaunay(Mesh& mesh, const FlatFlipOptions& options) {
   FlatFlipResult result;
+  const std::vector<char> frozen = protected_vertices(mesh, options.protected_vertex, options.protected_rings);
   std::vector<EdgeHandle> pending;
   std::vector<char> queued(mesh.n_edges(), 0);
   for (auto e : mesh.edges()) {
@@ -64,6 +112,7 @@ FlatFlipResult flip_flat_edges_to_delaunay(Mesh& mesh, const FlatFlipOptions& op
       queued[e.idx()] = 1;
     }
   }
+  const double max_deviation = options.max_relative_deviation * median_edge_length(mesh);
   const double max_flips = options.max_flips_per_edge * static_cast<double>(mesh.n_edges());
   while (!pending.empty() && result.flips < max_flips) {
     const EdgeHandle e = pending.back();
@@ -71,7 +120,7 @@ FlatFlipResult flip_flat_edges_to_delaunay(Mesh& mesh, const FlatFlipOptions& op
     queued[e.idx()] = 0;
     if (!is_non_delaunay(mesh, e, options.delaunay_margin)) continue;
     const EdgeQuad quad = edge_quad(mesh, e);
-    if (!can_flip(mesh, e, quad, options)) continue;
+    if (touches(mesh, e, frozen) || !can_flip(mesh, e, quad, options, max_deviation)) continue;
     result.max_normal_angle_flipped = std::max(result.max_normal_angle_flipped, quad.normal_angle());
     mesh.flip(e);
     ++result.flips;

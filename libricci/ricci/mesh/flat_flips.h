@@ -14,6 +14,15 @@ struct FlatFlipOptions {
   /// The flipped diagonal leaves the surface by at most about this angle times a quarter of the
   /// shorter diagonal, so 1e-3 keeps every point within 0.03% of the local edge length.
   double max_normal_angle = 1e-3;
+  /// Also flipped, whatever the normals: edges whose quad is this thin, i.e. whose two diagonals
+  /// pass within this fraction of the median edge length of each other (the most the surface
+  /// moves). Caps (an angle near pi) have their apex next to their long edge and go this way.
+  /// 0 = off.
+  double max_relative_deviation = 0.0;
+  /// Edges with a quad vertex within `protected_rings` rings of `protected_vertex` stay (-1 =
+  /// none): the valences there are what a cone's existence condition counts.
+  int protected_vertex = -1;
+  int protected_rings = 0;
   /// An edge is not Delaunay when the angles opposite it sum to more than pi plus this (radians).
   double delaunay_margin = 1e-9;
   /// Flips allowed, as a multiple of the edge count (a safety cap: in the plane Lawson's flips

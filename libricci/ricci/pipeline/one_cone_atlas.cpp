@@ -25,6 +25,42 @@ VertexHandle atlas_root(const OneConeProblem& problem) {
   return problem.mesh.vertex_handle(0);
 }
 
+// Index in the cleaned-up mesh of input vertex `vertex` (-1 stays -1).
+int input_to_cleaned(const OneConeAtlasResult& result, int vertex) {
+  const std::vector<int>& map = result.short_edges.input_vertex;
+  if (vertex < 0 || map.empty()) return vertex;
+  return static_cast<int>(std::find(map.begin(), map.end(), vertex) - map.begin());
+}
+
+// The input with its short edges collapsed and its flat non-Delaunay edges flipped, as asked;
+// fills result.short_edges (with the vertex map) and result.flat_flips.
+Mesh clean_up_surface(const Mesh& mesh, const OneConeAtlasOptions& options, OneConeAtlasResult& result) {
+  Mesh cleaned = mesh;
+  if (options.collapse_short_edges) {
+    ShortEdgeOptions short_edges = options.short_edges;
+    short_edges.keep_vertex = result.chosen_vertex;
+    result.short_edges = collapse_short_edges(mesh, short_edges);
+    cleaned = result.short_edges.mesh;
+    result.short_edges.mesh = Mesh();  // the problem's mesh is the one kept
+  }
+  if (options.flip_flat_edges) {
+    FlatFlipOptions flips = options.flat_flips;
+    flips.protected_vertex = input_to_cleaned(result, result.chosen_vertex);
+    result.flat_flips = flip_flat_edges_to_delaunay(cleaned, flips);
+  }
+  return cleaned;
+}
+
+// prepare_one_cone indexed the problem by the cleaned-up mesh: back to the input's indices.
+void map_problem_to_input(OneConeAtlasResult& result) {
+  const std::vector<int>& map = result.short_edges.input_vertex;
+  if (map.empty()) return;
+  for (int& v : result.problem.input_vertex) {
+    if (v >= 0) v = map[static_cast<size_t>(v)];
+  }
+  result.problem.chosen_vertex = result.chosen_vertex;
+}
+
 }  // namespace
 
 double OneConeAtlasResult::relative_transition_residual() const {
@@ -53,17 +89,14 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   }
 
   auto t = Clock::now();
-  Mesh flipped;
-  if (options.flip_flat_edges) {
-    report("flat edge flips");
-    flipped = mesh;
-    result.flat_flips = flip_flat_edges_to_delaunay(flipped, options.flat_flips);
-  }
+  report("surface clean-up");
+  const Mesh cleaned = clean_up_surface(mesh, options, result);
   result.timings.flips = seconds_since(t);
 
   report("valence modification");
   t = Clock::now();
-  result.problem = prepare_one_cone(options.flip_flat_edges ? flipped : mesh, result.chosen_vertex, options.valence);
+  result.problem = prepare_one_cone(cleaned, input_to_cleaned(result, result.chosen_vertex), options.valence);
+  map_problem_to_input(result);
   result.timings.valence = seconds_since(t);
 
   report("Ricci flow");

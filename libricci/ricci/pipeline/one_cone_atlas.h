@@ -7,6 +7,7 @@
 
 #include "ricci/atlas/atlas.h"
 #include "ricci/flow/flow.h"
+#include "ricci/mesh/collapse_short_edges.h"
 #include "ricci/mesh/flat_flips.h"
 #include "ricci/mesh/mesh.h"
 #include "ricci/metric/polish_e2.h"
@@ -23,6 +24,10 @@ struct OneConeAtlasOptions {
   /// (one_cone_metric_order) unless `keep_metric`, which forces flow.scheme and flow.radii.
   FlowOptions flow = one_cone_flow_options();
   bool keep_metric = false;
+  /// Collapse of edges much shorter than the median (mesh/collapse_short_edges.h) before
+  /// anything else; the singular vertex is kept. The problem's `input_vertex` maps back.
+  bool collapse_short_edges = false;
+  ShortEdgeOptions short_edges;
   /// Delaunay flips of the edges between coplanar faces (mesh/flat_flips.h) before the valence
   /// modification: the surface stays, its caps and slivers go.
   bool flip_flat_edges = false;
@@ -53,6 +58,8 @@ struct OneConeAtlasTimings {
 struct OneConeAtlasResult {
   OneConeProblem problem;  ///< The (flipped, valence-modified or punctured) mesh and its targets.
   FlatFlipResult flat_flips;  ///< What flip_flat_edges did (zeros when off).
+  /// What collapse_short_edges did (its mesh left empty; empty map when off).
+  ShortEdgeCollapse short_edges;
   /// The flow's result; its `lengths` are replaced by the polished ones (below).
   FlowResult flow;
   /// Long-double polish of the flow's lengths before the layout (error_before/after: max

@@ -172,11 +172,36 @@ CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths
     }
     for (int k = 0; k < 3; ++k) near[tables.face_edges(f, k)] = 1;
   }
+  const Eigen::VectorXd far_eta = metric.eta;
+  // Thurston's angle is the inversive distance clamped to [0, pi/2]: the same circles where
+  // they overlap by less than a right angle.
+  auto near_eta = [&](int e) { return rule.near == Scheme::Combinatorial ? 1.0 : std::clamp(far_eta[e], 0.0, 1.0); };
   for (int e = 0; e < tables.num_edges(); ++e) {
-    if (!near[e]) continue;
-    // Thurston's angle is the inversive distance clamped to [0, pi/2]: the same circles where
-    // they overlap by less than a right angle.
-    metric.eta[e] = rule.near == Scheme::Combinatorial ? 1.0 : std::clamp(metric.eta[e], 0.0, 1.0);
+    if (near[e]) metric.eta[e] = near_eta(e);
+  }
+  // A face with both kinds of edge can fail the triangle inequality; one with `near` edges only
+  // cannot (Thurston's circles with angles in [0, pi/2] always make a triangle). So such faces
+  // join the near side, until every face is a triangle: the near side only grows.
+  bool grew = true;
+  while (grew) {
+    grew = false;
+    for (int f = 0; f < tables.num_faces(); ++f) {
+      double l[3], theta[3];
+      for (int k = 0; k < 3; ++k) {
+        const int e = tables.face_edges(f, k);
+        l[k] = circle_edge_length(Geometry::Euclidean, metric.gamma[tables.edge_vertices(e, 0)],
+                                  metric.gamma[tables.edge_vertices(e, 1)], metric.eta[e]);
+      }
+      if (triangle_angles(Geometry::Euclidean, l, theta)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int e = tables.face_edges(f, k);
+        if (!near[e]) {
+          near[e] = 1;
+          metric.eta[e] = near_eta(e);
+          grew = true;
+        }
+      }
+    }
   }
   return metric;
 }
@@ -280,7 +305,7 @@ FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector
       // continuation's first curvature evaluation throws InvalidInputError then.
       result = flow_by_continuation(tables, initial, problem.targets, options, continuation);
       if (result.converged()) break;
-      failures.push_back(to_string(rule) + ": " + to_string(result.status));
+      failures.push_back(to_string(rule) + ": " + result.message);
     } catch (const InfeasibleTargetError& e) {
       failures.push_back(to_string(rule) + ": " + e.what());
     } catch (const InvalidInputError& e) {

@@ -74,3 +74,38 @@ TEST(FlatFlips, BentFacesAreLeftAlone) {
 }
 
 }  // namespace
+
+namespace {
+
+// A cap: the apex (0.5, 1e-4) sits just off the long edge (0,0)-(1,0), whose other face bends
+// away by 60 degrees: too bent for the normal test, but the flip moves the surface by 1e-4 only.
+TEST(FlatFlips, CapsFlipByTheirSmallDeviation) {
+  ricci::Mesh cap;
+  auto a = cap.add_vertex({0, 0, 0}), b = cap.add_vertex({1, 0, 0}), apex = cap.add_vertex({0.5, 1e-4, 0}),
+       below = cap.add_vertex({0.5, -0.25, -0.43});
+  auto left = cap.add_vertex({-0.5, 0.5, 0}), right = cap.add_vertex({1.5, 0.5, 0}), bottom = cap.add_vertex({0.5, -1, 0});
+  cap.add_face(a, b, apex);
+  cap.add_face(b, a, below);
+  cap.add_face(a, apex, left);
+  cap.add_face(apex, b, right);
+  cap.add_face(a, left, bottom);
+  cap.add_face(a, bottom, below);
+  cap.add_face(below, bottom, b);
+  cap.add_face(b, bottom, right);
+  ricci::Mesh by_angle = cap;
+  EXPECT_EQ(ricci::flip_flat_edges_to_delaunay(by_angle).flips, 0);
+  ricci::FlatFlipOptions thin;
+  thin.max_relative_deviation = 0.01;
+  const ricci::FlatFlipResult r = ricci::flip_flat_edges_to_delaunay(cap, thin);
+  EXPECT_GE(r.flips, 1);
+  bool joined = false;  // the apex now reaches the vertex below the long edge
+  for (auto w : cap.vv_range(apex)) joined = joined || w == below;
+  EXPECT_TRUE(joined);
+  // The protected vertex's edges stay.
+  ricci::Mesh guarded = by_angle;
+  thin.protected_vertex = apex.idx();
+  thin.protected_rings = 0;
+  EXPECT_EQ(ricci::flip_flat_edges_to_delaunay(guarded, thin).flips, 0);
+}
+
+}  // namespace

@@ -122,6 +122,29 @@ TEST(OneCone, ConeRingMetricClampsTheEdgesOfNeedles) {
   EXPECT_GT(needles, 0);
 }
 
+// Shrunk radii make every inversive distance >= 0 and still reproduce the mesh far from the cone;
+// faces that mix clamped and free weights and fail the triangle inequality join the clamped side,
+// so the initial metric is valid (genus2_10k at 6 rings breaks faces without that).
+TEST(OneCone, ConeRingMetricWithNonnegativeInversiveDistancesIsAValidMetric) {
+  auto problem = ricci::prepare_one_cone(shared_model("bench/genus2_10k.obj"), 0);
+  const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
+  const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
+  const auto mean = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean, ricci::Scheme::InversiveDistance,
+                                          ricci::RadiusInit::Mean);
+  ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::CirclePacking, 6,
+                             ricci::RadiusInit::Mean};
+  rule.nonnegative_inversive_distance = true;
+  const auto metric = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
+  EXPECT_GE(metric.eta.minCoeff(), 0.0);
+  EXPECT_LT(mean.eta.minCoeff(), 0.0);  // the mesh's own radii overlap by more than a right angle
+  EXPECT_TRUE((metric.gamma.array() <= mean.gamma.array()).all());
+  const ricci::EdgeLengths l = ricci::circle_packing_lengths(t, metric);
+  int reproduced = 0;
+  for (int e = 0; e < t.num_edges(); ++e) reproduced += std::abs(l[e] - lengths[e]) <= 1e-12 * lengths[e];
+  EXPECT_GT(reproduced, t.num_edges() * 9 / 10);
+  EXPECT_NO_THROW((void)ricci::corner_angles(t, l, ricci::Geometry::Euclidean));
+}
+
 TEST(OneCone, ConeRingFlowReachesTheConeAndRefusesOtherProblems) {
   auto problem = ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
   const std::vector<ricci::ConeRingMetric> rules = {
