@@ -302,6 +302,40 @@ int run_one_cone_case(int argc, char** argv) {
         Eigen::Index worst_vertex = 0;
         std::cerr << "curvature of the final lengths on the problem mesh: max |K - target| "
                   << defect.maxCoeff(&worst_vertex) << " at " << worst_vertex << "\n";
+        {  // the sliced disk's interior vertices must be flat for the layout to close
+          const ricci::Mesh& sm = r.atlas.sliced.mesh;
+          const ricci::MeshTables st = ricci::build_mesh_tables(sm);
+          const Eigen::VectorXd sl = ricci::sliced_edge_lengths(r.atlas.sliced, r.flow.lengths);
+          const Eigen::VectorXd sk = ricci::vertex_curvature(st, sl, ricci::Geometry::Euclidean);
+          double worst_interior = 0;
+          int worst_at = -1;
+          for (auto v : sm.vertices()) {
+            if (sm.is_boundary(v)) continue;
+            if (std::abs(sk[v.idx()]) > worst_interior) { worst_interior = std::abs(sk[v.idx()]); worst_at = v.idx(); }
+          }
+          int bad = 0;
+          for (auto f : sm.faces()) {
+            double worst = 0, l3[3], th[3];
+            int k = 0;
+            for (auto h : sm.fh_range(f)) {
+              const double l = sl[sm.edge_handle(h).idx()];
+              const double d = r.atlas.layout.edge_vector(sm.from_vertex_handle(h).idx(), sm.to_vertex_handle(h).idx()).norm();
+              worst = std::max(worst, std::abs(d - l) / l);
+              l3[k++] = l;
+            }
+            if (worst > 1e-6 && bad++ < 6) {
+              ricci::triangle_angles(ricci::Geometry::Euclidean, l3, th);
+              std::cerr << "  face " << f.idx() << " edge error " << worst << " metric angles " << th[0] << " " << th[1]
+                        << " " << th[2] << "\n";
+            }
+          }
+          int pinched = 0;
+          for (auto v : sm.vertices()) pinched += !sm.is_manifold(v);
+          std::cerr << "faces with an edge error above 1e-6: " << bad << "; sliced vertices that are not one fan: "
+                    << pinched << "\n";
+          std::cerr << "sliced interior vertices: max |K| " << worst_interior << " at " << worst_at << " (original "
+                    << (worst_at >= 0 ? r.atlas.sliced.to_original_vertex[worst_at] : -1) << ")\n";
+        }
         std::cerr << "metric's smallest corner angle " << smallest << " (face " << worst_face << "), largest "
                   << angles.maxCoeff() << ", corners below 1e-4: " << (angles.array() < 1e-4).count() << "\n";
       }
