@@ -180,7 +180,7 @@ std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
-                      "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings"});
+                      "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings", "seed-face"});
   args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R]");
   const std::string path = args.positionals()[0];
   auto t0 = Clock::now();
@@ -207,6 +207,7 @@ int run_one_cone_case(int argc, char** argv) {
     options.flat_flips.max_relative_deviation = std::stod(*args.get("flip-deviation"));
   }
   options.flat_flips.protected_rings = args.get_int("protect-rings", 0);
+  options.atlas.layout.seed_face = args.get_int("seed-face", -1);
   if (args.has("collapse")) {  // edges below this fraction of the median length
     options.collapse_short_edges = true;
     options.short_edges.relative_length = std::stod(*args.get("collapse"));
@@ -333,6 +334,65 @@ int run_one_cone_case(int argc, char** argv) {
           for (auto v : sm.vertices()) pinched += !sm.is_manifold(v);
           std::cerr << "faces with an edge error above 1e-6: " << bad << "; sliced vertices that are not one fan: "
                     << pinched << "\n";
+          {  // plain-double breadth-first growth from the layout's seed: the first face whose
+             // third vertex, already placed, lands elsewhere
+            const int nv = static_cast<int>(sm.n_vertices());
+            std::vector<Eigen::Vector2d> pos(static_cast<size_t>(nv));
+            std::vector<char> placed(static_cast<size_t>(nv), 0), reached(sm.n_faces(), 0);
+            auto len = [&](ricci::HalfedgeHandle h) { return sl[sm.edge_handle(h).idx()]; };
+            const ricci::FaceHandle seed(r.atlas.layout.seed_face);
+            const auto h0 = sm.halfedge_handle(seed);
+            const int a = sm.from_vertex_handle(h0).idx(), b = sm.to_vertex_handle(h0).idx(),
+                      c = sm.to_vertex_handle(sm.next_halfedge_handle(h0)).idx();
+            pos[a] = {0, 0};
+            pos[b] = {len(h0), 0};
+            pos[c] = ricci::place_third_vertex(pos[a], pos[b], len(sm.prev_halfedge_handle(h0)), len(sm.next_halfedge_handle(h0)));
+            placed[a] = placed[b] = placed[c] = 1;
+            reached[seed.idx()] = 1;
+            std::vector<ricci::FaceHandle> queue{seed};
+            int reported = 0;
+            for (size_t i = 0; i < queue.size() && reported < 3; ++i) {
+              for (auto h : sm.fh_range(queue[i])) {
+                const auto o = sm.opposite_halfedge_handle(h);
+                const auto g = sm.face_handle(o);
+                if (!g.is_valid() || reached[g.idx()]) continue;
+                reached[g.idx()] = 1;
+                queue.push_back(g);
+                const int w = sm.to_vertex_handle(sm.next_halfedge_handle(o)).idx();
+                const int from = sm.from_vertex_handle(o).idx(), to = sm.to_vertex_handle(o).idx();
+                const Eigen::Vector2d at = ricci::place_third_vertex(pos[from], pos[to], len(sm.prev_halfedge_handle(o)),
+                                                                     len(sm.next_halfedge_handle(o)));
+                if (!placed[w]) {
+                  pos[w] = at;
+                  placed[w] = 1;
+                  continue;
+                }
+                const double miss = (at - pos[w]).norm() / len(sm.prev_halfedge_handle(o));
+                if (miss > 1e-6) {
+                  ++reported;
+                  double l3[3] = {len(o), len(sm.next_halfedge_handle(o)), len(sm.prev_halfedge_handle(o))}, th[3];
+                  ricci::triangle_angles(ricci::Geometry::Euclidean, l3, th);
+                  if (reported == 1) {
+                    const auto wv = sm.vertex_handle(w);
+                    double sum = 0;
+                    for (auto hh : sm.vih_range(wv)) {
+                      if (sm.is_boundary(hh)) continue;
+                      double q[3] = {len(hh), len(sm.next_halfedge_handle(hh)), len(sm.prev_halfedge_handle(hh))}, t3[3];
+                      const bool ok = ricci::triangle_angles(ricci::Geometry::Euclidean, q, t3);
+                      // corner at to_vertex(hh) is opposite next(hh)'s... print all three
+                      std::cerr << "    star face " << sm.face_handle(hh).idx() << " ok " << ok << " lengths " << q[0] << " "
+                                << q[1] << " " << q[2] << " angles " << t3[0] << " " << t3[1] << " " << t3[2] << "\n";
+                      sum += t3[2];
+                    }
+                    std::cerr << "    valence " << sm.valence(wv) << ", angle sum (corner opposite prev) " << sum << "\n";
+                  }
+                  std::cerr << "  growth miss " << miss << " at face " << g.idx() << " (step " << i << ", vertex "
+                            << r.atlas.sliced.to_original_vertex[w] << ", boundary " << sm.is_boundary(sm.vertex_handle(w))
+                            << ") angles " << th[0] << " " << th[1] << " " << th[2] << "\n";
+                }
+              }
+            }
+          }
           std::cerr << "sliced interior vertices: max |K| " << worst_interior << " at " << worst_at << " (original "
                     << (worst_at >= 0 ? r.atlas.sliced.to_original_vertex[worst_at] : -1) << ")\n";
         }
