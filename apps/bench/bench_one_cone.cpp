@@ -248,7 +248,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["polish"] = t.polish;
     j["atlas"] = t.atlas;
     j["distortion"] = t.distortion;
-    j["total"] = t.valence + t.flow + t.polish + t.atlas;
+    j["total"] = t.flips + t.valence + t.flow + t.polish + t.atlas;
     j["newton"] = r.flow.iterations;
     j["factorizations"] = r.flow.factorizations;
     const auto& ft = r.flow.timings;
@@ -449,7 +449,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
 
   std::cout << "One-cone pipeline per mesh, each in its own process. Seconds: read (OBJ/OFF), "
                "choice (automatic\nsingularity, 'auto' rows only), valence, flow, atlas (cut graph "
-               "+ layout + charts +\ntransitions), total = valence + flow + polish + atlas; chol = one CHOLMOD "
+               "+ layout + charts +\ntransitions), total = clean-up + valence + flow + polish + atlas; chol = one CHOLMOD "
                "analyse+factorise+solve of\nthe cotangent Laplacian of the same mesh (best of 3), "
                "ratio = total / chol. flip/zero: faces\nof the layout with negative/zero signed area "
                "(double-double positions); dbl: faces with area\n<= 0 in the plain double chart "

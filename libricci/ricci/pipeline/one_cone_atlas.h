@@ -46,6 +46,12 @@ struct OneConeAtlasOptions {
   /// beetle ends at 1.03e-12 and needs it (1.1e-7 -> 3.8e-8), camel at 8e-15 does not
   /// (1.3e-11 without). 0 always polishes; infinity never does.
   double polish_threshold = 8e-13;
+  /// With keep_metric and the inversive-distance scheme on a closed surface of genus >= 2 (and no
+  /// cone_ring_metrics given), first try inversive_distance_route(*this), which converges where
+  /// the plain inversive-distance flow breaks triangles (marching-cubes genus2_10k and
+  /// genus2_100k: area-weighted quasi-conformal distortion 1.12 and 1.03); if it fails, the
+  /// plain flow as asked (its failures listed first in flow.failed_attempts).
+  bool inversive_distance_route = true;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;
 };
@@ -75,6 +81,16 @@ struct OneConeAtlasResult {
   /// max transition (and side pairing) residual divided by the domain diameter.
   [[nodiscard]] double relative_transition_residual() const;
 };
+
+/// `options` set up for the inversive-distance flow on marching-cubes meshes: edges under 1% of
+/// the median collapsed, non-Delaunay edges flipped where their faces are within 5 degrees of
+/// coplanar or their diagonals within 1% of the median edge apart (not at the cone), inversive
+/// distances made >= 0 with Thurston's angles within 4 rings of the cone, the cone reached in 4
+/// stages. The surface moves by at most 1% of the median edge length.
+[[nodiscard]] OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options);
+
+/// Whether build_one_cone_atlas tries inversive_distance_route first (see the option).
+[[nodiscard]] bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options);
 
 /// \pre a connected, oriented 2-manifold triangle mesh.
 /// \throw InvalidInputError / TopologyError for bad input; SolverError when the flow does not

@@ -219,25 +219,44 @@ TEST(OneConeAtlas, CleanedUpSurfaceKeepsTheAtlasExact) {
   }
 }
 
-// The inversive-distance metric on genus2_10k: after the clean-up, with Thurston's angles within
-// 4 rings of the 6pi cone and every inversive distance >= 0, reached in 4 stages, it converges and
-// is nearly conformal (area-weighted QC 1.12, median 1.07; CEPS reports 1.03-1.13 on such meshes),
-// where the circle packing gives 1.67. Its layout is still off by 2e-4 of an edge (not measured
-// here; the README's limitations).
-TEST(OneConeAtlas, InversiveDistanceNearlyConformalAfterCleanUp) {
+// The inversive-distance metric on genus2_10k (marching cubes, 6pi cone), asked for as the
+// metric: the plain flow breaks triangles (BrokenTrianglesAreRecorded); the route of
+// inversive_distance_route (clean-up, inversive distances >= 0, Thurston's angles within 4 rings
+// of the cone, the cone in 4 stages) converges and is nearly conformal (area-weighted QC 1.12,
+// median 1.07; CEPS reports 1.03-1.13 on such meshes) where the circle packing gives 1.67, with
+// an exact atlas.
+TEST(OneConeAtlas, InversiveDistanceRouteIsNearlyConformalAndExact) {
   const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj"));
-  ricci::OneConeAtlasOptions options = cleaned_up_options();
-  ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::CirclePacking, 4,
-                             ricci::RadiusInit::Mean};
-  rule.nonnegative_inversive_distance = true;
-  options.cone_ring_metrics = {rule};
-  options.continuation.stages = 4;
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  options.keep_metric = true;
+  options.flow.scheme = ricci::Scheme::InversiveDistance;
+  options.flow.radii = ricci::RadiusInit::Mean;
+  EXPECT_TRUE(ricci::takes_inversive_distance_route(mesh, options));
   const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
   EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::InversiveDistance);
   EXPECT_TRUE(r.flow.failed_attempts.empty()) << r.flow.failed_attempts.front();
+  EXPECT_GT(r.flat_flips.flips, 1000);
   EXPECT_LT(r.flow.max_error, 1e-10);
+  EXPECT_NEAR(2 * M_PI - r.flow.curvature[r.problem.cone], 6 * M_PI, 1e-9);
   EXPECT_LT(r.distortion.quasi_conformal_area_mean, 1.2);
   EXPECT_LT(r.distortion.quasi_conformal_p50, 1.1);
+  EXPECT_EQ(r.atlas.layout.flipped_faces, 0);
+  EXPECT_LT(r.atlas.layout.max_relative_length_error, 1e-8);
+  EXPECT_LT(r.relative_transition_residual(), 1e-9);
+}
+
+TEST(OneConeAtlas, InversiveDistanceRouteOnlyWhenAskedForOnASingleCone) {
+  const ricci::Mesh genus2 = ricci::read_mesh(resolve("bench/genus2_10k.obj"));
+  const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj"));
+  ricci::OneConeAtlasOptions options;
+  EXPECT_FALSE(ricci::takes_inversive_distance_route(genus2, options));  // the default metric order
+  options.keep_metric = true;
+  options.flow.scheme = ricci::Scheme::InversiveDistance;
+  EXPECT_TRUE(ricci::takes_inversive_distance_route(genus2, options));
+  EXPECT_FALSE(ricci::takes_inversive_distance_route(torus, options));  // no cone
+  options.inversive_distance_route = false;
+  EXPECT_FALSE(ricci::takes_inversive_distance_route(genus2, options));
 }
 
 }  // namespace
