@@ -135,7 +135,9 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     SingularityOptions choice = options.choice;
     choice.flow = options.flow;
     choice.valence = options.valence;
-    choice.keep_metric = options.keep_metric;
+    // The plain inversive-distance flow the route replaces fails at most candidates of a
+    // marching-cubes or CAD mesh: rank them with the default metrics instead.
+    choice.keep_metric = options.keep_metric && !takes_inversive_distance_route(mesh, options);
     SingularityChoice chosen = choose_singularity(mesh, choice);
     result.chosen_vertex = chosen.vertex;
     result.flows_for_choice = chosen.flows_run;
