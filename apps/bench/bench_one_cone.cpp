@@ -147,6 +147,44 @@ void print_broken_trials(const ricci::OneConeAtlasResult& r) {
   }
 }
 
+// The worst edge of the layout (where the closure error sits), the worst curvature, the
+// broken line-search trials, the metric's extreme corner angles and the failed metrics.
+void print_diagnostics(const ricci::OneConeAtlasResult& r) {
+  const ricci::Mesh& sm = r.atlas.sliced.mesh;
+  double worst = 0;
+  int wa = 0, wb = 0;
+  double wl = 0;
+  const Eigen::VectorXd sl = ricci::sliced_edge_lengths(r.atlas.sliced, r.flow.lengths);
+  for (auto e : sm.edges()) {
+    const auto h = sm.halfedge_handle(e, 0);
+    const int a = sm.from_vertex_handle(h).idx(), b = sm.to_vertex_handle(h).idx();
+    const double err = std::abs(r.atlas.layout.edge_vector(a, b).norm() - sl[e.idx()]) / sl[e.idx()];
+    if (err > worst) { worst = err; wa = a; wb = b; wl = sl[e.idx()]; }
+  }
+  const int oa = r.atlas.sliced.to_original_vertex[wa], ob = r.atlas.sliced.to_original_vertex[wb];
+  if (r.problem.cone >= 0) {
+    const std::vector<int> rings = ring_distance(r.problem.mesh, r.problem.cone);
+    std::cerr << "worst edge rings from the cone " << rings[static_cast<size_t>(oa)] << ", valences "
+              << r.problem.mesh.valence(r.problem.mesh.vertex_handle(oa)) << " "
+              << r.problem.mesh.valence(r.problem.mesh.vertex_handle(ob)) << "\n";
+  }
+  std::cerr << "worst edge " << oa << "-" << ob << " rel " << worst << " length/diam " << wl / r.atlas.domain_diameter
+            << " K err " << r.flow.curvature[oa] - r.flow.target[oa] << " " << r.flow.curvature[ob] - r.flow.target[ob]
+            << " pos " << r.atlas.layout.positions.row(wa) << " seed " << r.atlas.layout.seed_face << "\n";
+  Eigen::VectorXd kerr = (r.flow.curvature - r.flow.target).cwiseAbs();
+  Eigen::Index worst_v;
+  kerr.maxCoeff(&worst_v);
+  std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
+  print_broken_trials(r);
+  const ricci::MeshTables tables = ricci::build_mesh_tables(r.problem.mesh);
+  const Eigen::MatrixX3d angles = ricci::corner_angles(tables, r.flow.lengths, ricci::Geometry::Euclidean);
+  Eigen::Index worst_face = 0, worst_corner = 0;
+  const double smallest = angles.minCoeff(&worst_face, &worst_corner);
+  std::cerr << "metric's smallest corner angle " << smallest << " (face " << worst_face << "), largest "
+            << angles.maxCoeff() << ", corners below 1e-4: " << (angles.array() < 1e-4).count() << "\n";
+  for (const std::string& failure : r.flow.failed_attempts) std::cerr << "failed: " << failure << "\n";
+}
+
 // "FAR:NEAR:RINGS[,...]" with FAR inversive-distance|circle-packing, NEAR circle-packing|tangent.
 std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
   std::vector<ricci::ConeRingMetric> rules;
@@ -181,7 +219,10 @@ int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
                       "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings", "seed-face"});
-  args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R]");
+  args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R] "
+                            "[--collapse FRACTION] [--flat-flips DEGREES] [--flip-deviation FRACTION] "
+                            "[--protect-rings N] [--ring-metric FAR:NEAR:RINGS[:NEEDLE_DEG[:nonnegative]]] "
+                            "[--continuation STAGES] [--seed-face F] [--verbose]");
   const std::string path = args.positionals()[0];
   auto t0 = Clock::now();
   ricci::Mesh mesh = ricci::read_mesh(path);
@@ -266,141 +307,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["degenerate_in_doubles"] = signs.degenerate_in_doubles;
     j["edge_error"] = r.atlas.layout.max_relative_length_error;
     j["transition"] = r.relative_transition_residual();
-    if (args.has("verbose")) {  // the worst edge of the layout, to see where closure error sits
-      const ricci::Mesh& sm = r.atlas.sliced.mesh;
-      double worst = 0;
-      int wa = 0, wb = 0;
-      double wl = 0;
-      const Eigen::VectorXd sl = ricci::sliced_edge_lengths(r.atlas.sliced, r.flow.lengths);
-      for (auto e : sm.edges()) {
-        const auto h = sm.halfedge_handle(e, 0);
-        const int a = sm.from_vertex_handle(h).idx(), b = sm.to_vertex_handle(h).idx();
-        const double err = std::abs(r.atlas.layout.edge_vector(a, b).norm() - sl[e.idx()]) / sl[e.idx()];
-        if (err > worst) { worst = err; wa = a; wb = b; wl = sl[e.idx()]; }
-      }
-      const int oa = r.atlas.sliced.to_original_vertex[wa], ob = r.atlas.sliced.to_original_vertex[wb];
-      if (r.problem.cone >= 0) {
-        const std::vector<int> rings = ring_distance(r.problem.mesh, r.problem.cone);
-        std::cerr << "worst edge rings from the cone " << rings[static_cast<size_t>(oa)] << ", valences "
-                  << r.problem.mesh.valence(r.problem.mesh.vertex_handle(oa)) << " "
-                  << r.problem.mesh.valence(r.problem.mesh.vertex_handle(ob)) << "\n";
-      }
-      std::cerr << "worst edge " << oa << "-" << ob << " rel " << worst << " length/diam " << wl / r.atlas.domain_diameter
-                << " K err " << r.flow.curvature[oa] - r.flow.target[oa] << " " << r.flow.curvature[ob] - r.flow.target[ob]
-                << " pos " << r.atlas.layout.positions.row(wa) << " seed " << r.atlas.layout.seed_face << "\n";
-      Eigen::VectorXd kerr = (r.flow.curvature - r.flow.target).cwiseAbs();
-      Eigen::Index worst_v;
-      kerr.maxCoeff(&worst_v);
-      std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
-      print_broken_trials(r);
-      {
-        const ricci::MeshTables tables = ricci::build_mesh_tables(r.problem.mesh);
-        const Eigen::MatrixX3d angles = ricci::corner_angles(tables, r.flow.lengths, ricci::Geometry::Euclidean);
-        Eigen::Index worst_face = 0, worst_corner = 0;
-        const double smallest = angles.minCoeff(&worst_face, &worst_corner);
-        const Eigen::VectorXd k = ricci::vertex_curvature(tables, r.flow.lengths, ricci::Geometry::Euclidean);
-        Eigen::VectorXd defect = (k - r.problem.targets.curvature).cwiseAbs();
-        Eigen::Index worst_vertex = 0;
-        std::cerr << "curvature of the final lengths on the problem mesh: max |K - target| "
-                  << defect.maxCoeff(&worst_vertex) << " at " << worst_vertex << "\n";
-        {  // the sliced disk's interior vertices must be flat for the layout to close
-          const ricci::Mesh& sm = r.atlas.sliced.mesh;
-          const ricci::MeshTables st = ricci::build_mesh_tables(sm);
-          const Eigen::VectorXd sl = ricci::sliced_edge_lengths(r.atlas.sliced, r.flow.lengths);
-          const Eigen::VectorXd sk = ricci::vertex_curvature(st, sl, ricci::Geometry::Euclidean);
-          double worst_interior = 0;
-          int worst_at = -1;
-          for (auto v : sm.vertices()) {
-            if (sm.is_boundary(v)) continue;
-            if (std::abs(sk[v.idx()]) > worst_interior) { worst_interior = std::abs(sk[v.idx()]); worst_at = v.idx(); }
-          }
-          int bad = 0;
-          for (auto f : sm.faces()) {
-            double worst = 0, l3[3], th[3];
-            int k = 0;
-            for (auto h : sm.fh_range(f)) {
-              const double l = sl[sm.edge_handle(h).idx()];
-              const double d = r.atlas.layout.edge_vector(sm.from_vertex_handle(h).idx(), sm.to_vertex_handle(h).idx()).norm();
-              worst = std::max(worst, std::abs(d - l) / l);
-              l3[k++] = l;
-            }
-            if (worst > 1e-6 && bad++ < 6) {
-              ricci::triangle_angles(ricci::Geometry::Euclidean, l3, th);
-              std::cerr << "  face " << f.idx() << " edge error " << worst << " metric angles " << th[0] << " " << th[1]
-                        << " " << th[2] << "\n";
-            }
-          }
-          int pinched = 0;
-          for (auto v : sm.vertices()) pinched += !sm.is_manifold(v);
-          std::cerr << "faces with an edge error above 1e-6: " << bad << "; sliced vertices that are not one fan: "
-                    << pinched << "\n";
-          {  // plain-double breadth-first growth from the layout's seed: the first face whose
-             // third vertex, already placed, lands elsewhere
-            const int nv = static_cast<int>(sm.n_vertices());
-            std::vector<Eigen::Vector2d> pos(static_cast<size_t>(nv));
-            std::vector<char> placed(static_cast<size_t>(nv), 0), reached(sm.n_faces(), 0);
-            auto len = [&](ricci::HalfedgeHandle h) { return sl[sm.edge_handle(h).idx()]; };
-            const ricci::FaceHandle seed(r.atlas.layout.seed_face);
-            const auto h0 = sm.halfedge_handle(seed);
-            const int a = sm.from_vertex_handle(h0).idx(), b = sm.to_vertex_handle(h0).idx(),
-                      c = sm.to_vertex_handle(sm.next_halfedge_handle(h0)).idx();
-            pos[a] = {0, 0};
-            pos[b] = {len(h0), 0};
-            pos[c] = ricci::place_third_vertex(pos[a], pos[b], len(sm.prev_halfedge_handle(h0)), len(sm.next_halfedge_handle(h0)));
-            placed[a] = placed[b] = placed[c] = 1;
-            reached[seed.idx()] = 1;
-            std::vector<ricci::FaceHandle> queue{seed};
-            int reported = 0;
-            for (size_t i = 0; i < queue.size() && reported < 3; ++i) {
-              for (auto h : sm.fh_range(queue[i])) {
-                const auto o = sm.opposite_halfedge_handle(h);
-                const auto g = sm.face_handle(o);
-                if (!g.is_valid() || reached[g.idx()]) continue;
-                reached[g.idx()] = 1;
-                queue.push_back(g);
-                const int w = sm.to_vertex_handle(sm.next_halfedge_handle(o)).idx();
-                const int from = sm.from_vertex_handle(o).idx(), to = sm.to_vertex_handle(o).idx();
-                const Eigen::Vector2d at = ricci::place_third_vertex(pos[from], pos[to], len(sm.prev_halfedge_handle(o)),
-                                                                     len(sm.next_halfedge_handle(o)));
-                if (!placed[w]) {
-                  pos[w] = at;
-                  placed[w] = 1;
-                  continue;
-                }
-                const double miss = (at - pos[w]).norm() / len(sm.prev_halfedge_handle(o));
-                if (miss > 1e-6) {
-                  ++reported;
-                  double l3[3] = {len(o), len(sm.next_halfedge_handle(o)), len(sm.prev_halfedge_handle(o))}, th[3];
-                  ricci::triangle_angles(ricci::Geometry::Euclidean, l3, th);
-                  if (reported == 1) {
-                    const auto wv = sm.vertex_handle(w);
-                    double sum = 0;
-                    for (auto hh : sm.vih_range(wv)) {
-                      if (sm.is_boundary(hh)) continue;
-                      double q[3] = {len(hh), len(sm.next_halfedge_handle(hh)), len(sm.prev_halfedge_handle(hh))}, t3[3];
-                      const bool ok = ricci::triangle_angles(ricci::Geometry::Euclidean, q, t3);
-                      // corner at to_vertex(hh) is opposite next(hh)'s... print all three
-                      std::cerr << "    star face " << sm.face_handle(hh).idx() << " ok " << ok << " lengths " << q[0] << " "
-                                << q[1] << " " << q[2] << " angles " << t3[0] << " " << t3[1] << " " << t3[2] << "\n";
-                      sum += t3[2];
-                    }
-                    std::cerr << "    valence " << sm.valence(wv) << ", angle sum (corner opposite prev) " << sum << "\n";
-                  }
-                  std::cerr << "  growth miss " << miss << " at face " << g.idx() << " (step " << i << ", vertex "
-                            << r.atlas.sliced.to_original_vertex[w] << ", boundary " << sm.is_boundary(sm.vertex_handle(w))
-                            << ") angles " << th[0] << " " << th[1] << " " << th[2] << "\n";
-                }
-              }
-            }
-          }
-          std::cerr << "sliced interior vertices: max |K| " << worst_interior << " at " << worst_at << " (original "
-                    << (worst_at >= 0 ? r.atlas.sliced.to_original_vertex[worst_at] : -1) << ")\n";
-        }
-        std::cerr << "metric's smallest corner angle " << smallest << " (face " << worst_face << "), largest "
-                  << angles.maxCoeff() << ", corners below 1e-4: " << (angles.array() < 1e-4).count() << "\n";
-      }
-      for (const std::string& failure : r.flow.failed_attempts) std::cerr << "failed: " << failure << "\n";
-    }
+    if (args.has("verbose")) print_diagnostics(r);
     j["qc_mean"] = r.distortion.quasi_conformal_mean;
     j["qc_max"] = r.distortion.quasi_conformal_max;
     j["qc_p50"] = r.distortion.quasi_conformal_p50;
