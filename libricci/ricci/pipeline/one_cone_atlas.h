@@ -86,7 +86,8 @@ struct OneConeAtlasResult {
 /// the median collapsed, non-Delaunay edges flipped where their faces are within 5 degrees of
 /// coplanar or their diagonals within 1% of the median edge apart (not at the cone), inversive
 /// distances made >= 0 with Thurston's angles within 4 rings of the cone, the cone reached in 4
-/// stages. The surface moves by at most 1% of the median edge length.
+/// stages. The surface moves by at most ~2% of a local edge (5-degree flips) or 1% of the median
+/// edge (collapses, thin flips).
 [[nodiscard]] OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options);
 
 /// Whether build_one_cone_atlas tries inversive_distance_route first (see the option).
