@@ -147,6 +147,70 @@ void print_broken_trials(const ricci::OneConeAtlasResult& r) {
   }
 }
 
+// The worst edge of the layout (where the closure error sits), the worst curvature, the
+// broken line-search trials, the metric's extreme corner angles and the failed metrics.
+void print_diagnostics(const ricci::OneConeAtlasResult& r) {
+  const ricci::Mesh& sm = r.atlas.sliced.mesh;
+  double worst = 0;
+  int wa = 0, wb = 0;
+  double wl = 0;
+  const Eigen::VectorXd sl = ricci::sliced_edge_lengths(r.atlas.sliced, r.flow.lengths);
+  for (auto e : sm.edges()) {
+    const auto h = sm.halfedge_handle(e, 0);
+    const int a = sm.from_vertex_handle(h).idx(), b = sm.to_vertex_handle(h).idx();
+    const double err = std::abs(r.atlas.layout.edge_vector(a, b).norm() - sl[e.idx()]) / sl[e.idx()];
+    if (err > worst) { worst = err; wa = a; wb = b; wl = sl[e.idx()]; }
+  }
+  const int oa = r.atlas.sliced.to_original_vertex[wa], ob = r.atlas.sliced.to_original_vertex[wb];
+  if (r.problem.cone >= 0) {
+    const std::vector<int> rings = ring_distance(r.problem.mesh, r.problem.cone);
+    std::cerr << "worst edge rings from the cone " << rings[static_cast<size_t>(oa)] << ", valences "
+              << r.problem.mesh.valence(r.problem.mesh.vertex_handle(oa)) << " "
+              << r.problem.mesh.valence(r.problem.mesh.vertex_handle(ob)) << "\n";
+  }
+  std::cerr << "worst edge " << oa << "-" << ob << " rel " << worst << " length/diam " << wl / r.atlas.domain_diameter
+            << " K err " << r.flow.curvature[oa] - r.flow.target[oa] << " " << r.flow.curvature[ob] - r.flow.target[ob]
+            << " pos " << r.atlas.layout.positions.row(wa) << " seed " << r.atlas.layout.seed_face << "\n";
+  Eigen::VectorXd kerr = (r.flow.curvature - r.flow.target).cwiseAbs();
+  Eigen::Index worst_v;
+  kerr.maxCoeff(&worst_v);
+  std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
+  print_broken_trials(r);
+  const ricci::MeshTables tables = ricci::build_mesh_tables(r.problem.mesh);
+  const Eigen::MatrixX3d angles = ricci::corner_angles(tables, r.flow.lengths, ricci::Geometry::Euclidean);
+  Eigen::Index worst_face = 0, worst_corner = 0;
+  const double smallest = angles.minCoeff(&worst_face, &worst_corner);
+  std::cerr << "metric's smallest corner angle " << smallest << " (face " << worst_face << "), largest "
+            << angles.maxCoeff() << ", corners below 1e-4: " << (angles.array() < 1e-4).count() << "\n";
+  for (const std::string& failure : r.flow.failed_attempts) std::cerr << "failed: " << failure << "\n";
+}
+
+// "FAR:NEAR:RINGS[,...]" with FAR inversive-distance|circle-packing, NEAR circle-packing|tangent.
+std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
+  std::vector<ricci::ConeRingMetric> rules;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    std::stringstream fields(item);
+    std::string far, near, rings;
+    std::getline(fields, far, ':');
+    std::getline(fields, near, ':');
+    std::getline(fields, rings, ':');
+    std::string needle;
+    std::getline(fields, needle, ':');
+    ricci::ConeRingMetric rule;
+    if (!needle.empty()) rule.needle_angle = std::stod(needle) * M_PI / 180.0;
+    std::string nonnegative;
+    std::getline(fields, nonnegative, ':');
+    rule.nonnegative_inversive_distance = nonnegative == "nonnegative";
+    rule.far = parse_scheme(far);
+    rule.near = near == "tangent" ? ricci::Scheme::Combinatorial : parse_scheme(near);
+    rule.rings = std::stoi(rings);
+    rules.push_back(rule);
+  }
+  return rules;
+}
+
 std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 
 }  // namespace
@@ -154,8 +218,11 @@ std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
-                      "polish-threshold"});
-  args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R]");
+                      "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings", "seed-face"});
+  args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R] "
+                            "[--collapse FRACTION] [--flat-flips DEGREES] [--flip-deviation FRACTION] "
+                            "[--protect-rings N] [--ring-metric FAR:NEAR:RINGS[:NEEDLE_DEG[:nonnegative]]] "
+                            "[--continuation STAGES] [--seed-face F] [--verbose]");
   const std::string path = args.positionals()[0];
   auto t0 = Clock::now();
   ricci::Mesh mesh = ricci::read_mesh(path);
@@ -172,6 +239,22 @@ int run_one_cone_case(int argc, char** argv) {
   options.valence.cone_valence_margin = args.get_int("cone-margin", options.valence.cone_valence_margin);
   options.valence.ring_valence = args.get_int("ring-valence", options.valence.ring_valence);
   options.valence.rings = args.get_int("rings", options.valence.rings);
+  if (args.has("flat-flips")) {  // degrees between the faces' normals
+    options.flip_flat_edges = true;
+    options.flat_flips.max_normal_angle = std::stod(*args.get("flat-flips")) * M_PI / 180.0;
+  }
+  if (args.has("flip-deviation")) {  // fraction of the median edge length
+    options.flip_flat_edges = true;
+    options.flat_flips.max_relative_deviation = std::stod(*args.get("flip-deviation"));
+  }
+  options.flat_flips.protected_rings = args.get_int("protect-rings", 0);
+  options.atlas.layout.seed_face = args.get_int("seed-face", -1);
+  if (args.has("collapse")) {  // edges below this fraction of the median length
+    options.collapse_short_edges = true;
+    options.short_edges.relative_length = std::stod(*args.get("collapse"));
+  }
+  options.continuation.stages = args.get_int("continuation", 1);
+  if (args.has("ring-metric")) options.cone_ring_metrics = parse_ring_metrics(*args.get("ring-metric"));
   if (args.has("verbose")) {
     options.flow.progress = [](const ricci::FlowProgress& p) {
       std::cerr << "  newton " << p.iteration << ": error " << p.max_error << ", step " << p.step << ", "
@@ -194,6 +277,10 @@ int run_one_cone_case(int argc, char** argv) {
     j["kind"] = ricci::to_string(r.problem.kind);
     j["cone"] = r.chosen_vertex;
     j["splits"] = r.problem.valence_splits;
+    j["flat_flips"] = r.flat_flips.flips;
+    j["collapses"] = r.short_edges.collapses;
+    j["non_delaunay_left"] = r.flat_flips.non_delaunay_left;
+    j["flips_seconds"] = t.flips;
     j["metric"] = ricci::to_string(r.flow.metric.scheme);
     j["failed_metrics"] = r.flow.failed_attempts.size();
     j["choice"] = t.choice;
@@ -202,7 +289,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["polish"] = t.polish;
     j["atlas"] = t.atlas;
     j["distortion"] = t.distortion;
-    j["total"] = t.valence + t.flow + t.polish + t.atlas;
+    j["total"] = t.flips + t.valence + t.flow + t.polish + t.atlas;
     j["newton"] = r.flow.iterations;
     j["factorizations"] = r.flow.factorizations;
     const auto& ft = r.flow.timings;
@@ -220,28 +307,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["degenerate_in_doubles"] = signs.degenerate_in_doubles;
     j["edge_error"] = r.atlas.layout.max_relative_length_error;
     j["transition"] = r.relative_transition_residual();
-    if (args.has("verbose")) {  // the worst edge of the layout, to see where closure error sits
-      const ricci::Mesh& sm = r.atlas.sliced.mesh;
-      double worst = 0;
-      int wa = 0, wb = 0;
-      double wl = 0;
-      const Eigen::VectorXd sl = ricci::sliced_edge_lengths(r.atlas.sliced, r.flow.lengths);
-      for (auto e : sm.edges()) {
-        const auto h = sm.halfedge_handle(e, 0);
-        const int a = sm.from_vertex_handle(h).idx(), b = sm.to_vertex_handle(h).idx();
-        const double err = std::abs(r.atlas.layout.edge_vector(a, b).norm() - sl[e.idx()]) / sl[e.idx()];
-        if (err > worst) { worst = err; wa = a; wb = b; wl = sl[e.idx()]; }
-      }
-      const int oa = r.atlas.sliced.to_original_vertex[wa], ob = r.atlas.sliced.to_original_vertex[wb];
-      std::cerr << "worst edge " << oa << "-" << ob << " rel " << worst << " length/diam " << wl / r.atlas.domain_diameter
-                << " K err " << r.flow.curvature[oa] - r.flow.target[oa] << " " << r.flow.curvature[ob] - r.flow.target[ob]
-                << " pos " << r.atlas.layout.positions.row(wa) << " seed " << r.atlas.layout.seed_face << "\n";
-      Eigen::VectorXd kerr = (r.flow.curvature - r.flow.target).cwiseAbs();
-      Eigen::Index worst_v;
-      kerr.maxCoeff(&worst_v);
-      std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
-      print_broken_trials(r);
-    }
+    if (args.has("verbose")) print_diagnostics(r);
     j["qc_mean"] = r.distortion.quasi_conformal_mean;
     j["qc_max"] = r.distortion.quasi_conformal_max;
     j["qc_p50"] = r.distortion.quasi_conformal_p50;
@@ -290,7 +356,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
 
   std::cout << "One-cone pipeline per mesh, each in its own process. Seconds: read (OBJ/OFF), "
                "choice (automatic\nsingularity, 'auto' rows only), valence, flow, atlas (cut graph "
-               "+ layout + charts +\ntransitions), total = valence + flow + polish + atlas; chol = one CHOLMOD "
+               "+ layout + charts +\ntransitions), total = clean-up + valence + flow + polish + atlas; chol = one CHOLMOD "
                "analyse+factorise+solve of\nthe cotangent Laplacian of the same mesh (best of 3), "
                "ratio = total / chol. flip/zero: faces\nof the layout with negative/zero signed area "
                "(double-double positions); dbl: faces with area\n<= 0 in the plain double chart "

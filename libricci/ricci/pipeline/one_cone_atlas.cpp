@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
 
 namespace ricci {
 namespace {
@@ -25,7 +26,96 @@ VertexHandle atlas_root(const OneConeProblem& problem) {
   return problem.mesh.vertex_handle(0);
 }
 
+// Index in the cleaned-up mesh of input vertex `vertex` (-1 stays -1).
+int input_to_cleaned(const OneConeAtlasResult& result, int vertex) {
+  const std::vector<int>& map = result.short_edges.input_vertex;
+  if (vertex < 0 || map.empty()) return vertex;
+  return static_cast<int>(std::find(map.begin(), map.end(), vertex) - map.begin());
+}
+
+// The input with its short edges collapsed and its flat non-Delaunay edges flipped, as asked;
+// fills result.short_edges (with the vertex map) and result.flat_flips.
+Mesh clean_up_surface(const Mesh& mesh, const OneConeAtlasOptions& options, OneConeAtlasResult& result) {
+  Mesh cleaned = mesh;
+  if (options.collapse_short_edges) {
+    ShortEdgeOptions short_edges = options.short_edges;
+    short_edges.keep_vertex = result.chosen_vertex;
+    result.short_edges = collapse_short_edges(mesh, short_edges);
+    cleaned = result.short_edges.mesh;
+    result.short_edges.mesh = Mesh();  // the problem's mesh is the one kept
+  }
+  if (options.flip_flat_edges) {
+    FlatFlipOptions flips = options.flat_flips;
+    flips.protected_vertex = input_to_cleaned(result, result.chosen_vertex);
+    result.flat_flips = flip_flat_edges_to_delaunay(cleaned, flips);
+  }
+  return cleaned;
+}
+
+// prepare_one_cone indexed the problem by the cleaned-up mesh: back to the input's indices.
+void map_problem_to_input(OneConeAtlasResult& result) {
+  const std::vector<int>& map = result.short_edges.input_vertex;
+  if (map.empty()) return;
+  for (int& v : result.problem.input_vertex) {
+    if (v >= 0) v = map[static_cast<size_t>(v)];
+  }
+  result.problem.chosen_vertex = result.chosen_vertex;
+}
+
+// Clean-up, valence modification and flow: the cone-ring metrics first (single cones), then,
+// when `fall_back`, solve_one_cone_flow. Fills result's problem, flow and their timings.
+void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, OneConeAtlasResult& result,
+                       const std::function<void(const char*)>& report, bool fall_back) {
+  auto t = Clock::now();
+  Mesh cleaned;
+  if (options.collapse_short_edges || options.flip_flat_edges) {
+    report("surface clean-up");
+    cleaned = clean_up_surface(mesh, options, result);
+  }
+  result.timings.flips = seconds_since(t);
+
+  report("valence modification");
+  t = Clock::now();
+  const bool clean = options.collapse_short_edges || options.flip_flat_edges;
+  result.problem = prepare_one_cone(clean ? cleaned : mesh, input_to_cleaned(result, result.chosen_vertex), options.valence);
+  map_problem_to_input(result);
+  result.timings.valence = seconds_since(t);
+
+  report("Ricci flow");
+  t = Clock::now();
+  result.flow = FlowResult();
+  if (result.problem.kind == OneConeKind::SingleCone && !options.cone_ring_metrics.empty()) {
+    result.flow = solve_cone_ring_flow(result.problem, options.cone_ring_metrics, options.flow, options.continuation);
+  }
+  if (!result.flow.converged() && fall_back) {
+    std::vector<std::string> failures = result.flow.failed_attempts;
+    result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
+    result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(), failures.end());
+  }
+  result.timings.flow = seconds_since(t);
+}
+
 }  // namespace
+
+OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options) {
+  OneConeAtlasOptions route = options;
+  route.collapse_short_edges = true;
+  route.short_edges.relative_length = 0.01;
+  route.flip_flat_edges = true;
+  route.flat_flips.max_normal_angle = 5.0 * M_PI / 180.0;
+  route.flat_flips.max_relative_deviation = 0.01;
+  ConeRingMetric rule{Scheme::InversiveDistance, Scheme::CirclePacking, 4, options.flow.radii};
+  rule.nonnegative_inversive_distance = true;
+  route.cone_ring_metrics = {rule};
+  route.continuation.stages = 4;
+  return route;
+}
+
+bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options) {
+  return options.inversive_distance_route && options.keep_metric &&
+         options.flow.scheme == Scheme::InversiveDistance && options.flow.geometry == Geometry::Euclidean &&
+         options.cone_ring_metrics.empty() && needs_singular_vertex(mesh) && surface_topology(mesh).genus >= 2;
+}
 
 double OneConeAtlasResult::relative_transition_residual() const {
   double residual = std::max(atlas.max_transition_residual, atlas.max_side_pairing_residual);
@@ -34,7 +124,7 @@ double OneConeAtlasResult::relative_transition_residual() const {
 
 OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
   const auto start = Clock::now();
-  auto report = [&](const char* stage) {
+  const std::function<void(const char*)> report = [&](const char* stage) {
     if (options.progress) options.progress(stage);
   };
   OneConeAtlasResult result;
@@ -45,26 +135,32 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     SingularityOptions choice = options.choice;
     choice.flow = options.flow;
     choice.valence = options.valence;
-    choice.keep_metric = options.keep_metric;
+    // The plain inversive-distance flow the route replaces fails at most candidates of a
+    // marching-cubes or CAD mesh: rank them with the default metrics instead.
+    choice.keep_metric = options.keep_metric && !takes_inversive_distance_route(mesh, options);
     SingularityChoice chosen = choose_singularity(mesh, choice);
     result.chosen_vertex = chosen.vertex;
     result.flows_for_choice = chosen.flows_run;
     result.timings.choice = seconds_since(t);
   }
 
-  report("valence modification");
-  auto t = Clock::now();
-  result.problem = prepare_one_cone(mesh, result.chosen_vertex, options.valence);
-  result.timings.valence = seconds_since(t);
-
-  report("Ricci flow");
-  t = Clock::now();
-  result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
-  result.timings.flow = seconds_since(t);
+  if (takes_inversive_distance_route(mesh, options)) {
+    OneConeAtlasResult attempt = result;
+    prepare_and_solve(mesh, inversive_distance_route(options), attempt, report, false);
+    if (attempt.flow.converged()) {
+      result = std::move(attempt);
+    } else {
+      prepare_and_solve(mesh, options, result, report, true);
+      const auto& failures = attempt.flow.failed_attempts;
+      result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(), failures.end());
+    }
+  } else {
+    prepare_and_solve(mesh, options, result, report, true);
+  }
   if (!result.flow.converged()) throw SolverError(result.flow.message);
   // The layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it
   // closes: remove it in long double first (metric/polish_e2.h).
-  t = Clock::now();
+  auto t = Clock::now();
   if (result.flow.max_error >= options.polish_threshold) {
     result.polish = polish_e2_lengths(result.problem.mesh, result.flow.lengths,
                                       result.problem.targets.curvature);

@@ -7,6 +7,8 @@
 
 #include "ricci/atlas/atlas.h"
 #include "ricci/flow/flow.h"
+#include "ricci/mesh/collapse_short_edges.h"
+#include "ricci/mesh/flat_flips.h"
 #include "ricci/mesh/mesh.h"
 #include "ricci/metric/polish_e2.h"
 #include "ricci/quality/distortion.h"
@@ -22,6 +24,18 @@ struct OneConeAtlasOptions {
   /// (one_cone_metric_order) unless `keep_metric`, which forces flow.scheme and flow.radii.
   FlowOptions flow = one_cone_flow_options();
   bool keep_metric = false;
+  /// Collapse of edges much shorter than the median (mesh/collapse_short_edges.h) before
+  /// anything else; the singular vertex is kept. The problem's `input_vertex` maps back.
+  bool collapse_short_edges = false;
+  ShortEdgeOptions short_edges;
+  /// Delaunay flips of the edges between coplanar faces (mesh/flat_flips.h) before the valence
+  /// modification: the surface stays, its caps and slivers go.
+  bool flip_flat_edges = false;
+  FlatFlipOptions flat_flips;
+  /// Single cones: metrics tried in turn (solve_cone_ring_flow) before solve_one_cone_flow's.
+  std::vector<ConeRingMetric> cone_ring_metrics;
+  /// Continuation stages for the cone-ring metrics' flows (1 = the plain flow).
+  ContinuationOptions continuation{1};
   ValenceOptions valence;
   SingularityOptions choice;
   AtlasOptions atlas;
@@ -32,17 +46,26 @@ struct OneConeAtlasOptions {
   /// beetle ends at 1.03e-12 and needs it (1.1e-7 -> 3.8e-8), camel at 8e-15 does not
   /// (1.3e-11 without). 0 always polishes; infinity never does.
   double polish_threshold = 8e-13;
+  /// With keep_metric and the inversive-distance scheme on a closed surface of genus >= 2 (and no
+  /// cone_ring_metrics given), first try inversive_distance_route(*this), which converges where
+  /// the plain inversive-distance flow breaks triangles (marching-cubes genus2_10k and
+  /// genus2_100k: area-weighted quasi-conformal distortion 1.12 and 1.03); if it fails, the
+  /// plain flow as asked (its failures listed first in flow.failed_attempts).
+  bool inversive_distance_route = true;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;
 };
 
 /// Wall-clock seconds of each stage.
 struct OneConeAtlasTimings {
-  double choice = 0, valence = 0, flow = 0, polish = 0, atlas = 0, distortion = 0, total = 0;
+  double choice = 0, flips = 0, valence = 0, flow = 0, polish = 0, atlas = 0, distortion = 0, total = 0;
 };
 
 struct OneConeAtlasResult {
-  OneConeProblem problem;  ///< The (valence-modified or punctured) mesh and its targets.
+  OneConeProblem problem;  ///< The (flipped, valence-modified or punctured) mesh and its targets.
+  FlatFlipResult flat_flips;  ///< What flip_flat_edges did (zeros when off).
+  /// What collapse_short_edges did (its mesh left empty; empty map when off).
+  ShortEdgeCollapse short_edges;
   /// The flow's result; its `lengths` are replaced by the polished ones (below).
   FlowResult flow;
   /// Long-double polish of the flow's lengths before the layout (error_before/after: max
@@ -58,6 +81,17 @@ struct OneConeAtlasResult {
   /// max transition (and side pairing) residual divided by the domain diameter.
   [[nodiscard]] double relative_transition_residual() const;
 };
+
+/// `options` set up for the inversive-distance flow on marching-cubes meshes: edges under 1% of
+/// the median collapsed, non-Delaunay edges flipped where their faces are within 5 degrees of
+/// coplanar or their diagonals within 1% of the median edge apart (not at the cone), inversive
+/// distances made >= 0 with Thurston's angles within 4 rings of the cone, the cone reached in 4
+/// stages. The surface moves by at most ~2% of a local edge (5-degree flips) or 1% of the median
+/// edge (collapses, thin flips).
+[[nodiscard]] OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options);
+
+/// Whether build_one_cone_atlas tries inversive_distance_route first (see the option).
+[[nodiscard]] bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options);
 
 /// \pre a connected, oriented 2-manifold triangle mesh.
 /// \throw InvalidInputError / TopologyError for bad input; SolverError when the flow does not

@@ -16,6 +16,8 @@ namespace {
 
 // Rings around a single cone whose edges start with tangent circles (cone_tangent_metric).
 constexpr int kConeTangentRings = 3;
+// Stages of the continuation tried when the flow to the cone stalls in one go.
+constexpr int kConeContinuationStages = 4;
 
 void check_vertex(const Mesh& mesh, int vertex) {
   if (vertex < 0 || vertex >= static_cast<int>(mesh.n_vertices())) {
@@ -120,17 +122,93 @@ std::vector<int> ring_depth(const MeshTables& t, int cone, int rings) {
 
 }  // namespace
 
-CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
-                                        int rings, RadiusInit radii) {
-  CirclePackingMetric metric =
-      initial_metric(tables, lengths, Geometry::Euclidean, Scheme::CirclePacking, radii);
-  const std::vector<int> depth = ring_depth(tables, cone, rings);
+namespace {
+
+// Shrinks both radii of every edge with γ_a² + γ_b² > l² (inversive distance below 0) until
+// none is left, then recomputes the inversive distances (the lengths are kept).
+void make_inversive_distances_nonnegative(const MeshTables& tables, const EdgeLengths& lengths,
+                                          CirclePackingMetric& metric) {
+  constexpr int kMaxPasses = 200;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    bool changed = false;
+    for (int e = 0; e < tables.num_edges(); ++e) {
+      double& a = metric.gamma[tables.edge_vertices(e, 0)];
+      double& b = metric.gamma[tables.edge_vertices(e, 1)];
+      const double reach = std::hypot(a, b);
+      if (reach <= lengths[e]) continue;
+      const double scale = lengths[e] / reach * (1.0 - 1e-12);
+      a *= scale;
+      b *= scale;
+      changed = true;
+    }
+    if (!changed) break;
+  }
   for (int e = 0; e < tables.num_edges(); ++e) {
-    if (std::min(depth[tables.edge_vertices(e, 0)], depth[tables.edge_vertices(e, 1)]) < rings) {
-      metric.eta[e] = 1.0;
+    metric.eta[e] = circle_edge_eta(Geometry::Euclidean, metric.gamma[tables.edge_vertices(e, 0)],
+                                    metric.gamma[tables.edge_vertices(e, 1)], lengths[e]);
+  }
+}
+
+}  // namespace
+
+CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
+                                     const ConeRingMetric& rule) {
+  CirclePackingMetric metric = initial_metric(tables, lengths, Geometry::Euclidean, rule.far, rule.radii);
+  if (rule.far == Scheme::InversiveDistance && rule.nonnegative_inversive_distance) {
+    make_inversive_distances_nonnegative(tables, lengths, metric);
+  }
+  const std::vector<int> depth = ring_depth(tables, cone, rule.rings);
+  std::vector<char> near(static_cast<size_t>(tables.num_edges()), 0);
+  for (int e = 0; e < tables.num_edges(); ++e) {
+    near[e] = std::min(depth[tables.edge_vertices(e, 0)], depth[tables.edge_vertices(e, 1)]) < rule.rings;
+  }
+  for (int f = 0; f < tables.num_faces() && rule.needle_angle > 0; ++f) {
+    const double l[3] = {lengths[tables.face_edges(f, 0)], lengths[tables.face_edges(f, 1)],
+                         lengths[tables.face_edges(f, 2)]};
+    double theta[3];
+    if (triangle_angles(Geometry::Euclidean, l, theta) &&
+        std::min({theta[0], theta[1], theta[2]}) >= rule.needle_angle) {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) near[tables.face_edges(f, k)] = 1;
+  }
+  const Eigen::VectorXd far_eta = metric.eta;
+  // Thurston's angle is the inversive distance clamped to [0, pi/2]: the same circles where
+  // they overlap by less than a right angle.
+  auto near_eta = [&](int e) { return rule.near == Scheme::Combinatorial ? 1.0 : std::clamp(far_eta[e], 0.0, 1.0); };
+  for (int e = 0; e < tables.num_edges(); ++e) {
+    if (near[e]) metric.eta[e] = near_eta(e);
+  }
+  // A face with both kinds of edge can fail the triangle inequality; one with `near` edges only
+  // cannot (Thurston's circles with angles in [0, pi/2] always make a triangle). So such faces
+  // join the near side, until every face is a triangle: the near side only grows.
+  bool grew = true;
+  while (grew) {
+    grew = false;
+    for (int f = 0; f < tables.num_faces(); ++f) {
+      double l[3], theta[3];
+      for (int k = 0; k < 3; ++k) {
+        const int e = tables.face_edges(f, k);
+        l[k] = circle_edge_length(Geometry::Euclidean, metric.gamma[tables.edge_vertices(e, 0)],
+                                  metric.gamma[tables.edge_vertices(e, 1)], metric.eta[e]);
+      }
+      if (triangle_angles(Geometry::Euclidean, l, theta)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int e = tables.face_edges(f, k);
+        if (!near[e]) {
+          near[e] = 1;
+          metric.eta[e] = near_eta(e);
+          grew = true;
+        }
+      }
     }
   }
   return metric;
+}
+
+CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
+                                        int rings, RadiusInit radii) {
+  return cone_ring_metric(tables, lengths, cone, {Scheme::CirclePacking, Scheme::Combinatorial, rings, radii});
 }
 
 namespace {
@@ -154,6 +232,13 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options
       result = flow(tables, initial, problem.targets, options);
       if (result.converged()) return result;
       failures.push_back(name + to_string(result.status));
+      // The same metric with the cone reached in stages: genus2_100k refined to 1.6M faces
+      // stalls at error 3 in one go (Newton's first steps are cut to 1/2048 by the line search)
+      // and converges in kConeContinuationStages stages.
+      result = flow_by_continuation(tables, initial, problem.targets, options,
+                                    ContinuationOptions{kConeContinuationStages});
+      if (result.converged()) return result;
+      failures.push_back(name + "by continuation: " + to_string(result.status));
     } catch (const InfeasibleTargetError& e) {
       failures.push_back(name + e.what());
     }
@@ -197,6 +282,39 @@ std::vector<std::pair<std::string, Targets>> alternative_boundary_targets(const 
 }
 
 }  // namespace
+
+std::string to_string(const ConeRingMetric& rule) {
+  return to_string(rule.far) + "/" + radius_name(rule.radii) + ", " +
+         (rule.near == Scheme::Combinatorial ? std::string("tangent") : to_string(rule.near)) + " within " +
+         std::to_string(rule.rings) + " rings of the cone";
+}
+
+FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector<ConeRingMetric>& rules,
+                                const FlowOptions& options, const ContinuationOptions& continuation) {
+  if (problem.kind != OneConeKind::SingleCone) {
+    throw InvalidInputError("a cone-ring metric needs a single-cone problem, not " + to_string(problem.kind));
+  }
+  FlowResult result;
+  std::vector<std::string> failures;
+  const MeshTables tables = build_mesh_tables(problem.mesh);
+  const EdgeLengths lengths = mesh_edge_lengths(problem.mesh);
+  for (const ConeRingMetric& rule : rules) {
+    try {
+      const CirclePackingMetric initial = cone_ring_metric(tables, lengths, problem.cone, rule);
+      // Mixing clamped and free weights in one face can break it before the flow starts: the
+      // continuation's first curvature evaluation throws InvalidInputError then.
+      result = flow_by_continuation(tables, initial, problem.targets, options, continuation);
+      if (result.converged()) break;
+      failures.push_back(to_string(rule) + ": " + result.message);
+    } catch (const InfeasibleTargetError& e) {
+      failures.push_back(to_string(rule) + ": " + e.what());
+    } catch (const InvalidInputError& e) {
+      failures.push_back(to_string(rule) + ": " + e.what());
+    }
+  }
+  result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
+  return result;
+}
 
 FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
   if (keep_metric) return flow(problem.mesh, problem.targets, options);

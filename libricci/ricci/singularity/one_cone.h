@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "ricci/flow/continuation.h"
 #include "ricci/flow/flow.h"
 #include "ricci/flow/targets.h"
 #include "ricci/mesh/mesh.h"
@@ -71,6 +72,41 @@ inline constexpr int kMaxHandleSubdivisions = 3;
 /// runs that did not converge. Returns the last attempt when none converged.
 [[nodiscard]] FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options,
                                              bool keep_metric = false);
+
+/// A metric that differs near a single cone: `far` (the mesh's inversive distance or Thurston
+/// circle packing, radii by `radii`) on the edges with both ends `rings` or more rings from the
+/// cone, and `near` on the others: CirclePacking (Thurston's angles, the inversive distance
+/// clamped to [0, pi/2]) or Combinatorial (tangent circles).
+struct ConeRingMetric {
+  Scheme far = Scheme::InversiveDistance;
+  Scheme near = Scheme::CirclePacking;
+  int rings = 4;
+  RadiusInit radii = RadiusInit::Mean;
+  /// The edges of faces with a corner below this angle (radians, in the mesh) get `near` too,
+  /// wherever they are: the inversive distance of a needle's short edge sits near -1, where its
+  /// length is most sensitive to the radii (0 = none).
+  double needle_angle = 0.0;
+  /// Shrink the radii where two circles overlap by more than a right angle (I < 0) until every
+  /// inversive distance is >= 0, the regime where the energy is locally convex (Guo 2011).
+  bool nonnegative_inversive_distance = false;
+};
+
+/// The initial metric of `rule` on the mesh of `tables` with lengths `lengths`.
+[[nodiscard]] CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
+                                                   const ConeRingMetric& rule);
+
+/// Runs the flow of a single-cone problem from each metric of `rules` in turn until one
+/// converges, each by continuation on the target (flow/continuation.h; one stage = the plain
+/// flow). The result's failed_attempts lists the runs that did not (an initial metric that breaks
+/// a triangle counts as a failed run); the last attempt is returned when none converged
+/// (FlowStatus::Stalled with an empty metric when `rules` is empty).
+/// \throw InvalidInputError unless problem.kind == OneConeKind::SingleCone.
+[[nodiscard]] FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector<ConeRingMetric>& rules,
+                                              const FlowOptions& options,
+                                              const ContinuationOptions& continuation = {1});
+
+/// "inversive-distance/mean, circle-packing within 4 rings of the cone".
+[[nodiscard]] std::string to_string(const ConeRingMetric& rule);
 
 /// Thurston circle packing of the mesh (radii by `radii`, angles from its lengths clamped to
 /// [0, pi/2]) except on the edges within `rings` rings of `cone`, which get tangent circles

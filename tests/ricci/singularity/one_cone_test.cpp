@@ -1,9 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "ricci/flow/flow.h"
+#include "ricci/metric/curvature.h"
 #include "ricci/metric/mesh_tables.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
@@ -70,6 +72,91 @@ TEST(OneCone, ConeTangentMetricIsTangentNearTheConeAndTheMeshsPackingElsewhere) 
   auto r = expect_flow_reaches_target(problem);
   EXPECT_TRUE(r.failed_attempts.empty()) << r.failed_attempts.front();
   EXPECT_NEAR(2 * M_PI - r.curvature[problem.cone], 10 * M_PI, 1e-9);
+}
+
+// Inversive distance far from the cone reproduces the mesh there; Thurston's angles near it are
+// that inversive distance clamped to [0, pi/2], with the same radii.
+TEST(OneCone, ConeRingMetricKeepsTheMeshFarFromTheConeAndClampsNearIt) {
+  auto problem = ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
+  const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
+  const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
+  const auto inversive = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean,
+                                               ricci::Scheme::InversiveDistance, ricci::RadiusInit::Mean);
+  const ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::CirclePacking, 4,
+                                   ricci::RadiusInit::Mean};
+  const auto mixed = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
+  EXPECT_EQ(mixed.gamma, inversive.gamma);
+  std::vector<char> near(problem.mesh.n_vertices(), 0);  // within 3 rings: its edges reach ring 4
+  near[problem.cone] = 1;
+  for (auto v : ricci::ring_neighbourhood(problem.mesh, problem.mesh.vertex_handle(problem.cone), 3)) near[v.idx()] = 1;
+  const ricci::EdgeLengths mixed_lengths = ricci::circle_packing_lengths(t, mixed);
+  int clamped = 0;
+  for (int e = 0; e < t.num_edges(); ++e) {
+    if (near[t.edge_vertices(e, 0)] || near[t.edge_vertices(e, 1)]) {
+      EXPECT_EQ(mixed.eta[e], std::clamp(inversive.eta[e], 0.0, 1.0)) << e;
+      clamped += mixed.eta[e] != inversive.eta[e];
+    } else {
+      EXPECT_EQ(mixed.eta[e], inversive.eta[e]) << e;
+      EXPECT_NEAR(mixed_lengths[e], lengths[e], 1e-12 * lengths[e]) << e;
+    }
+  }
+  EXPECT_GT(clamped, 0);
+  EXPECT_EQ(ricci::to_string(rule), "inversive-distance/mean, circle-packing within 4 rings of the cone");
+}
+
+TEST(OneCone, ConeRingMetricClampsTheEdgesOfNeedles) {
+  auto problem = ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
+  const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
+  const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
+  ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::Combinatorial, 1,
+                             ricci::RadiusInit::Mean};
+  rule.needle_angle = 0.5;  // radians: most of the eight's faces
+  const auto mixed = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
+  const Eigen::MatrixX3d angles = ricci::corner_angles(t, lengths, ricci::Geometry::Euclidean);
+  int needles = 0;
+  for (int f = 0; f < t.num_faces(); ++f) {
+    if (angles.row(f).minCoeff() >= rule.needle_angle) continue;
+    ++needles;
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(mixed.eta[t.face_edges(f, k)], 1.0) << f;  // tangent
+  }
+  EXPECT_GT(needles, 0);
+}
+
+// Shrunk radii make every inversive distance >= 0 and still reproduce the mesh far from the cone;
+// faces that mix clamped and free weights and fail the triangle inequality join the clamped side,
+// so the initial metric is valid (genus2_10k at 6 rings breaks faces without that).
+TEST(OneCone, ConeRingMetricWithNonnegativeInversiveDistancesIsAValidMetric) {
+  auto problem = ricci::prepare_one_cone(shared_model("bench/genus2_10k.obj"), 0);
+  const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
+  const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
+  const auto mean = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean, ricci::Scheme::InversiveDistance,
+                                          ricci::RadiusInit::Mean);
+  ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::CirclePacking, 6,
+                             ricci::RadiusInit::Mean};
+  rule.nonnegative_inversive_distance = true;
+  const auto metric = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
+  EXPECT_GE(metric.eta.minCoeff(), 0.0);
+  EXPECT_LT(mean.eta.minCoeff(), 0.0);  // the mesh's own radii overlap by more than a right angle
+  EXPECT_TRUE((metric.gamma.array() <= mean.gamma.array()).all());
+  const ricci::EdgeLengths l = ricci::circle_packing_lengths(t, metric);
+  int reproduced = 0;
+  for (int e = 0; e < t.num_edges(); ++e) reproduced += std::abs(l[e] - lengths[e]) <= 1e-12 * lengths[e];
+  EXPECT_GT(reproduced, t.num_edges() * 9 / 10);
+  EXPECT_NO_THROW((void)ricci::corner_angles(t, l, ricci::Geometry::Euclidean));
+}
+
+TEST(OneCone, ConeRingFlowReachesTheConeAndRefusesOtherProblems) {
+  auto problem = ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
+  const std::vector<ricci::ConeRingMetric> rules = {
+      {ricci::Scheme::InversiveDistance, ricci::Scheme::Combinatorial, 3, ricci::RadiusInit::Mean}};
+  const ricci::FlowResult r = ricci::solve_cone_ring_flow(problem, rules, ricci::one_cone_flow_options());
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_LT(r.max_error, 1e-9);
+  EXPECT_NEAR(2 * M_PI - r.curvature[problem.cone], 6 * M_PI, 1e-9);
+  EXPECT_TRUE(r.failed_attempts.empty());
+  auto torus = ricci::prepare_one_cone(shared_model("closed_g1/knot1.off"), 0);
+  EXPECT_THROW((void)ricci::solve_cone_ring_flow(torus, rules, ricci::one_cone_flow_options()),
+               ricci::InvalidInputError);
 }
 
 TEST(OneCone, GenusOneIsAFlatTorusWithoutCone) {
