@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "ricci/flow/serial_blas.h"
 #include "ricci/mesh/errors.h"
 
 namespace spline {
@@ -127,6 +128,8 @@ ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::Matrix
 
   const Eigen::MatrixX3d g = br - Eigen::MatrixX3d(k.selfadjointView<Eigen::Lower>() * y0);
   const Eigen::MatrixX3d h = -Eigen::MatrixX3d(cr * y0);
+  // One BLAS thread: on these factorisations the second only spins (serial_blas.h).
+  const ricci::SerialBlasScope serial_blas;
   Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> solver;
   solver.cholmod().print = 0;  // libraries never print; failures are reported by info()
   Eigen::MatrixX3d e;
