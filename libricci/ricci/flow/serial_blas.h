@@ -10,8 +10,10 @@
 //
 // With another BLAS (no openblas_set_num_threads symbol in the process) the scope does nothing.
 // Scopes may nest and overlap across threads: the first one entered sets one thread, the last
-// one left restores the previous count. The thread count only changes speed, never results
-// (each output block of a threaded OpenBLAS call is computed by one thread in the same order).
+// one left restores the previous count. The thread count changes the order of some BLAS sums, so
+// results move at rounding level: `msp fit models/genus2.off` (one correction round, whose
+// constrained solves amplify rounding) gives fit_rms 0.0027610148 with two threads and
+// 0.0027610134 with one, the seam's normal jump 0.342891 and 0.342883 degrees.
 namespace ricci {
 
 class SerialBlasScope {

@@ -262,6 +262,9 @@ void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
       const Jet& c = jets[node.child[k]];
+      // A zero child adds only (signed) zeros: skipping it changes no bit, and most children
+      // vanish at u (supports end at their knots' hull).
+      if (c.value == 0.0 && (!node.root || c.gradient.isZero(0.0))) continue;
       jet.value += state.lambda(node, k, g[k]) * c.value;
       jet.gradient += g[k] * c.value;
       if (!node.root) continue;
@@ -292,7 +295,8 @@ void SimplexSplineDag::evaluate_values(const Eigen::Vector2d& u, const TieBreak&
     const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
-      value += state.lambda(node, k, g[k]) * values[node.child[k]];
+      const double child = values[node.child[k]];
+      if (child != 0.0) value += state.lambda(node, k, g[k]) * child;  // as in evaluate()
     }
   }
 }
