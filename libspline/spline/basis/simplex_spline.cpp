@@ -272,8 +272,8 @@ void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
       const Jet& c = jets[node.child[k]];
-      // A zero child adds only (signed) zeros: skipping it changes no bit, and most children
-      // vanish at u (supports end at their knots' hull).
+      // A zero child adds only (signed) zeros: skipping it changes no bit. Many children vanish
+      // at u (their box is larger than their support): -16% instructions (msp-bench dms).
       if (c.value == 0.0 && (!node.root || c.gradient.isZero(0.0))) continue;
       jet.value += state.lambda(node, k, g[k]) * c.value;
       jet.gradient += g[k] * c.value;
