@@ -257,11 +257,12 @@ void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,
                                 std::vector<Jet>& jets) const {
   jets.resize(nodes_.size());
   PointState state(knots_, u, tie);
+  const float ux = static_cast<float>(u.x()), uy = static_cast<float>(u.y());
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
     const Node& node = nodes_[id];
     Jet& jet = jets[id];
     jet = Jet{};
-    if (node.kind == Kind::zero || outside(node, u)) continue;
+    if (node.kind == Kind::zero || outside(node, ux, uy)) continue;
     if (node.kind == Kind::base) {
       if (state.in_base(node)) jet.value = node.data[0];
       continue;
@@ -292,11 +293,12 @@ void SimplexSplineDag::evaluate_values(const Eigen::Vector2d& u, const TieBreak&
                                        std::vector<double>& values) const {
   values.resize(nodes_.size());
   PointState state(knots_, u, tie);
+  const float ux = static_cast<float>(u.x()), uy = static_cast<float>(u.y());
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
     const Node& node = nodes_[id];
     double& value = values[id];
     value = 0.0;
-    if (node.kind == Kind::zero || outside(node, u)) continue;
+    if (node.kind == Kind::zero || outside(node, ux, uy)) continue;
     if (node.kind == Kind::base) {
       if (state.in_base(node)) value = node.data[0];
       continue;
@@ -318,9 +320,10 @@ void SimplexSplineDag::evaluate_directional(const Eigen::Vector2d& u,
   const std::size_t stride = static_cast<std::size_t>(max_order) + 1;
   table.assign(nodes_.size() * stride, 0.0);
   PointState state(knots_, u, tie);
+  const float ux = static_cast<float>(u.x()), uy = static_cast<float>(u.y());
   for (std::size_t id = 0; id < nodes_.size(); ++id) {
     const Node& node = nodes_[id];
-    if (node.kind == Kind::zero || outside(node, u)) continue;
+    if (node.kind == Kind::zero || outside(node, ux, uy)) continue;
     double* out = &table[id * stride];
     if (node.kind == Kind::base) {
       if (state.in_base(node)) out[0] = node.data[0];

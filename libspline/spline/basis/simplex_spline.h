@@ -114,10 +114,12 @@ class SimplexSplineDag {
   // Per-point scratch of one evaluation (simplex_spline.cpp): u - x_i for every knot, and the
   // sides of u of the directed knot lines already decided by base triangles.
   struct PointState;
-  bool outside(const Node& node, const Eigen::Vector2d& u) const {
-    // Strictly outside the closed box: u and its perturbation lie outside the knots' hull.
-    return u.x() < node.box[0] || u.y() < node.box[1] || u.x() > node.box[2] ||
-           u.y() > node.box[3];
+  // Strictly outside the closed box: u and its perturbation lie outside the knots' hull. u is
+  // compared rounded to float (once per pass, not per node): rounding is monotonic and the box
+  // corners are floats, so a culled node is outside in double too; a node the float test keeps
+  // but the double test would cull evaluates to exact zeros, as culled ones read.
+  static bool outside(const Node& node, float x, float y) {
+    return x < node.box[0] || y < node.box[1] || x > node.box[2] || y > node.box[3];
   }
 
   // Build-time caches, dropped by release_index(): subset -> node (a direct table up to
