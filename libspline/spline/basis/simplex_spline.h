@@ -25,6 +25,7 @@
 // holds to ~1e-15 for cloud radii from 0.45 of the inradius down to 1e-7 of the edge length, also
 // at points inside the clouds. Evaluation is const and thread-safe.
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -134,6 +135,8 @@ class SimplexSplineDag {
   std::unordered_map<std::uint32_t, int> index_;
   std::vector<std::uint16_t> direct_index_;  // mask -> id + 1, 0 when absent
   std::vector<double> areas_, dets_;         // by (x * knots + y) * knots + z
+  // Each knot's coordinates rounded to float downwards / upwards (node boxes).
+  std::vector<std::array<float, 2>> knot_floor_, knot_ceil_;
 };
 
 /// M_DMS(u | knots) with gradient and Hessian (3 to 32 knots).
