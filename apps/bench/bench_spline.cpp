@@ -182,7 +182,13 @@ void print_breakdown(const spline::ScanFitResult& result, const Eigen::MatrixX3d
 
 }  // namespace
 
-int run_spline_benchmark(int, char**) {
+int run_spline_benchmark(int argc, char** argv) {
+  // Arguments, if any, pick rows by paper name or model path (e.g. "Horse", to profile one row).
+  const std::vector<std::string> picked(argv, argv + argc);
+  const auto wanted = [&](const PaperRow& row) {
+    return picked.empty() || std::find(picked.begin(), picked.end(), row.object) != picked.end() ||
+           std::find(picked.begin(), picked.end(), row.model) != picked.end();
+  };
   std::printf(
       "Manifold DMS spline: paper Table 1 sizes on shared models of the same genus\n"
       "construction = home clouds + every chart's planar space + initial control points;\n"
@@ -197,6 +203,7 @@ int run_spline_benchmark(int, char**) {
               "paper row", "model", "g", "Nf", "n", "Nc", "points", "constr", "fit", "fair",
               "fit_r1", "total", "T_spline", "speedup", "speedup_r1", "eval_us", "wall_total");
   for (const PaperRow& row : kTable1) {
+    if (!wanted(row)) continue;
     const ricci::Mesh dense = ricci::read_mesh(shared(row.model));
     ricci::SimplifyOptions simplify;
     simplify.target_faces = row.faces;

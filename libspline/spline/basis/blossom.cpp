@@ -1,6 +1,7 @@
 #include "spline/basis/blossom.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -9,6 +10,37 @@
 
 namespace spline {
 namespace {
+
+// multinomial(n; a, b, n - a - b) = C(n, a) C(n - a, b) by row monomial_index(a, b), each an
+// exact integer in double (every partial product is one).
+std::vector<double> make_multinomials(int n) {
+  std::vector<double> table(static_cast<std::size_t>(monomial_count(n)));
+  for (int t = 0; t <= n; ++t) {
+    for (int a = t; a >= 0; --a) {
+      const int b = t - a;
+      double multinomial = 1.0;
+      for (int i = 1; i <= a; ++i) multinomial = multinomial * (n - a + i) / i;
+      for (int i = 1; i <= b; ++i) multinomial = multinomial * (n - a - b + i) / i;
+      table[static_cast<std::size_t>(monomial_index(a, b))] = multinomial;
+    }
+  }
+  return table;
+}
+
+// The table for n arguments: built once per n up to kCachedArguments (blossoms are taken per
+// constraint row and per collocation row, about a million times per fit; recomputing the table
+// each time was a third of their cost), else built on the spot.
+constexpr int kCachedArguments = 16;
+const std::vector<double>& multinomials(int n, std::vector<double>& spare) {
+  static const std::vector<std::vector<double>> cached = [] {
+    std::vector<std::vector<double>> tables;
+    for (int k = 0; k <= kCachedArguments; ++k) tables.push_back(make_multinomials(k));
+    return tables;
+  }();
+  if (n <= kCachedArguments) return cached[static_cast<std::size_t>(n)];
+  spare = make_multinomials(n);
+  return spare;
+}
 
 // Elementary symmetric sums E(a, b) = sum over disjoint S, T (|S| = a, |T| = b) of
 // prod_S X_i prod_T Y_j, each divided by the multinomial n! / (a! b! (n-a-b)!): the blossoms of
@@ -19,25 +51,21 @@ Eigen::VectorXd monomial_blossoms(const std::vector<Eigen::Vector2d>& local) {
   e[0] = 1.0;
   for (const Eigen::Vector2d& arg : local) {
     for (int t = n; t >= 1; --t) {  // descending: each argument is used at most once
+      // Rows of total degree t start at t (t + 1) / 2, those of t - 1 at (t - 1) t / 2.
+      double* row = e.data() + t * (t + 1) / 2;
+      const double* lower = e.data() + (t - 1) * t / 2;
       for (int a = t; a >= 0; --a) {
-        const int b = t - a;
+        const int b = t - a;  // row[b] is X^a Y^b; lower[b] is X^(a-1) Y^b, lower[b-1] X^a Y^(b-1)
         double add = 0.0;
-        if (a > 0) add += arg.x() * e[monomial_index(a - 1, b)];
-        if (b > 0) add += arg.y() * e[monomial_index(a, b - 1)];
-        e[monomial_index(a, b)] += add;
+        if (a > 0) add += arg.x() * lower[b];
+        if (b > 0) add += arg.y() * lower[b - 1];
+        row[b] += add;
       }
     }
   }
-  // multinomial(n; a, b, n - a - b) = C(n, a) C(n - a, b)
-  for (int t = 0; t <= n; ++t) {
-    for (int a = t; a >= 0; --a) {
-      const int b = t - a;
-      double multinomial = 1.0;
-      for (int i = 1; i <= a; ++i) multinomial = multinomial * (n - a + i) / i;
-      for (int i = 1; i <= b; ++i) multinomial = multinomial * (n - a - b + i) / i;
-      e[monomial_index(a, b)] /= multinomial;
-    }
-  }
+  std::vector<double> spare;
+  const std::vector<double>& divisors = multinomials(n, spare);
+  for (Eigen::Index i = 0; i < e.size(); ++i) e[i] /= divisors[static_cast<std::size_t>(i)];
   return e;
 }
 
@@ -93,6 +121,7 @@ std::vector<Eigen::Vector2d> control_point_arguments(const KnotCloud& c0, const 
                                                      const KnotCloud& c2,
                                                      const Eigen::Vector3i& beta) {
   std::vector<Eigen::Vector2d> args;
+  args.reserve(static_cast<std::size_t>(std::max(0, beta.sum())));
   const KnotCloud* clouds[3] = {&c0, &c1, &c2};
   for (int v = 0; v < 3; ++v) {
     if (beta[v] < 0 || beta[v] > clouds[v]->degree()) {

@@ -17,6 +17,8 @@ namespace spline {
 
 /// det[b - a, c - a] (twice the signed area) to within a few ulps of the exact value, also for
 /// slivers where the plain formula cancels: used once per knot triple when a DAG is built.
+/// Compensated arithmetic (the correctly rounded value or its neighbour) unless the products
+/// cancel to below ~6e-14 of their size; then an exact expansion.
 [[nodiscard]] double accurate_det2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                                     const Eigen::Vector2d& c);
 

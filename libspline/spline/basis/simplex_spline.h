@@ -25,6 +25,7 @@
 // holds to ~1e-15 for cloud radii from 0.45 of the inradius down to 1e-7 of the edge length, also
 // at points inside the clouds. Evaluation is const and thread-safe.
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -114,10 +115,12 @@ class SimplexSplineDag {
   // Per-point scratch of one evaluation (simplex_spline.cpp): u - x_i for every knot, and the
   // sides of u of the directed knot lines already decided by base triangles.
   struct PointState;
-  bool outside(const Node& node, const Eigen::Vector2d& u) const {
-    // Strictly outside the closed box: u and its perturbation lie outside the knots' hull.
-    return u.x() < node.box[0] || u.y() < node.box[1] || u.x() > node.box[2] ||
-           u.y() > node.box[3];
+  // Strictly outside the closed box: u and its perturbation lie outside the knots' hull. u is
+  // compared rounded to float (once per pass, not per node): rounding is monotonic and the box
+  // corners are floats, so a culled node is outside in double too; a node the float test keeps
+  // but the double test would cull evaluates to exact zeros, as culled ones read.
+  static bool outside(const Node& node, float x, float y) {
+    return x < node.box[0] || y < node.box[1] || x > node.box[2] || y > node.box[3];
   }
 
   // Build-time caches, dropped by release_index(): subset -> node (a direct table up to
@@ -132,6 +135,8 @@ class SimplexSplineDag {
   std::unordered_map<std::uint32_t, int> index_;
   std::vector<std::uint16_t> direct_index_;  // mask -> id + 1, 0 when absent
   std::vector<double> areas_, dets_;         // by (x * knots + y) * knots + z
+  // Each knot's coordinates rounded to float downwards / upwards (node boxes).
+  std::vector<std::array<float, 2>> knot_floor_, knot_ceil_;
 };
 
 /// M_DMS(u | knots) with gradient and Hessian (3 to 32 knots).

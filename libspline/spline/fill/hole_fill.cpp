@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "ricci/flow/serial_blas.h"
 #include "ricci/mesh/errors.h"
 #include "spline/basis/blossom.h"
 #include "spline/basis/multi_index.h"
@@ -62,6 +63,7 @@ Eigen::MatrixX3d solve(const System& system, int functions, const Eigen::Vector3
     normal.coeffRef(i, i) += anchor;
     rhs.row(i) += anchor * anchor_value.transpose();
   }
+  const ricci::SerialBlasScope serial_blas;  // one BLAS thread, as the fits (serial_blas.h)
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(normal);
   if (solver.info() != Eigen::Success) {
     throw ricci::SolverError("fill_rim: the normal equations of the " + rim_name(rim) +

@@ -6,6 +6,7 @@
 #include <Eigen/SparseCore>
 #include <cmath>
 
+#include "ricci/flow/serial_blas.h"
 #include "ricci/mesh/errors.h"
 #include "spline/basis/multi_index.h"
 #include "spline/fill/fill_system.h"
@@ -69,6 +70,7 @@ Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent,
       rhs[c * functions + f] += anchor * anchor_value(f, c);
     }
   }
+  const ricci::SerialBlasScope serial_blas;  // one BLAS thread, as the fits (serial_blas.h)
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(normal);
   if (solver.info() != Eigen::Success) {
     throw ricci::SolverError("fill_rim: the normal equations of the parametric patch of the " +

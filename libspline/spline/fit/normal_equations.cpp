@@ -22,15 +22,29 @@ std::vector<std::vector<int>> reach_by_domain_index(const ManifoldSplineSpace& s
   return reach;
 }
 
-// Local column of a global function among the reaching faces `reach` (ascending), m per face.
-int local_column(const std::vector<int>& reach, int function, int m) {
-  const int face = function / m;
-  const auto it = std::lower_bound(reach.begin(), reach.end(), face);
-  if (it == reach.end() || *it != face) {
-    throw std::logic_error("normal equations: a basis function outside the reaching faces");
+// Local columns of the functions of one face's reaching faces (ascending domain indices, m
+// functions each): a table by domain index, filled for the current face and cleared after it
+// (a binary search per basis sample cost 2% of a fit's instructions).
+class ReachColumns {
+ public:
+  ReachColumns(int faces, int m) : slot_(static_cast<std::size_t>(faces), -1), m_(m) {}
+  void set(const std::vector<int>& reach) {
+    for (int f : reach_) slot_[f] = -1;
+    reach_ = reach;
+    for (std::size_t i = 0; i < reach.size(); ++i) slot_[reach[i]] = static_cast<int>(i);
   }
-  return static_cast<int>(it - reach.begin()) * m + function % m;
-}
+  int operator()(int function) const {
+    const int slot = slot_[function / m_];
+    if (slot < 0) {
+      throw std::logic_error("normal equations: a basis function outside the reaching faces");
+    }
+    return slot * m_ + function % m_;
+  }
+
+ private:
+  std::vector<int> slot_, reach_;
+  int m_;
+};
 
 // Accumulates the rows of one face into a dense local Gram matrix (lower triangle) and
 // right-hand side over the face's reaching functions. Rows are sparse (about a third of the
@@ -75,14 +89,21 @@ class FaceAccumulator {
     std::sort(face_columns_.begin(), face_columns_.end());
     return face_columns_;
   }
-  // Ends the row: gram += r r^T, rhs += r target^T.
+  // Ends the row: gram += r r^T (lower triangle), rhs += r target^T. Each pair of touched columns
+  // once (they come in the samples' order, not sorted), the product oriented as vi * vj with
+  // i >= j as before.
   void end_row(const Eigen::RowVector3d& target, bool has_target) {
-    for (int i : touched_) {
-      const double vi = row_[i];
-      for (int j : touched_) {
-        if (j <= i) gram(i, j) += vi * row_[j];
+    for (std::size_t a = 0; a < touched_.size(); ++a) {
+      const int p = touched_[a];
+      for (std::size_t b = 0; b <= a; ++b) {
+        const int q = touched_[b];
+        if (q <= p) {
+          gram(p, q) += row_[p] * row_[q];
+        } else {
+          gram(q, p) += row_[q] * row_[p];
+        }
       }
-      if (has_target) rhs.row(i) += vi * target;
+      if (has_target) rhs.row(p) += row_[p] * target;
     }
     for (int i : touched_) {
       row_[i] = 0.0;
@@ -103,12 +124,13 @@ class FaceAccumulator {
 // Data rows, then three thin-plate rows per quadrature point, of one face.
 void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vector<int>& reach,
                      const FaceRowsSpec& spec, const std::vector<DomainPoint>& parameters,
-                     const Eigen::MatrixX3d& points, FaceAccumulator& acc, FaceDataRows& kept) {
-  const int m = space.functions_per_face();
-  acc.reset(static_cast<int>(reach.size()) * m);
+                     const Eigen::MatrixX3d& points, FaceAccumulator& acc, FaceDataRows& kept,
+                     ReachColumns& local_column) {
+  acc.reset(static_cast<int>(reach.size()) * space.functions_per_face());
+  local_column.set(reach);
   for (int k : spec.points) {
     for (const auto& s : space.evaluate_basis(parameters[k], -1, {}, BasisDerivatives::none)) {
-      acc.add(local_column(reach, s.function, m), s.jet.value);
+      acc.add(local_column(s.function), s.jet.value);
       kept.function.push_back(s.function);
       kept.value.push_back(s.jet.value);
     }
@@ -129,7 +151,7 @@ void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vect
     for (int h = 0; h < 3; ++h) {
       for (const auto& s : samples) {
         if (s.jet.hessian[h] != 0.0)
-          acc.add(local_column(reach, s.function, m), factors[h] * s.jet.hessian[h]);
+          acc.add(local_column(s.function), factors[h] * s.jet.hessian[h]);
       }
       acc.end_row(zero, false);
     }
@@ -190,12 +212,13 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
     auto& out = entries[t];
     rhs[t].setZero(space.function_count(), 3);
     FaceAccumulator acc;
+    ReachColumns local_column(faces, m);
     for (int d = t; d < faces; d += threads) {
       const FaceRowsSpec& spec = rows_by_face[d];
       if (spec.points.empty() && spec.thin_plate_weight <= 0.0) continue;
       const std::vector<int>& r = reach[d];
       accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, acc,
-                      kept[d]);
+                      kept[d], local_column);
       const int k = acc.columns();
       std::vector<int> global(static_cast<std::size_t>(k));
       for (int c = 0; c < k; ++c) global[c] = r[c / m] * m + c % m;  // ascending with c

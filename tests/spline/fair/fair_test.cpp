@@ -9,6 +9,8 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/topology/slice.h"
 #include "spline/fair/constrained_solve.h"
+#include "spline/basis/blossom.h"
+#include "spline/basis/multi_index.h"
 #include "spline/fair/fair.h"
 #include "spline/manifold/manifold_fixtures.h"
 
@@ -300,6 +302,57 @@ TEST(ConstrainedSolve, MatchesADenseNullSpaceSolution) {
   const Eigen::MatrixXd y = (z.transpose() * k * z).ldlt().solve(z.transpose() * b);
   const Eigen::MatrixXd x = z * y;
   EXPECT_LT((s.x - x).cwiseAbs().maxCoeff(), 1e-9 * x.cwiseAbs().maxCoeff());
+}
+
+// Every row of C is its definition, built pair by pair: for face I, the edge opposite corner k
+// and its neighbour J, and beta with beta_k <= r, +1 at c_{I,beta} and minus the blossom of J's
+// polynomial (as a map of J's control points, in I's neighbourhood chart) at beta's arguments.
+// fairing_constraints builds each J's map once per chart; the rows must not change by a bit.
+TEST(Fairing, ConstraintRowsAreTheBlossomsOfTheNeighboursPolynomials) {
+  for (int n = 3; n <= 4; ++n) {
+    const auto space = small_space("genus2.off", n);
+    const int m = space->functions_per_face();
+    const std::vector<Eigen::Vector3i> betas = multi_indices(n);
+    const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(m, m);
+    for (int r = 0; r < n; ++r) {
+      FairOptions options;
+      options.r = r;
+      const Eigen::SparseMatrix<double, Eigen::RowMajor> c = fairing_constraints(*space, options);
+      Eigen::SparseMatrix<double, Eigen::RowMajor> expected(c.rows(), c.cols());
+      std::vector<Eigen::Triplet<double>> triplets;
+      int row = 0;
+      std::set<int> charts;
+      for (int face : space->domain_faces()) {
+        const int chart = space->chart_of(face);
+        const auto own = space->face_clouds(chart, face);
+        for (int k = 0; k < 3; ++k) {
+          const int other = space->neighbour(face, k);
+          if (other < 0 || !space->in_domain(other)) continue;
+          charts.insert(chart);
+          const auto theirs = space->face_clouds(chart, other);
+          const BivariatePolynomial map =
+              polynomial_from_control_points(theirs[0], theirs[1], theirs[2], identity);
+          for (int b = 0; b < m; ++b) {
+            if (betas[b][k] > r) continue;
+            const Eigen::VectorXd w =
+                blossom(map, control_point_arguments(own[0], own[1], own[2], betas[b]));
+            triplets.emplace_back(row, space->function_index(face, b), 1.0);
+            for (int g = 0; g < m; ++g) {
+              if (std::abs(w[g]) > 1e-13)
+                triplets.emplace_back(row, space->function_index(other, g), -w[g]);
+            }
+            ++row;
+          }
+        }
+      }
+      ASSERT_GT(charts.size(), 1u);  // pairs evaluated in more than one chart
+      ASSERT_EQ(row, c.rows());
+      expected.setFromTriplets(triplets.begin(), triplets.end());
+      EXPECT_EQ(c.nonZeros(), expected.nonZeros()) << "n=" << n << " r=" << r;
+      const Eigen::SparseMatrix<double, Eigen::RowMajor> difference = c - expected;
+      EXPECT_EQ(difference.coeffs().cwiseAbs().maxCoeff(), 0.0) << "n=" << n << " r=" << r;
+    }
+  }
 }
 
 TEST(Fairing, BadInputThrows) {
