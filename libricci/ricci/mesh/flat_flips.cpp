@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "ricci/mesh/edge_statistics.h"
+
 namespace ricci {
 namespace {
 
@@ -58,16 +60,6 @@ bool can_flip(const Mesh& mesh, EdgeHandle e, const EdgeQuad& quad, const FlatFl
   if (mesh.valence(mesh.from_vertex_handle(h0)) <= 3 || mesh.valence(mesh.to_vertex_handle(h0)) <= 3) return false;
   const bool flat = quad.normal_angle() <= options.max_normal_angle || quad.diagonal_distance() <= max_deviation;
   return flat && quad.flip_keeps_orientation() && quad.flipped_opposite_angle_sum() < M_PI;
-}
-
-double median_edge_length(const Mesh& mesh) {
-  std::vector<double> lengths;
-  lengths.reserve(mesh.n_edges());
-  for (auto e : mesh.edges()) lengths.push_back(mesh.calc_edge_length(e));
-  if (lengths.empty()) return 0.0;
-  auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
-  std::nth_element(lengths.begin(), middle, lengths.end());
-  return *middle;
 }
 
 // 1 for the vertices within `rings` rings of `center` (none when center < 0).
