@@ -10,8 +10,7 @@ namespace ricci {
 namespace {
 
 double corner_angle(const Eigen::Vector3d& at, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d u = a - at, v = b - at;
-  return std::atan2(u.cross(v).norm(), u.dot(v));
+  return angle_between(a - at, b - at);
 }
 
 // The quad around an interior edge: its end points a -> b (along halfedge 0) and the vertices
@@ -23,8 +22,7 @@ struct EdgeQuad {
   double flipped_opposite_angle_sum() const { return corner_angle(a, d, c) + corner_angle(b, c, d); }
   // Angle between the normals of faces (a, b, c) and (b, a, d).
   double normal_angle() const {
-    const Eigen::Vector3d n1 = (b - a).cross(c - a), n2 = (a - b).cross(d - b);
-    return std::atan2(n1.cross(n2).norm(), n1.dot(n2));
+    return angle_between((b - a).cross(c - a), (a - b).cross(d - b));
   }
   // Distance between the lines of the two diagonals ab and cd: how far the flip moves the surface.
   double diagonal_distance() const {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace ricci {
 
@@ -32,5 +33,11 @@ struct VertexFaceArrays {
 
 inline Eigen::Vector3d to_eigen(const OpenMesh::Vec3d& p) { return {p[0], p[1], p[2]}; }
 inline OpenMesh::Vec3d to_openmesh(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+/// Angle in [0, pi] between two vectors (normals, corner edges). atan2 of |a x b| and a . b stays
+/// accurate for tiny angles, where acos of the normalised dot product does not.
+inline double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
 
 }  // namespace ricci

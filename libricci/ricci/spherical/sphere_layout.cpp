@@ -60,7 +60,7 @@ void centre_on_sphere(Eigen::MatrixX3d& p, int iterations) {
 }  // namespace
 
 double sphere_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b));
+  return angle_between(a, b);
 }
 
 SphereLayoutResult layout_sphere(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,

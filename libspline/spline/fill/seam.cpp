@@ -23,9 +23,7 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
       const double t = static_cast<double>(i) / samples_per_edge;
       const auto s = fill_detail::sample_rim(spline, fill.rim.edges[j], t);
       const PatchPoint p = fill.evaluate(fill.parameter(j, t));
-      // atan2 of |n1 x n2| and n1 . n2 stays accurate for tiny angles (acos does not).
-      const double angle =
-          std::atan2(s.jet.normal.cross(p.normal).norm(), s.jet.normal.dot(p.normal));
+      const double angle = ricci::angle_between(s.jet.normal, p.normal);
       report.max_normal_jump_deg = std::max(report.max_normal_jump_deg, angle * 180.0 / M_PI);
       const double gap = (p.position - s.jet.position).norm() / fill.diagonal;
       report.max_position_gap = std::max(report.max_position_gap, gap);
@@ -54,8 +52,7 @@ double max_normal_step_deg(const ManifoldSpline& spline, int face, int steps) {
       bary = 0.999 * bary + Eigen::Vector3d::Constant(1e-3 / 3.0);
       const Eigen::Vector3d normal = spline.evaluate({face, bary}).normal;
       if (i > 0) {
-        worst = std::max(worst, std::atan2(normal.cross(previous).norm(), normal.dot(previous)) *
-                                    180.0 / M_PI);
+        worst = std::max(worst, ricci::angle_between(normal, previous) * 180.0 / M_PI);
       }
       previous = normal;
     }

@@ -252,7 +252,7 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
     const Eigen::Vector3d na = spline.evaluate(probes[i].a).normal;
     const Eigen::Vector3d nb = spline.evaluate(probes[i].b).normal;
     if (na.squaredNorm() == 0 || nb.squaredNorm() == 0) return;
-    angle[i] = std::atan2(na.cross(nb).norm(), na.dot(nb)) * 180.0 / M_PI;
+    angle[i] = ricci::angle_between(na, nb) * 180.0 / M_PI;
   });
   return angle.empty() ? 0.0 : *std::max_element(angle.begin(), angle.end());
 }
