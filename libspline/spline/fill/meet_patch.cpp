@@ -2,13 +2,14 @@
 #include "spline/fill/meet_patch.h"
 
 #include <Eigen/SparseCholesky>
-#include <algorithm>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <unordered_map>
 
 #include "ricci/mesh/errors.h"
+#include "spline/fill/patch_domain.h"
 
 namespace spline {
 namespace {
@@ -17,13 +18,9 @@ namespace {
 // tie broken towards the kept face.
 std::vector<ManifoldBasisSample> rim_basis(const ManifoldSplineSpace& space, const RimEdge& edge,
                                            double t) {
-  const int chart = space.chart_of(edge.face);
-  const Eigen::Matrix<double, 3, 2> corners = space.atlas().face_positions(chart, edge.face);
-  const Eigen::Vector2d a = corners.row(rim_edge_start_corner(edge)).transpose();
-  const Eigen::Vector2d b = corners.row(rim_edge_end_corner(edge)).transpose();
-  TieBreak tie;
-  tie.direction = (corners.row(edge.corner).transpose() - 0.5 * (a + b)).normalized();
-  return space.evaluate_basis({edge.face, rim_edge_barycentric(edge, t)}, chart, tie);
+  const fill_detail::RimChartEdge in_chart = fill_detail::rim_chart_edge(space, edge);
+  return space.evaluate_basis({edge.face, rim_edge_barycentric(edge, t)}, in_chart.chart,
+                              in_chart.tie);
 }
 
 // One rim sample: the basis there, the surface's derivatives and the patch's normal.

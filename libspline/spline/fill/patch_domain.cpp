@@ -267,18 +267,23 @@ PlanarTriangulation nested_rings(const std::vector<Eigen::Vector2d>& outer,
   return t;
 }
 
-RimSample sample_rim(const ManifoldSpline& spline, const RimEdge& edge, double t) {
-  const ManifoldSplineSpace& space = *spline.space;
-  const int chart = space.chart_of(edge.face);
-  const Eigen::Matrix<double, 3, 2> corners = space.atlas().face_positions(chart, edge.face);
-  const Eigen::Vector2d a = corners.row(rim_edge_start_corner(edge)).transpose();
-  const Eigen::Vector2d b = corners.row(rim_edge_end_corner(edge)).transpose();
+RimChartEdge rim_chart_edge(const ManifoldSplineSpace& space, const RimEdge& edge) {
+  RimChartEdge out;
+  out.chart = space.chart_of(edge.face);
+  const Eigen::Matrix<double, 3, 2> corners = space.atlas().face_positions(out.chart, edge.face);
+  out.start = corners.row(rim_edge_start_corner(edge)).transpose();
+  out.end = corners.row(rim_edge_end_corner(edge)).transpose();
   const Eigen::Vector2d opposite = corners.row(edge.corner).transpose();
-  TieBreak tie;
-  tie.direction = (opposite - 0.5 * (a + b)).normalized();
+  out.tie.direction = (opposite - 0.5 * (out.start + out.end)).normalized();
+  return out;
+}
+
+RimSample sample_rim(const ManifoldSpline& spline, const RimEdge& edge, double t) {
+  const RimChartEdge in_chart = rim_chart_edge(*spline.space, edge);
   RimSample sample;
-  sample.jet = spline.evaluate({edge.face, rim_edge_barycentric(edge, t)}, chart, tie);
-  const Eigen::Vector2d e = b - a;
+  sample.jet = spline.evaluate({edge.face, rim_edge_barycentric(edge, t)}, in_chart.chart,
+                               in_chart.tie);
+  const Eigen::Vector2d e = in_chart.end - in_chart.start;
   sample.chart_length = e.norm();
   const Eigen::Vector2d out = Eigen::Vector2d(e.y(), -e.x()) / sample.chart_length;
   sample.outward_derivative = out.x() * sample.jet.du + out.y() * sample.jet.dv;

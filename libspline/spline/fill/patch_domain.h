@@ -47,6 +47,15 @@ namespace spline::fill_detail {
 /// rest: its triangles are about one ring step high).
 [[nodiscard]] std::vector<double> ring_scales(double start, double step);
 
+/// A rim edge in its face's chart: the chart, the edge's end points there, and the tie-break
+/// that evaluates points on the edge one-sided, in the face (towards its opposite corner).
+struct RimChartEdge {
+  int chart = -1;
+  Eigen::Vector2d start = Eigen::Vector2d::Zero(), end = Eigen::Vector2d::Zero();
+  TieBreak tie;
+};
+[[nodiscard]] RimChartEdge rim_chart_edge(const ManifoldSplineSpace& space, const RimEdge& edge);
+
 /// The surrounding surface at rim sample (edge, t), evaluated in the edge's face one-sided
 /// (tie-break towards the face's interior), with the edge's chart geometry.
 struct RimSample {
