@@ -90,18 +90,13 @@ class FaceAccumulator {
     return face_columns_;
   }
   // Ends the row: gram += r r^T (lower triangle), rhs += r target^T. Each pair of touched columns
-  // once (they come in the samples' order, not sorted), the product oriented as vi * vj with
-  // i >= j as before.
+  // once (they come in the samples' order, not sorted, so the pair is put below the diagonal).
   void end_row(const Eigen::RowVector3d& target, bool has_target) {
     for (std::size_t a = 0; a < touched_.size(); ++a) {
       const int p = touched_[a];
       for (std::size_t b = 0; b <= a; ++b) {
         const int q = touched_[b];
-        if (q <= p) {
-          gram(p, q) += row_[p] * row_[q];
-        } else {
-          gram(q, p) += row_[q] * row_[p];
-        }
+        gram(std::max(p, q), std::min(p, q)) += row_[p] * row_[q];
       }
       if (has_target) rhs.row(p) += row_[p] * target;
     }
