@@ -68,16 +68,17 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
                        const std::function<void(const char*)>& report, bool fall_back) {
   auto t = Clock::now();
   Mesh cleaned;
+  const Mesh* surface = &mesh;  // no copy of the input unless it is cleaned up
   if (options.collapse_short_edges || options.flip_flat_edges) {
     report("surface clean-up");
     cleaned = clean_up_surface(mesh, options, result);
+    surface = &cleaned;
   }
   result.timings.flips = seconds_since(t);
 
   report("valence modification");
   t = Clock::now();
-  const bool clean = options.collapse_short_edges || options.flip_flat_edges;
-  result.problem = prepare_one_cone(clean ? cleaned : mesh, input_to_cleaned(result, result.chosen_vertex), options.valence);
+  result.problem = prepare_one_cone(*surface, input_to_cleaned(result, result.chosen_vertex), options.valence);
   map_problem_to_input(result);
   result.timings.valence = seconds_since(t);
 
