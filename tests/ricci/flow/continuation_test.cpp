@@ -10,39 +10,42 @@
 
 namespace {
 
+// The 6 pi cone of the eight at vertex 5, its cone-tangent metric and the direct flow from it.
+struct EightCone {
+  ricci::OneConeProblem problem =
+      ricci::prepare_one_cone(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off"), 5);
+  ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
+  ricci::CirclePackingMetric initial =
+      ricci::cone_tangent_metric(t, ricci::mesh_edge_lengths(problem.mesh), problem.cone, 3, ricci::RadiusInit::Mean);
+  ricci::FlowResult direct = ricci::flow(t, initial, problem.targets, ricci::one_cone_flow_options());
+
+  [[nodiscard]] ricci::FlowResult by_continuation(int stages) const {
+    return ricci::flow_by_continuation(t, initial, problem.targets, ricci::one_cone_flow_options(),
+                                       ricci::ContinuationOptions{stages});
+  }
+};
+
 // The energy is convex, so walking the target in stages ends at the direct flow's metric.
 TEST(Continuation, EndsAtTheDirectFlowsMetric) {
-  const ricci::Mesh mesh = ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off");
-  const ricci::OneConeProblem problem = ricci::prepare_one_cone(mesh, 5);
-  const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
-  const ricci::CirclePackingMetric initial =
-      ricci::cone_tangent_metric(t, ricci::mesh_edge_lengths(problem.mesh), problem.cone, 3, ricci::RadiusInit::Mean);
-  const ricci::FlowResult direct = ricci::flow(t, initial, problem.targets, ricci::one_cone_flow_options());
-  ricci::ContinuationOptions stages;
-  stages.stages = 4;
-  const ricci::FlowResult walked =
-      ricci::flow_by_continuation(t, initial, problem.targets, ricci::one_cone_flow_options(), stages);
+  const EightCone eight;
+  const ricci::OneConeProblem& problem = eight.problem;
+  const ricci::FlowResult& direct = eight.direct;
+  const ricci::FlowResult walked = eight.by_continuation(4);
   ASSERT_TRUE(direct.converged()) << direct.message;
   ASSERT_TRUE(walked.converged()) << walked.message;
   EXPECT_LT(walked.max_error, 1e-10);
   EXPECT_EQ(walked.target, problem.targets.curvature);
   EXPECT_GT(walked.iterations, direct.iterations / 2);  // summed over the stages
   EXPECT_LT((walked.lengths - direct.lengths).cwiseAbs().maxCoeff(), 1e-8 * direct.lengths.maxCoeff());
-  const Eigen::VectorXd k = ricci::vertex_curvature(t, walked.lengths, ricci::Geometry::Euclidean);
+  const Eigen::VectorXd k = ricci::vertex_curvature(eight.t, walked.lengths, ricci::Geometry::Euclidean);
   EXPECT_LT((k - problem.targets.curvature).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 TEST(Continuation, OneStageIsThePlainFlow) {
-  const ricci::Mesh mesh = ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off");
-  const ricci::OneConeProblem problem = ricci::prepare_one_cone(mesh, 5);
-  const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
-  const ricci::CirclePackingMetric initial =
-      ricci::cone_tangent_metric(t, ricci::mesh_edge_lengths(problem.mesh), problem.cone, 3, ricci::RadiusInit::Mean);
-  const ricci::FlowResult direct = ricci::flow(t, initial, problem.targets, ricci::one_cone_flow_options());
-  const ricci::FlowResult one = ricci::flow_by_continuation(t, initial, problem.targets, ricci::one_cone_flow_options(),
-                                                            ricci::ContinuationOptions{1});
-  EXPECT_EQ(one.iterations, direct.iterations);
-  EXPECT_EQ(one.lengths, direct.lengths);
+  const EightCone eight;
+  const ricci::FlowResult one = eight.by_continuation(1);
+  EXPECT_EQ(one.iterations, eight.direct.iterations);
+  EXPECT_EQ(one.lengths, eight.direct.lengths);
 }
 
 }  // namespace
