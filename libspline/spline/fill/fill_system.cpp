@@ -6,6 +6,7 @@
 #include "ricci/mesh/errors.h"
 #include "spline/basis/blossom.h"
 #include "spline/basis/multi_index.h"
+#include "spline/planar/bisect.h"
 
 namespace spline::fill_detail {
 namespace {
@@ -105,7 +106,9 @@ std::string rim_name(const Rim& rim) {
 
 std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vector2d>& boundary,
                                                   double spacing, int degree,
-                                                  const KnotCloudOptions& knots) {
+                                                  const KnotCloudOptions& knots,
+                                                  const std::vector<Eigen::Vector2d>& corners,
+                                                  int corner_refinement) {
   Eigen::Vector2d lo = boundary[0], hi = boundary[0];
   for (const auto& p : boundary) {
     lo = lo.cwiseMin(p);
@@ -113,6 +116,15 @@ std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vecto
   }
   const Eigen::Vector2d margin = Eigen::Vector2d::Constant(2.0 * spacing);
   PlanarTriangulation t = triangle_grid(lo - margin, hi + margin, spacing);
+  if (corner_refinement > 1 && !corners.empty()) {
+    const double fine = spacing / corner_refinement;
+    refine_to_size(t, [&](const Eigen::Vector2d& x) {
+      double nearest = INFINITY;
+      for (const auto& c : corners) nearest = std::min(nearest, (x - c).norm());
+      const double size = fine + nearest;
+      return size < spacing ? size : 1e300;  // the grid's own sides elsewhere
+    });
+  }
   auto clouds = make_knot_clouds(t, degree, knots);
   return std::make_shared<const PlanarDmsSpace>(std::move(t), std::move(clouds));
 }

@@ -32,10 +32,13 @@ struct QuadraturePoint {
 [[nodiscard]] std::string rim_name(const Rim& rim);
 
 /// The patch's planar DMS space: a triangle grid of side `spacing` over the box of `boundary`
-/// with a margin of two sides (so every function reaching D is present: partition of unity).
+/// with a margin of two sides (so every function reaching D is present: partition of unity),
+/// refined by longest-edge bisection (planar/bisect.h) around `corners` (D's rim vertices) to
+/// sides of spacing / corner_refinement there, growing by the distance from the nearest corner (FillOptions::corner_refinement says why; <= 1: no refinement).
 [[nodiscard]] std::shared_ptr<const PlanarDmsSpace> patch_space(
     const std::vector<Eigen::Vector2d>& boundary, double spacing, int degree,
-    const KnotCloudOptions& knots);
+    const KnotCloudOptions& knots, const std::vector<Eigen::Vector2d>& corners = {},
+    int corner_refinement = 1);
 
 /// Lays D out on a circle (radius: the rim's 3D length / 2 pi, so D's lengths are about the
 /// surface's): rim edge j becomes the chord corners[j] -> corners[j + 1], clockwise in rim

@@ -27,6 +27,7 @@ using fill_detail::RimSample;
 
 void check_options(const FillOptions& o) {
   const bool ok = o.degree >= 1 && o.degree <= kMaxDmsDegree && o.refinement >= 1 &&
+                  o.corner_refinement >= 1 && o.max_refined_rim_step_deg > 0.0 &&
                   o.max_boundary_vertices >= 8 && o.samples_per_edge >= 1 &&
                   o.fit_samples_per_edge >= 1 && o.parametric_samples_per_edge >= 1 && o.position_weight > 0.0 &&
                   o.tangent_weight >= 0.0 && o.cross_weight >= 0.0 && o.smoothing >= 0.0 && o.min_normal_cosine > 0.0 &&
@@ -226,7 +227,8 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
   const int boundary_vertices =
       std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
   const double h = perimeter / boundary_vertices;
-  fill.space = patch_space(polygon, h, options.degree, options.knots);
+  fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners,
+                           options.corner_refinement);
   const PlanarDmsSpace& space = *fill.space;
 
   // Weights: the height rows have units of length, the slope rows are scaled by h to match,
@@ -284,7 +286,8 @@ HoleFill fill_positions(const Rim& rim, const std::vector<std::vector<RimSample>
   const int boundary_vertices =
       std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
   const double h = perimeter / boundary_vertices;
-  fill.space = patch_space(polygon, h, options.degree, options.knots);
+  fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners,
+                           options.corner_refinement);
   const PlanarDmsSpace& space = *fill.space;
   const double radius = perimeter / (2.0 * M_PI);
   System system;
@@ -302,14 +305,23 @@ HoleFill fill_positions(const Rim& rim, const std::vector<std::vector<RimSample>
 
 }  // namespace
 
-HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, const Rim& rim,
-                  const FillOptions& options) {
-  check_options(options);
-  const int m = static_cast<int>(rim.edges.size());
-  if (m < 3) {
-    throw ricci::InvalidInputError("fill_rim: a rim needs at least 3 edges, got " +
-                                   std::to_string(m));
+namespace {
+
+// The largest angle between the surface's normals at consecutive rim samples 1/100 of an edge
+// apart.
+double largest_rim_normal_step_deg(const ManifoldSpline& spline, const Rim& rim) {
+  double largest = 0.0;
+  for (const auto& row : sample_edges(spline, rim, 100)) {
+    for (std::size_t i = 1; i < row.size(); ++i) {
+      largest = std::max(largest, ricci::angle_between(row[i - 1].jet.normal, row[i].jet.normal));
+    }
   }
+  return largest * 180.0 / M_PI;
+}
+
+// fill_rim at one patch space (FillOptions::corner_refinement).
+HoleFill fill_rim_once(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh,
+                       const Rim& rim, const FillOptions& options) {
   const auto samples = sample_edges(spline, rim, options.fit_samples_per_edge);
   const double diagonal = bounding_diagonal(domain_mesh);
   auto measured = [&](HoleFill fill) {
@@ -358,6 +370,29 @@ HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, 
       fill.max_normal_jump_deg > options.target_jump_deg) {
     HoleFill parametric = parametric_fill();
     if (parametric.max_normal_jump_deg < fill.max_normal_jump_deg) return parametric;
+  }
+  return fill;
+}
+
+}  // namespace
+
+HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh, const Rim& rim,
+                  const FillOptions& options) {
+  check_options(options);
+  const int m = static_cast<int>(rim.edges.size());
+  if (m < 3) {
+    throw ricci::InvalidInputError("fill_rim: a rim needs at least 3 edges, got " +
+                                   std::to_string(m));
+  }
+  FillOptions first = options;
+  if (largest_rim_normal_step_deg(spline, rim) > options.max_refined_rim_step_deg)
+    first.corner_refinement = 1;
+  HoleFill fill = fill_rim_once(spline, domain_mesh, rim, first);
+  if (first.corner_refinement > 1 && fill.max_normal_jump_deg > options.target_jump_deg) {
+    FillOptions uniform = options;
+    uniform.corner_refinement = 1;
+    HoleFill other = fill_rim_once(spline, domain_mesh, rim, uniform);
+    if (other.max_normal_jump_deg < fill.max_normal_jump_deg) return other;
   }
   return fill;
 }

@@ -191,6 +191,22 @@ struct FillOptions {
   /// Patch triangulation edges per rim edge along D's boundary: the patch's triangles (a
   /// regular grid over D) have sides of about (rim length in the plane) / (refinement * edges).
   int refinement = 3;
+  /// The patch's triangles near D's corners (the rim's vertices) are this many times smaller
+  /// than elsewhere (patch_space). Why: next to a rim vertex the surface's normal turns within
+  /// its knot cloud, a few hundredths of a rim edge, where a patch of refinement triangles per
+  /// edge cannot follow. Measured (`msp fit` defaults, largest seam normal jump, uniform ->
+  /// refined): femur.off 4.2 -> 0.44 degrees, horse.ply 2.8 -> 0.5, genus3.off 2.7 -> 0.27,
+  /// double-torus 5.4 -> 0.44, bunny_npm_closed 1.3 -> 0.78; the fill stage costs 1-5 s more
+  /// (venus.off at 4000 faces: 1.2 s). A refined patch missing target_jump_deg is compared
+  /// with the uniform one, the smaller seam kept (helmet.off: the refined patch flips). 1: a
+  /// uniform grid.
+  int corner_refinement = 8;
+  /// ... but a rim where the surface's normal turns by more than this between samples 1/100 of
+  /// an edge apart (a fold or crease: FindRimsOptions::max_cone_rim_normal_step_deg) gets the
+  /// uniform patch only: the refined one follows the fold into the hole (elephant_cgal.off, a
+  /// 26 degree step: seam 15 -> 4.9 degrees, but the fit RMS 0.159% -> 0.286% of the diagonal,
+  /// the points over the hole farther from the patch). The scans' rims: 3.7-9 degrees.
+  double max_refined_rim_step_deg = 20.0;
   /// Cap on rim edges * refinement: long boundary loops get a coarser patch (cost grows with the
   /// square of it).
   int max_boundary_vertices = 100;

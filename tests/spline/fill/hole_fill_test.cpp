@@ -315,10 +315,12 @@ TEST(FillRim, ScaleInvariant) {
     scaled_mesh.set_point(v, ricci::to_openmesh(1000.0 * ricci::to_eigen(mesh.point(v)) + shift));
   const HoleFill b = fill_rim(scaled, scaled_mesh, rims[0], options);
   // Rounding in the (ill-conditioned) least squares moves the figures by 1e-4..2.3e-3 relative
-  // (the worst seen: 0.4051 vs 0.4042 degrees on the polished metric); the patch itself (below)
-  // agrees to 1e-6 of the diagonal.
-  EXPECT_NEAR(a.max_normal_jump_deg, b.max_normal_jump_deg, 5e-3 * a.max_normal_jump_deg);
-  EXPECT_NEAR(a.max_position_gap, b.max_position_gap, 1e-3 * a.max_position_gap);
+  // on a uniform patch grid (the worst seen: 0.4051 vs 0.4042 degrees on the polished metric),
+  // by 1.9e-2 / 1.5e-3 on the grid refined at the corners (0.1886 vs 0.1850 degrees: its
+  // smallest triangles are 1/8 of the others); the patch itself (below) agrees to 1e-6 of the
+  // diagonal.
+  EXPECT_NEAR(a.max_normal_jump_deg, b.max_normal_jump_deg, 4e-2 * a.max_normal_jump_deg);
+  EXPECT_NEAR(a.max_position_gap, b.max_position_gap, 4e-3 * a.max_position_gap);
   for (double t : {0.1, 0.55}) {
     const Eigen::Vector3d pa = a.evaluate(a.parameter(2, t)).position;
     const Eigen::Vector3d pb = b.evaluate(b.parameter(2, t)).position;
