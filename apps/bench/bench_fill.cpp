@@ -192,6 +192,8 @@ int run_fill_benchmark(int argc, char** argv) {
       rim_options.grow = std::stoi(argv[++i]);
     else if (arg == "--refinement" && i + 1 < argc)
       fill_options.refinement = std::stoi(argv[++i]);
+    else if (arg == "--corner-refinement" && i + 1 < argc)
+      fill_options.corner_refinement = std::stoi(argv[++i]);
     else if (arg == "--samples" && i + 1 < argc)
       fill_options.fit_samples_per_edge = std::stoi(argv[++i]);
     else if (arg == "--method" && i + 1 < argc) {
@@ -219,15 +221,15 @@ int run_fill_benchmark(int argc, char** argv) {
   if (models.empty()) models = default_models();
   std::printf(
       "Hole filling: fit_scan (~%d domain faces), find_rims (grow %d), fill_rim (refinement "
-      "%d, %d fit samples per edge, smoothing %g);\njump: max normal angle (deg) at 100 samples "
+      "%d, corner refinement %d, %d fit samples per edge, smoothing %g);\njump: max normal angle (deg) at 100 samples "
       "per rim edge; gaps |P - S| / bbox diagonal; wall seconds.\noptions: --faces N --grow G "
-      "--refinement R --samples Q --smoothing S --method auto|height|parametric --cross W "
+      "--refinement R --corner-refinement C --samples Q --smoothing S --method auto|height|parametric --cross W "
       "--tangent W --max-boundary B --per-edge (worst jump and surface normal step per rim "
       "edge) --surface-steps (the surface's normal step per 1/100 edge by ring from the rim) "
       "--fill-boundaries (fallback for boundary loops) "
       "[models...]\n\n",
       fit_options.domain_faces, rim_options.grow, fill_options.refinement,
-      fill_options.fit_samples_per_edge, fill_options.smoothing);
+      fill_options.corner_refinement, fill_options.fit_samples_per_edge, fill_options.smoothing);
   std::printf("%-28s %10s %-8s %5s %6s %6s %9s %10s %10s %6s %s\n", "model", "", "rim", "edges",
               "cover", "s", "jump_deg", "max_gap", "rms_gap", "tris", "patch");
   for (const auto& path : models) fill_model(path, fit_options, rim_options, fill_options, flags);
