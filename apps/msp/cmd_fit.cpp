@@ -24,6 +24,7 @@ namespace {
 const char* kUsage =
     "msp fit MESH -o OUT.glb [--domain-faces N] [--degree n] [--fairness r] "
     "[--singularity auto|VERTEX] [--fill-boundaries] [--json REPORT] [--density d] "
+    "[--cone-refinement LEVELS] "
     "[--obj OUT.obj] [--ply OUT.ply] [--checkerboard] [--checker-squares N] [--control-net] "
     "[--domain] [--cut-loops] [--quiet]";
 
@@ -79,6 +80,9 @@ FitRunOptions parse_options(const Args& args) {
   o.fill_boundaries = args.has("fill-boundaries");
   o.density = args.get_int("density", 0);
   if (o.density < 0 || o.density > 64) throw UsageError("--density must be in [1, 64]");
+  o.cone_refinement.levels = args.get_int("cone-refinement", o.cone_refinement.levels);
+  if (o.cone_refinement.levels < 0 || o.cone_refinement.levels > 4)
+    throw UsageError("--cone-refinement must be in [0, 4]");
   return o;
 }
 
@@ -125,8 +129,9 @@ int run_fit(int argc, char** argv) {
   Args args(argc, argv,
             {"fill-boundaries", "checkerboard", "control-net", "domain", "cut-loops", "quiet"});
   args.require_known({"output", "domain-faces", "degree", "fairness", "singularity",
-                      "fill-boundaries", "json", "density", "obj", "ply", "checkerboard",
-                      "checker-squares", "control-net", "domain", "cut-loops", "quiet"});
+                      "fill-boundaries", "json", "density", "cone-refinement", "obj", "ply",
+                      "checkerboard", "checker-squares", "control-net", "domain", "cut-loops",
+                      "quiet"});
   args.require_positionals(1, kUsage);
   check_outputs(args);
   FitRunOptions options = parse_options(args);

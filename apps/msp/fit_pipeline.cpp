@@ -199,6 +199,7 @@ FitRun run_fit_pipeline(const ricci::Mesh& dense, const FitRunOptions& options) 
   scan.domain_faces = options.domain_faces;
   scan.degree = options.degree;
   scan.fair_r = options.fairness;
+  scan.atlas.cone_refinement = options.cone_refinement;
   if (options.singular_vertex >= 0) {
     begin("singularity");
     if (needs_singularity(run.input)) {
@@ -272,6 +273,10 @@ nlohmann::json fit_report_json(const std::string& path, const FitRun& run,
       {"singularities", singularities},
       {"domain_faces", space.domain_face_count()},
       {"domain_mesh_faces", atlas.problem.mesh.n_faces()},
+      {"cone_refinement",
+       {{"levels", atlas.cone_refinement.levels},
+        {"rings", options.cone_refinement.rings},
+        {"added_faces", atlas.cone_refinement.added_faces}}},
       {"control_points", space.function_count()},
       {"degree", space.degree()},
       {"fairness", options.fairness},

@@ -24,6 +24,8 @@ struct FitRunOptions {
   int singular_vertex = -1;
   bool fill_boundaries = false;  ///< Also cap the input's own boundary loops.
   int density = 0;               ///< Samples per domain edge - 1; 0 = chosen by domain size.
+  /// Denser sampling around the cone (levels 0: off).
+  ricci::ConeRefinementOptions cone_refinement = spline::ScanFitOptions{}.atlas.cone_refinement;
   /// Called with a stage name when the stage starts (the stage names of `seconds`).
   std::function<void(const std::string& stage)> progress;
 };

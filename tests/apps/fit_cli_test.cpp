@@ -200,6 +200,23 @@ TEST(FitCli, SingularVertexIsHonoured) {
   // Within a domain edge or so (400 faces on a diagonal-4 model: edges ~0.15).
   EXPECT_LT((p - q).norm(), 0.05 * report["bbox_diagonal"].get<double>());
   EXPECT_NEAR(s["curvature"].get<double>(), -4 * M_PI, 1e-6);
+  // The domain is refined around the cone by default (--cone-refinement 2).
+  EXPECT_EQ(report["cone_refinement"]["levels"], 2);
+  EXPECT_EQ(report["cone_refinement"]["rings"], 6);
+  EXPECT_GT(report["cone_refinement"]["added_faces"].get<int>(), 0);
+}
+
+// --cone-refinement 0: the simplified mesh is the domain as it is (after the valence
+// modification), and the report says so.
+TEST(FitCli, ConeRefinementCanBeTurnedOff) {
+  const fs::path dir = fresh_dir("unrefined");
+  const auto r = run_msp(args({"fit", model("genus2.off"), "--cone-refinement", "0", "--json",
+                               (dir / "u.json").string()}));
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const auto report = read_json(dir / "u.json");
+  EXPECT_EQ(report["cone_refinement"]["levels"], 0);
+  EXPECT_EQ(report["cone_refinement"]["added_faces"], 0);
+  EXPECT_TRUE(report["watertight"].get<bool>());
 }
 
 // Progress: one line per stage on stderr, each with its seconds.
@@ -303,6 +320,9 @@ TEST(FitCli, RefusesBadCommandLines) {
   expect_refused(
       "sing",
       {{model("genus1.off"), "-o", "{OUT}/x.glb", "--singularity", "x"}, "--singularity", 2});
+  expect_refused("cone", {{model("genus1.off"), "-o", "{OUT}/x.glb", "--cone-refinement", "9"},
+                          "--cone-refinement",
+                          2});
   expect_refused("unknown",
                  {{model("genus1.off"), "-o", "{OUT}/x.glb", "--colour", "red"}, "--colour", 2});
 }

@@ -80,6 +80,7 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
   t = Clock::now();
   result.problem = prepare_one_cone(*surface, input_to_cleaned(result, result.chosen_vertex), options.valence);
   map_problem_to_input(result);
+  result.cone_refinement = refine_around_cone(result.problem, options.cone_refinement);
   result.timings.valence = seconds_since(t);
 
   report("Ricci flow");

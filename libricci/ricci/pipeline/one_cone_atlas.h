@@ -37,6 +37,9 @@ struct OneConeAtlasOptions {
   /// Continuation stages for the cone-ring metrics' flows (1 = the plain flow).
   ContinuationOptions continuation{1};
   ValenceOptions valence;
+  /// Denser sampling around a single cone, after the valence modification (refine_around_cone;
+  /// off here, on in the scan pipeline, spline/fit/fit.h).
+  ConeRefinementOptions cone_refinement;
   SingularityOptions choice;
   AtlasOptions atlas;
   /// The long-double polish (metric/polish_e2.h) runs only when the flow's max |K - K̄|,
@@ -77,6 +80,7 @@ struct OneConeAtlasResult {
   DistortionReport distortion;
   int chosen_vertex = -1;       ///< Input vertex of the singularity, -1 when none.
   int flows_for_choice = 0;     ///< Flows the automatic choice ran (0 when given).
+  ConeRefinement cone_refinement;  ///< What options.cone_refinement did.
   OneConeAtlasTimings timings;
   /// max transition (and side pairing) residual divided by the domain diameter.
   [[nodiscard]] double relative_transition_residual() const;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <queue>
 #include <string>
+#include <utility>
 
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/neighbourhoods.h"
@@ -400,6 +401,54 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
     if (v >= n) v = -1;
   }
   return problem;
+}
+
+namespace {
+
+// Faces with a corner fewer than `rings` edges from `cone`.
+std::vector<char> faces_near(const Mesh& mesh, int cone, int rings) {
+  std::vector<char> near_vertex(mesh.n_vertices(), 0);
+  std::vector<int> frontier{cone};
+  near_vertex[static_cast<size_t>(cone)] = 1;
+  for (int ring = 1; ring < rings; ++ring) {
+    std::vector<int> next;
+    for (int v : frontier) {
+      for (auto w : mesh.vv_range(mesh.vertex_handle(v))) {
+        if (near_vertex[static_cast<size_t>(w.idx())]) continue;
+        near_vertex[static_cast<size_t>(w.idx())] = 1;
+        next.push_back(w.idx());
+      }
+    }
+    frontier = std::move(next);
+  }
+  std::vector<char> faces(mesh.n_faces(), 0);
+  for (auto f : mesh.faces()) {
+    for (auto v : mesh.fv_range(f)) {
+      faces[static_cast<size_t>(f.idx())] |= near_vertex[static_cast<size_t>(v.idx())];
+    }
+  }
+  return faces;
+}
+
+}  // namespace
+
+ConeRefinement refine_around_cone(OneConeProblem& problem, const ConeRefinementOptions& options) {
+  if (options.levels < 0 || options.rings < 1) {
+    throw InvalidInputError("cone refinement needs levels >= 0 and rings >= 1, got " +
+                            std::to_string(options.levels) + " and " + std::to_string(options.rings));
+  }
+  ConeRefinement done;
+  if (problem.kind != OneConeKind::SingleCone || options.levels == 0) return done;
+  const auto faces_before = static_cast<int>(problem.mesh.n_faces());
+  for (; done.levels < options.levels; ++done.levels) {
+    problem.mesh =
+        subdivide_midpoint_locally(problem.mesh, faces_near(problem.mesh, problem.cone, options.rings));
+  }
+  done.added_faces = static_cast<int>(problem.mesh.n_faces()) - faces_before;
+  // Midpoint subdivision keeps vertex indices and appends the midpoints.
+  problem.input_vertex.resize(problem.mesh.n_vertices(), -1);
+  problem.targets = single_cone_target(problem.mesh, problem.cone);
+  return done;
 }
 
 }  // namespace ricci

@@ -115,6 +115,34 @@ struct ConeRingMetric {
 [[nodiscard]] CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths,
                                                       int cone, int rings, RadiusInit radii);
 
+/// Denser sampling around a single cone (manifold-splines paper, section 4, step 2: "make the
+/// sampling in the neighborhood of the singularity much denser"). Near a cone of angle
+/// 2 pi alpha the flat metric scales like rho^(alpha - 1) (rho: distance to the cone), so across
+/// a face of size h at distance rho the chart's scale changes by about (1 + h / rho)^(alpha - 1):
+/// 16x from ring 1 to ring 2 of a uniform mesh at genus 3 (alpha = 5), where a spline over the
+/// charts folds and no G1 patch can meet it. Each level splits the faces within `rings` rings
+/// of the cone 1-to-4 (red-green, metric/subdivide.h), in the mesh the level before made: two
+/// levels of 6 rings leave edges of 1/4 of the input's length within ~3 of its edges of the
+/// cone, 1/2 within ~6, so h / rho stays below ~1/6 beyond the innermost rings (the cone's hole
+/// covers those).
+struct ConeRefinementOptions {
+  int levels = 0;  ///< rounds of refinement; 0: off
+  int rings = 6;   ///< faces with a corner fewer than this many edges from the cone are split
+};
+
+/// What refine_around_cone did.
+struct ConeRefinement {
+  int levels = 0;       ///< rounds applied (0 when off or not a single cone)
+  int added_faces = 0;
+};
+
+/// Applies ConeRefinementOptions to a single-cone problem (a no-op for other kinds or levels 0):
+/// the mesh is refined (the surface does not move: midpoints lie on the edges), the cone keeps
+/// its vertex index and valence, the added vertices map to input vertex -1 and the targets are
+/// recomputed (flat everywhere but the cone).
+/// \throw InvalidInputError when levels < 0 or rings < 1.
+ConeRefinement refine_around_cone(OneConeProblem& problem, const ConeRefinementOptions& options);
+
 /// Whether the mesh's topology asks for a singular vertex at all (closed, genus != 1).
 [[nodiscard]] bool needs_singular_vertex(const Mesh& mesh);
 

@@ -51,9 +51,11 @@
 // patch to the moved surface and meeting again does not converge further (4.4, 4.0 degrees
 // after 2, 3 rounds). What settled it is the patch's grid refined 8x at D's corners
 // (FillOptions::corner_refinement): there the patch can turn as fast as the surface, and the
-// seams of every genus 0-3 scan drop below 1 degree (femur 0.44, horse.ply 0.5, genus3.off
-// 0.27) but on creased rims (helmet, elephant_cgal, joint). Only a positions-only patch (FillMethod::height_field
-// with FillOptions::fallback) is not G1: HoleFill::g1 false.
+// seams of the genus 0-3 scans drop below 1 degree (femur 0.44, horse.ply 0.5, genus3.off
+// 0.27) but where the spline folds next to a large cone (helmet, elephant_cgal, joint: 13-180
+// degrees); the scan pipeline's domain refined around the cone (ricci::refine_around_cone)
+// removed those folds (0.75, 0.14, 0.24). Only a positions-only patch
+// (FillMethod::height_field with FillOptions::fallback) is not G1: HoleFill::g1 false.
 //
 // Rim sample convention (the weld shared with the tessellator): rim edge j is sampled at d + 1
 // points t_i = i / d, i = 0..d, linear in the barycentric coordinates of its domain face from the

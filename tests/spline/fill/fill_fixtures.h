@@ -10,13 +10,17 @@
 
 namespace spline::testing {
 
-/// fit_scan of the model at `path` (absolute) with a domain of about `faces` faces.
-inline const ScanFitResult& fitted_scan(const std::string& path, int faces = 1000) {
+/// fit_scan of the model at `path` (absolute) with a domain of about `faces` faces and
+/// `cone_levels` levels of refinement around the cone (ricci::ConeRefinementOptions; -1: the
+/// pipeline's default).
+inline const ScanFitResult& fitted_scan(const std::string& path, int faces = 1000,
+                                        int cone_levels = -1) {
   static std::map<std::string, std::unique_ptr<ScanFitResult>> cache;
-  auto& slot = cache[path + "/" + std::to_string(faces)];
+  auto& slot = cache[path + "/" + std::to_string(faces) + "/" + std::to_string(cone_levels)];
   if (!slot) {
     ScanFitOptions options;
     options.domain_faces = faces;
+    if (cone_levels >= 0) options.atlas.cone_refinement.levels = cone_levels;
     slot = std::make_unique<ScanFitResult>(fit_scan(ricci::read_mesh(path), options));
   }
   return *slot;

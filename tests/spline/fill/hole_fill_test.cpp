@@ -269,9 +269,11 @@ TEST(FillRim, MeetsFittedScansWithG1) {
 // not G1, says so); the parametric patch over the developed rim meets the surface with the
 // surface's orientation and a small normal jump.
 // At 1000 domain faces the fitted surface itself creases next to the rim (its normal turns by
-// up to 80 degrees within 1/100 of a rim edge), so the test takes msp fit's default 2000.
+// up to 80 degrees within 1/100 of a rim edge), so the test takes msp fit's default 2000. The
+// domain is not refined around the cone: with the pipeline's refinement the hole is smaller
+// and a height field (0.11 degrees), and this rim is the hard case the fallbacks are for.
 TEST(FillRim, Genus3ConeHoleParametricPatch) {
-  const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 2000);
+  const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 2000, 0);
   const auto& mesh = fit.atlas.problem.mesh;
   const auto rims = find_rims(*fit.spline.space, mesh);
   ASSERT_EQ(rims.size(), 1u);
@@ -316,11 +318,13 @@ TEST(FillRim, ScaleInvariant) {
   const HoleFill b = fill_rim(scaled, scaled_mesh, rims[0], options);
   // Rounding in the (ill-conditioned) least squares moves the figures by 1e-4..2.3e-3 relative
   // on a uniform patch grid (the worst seen: 0.4051 vs 0.4042 degrees on the polished metric),
-  // by 1.9e-2 / 1.5e-3 on the grid refined at the corners (0.1886 vs 0.1850 degrees: its
-  // smallest triangles are 1/8 of the others); the patch itself (below) agrees to 1e-6 of the
-  // diagonal.
+  // by up to 1.9e-2 on the grid refined at the corners (0.1886 vs 0.1850 degrees: its smallest
+  // triangles are 1/8 of the others). The gaps are least-squares residuals of 1e-7..1e-5 of the
+  // diagonal, which that rounding moves by an amount of its own, not in proportion (4.04e-6 vs
+  // 4.08e-6, 2.31e-7 vs 2.29e-7 seen): they are compared in units of the diagonal, as finely as
+  // the patches themselves agree (below, 1e-6 of the diagonal).
   EXPECT_NEAR(a.max_normal_jump_deg, b.max_normal_jump_deg, 4e-2 * a.max_normal_jump_deg);
-  EXPECT_NEAR(a.max_position_gap, b.max_position_gap, 4e-3 * a.max_position_gap);
+  EXPECT_NEAR(a.max_position_gap, b.max_position_gap, 1e-7);
   for (double t : {0.1, 0.55}) {
     const Eigen::Vector3d pa = a.evaluate(a.parameter(2, t)).position;
     const Eigen::Vector3d pb = b.evaluate(b.parameter(2, t)).position;

@@ -19,7 +19,9 @@ namespace {
 TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
   // The bundled genus-3 surface at msp fit's 2000 faces: a parametric patch over a 16-edge cone
   // hole, whose seam the surface limits (its normal turns fast next to the rim's vertices).
-  const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 2000);
+  // Without the pipeline's refinement around the cone, which leaves a surface the uniform patch
+  // meets within 0.54 degrees, so that moving it has little left to gain.
+  const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 2000, 0);
   const auto& mesh = fit.atlas.problem.mesh;
   const auto rims = find_rims(*fit.spline.space, mesh);
   ASSERT_EQ(rims.size(), 1u);
@@ -80,8 +82,11 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
 // max_normal_step_deg: about a degree on a smooth fitted surface away from the hole, tens of
 // degrees where the spline collapses next to the domain's rim (its partition of unity fails on
 // the cone's one-ring link); bad faces throw.
+// Without the refinement around the cone: there the steps within three rings of the hole grow
+// (genus2.off at 1000 faces, faces 3 or more rings from the rim: 99th percentile 0.92 -> 2.9
+// degrees, largest 1.1 -> 8.0), which ConeRefinement.KeepsTheFitSmooth bounds.
 TEST(MaxNormalStep, SmallOnASmoothFitLargeWhereTheSplineCollapses) {
-  const auto& fit = testing::fitted_scan(testing::bundled_model("genus2.off"), 1000);
+  const auto& fit = testing::fitted_scan(testing::bundled_model("genus2.off"), 1000, 0);
   const auto rings = domain_rim_rings(*fit.spline.space);
   double far = 0.0, next_to_rim = 0.0;
   for (int d = 0; d < fit.spline.space->domain_face_count(); ++d) {
