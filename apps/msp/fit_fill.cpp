@@ -1,9 +1,6 @@
 #include "msp/fit_fill.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <map>
-#include <cstdio>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -83,7 +80,6 @@ void move_surface_to_patches(FitRun& run, std::vector<spline::HoleFill>& fills) 
     before = std::max(before, fill.max_normal_jump_deg);
     after = std::max(after, seams.back().max_normal_jump_deg);
   }
-  if (std::getenv("XP_DEBUG")) fprintf(stderr, "XP meet: %.3f -> %.3f\n", before, after);
   if (!(after < before)) return;
   run.scan.spline = std::move(moved);
   run.fill_normal_jump_deg = 0.0;
@@ -110,43 +106,6 @@ struct ChosenRims {
 // where the rim turns too fast for it) is retried on the hole grown by one and then two more
 // layers (within FindRimsOptions' caps), keeping the smallest seam. Measured (msp-bench fill
 // --faces 2000, then meet_patches): block.off 169 degrees, one more layer 2.4.
-void xp_rings(const FitRun& run, const ricci::Mesh& domain, const std::vector<double>& scale) {
-  const int cone = run.scan.atlas.problem.cone;
-  if (cone < 0) return;
-  std::vector<int> depth(domain.n_vertices(), -1);
-  std::vector<int> frontier{cone};
-  depth[cone] = 0;
-  for (int ring = 1; !frontier.empty(); ++ring) {
-    std::vector<int> next;
-    for (int v : frontier)
-      for (auto w : domain.vv_range(domain.vertex_handle(v)))
-        if (depth[w.idx()] < 0) { depth[w.idx()] = ring; next.push_back(w.idx()); }
-    frontier = next;
-  }
-  std::map<int, std::vector<double>> steps, ratios, edge;
-  std::map<int, double> area;
-  for (auto f : domain.faces()) {
-    int d = 1 << 20;
-    for (auto v : domain.fv_range(f)) d = std::min(d, depth[v.idx()]);
-    if (d > 14) continue;
-    area[d] += domain.calc_face_area(f);
-    double el = 0; for (auto e : domain.fe_range(f)) el += domain.calc_edge_length(e) / 3;
-    edge[d].push_back(el);
-    if (!run.scan.spline.space->in_domain(f.idx())) continue;
-    steps[d].push_back(spline::max_normal_step_deg(run.scan.spline, f.idx()));
-    double worst = 1; const double s0 = scale[f.idx()];
-    for (auto g : domain.ff_range(f)) if (scale[g.idx()] > 0 && s0 > 0) worst = std::max({worst, s0 / scale[g.idx()], scale[g.idx()] / s0});
-    ratios[d].push_back(worst);
-  }
-  double cum = 0;
-  for (auto& [d, v] : steps) {
-    std::sort(v.begin(), v.end()); auto& r = ratios[d]; std::sort(r.begin(), r.end());
-    cum += area[d];
-    auto& e = edge[d]; std::sort(e.begin(), e.end());
-    fprintf(stderr, "XP ring %2d: %4zu faces edge %.4f cum-area %.4f step med %7.2f p90 %7.2f max %7.2f ratio med %5.2f max %5.2f\n", d, v.size(), e[e.size()/2], cum, v[v.size()/2], v[v.size()*9/10], v.back(), r[r.size()/2], r.back());
-  }
-}
-
 ChosenRims choose_rims(const FitRun& run, const ricci::Mesh& domain,
                        const std::vector<char>& in_domain, const spline::RimMergeOptions& merge,
                        const spline::FillOptions& cone_options) {
@@ -158,10 +117,6 @@ ChosenRims choose_rims(const FitRun& run, const ricci::Mesh& domain,
   const auto find = [&](int extra_layers) {
     spline::FindRimsOptions rim_options;
     rim_options.extra_cone_layers = extra_layers;
-    if (const char* e = std::getenv("XP_CAP")) rim_options.max_cone_cover_fraction = std::atof(e);
-    if (const char* e = std::getenv("XP_MAXL")) rim_options.max_cone_layers = std::atoi(e);
-    if (const char* e = std::getenv("XP_FOLD")) rim_options.max_cone_rim_normal_step_deg = std::atof(e);
-    if (const char* e = std::getenv("XP_RATIO")) rim_options.max_cone_rim_scale_ratio = std::atof(e);
     return spline::find_rims(domain, in_domain, space.atlas().in_domain, rim_options, merge,
                              scale, normal_step);
   };
@@ -171,21 +126,18 @@ ChosenRims choose_rims(const FitRun& run, const ricci::Mesh& domain,
     }
     return -1;
   };
-  if (std::getenv("XP_DEBUG")) xp_rings(run, domain, scale);
   ChosenRims chosen;
   chosen.rims = find(0);
   chosen.cone = cone_of(chosen.rims);
   if (chosen.cone < 0) return chosen;
   chosen.cone_fill =
       spline::fill_rim(run.scan.spline, domain, chosen.rims[chosen.cone], cone_options);
-  if (std::getenv("XP_DEBUG")) fprintf(stderr, "XP cone rim: %zu edges, %zu covered, seam %.3f\n", chosen.rims[chosen.cone].edges.size(), chosen.rims[chosen.cone].covered_faces.size(), chosen.cone_fill->max_normal_jump_deg);
   constexpr double kFlipped = 90.0;
   for (int extra = 1; extra <= 2 && chosen.cone_fill->max_normal_jump_deg > kFlipped; ++extra) {
     std::vector<spline::Rim> rims = find(extra);
     const int cone = cone_of(rims);
     if (cone < 0 || rims[cone].covered_faces == chosen.rims[chosen.cone].covered_faces) break;
     spline::HoleFill fill = spline::fill_rim(run.scan.spline, domain, rims[cone], cone_options);
-    if (std::getenv("XP_DEBUG")) fprintf(stderr, "XP retry %d: %zu edges, %zu covered, seam %.3f\n", extra, rims[cone].edges.size(), rims[cone].covered_faces.size(), fill.max_normal_jump_deg);
     if (fill.max_normal_jump_deg < chosen.cone_fill->max_normal_jump_deg) {
       chosen.rims = std::move(rims);
       chosen.cone = cone;
@@ -197,9 +149,6 @@ ChosenRims choose_rims(const FitRun& run, const ricci::Mesh& domain,
 
 spline::FillOptions fill_options_for(bool input_boundary) {
   spline::FillOptions fill_options;
-  if (const char* e = std::getenv("XP_CR")) fill_options.corner_refinement = std::atoi(e);
-  if (const char* e = std::getenv("XP_REF")) fill_options.refinement = std::atoi(e);
-  if (const char* e = std::getenv("XP_PS")) fill_options.parametric_samples_per_edge = std::atoi(e);
   // The punctured sphere's hole is a cone hole in all but name: filled like one (its
   // projection may fold; the patch is laid out on a circle either way). Without the
   // fallback its fold left the only rim of camel.off and knight_decimated.off open.
