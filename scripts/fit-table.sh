@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs `msp fit` over every genus 0-3 model (shared closed_g0..closed_g3 and open, plus the
 # bundled models/) and prints one markdown row per model: genus, domain faces, control points,
-# fit RMS / max over the bounding-box diagonal, seam normal jump, watertight, glTF validator
-# result and seconds. Outputs (.glb, .json, .log) go to out/fit-table/.
+# fit RMS / max over the bounding-box diagonal, seam normal jump, the tessellation's dihedral
+# angles (99th percentile, edges over 90 degrees: folds), watertight, glTF validator result and
+# seconds. Outputs (.glb, .json, .log) go to out/fit-table/.
 # Usage: scripts/fit-table.sh [--domain-faces N] [extra msp fit options...]
 #        MODELS="a.off b.obj" scripts/fit-table.sh   (a chosen list)
 set -uo pipefail
@@ -30,23 +31,25 @@ validate() {
     echo "no validator"
   fi
 }
-echo "| model | genus | bdry | domain faces | control points | fit rms / diag | fit max / diag | seam jump (deg) | watertight | validator | seconds |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| model | genus | bdry | domain faces | control points | fit rms / diag | fit max / diag | seam jump (deg) | dihedral p99 (deg) | folds | watertight | validator | seconds |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for model in $MODELS; do
   dir="$(basename "$(dirname "$model")")"
   name="$dir/$(basename "$model")"
   stem="$OUT/${dir}_$(basename "${model%.*}")"
   if ! "$MSP" fit "$model" -o "$stem.glb" --json "$stem.json" "$@" 2>"$stem.log"; then
-    echo "| $name | failed: $(tail -1 "$stem.log" | cut -c1-120) |||||||||| "
+    echo "| $name | failed: $(tail -1 "$stem.log" | cut -c1-120) |||||||||||| "
     continue
   fi
   check="$(validate "$stem.glb")"
   python3 - "$stem.json" "$name" "$check" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
-print("| %s | %d | %d | %d | %d | %.3g%% | %.3g%% | %.2g | %s | %s | %.1f |" % (
+d = r["surface_dihedral"]
+print("| %s | %d | %d | %d | %d | %.3g%% | %.3g%% | %.2g | %.3g | %d | %s | %s | %.1f |" % (
     sys.argv[2], r["genus"], r["boundary_loops"], r["domain_faces"], r["control_points"],
     100 * r["fit_rms_relative"], 100 * r["fit_max_relative"], r["seam_normal_jump_max_deg"],
+    d["p99_deg"], d["edges_over_90_deg"],
     "yes" if r["watertight"] else "NO (%d open)" % r["open_rims"], sys.argv[3],
     r["seconds"]["total"]))
 PY

@@ -199,6 +199,7 @@ FitRun run_fit_pipeline(const ricci::Mesh& dense, const FitRunOptions& options) 
   scan.domain_faces = options.domain_faces;
   scan.degree = options.degree;
   scan.fair_r = options.fairness;
+  scan.fit.smoothing = options.smoothing;
   scan.atlas.cone_refinement = options.cone_refinement;
   if (options.singular_vertex >= 0) {
     begin("singularity");
@@ -230,6 +231,8 @@ FitRun run_fit_pipeline(const ricci::Mesh& dense, const FitRunOptions& options) 
   // merged into one rim count once).
   const int expected_loops = run.open_rims - static_cast<int>(run.fill_failures.size());
   run.float_topology = float_welded_topology(run.tessellation);
+  run.surface_dihedral =
+      spline::dihedral_angles(run.tessellation.triangles, run.tessellation.positions);
   run.watertight = run.topology.matches(run.input.genus, expected_loops) &&
                    run.float_topology.matches(run.input.genus, expected_loops);
   run.edge_normal_jump_deg = spline::max_edge_normal_jump_deg(run.scan.spline, domain, 1, 0, skip);
@@ -311,6 +314,13 @@ nlohmann::json fit_report_json(const std::string& path, const FitRun& run,
         {"duplicate_positions", t.duplicate_positions},
         {"float32_degenerate_triangles", run.float_topology.degenerate_triangles},
         {"float32_nonmanifold_edges", run.float_topology.nonmanifold_edges}}},
+      {"surface_dihedral",
+       {{"edges", run.surface_dihedral.edges},
+        {"median_deg", run.surface_dihedral.median_deg},
+        {"p99_deg", run.surface_dihedral.p99_deg},
+        {"max_deg", run.surface_dihedral.max_deg},
+        {"edges_over_60_deg", run.surface_dihedral.over_60_deg},
+        {"edges_over_90_deg", run.surface_dihedral.over_90_deg}}},
       {"fit_constraint_residual", run.scan.fit.max_constraint_residual},
       {"seconds", seconds},
       {"cpu_seconds", cpu_seconds},

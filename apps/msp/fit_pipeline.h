@@ -11,6 +11,7 @@
 #include <ricci/mesh/mesh.h>
 #include <ricci/mesh/primitives.h>
 #include <spline/fit/fit.h>
+#include <spline/tessellate/dihedral.h>
 #include <spline/tessellate/tessellate.h>
 #include <nlohmann/json.hpp>
 
@@ -20,6 +21,8 @@ struct FitRunOptions {
   int domain_faces = 2000;  ///< Target size of the spline's domain mesh.
   int degree = 3;           ///< n of the DMS spline.
   int fairness = 1;         ///< r of the fairing (-1: none).
+  /// Weight of the fit's thin-plate energy (spline::FitOptions::smoothing).
+  double smoothing = spline::FitOptions{}.smoothing;
   /// Input-mesh vertex of the extraordinary point, -1 to choose it (least area distortion).
   int singular_vertex = -1;
   bool fill_boundaries = false;  ///< Also cap the input's own boundary loops.
@@ -43,6 +46,8 @@ struct FitRun {
   /// Of the tessellation as a file holds it: positions rounded to float and welded by value (a
   /// surface that collapses somewhere shows degenerate triangles here, not in `topology`).
   spline::WatertightReport float_topology;
+  /// Angles between adjacent triangles of the tessellation (folds show as > 90 degrees).
+  spline::DihedralReport surface_dihedral;
   int filled_rims = 0;
   int open_rims = 0;  ///< Rims left open (boundaries without --fill-boundaries, failures).
   /// Rims along the input's boundary loops: with --fill-boundaries fewer than its loops where

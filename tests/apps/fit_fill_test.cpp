@@ -109,7 +109,9 @@ TEST(FitFill, PuncturedSphereIsCapped) {
 // the spline folds next to its 10 pi cone; the hole grown past the folds: 15, then 21), 13
 // (helmet) and 179 (joint); the domain refined around the cone (ricci::refine_around_cone)
 // brought the last three to 0.14, 0.75 and 0.24, and the fit RMS below 0.2% of the diagonal
-// (joint: 1.56% before).
+// (joint: 1.56% before, 0.21% after; its 446 faces are its own domain, so every face has fewer
+// points than functions and takes FitOptions::sparse_smoothing: 0.31%, the price of a surface
+// that folds less: 1846 tessellation edges over 60 degrees instead of 2668).
 struct SeamCase {
   const char* model;
   double max_rms_relative;
@@ -133,7 +135,7 @@ TEST_P(FitSeams, BelowOneDegreeAtTheDefaults) {
 INSTANTIATE_TEST_SUITE_P(Scans, FitSeams,
                          ::testing::Values(SeamCase{"closed_g0/bunny_npm_closed.off", 0.002},
                                            SeamCase{"closed_g2/femur.off", 0.002},
-                                           SeamCase{"closed_g2/joint.off", 0.003},
+                                           SeamCase{"closed_g2/joint.off", 0.0035},
                                            SeamCase{"closed_g3/block.off", 0.002},
                                            SeamCase{"closed_g3/elephant_cgal.off", 0.002},
                                            SeamCase{"closed_g3/helmet.off", 0.002}),

@@ -113,11 +113,28 @@ Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& spac
 
 namespace {
 
-// Thin-plate weight of each face (by domain index) per unit of quadrature weight: the scale of
-// FitOptions::smoothing times the face's chart area, over J_I when isometric (see FitOptions).
+// The smoothing weight of each face (by domain index): FitOptions::smoothing, raised to
+// rim_smoothing next to the rim and to sparse_smoothing where fewer points than the face's
+// functions reach it.
+std::vector<double> smoothing_by_face(const ManifoldSplineSpace& space, const FitOptions& options,
+                                      const std::vector<int>& points_by_face) {
+  const std::vector<int> rings = domain_rim_rings(space);
+  std::vector<double> smoothing(points_by_face.size(), options.smoothing);
+  for (std::size_t d = 0; d < smoothing.size(); ++d) {
+    if (rings[d] >= 0 && rings[d] < options.rim_rings)
+      smoothing[d] = std::max(smoothing[d], options.rim_smoothing);
+    if (points_by_face[d] < space.functions_per_face())
+      smoothing[d] = std::max(smoothing[d], options.sparse_smoothing);
+  }
+  return smoothing;
+}
+
+// Thin-plate weight of each face (by domain index) per unit of quadrature weight: the face's
+// smoothing (smoothing_by_face) times the face's chart area, over J_I when isometric (see
+// FitOptions).
 std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
                                        const Eigen::MatrixX3d& initial, const FitOptions& options,
-                                       int points) {
+                                       int points, const std::vector<int>& points_by_face) {
   const int faces = space.domain_face_count();
   std::vector<double> area(static_cast<std::size_t>(faces)), edges(area.size());
   std::vector<double> jacobian(area.size(), 1.0);
@@ -170,13 +187,9 @@ std::vector<double> thin_plate_weights(const ManifoldSplineSpace& space,
   }
   const double h = edge_sum / (3.0 * faces);
   const double scale = points / total_area * std::pow(h, 4);
-  const std::vector<int> rings = domain_rim_rings(space);
+  const std::vector<double> smoothing = smoothing_by_face(space, options, points_by_face);
   std::vector<double> weights(static_cast<std::size_t>(faces));
-  for (int d = 0; d < faces; ++d) {
-    const bool near_rim = rings[d] >= 0 && rings[d] < options.rim_rings;
-    const double smoothing = near_rim ? std::max(options.smoothing, options.rim_smoothing) : options.smoothing;
-    weights[d] = smoothing * scale * area[d] / jacobian[d];
-  }
+  for (int d = 0; d < faces; ++d) weights[d] = smoothing[d] * scale * area[d] / jacobian[d];
   return weights;
 }
 
@@ -229,14 +242,21 @@ std::vector<detail::FaceRowsSpec> data_rows(const ManifoldSplineSpace& space,
   return rows;
 }
 
-// `points` scales the thin-plate and anchor terms (FitOptions: both are relative to the number
-// of points), so the setup belongs to one point count.
+// The points' count scales the thin-plate and anchor terms (FitOptions: both are relative to
+// the number of points) and their spread over the faces sets sparse_smoothing's faces, so the
+// setup belongs to one set of parameters (correct_parameters keeps every point in the domain;
+// a point moving to a neighbouring face leaves the weights as they were).
 FitSetup make_fit_setup(const ManifoldSplineSpace& space, const Eigen::MatrixX3d& initial,
-                        const FitOptions& options, int points) {
+                        const FitOptions& options, const std::vector<DomainPoint>& parameters) {
+  const int points = domain_point_count(space, parameters);
   FitSetup setup;
   std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
   if (options.smoothing > 0.0) {
-    const std::vector<double> w = thin_plate_weights(space, initial, options, points);
+    std::vector<int> points_by_face;
+    for (const auto& spec : data_rows(space, parameters))
+      points_by_face.push_back(static_cast<int>(spec.points.size()));
+    const std::vector<double> w =
+        thin_plate_weights(space, initial, options, points, points_by_face);
     for (std::size_t d = 0; d < rows.size(); ++d) rows[d].thin_plate_weight = w[d];
   }
   const double anchor = options.anchor * points / space.function_count();
@@ -258,7 +278,7 @@ FitSetup prepare_fit(const ManifoldSplineSpace& space, const std::vector<DomainP
                      const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
                      const FitOptions& options) {
   check_sizes(space, parameters, points, initial);
-  return make_fit_setup(space, initial, options, domain_point_count(space, parameters));
+  return make_fit_setup(space, initial, options, parameters);
 }
 
 // The fit with a prepared setup. `reference`: the multipliers' starting point (feasible ideally:

@@ -1,0 +1,60 @@
+#include "spline/tessellate/dihedral.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+#include "ricci/mesh/mesh.h"
+
+namespace spline {
+
+DihedralReport dihedral_angles(const std::vector<std::array<int, 3>>& triangles,
+                               const Eigen::MatrixX3d& positions) {
+  std::vector<Eigen::Vector3d> normals(triangles.size());
+  // Each directed edge (a, b) with its triangle, sorted so an edge's two sides meet.
+  std::vector<std::pair<std::uint64_t, int>> sides;
+  sides.reserve(3 * triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& tri = triangles[t];
+    const Eigen::Vector3d a = positions.row(tri[0]), b = positions.row(tri[1]),
+                          c = positions.row(tri[2]);
+    normals[t] = (b - a).cross(c - a);
+    if (!(normals[t].norm() > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const auto u = static_cast<std::uint64_t>(std::min(tri[k], tri[(k + 1) % 3]));
+      const auto v = static_cast<std::uint64_t>(std::max(tri[k], tri[(k + 1) % 3]));
+      sides.emplace_back(u << 32 | v, static_cast<int>(t));
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  std::vector<double> angles;
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j].first == sides[i].first) ++j;
+    if (j - i == 2) {
+      const double angle =
+          ricci::angle_between(normals[sides[i].second], normals[sides[i + 1].second]);
+      angles.push_back(angle * 180.0 / M_PI);
+    }
+    i = j;
+  }
+  DihedralReport report;
+  report.edges = static_cast<int>(angles.size());
+  if (angles.empty()) return report;
+  for (double a : angles) {
+    report.over_60_deg += a > 60.0;
+    report.over_90_deg += a > 90.0;
+  }
+  const auto at = [&](double q) {
+    const auto k = static_cast<std::size_t>(q * static_cast<double>(angles.size() - 1));
+    std::nth_element(angles.begin(), angles.begin() + static_cast<std::ptrdiff_t>(k), angles.end());
+    return angles[k];
+  };
+  report.median_deg = at(0.5);
+  report.p99_deg = at(0.99);
+  report.max_deg = *std::max_element(angles.begin(), angles.end());
+  return report;
+}
+
+}  // namespace spline

@@ -1,0 +1,24 @@
+#pragma once
+// Smoothness of a tessellated surface seen as a user sees it: the angle between the normals of
+// every two triangles sharing an edge. A smooth surface sampled finely turns by a few degrees
+// per triangle; a fold of the spline (it doubles back within a sample step) shows as an angle
+// near 180 degrees, a crease as tens of degrees.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace spline {
+
+struct DihedralReport {
+  int edges = 0;  ///< Interior edges measured (two triangles, both non-degenerate).
+  double median_deg = 0.0, p99_deg = 0.0, max_deg = 0.0;
+  int over_60_deg = 0;  ///< Edges whose triangles' normals differ by more than 60 degrees.
+  int over_90_deg = 0;  ///< ... by more than 90 degrees: the surface folds back there.
+};
+
+/// Angles between the normals of the two triangles at every edge shared by exactly two
+/// triangles (position indices; degenerate triangles are left out).
+[[nodiscard]] DihedralReport dihedral_angles(const std::vector<std::array<int, 3>>& triangles,
+                                             const Eigen::MatrixX3d& positions);
+
+}  // namespace spline

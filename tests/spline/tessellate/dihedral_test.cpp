@@ -1,0 +1,71 @@
+// dihedral_angles: the angle between the normals of the two triangles at every interior edge.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "spline/tessellate/dihedral.h"
+
+namespace spline {
+namespace {
+
+using Triangles = std::vector<std::array<int, 3>>;
+
+// Two triangles over the unit square's diagonal (0, 2), the second one's far corner lifted to
+// height z: the hinge opens by atan(z sqrt 2) (the corner is 1 / sqrt 2 from the diagonal).
+Eigen::MatrixX3d hinge(double z) {
+  Eigen::MatrixX3d p(4, 3);
+  p << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, z;
+  return p;
+}
+
+TEST(DihedralAngles, FlatPairIsZeroAndABentPairIsItsAngle) {
+  const Triangles pair = {{0, 1, 2}, {0, 2, 3}};
+  const DihedralReport flat = dihedral_angles(pair, hinge(0.0));
+  EXPECT_EQ(flat.edges, 1);
+  EXPECT_NEAR(flat.max_deg, 0.0, 1e-12);
+  const double z = 1.0 / std::sqrt(2.0);
+  const DihedralReport bent = dihedral_angles(pair, hinge(z));
+  EXPECT_NEAR(bent.max_deg, 45.0, 1e-9);
+  EXPECT_EQ(bent.over_60_deg, 0);
+}
+
+TEST(DihedralAngles, TriangleFoldedBackCountsAsAFold) {
+  // The second triangle lies on top of the first, wound the other way: the surface doubles back
+  // across edge 0-1 and the normals are opposite.
+  Eigen::MatrixX3d p(4, 3);
+  p << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.5, 0.4, 0;
+  const DihedralReport folded = dihedral_angles({{0, 1, 2}, {1, 0, 3}}, p);
+  EXPECT_NEAR(folded.max_deg, 180.0, 1e-9);
+  EXPECT_EQ(folded.over_90_deg, 1);
+  EXPECT_EQ(folded.over_60_deg, 1);
+}
+
+TEST(DihedralAngles, BoundaryNonManifoldAndDegenerateEdgesAreLeftOut) {
+  Eigen::MatrixX3d p(5, 3);
+  p << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1;
+  // Edge 0-1 in three triangles (non-manifold), the rest boundary edges.
+  const DihedralReport three = dihedral_angles({{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}, p);
+  EXPECT_EQ(three.edges, 0);
+  // A repeated corner makes a zero-area triangle: its edges are not measured.
+  const DihedralReport degenerate = dihedral_angles({{0, 1, 2}, {1, 0, 0}}, p);
+  EXPECT_EQ(degenerate.edges, 0);
+}
+
+TEST(DihedralAngles, PercentilesOfAClosedCube) {
+  // A cube of 12 triangles: 6 diagonals at 0 degrees, 12 cube edges at 90.
+  Eigen::MatrixX3d p(8, 3);
+  for (int i = 0; i < 8; ++i) p.row(i) << (i & 1), (i >> 1 & 1), (i >> 2 & 1);
+  const Triangles cube = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                          {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  const DihedralReport r = dihedral_angles(cube, p);
+  EXPECT_EQ(r.edges, 18);
+  EXPECT_NEAR(r.max_deg, 90.0, 1e-9);
+  EXPECT_NEAR(r.median_deg, 90.0, 1e-9);
+  EXPECT_EQ(r.over_60_deg, 12);
+  EXPECT_EQ(r.over_90_deg, 0);
+}
+
+}  // namespace
+}  // namespace spline
