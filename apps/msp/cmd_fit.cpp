@@ -77,7 +77,8 @@ FitRunOptions parse_options(const Args& args) {
   if (o.fairness < -1 || o.fairness > o.degree - 1)
     throw UsageError("--fairness must be -1 (none) or in [0, degree - 1]");
   o.smoothing = args.get_double("smoothing", o.smoothing);
-  if (!(o.smoothing >= 0.0 && o.smoothing < 1e6)) throw UsageError("--smoothing must be in [0, 1e6)");
+  if (!(o.smoothing >= 0.0 && o.smoothing < 1e6))
+    throw UsageError("--smoothing must be in [0, 1e6)");
   o.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
   o.fill_boundaries = args.has("fill-boundaries");
   o.density = args.get_int("density", 0);
@@ -131,9 +132,9 @@ int run_fit(int argc, char** argv) {
   Args args(argc, argv,
             {"fill-boundaries", "checkerboard", "control-net", "domain", "cut-loops", "quiet"});
   args.require_known({"output", "domain-faces", "degree", "fairness", "singularity",
-                      "fill-boundaries", "json", "density", "cone-refinement", "smoothing", "obj", "ply",
-                      "checkerboard", "checker-squares", "control-net", "domain", "cut-loops",
-                      "quiet"});
+                      "fill-boundaries", "json", "density", "cone-refinement", "smoothing", "obj",
+                      "ply", "checkerboard", "checker-squares", "control-net", "domain",
+                      "cut-loops", "quiet"});
   args.require_positionals(1, kUsage);
   check_outputs(args);
   FitRunOptions options = parse_options(args);

@@ -346,7 +346,9 @@ TEST(FitCli, RefusesBadCommandLines) {
                           "--cone-refinement",
                           2});
   expect_refused("smooth",
-                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--smoothing", "-1"}, "--smoothing", 2});
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--smoothing", "-1"},
+                  "--smoothing",
+                  2});
   expect_refused("unknown",
                  {{model("genus1.off"), "-o", "{OUT}/x.glb", "--colour", "red"}, "--colour", 2});
 }

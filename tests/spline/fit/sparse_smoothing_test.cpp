@@ -44,7 +44,8 @@ Outcome fit_eight(double sparse_smoothing) {
     low = low.cwiseMin(ricci::to_eigen(dense.point(v)));
     high = high.cwiseMax(ricci::to_eigen(dense.point(v)));
   }
-  return {dihedral_angles(t.triangles, t.positions), fit.fit.rms_at_parameters / (high - low).norm()};
+  return {dihedral_angles(t.triangles, t.positions),
+          fit.fit.rms_at_parameters / (high - low).norm()};
 }
 
 TEST(SparseSmoothing, TheEightDoesNotFoldBetweenItsPoints) {
