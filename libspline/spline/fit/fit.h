@@ -185,8 +185,9 @@ struct ScanFitResult {
   ManifoldSpline spline;
   /// By input vertex, after the parameter corrections; face -1: not covered by the spline
   /// (closest point of the domain mesh in a hole face, or on the rim of the domain, an edge or a
-  /// vertex of it: over a punctured sphere's hole or beyond an open boundary). Those points are
-  /// neither fitted nor measured.
+  /// vertex of it: over a punctured sphere's hole or beyond an open boundary; or so close to the
+  /// rim that the basis is no partition of unity there, a band the fill patches cover). Those
+  /// points are neither fitted nor measured.
   std::vector<DomainPoint> vertex_parameters;
   int uncovered_points = 0;  ///< vertices and face centroids of the input left out that way
   FitResult fit;
