@@ -58,41 +58,14 @@ bool on_domain_rim(const ManifoldSplineSpace& space, int face, const Eigen::Vect
   return false;
 }
 
-// By mesh vertex: 1 for the corners of rim edges (see on_domain_rim). A vertex of the rim is
-// also a corner of faces that touch the rim only there, whose edge test cannot see it.
-std::vector<char> rim_vertices(const ManifoldSplineSpace& space, const ricci::Mesh& mesh) {
-  std::vector<char> rim(mesh.n_vertices(), 0);
-  for (int face : space.domain_faces()) {
-    const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
-    for (int k = 0; k < 3; ++k) {
-      const int g = space.neighbour(face, k);
-      if (g >= 0 && space.in_domain(g)) continue;
-      for (int c : {(k + 1) % 3, (k + 2) % 3}) rim[mesh.to_vertex_handle(hs[c]).idx()] = 1;
-    }
-  }
-  return rim;
-}
-
-// True when the point is a rim vertex, seen from any face around it. There the functions of the
-// missing faces are missing too: the basis sums to 0.2-0.5 (knight, whose domain is the input
-// itself, so every rim vertex is a data point), and fitting such a point inflates the control
-// points into spikes of up to 47% of the diagonal.
-bool at_rim_vertex(const ricci::Mesh& mesh, const std::vector<char>& rim, int face,
-                   const Eigen::Vector3d& bary) {
-  const auto hs = ricci::face_halfedges(mesh, mesh.face_handle(face));
-  for (int c = 0; c < 3; ++c) {
-    if (bary[c] > 1.0 - 1e-9 && rim[mesh.to_vertex_handle(hs[c]).idx()]) return true;
-  }
-  return false;
-}
-
-// True when the basis is no partition of unity at the point: within the knot clouds' reach of
-// the domain's rim, where the functions of the faces beyond it are missing (the basis sums to
-// 0.2-0.5 on the rim edges). Fitting a point there scales the control points by 1 / (that sum)
-// and folds the surface around it: genus2_hole.off's spline turned its normal by 150 degrees
-// within 1/100 of an edge two rings from its boundary (median of those rings). The fill patches
-// cover that band (FindRimsOptions::grow), so its points are left to them. Only faces within
-// one ring of the rim (`rings`: domain_rim_rings) are tested.
+// True when the basis is no partition of unity at the point (a domain point): within the knot
+// clouds' reach of the domain's rim, where the functions of the faces beyond it are missing (the
+// basis sums to 0.2-0.5 on the rim's edges and vertices). Fitting a point there scales the
+// control points by 1 / (that sum): spikes of up to 47% of the diagonal at knight_decimated.off's
+// rim vertices (its domain is the input itself), and genus2_hole.off's spline folded up to three
+// rings in from its boundary (normal steps of 150 degrees within 1/100 of an edge). The fill
+// patches cover that band (FindRimsOptions::grow), so its points are left to them. Only faces
+// within one ring of the rim (`rings`: domain_rim_rings) can lack it.
 bool lacks_partition_of_unity(const ManifoldSplineSpace& space, const std::vector<int>& rings,
                               const DomainPoint& p) {
   const int ring = rings[static_cast<std::size_t>(space.domain_index(p.face))];
@@ -533,14 +506,10 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   }
   const auto closest = ricci::closest_points(mesh, data);
   std::vector<DomainPoint> parameters(closest.size());
-  const std::vector<char> rim = rim_vertices(*space, mesh);
   const std::vector<int> rings = domain_rim_rings(*space);
   for (std::size_t k = 0; k < closest.size(); ++k) {
     const DomainPoint p{closest[k].face, closest[k].barycentric};
-    const bool covered = space->in_domain(p.face) &&
-                         !on_domain_rim(*space, p.face, p.barycentric) &&
-                         !at_rim_vertex(mesh, rim, p.face, p.barycentric) &&
-                         !lacks_partition_of_unity(*space, rings, p);
+    const bool covered = space->in_domain(p.face) && !lacks_partition_of_unity(*space, rings, p);
     parameters[k] = covered ? DomainPoint{closest[k].face, closest[k].barycentric}
                             : DomainPoint{-1, Eigen::Vector3d::Zero()};
     if (!covered) ++result.uncovered_points;
