@@ -46,10 +46,9 @@ Eigen::Vector3d barycentric_in(const Eigen::Matrix<double, 3, 2>& p, const Eigen
   return {1.0 - l.x() - l.y(), l.x(), l.y()};
 }
 
-// True when the closest point lies on an edge of the domain's rim (an edge whose other face is
-// missing or outside the domain): the point is over the hole (or beyond an open boundary), which
-// the spline does not cover. A punctured sphere's hole has no faces in the mesh, so without this
-// the points of the removed star land on the rim and drag it (bunny: rim faces' RMS 4%).
+// True when the point lies on an edge of the domain's rim (an edge whose other face is missing
+// or outside the domain): a projection clamped there is over the hole (or beyond an open
+// boundary), which the spline does not cover (correct_parameters keeps the old parameter).
 bool on_domain_rim(const ManifoldSplineSpace& space, int face, const Eigen::Vector3d& bary) {
   for (int k = 0; k < 3; ++k) {
     const int g = space.neighbour(face, k);
@@ -495,7 +494,10 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   result.timings.space = seconds_since(t);
 
   t = stage("parameters");
-  // Data: the scan's vertices and face centroids (points of the input surface), by closest point.
+  // Data: the scan's vertices and face centroids (points of the input surface), by closest point;
+  // points over a hole or the rim's band (the closest point in a rim face, on the rim, where the
+  // basis is no partition of unity: a punctured sphere's removed star lands there, and fitted
+  // it dragged the rim, bunny: rim faces' RMS 4%) are left to the fill patches.
   const Eigen::Index nv = static_cast<Eigen::Index>(dense.n_vertices());
   Eigen::MatrixX3d data(nv + static_cast<Eigen::Index>(dense.n_faces()), 3);
   for (auto v : dense.vertices()) data.row(v.idx()) = ricci::to_eigen(dense.point(v)).transpose();
@@ -510,8 +512,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   for (std::size_t k = 0; k < closest.size(); ++k) {
     const DomainPoint p{closest[k].face, closest[k].barycentric};
     const bool covered = space->in_domain(p.face) && !lacks_partition_of_unity(*space, rings, p);
-    parameters[k] = covered ? DomainPoint{closest[k].face, closest[k].barycentric}
-                            : DomainPoint{-1, Eigen::Vector3d::Zero()};
+    parameters[k] = covered ? p : DomainPoint{-1, Eigen::Vector3d::Zero()};
     if (!covered) ++result.uncovered_points;
   }
   result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
