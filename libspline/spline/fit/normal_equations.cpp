@@ -139,9 +139,7 @@ void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vect
     const auto samples = space.evaluate_basis({face, q.bary});
     // Next to the hole the functions of its faces are missing, so the basis is no partition of
     // unity there: even a plane then needs curved combinations, which the energy would fight.
-    double unity = 0.0;
-    for (const auto& s : samples) unity += s.jet.value;
-    if (std::abs(unity - 1.0) > 1e-9) continue;
+    if (!is_partition_of_unity(samples)) continue;
     const double factors[3] = {w, w * std::sqrt(2.0), w};
     for (int h = 0; h < 3; ++h) {
       for (const auto& s : samples) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -329,6 +330,12 @@ Eigen::MatrixXd ManifoldSplineSpace::control_points_of(const BivariatePolynomial
         triangle_control_points(p, clouds[tri[0]], clouds[tri[1]], clouds[tri[2]]);
   }
   return points;
+}
+
+bool is_partition_of_unity(const std::vector<ManifoldBasisSample>& samples, double tolerance) {
+  double sum = 0.0;
+  for (const auto& s : samples) sum += s.jet.value;
+  return std::abs(sum - 1.0) <= tolerance;
 }
 
 SurfaceJet combine(const std::vector<ManifoldBasisSample>& samples,

@@ -173,6 +173,11 @@ struct ManifoldSpline {
                                        const TieBreak& tie = {}) const;
 };
 
+/// Whether the samples' values sum to 1 within `tolerance`: false next to the domain's rim, where
+/// the functions of the faces beyond it are missing.
+[[nodiscard]] bool is_partition_of_unity(const std::vector<ManifoldBasisSample>& samples,
+                                         double tolerance = 1e-9);
+
 /// Combines basis samples with control points (rows indexed by function) into a surface jet.
 [[nodiscard]] SurfaceJet combine(const std::vector<ManifoldBasisSample>& samples,
                                  const Eigen::MatrixX3d& control_points, int chart);
