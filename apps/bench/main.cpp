@@ -42,6 +42,8 @@ const Benchmark kBenchmarks[] = {
      "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
     {"uniformize", msp::bench::run_uniformize_benchmark,
      "issue 7: uniformization (flow, cut, layout, Fuchsian group) at the Ricci-flow paper's Table I sizes"},
+    {"check-glb", msp::bench::run_check_glb,
+     "OUT.glb SCAN [--json]: the written surface against the scan, both ways (rms, max, coverage, folds)"},
 };
 
 void usage() {
