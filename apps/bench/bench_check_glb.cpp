@@ -48,6 +48,11 @@ int run_check_glb(int argc, char** argv) {
       {"surface_to_scan_max_pct", pct(d.surface_to_scan_max)},
       {"coverage", d.coverage},
       {"boundary_hausdorff_pct", pct(d.boundary_hausdorff)},
+      {"surface_boundary_to_scan_boundary_pct", pct(d.surface_boundary_to_scan_boundary)},
+      {"scan_boundary_to_surface_boundary_pct", pct(d.scan_boundary_to_surface_boundary)},
+      {"boundary_hausdorff_point",
+       {d.boundary_hausdorff_point.x(), d.boundary_hausdorff_point.y(),
+        d.boundary_hausdorff_point.z()}},
       {"folds_over_90_deg", folds.over_90_deg},
       {"surface_triangles", surface.triangles.size()},
   };

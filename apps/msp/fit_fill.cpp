@@ -117,6 +117,7 @@ ChosenRims choose_rims(const FitRun& run, const ricci::Mesh& domain,
   const auto find = [&](int extra_layers) {
     spline::FindRimsOptions rim_options;
     rim_options.extra_cone_layers = extra_layers;
+    rim_options.boundary_faces = run.scan.collar_faces;
     return spline::find_rims(domain, in_domain, space.atlas().in_domain, rim_options, merge,
                              scale, normal_step);
   };
@@ -165,9 +166,15 @@ spline::FillOptions fill_options_for(bool input_boundary) {
 std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRunOptions& options) {
   const auto& space = *run.scan.spline.space;
   auto fills = std::make_shared<FitFills>();
+  // The boundary collar's ghost faces are fitted but are not the surface: skipped, and the
+  // rims run along the surface's own boundary.
+  const std::vector<char>& collar = run.scan.collar_faces;
+  const auto ghost = [&collar](int f) {
+    return !collar.empty() && collar[static_cast<std::size_t>(f)] != 0;
+  };
   std::vector<char> skip(domain.n_faces(), 0);
   for (int f = 0; f < static_cast<int>(domain.n_faces()); ++f)
-    skip[static_cast<std::size_t>(f)] = !space.in_domain(f);
+    skip[static_cast<std::size_t>(f)] = !space.in_domain(f) || ghost(f);
   // Nearby boundary loops merge into one hole only when they will be capped: left open, every
   // input loop keeps its own rim, so the surface keeps the input's boundary loops.
   std::vector<char> in_domain(domain.n_faces(), 0);
@@ -182,15 +189,19 @@ std::vector<char> fill_rims(FitRun& run, const ricci::Mesh& domain, const FitRun
     // with the band kept: fit max 27% of the diagonal, 1.8% without it). With
     // --fill-boundaries, growing merges boundary loops a ring or two apart into one hole (a
     // disk: spline/fill/rims.h), so there can be fewer rims than loops (beetle.off: 11, 4).
-    for (int f : rim.covered_faces) skip[static_cast<std::size_t>(f)] = 1;
     // A closed input's domain boundary is the punctured sphere's removed star: always capped.
     const bool input_boundary =
         rim.kind == spline::Rim::Kind::boundary && run.input.boundary_loops > 0;
     if (input_boundary) ++run.boundary_rims;
     if (input_boundary && !options.fill_boundaries) {
       ++run.open_rims;
+      // With the collar the spline is a partition of unity up to the boundary: kept.
+      if (collar.empty()) {
+        for (int f : rim.covered_faces) skip[static_cast<std::size_t>(f)] = 1;
+      }
       continue;
     }
+    for (int f : rim.covered_faces) skip[static_cast<std::size_t>(f)] = 1;
     try {
       fills->fills.push_back(static_cast<int>(r) == chosen.cone
                                  ? *chosen.cone_fill

@@ -81,8 +81,6 @@ Eigen::MatrixX3d edge_samples(const Eigen::MatrixX3d& positions,
   return out;
 }
 
-double max_or_zero(const Eigen::VectorXd& v) { return v.size() ? v.maxCoeff() : 0.0; }
-
 }  // namespace
 
 std::vector<std::array<int, 2>> soup_boundary_edges(const std::vector<std::array<int, 3>>& triangles) {
@@ -171,12 +169,19 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
   if (!surface_rim.empty() && !scan_rim.empty()) {
     const ricci::SegmentSoupDistance surface_curve(surface_positions, surface_rim);
     const ricci::SegmentSoupDistance scan_curve(scan_positions, scan_rim);
-    report.surface_boundary_to_scan_boundary = max_or_zero(parallel_distances(
-        scan_curve, edge_samples(surface_positions, surface_rim), options.threads));
-    report.scan_boundary_to_surface_boundary = max_or_zero(parallel_distances(
-        surface_curve, edge_samples(scan_positions, scan_rim), options.threads));
-    report.boundary_hausdorff = std::max(report.surface_boundary_to_scan_boundary,
-                                         report.scan_boundary_to_surface_boundary);
+    const Eigen::MatrixX3d surface_side = edge_samples(surface_positions, surface_rim);
+    const Eigen::MatrixX3d scan_side = edge_samples(scan_positions, scan_rim);
+    const Eigen::VectorXd out = parallel_distances(scan_curve, surface_side, options.threads);
+    const Eigen::VectorXd in = parallel_distances(surface_curve, scan_side, options.threads);
+    Eigen::Index worst_out = 0, worst_in = 0;
+    report.surface_boundary_to_scan_boundary = out.maxCoeff(&worst_out);
+    report.scan_boundary_to_surface_boundary = in.maxCoeff(&worst_in);
+    const bool outward =
+        report.surface_boundary_to_scan_boundary >= report.scan_boundary_to_surface_boundary;
+    report.boundary_hausdorff = outward ? report.surface_boundary_to_scan_boundary
+                                        : report.scan_boundary_to_surface_boundary;
+    report.boundary_hausdorff_point = outward ? surface_side.row(worst_out).transpose()
+                                              : scan_side.row(worst_in).transpose();
   }
   return report;
 }

@@ -39,6 +39,8 @@ struct ScanDistanceReport {
   int scan_boundary_edges = 0, surface_boundary_edges = 0;
   double surface_boundary_to_scan_boundary = -1.0, scan_boundary_to_surface_boundary = -1.0;
   double boundary_hausdorff = -1.0;
+  /// The boundary sample (of either side) at the Hausdorff distance from the other boundary.
+  Eigen::Vector3d boundary_hausdorff_point = Eigen::Vector3d::Zero();
 };
 
 /// Measures `surface` (positions, triangles by position index) against the scan (the same).
