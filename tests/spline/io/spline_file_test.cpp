@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -14,6 +15,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "spline/io/spline_file.h"
+#include "spline/io/bad_splines.h"
 #include "spline/io/spline_file_bytes.h"
 #include "spline/surface/surface_fixtures.h"
 
@@ -293,6 +295,64 @@ TEST(SplineFileBad, CorruptedBytesNeverCrash) {
       } catch (const ricci::Error& e) {
         EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
       }
+    }
+  }
+}
+
+// The bad files of the corpus, made from a small torus by one change each (bad_splines.h).
+std::vector<std::uint8_t> make_bad_spline(const std::string& name) {
+  SplineSurface surface = small_surface("genus1.off", 100);
+  if (name == "nan_control_point.msp") {
+    surface.spline.control_points(5, 2) = std::numeric_limits<double>::quiet_NaN();
+  }
+  std::vector<std::uint8_t> bytes = encode_spline_surface(surface, {{"corpus", name}});
+  if (name == "truncated.msp") bytes.resize(section_offset(bytes, "ATLS") + 100);
+  // The reader stops at the preamble of these two: their first 4 KB are enough.
+  if (name == "wrong_magic.msp") {
+    std::memcpy(bytes.data(), "OFF\n", 4);
+    bytes.resize(4096);
+  }
+  if (name == "wrong_version.msp") {
+    testing::write_u32(bytes, 8, 99);
+    bytes.resize(4096);
+  }
+  if (name == "inconsistent_counts.msp") {
+    const int faces = static_cast<int>(surface.domain.n_faces());
+    bytes = testing::with_header_value(bytes, "faces", 101);
+    EXPECT_NE(faces, 101);
+  }
+  if (name == "index_out_of_range.msp") {
+    const std::size_t mesh = section_offset(bytes, "MESH") + 12;
+    const std::size_t faces = mesh + 8 + 24 * testing::read_u64(bytes, mesh) + 8;
+    testing::write_u32(bytes, faces + 2 * 12 + 4, 4096);
+  }
+  return bytes;
+}
+
+// Run by hand (--gtest_also_run_disabled_tests) to write the corpus into tests/data/bad.
+TEST(SplineFileCorpus, DISABLED_WriteBadSplines) {
+  for (const auto& bad : testing::kBadSplines) {
+    const std::vector<std::uint8_t> bytes = make_bad_spline(bad.name);
+    const std::string path = std::string(MSP_TEST_DATA) + "/bad/" + bad.name;
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    ASSERT_TRUE(file) << path;
+    EXPECT_EQ(std::fwrite(bytes.data(), 1, bytes.size(), file), bytes.size());
+    std::fclose(file);
+  }
+}
+
+TEST(SplineFileCorpus, EveryBadSplineIsRefusedWithItsKeyword) {
+  for (const auto& bad : testing::kBadSplines) {
+    SCOPED_TRACE(bad.name);
+    const std::string path = std::string(MSP_TEST_DATA) + "/bad/" + bad.name;
+    try {
+      (void)load_spline_surface(path);
+      ADD_FAILURE() << "accepted";
+    } catch (const ricci::Error& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+      EXPECT_NE(message.find(bad.keyword), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
   }
 }
