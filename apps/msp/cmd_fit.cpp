@@ -10,13 +10,14 @@
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <spline/basis/multi_index.h>
+#include <spline/surface/fit_surface.h>
 #include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
 #include "msp/flow_options.h"
 #include "msp/commands.h"
 #include "msp/fit_export.h"
-#include "msp/fit_pipeline.h"
+#include "msp/fit_report.h"
 
 namespace msp {
 namespace {
@@ -66,8 +67,8 @@ class Progress {
   Clock::time_point started_;
 };
 
-FitRunOptions parse_options(const Args& args) {
-  FitRunOptions o;
+spline::FitSurfaceOptions parse_options(const Args& args) {
+  spline::FitSurfaceOptions o;
   o.domain_faces = args.get_int("domain-faces", o.domain_faces);
   if (o.domain_faces < 1) throw UsageError("--domain-faces must be positive");
   o.degree = args.get_int("degree", o.degree);
@@ -137,7 +138,7 @@ int run_fit(int argc, char** argv) {
                       "cut-loops", "quiet"});
   args.require_positionals(1, kUsage);
   check_outputs(args);
-  FitRunOptions options = parse_options(args);
+  spline::FitSurfaceOptions options = parse_options(args);
   FitSceneOptions scene_options;
   scene_options.checkerboard = args.has("checkerboard");
   scene_options.texture.squares = args.get_int("checker-squares", scene_options.texture.squares);
@@ -155,12 +156,12 @@ int run_fit(int argc, char** argv) {
   const std::string path = args.positionals()[0];
   progress.start("read");
   auto t = Clock::now();
-  FitRun run;
+  spline::FittedSurface run;
   double read_seconds = 0.0;
   try {
     const ricci::Mesh mesh = ricci::read_mesh(path);
     read_seconds = std::chrono::duration<double>(Clock::now() - t).count();
-    run = run_fit_pipeline(mesh, options);
+    run = spline::fit_surface(mesh, options);
   } catch (...) {
     progress.abort();
     throw;

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include <spline/surface/fit_surface.h>
 #include <spline/tessellate/tessellate.h>
 #include <nlohmann/json.hpp>
 
-#include "msp/fit_pipeline.h"
 #include "msp/gltf_writer.h"
 #include "msp/texture_image.h"
 
@@ -26,7 +26,8 @@ struct FitSceneOptions {
 
 /// The scene "fit": mesh "surface" (render vertices: positions, unit normals, uvs = central
 /// chart scaled into [0, 1]^2), and the optional line/point meshes.
-[[nodiscard]] gltf::Scene fit_scene(const FitRun& run, const FitSceneOptions& options = {});
+[[nodiscard]] gltf::Scene fit_scene(const spline::FittedSurface& fitted,
+                                    const FitSceneOptions& options = {});
 
 /// Wavefront OBJ text: v/vn by position index (welded), vt by render vertex, faces v/vt/vn.
 [[nodiscard]] std::string tessellation_obj(const spline::Tessellation& t);

@@ -16,7 +16,7 @@
 namespace spline {
 namespace {
 
-using testing::fitted_surface;
+using testing::small_surface;
 
 // The patch of `face` containing face point b (largest smallest coordinate), and its
 // coordinates.
@@ -41,14 +41,14 @@ Located locate(const std::vector<const BezierPatch*>& patches, const Eigen::Vect
 const BezierExport& exported(const std::string& name) {
   static std::map<std::string, BezierExport> cache;
   auto it = cache.find(name);
-  if (it == cache.end()) it = cache.emplace(name, bezier_patches(fitted_surface(name))).first;
+  if (it == cache.end()) it = cache.emplace(name, bezier_patches(small_surface(name))).first;
   return it->second;
 }
 
 class BezierExportTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BezierExportTest, PatchesAreTheSplinesPieces) {
-  const SplineSurface& s = fitted_surface(GetParam());
+  const SplineSurface& s = small_surface(GetParam());
   const ManifoldSplineSpace& space = *s.spline.space;
   const BezierExport& e = exported(GetParam());
   const int n = e.degree;
@@ -86,7 +86,7 @@ TEST_P(BezierExportTest, PatchesAreTheSplinesPieces) {
 }
 
 TEST_P(BezierExportTest, NeighbouringPatchesMeetWithCnMinus1) {
-  const SplineSurface& s = fitted_surface(GetParam());
+  const SplineSurface& s = small_surface(GetParam());
   const ManifoldSplineSpace& space = *s.spline.space;
   const BezierExport& e = exported(GetParam());
   const int n = e.degree;
@@ -192,7 +192,7 @@ INSTANTIATE_TEST_SUITE_P(Bundled, BezierExportTest,
                                            "genus3.off"));
 
 TEST(BezierExport, PolynomialCellsOfABadFaceThrow) {
-  const SplineSurface& s = fitted_surface("genus1.off");
+  const SplineSurface& s = small_surface("genus1.off");
   EXPECT_THROW((void)polynomial_cells(*s.spline.space, -1), ricci::InvalidInputError);
 }
 

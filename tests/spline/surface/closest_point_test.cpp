@@ -15,7 +15,7 @@
 namespace spline {
 namespace {
 
-using testing::fitted_surface;
+using testing::small_surface;
 
 // Welded tessellation of the spline and its fills at density d.
 Tessellation fine_tessellation(const SplineSurface& s, int d) {
@@ -30,7 +30,7 @@ Tessellation fine_tessellation(const SplineSurface& s, int d) {
 }
 
 TEST(ClosestPoint, GlobalOnAFittedGenus2Surface) {
-  const SplineSurface& s = fitted_surface("genus2.off");
+  const SplineSurface& s = small_surface("genus2.off");
   const Tessellation t = fine_tessellation(s, 12);
   const double diagonal =
       (t.positions.colwise().maxCoeff() - t.positions.colwise().minCoeff()).norm();
@@ -81,7 +81,7 @@ TEST(ClosestPoint, GlobalOnAFittedGenus2Surface) {
 }
 
 TEST(ClosestPoint, FindsSurfacePointsAtDistanceZero) {
-  const SplineSurface& s = fitted_surface("genus2.off");
+  const SplineSurface& s = small_surface("genus2.off");
   const ClosestPointIndex index(s);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(0.05, 1.0);
@@ -109,7 +109,7 @@ TEST(ClosestPoint, FindsSurfacePointsAtDistanceZero) {
 }
 
 TEST(ClosestPoint, BadInputThrows) {
-  const SplineSurface& s = fitted_surface("genus2.off");
+  const SplineSurface& s = small_surface("genus2.off");
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW((void)closest_point(s, Eigen::Vector3d(nan, 0, 0)), ricci::InvalidInputError);
   ClosestPointOptions options;

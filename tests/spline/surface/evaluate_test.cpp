@@ -15,7 +15,7 @@
 namespace spline {
 namespace {
 
-using testing::fitted_surface;
+using testing::small_surface;
 
 // A point of `face` drawn at random (inside, away from the edges).
 DomainPoint random_point(int face, std::mt19937& rng) {
@@ -25,7 +25,7 @@ DomainPoint random_point(int face, std::mt19937& rng) {
 }
 
 TEST(SurfaceEvaluate, CurvatureOfAReproducedParaboloidIsExact) {
-  const SplineSurface& fitted = fitted_surface("genus2.off");
+  const SplineSurface& fitted = small_surface("genus2.off");
   const ManifoldSplineSpace& space = *fitted.spline.space;
   // The chart evaluating the most faces, and the quadric graph (x, y, h) over it.
   std::map<int, int> count;
@@ -107,7 +107,7 @@ TEST(SurfaceEvaluate, CurvaturesOfASphereFollowTheConvention) {
 }
 
 TEST(SurfaceEvaluate, MatchesTheSplinesOwnEvaluationAndTheBatch) {
-  const SplineSurface& s = fitted_surface("genus2.off");
+  const SplineSurface& s = small_surface("genus2.off");
   std::mt19937 rng(3);
   std::vector<DomainPoint> points;
   for (int f : s.spline.space->domain_faces()) {
@@ -134,7 +134,7 @@ TEST(SurfaceEvaluate, MatchesTheSplinesOwnEvaluationAndTheBatch) {
 }
 
 TEST(SurfaceEvaluate, FillPatchesEvaluateInTheirDomain) {
-  const SplineSurface& s = fitted_surface("genus2.off");
+  const SplineSurface& s = small_surface("genus2.off");
   ASSERT_FALSE(s.fills.empty());
   const HoleFill& fill = s.fills[0];
   SurfaceLocation at;
@@ -157,7 +157,7 @@ TEST(SurfaceEvaluate, FillPatchesEvaluateInTheirDomain) {
 }
 
 TEST(SurfaceEvaluate, BadPointsThrow) {
-  const SplineSurface& s = fitted_surface("genus2.off");
+  const SplineSurface& s = small_surface("genus2.off");
   const ManifoldSplineSpace& space = *s.spline.space;
   int skipped = -1, kept = -1;
   for (int f = 0; f < space.face_count(); ++f) (s.skipped_faces[f] ? skipped : kept) = f;
