@@ -3,9 +3,8 @@
 //          one thread and the parallel batch; ClosestPointIndex build seconds and microseconds
 //          per query (targets near the surface).
 //  bezier: bezier_patches seconds, patches and knot segments per face.
-// The surface is fit_scan's spline with its cone hole capped (as msp fit, without meeting the
-// patches), at --faces domain faces (default 1000) of --model (default models/genus2.off, run
-// from the repository root).
+// The surface is spline::fit_surface's (msp fit's) at --faces domain faces (default 1000) of
+// --model (default models/genus2.off, run from the repository root).
 #include <chrono>
 #include <cstdio>
 #include <random>
@@ -14,8 +13,7 @@
 
 #include "bench/benchmarks.h"
 #include "ricci/mesh/io.h"
-#include "spline/fill/hole_fill.h"
-#include "spline/fit/fit.h"
+#include "spline/surface/fit_surface.h"
 #include "spline/surface/bezier.h"
 #include "spline/surface/closest_point.h"
 #include "spline/surface/evaluate.h"
@@ -54,25 +52,11 @@ SurfaceArgs parse(int argc, char** argv) {
 }
 
 spline::SplineSurface fitted_surface(const SurfaceArgs& a) {
-  spline::ScanFitOptions options;
+  spline::FitSurfaceOptions options;
   options.domain_faces = a.faces;
   const auto start = Clock::now();
-  spline::ScanFitResult fit = spline::fit_scan(ricci::read_mesh(a.model), options);
-  spline::SplineSurface s;
-  s.domain = fit.atlas.problem.mesh;
-  s.spline = fit.spline;
-  s.singular_vertex = fit.atlas.problem.cone;
+  spline::SplineSurface s = spline::fit_surface(ricci::read_mesh(a.model), options).surface;
   const spline::ManifoldSplineSpace& space = *s.spline.space;
-  s.skipped_faces.assign(static_cast<std::size_t>(space.face_count()), 0);
-  for (int f = 0; f < space.face_count(); ++f) s.skipped_faces[f] = space.in_domain(f) ? 0 : 1;
-  for (const spline::Rim& rim : spline::find_rims(space, s.domain)) {
-    for (int f : rim.covered_faces) s.skipped_faces[f] = 1;
-    if (rim.kind == spline::Rim::Kind::cone_hole) {
-      s.fills.push_back(spline::fill_rim(s.spline, s.domain, rim));
-    } else {
-      s.open_rims.push_back(rim);
-    }
-  }
   std::printf("%s: %d domain faces (%d in the spline), degree %d, %zu fills, fit %.2f s\n",
               a.model.c_str(), space.face_count(), space.domain_face_count(), space.degree(),
               s.fills.size(), seconds_since(start));
@@ -81,8 +65,9 @@ spline::SplineSurface fitted_surface(const SurfaceArgs& a) {
 
 std::vector<spline::DomainPoint> random_points(const spline::SplineSurface& s, int count) {
   std::vector<int> faces;
-  for (int f : s.spline.space->domain_faces())
-    if (s.skipped_faces[f] == 0) faces.push_back(f);
+  for (int f : s.spline.space->domain_faces()) {
+    if (s.skipped_faces.empty() || s.skipped_faces[f] == 0) faces.push_back(f);
+  }
   std::mt19937 rng(1);
   std::uniform_int_distribution<std::size_t> pick(0, faces.size() - 1);
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -10,5 +10,7 @@ int run_atlas(int argc, char** argv);
 int run_uniformize(int argc, char** argv);
 int run_fit(int argc, char** argv);
 int run_edit(int argc, char** argv);
+int run_eval(int argc, char** argv);
+int run_bezier(int argc, char** argv);
 
 }  // namespace msp

@@ -135,6 +135,40 @@ std::vector<Segment> knot_segments(const ManifoldSplineSpace& space, int face) {
   return out;
 }
 
+// The face's convex polynomial cells cut by its knot segments (see the header comment), in
+// (lambda_1, lambda_2).
+std::vector<Polygon> convex_cells(const std::vector<Segment>& segments) {
+  std::vector<Polygon> cells{{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}}, next;
+  Polygon left, right;
+  for (const Segment& s : segments) {
+    next.clear();
+    for (const Polygon& cell : cells) {
+      if (split(cell, s, left, right)) {
+        next.push_back(left);
+        next.push_back(right);
+      } else {
+        next.push_back(cell);
+      }
+    }
+    std::swap(cells, next);
+  }
+  return cells;
+}
+
+// Appends the fan triangles of a convex cell with an interior (columns: barycentric corners).
+void fan(const Polygon& cell, std::vector<Eigen::Matrix3d>& triangles) {
+  for (std::size_t i = 1; i + 1 < cell.size(); ++i) {
+    const Eigen::Vector2d &a = cell[0], &b = cell[i], &c = cell[i + 1];
+    if (!(cross2(b - a, c - a) > 1e-24)) continue;  // no interior
+    Eigen::Matrix3d t;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d& p = k == 0 ? a : (k == 1 ? b : c);
+      t.col(k) << 1.0 - p.x() - p.y(), p.x(), p.y();
+    }
+    triangles.push_back(t);
+  }
+}
+
 double factorial(int k) {
   double f = 1.0;
   for (int i = 2; i <= k; ++i) f *= i;
@@ -226,33 +260,8 @@ std::vector<Eigen::Matrix3d> polynomial_cells(const ManifoldSplineSpace& space, 
     throw InvalidInputError("polynomial_cells: face " + std::to_string(face) +
                             " is not in the spline's domain");
   }
-  std::vector<Polygon> cells{{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}}, next;
-  Polygon left, right;
-  for (const Segment& s : knot_segments(space, face)) {
-    next.clear();
-    for (const Polygon& cell : cells) {
-      if (split(cell, s, left, right)) {
-        next.push_back(left);
-        next.push_back(right);
-      } else {
-        next.push_back(cell);
-      }
-    }
-    std::swap(cells, next);
-  }
   std::vector<Eigen::Matrix3d> triangles;
-  for (const Polygon& cell : cells) {
-    for (std::size_t i = 1; i + 1 < cell.size(); ++i) {
-      const Eigen::Vector2d &a = cell[0], &b = cell[i], &c = cell[i + 1];
-      if (!(cross2(b - a, c - a) > 1e-24)) continue;  // no interior
-      Eigen::Matrix3d t;
-      for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector2d& p = k == 0 ? a : (k == 1 ? b : c);
-        t.col(k) << 1.0 - p.x() - p.y(), p.x(), p.y();
-      }
-      triangles.push_back(t);
-    }
-  }
+  for (const Polygon& cell : convex_cells(knot_segments(space, face))) fan(cell, triangles);
   return triangles;
 }
 
@@ -261,9 +270,8 @@ BezierExport bezier_patches(const SplineSurface& surface, const BezierOptions& o
   const int n = space.degree();
   std::vector<int> faces;
   for (int f : space.domain_faces()) {
-    if (surface.skipped_faces.empty() || surface.skipped_faces[static_cast<std::size_t>(f)] == 0) {
-      faces.push_back(f);
-    }
+    const auto index = static_cast<std::size_t>(f);
+    if (surface.skipped_faces.empty() || surface.skipped_faces[index] == 0) faces.push_back(f);
   }
   std::vector<std::vector<BezierPatch>> per_face(faces.size());
   std::vector<int> segments(faces.size(), 0);
@@ -272,22 +280,37 @@ BezierExport bezier_patches(const SplineSurface& surface, const BezierOptions& o
     const auto hs = ricci::face_halfedges(surface.domain, surface.domain.face_handle(face));
     std::array<int, 3> vertices{};
     for (int k = 0; k < 3; ++k) vertices[k] = surface.domain.to_vertex_handle(hs[k]).idx();
-    segments[i] = static_cast<int>(knot_segments(space, face).size());
+    const std::vector<Segment> cuts = knot_segments(space, face);
+    segments[i] = static_cast<int>(cuts.size());
     const int chart = space.chart_of(face);
-    for (const Eigen::Matrix3d& cell : polynomial_cells(space, face)) {
-      BezierPatch patch;
-      patch.face = face;
-      patch.vertices = vertices;
-      patch.corners = cell;
-      std::array<Eigen::Vector2d, 3> corners;
-      for (int k = 0; k < 3; ++k) corners[k] = space.chart_point(chart, face, cell.col(k));
-      const Eigen::Vector2d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
-      const double size = std::max({(corners[1] - corners[0]).norm(),
-                                    (corners[2] - corners[1]).norm(),
-                                    (corners[0] - corners[2]).norm()});
-      patch.control_points =
-          bezier_control_points(piece_at(surface.spline, chart, face, centre, size), corners);
-      per_face[i].push_back(std::move(patch));
+    std::vector<Eigen::Matrix3d> triangles;
+    for (const Polygon& cell : convex_cells(cuts)) {
+      triangles.clear();
+      fan(cell, triangles);
+      if (triangles.empty()) continue;
+      // One piece per cell, taken at the cell's vertex centroid (inside: the cell is convex).
+      Eigen::Vector2d centre_bary = Eigen::Vector2d::Zero();
+      for (const Eigen::Vector2d& v : cell) centre_bary += v;
+      centre_bary /= static_cast<double>(cell.size());
+      const Eigen::Vector3d centre_b(1.0 - centre_bary.x() - centre_bary.y(), centre_bary.x(),
+                                     centre_bary.y());
+      const Eigen::Vector2d centre = space.chart_point(chart, face, centre_b);
+      double size = 0.0;
+      for (const Eigen::Vector2d& v : cell) {
+        const Eigen::Vector3d b(1.0 - v.x() - v.y(), v.x(), v.y());
+        size = std::max(size, 2.0 * (space.chart_point(chart, face, b) - centre).norm());
+      }
+      const BivariatePolynomial piece = piece_at(surface.spline, chart, face, centre, size);
+      for (const Eigen::Matrix3d& t : triangles) {
+        BezierPatch patch;
+        patch.face = face;
+        patch.vertices = vertices;
+        patch.corners = t;
+        std::array<Eigen::Vector2d, 3> corners;
+        for (int k = 0; k < 3; ++k) corners[k] = space.chart_point(chart, face, t.col(k));
+        patch.control_points = bezier_control_points(piece, corners);
+        per_face[i].push_back(std::move(patch));
+      }
     }
   });
   BezierExport out;

@@ -14,8 +14,8 @@
 // result is convex cells on each of which the spline is one polynomial (a refinement of the
 // segments' arrangement), each fanned into triangles: one Bezier patch per triangle. A patch's
 // control points are the blossom values P(c_0^b0, c_1^b1, c_2^b2) of the piece at its triangle's
-// corners c_k (b in multi_indices(n) order). The piece P is taken exactly from the spline at the
-// triangle's centre: its partial derivatives of every order up to n, from the simplex splines'
+// corners c_k (b in multi_indices(n) order). The piece P is taken exactly from the spline at its
+// cell's centre: its partial derivatives of every order up to n, from the simplex splines'
 // directional derivatives along n + 1 directions (a Taylor expansion, no fitting).
 //
 // Precision: the patches reproduce the spline to rounding (tested: 1e-12 of the bounding-box
