@@ -9,5 +9,8 @@ int run_flow(int argc, char** argv);
 int run_atlas(int argc, char** argv);
 int run_uniformize(int argc, char** argv);
 int run_fit(int argc, char** argv);
+int run_edit(int argc, char** argv);
+int run_eval(int argc, char** argv);
+int run_bezier(int argc, char** argv);
 
 }  // namespace msp

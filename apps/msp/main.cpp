@@ -24,6 +24,11 @@ const Subcommand kSubcommands[] = {
     {"atlas", msp::run_atlas, "one-cone flat metric, cut graph, layout and affine atlas"},
     {"uniformize", msp::run_uniformize, "hyperbolic / spherical / flat uniformization structures"},
     {"fit", msp::run_fit, "fit a manifold spline to a mesh and export glTF"},
+    {"edit", msp::run_edit, "move control points of a spline file (.msp): by index or a region"},
+    {"eval", msp::run_eval,
+     "evaluate a spline file: position, derivatives, normal, curvatures (points, closest points)"},
+    {"bezier", msp::run_bezier,
+     "export a spline file's exact polynomial pieces as Bezier patches (JSON)"},
 };
 
 void print_usage() {
