@@ -1,0 +1,385 @@
+// Conformal modules by the Ricci flow: dispatch on topology, the annulus (Algorithm 4) and the
+// rectangle of a disk with four corners. The closed and hyperbolic modules are in
+// module_uniformized.cpp.
+#include "ricci/analysis/conformal_module.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <queue>
+
+#include "ricci/analysis/module_internal.h"
+#include "ricci/layout/layout_e2.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
+#include "ricci/metric/mesh_tables.h"
+#include "ricci/topology/slice.h"
+
+namespace ricci {
+
+std::string to_string(ModuleKind kind) {
+  switch (kind) {
+    case ModuleKind::Sphere: return "sphere";
+    case ModuleKind::Annulus: return "annulus";
+    case ModuleKind::Rectangle: return "rectangle";
+    case ModuleKind::FlatTorus: return "flat-torus";
+    case ModuleKind::Hyperbolic: return "hyperbolic";
+    default: return "fuchsian";
+  }
+}
+
+bool parse_module_kind(const std::string& name, ModuleKind& kind) {
+  if (name == "auto") return false;
+  for (ModuleKind k : {ModuleKind::Sphere, ModuleKind::Annulus, ModuleKind::Rectangle,
+                       ModuleKind::FlatTorus, ModuleKind::Hyperbolic, ModuleKind::Fuchsian}) {
+    if (name == to_string(k)) {
+      kind = k;
+      return true;
+    }
+  }
+  throw InvalidInputError("unknown module kind '" + name +
+                          "' (auto, annulus, rectangle, flat-torus, hyperbolic, fuchsian)");
+}
+
+namespace detail {
+
+void record_flow(const FlowResult& flow, ModuleResult& result) {
+  result.converged = flow.converged();
+  result.flow_iterations = flow.iterations;
+  result.flow_error = flow.max_error;
+  result.message = flow.message;
+}
+
+void copy_faces(const Mesh& mesh, CanonicalDomain& domain) {
+  domain.faces.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
+  for (FaceHandle f : mesh.faces()) {
+    int k = 0;
+    for (VertexHandle v : mesh.fv_range(f)) domain.faces(f.idx(), k++) = v.idx();
+  }
+}
+
+}  // namespace detail
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Edges of a shortest path (under `lengths`) from loop `from` to loop `to`, from its vertex on
+/// `from` to its vertex on `to`, through interior edges. Multi-source Dijkstra: every vertex of
+/// `from` starts at 0, so the path meets each loop only at its ends.
+std::vector<HalfedgeHandle> shortest_path_between(const Mesh& mesh, const MeshTables& tables,
+                                                  const EdgeLengths& lengths, int from, int to) {
+  const int n = tables.num_vertices();
+  std::vector<int> loop_of(n, -1);
+  for (size_t k = 0; k < tables.boundary_loops.size(); ++k) {
+    for (int v : tables.boundary_loops[k]) loop_of[v] = static_cast<int>(k);
+  }
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  std::vector<HalfedgeHandle> parent(n);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int v : tables.boundary_loops[from]) {
+    dist[v] = 0;
+    queue.push({0.0, v});
+  }
+  int end = -1;
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[v]) continue;
+    if (loop_of[v] == to) {
+      end = v;
+      break;
+    }
+    // A path through another boundary loop would not cut the surface along one arc.
+    if (loop_of[v] >= 0 && loop_of[v] != from) continue;
+    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
+      if (mesh.is_boundary(mesh.edge_handle(h))) continue;
+      const int w = mesh.to_vertex_handle(h).idx();
+      const double nd = d + lengths[mesh.edge_handle(h).idx()];
+      if (nd < dist[w]) {
+        dist[w] = nd;
+        parent[w] = h;
+        queue.push({nd, w});
+      }
+    }
+  }
+  if (end < 0) throw TopologyError("no path joins the two boundary loops through the interior");
+  std::vector<HalfedgeHandle> path;
+  for (int v = end; dist[v] > 0; v = mesh.from_vertex_handle(parent[v]).idx()) {
+    path.push_back(parent[v]);
+  }
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+/// Genus 0, two boundary loops: Algorithm 4.
+void annulus_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
+                    ModuleResult& result) {
+  Targets targets;
+  targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
+  const FlowResult flow_result = flow(mesh, targets, options.flow);
+  detail::record_flow(flow_result, result);
+  const std::vector<HalfedgeHandle> path =
+      shortest_path_between(mesh, tables, flow_result.lengths, 0, 1);
+  std::vector<char> is_cut(mesh.n_edges(), 0);
+  for (HalfedgeHandle h : path) is_cut[mesh.edge_handle(h).idx()] = 1;
+  const SlicedMesh sliced = slice_along(mesh, is_cut);
+  check_disk(sliced, "annulus slice");
+  const LayoutE2Result layout =
+      layout_e2(sliced.mesh, sliced_edge_lengths(sliced, flow_result.lengths));
+  const auto at = [&](HalfedgeHandle h) {
+    const int v = sliced.mesh.from_vertex_handle(h).idx();
+    return Complex(layout.positions(v, 0), layout.positions(v, 1));
+  };
+  // The period: the left copy of a path vertex minus its right copy (the same for every copy
+  // because the flat cylinder's holonomy is a translation: each boundary's total geodesic
+  // curvature is 0).
+  Complex period = 0;
+  int count = 0;
+  for (HalfedgeHandle h : path) {
+    const int k = mesh.halfedge_handle(mesh.edge_handle(h), 0) == h ? 0 : 1;
+    const CutEdgeSides& sides = *std::find_if(
+        sliced.cut_sides.begin(), sliced.cut_sides.end(),
+        [&](const CutEdgeSides& s) { return s.edge == mesh.edge_handle(h); });
+    // side[k] runs along h on its left; side[1-k] runs against it on the right.
+    const HalfedgeHandle left = sides.side[k], right = sides.side[1 - k];
+    period += at(left) - at(sliced.mesh.next_halfedge_handle(right));
+    period += at(sliced.mesh.next_halfedge_handle(left)) - at(right);
+    count += 2;
+  }
+  period /= count;
+  // w = 2πi p / T sends the period to 2πi: Re w is the log-radius after exp.
+  const Complex scale = Complex(0, 2 * M_PI) / period;
+  const int n = sliced.mesh.n_vertices();
+  Eigen::VectorXcd w(n);
+  for (int v = 0; v < n; ++v) {
+    w[v] = scale * Complex(layout.positions(v, 0), layout.positions(v, 1));
+  }
+  std::vector<int> copy_of(tables.num_vertices(), -1), loop_of(tables.num_vertices(), -1);
+  for (int v = 0; v < n; ++v) copy_of[sliced.to_original_vertex[v]] = v;
+  for (int k = 0; k < 2; ++k) {
+    for (int v : tables.boundary_loops[k]) loop_of[v] = k;
+  }
+  double mean[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    for (int v : tables.boundary_loops[k]) mean[k] += w[copy_of[v]].real();
+    mean[k] /= static_cast<double>(tables.boundary_loops[k].size());
+  }
+  result.values = {std::abs(mean[1] - mean[0]) / (2 * M_PI)};
+  result.names = {"module"};
+  result.roundness = 0;
+  for (int s = 0; s < n; ++s) {
+    const int k = loop_of[sliced.to_original_vertex[s]];
+    if (k >= 0) result.roundness = std::max(result.roundness, std::abs(w[s].real() - mean[k]));
+  }
+  result.corners = {mesh.from_vertex_handle(path.front()).idx(),
+                    mesh.to_vertex_handle(path.back()).idx()};
+  CanonicalDomain& domain = result.domain;
+  const double outer = std::max(mean[0], mean[1]);
+  domain.positions.resize(n, 2);
+  for (int v = 0; v < n; ++v) {
+    const Complex z = std::exp(w[v] - outer);
+    domain.positions.row(v) << z.real(), z.imag();
+  }
+  detail::copy_faces(sliced.mesh, domain);
+  for (const auto& loop : tables.boundary_loops) {
+    std::vector<int> polyline;
+    for (int v : loop) polyline.push_back(copy_of[v]);
+    domain.boundaries.push_back(polyline);
+  }
+}
+
+/// The single boundary loop run with the surface on its left (counter-clockwise in a planar
+/// layout); MeshTables lists the face-less halfedges' order, the other way round.
+std::vector<int> ccw_boundary(const MeshTables& tables) {
+  std::vector<int> loop(tables.boundary_loops[0].rbegin(), tables.boundary_loops[0].rend());
+  return loop;
+}
+
+/// Position of each vertex in `loop`, -1 elsewhere.
+std::vector<int> loop_positions(const std::vector<int>& loop, int vertex_count) {
+  std::vector<int> position(vertex_count, -1);
+  for (size_t i = 0; i < loop.size(); ++i) position[loop[i]] = static_cast<int>(i);
+  return position;
+}
+
+/// Four vertices a quarter of the boundary's 3D length apart, from the lowest-index one.
+std::vector<int> default_corners(const Mesh& mesh, std::vector<int> loop) {
+  if (loop.size() < 4) throw InvalidInputError("the boundary has fewer than four vertices");
+  std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+  std::vector<double> arc(loop.size() + 1, 0.0);
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const auto a = mesh.point(mesh.vertex_handle(loop[i]));
+    const auto b = mesh.point(mesh.vertex_handle(loop[(i + 1) % loop.size()]));
+    arc[i + 1] = arc[i] + (a - b).norm();
+  }
+  std::vector<int> corners;
+  size_t i = 0;
+  for (size_t k = 0; k < 4; ++k) {
+    while (arc[i] < 0.25 * static_cast<double>(k) * arc.back()) ++i;
+    i = std::min(i, loop.size() - (4 - k));  // leave room for the corners still to come
+    corners.push_back(loop[i++]);
+  }
+  return corners;
+}
+
+/// The corners in the boundary's cyclic order from corner 0. \throw InvalidInputError.
+std::vector<int> checked_corners(const Mesh& mesh, const std::vector<int>& loop,
+                                 const std::vector<int>& given) {
+  if (given.empty()) return default_corners(mesh, loop);
+  if (given.size() != 4) {
+    throw InvalidInputError("the rectangle module needs exactly four corner vertices, got " +
+                            std::to_string(given.size()));
+  }
+  const int n = static_cast<int>(mesh.n_vertices());
+  const std::vector<int> position = loop_positions(loop, n);
+  for (int c : given) {
+    if (c < 0 || c >= n) {
+      throw InvalidInputError("corner vertex " + std::to_string(c) + " is out of range [0, " +
+                              std::to_string(n) + ")");
+    }
+    if (position[c] < 0) {
+      throw InvalidInputError("corner vertex " + std::to_string(c) + " is not on the boundary");
+    }
+  }
+  std::vector<int> corners = given;
+  const int loop_size = static_cast<int>(loop.size());
+  const auto key = [&](int c) {
+    return (position[c] - position[given[0]] + loop_size) % loop_size;
+  };
+  std::sort(corners.begin(), corners.end(), [&](int a, int b) { return key(a) < key(b); });
+  if (std::adjacent_find(corners.begin(), corners.end()) != corners.end()) {
+    throw InvalidInputError("the four corner vertices must be distinct");
+  }
+  return corners;
+}
+
+/// Genus 0, one boundary loop, four corners: the rectangle.
+void rectangle_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
+                      ModuleResult& result) {
+  const std::vector<int> loop = ccw_boundary(tables);
+  result.corners = checked_corners(mesh, loop, options.corners);
+  Targets targets;
+  targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
+  for (int c : result.corners) targets.curvature[c] = 0.5 * M_PI;
+  const FlowResult flow_result = flow(mesh, targets, options.flow);
+  detail::record_flow(flow_result, result);
+  const LayoutE2Result layout = layout_e2(mesh, flow_result.lengths);
+  const auto at = [&](int v) { return Complex(layout.positions(v, 0), layout.positions(v, 1)); };
+  Complex p[4];
+  for (int k = 0; k < 4; ++k) p[k] = at(result.corners[k]);
+  const double width = 0.5 * (std::abs(p[1] - p[0]) + std::abs(p[3] - p[2]));
+  const double height = 0.5 * (std::abs(p[2] - p[1]) + std::abs(p[0] - p[3]));
+  result.values = {height / width};
+  result.names = {"aspect_ratio"};
+  // Frame: corner 0 at 0, corner 1 at 1 (width 1).
+  const Complex frame = std::abs(p[1] - p[0]) / (width * (p[1] - p[0]));
+  const std::vector<int> position = loop_positions(loop, tables.num_vertices());
+  const int loop_size = static_cast<int>(loop.size());
+  result.roundness = 0;
+  for (int k = 0; k < 4; ++k) {
+    const Complex a = p[k], b = p[(k + 1) % 4];
+    const Complex direction = (b - a) / std::abs(b - a);
+    for (int i = position[result.corners[k]]; loop[i] != result.corners[(k + 1) % 4];
+         i = (i + 1) % loop_size) {
+      const double off = std::abs(((at(loop[i]) - a) / direction).imag()) / width;
+      result.roundness = std::max(result.roundness, off);
+    }
+  }
+  CanonicalDomain& domain = result.domain;
+  domain.positions.resize(tables.num_vertices(), 2);
+  for (int v = 0; v < tables.num_vertices(); ++v) {
+    const Complex z = (at(v) - p[0]) * frame;
+    domain.positions.row(v) << z.real(), z.imag();
+  }
+  detail::copy_faces(mesh, domain);
+  domain.boundaries = {loop};
+  domain.corners = result.corners;
+}
+
+std::string topology_text(const SurfaceTopology& topology) {
+  return "genus " + std::to_string(topology.genus) + " with " +
+         std::to_string(topology.boundary_loops) + " boundary loop" +
+         (topology.boundary_loops == 1 ? "" : "s");
+}
+
+/// The kind the topology gives.
+ModuleKind natural_kind(const SurfaceTopology& t) {
+  if (t.boundary_loops == 0) {
+    return t.genus == 0 ? ModuleKind::Sphere
+                        : (t.genus == 1 ? ModuleKind::FlatTorus : ModuleKind::Fuchsian);
+  }
+  if (t.genus == 0 && t.boundary_loops == 1) return ModuleKind::Rectangle;
+  if (t.genus == 0 && t.boundary_loops == 2) return ModuleKind::Annulus;
+  return ModuleKind::Hyperbolic;
+}
+
+/// \throw InvalidInputError when `kind` does not fit the topology.
+void check_kind(ModuleKind kind, const SurfaceTopology& t) {
+  const char* need = nullptr;
+  switch (kind) {
+    case ModuleKind::Sphere: need = "a closed genus-0 surface"; break;
+    case ModuleKind::Annulus: need = "a genus-0 surface with two boundary loops"; break;
+    case ModuleKind::Rectangle: need = "a genus-0 surface with one boundary loop"; break;
+    case ModuleKind::FlatTorus: need = "a closed genus-1 surface"; break;
+    case ModuleKind::Fuchsian: need = "a closed surface of genus 2 or more"; break;
+    case ModuleKind::Hyperbolic:
+      need = "an open surface of negative Euler characteristic (genus 0 with three or more "
+             "boundary loops, or genus 1 or more with boundary)";
+      break;
+  }
+  if (kind != natural_kind(t)) {
+    throw InvalidInputError("the " + to_string(kind) + " module needs " + need + "; the mesh is " +
+                            topology_text(t));
+  }
+}
+
+}  // namespace
+
+ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
+  const auto start = Clock::now();
+  const SurfaceTopology topology = surface_topology(mesh);
+  if (!topology.manifold) throw TopologyError("the mesh is not a 2-manifold");
+  if (topology.components != 1) {
+    throw TopologyError("the mesh has " + std::to_string(topology.components) +
+                        " components; a conformal module needs one");
+  }
+  ModuleResult result;
+  result.genus = topology.genus;
+  result.boundary_loops = topology.boundary_loops;
+  result.kind = natural_kind(topology);
+  if (options.force_kind) check_kind(options.kind, topology);
+  if (result.kind != ModuleKind::Rectangle && !options.corners.empty()) {
+    throw InvalidInputError("corners are for the rectangle module of a disk; the mesh is " +
+                            topology_text(topology));
+  }
+  const MeshTables tables = build_mesh_tables(mesh);
+  switch (result.kind) {
+    case ModuleKind::Sphere:
+      result.converged = true;
+      break;
+    case ModuleKind::Annulus: annulus_module(mesh, tables, options, result); break;
+    case ModuleKind::Rectangle: rectangle_module(mesh, tables, options, result); break;
+    case ModuleKind::FlatTorus:
+    case ModuleKind::Fuchsian: detail::uniformized_module(mesh, options, result); break;
+    case ModuleKind::Hyperbolic: detail::hyperbolic_module(mesh, tables, options, result); break;
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+double module_distance(const ModuleResult& a, const ModuleResult& b) {
+  if (a.kind != b.kind || a.values.size() != b.values.size()) {
+    throw InvalidInputError("modules of different kinds (" + to_string(a.kind) + ", " +
+                            std::to_string(a.values.size()) + " values; " + to_string(b.kind) +
+                            ", " + std::to_string(b.values.size()) + " values) have no distance");
+  }
+  double sum = 0;
+  for (size_t i = 0; i < a.values.size(); ++i) sum += std::pow(a.values[i] - b.values[i], 2);
+  return std::sqrt(sum);
+}
+
+}  // namespace ricci

@@ -1,0 +1,72 @@
+// Conformal modules read off the uniformization: the flat torus's reduced modulus, the Fuchsian
+// generators' translation lengths, and the hyperbolic boundary lengths of an open surface.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "ricci/analysis/module_internal.h"
+#include "ricci/hyperbolic/uniformize.h"
+#include "ricci/mesh/errors.h"
+
+namespace ricci::detail {
+
+void uniformized_module(const Mesh& mesh, const ModuleOptions& options, ModuleResult& result) {
+  UniformizeOptions uniformize_options;
+  uniformize_options.flow = options.flow;
+  // The layouts' closure needs the uniformize default's tighter tolerance.
+  uniformize_options.flow.tolerance = std::min(options.flow.tolerance, 1e-12);
+  const Uniformization u = uniformize(mesh, uniformize_options);
+  record_flow(u.flow, result);
+  if (!u.converged()) return;
+  const Eigen::Index n = u.positions.size();
+  CanonicalDomain& domain = result.domain;
+  domain.positions.resize(n, 2);
+  copy_faces(u.sliced.mesh, domain);
+  if (result.kind == ModuleKind::FlatTorus) {
+    result.values = {u.reduced_modulus.real(), u.reduced_modulus.imag()};
+    result.names = {"re_tau", "im_tau"};
+    // The parallelogram of the first translation = 1.
+    const Complex frame = u.translations.empty() ? Complex(1) : 1.0 / u.translations[0];
+    for (Eigen::Index v = 0; v < n; ++v) {
+      const Complex z = u.positions[v] * frame;
+      domain.positions.row(v) << z.real(), z.imag();
+    }
+    return;
+  }
+  result.invariant = false;
+  for (size_t i = 0; i < u.group.generators.size(); ++i) {
+    const double trace = std::abs(u.group.generators[i].m.trace().real());
+    result.values.push_back(2.0 * std::acosh(std::max(1.0, 0.5 * trace)));
+    result.names.push_back(std::string(i % 2 == 0 ? "a" : "b") + std::to_string(i / 2 + 1));
+  }
+  for (Eigen::Index v = 0; v < n; ++v) {
+    domain.positions.row(v) << u.positions[v].real(), u.positions[v].imag();
+  }
+}
+
+void hyperbolic_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
+                       ModuleResult& result) {
+  FlowOptions flow_options = options.flow;
+  flow_options.geometry = Geometry::Hyperbolic;
+  Targets targets;
+  targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
+  const FlowResult flow_result = flow(mesh, targets, flow_options);
+  record_flow(flow_result, result);
+  std::vector<double> lengths;
+  for (const std::vector<int>& loop : tables.boundary_loops) {
+    double length = 0;
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const HalfedgeHandle h = mesh.find_halfedge(mesh.vertex_handle(loop[i]),
+                                                  mesh.vertex_handle(loop[(i + 1) % loop.size()]));
+      length += flow_result.lengths[mesh.edge_handle(h).idx()];
+    }
+    lengths.push_back(length);
+  }
+  std::sort(lengths.begin(), lengths.end(), std::greater<double>());
+  result.values = lengths;
+  for (size_t i = 0; i < lengths.size(); ++i) result.names.push_back("length_" + std::to_string(i));
+  // Beyond three boundaries (or with genus) the lengths do not determine the conformal class.
+  result.invariant = true;
+}
+
+}  // namespace ricci::detail
