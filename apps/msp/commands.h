@@ -9,5 +9,7 @@ int run_flow(int argc, char** argv);
 int run_atlas(int argc, char** argv);
 int run_uniformize(int argc, char** argv);
 int run_fit(int argc, char** argv);
+int run_module(int argc, char** argv);
+int run_index(int argc, char** argv);
 
 }  // namespace msp

@@ -24,6 +24,8 @@ const Subcommand kSubcommands[] = {
     {"atlas", msp::run_atlas, "one-cone flat metric, cut graph, layout and affine atlas"},
     {"uniformize", msp::run_uniformize, "hyperbolic / spherical / flat uniformization structures"},
     {"fit", msp::run_fit, "fit a manifold spline to a mesh and export glTF"},
+    {"module", msp::run_module, "conformal module: annulus, rectangle, flat torus, hyperbolic"},
+    {"index", msp::run_index, "conformal modules of meshes grouped by topology, distances"},
 };
 
 void print_usage() {

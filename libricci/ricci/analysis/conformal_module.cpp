@@ -13,7 +13,9 @@
 #include "ricci/analysis/module_internal.h"
 #include "ricci/layout/layout_e2.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/flat_flips.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/mesh/simplify.h"
 #include "ricci/metric/mesh_tables.h"
 #include "ricci/topology/slice.h"
 
@@ -188,6 +190,7 @@ void annulus_module(const Mesh& mesh, const MeshTables& tables, const ModuleOpti
   for (const auto& loop : tables.boundary_loops) {
     std::vector<int> polyline;
     for (int v : loop) polyline.push_back(copy_of[v]);
+    domain.boundary_loop.push_back(static_cast<int>(domain.boundaries.size()));
     domain.boundaries.push_back(polyline);
   }
 }
@@ -297,6 +300,7 @@ void rectangle_module(const Mesh& mesh, const MeshTables& tables, const ModuleOp
   }
   detail::copy_faces(mesh, domain);
   domain.boundaries = {loop};
+  domain.boundary_loop = {0};
   domain.corners = result.corners;
 }
 
@@ -339,23 +343,11 @@ void check_kind(ModuleKind kind, const SurfaceTopology& t) {
 
 }  // namespace
 
-ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
-  const auto start = Clock::now();
-  const SurfaceTopology topology = surface_topology(mesh);
-  if (!topology.manifold) throw TopologyError("the mesh is not a 2-manifold");
-  if (topology.components != 1) {
-    throw TopologyError("the mesh has " + std::to_string(topology.components) +
-                        " components; a conformal module needs one");
-  }
-  ModuleResult result;
-  result.genus = topology.genus;
-  result.boundary_loops = topology.boundary_loops;
-  result.kind = natural_kind(topology);
-  if (options.force_kind) check_kind(options.kind, topology);
-  if (result.kind != ModuleKind::Rectangle && !options.corners.empty()) {
-    throw InvalidInputError("corners are for the rectangle module of a disk; the mesh is " +
-                            topology_text(topology));
-  }
+namespace {
+
+/// The module of `mesh` as it is (topology already checked, `result` holds it).
+void module_on(const Mesh& mesh, const ModuleOptions& options, ModuleResult& result) {
+  result.faces_used = static_cast<int>(mesh.n_faces());
   const MeshTables tables = build_mesh_tables(mesh);
   switch (result.kind) {
     case ModuleKind::Sphere:
@@ -366,6 +358,45 @@ ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
     case ModuleKind::FlatTorus:
     case ModuleKind::Fuchsian: detail::uniformized_module(mesh, options, result); break;
     case ModuleKind::Hyperbolic: detail::hyperbolic_module(mesh, tables, options, result); break;
+  }
+}
+
+}  // namespace
+
+ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
+  const auto start = Clock::now();
+  const SurfaceTopology topology = surface_topology(mesh);
+  if (!topology.manifold) throw TopologyError("the mesh is not a 2-manifold");
+  if (topology.components != 1) {
+    throw TopologyError("the mesh has " + std::to_string(topology.components) +
+                        " components; a conformal module needs one");
+  }
+  ModuleResult blank;
+  blank.genus = topology.genus;
+  blank.boundary_loops = topology.boundary_loops;
+  blank.kind = natural_kind(topology);
+  if (options.force_kind) check_kind(options.kind, topology);
+  if (blank.kind != ModuleKind::Rectangle && !options.corners.empty()) {
+    throw InvalidInputError("corners are for the rectangle module of a disk; the mesh is " +
+                            topology_text(topology));
+  }
+  ModuleResult result = blank;
+  module_on(mesh, options, result);
+  if (!result.converged && options.retry) {
+    Mesh flipped = mesh;
+    if (flip_flat_edges_to_delaunay(flipped).flips > 0) {
+      result = blank;
+      result.preparation = "flat edges flipped";
+      module_on(flipped, options, result);
+    }
+  }
+  if (!result.converged && options.retry && options.corners.empty()) {
+    SimplifyOptions remesh;
+    remesh.target_faces = static_cast<int>(mesh.n_faces());
+    const Mesh remeshed = simplify_mesh(mesh, remesh).mesh;
+    result = blank;
+    result.preparation = "remeshed";
+    module_on(remeshed, options, result);
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

@@ -52,6 +52,12 @@ struct ModuleOptions {
   /// Kind of module asked for; false = chosen from the topology (see the file comment).
   bool force_kind = false;
   ModuleKind kind = ModuleKind::Annulus;
+  /// When the flow does not converge on the mesh as given (slivers put the inversive-distance
+  /// metric against the triangle inequality): again after Delaunay flips of the edges between
+  /// coplanar faces (the surface unchanged), then, without given corners, on the mesh
+  /// isotropically remeshed at the same face count (another triangulation of nearly the same
+  /// surface). ModuleResult::preparation says which mesh the module is of.
+  bool retry = true;
   /// Rectangle: four distinct boundary vertices (vertex indices). They are taken in the
   /// boundary's order with the surface on the left (counter-clockwise) from the first one
   /// given, so corners 0-1 and 2-3 span the width. Empty = four vertices a quarter of the
@@ -64,7 +70,10 @@ struct ModuleOptions {
 struct CanonicalDomain {
   Eigen::MatrixX3i faces;             ///< #F by 3, into positions.
   Eigen::MatrixX2d positions;         ///< By vertex of the sliced mesh.
-  std::vector<std::vector<int>> boundaries;  ///< Boundary loops (indices into positions).
+  /// Boundary polylines (indices into positions; closed for the annulus and the rectangle,
+  /// one per boundary edge in the Poincaré disk) and the boundary loop each belongs to.
+  std::vector<std::vector<int>> boundaries;
+  std::vector<int> boundary_loop;
   std::vector<int> corners;           ///< Rectangle corners (indices into positions).
 };
 
@@ -83,6 +92,10 @@ struct ModuleResult {
   /// log-radius from its loop's mean; rectangle, the largest distance of a boundary vertex from
   /// its side's line, over the width; 0 for the others.
   double roundness = 0;
+  /// The mesh the module was computed on: "as given", "flat edges flipped" (vertex indices
+  /// kept) or "remeshed" (new vertices; `corners` and `domain` refer to them).
+  std::string preparation = "as given";
+  int faces_used = 0;  ///< Faces of that mesh.
   /// The mesh vertices of the rectangle's corners (or of the annulus's cut path ends).
   std::vector<int> corners;
   CanonicalDomain domain;

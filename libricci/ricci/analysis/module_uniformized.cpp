@@ -6,7 +6,10 @@
 
 #include "ricci/analysis/module_internal.h"
 #include "ricci/hyperbolic/uniformize.h"
+#include "ricci/hyperbolic/layout_h2.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/topology/cut_graph.h"
+#include "ricci/topology/slice.h"
 
 namespace ricci::detail {
 
@@ -65,8 +68,36 @@ void hyperbolic_module(const Mesh& mesh, const MeshTables& tables, const ModuleO
   std::sort(lengths.begin(), lengths.end(), std::greater<double>());
   result.values = lengths;
   for (size_t i = 0; i < lengths.size(); ++i) result.names.push_back("length_" + std::to_string(i));
-  // Beyond three boundaries (or with genus) the lengths do not determine the conformal class.
-  result.invariant = true;
+  if (!result.converged) return;
+  // The picture: the surface cut to a disk along tree paths from a root to every loop (and
+  // along 2g loops with genus), laid out in the Poincaré disk; its boundaries are geodesic arcs.
+  const int root = tables.boundary_loops[0][0];
+  const CutGraph cut = compute_cut_graph(mesh, mesh.vertex_handle(root), flow_result.lengths);
+  const SlicedMesh sliced = slice_along(mesh, cut.is_cut_edge);
+  check_disk(sliced, "hyperbolic slice");
+  const LayoutH2Result layout =
+      layout_h2(sliced.mesh, sliced_edge_lengths(sliced, flow_result.lengths));
+  CanonicalDomain& domain = result.domain;
+  const int n = static_cast<int>(sliced.mesh.n_vertices());
+  domain.positions.resize(n, 2);
+  for (int v = 0; v < n; ++v) {
+    domain.positions.row(v) << layout.positions[v].real(), layout.positions[v].imag();
+  }
+  copy_faces(sliced.mesh, domain);
+  // Every copy of each boundary edge, as two-point polylines, by loop.
+  std::vector<int> loop_of(tables.num_vertices(), -1);
+  for (size_t k = 0; k < tables.boundary_loops.size(); ++k) {
+    for (int v : tables.boundary_loops[k]) loop_of[v] = static_cast<int>(k);
+  }
+  for (HalfedgeHandle h : sliced.mesh.halfedges()) {
+    if (!sliced.mesh.is_boundary(h)) continue;
+    const int a = sliced.mesh.from_vertex_handle(h).idx();
+    const int b = sliced.mesh.to_vertex_handle(h).idx();
+    const int original = sliced.to_original_halfedge[h.idx()];
+    if (original < 0 || !mesh.is_boundary(mesh.halfedge_handle(original))) continue;
+    domain.boundaries.push_back({a, b});
+    domain.boundary_loop.push_back(loop_of[sliced.to_original_vertex[a]]);
+  }
 }
 
 }  // namespace ricci::detail
