@@ -17,7 +17,7 @@ namespace {
 
 const char* kUsage =
     "msp module MESH [--json] [-o domain.svg] [--corners a,b,c,d] "
-    "[--kind auto|annulus|rectangle|flat-torus|hyperbolic|fuchsian] [--tolerance T] "
+    "[--kind auto|annulus|rectangle|flat-torus|circle-domain|hyperbolic|fuchsian] [--tolerance T] "
     "[--solver auto|eigen-ldlt|eigen-llt|cholmod-supernodal|cholmod-simplicial] "
     "[--metric circle-packing|inversive-distance] [--radii mean|min|least-squares]";
 
@@ -29,8 +29,12 @@ void print_summary(const ricci::Mesh& mesh, const ricci::ModuleResult& r) {
     std::cout << r.names[i] << " " << r.values[i] << "\n";
   }
   if (!r.invariant) std::cout << "invariant no (depends on the cut graph's basis)\n";
-  if (r.kind == ricci::ModuleKind::Annulus || r.kind == ricci::ModuleKind::Rectangle) {
+  if (r.kind == ricci::ModuleKind::Annulus || r.kind == ricci::ModuleKind::Rectangle ||
+      r.kind == ricci::ModuleKind::CircleDomain) {
     std::cout << "roundness " << r.roundness << "\n";
+  }
+  if (r.kind == ricci::ModuleKind::CircleDomain) {
+    std::cout << "circle_iterations " << r.circle_iterations << "\n";
   }
   if (r.preparation != "as given") {
     std::cout << "preparation " << r.preparation << " (" << r.faces_used << " faces)\n";

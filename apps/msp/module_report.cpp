@@ -64,6 +64,7 @@ nlohmann::json module_json(const std::string& path, const ricci::Mesh& mesh,
   j["vector"] = result.values;
   j["invariant"] = result.invariant;
   j["roundness"] = result.roundness;
+  j["circle_iterations"] = result.circle_iterations;
   j["preparation"] = result.preparation;
   j["faces_used"] = result.faces_used;
   j["corners"] = result.corners;

@@ -20,6 +20,9 @@ std::string what_is_drawn(ricci::ModuleKind kind) {
       return "flat metric with right-angled corners: the rectangle of width 1 (corners dotted)";
     case ricci::ModuleKind::FlatTorus:
       return "fundamental domain of the flat torus, first translation = 1";
+    case ricci::ModuleKind::CircleDomain:
+      return "flat metric with round boundaries, laid out and Mobius-normalised: c0 the unit "
+             "circle, c1 centred at 0, c2 on the positive real axis";
     case ricci::ModuleKind::Fuchsian:
       return "fundamental domain in the Poincare disk";
     case ricci::ModuleKind::Hyperbolic:

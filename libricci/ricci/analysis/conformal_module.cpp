@@ -27,6 +27,7 @@ std::string to_string(ModuleKind kind) {
     case ModuleKind::Annulus: return "annulus";
     case ModuleKind::Rectangle: return "rectangle";
     case ModuleKind::FlatTorus: return "flat-torus";
+    case ModuleKind::CircleDomain: return "circle-domain";
     case ModuleKind::Hyperbolic: return "hyperbolic";
     default: return "fuchsian";
   }
@@ -35,20 +36,23 @@ std::string to_string(ModuleKind kind) {
 bool parse_module_kind(const std::string& name, ModuleKind& kind) {
   if (name == "auto") return false;
   for (ModuleKind k : {ModuleKind::Sphere, ModuleKind::Annulus, ModuleKind::Rectangle,
-                       ModuleKind::FlatTorus, ModuleKind::Hyperbolic, ModuleKind::Fuchsian}) {
+                       ModuleKind::FlatTorus, ModuleKind::CircleDomain, ModuleKind::Hyperbolic,
+                       ModuleKind::Fuchsian}) {
     if (name == to_string(k)) {
       kind = k;
       return true;
     }
   }
   throw InvalidInputError("unknown module kind '" + name +
-                          "' (auto, annulus, rectangle, flat-torus, hyperbolic, fuchsian)");
+                          "' (auto, annulus, rectangle, flat-torus, circle-domain, hyperbolic, "
+                          "fuchsian)");
 }
 
 namespace detail {
 
-void record_flow(const FlowResult& flow, ModuleResult& result) {
-  result.converged = flow.converged();
+void record_flow(const FlowResult& flow, const ModuleOptions& options, ModuleResult& result) {
+  const bool floor = flow.status == FlowStatus::Stalled && flow.max_error < options.accepted_error;
+  result.converged = flow.converged() || floor;
   result.flow_iterations = flow.iterations;
   result.flow_error = flow.max_error;
   result.message = flow.message;
@@ -67,133 +71,6 @@ void copy_faces(const Mesh& mesh, CanonicalDomain& domain) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-/// Edges of a shortest path (under `lengths`) from loop `from` to loop `to`, from its vertex on
-/// `from` to its vertex on `to`, through interior edges. Multi-source Dijkstra: every vertex of
-/// `from` starts at 0, so the path meets each loop only at its ends.
-std::vector<HalfedgeHandle> shortest_path_between(const Mesh& mesh, const MeshTables& tables,
-                                                  const EdgeLengths& lengths, int from, int to) {
-  const int n = tables.num_vertices();
-  std::vector<int> loop_of(n, -1);
-  for (size_t k = 0; k < tables.boundary_loops.size(); ++k) {
-    for (int v : tables.boundary_loops[k]) loop_of[v] = static_cast<int>(k);
-  }
-  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-  std::vector<HalfedgeHandle> parent(n);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (int v : tables.boundary_loops[from]) {
-    dist[v] = 0;
-    queue.push({0.0, v});
-  }
-  int end = -1;
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[v]) continue;
-    if (loop_of[v] == to) {
-      end = v;
-      break;
-    }
-    // A path through another boundary loop would not cut the surface along one arc.
-    if (loop_of[v] >= 0 && loop_of[v] != from) continue;
-    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
-      if (mesh.is_boundary(mesh.edge_handle(h))) continue;
-      const int w = mesh.to_vertex_handle(h).idx();
-      const double nd = d + lengths[mesh.edge_handle(h).idx()];
-      if (nd < dist[w]) {
-        dist[w] = nd;
-        parent[w] = h;
-        queue.push({nd, w});
-      }
-    }
-  }
-  if (end < 0) throw TopologyError("no path joins the two boundary loops through the interior");
-  std::vector<HalfedgeHandle> path;
-  for (int v = end; dist[v] > 0; v = mesh.from_vertex_handle(parent[v]).idx()) {
-    path.push_back(parent[v]);
-  }
-  std::reverse(path.begin(), path.end());
-  return path;
-}
-
-/// Genus 0, two boundary loops: Algorithm 4.
-void annulus_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
-                    ModuleResult& result) {
-  Targets targets;
-  targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
-  const FlowResult flow_result = flow(mesh, targets, options.flow);
-  detail::record_flow(flow_result, result);
-  const std::vector<HalfedgeHandle> path =
-      shortest_path_between(mesh, tables, flow_result.lengths, 0, 1);
-  std::vector<char> is_cut(mesh.n_edges(), 0);
-  for (HalfedgeHandle h : path) is_cut[mesh.edge_handle(h).idx()] = 1;
-  const SlicedMesh sliced = slice_along(mesh, is_cut);
-  check_disk(sliced, "annulus slice");
-  const LayoutE2Result layout =
-      layout_e2(sliced.mesh, sliced_edge_lengths(sliced, flow_result.lengths));
-  const auto at = [&](HalfedgeHandle h) {
-    const int v = sliced.mesh.from_vertex_handle(h).idx();
-    return Complex(layout.positions(v, 0), layout.positions(v, 1));
-  };
-  // The period: the left copy of a path vertex minus its right copy (the same for every copy
-  // because the flat cylinder's holonomy is a translation: each boundary's total geodesic
-  // curvature is 0).
-  Complex period = 0;
-  int count = 0;
-  for (HalfedgeHandle h : path) {
-    const int k = mesh.halfedge_handle(mesh.edge_handle(h), 0) == h ? 0 : 1;
-    const CutEdgeSides& sides = *std::find_if(
-        sliced.cut_sides.begin(), sliced.cut_sides.end(),
-        [&](const CutEdgeSides& s) { return s.edge == mesh.edge_handle(h); });
-    // side[k] runs along h on its left; side[1-k] runs against it on the right.
-    const HalfedgeHandle left = sides.side[k], right = sides.side[1 - k];
-    period += at(left) - at(sliced.mesh.next_halfedge_handle(right));
-    period += at(sliced.mesh.next_halfedge_handle(left)) - at(right);
-    count += 2;
-  }
-  period /= count;
-  // w = 2πi p / T sends the period to 2πi: Re w is the log-radius after exp.
-  const Complex scale = Complex(0, 2 * M_PI) / period;
-  const int n = sliced.mesh.n_vertices();
-  Eigen::VectorXcd w(n);
-  for (int v = 0; v < n; ++v) {
-    w[v] = scale * Complex(layout.positions(v, 0), layout.positions(v, 1));
-  }
-  std::vector<int> copy_of(tables.num_vertices(), -1), loop_of(tables.num_vertices(), -1);
-  for (int v = 0; v < n; ++v) copy_of[sliced.to_original_vertex[v]] = v;
-  for (int k = 0; k < 2; ++k) {
-    for (int v : tables.boundary_loops[k]) loop_of[v] = k;
-  }
-  double mean[2] = {0, 0};
-  for (int k = 0; k < 2; ++k) {
-    for (int v : tables.boundary_loops[k]) mean[k] += w[copy_of[v]].real();
-    mean[k] /= static_cast<double>(tables.boundary_loops[k].size());
-  }
-  result.values = {std::abs(mean[1] - mean[0]) / (2 * M_PI)};
-  result.names = {"module"};
-  result.roundness = 0;
-  for (int s = 0; s < n; ++s) {
-    const int k = loop_of[sliced.to_original_vertex[s]];
-    if (k >= 0) result.roundness = std::max(result.roundness, std::abs(w[s].real() - mean[k]));
-  }
-  result.corners = {mesh.from_vertex_handle(path.front()).idx(),
-                    mesh.to_vertex_handle(path.back()).idx()};
-  CanonicalDomain& domain = result.domain;
-  const double outer = std::max(mean[0], mean[1]);
-  domain.positions.resize(n, 2);
-  for (int v = 0; v < n; ++v) {
-    const Complex z = std::exp(w[v] - outer);
-    domain.positions.row(v) << z.real(), z.imag();
-  }
-  detail::copy_faces(sliced.mesh, domain);
-  for (const auto& loop : tables.boundary_loops) {
-    std::vector<int> polyline;
-    for (int v : loop) polyline.push_back(copy_of[v]);
-    domain.boundary_loop.push_back(static_cast<int>(domain.boundaries.size()));
-    domain.boundaries.push_back(polyline);
-  }
-}
 
 /// The single boundary loop run with the surface on its left (counter-clockwise in a planar
 /// layout); MeshTables lists the face-less halfedges' order, the other way round.
@@ -269,7 +146,7 @@ void rectangle_module(const Mesh& mesh, const MeshTables& tables, const ModuleOp
   targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
   for (int c : result.corners) targets.curvature[c] = 0.5 * M_PI;
   const FlowResult flow_result = flow(mesh, targets, options.flow);
-  detail::record_flow(flow_result, result);
+  detail::record_flow(flow_result, options, result);
   const LayoutE2Result layout = layout_e2(mesh, flow_result.lengths);
   const auto at = [&](int v) { return Complex(layout.positions(v, 0), layout.positions(v, 1)); };
   Complex p[4];
@@ -318,7 +195,7 @@ ModuleKind natural_kind(const SurfaceTopology& t) {
   }
   if (t.genus == 0 && t.boundary_loops == 1) return ModuleKind::Rectangle;
   if (t.genus == 0 && t.boundary_loops == 2) return ModuleKind::Annulus;
-  return ModuleKind::Hyperbolic;
+  return t.genus == 0 ? ModuleKind::CircleDomain : ModuleKind::Hyperbolic;
 }
 
 /// \throw InvalidInputError when `kind` does not fit the topology.
@@ -329,13 +206,17 @@ void check_kind(ModuleKind kind, const SurfaceTopology& t) {
     case ModuleKind::Annulus: need = "a genus-0 surface with two boundary loops"; break;
     case ModuleKind::Rectangle: need = "a genus-0 surface with one boundary loop"; break;
     case ModuleKind::FlatTorus: need = "a closed genus-1 surface"; break;
+    case ModuleKind::CircleDomain:
+      need = "a genus-0 surface with three or more boundary loops";
+      break;
     case ModuleKind::Fuchsian: need = "a closed surface of genus 2 or more"; break;
     case ModuleKind::Hyperbolic:
       need = "an open surface of negative Euler characteristic (genus 0 with three or more "
              "boundary loops, or genus 1 or more with boundary)";
       break;
   }
-  if (kind != natural_kind(t)) {
+  const bool hyperbolic_fits = t.boundary_loops > 0 && 2 - 2 * t.genus - t.boundary_loops < 0;
+  if (kind != natural_kind(t) && !(kind == ModuleKind::Hyperbolic && hyperbolic_fits)) {
     throw InvalidInputError("the " + to_string(kind) + " module needs " + need + "; the mesh is " +
                             topology_text(t));
   }
@@ -353,10 +234,13 @@ void module_on(const Mesh& mesh, const ModuleOptions& options, ModuleResult& res
     case ModuleKind::Sphere:
       result.converged = true;
       break;
-    case ModuleKind::Annulus: annulus_module(mesh, tables, options, result); break;
+    case ModuleKind::Annulus: detail::annulus_module(mesh, tables, options, result); break;
     case ModuleKind::Rectangle: rectangle_module(mesh, tables, options, result); break;
     case ModuleKind::FlatTorus:
     case ModuleKind::Fuchsian: detail::uniformized_module(mesh, options, result); break;
+    case ModuleKind::CircleDomain:
+      detail::circle_domain_module(mesh, tables, options, result);
+      break;
     case ModuleKind::Hyperbolic: detail::hyperbolic_module(mesh, tables, options, result); break;
   }
 }
@@ -375,7 +259,10 @@ ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
   blank.genus = topology.genus;
   blank.boundary_loops = topology.boundary_loops;
   blank.kind = natural_kind(topology);
-  if (options.force_kind) check_kind(options.kind, topology);
+  if (options.force_kind) {
+    check_kind(options.kind, topology);
+    blank.kind = options.kind;
+  }
   if (blank.kind != ModuleKind::Rectangle && !options.corners.empty()) {
     throw InvalidInputError("corners are for the rectangle module of a disk; the mesh is " +
                             topology_text(topology));

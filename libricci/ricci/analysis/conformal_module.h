@@ -11,10 +11,16 @@
 //               height / width (the sides from corner 1 to 2 and 3 to 0 against 0 to 1, 2 to 3);
 //   flat torus  genus 1, closed: the modulus τ of the flat torus reduced to the SL(2, Z)
 //               fundamental domain |Re τ| <= 1/2, |τ| >= 1 (values Re τ, Im τ);
-//   hyperbolic  open surfaces with χ < 0 (genus 0 with 3+ boundaries, genus >= 1 with
+//   circle      genus 0, n + 1 >= 3 boundaries: the unit disk with n circular holes (the
+//   domain      flat metric whose loops have constant geodesic curvature, by a fixed point of
+//               the flow's boundary targets), boundaries ordered by 3D length (c0 the longest,
+//               the unit circle), normalised by a Möbius map so that c1 is centred at 0 and
+//               c2's centre lies on the positive real axis; module = (r1, x2, r2, x3, y3, r3,
+//               ...) (Algorithm 7's answer, by another iteration);
+//   hyperbolic  open surfaces with χ < 0 and genus >= 1 (or asked for, genus 0 with 3+
 //               boundaries): the hyperbolic metric with geodesic boundaries; module = the
-//               boundaries' hyperbolic lengths, longest first (Algorithm 6; complete for three
-//               boundaries, a partial invariant beyond);
+//               boundaries' hyperbolic lengths, longest first (Algorithm 6; complete for a
+//               pair of pants, a partial invariant beyond);
 //   fuchsian    genus >= 2, closed: the translation lengths 2 acosh(|tr|/2) of the canonical
 //               Fuchsian generators a1 b1 ... of uniformize(). They are conformal invariants of
 //               the marked surface only: another cut graph (basis) gives other numbers, so the
@@ -32,9 +38,9 @@
 
 namespace ricci {
 
-enum class ModuleKind { Sphere, Annulus, Rectangle, FlatTorus, Hyperbolic, Fuchsian };
+enum class ModuleKind { Sphere, Annulus, Rectangle, FlatTorus, CircleDomain, Hyperbolic, Fuchsian };
 
-/// "sphere", "annulus", "rectangle", "flat-torus", "hyperbolic", "fuchsian".
+/// "sphere", "annulus", "rectangle", "flat-torus", "circle-domain", "hyperbolic", "fuchsian".
 std::string to_string(ModuleKind kind);
 /// The inverse of to_string, plus "auto" (returns false for it).
 /// \throw InvalidInputError for an unknown name.
@@ -49,6 +55,13 @@ struct ModuleOptions {
     o.tolerance = 1e-11;
     return o;
   }();
+  /// A flow that stalls at its rounding floor (large meshes in H2) is accepted when its
+  /// max |K - K̄| is below this (radians).
+  double accepted_error = 1e-7;
+  /// Circle domain: the iteration stops when no boundary target changes by more than this
+  /// (radians), or after max_circle_iterations flows.
+  double circle_tolerance = 1e-9;
+  int max_circle_iterations = 200;
   /// Kind of module asked for; false = chosen from the topology (see the file comment).
   bool force_kind = false;
   ModuleKind kind = ModuleKind::Annulus;
@@ -66,7 +79,8 @@ struct ModuleOptions {
 };
 
 /// The canonical domain for pictures: the mesh sliced open and laid out (annulus in the unit
-/// disk, rectangle of width 1, the flat torus's parallelogram with a = 1, the Poincaré disk).
+/// disk, rectangle of width 1, the flat torus's parallelogram with a = 1, the circle domain,
+/// the Poincaré disk).
 struct CanonicalDomain {
   Eigen::MatrixX3i faces;             ///< #F by 3, into positions.
   Eigen::MatrixX2d positions;         ///< By vertex of the sliced mesh.
@@ -82,15 +96,16 @@ struct ModuleResult {
   int genus = 0;
   int boundary_loops = 0;
   /// The module as coordinates (the vector msp index compares), with a name for each:
-  /// annulus {module}, rectangle {aspect_ratio}, flat torus {re_tau, im_tau}, hyperbolic
-  /// {length_0, ...}, fuchsian {a1, b1, ...}.
+  /// annulus {module}, rectangle {aspect_ratio}, flat torus {re_tau, im_tau}, circle domain
+  /// {r1, x2, r2, x3, y3, r3, ...}, hyperbolic {length_0, ...}, fuchsian {a1, b1, ...}.
   std::vector<double> values;
   std::vector<std::string> names;
   /// False when equal surfaces may give different values (fuchsian: depends on the basis).
   bool invariant = true;
   /// Shape of the canonical domain: annulus, the largest deviation of a boundary vertex's
   /// log-radius from its loop's mean; rectangle, the largest distance of a boundary vertex from
-  /// its side's line, over the width; 0 for the others.
+  /// its side's line, over the width; circle domain, the largest |distance to the centre -
+  /// radius| / radius of a boundary vertex; 0 for the others.
   double roundness = 0;
   /// The mesh the module was computed on: "as given", "flat edges flipped" (vertex indices
   /// kept) or "remeshed" (new vertices; `corners` and `domain` refer to them).
@@ -102,6 +117,7 @@ struct ModuleResult {
   /// The flow: converged or not (not converged: the values are a best effort), iterations,
   /// max |K - K̄|, the failure paragraph.
   bool converged = false;
+  int circle_iterations = 0;  ///< Circle domain: flows run (one per target update).
   int flow_iterations = 0;
   double flow_error = 0;
   std::string message;

@@ -19,7 +19,7 @@ void uniformized_module(const Mesh& mesh, const ModuleOptions& options, ModuleRe
   // The layouts' closure needs the uniformize default's tighter tolerance.
   uniformize_options.flow.tolerance = std::min(options.flow.tolerance, 1e-12);
   const Uniformization u = uniformize(mesh, uniformize_options);
-  record_flow(u.flow, result);
+  record_flow(u.flow, options, result);
   if (!u.converged()) return;
   const Eigen::Index n = u.positions.size();
   CanonicalDomain& domain = result.domain;
@@ -54,7 +54,7 @@ void hyperbolic_module(const Mesh& mesh, const MeshTables& tables, const ModuleO
   Targets targets;
   targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
   const FlowResult flow_result = flow(mesh, targets, flow_options);
-  record_flow(flow_result, result);
+  record_flow(flow_result, options, result);
   std::vector<double> lengths;
   for (const std::vector<int>& loop : tables.boundary_loops) {
     double length = 0;
