@@ -62,6 +62,7 @@ nlohmann::json module_json(const std::string& path, const ricci::Mesh& mesh,
   for (size_t i = 0; i < result.values.size(); ++i) values[result.names[i]] = result.values[i];
   j["module"] = values;
   j["vector"] = result.values;
+  j["names"] = result.names;
   j["invariant"] = result.invariant;
   j["roundness"] = result.roundness;
   j["circle_iterations"] = result.circle_iterations;

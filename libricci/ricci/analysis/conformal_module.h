@@ -61,7 +61,10 @@ struct ModuleOptions {
   /// Circle domain: the iteration stops when no boundary target changes by more than this
   /// (radians), or after max_circle_iterations flows.
   double circle_tolerance = 1e-9;
-  int max_circle_iterations = 200;
+  int max_circle_iterations = 100;
+  /// Circle domain: a result whose boundary vertices leave their fitted circles by more than
+  /// this fraction of the radius is reported as not converged.
+  double max_roundness = 0.05;
   /// Kind of module asked for; false = chosen from the topology (see the file comment).
   bool force_kind = false;
   ModuleKind kind = ModuleKind::Annulus;

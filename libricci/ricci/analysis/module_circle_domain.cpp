@@ -115,8 +115,9 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables,
     const Targets next = targets_for(current.lengths);
     const double change = (next.curvature - targets.curvature).cwiseAbs().maxCoeff();
     // The circle domains form a family (Möbius maps of the disk) along which the targets may
-    // keep sliding at a constant rate once the shape is round: stop when the change stalls.
-    if (change < options.circle_tolerance || (sweep > 3 && change > 0.9 * last_change)) break;
+    // keep sliding at a constant rate once the shape is round: stop when a small change stalls.
+    const bool sliding = sweep > 3 && change > 0.9 * last_change && change < 1e-6;
+    if (change < options.circle_tolerance || sliding) break;
     last_change = change;
     // Half steps: the full update overshoots and grows.
     targets.curvature += 0.5 * (next.curvature - targets.curvature);
@@ -162,6 +163,13 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables,
                    std::abs(std::abs(z[v] - circles[k].centre) - circles[k].radius) /
                        circles[k].radius);
     }
+  }
+  if (result.roundness > options.max_roundness) {
+    result.converged = false;
+    result.message = "the circle-domain iteration did not converge: a boundary vertex is " +
+                     std::to_string(result.roundness) +
+                     " of its loop's radius off its circle after " +
+                     std::to_string(result.circle_iterations) + " flows";
   }
   for (int k = 1; k <= holes; ++k) {
     const std::string index = std::to_string(k);
