@@ -72,5 +72,31 @@ TEST(CircleDomain, ConformalImagesKeepTheModule) {
       kFiveHoles, 1e-3);
 }
 
+TEST(HyperbolicModule, SymmetricHolesHaveEqualLengthsAndScaleDoesNothing) {
+  // The domain is symmetric under z -> -z (up to the jittered lattice): equal hole lengths.
+  const Mesh mesh = testing::circle_domain_mesh({{-0.4, 0, 0.2}, {0.4, 0, 0.2}}, 0.03);
+  ModuleOptions options;
+  options.force_kind = true;
+  options.kind = ModuleKind::Hyperbolic;
+  const ModuleResult result = conformal_module(mesh, options);
+  ASSERT_TRUE(result.converged) << result.message;
+  ASSERT_EQ(result.values.size(), 3u);
+  EXPECT_GT(result.values[0], result.values[1]);
+  EXPECT_NEAR(result.values[1], result.values[2], 1e-2 * result.values[1]);
+  const ModuleResult scaled = conformal_module(
+      testing::mapped(mesh, [](const Eigen::Vector3d& p) { return Eigen::Vector3d(1e3 * p); }),
+      options);
+  for (size_t i = 0; i < 3; ++i) EXPECT_NEAR(scaled.values[i], result.values[i], 1e-9);
+}
+
+TEST(FuchsianModule, GenusTwoIsFlaggedNotInvariant) {
+  const ModuleResult result = conformal_module(make_genus_slab(2, 2, 4));
+  ASSERT_TRUE(result.converged) << result.message;
+  EXPECT_EQ(result.kind, ModuleKind::Fuchsian);
+  EXPECT_EQ(result.values.size(), 4u);
+  EXPECT_FALSE(result.invariant);
+  for (double length : result.values) EXPECT_GT(length, 0.0);
+}
+
 }  // namespace
 }  // namespace ricci
