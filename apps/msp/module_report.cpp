@@ -86,7 +86,7 @@ ricci::ModuleResult module_of_file(const std::string& path, const ricci::ModuleO
     throw ricci::InvalidInputError(path + ": " + e.what());
   }
   if (!result.converged) {
-    throw ricci::SolverError(path + ": the flow did not converge: " + result.message);
+    throw ricci::SolverError(path + ": " + result.message);
   }
   return result;
 }

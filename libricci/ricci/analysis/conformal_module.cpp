@@ -269,7 +269,10 @@ ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
   }
   ModuleResult result = blank;
   module_on(mesh, options, result);
-  if (!result.converged && options.retry) {
+  // Another triangulation helps a flow that broke triangles, not a circle domain that stays
+  // out of round.
+  const bool retry = options.retry && result.circle_iterations < options.max_circle_iterations;
+  if (!result.converged && retry) {
     Mesh flipped = mesh;
     if (flip_flat_edges_to_delaunay(flipped).flips > 0) {
       result = blank;
@@ -277,7 +280,7 @@ ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
       module_on(flipped, options, result);
     }
   }
-  if (!result.converged && options.retry && options.corners.empty()) {
+  if (!result.converged && retry && options.corners.empty()) {
     SimplifyOptions remesh;
     remesh.target_faces = static_cast<int>(mesh.n_faces());
     const Mesh remeshed = simplify_mesh(mesh, remesh).mesh;
