@@ -116,7 +116,7 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables,
     const double change = (next.curvature - targets.curvature).cwiseAbs().maxCoeff();
     // The circle domains form a family (Möbius maps of the disk) along which the targets may
     // keep sliding at a constant rate once the shape is round: stop when a small change stalls.
-    const bool sliding = sweep > 3 && change > 0.9 * last_change && change < 1e-6;
+    const bool sliding = sweep > 3 && change > 0.9 * last_change && change < 1e-5;
     if (change < options.circle_tolerance || sliding) break;
     last_change = change;
     // Half steps: the full update overshoots and grows.
