@@ -12,5 +12,7 @@ int run_fit(int argc, char** argv);
 int run_edit(int argc, char** argv);
 int run_eval(int argc, char** argv);
 int run_bezier(int argc, char** argv);
+int run_module(int argc, char** argv);
+int run_index(int argc, char** argv);
 
 }  // namespace msp

@@ -29,6 +29,8 @@ const Subcommand kSubcommands[] = {
      "evaluate a spline file: position, derivatives, normal, curvatures (points, closest points)"},
     {"bezier", msp::run_bezier,
      "export a spline file's exact polynomial pieces as Bezier patches (JSON)"},
+    {"module", msp::run_module, "conformal module: annulus, rectangle, flat torus, hyperbolic"},
+    {"index", msp::run_index, "conformal modules of meshes grouped by topology, distances"},
 };
 
 void print_usage() {
