@@ -18,5 +18,6 @@ int run_fill_benchmark(int argc, char** argv);    // bench_fill.cpp
 int run_one_cone_benchmark(int argc, char** argv);  // bench_one_cone.cpp
 int run_one_cone_case(int argc, char** argv);       // bench_one_cone.cpp
 int run_uniformize_benchmark(int argc, char** argv);  // bench_uniformize.cpp
+int run_spline_file_benchmark(int argc, char** argv);  // bench_spline_file.cpp
 
 }  // namespace msp::bench

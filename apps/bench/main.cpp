@@ -40,6 +40,8 @@ const Benchmark kBenchmarks[] = {
     {"one-cone-one", msp::bench::run_one_cone_case, "one row of 'one-cone' in this process"},
     {"topology", msp::bench::run_topology_benchmark,
      "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
+    {"spline-file", msp::bench::run_spline_file_benchmark,
+     "spline file (.msp) of a 4000-face domain fit: size per section, save / load ms vs the fit"},
     {"uniformize", msp::bench::run_uniformize_benchmark,
      "issue 7: uniformization (flow, cut, layout, Fuchsian group) at the Ricci-flow paper's Table I sizes"},
 };
