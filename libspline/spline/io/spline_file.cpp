@@ -263,6 +263,7 @@ std::vector<std::uint8_t> encode_spline_surface(const SplineSurface& surface,
 
 SplineFile decode_spline_file(const std::vector<std::uint8_t>& bytes, const std::string& source) {
   ByteReader file(bytes.data(), bytes.size(), source, "file");
+  if (bytes.empty()) file.fail("the file is empty");
   if (std::memcmp(bytes.data(), kMagic, std::min(bytes.size(), sizeof kMagic)) != 0) {
     file.fail("not an msp spline file (bad magic bytes)");
   }

@@ -168,7 +168,7 @@ ricci::AffineAtlas read_atlas(ByteReader& in, const FaceCorners& corners, int ve
   if (atlas.neighbourhood_chart.size() != corners.size()) {
     in.fail("inconsistent counts: the neighbourhood charts do not have one entry per face");
   }
-  atlas.charts.resize(in.count(41, "charts"));
+  atlas.charts.resize(in.count(21, "charts"));  // kind, source, two empty lists
   if (atlas.charts.empty()) in.invalid("there are no charts");
   for (std::size_t c = 0; c < atlas.charts.size(); ++c) {
     atlas.charts[c] = read_chart(in, corners, vertex_count, "chart " + str(c));
