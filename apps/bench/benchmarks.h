@@ -22,5 +22,6 @@ int run_uniformize_benchmark(int argc, char** argv);  // bench_uniformize.cpp
 int run_check_glb(int argc, char** argv);  // bench_check_glb.cpp
 int run_eval_benchmark(int argc, char** argv);        // bench_surface.cpp
 int run_bezier_benchmark(int argc, char** argv);      // bench_surface.cpp
+int run_spline_file_benchmark(int argc, char** argv);  // bench_spline_file.cpp
 
 }  // namespace msp::bench

@@ -44,6 +44,8 @@ const Benchmark kBenchmarks[] = {
      "surface evaluation (position, normal, curvatures) us/point; closest-point index and queries"},
     {"bezier", msp::bench::run_bezier_benchmark,
      "Bezier export of a fitted surface: seconds, patches and knot segments per face"},
+    {"spline-file", msp::bench::run_spline_file_benchmark,
+     "spline file (.msp) of a 4000-face domain fit: size per section, save / load ms vs the fit"},
     {"uniformize", msp::bench::run_uniformize_benchmark,
      "issue 7: uniformization (flow, cut, layout, Fuchsian group) at the Ricci-flow paper's Table I sizes"},
     {"check-glb", msp::bench::run_check_glb,

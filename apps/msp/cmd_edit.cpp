@@ -68,8 +68,7 @@ spline::EditReport apply(spline::SplineSurface& surface, const Move& move) {
     return spline::move_region(surface, {v[0], v[1], v[2]}, v[3], {v[4], v[5], v[6]});
   }
   if (v[0] != static_cast<double>(static_cast<long long>(v[0]))) {
-    throw UsageError("option --move-point expects an integer index, got " +
-                     std::to_string(v[0]));
+    throw UsageError("option --move-point expects an integer index, got " + std::to_string(v[0]));
   }
   return spline::move_control_points(surface, {static_cast<int>(v[0])}, {{v[1], v[2], v[3]}});
 }

@@ -10,6 +10,7 @@
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <spline/basis/multi_index.h>
+#include <spline/io/spline_file.h>
 #include <spline/surface/fit_surface.h>
 #include <nlohmann/json.hpp>
 
@@ -26,8 +27,8 @@ const char* kUsage =
     "msp fit MESH -o OUT.glb [--domain-faces N] [--degree n] [--fairness r] "
     "[--singularity auto|VERTEX] [--fill-boundaries] [--json REPORT] [--density d] "
     "[--cone-refinement LEVELS] [--smoothing LAMBDA] "
-    "[--obj OUT.obj] [--ply OUT.ply] [--checkerboard] [--checker-squares N] [--control-net] "
-    "[--domain] [--cut-loops] [--quiet]";
+    "[--obj OUT.obj] [--ply OUT.ply] [--spline OUT.msp] [--checkerboard] [--checker-squares N] "
+    "[--control-net] [--domain] [--cut-loops] [--quiet]";
 
 using Clock = std::chrono::steady_clock;
 
@@ -98,10 +99,12 @@ void check_outputs(const Args& args) {
     throw UsageError("--obj must name an .obj file, not '" + *obj + "'");
   if (auto ply = args.get("ply"); ply && !ends_with(*ply, ".ply"))
     throw UsageError("--ply must name a .ply file, not '" + *ply + "'");
-  if (!glb && !args.has("obj") && !args.has("ply") && !args.has("json"))
-    throw UsageError("nothing to write: give -o OUT.glb (or --obj, --ply, --json)");
+  if (auto msp = args.get("spline"); msp && !ends_with(*msp, ".msp"))
+    throw UsageError("--spline must name an .msp file, not '" + *msp + "'");
+  if (!glb && !args.has("obj") && !args.has("ply") && !args.has("json") && !args.has("spline"))
+    throw UsageError("nothing to write: give -o OUT.glb (or --obj, --ply, --json, --spline)");
   // A missing folder is found before the work, not after the first file is written.
-  for (const char* name : {"output", "obj", "ply", "json"}) {
+  for (const char* name : {"output", "obj", "ply", "json", "spline"}) {
     const auto path = args.get(name);
     if (!path) continue;
     const std::filesystem::path folder = std::filesystem::path(*path).parent_path();
@@ -134,7 +137,7 @@ int run_fit(int argc, char** argv) {
             {"fill-boundaries", "checkerboard", "control-net", "domain", "cut-loops", "quiet"});
   args.require_known({"output", "domain-faces", "degree", "fairness", "singularity",
                       "fill-boundaries", "json", "density", "cone-refinement", "smoothing", "obj",
-                      "ply", "checkerboard", "checker-squares", "control-net", "domain",
+                      "ply", "spline", "checkerboard", "checker-squares", "control-net", "domain",
                       "cut-loops", "quiet"});
   args.require_positionals(1, kUsage);
   check_outputs(args);
@@ -170,7 +173,7 @@ int run_fit(int argc, char** argv) {
   // Every output is made in memory first, then written: a failure leaves no file behind.
   progress.start("export");
   t = Clock::now();
-  std::vector<std::uint8_t> glb, ply;
+  std::vector<std::uint8_t> glb, ply, spline_file;
   std::string obj;
   nlohmann::json report = fit_report_json(path, run, options);
   if (args.has("output")) {
@@ -179,6 +182,10 @@ int run_fit(int argc, char** argv) {
   }
   if (args.has("obj")) obj = tessellation_obj(run.tessellation);
   if (args.has("ply")) ply = tessellation_ply(run.tessellation);
+  if (args.has("spline")) {
+    spline_file =
+        spline::encode_spline_surface(run.surface, {{"tool", "msp fit"}, {"input", path}});
+  }
   const double export_seconds = std::chrono::duration<double>(Clock::now() - t).count();
   auto& seconds = report["seconds"];
   seconds["read"] = read_seconds;
@@ -189,6 +196,7 @@ int run_fit(int argc, char** argv) {
   if (args.has("output")) write_bytes_atomically(*args.get("output"), glb);
   if (args.has("obj")) write_text_atomically(*args.get("obj"), obj);
   if (args.has("ply")) write_bytes_atomically(*args.get("ply"), ply);
+  if (args.has("spline")) write_bytes_atomically(*args.get("spline"), spline_file);
   if (args.has("json")) write_text_atomically(*args.get("json"), report.dump(2) + "\n");
   progress.finish();
   if (!args.has("quiet")) {

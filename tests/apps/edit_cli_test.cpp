@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -73,7 +74,8 @@ TEST(EditCli, MovesARegionAndAControlPoint) {
   const spline::SplineFile edited = spline::read_spline_file(region);
   EXPECT_EQ(edited.header.provenance.at("tool"), "test");
   EXPECT_EQ(edited.header.provenance.at("edited_by"), "msp edit");
-  const Eigen::MatrixX3d delta = edited.surface.spline.control_points - surface.spline.control_points;
+  const Eigen::MatrixX3d delta =
+      edited.surface.spline.control_points - surface.spline.control_points;
   EXPECT_GT(delta.col(2).maxCoeff(), 0.0);
   EXPECT_LE(delta.col(2).maxCoeff(), 0.05 + 1e-12);
   EXPECT_EQ(delta.leftCols(2).cwiseAbs().maxCoeff(), 0.0);
@@ -89,6 +91,30 @@ TEST(EditCli, MovesARegionAndAControlPoint) {
   fs::remove_all(dir);
 }
 
+// msp fit --spline writes the fitted surface (with its cone patch), msp edit reads it.
+TEST(EditCli, FitWritesASplineFileThatEditReads) {
+  const fs::path dir = scratch();
+  const std::string fitted = (dir / "genus2.msp").string();
+  const std::string json = (dir / "genus2.json").string();
+  auto result = run_msp({"fit", std::string(MSP_SOURCE_DIR) + "/models/genus2.off", "--spline",
+                         fitted, "--json", json, "--domain-faces", "400", "--density", "3",
+                         "--quiet"});
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const spline::SplineFile file = spline::read_spline_file(fitted);
+  EXPECT_EQ(file.header.provenance.at("tool"), "msp fit");
+  EXPECT_EQ(file.surface.fills.size(), 1u);
+  std::ifstream report_file(json);
+  const auto report = nlohmann::json::parse(report_file);
+  EXPECT_EQ(file.surface.spline.control_points.rows(), report.at("control_points").get<int>());
+  result = run_msp({"edit", fitted, "--move-point", "0", "0", "0", "0.01", "-o",
+                    (dir / "edited.msp").string()});
+  EXPECT_EQ(result.exit_status, 0) << result.err;
+  result = run_msp({"fit", std::string(MSP_SOURCE_DIR) + "/models/genus2.off", "--spline",
+                    (dir / "x.glb").string(), "--quiet"});
+  EXPECT_EQ(result.exit_status, 2) << result.err;  // --spline must name an .msp file
+  fs::remove_all(dir);
+}
+
 TEST(EditCli, BadCommandLinesAreRefused) {
   const fs::path dir = scratch();
   const std::string input = (dir / "torus.msp").string();
@@ -96,10 +122,10 @@ TEST(EditCli, BadCommandLinesAreRefused) {
   const std::string out = (dir / "out.msp").string();
   const std::vector<std::vector<std::string>> usage_errors = {
       {"edit", input, "--move-region", "0", "0", "0", "1", "0", "0", "0.1"},  // no -o
-      {"edit", input, "-o", out},                                            // no move
-      {"edit", input, "--move-region", "0", "0", "0", "-o", out},            // too few numbers
-      {"edit", input, "--move-point", "x", "0", "0", "1", "-o", out},        // not a number
-      {"edit", input, "--move-point", "1.5", "0", "0", "1", "-o", out},      // not an index
+      {"edit", input, "-o", out},                                             // no move
+      {"edit", input, "--move-region", "0", "0", "0", "-o", out},             // too few numbers
+      {"edit", input, "--move-point", "x", "0", "0", "1", "-o", out},         // not a number
+      {"edit", input, "--move-point", "1.5", "0", "0", "1", "-o", out},       // not an index
       {"edit", input, "--scale", "2", "--move-point", "1", "0", "0", "1", "-o", out},
   };
   for (const auto& args : usage_errors) {
@@ -108,12 +134,13 @@ TEST(EditCli, BadCommandLinesAreRefused) {
     EXPECT_EQ(line_count(result.err), 1) << result.err;
     EXPECT_FALSE(fs::exists(out));
   }
-  const auto result = run_msp({"edit", input, "--move-point", "99999999", "0", "0", "1", "-o", out});
+  const auto result =
+      run_msp({"edit", input, "--move-point", "99999999", "0", "0", "1", "-o", out});
   EXPECT_EQ(result.exit_status, 1) << result.err;
   EXPECT_NE(result.err.find("control point 99999999 is outside"), std::string::npos) << result.err;
   EXPECT_FALSE(fs::exists(out));
-  const auto radius = run_msp({"edit", input, "--move-region", "0", "0", "0", "-1", "0", "0", "1",
-                               "-o", out});
+  const auto radius =
+      run_msp({"edit", input, "--move-region", "0", "0", "0", "-1", "0", "0", "1", "-o", out});
   EXPECT_EQ(radius.exit_status, 1) << radius.err;
   EXPECT_FALSE(fs::exists(out));
   fs::remove_all(dir);

@@ -127,8 +127,7 @@ class ByteReader {
     if (remaining() < 12) fail("file ends before section " + name + " (truncated)");
     const std::uint8_t* p = take(4);
     if (std::memcmp(p, tag, 4) != 0) {
-      fail("expected section " + name + " at byte " + std::to_string(pos_ - 4) +
-           ", found another");
+      fail("expected section " + name + " at byte " + std::to_string(pos_ - 4) + ", found another");
     }
     const std::uint64_t length = u64();
     if (length > remaining()) {
@@ -142,8 +141,8 @@ class ByteReader {
   /// Refuses bytes left over (a section longer than its contents).
   void expect_end() const {
     if (remaining() != 0) {
-      fail("inconsistent counts: " + std::to_string(remaining()) + " bytes left over at the end of " +
-           where_);
+      fail("inconsistent counts: " + std::to_string(remaining()) +
+           " bytes left over at the end of " + where_);
     }
   }
   [[noreturn]] void fail(const std::string& problem) const {

@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstring>
 #include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -108,8 +108,7 @@ ricci::Mesh read_mesh(ByteReader& in) {
 
 // The space from the stored atlas and clouds; its own checks (stars glued in their charts,
 // clouds starting at their vertices within the DMS bound) are reported as the file's.
-std::shared_ptr<const ManifoldSplineSpace> make_space(const ByteReader& in,
-                                                      const ricci::Mesh& mesh,
+std::shared_ptr<const ManifoldSplineSpace> make_space(const ByteReader& in, const ricci::Mesh& mesh,
                                                       const ricci::AffineAtlas& atlas, int degree,
                                                       std::vector<KnotCloud> clouds) {
   try {
@@ -211,10 +210,9 @@ std::vector<std::uint8_t> encode_spline_surface(const SplineSurface& surface,
   if (!surface.spline.space) throw ricci::InvalidInputError("spline file: the spline has no space");
   const ManifoldSplineSpace& space = *surface.spline.space;
   if (surface.spline.control_points.rows() != space.function_count()) {
-    throw ricci::InvalidInputError("spline file: " +
-                                   std::to_string(surface.spline.control_points.rows()) +
-                                   " control points for " +
-                                   std::to_string(space.function_count()) + " functions");
+    throw ricci::InvalidInputError(
+        "spline file: " + std::to_string(surface.spline.control_points.rows()) +
+        " control points for " + std::to_string(space.function_count()) + " functions");
   }
   const ricci::Mesh& domain = surface.domain;
   const auto live_faces = std::distance(domain.faces_sbegin(), domain.faces_end());
@@ -265,6 +263,7 @@ std::vector<std::uint8_t> encode_spline_surface(const SplineSurface& surface,
 
 SplineFile decode_spline_file(const std::vector<std::uint8_t>& bytes, const std::string& source) {
   ByteReader file(bytes.data(), bytes.size(), source, "file");
+  if (bytes.empty()) file.fail("the file is empty");
   if (std::memcmp(bytes.data(), kMagic, std::min(bytes.size(), sizeof kMagic)) != 0) {
     file.fail("not an msp spline file (bad magic bytes)");
   }

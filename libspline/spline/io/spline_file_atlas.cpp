@@ -87,8 +87,8 @@ ricci::Chart read_chart(ByteReader& in, const FaceCorners& corners, int vertex_c
     for (int k = 0; k < 3; ++k) {
       const int copy = chart.corners(r, k);
       if (copy < 0 || copy >= copies) {
-        in.invalid(what + " face " + std::to_string(face) + " has corner " +
-                   std::to_string(copy) + " outside its " + str(copies) + " vertices");
+        in.invalid(what + " face " + std::to_string(face) + " has corner " + std::to_string(copy) +
+                   " outside its " + str(copies) + " vertices");
       }
       if (chart.to_original_vertex[copy] != corners[face][k]) {
         in.invalid(what + " face " + std::to_string(face) + " corner " + std::to_string(k) +
@@ -168,7 +168,7 @@ ricci::AffineAtlas read_atlas(ByteReader& in, const FaceCorners& corners, int ve
   if (atlas.neighbourhood_chart.size() != corners.size()) {
     in.fail("inconsistent counts: the neighbourhood charts do not have one entry per face");
   }
-  atlas.charts.resize(in.count(41, "charts"));
+  atlas.charts.resize(in.count(21, "charts"));  // kind, source, two empty lists
   if (atlas.charts.empty()) in.invalid("there are no charts");
   for (std::size_t c = 0; c < atlas.charts.size(); ++c) {
     atlas.charts[c] = read_chart(in, corners, vertex_count, "chart " + str(c));
@@ -242,8 +242,7 @@ void write_points(ByteWriter& out, const Eigen::MatrixX3d& points) {
   for (Eigen::Index r = 0; r < points.rows(); ++r) out.vec3(points.row(r).transpose());
 }
 
-Eigen::MatrixX3d read_points(ByteReader& in, Eigen::Index expected_rows,
-                             const std::string& what) {
+Eigen::MatrixX3d read_points(ByteReader& in, Eigen::Index expected_rows, const std::string& what) {
   const auto rows = static_cast<Eigen::Index>(in.count(24, what + "s"));
   if (rows != expected_rows) {
     in.fail("inconsistent counts: " + std::to_string(rows) + " " + what + "s for " +

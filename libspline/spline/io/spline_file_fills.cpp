@@ -36,8 +36,8 @@ std::vector<std::vector<Eigen::Vector2d>> read_curve(ByteReader& in, std::size_t
                                                      const std::string& what) {
   std::vector<std::vector<Eigen::Vector2d>> curve(in.count(8, what + " lists"));
   if (curve.size() != edges) {
-    in.fail("inconsistent counts: " + str(curve.size()) + " " + what + " lists for " +
-            str(edges) + " rim edges");
+    in.fail("inconsistent counts: " + str(curve.size()) + " " + what + " lists for " + str(edges) +
+            " rim edges");
   }
   for (std::size_t j = 0; j < curve.size(); ++j) {
     curve[j].resize(in.count(16, what));
@@ -123,8 +123,7 @@ Rim read_rim(ByteReader& in, const FaceCorners& corners, const ManifoldSplineSpa
     RimEdge& e = rim.edges[j];
     e.face = in.i32();
     e.corner = in.i32();
-    if (e.face < 0 || e.face >= faces || !space.in_domain(e.face) || e.corner < 0 ||
-        e.corner > 2) {
+    if (e.face < 0 || e.face >= faces || !space.in_domain(e.face) || e.corner < 0 || e.corner > 2) {
       in.invalid(what + " edge " + str(j) + " (face " + std::to_string(e.face) + ", corner " +
                  std::to_string(e.corner) + ") is not a corner of a spline domain face");
     }
@@ -140,8 +139,7 @@ Rim read_rim(ByteReader& in, const FaceCorners& corners, const ManifoldSplineSpa
   for (std::size_t i = 0; i < rim.covered_faces.size(); ++i) {
     const int f = in.i32();
     if (f < 0 || f >= faces || (i > 0 && f <= rim.covered_faces[i - 1])) {
-      in.invalid(what + " covered face " + std::to_string(f) +
-                 " is out of range or out of order");
+      in.invalid(what + " covered face " + std::to_string(f) + " is out of range or out of order");
     }
     rim.covered_faces[i] = f;
   }

@@ -104,10 +104,10 @@ std::vector<double> face_distances(const SplineSurface& surface, const Eigen::Ve
     if (!surface.skipped_faces.empty() && surface.skipped_faces[face]) return;
     double nearest = std::numeric_limits<double>::infinity();
     for (const Eigen::Vector3d& b : barycentrics) {
-      const Eigen::Vector3d p = combine(space.evaluate_basis({face, b}, -1, {},
-                                                             BasisDerivatives::none),
-                                        surface.spline.control_points, -1)
-                                    .position;
+      const Eigen::Vector3d p =
+          combine(space.evaluate_basis({face, b}, -1, {}, BasisDerivatives::none),
+                  surface.spline.control_points, -1)
+              .position;
       nearest = std::min(nearest, (p - centre).norm());
     }
     distance[face] = nearest;

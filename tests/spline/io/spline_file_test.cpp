@@ -14,16 +14,19 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
-#include "spline/io/spline_file.h"
+#include "ricci/mesh/io.h"
 #include "spline/io/bad_splines.h"
+#include "spline/io/spline_file.h"
 #include "spline/io/spline_file_bytes.h"
+#include "spline/surface/fit_surface.h"
 #include "spline/surface/surface_fixtures.h"
+#include "spline/surface/tessellate_surface.h"
 
 namespace spline {
 namespace {
 
-using testing::small_surface;
 using testing::section_offset;
+using testing::small_surface;
 
 template <typename A, typename B>
 bool same_bits(const A& a, const B& b) {
@@ -41,9 +44,12 @@ bool same_jet(const SurfaceJet& a, const SurfaceJet& b) {
          same_bits(a.dvv, b.dvv) && same_bits(a.normal, b.normal);
 }
 
-const Eigen::Vector3d kBarycentrics[] = {
-    {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0}, {0.6, 0.3, 0.1}, {0.05, 0.9, 0.05}, {1.0, 0.0, 0.0},
-    {0.5, 0.5, 0.0},                   {0.0, 0.25, 0.75}};
+const Eigen::Vector3d kBarycentrics[] = {{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0},
+                                         {0.6, 0.3, 0.1},
+                                         {0.05, 0.9, 0.05},
+                                         {1.0, 0.0, 0.0},
+                                         {0.5, 0.5, 0.0},
+                                         {0.0, 0.25, 0.75}};
 
 // Every domain face at kBarycentrics: the loaded spline's jets equal the saved one's bit for bit.
 void expect_same_spline(const ManifoldSpline& saved, const ManifoldSpline& loaded) {
@@ -133,9 +139,32 @@ TEST(SplineFile, TorusWithoutFillsEvaluatesBitForBit) {
   expect_round_trip(surface);
 }
 
+// fit_surface's surface (cone-refined domain, cone and boundary patches, surface moved to meet
+// them): read back, it evaluates bit for bit and tessellates to the very same mesh.
+TEST(SplineFile, FittedSurfaceReadBackTessellatesBitForBit) {
+  FitSurfaceOptions options;
+  options.domain_faces = 400;
+  options.density = 3;
+  options.fill_boundaries = true;
+  const FittedSurface fitted = fit_surface(
+      ricci::read_mesh(std::string(MSP_SOURCE_DIR) + "/models/genus2_two_holes.off"), options);
+  ASSERT_GE(fitted.surface.fills.size(), 2u);
+  expect_round_trip(fitted.surface);
+  const SplineSurface loaded =
+      decode_spline_file(encode_spline_surface(fitted.surface), "fitted").surface;
+  TessellationOptions tessellation;
+  tessellation.density = fitted.tessellation.density;
+  const Tessellation t = tessellate_surface(loaded, tessellation);
+  EXPECT_TRUE(same_bits(t.positions, fitted.tessellation.positions));
+  EXPECT_TRUE(same_bits(t.normals, fitted.tessellation.normals));
+  EXPECT_TRUE(same_bits(t.uvs, fitted.tessellation.uvs));
+  EXPECT_EQ(t.triangles, fitted.tessellation.triangles);
+}
+
 TEST(SplineFile, SaveIsAtomicAndLoadReadsItBack) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("msp_spline_file_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("msp_spline_file_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const SplineSurface& surface = small_surface("genus1.off", 200);
   const std::string path = (dir / "torus.msp").string();
@@ -198,9 +227,9 @@ TEST(SplineFileBad, TruncatedAnywhereIsRefused) {
       expect_refused<ricci::IOError>(cut, n < 16 && n > 0 ? "truncated" : "");
     }
   }
-  expect_refused<ricci::IOError>(std::vector<std::uint8_t>(torus_bytes().begin(),
-                                                           torus_bytes().end() - 1),
-                                 "file ends before section END (truncated)");
+  expect_refused<ricci::IOError>(
+      std::vector<std::uint8_t>(torus_bytes().begin(), torus_bytes().end() - 1),
+      "file ends before section END (truncated)");
 }
 
 TEST(SplineFileBad, WrongMagicAndVersionAreRefused) {
@@ -208,8 +237,7 @@ TEST(SplineFileBad, WrongMagicAndVersionAreRefused) {
   bytes[1] = 'X';
   expect_refused<ricci::IOError>(bytes, "not an msp spline file");
   const std::string text = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  expect_refused<ricci::IOError>(std::vector<std::uint8_t>(text.begin(), text.end()),
-                                 "bad magic");
+  expect_refused<ricci::IOError>(std::vector<std::uint8_t>(text.begin(), text.end()), "bad magic");
   bytes = torus_bytes();
   bytes[8] = 2;  // version 2
   expect_refused<ricci::IOError>(bytes, "format version 2 is not supported");

@@ -67,8 +67,8 @@ TEST(Edit, MovingOneControlPointChangesOnlyItsSupport) {
   const EditReport report = move_control_points(after, {function}, {{0.0, 0.05, -0.02}});
   EXPECT_EQ(report.moved_functions, std::vector<int>{function});
   EXPECT_DOUBLE_EQ(report.max_displacement, Eigen::Vector3d(0.0, 0.05, -0.02).norm());
-  const int face = before.spline.space->domain_faces()[function /
-                                                       before.spline.space->functions_per_face()];
+  const int face =
+      before.spline.space->domain_faces()[function / before.spline.space->functions_per_face()];
   EXPECT_EQ(report.affected_faces, function_support_faces(before, face));
   EXPECT_GT(expect_unchanged_outside(before, after, report.affected_faces), 0);
   // The surface moves by N_f(u) times the displacement.
@@ -90,14 +90,13 @@ TEST(Edit, BadIndicesAndDisplacementsAreRefused) {
                ricci::InvalidInputError);
   EXPECT_THROW((void)move_control_points(surface, {0, 1}, {Eigen::Vector3d::UnitX()}),
                ricci::InvalidInputError);
-  EXPECT_THROW(
-      (void)move_control_points(surface, {0}, {Eigen::Vector3d::Constant(std::nan(""))}),
-      ricci::InvalidInputError);
+  EXPECT_THROW((void)move_control_points(surface, {0}, {Eigen::Vector3d::Constant(std::nan(""))}),
+               ricci::InvalidInputError);
   EXPECT_THROW((void)move_region(surface, Eigen::Vector3d::Zero(), 0.0, Eigen::Vector3d::UnitX()),
                ricci::InvalidInputError);
-  EXPECT_THROW((void)move_region(surface, Eigen::Vector3d::Zero(), std::nan(""),
-                                 Eigen::Vector3d::UnitX()),
-               ricci::InvalidInputError);
+  EXPECT_THROW(
+      (void)move_region(surface, Eigen::Vector3d::Zero(), std::nan(""), Eigen::Vector3d::UnitX()),
+      ricci::InvalidInputError);
   EXPECT_TRUE(surface.spline.control_points == points);  // unchanged by refused edits
 }
 
@@ -106,7 +105,8 @@ std::pair<DomainPoint, double> point_far_from_rims(const SplineSurface& surface)
   std::vector<Eigen::Vector3d> rim_points;
   for (const HoleFill& fill : surface.fills) {
     for (const RimEdge& e : fill.rim.edges) {
-      rim_points.push_back(surface.spline.evaluate({e.face, rim_edge_barycentric(e, 0.5)}).position);
+      rim_points.push_back(
+          surface.spline.evaluate({e.face, rim_edge_barycentric(e, 0.5)}).position);
     }
   }
   std::pair<DomainPoint, double> best{{}, -1.0};
