@@ -40,7 +40,7 @@ const char* kind_name(spline::Rim::Kind kind) {
 
 std::vector<std::string> default_models() {
   std::vector<std::string> models;
-  const std::string shared = MSP_SHARED_MODELS_DIR;
+  const std::string shared = shared_models();
   for (const char* dir : {"closed_g0", "closed_g1", "closed_g2", "closed_g3", "open"}) {
     std::vector<std::string> found;
     for (const auto& entry : std::filesystem::directory_iterator(shared + "/" + dir)) {

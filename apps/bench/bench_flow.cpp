@@ -56,8 +56,6 @@ long status_kb(const std::string& field) {
 // Resets VmHWM to the current RSS (Linux clear_refs 5), so the next peak is the flow's own.
 void reset_peak_memory() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
-std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
-
 ricci::Mesh load(const std::string& path, int levels) {
   ricci::Mesh mesh = ricci::read_mesh(path);
   for (int i = 0; i < levels; ++i) mesh = ricci::subdivide_midpoint(mesh);
@@ -181,7 +179,7 @@ int run_flow_benchmark(int argc, char** argv) {
     int levels;
   };
   const std::string self = self_executable();
-  const std::string m = models();
+  const std::string m = shared_models();
   std::vector<Case> cases = {{m + "/closed_g1/elk.off", 0},        {m + "/closed_g1/knot1.off", 0},
                              {m + "/bench/torus_10k.obj", 0},      {m + "/closed_g1/kitten_nf20k.off", 0},
                              {m + "/closed_g1/rocker-arm.off", 0}, {m + "/closed_g1/kitten_nf20k.off", 1},
@@ -243,7 +241,7 @@ int run_flow_benchmark(int argc, char** argv) {
 int run_solver_benchmark(int argc, char** argv) {
   Args args(argc, argv, {"no-1m"});
   args.require_known({"no-1m"});
-  const std::string m = models();
+  const std::string m = shared_models();
   std::vector<std::pair<std::string, int>> cases = {{m + "/bench/torus_10k.obj", 0},
                                                     {m + "/bench/torus_100k.obj", 0}};
   if (!args.has("no-1m")) cases.push_back({m + "/closed_g1/kitten_nf20k.off", 3});

@@ -26,7 +26,7 @@ using Clock = std::chrono::steady_clock;
 
 // Every closed genus 0-3 model (OFF/OBJ; horse.ply duplicates horse.off), sorted.
 std::vector<std::string> default_models() {
-  const fs::path root(MSP_SHARED_MODELS_DIR);
+  const fs::path root(shared_models());
   std::vector<std::string> models;
   for (const char* folder : {"closed_g0", "closed_g1", "closed_g2", "closed_g3"}) {
     std::vector<std::string> here;
@@ -73,7 +73,7 @@ int run_loop_benchmark(int argc, char** argv) {
           "[models...]\n");
       return 0;
     } else {
-      models.push_back(fs::exists(arg) ? arg : std::string(MSP_SHARED_MODELS_DIR) + "/" + arg);
+      models.push_back(fs::exists(arg) ? arg : shared_models() + "/" + arg);
     }
   }
   if (models.empty()) models = default_models();

@@ -36,7 +36,7 @@ double best_ms(Function&& run) {
 int run_mesh_io_benchmark(int argc, char** argv) {
   std::vector<std::string> files(argv, argv + argc);
   if (files.empty()) {
-    const std::string models = MSP_SHARED_MODELS_DIR;
+    const std::string models = shared_models();
     for (const char* name :
          {"closed_g0/venus.off", "closed_g0/armadillo.obj", "closed_g0/horse.ply",
           "open/stanford-bunny.obj", "bench/genus3_100k.obj"})

@@ -1,7 +1,8 @@
 // msp-bench one-cone / one-cone-one: the whole one-cone pipeline (valence modification, Ricci
-// flow, cut graph, layout, atlas) on the bench meshes of ../shared/models/bench and the genus 1-3
-// models, each mesh in a child process so that its peak memory is its own; the figures of
-// issue 8 against CEPS and Campen et al. (bench/README.md).
+// flow, cut graph, layout, atlas) on the bench meshes of the model collection (MSP_SHARED_MODELS,
+// folder bench/) and the genus 1-3 models, each mesh in a child process so that its peak memory
+// is its own; the figures of issue 8 against CEPS and Campen et al. (the collection's
+// bench/README.md).
 #include <sys/resource.h>
 #include <sys/wait.h>
 
@@ -211,8 +212,6 @@ std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
   return rules;
 }
 
-std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
-
 }  // namespace
 
 int run_one_cone_case(int argc, char** argv) {
@@ -332,7 +331,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
     std::string path, cone;
     int levels;
   };
-  const std::string m = models();
+  const std::string m = shared_models();
   std::vector<Case> cases;
   for (const char* name : {"torus_10k", "genus2_10k", "genus3_10k", "sphere_10k", "cap_10k", "torus_100k",
                            "genus2_100k", "genus3_100k", "sphere_100k", "cap_100k"}) {

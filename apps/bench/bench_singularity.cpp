@@ -47,7 +47,7 @@ int run_singularity_benchmark(int argc, char** argv) {
   std::vector<std::string> meshes;
   for (int i = 0; i < argc; ++i) meshes.emplace_back(argv[i]);
   if (meshes.empty()) {
-    const std::string root = MSP_SHARED_MODELS_DIR;
+    const std::string root = shared_models();
     meshes = {root + "/closed_g2/eight_cgal.off", root + "/closed_g2/joint.off", root + "/closed_g0/knight_decimated.off",
               root + "/closed_g3/helmet.off", root + "/closed_g2/eight.off"};
   }

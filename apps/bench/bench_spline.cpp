@@ -44,7 +44,7 @@ struct Stopwatch {
 };
 
 std::string shared(const std::string& relative) {
-  return std::string(MSP_SHARED_MODELS_DIR) + "/" + relative;
+  return shared_models() + "/" + relative;
 }
 
 Eigen::MatrixX3d vertex_matrix(const ricci::Mesh& mesh) {

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/info_subprocess.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -57,7 +58,7 @@ FitOutput run_fit(const std::string& model, const std::string& name, bool fill_b
 // the input's genus and boundary loops.
 TEST(FitFill, OpenModelKeepsOneLoopPerOpenRim) {
   const FitOutput out =
-      run_fit(std::string(MSP_SOURCE_DIR) + "/models/genus2_two_holes.off", "open", false);
+      run_fit(msp_test::bundled_model("genus2_two_holes.off"), "open", false);
   const auto& r = out.report;
   EXPECT_TRUE(r["watertight"].get<bool>()) << r.dump(1);
   EXPECT_EQ(r["boundary_loops"], 2);
@@ -74,7 +75,7 @@ TEST(FitFill, OpenModelKeepsOneLoopPerOpenRim) {
 // genus.
 TEST(FitFill, FillBoundariesClosesTheSurface) {
   const FitOutput out =
-      run_fit(std::string(MSP_SOURCE_DIR) + "/models/genus2_two_holes.off", "filled", true);
+      run_fit(msp_test::bundled_model("genus2_two_holes.off"), "filled", true);
   const auto& r = out.report;
   EXPECT_TRUE(r["watertight"].get<bool>()) << r.dump(1);
   EXPECT_EQ(r["open_rims"], 0);
@@ -91,7 +92,7 @@ TEST(FitFill, FillBoundariesClosesTheSurface) {
 // field (its rim normals span more than a hemisphere): main left it open.
 TEST(FitFill, PuncturedSphereIsCapped) {
   const FitOutput out =
-      run_fit(std::string(MSP_SHARED_MODELS) + "/closed_g0/knight_decimated.off", "sphere", false);
+      run_fit(msp_test::test_mesh("closed_g0/knight_decimated.off"), "sphere", false);
   const auto& r = out.report;
   EXPECT_TRUE(r["watertight"].get<bool>()) << r.dump(1);
   EXPECT_EQ(r["filled_rims"], 1);
@@ -101,7 +102,7 @@ TEST(FitFill, PuncturedSphereIsCapped) {
   EXPECT_EQ(out.surface.boundary_loops, 0);
 }
 
-// The seams at msp fit's defaults (2000 domain faces) on shared scans, issue 6's "maximum seam
+// The seams at msp fit's defaults (2000 domain faces) on real scans, issue 6's "maximum seam
 // normal jump below 1 degree". Earlier mains left them at 4.2 degrees (bunny_npm_closed: the
 // surface turns fast next to the rim's vertices; meet_patches moved it to the patch: 1.3; the
 // patch refined at the rim's corners: 0.78), 6.9 (femur: 0.44 with both), 169 (block: the cone
@@ -123,7 +124,7 @@ class FitSeams : public ::testing::TestWithParam<SeamCase> {};
 
 TEST_P(FitSeams, BelowOneDegreeAtTheDefaults) {
   const SeamCase& c = GetParam();
-  const FitOutput out = run_fit(std::string(MSP_SHARED_MODELS) + "/" + c.model, "seams", false,
+  const FitOutput out = run_fit(msp_test::test_mesh(c.model), "seams", false,
                                 {"--density", "3"});
   const auto& r = out.report;
   EXPECT_TRUE(r["watertight"].get<bool>()) << c.model;
@@ -134,7 +135,7 @@ TEST_P(FitSeams, BelowOneDegreeAtTheDefaults) {
 
 INSTANTIATE_TEST_SUITE_P(Scans, FitSeams,
                          ::testing::Values(SeamCase{"closed_g0/bunny_npm_closed.off", 0.002},
-                                           SeamCase{"closed_g2/femur.off", 0.002},
+                                           SeamCase{"closed_g2/femur.off.gz", 0.002},
                                            SeamCase{"closed_g2/joint.off", 0.0035},
                                            SeamCase{"closed_g3/block.off", 0.002},
                                            SeamCase{"closed_g3/elephant_cgal.off", 0.002},

@@ -7,13 +7,14 @@
 #include "ricci/mesh/primitives.h"
 #include "ricci/metric/curvature.h"
 #include "ricci/singularity/one_cone.h"
+#include "test_paths.h"
 
 namespace {
 
 // The 6 pi cone of the eight at vertex 5, its cone-tangent metric and the direct flow from it.
 struct EightCone {
   ricci::OneConeProblem problem =
-      ricci::prepare_one_cone(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off"), 5);
+      ricci::prepare_one_cone(ricci::read_mesh(msp_test::test_mesh("closed_g2/eight.off")), 5);
   ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   ricci::CirclePackingMetric initial =
       ricci::cone_tangent_metric(t, ricci::mesh_edge_lengths(problem.mesh), problem.cone, 3, ricci::RadiusInit::Mean);

@@ -6,11 +6,11 @@
 #include <ricci/metric/curvature.h>
 
 #include "ricci/test_meshes.h"
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
 
-using testing::shared_model;
 
 void expect_finite(const FlowResult& r) {
   EXPECT_TRUE(r.lengths.allFinite());
@@ -23,7 +23,8 @@ class FlatTorusTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(FlatTorusTest, ConvergesInFewNewtonIterations) {
   const std::string name = GetParam();
-  const Mesh mesh = name == "procedural" ? testing::torus(40, 25) : read_mesh(shared_model(name));
+  const Mesh mesh =
+      name == "procedural" ? testing::torus(40, 25) : read_mesh(msp_test::test_mesh(name));
   FlowOptions options;
   options.fall_back_to_other_metrics = true;
   const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
@@ -37,12 +38,12 @@ TEST_P(FlatTorusTest, ConvergesInFewNewtonIterations) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Genus1, FlatTorusTest,
-                         ::testing::Values("procedural", "closed_g1/kitten_nf20k.off",
-                                           "closed_g1/rocker-arm.off", "closed_g1/knot1.off",
+                         ::testing::Values("procedural", "closed_g1/kitten_nf20k.off.gz",
+                                           "closed_g1/rocker-arm.off.gz", "closed_g1/knot1.off.gz",
                                            "closed_g1/elk.off"));
 
 TEST(Flow, InversiveDistanceConvergesOnKittenWithoutFallback) {
-  const Mesh mesh = read_mesh(shared_model("closed_g1/kitten_nf20k.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/kitten_nf20k.off.gz"));
   const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
   ASSERT_TRUE(r.converged()) << r.message;
   EXPECT_EQ(r.metric.scheme, Scheme::InversiveDistance);
@@ -57,7 +58,7 @@ TEST(Flow, InversiveDistanceConvergesOnKittenWithoutFallback) {
 class HyperbolicTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(HyperbolicTest, UniformizationSatisfiesGaussBonnet) {
-  const Mesh mesh = read_mesh(shared_model(GetParam()));
+  const Mesh mesh = read_mesh(msp_test::test_mesh(GetParam()));
   FlowOptions options;
   options.geometry = Geometry::Hyperbolic;
   options.fall_back_to_other_metrics = true;
@@ -73,11 +74,11 @@ TEST_P(HyperbolicTest, UniformizationSatisfiesGaussBonnet) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Genus2And3, HyperbolicTest,
-                         ::testing::Values("closed_g2/eight.off", "closed_g3/genus3.off",
+                         ::testing::Values("closed_g2/eight.off", "closed_g3/genus3.off.gz",
                                            "closed_g3/helmet.off"));
 
 TEST(Flow, SphericalEitherConvergesOrSaysWhy) {
-  const Mesh mesh = read_mesh(shared_model("closed_g0/knight_decimated.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g0/knight_decimated.off"));
   FlowOptions options;
   options.geometry = Geometry::Spherical;
   options.tolerance = 1e-8;
@@ -92,7 +93,7 @@ TEST(Flow, SphericalEitherConvergesOrSaysWhy) {
 }
 
 TEST(Flow, SphericalUniformizationOfAGenus0Model) {
-  const Mesh mesh = read_mesh(shared_model("closed_g0/bunny_npm_closed.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g0/bunny_npm_closed.off"));
   FlowOptions options;
   options.geometry = Geometry::Spherical;
   options.tolerance = 1e-8;
@@ -117,7 +118,7 @@ TEST(Flow, SphericalConvergesOnARoundSphere) {
 }
 
 TEST(Flow, OpenSurfaceWithBoundaryCurvatureSpreadByLength) {
-  const Mesh mesh = read_mesh(shared_model("open/head.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("open/head.off"));
   FlowOptions options;
   options.fall_back_to_other_metrics = true;
   const Targets targets = boundary_target(mesh, BoundaryMode::SpreadByLength);
@@ -129,7 +130,7 @@ TEST(Flow, OpenSurfaceWithBoundaryCurvatureSpreadByLength) {
 }
 
 TEST(Flow, ScalingTheMeshChangesNothingButTheScale) {
-  Mesh mesh = read_mesh(shared_model("closed_g1/knot1.off"));
+  Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/knot1.off.gz"));
   const FlowResult a = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
   for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * 1e3);
   const FlowResult b = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
@@ -171,7 +172,7 @@ TEST(Targets, GaussBonnetViolationsAreRefusedBeforeAnyWork) {
   Targets bad{Eigen::VectorXd::Zero(torus.n_vertices())};
   bad.curvature[3] = 0.1;
   EXPECT_THROW((void)flow(torus, bad), InfeasibleTargetError);
-  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh eight = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   EXPECT_THROW((void)uniform_target(eight, Geometry::Euclidean), InfeasibleTargetError);
   // H2 needs Σ K̄ > 2πχ: a flat one-cone target has Σ K̄ = 2πχ exactly.
   FlowOptions h2;
@@ -188,7 +189,7 @@ TEST(Targets, GaussBonnetViolationsAreRefusedBeforeAnyWork) {
 }
 
 TEST(Targets, ConeNeedingMoreValenceAsksForValenceModification) {
-  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh eight = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   FlowOptions options;
   options.scheme = Scheme::CirclePacking;
   try {
@@ -200,7 +201,7 @@ TEST(Targets, ConeNeedingMoreValenceAsksForValenceModification) {
 }
 
 TEST(Targets, HelpersDistributeCurvature) {
-  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh eight = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   const Targets cone = single_cone_target(eight, 5);
   EXPECT_DOUBLE_EQ(cone.curvature[5], -4 * M_PI);
   EXPECT_EQ(cone.curvature.cwiseAbs().sum(), 4 * M_PI);
@@ -208,7 +209,7 @@ TEST(Targets, HelpersDistributeCurvature) {
   EXPECT_DOUBLE_EQ(cones.curvature.sum(), -4 * M_PI);
   EXPECT_THROW((void)cones_target(eight, {{1, 1.0}, {1, 1.0}}), InvalidInputError);
   EXPECT_THROW((void)single_cone_target(eight, -1), InvalidInputError);
-  const Mesh head = read_mesh(shared_model("open/head.off"));
+  const Mesh head = read_mesh(msp_test::test_mesh("open/head.off"));
   const Targets loop = boundary_target(head, BoundaryMode::OneLoop);
   const MeshTables t = build_mesh_tables(head);
   EXPECT_NEAR(loop.curvature.sum(), 2 * M_PI * t.euler_characteristic, 1e-12);
@@ -221,7 +222,7 @@ TEST(Targets, HelpersDistributeCurvature) {
 
 TEST(Flow, UnreachableTargetReturnsAStatusNamingTheWorstVertices) {
   // elk's inversive-distance metric has no flat solution with intact triangles.
-  const Mesh mesh = read_mesh(shared_model("closed_g1/elk.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/elk.off"));
   const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
   ASSERT_FALSE(r.converged());
   EXPECT_EQ(r.status, FlowStatus::TriangleInequality);
@@ -231,7 +232,7 @@ TEST(Flow, UnreachableTargetReturnsAStatusNamingTheWorstVertices) {
 }
 
 TEST(Flow, IterationBudgetIsAStatus) {
-  const Mesh mesh = read_mesh(shared_model("closed_g1/knot1.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/knot1.off.gz"));
   FlowOptions options;
   options.max_newton_iterations = 1;
   const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
@@ -241,7 +242,7 @@ TEST(Flow, IterationBudgetIsAStatus) {
 }
 
 TEST(Flow, EverySolverGivesTheSameMetric) {
-  const Mesh mesh = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   FlowOptions options;
   options.geometry = Geometry::Hyperbolic;
   EdgeLengths reference;

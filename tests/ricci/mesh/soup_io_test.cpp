@@ -13,6 +13,7 @@
 #include "ricci/mesh/diagnose.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/soup_io.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -217,9 +218,9 @@ TEST_F(SoupIo, GzipOfAnyFormatAndCaseInsensitiveExtensions) {
       write("D.OBJ", "v 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 -2.25\nf 1 2 3\nf 1 3 4\n")));
 }
 
-TEST_F(SoupIo, SharedDragonIsGzippedBinaryPly) {
+TEST_F(SoupIo, DragonIsGzippedBinaryPly) {
   const auto soup =
-      ricci::read_soup(std::string(MSP_SHARED_MODELS) + "/nonmanifold/dragon_vrip_res4.ply.gz");
+      ricci::read_soup(msp_test::test_mesh("nonmanifold/dragon_vrip_res4.ply.gz"));
   EXPECT_EQ(soup.positions.size(), 5205u);
   EXPECT_EQ(soup.faces.size(), 11102u);
 }

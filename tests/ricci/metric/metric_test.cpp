@@ -10,11 +10,11 @@
 #include <ricci/metric/subdivide.h>
 
 #include "ricci/test_meshes.h"
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
 
-using testing::shared_model;
 
 const Geometry kGeometries[] = {Geometry::Euclidean, Geometry::Hyperbolic, Geometry::Spherical};
 
@@ -70,7 +70,7 @@ TEST(CirclePacking, InversiveDistanceReproducesLengthsInEveryGeometry) {
 }
 
 TEST(CirclePacking, ThurstonWeightsAreClampedAndCombinatorialIsUniform) {
-  const Mesh mesh = read_mesh(shared_model("closed_g1/kitten_nf20k.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/kitten_nf20k.off.gz"));
   const MeshTables t = build_mesh_tables(mesh);
   const EdgeLengths l = mesh_edge_lengths(mesh);
   const CirclePackingMetric cp = initial_metric(t, l, Geometry::Euclidean, Scheme::CirclePacking, RadiusInit::Mean);
@@ -83,7 +83,7 @@ TEST(CirclePacking, ThurstonWeightsAreClampedAndCombinatorialIsUniform) {
 }
 
 TEST(CirclePacking, LeastSquaresFitIsNoWorseThanMeanRadii) {
-  const Mesh mesh = read_mesh(shared_model("closed_g1/knot1.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/knot1.off.gz"));
   const MeshTables t = build_mesh_tables(mesh);
   const EdgeLengths l = mesh_edge_lengths(mesh);
   const CirclePackingMetric mean = initial_metric(t, l, Geometry::Euclidean, Scheme::CirclePacking, RadiusInit::Mean);
@@ -111,11 +111,11 @@ TEST(CirclePacking, LengthDerivativeMatchesFiniteDifferences) {
   }
 }
 
-// Gauss-Bonnet on every class of shared model: closed genus 0..9 and open surfaces.
+// Gauss-Bonnet on every class of test mesh: closed genus 0..9 and open surfaces.
 class GaussBonnetOnModels : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(GaussBonnetOnModels, HoldsInEveryGeometry) {
-  const Mesh mesh = read_mesh(shared_model(GetParam()));
+  const Mesh mesh = read_mesh(msp_test::test_mesh(GetParam()));
   const MeshTables t = build_mesh_tables(mesh);
   EdgeLengths l = mesh_edge_lengths(mesh);
   EXPECT_LT(std::abs(gauss_bonnet_residual(t, l, Geometry::Euclidean)), 1e-8 * t.num_vertices());
@@ -130,11 +130,12 @@ TEST_P(GaussBonnetOnModels, HoldsInEveryGeometry) {
 
 INSTANTIATE_TEST_SUITE_P(
     Models, GaussBonnetOnModels,
-    ::testing::Values("closed_g0/knight_decimated.off", "closed_g0/spot.obj", "closed_g1/elk.off",
-                      "closed_g1/knot1.off", "closed_g2/eight.off", "closed_g2/joint.off",
+    ::testing::Values("closed_g0/knight_decimated.off", "closed_g0/spot.obj.gz",
+                      "closed_g1/elk.off", "closed_g1/knot1.off.gz", "closed_g2/eight.off",
+                      "closed_g2/joint.off",
                       "closed_g3/helmet.off", "closed_g3/block.off", "closed_g4plus/anchor.off",
                       "closed_g4plus/couplingdown.off", "open/head.off", "open/eight_hole.off",
-                      "open/holes.off"));
+                      "open/holes.off.gz"));
 
 TEST(MeshTables, RecordTopology) {
   const MeshTables disk = build_mesh_tables(testing::square(4));
@@ -148,7 +149,7 @@ TEST(MeshTables, RecordTopology) {
 }
 
 TEST(Subdivide, MidpointKeepsTopologyAndHalvesLengths) {
-  const Mesh mesh = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   const Mesh fine = subdivide_midpoint(mesh);
   EXPECT_EQ(fine.n_vertices(), mesh.n_vertices() + mesh.n_edges());
   EXPECT_EQ(fine.n_faces(), 4 * mesh.n_faces());

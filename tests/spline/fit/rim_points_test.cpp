@@ -11,6 +11,7 @@
 #include "ricci/mesh/io.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fit/fit.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
@@ -19,7 +20,7 @@ const ScanFitResult& genus2_hole() {
   static const ScanFitResult fit = [] {
     ScanFitOptions options;
     options.domain_faces = 2000;
-    return fit_scan(ricci::read_mesh(std::string(MSP_SOURCE_DIR) + "/models/genus2_hole.off"),
+    return fit_scan(ricci::read_mesh(msp_test::bundled_model("genus2_hole.off")),
                     options);
   }();
   return fit;
