@@ -38,12 +38,13 @@ void row(const std::string& models, const Case& c) {
   const ricci::Mesh mesh = prepared(models, c);
   const ricci::Uniformization u = ricci::uniformize(mesh);
   const auto& t = u.timings;
-  std::printf("%-14s %6zu %2d %-10s %8.3f %6.3f %6.3f %6.3f %7.3f  %-21s %5.2f  %6.1fx  |K|%.0e rel %.0e %s\n",
-              c.name, mesh.n_faces(), u.genus, ricci::to_string(u.geometry).c_str(), t.flow, t.cut,
-              t.layout, t.group, t.total, c.paper_model, c.paper_seconds, c.paper_seconds / t.total,
-              u.flow.max_error,
-              u.geometry == ricci::Geometry::Spherical ? 0.0 : u.group.relation_residual,
-              u.converged() ? "" : "NOT CONVERGED");
+  std::printf(
+      "%-14s %6zu %2d %-10s %8.3f %6.3f %6.3f %6.3f %7.3f  %-21s %5.2f  %6.1fx  |K|%.0e rel %.0e "
+      "%s\n",
+      c.name, mesh.n_faces(), u.genus, ricci::to_string(u.geometry).c_str(), t.flow, t.cut,
+      t.layout, t.group, t.total, c.paper_model, c.paper_seconds, c.paper_seconds / t.total,
+      u.flow.max_error, u.geometry == ricci::Geometry::spherical ? 0.0 : u.group.relation_residual,
+      u.converged() ? "" : "NOT CONVERGED");
   std::fflush(stdout);
 }
 

@@ -4,6 +4,7 @@
 // build exactly the clean ones into an OpenMesh surface with the same topology.
 #include <gtest/gtest.h>
 
+#include <ricci/mesh/boundary_loops.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <filesystem>
@@ -105,18 +106,6 @@ void check_against_index(const fs::path& folder) {
   }
 }
 
-/// Boundary loops of an OpenMesh surface, by walking boundary halfedges.
-int count_boundary_loops(const ricci::Mesh& mesh) {
-  std::vector<char> seen(mesh.n_halfedges(), 0);
-  int loops = 0;
-  for (const auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
-    ++loops;
-    for (auto g = h; !seen[g.idx()]; g = mesh.next_halfedge_handle(g)) seen[g.idx()] = 1;
-  }
-  return loops;
-}
-
 /// read_mesh() builds the clean rows (same chi and boundary loops after triangulation) and
 /// refuses the others with a TopologyError.
 void check_build(const fs::path& folder) {
@@ -129,7 +118,7 @@ void check_build(const fs::path& folder) {
     const ricci::Mesh mesh = ricci::read_mesh(path.string());
     const int chi = static_cast<int>(mesh.n_vertices()) - static_cast<int>(mesh.n_edges()) +
                     static_cast<int>(mesh.n_faces());
-    const int loops = count_boundary_loops(mesh);
+    const int loops = static_cast<int>(ricci::find_boundary_loops(mesh).size());
     EXPECT_EQ(loops, std::stoi(row.at("bdry loops")));
     EXPECT_EQ(2 - loops - chi, 2 * std::stoi(row.at("genus")));
     if (row.count("V")) {

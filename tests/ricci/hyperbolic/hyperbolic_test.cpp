@@ -30,7 +30,7 @@ TEST_P(HyperbolicModel, DomainGroupAndRelation) {
   const Mesh mesh = read_mesh(msp_test::test_mesh(GetParam().path));
   const Uniformization u = uniformize(mesh);
   ASSERT_TRUE(u.converged()) << u.flow.message;
-  EXPECT_EQ(u.geometry, Geometry::Hyperbolic);
+  EXPECT_EQ(u.geometry, Geometry::hyperbolic);
   EXPECT_LT(u.flow.max_error, 1e-10);
   // The metric the layout uses is the flow's polished in long double: its angle defects (each a
   // rotation that the relator sees conjugated by products of norm ~1e3) are gone.

@@ -46,9 +46,9 @@ struct Flowed {
 Flowed flowed_eight() {
   Flowed f{read_mesh(msp_test::test_mesh("closed_g2/eight_cgal.off")), {}};
   FlowOptions o;
-  o.geometry = Geometry::Hyperbolic;
+  o.geometry = Geometry::hyperbolic;
   o.tolerance = 1e-12;
-  f.flow = flow(f.mesh, uniform_target(f.mesh, Geometry::Hyperbolic), o);
+  f.flow = flow(f.mesh, uniform_target(f.mesh, Geometry::hyperbolic), o);
   return f;
 }
 

@@ -28,7 +28,7 @@ TEST(FlatTorus, TorusOfRevolutionHasTheAnalyticModulusAndScaleInvariance) {
   const Mesh mesh = make_torus(60, 24, R, r);
   const Uniformization u = uniformize(mesh);
   ASSERT_TRUE(u.converged()) << u.flow.message;
-  EXPECT_EQ(u.geometry, Geometry::Euclidean);
+  EXPECT_EQ(u.geometry, Geometry::euclidean);
   EXPECT_LT(u.flow.max_error, 1e-10);
   ASSERT_EQ(u.translations.size(), 2u);
   // Pure translations: the flat torus has no rotational holonomy; they commute.
@@ -61,14 +61,14 @@ TEST(Sphere, EmbeddingIsIsometricToTheFlowMetricOnTheUnitSphere) {
   options.centre_sphere = false;
   const Uniformization u = uniformize(mesh, options);
   ASSERT_TRUE(u.converged()) << u.flow.message;
-  EXPECT_EQ(u.geometry, Geometry::Spherical);
+  EXPECT_EQ(u.geometry, Geometry::spherical);
   EXPECT_LT(u.flow.max_error, 1e-10);
   EXPECT_LT(u.sphere.max_radius_error, 1e-12);
   EXPECT_EQ(u.sphere.flipped_faces, 0);
   EXPECT_LT(u.sphere.max_relative_length_error, 1e-9);
   // Corner angles of the embedded spherical triangles equal the flow metric's.
   const MeshTables tables = build_mesh_tables(u.surface);
-  const Eigen::MatrixX3d angles = corner_angles(tables, u.flow.lengths, Geometry::Spherical);
+  const Eigen::MatrixX3d angles = corner_angles(tables, u.flow.lengths, Geometry::spherical);
   double worst = 0.0;
   for (int f = 0; f < tables.num_faces(); ++f) {
     for (int k = 0; k < 3; ++k) {
@@ -138,9 +138,9 @@ TEST(DoubleCover, UniformizationMakesTheBoundaryGeodesic) {
   ASSERT_TRUE(u.converged()) << u.flow.message;
   EXPECT_TRUE(u.doubled);
   EXPECT_EQ(u.genus, 2);
-  EXPECT_EQ(u.geometry, Geometry::Hyperbolic);
+  EXPECT_EQ(u.geometry, Geometry::hyperbolic);
   const MeshTables tables = build_mesh_tables(u.surface);
-  const Eigen::MatrixX3d angles = corner_angles(tables, u.flow.lengths, Geometry::Hyperbolic);
+  const Eigen::MatrixX3d angles = corner_angles(tables, u.flow.lengths, Geometry::hyperbolic);
   Eigen::VectorXd original_side = Eigen::VectorXd::Zero(mesh.n_vertices());
   for (int f = 0; f < static_cast<int>(mesh.n_faces()); ++f) {
     for (int k = 0; k < 3; ++k) original_side[tables.face_vertices(f, k)] += angles(f, k);

@@ -10,6 +10,7 @@
 
 #include "ricci/mesh/io.h"
 #include "ricci/pipeline/one_cone_atlas.h"
+#include "ricci/util/cross2d.h"
 #include "test_paths.h"
 
 namespace {
@@ -24,8 +25,6 @@ std::string resolve(const std::string& path) {
   if (path.rfind("models/", 0) == 0) return msp_test::bundled_model(path.substr(7));
   return msp_test::test_mesh(path);
 }
-
-double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
 
 class TenPiConeLayout : public ::testing::TestWithParam<Case> {};
 
@@ -44,7 +43,8 @@ TEST_P(TenPiConeLayout, EveryFacePositiveEveryEdgeExact) {
   for (auto f : sliced.faces()) {
     int v[3], k = 0;
     for (auto w : sliced.fv_range(f)) v[k++] = w.idx();
-    const double area = cross(layout.edge_vector(v[0], v[1]), layout.edge_vector(v[0], v[2]));
+    const double area =
+        ricci::cross2d(layout.edge_vector(v[0], v[1]), layout.edge_vector(v[0], v[2]));
     flipped += area < 0;
     zero += area == 0;
   }

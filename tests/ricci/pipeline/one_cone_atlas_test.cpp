@@ -153,7 +153,7 @@ TEST(OneConeAtlas, TenPiConeOnMarchingCubesKeepsTheMeshConformalMetric) {
   options.singular_vertex = 0;
   const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
   EXPECT_TRUE(r.flow.failed_attempts.empty()) << r.flow.failed_attempts.front();
-  EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::CirclePacking);
+  EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::circle_packing);
   EXPECT_LT(r.flow.max_error, 1e-10);
   EXPECT_EQ(r.atlas.layout.flipped_faces, 0);
   EXPECT_LT(r.relative_transition_residual(), 1e-9);
@@ -166,11 +166,11 @@ TEST(OneConeAtlas, BrokenTrianglesAreRecorded) {
   ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
   const ricci::OneConeProblem problem = ricci::prepare_one_cone(mesh, 0);
   ricci::FlowOptions options = ricci::one_cone_flow_options();
-  options.scheme = ricci::Scheme::InversiveDistance;
-  options.radii = ricci::RadiusInit::Min;
+  options.scheme = ricci::Scheme::inversive_distance;
+  options.radii = ricci::RadiusInit::min;
   const ricci::FlowResult r = ricci::flow(problem.mesh, problem.targets, options);
   ASSERT_FALSE(r.converged());
-  EXPECT_EQ(r.status, ricci::FlowStatus::TriangleInequality);
+  EXPECT_EQ(r.status, ricci::FlowStatus::triangle_inequality);
   ASSERT_FALSE(r.broken_faces.empty());
   EXPECT_LE(r.broken_faces.size(), ricci::kMaxBrokenFacesRecorded);
   for (const ricci::BrokenTrial& b : r.broken_faces) {
@@ -231,11 +231,11 @@ TEST(OneConeAtlas, InversiveDistanceRouteIsNearlyConformalAndExact) {
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
   options.keep_metric = true;
-  options.flow.scheme = ricci::Scheme::InversiveDistance;
-  options.flow.radii = ricci::RadiusInit::Mean;
+  options.flow.scheme = ricci::Scheme::inversive_distance;
+  options.flow.radii = ricci::RadiusInit::mean;
   EXPECT_TRUE(ricci::takes_inversive_distance_route(mesh, options));
   const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
-  EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::InversiveDistance);
+  EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::inversive_distance);
   EXPECT_TRUE(r.flow.failed_attempts.empty()) << r.flow.failed_attempts.front();
   EXPECT_GT(r.flat_flips.flips, 1000);
   EXPECT_LT(r.flow.max_error, 1e-10);
@@ -253,7 +253,7 @@ TEST(OneConeAtlas, InversiveDistanceRouteOnlyWhenAskedForOnASingleCone) {
   ricci::OneConeAtlasOptions options;
   EXPECT_FALSE(ricci::takes_inversive_distance_route(genus2, options));  // the default metric order
   options.keep_metric = true;
-  options.flow.scheme = ricci::Scheme::InversiveDistance;
+  options.flow.scheme = ricci::Scheme::inversive_distance;
   EXPECT_TRUE(ricci::takes_inversive_distance_route(genus2, options));
   EXPECT_FALSE(ricci::takes_inversive_distance_route(torus, options));  // no cone
   options.inversive_distance_route = false;

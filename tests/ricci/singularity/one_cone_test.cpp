@@ -53,9 +53,11 @@ TEST(OneCone, ConeTangentMetricIsTangentNearTheConeAndTheMeshsPackingElsewhere) 
   auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g3/genus3.off.gz"), 100);
   const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
-  const auto packing = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean,
-                                             ricci::Scheme::CirclePacking, ricci::RadiusInit::Mean);
-  const auto blended = ricci::cone_tangent_metric(t, lengths, problem.cone, 3, ricci::RadiusInit::Mean);
+  const auto packing =
+      ricci::initial_metric(t, lengths, ricci::Geometry::euclidean, ricci::Scheme::circle_packing,
+                            ricci::RadiusInit::mean);
+  const auto blended =
+      ricci::cone_tangent_metric(t, lengths, problem.cone, 3, ricci::RadiusInit::mean);
   std::vector<char> near(problem.mesh.n_vertices(), 0);  // within 2 rings: its edges reach ring 3
   near[problem.cone] = 1;
   for (auto v : ricci::ring_neighbourhood(problem.mesh, problem.mesh.vertex_handle(problem.cone), 2)) near[v.idx()] = 1;
@@ -81,10 +83,11 @@ TEST(OneCone, ConeRingMetricKeepsTheMeshFarFromTheConeAndClampsNearIt) {
   auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 5);
   const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
-  const auto inversive = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean,
-                                               ricci::Scheme::InversiveDistance, ricci::RadiusInit::Mean);
-  const ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::CirclePacking, 4,
-                                   ricci::RadiusInit::Mean};
+  const auto inversive =
+      ricci::initial_metric(t, lengths, ricci::Geometry::euclidean,
+                            ricci::Scheme::inversive_distance, ricci::RadiusInit::mean);
+  const ricci::ConeRingMetric rule{ricci::Scheme::inversive_distance, ricci::Scheme::circle_packing,
+                                   4, ricci::RadiusInit::mean};
   const auto mixed = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
   EXPECT_EQ(mixed.gamma, inversive.gamma);
   std::vector<char> near(problem.mesh.n_vertices(), 0);  // within 3 rings: its edges reach ring 4
@@ -109,11 +112,11 @@ TEST(OneCone, ConeRingMetricClampsTheEdgesOfNeedles) {
   auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 5);
   const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
-  ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::Combinatorial, 1,
-                             ricci::RadiusInit::Mean};
+  ricci::ConeRingMetric rule{ricci::Scheme::inversive_distance, ricci::Scheme::combinatorial, 1,
+                             ricci::RadiusInit::mean};
   rule.needle_angle = 0.5;  // radians: most of the eight's faces
   const auto mixed = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
-  const Eigen::MatrixX3d angles = ricci::corner_angles(t, lengths, ricci::Geometry::Euclidean);
+  const Eigen::MatrixX3d angles = ricci::corner_angles(t, lengths, ricci::Geometry::euclidean);
   int needles = 0;
   for (int f = 0; f < t.num_faces(); ++f) {
     if (angles.row(f).minCoeff() >= rule.needle_angle) continue;
@@ -130,10 +133,11 @@ TEST(OneCone, ConeRingMetricWithNonnegativeInversiveDistancesIsAValidMetric) {
   auto problem = ricci::prepare_one_cone(read_test_mesh("bench/genus2_10k.obj.gz"), 0);
   const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
-  const auto mean = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean, ricci::Scheme::InversiveDistance,
-                                          ricci::RadiusInit::Mean);
-  ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::CirclePacking, 6,
-                             ricci::RadiusInit::Mean};
+  const auto mean =
+      ricci::initial_metric(t, lengths, ricci::Geometry::euclidean,
+                            ricci::Scheme::inversive_distance, ricci::RadiusInit::mean);
+  ricci::ConeRingMetric rule{ricci::Scheme::inversive_distance, ricci::Scheme::circle_packing, 6,
+                             ricci::RadiusInit::mean};
   rule.nonnegative_inversive_distance = true;
   const auto metric = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
   EXPECT_GE(metric.eta.minCoeff(), 0.0);
@@ -143,13 +147,14 @@ TEST(OneCone, ConeRingMetricWithNonnegativeInversiveDistancesIsAValidMetric) {
   int reproduced = 0;
   for (int e = 0; e < t.num_edges(); ++e) reproduced += std::abs(l[e] - lengths[e]) <= 1e-12 * lengths[e];
   EXPECT_GT(reproduced, t.num_edges() * 9 / 10);
-  EXPECT_NO_THROW((void)ricci::corner_angles(t, l, ricci::Geometry::Euclidean));
+  EXPECT_NO_THROW((void)ricci::corner_angles(t, l, ricci::Geometry::euclidean));
 }
 
 TEST(OneCone, ConeRingFlowReachesTheConeAndRefusesOtherProblems) {
   auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 5);
-  const std::vector<ricci::ConeRingMetric> rules = {
-      {ricci::Scheme::InversiveDistance, ricci::Scheme::Combinatorial, 3, ricci::RadiusInit::Mean}};
+  const std::vector<ricci::ConeRingMetric> rules = {{ricci::Scheme::inversive_distance,
+                                                     ricci::Scheme::combinatorial, 3,
+                                                     ricci::RadiusInit::mean}};
   const ricci::FlowResult r = ricci::solve_cone_ring_flow(problem, rules, ricci::one_cone_flow_options());
   ASSERT_TRUE(r.converged()) << r.message;
   EXPECT_LT(r.max_error, 1e-9);
@@ -198,7 +203,7 @@ namespace {
 
 TEST(OneCone, CircleDomainTargetMakesRoundHoles) {
   auto mesh = read_test_mesh("open/holes.off.gz");  // genus 0, 7 boundary loops
-  auto targets = ricci::boundary_target(mesh, ricci::BoundaryMode::CircleDomain);
+  auto targets = ricci::boundary_target(mesh, ricci::BoundaryMode::circle_domain);
   auto tables = ricci::build_mesh_tables(mesh);
   ASSERT_EQ(tables.boundary_loops.size(), 7u);
   EXPECT_NEAR(targets.curvature.sum(), 2 * M_PI * tables.euler_characteristic, 1e-9);

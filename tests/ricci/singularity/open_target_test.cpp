@@ -38,7 +38,7 @@ TEST(HarmonicBoundaryTarget, APlanarMeshKeepsItsOwnBoundaryCurvature) {
   const ricci::Mesh disk = ricci::make_disk(6, 24);
   const ricci::MeshTables t = ricci::build_mesh_tables(disk);
   const Eigen::VectorXd K =
-      ricci::vertex_curvature(t, ricci::mesh_edge_lengths(disk), ricci::Geometry::Euclidean);
+      ricci::vertex_curvature(t, ricci::mesh_edge_lengths(disk), ricci::Geometry::euclidean);
   const ricci::Targets targets = ricci::harmonic_boundary_target(disk);
   for (int v = 0; v < t.num_vertices(); ++v) {
     EXPECT_NEAR(targets.curvature[v], t.is_boundary_vertex[v] ? K[v] : 0.0, 1e-12) << v;
@@ -71,7 +71,7 @@ TEST(HarmonicBoundaryTarget, KeepsTheBoundaryShapeBetterThanSpreadingByLength) {
   ricci::OneConeProblem problem = ricci::prepare_one_cone(mesh, -1);
   ASSERT_EQ(problem.kind, ricci::OneConeKind::OpenSurface);
   const double harmonic = boundary_scale_spread(problem);
-  problem.targets = ricci::boundary_target(problem.mesh, ricci::BoundaryMode::SpreadByLength);
+  problem.targets = ricci::boundary_target(problem.mesh, ricci::BoundaryMode::spread_by_length);
   const double by_length = boundary_scale_spread(problem);
   EXPECT_LT(harmonic, 0.25 * by_length) << harmonic << " vs " << by_length;
 }
