@@ -1,20 +1,31 @@
 #!/usr/bin/env bash
-# Runs `msp atlas --json` on every clean mesh of the shared models (and models/) and prints a
-# markdown table of its figures. The singularity is chosen automatically up to 20k faces and put
-# at vertex 0 above (as in the bench README's comparison).
-# Usage: scripts/atlas-table.sh [MSP] [SHARED_MODELS]
+# Runs `msp atlas --json` on the bundled models (models/) and, when a model collection's folder
+# is given (second argument, or the environment variable MSP_SHARED_MODELS), on its closed_g*,
+# open and bench meshes too, and prints a markdown table of its figures. The singularity is
+# chosen automatically up to 20k faces and put at vertex 0 above (as in the collection's bench
+# README's comparison).
+# Usage: scripts/atlas-table.sh [MSP] [MODEL_COLLECTION]
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-MSP="${1:-$ROOT/build/apps/msp}"
-SHARED="${2:-$ROOT/../shared/models}"
+MSP="${1:-${MSP_BUILD_DIR:-$ROOT/build}/apps/msp}"
+SHARED="${2:-${MSP_SHARED_MODELS:-}}"
+if [[ -n "$SHARED" && ! -d "$SHARED" ]]; then
+  echo "atlas-table.sh: '$SHARED' is not a folder" >&2
+  exit 2
+fi
+FILES=("$ROOT"/models/*.off)
+if [[ -n "$SHARED" ]]; then
+  FILES=("$SHARED"/closed_g*/*.* "$SHARED"/open/*.* "$SHARED"/bench/*.obj "${FILES[@]}")
+fi
 echo "| mesh | F | genus | bdry | kind | cone angle/pi | splits | metric | Newton it. | max K error | transition residual | flipped | uncovered | edge rel. error | area distortion | angle ratio p05/p50/p95 | QC mean | s (choice/flow/atlas) |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-for f in "$SHARED"/closed_g*/*.* "$SHARED"/open/*.* "$SHARED"/bench/*.obj "$ROOT"/models/*.off; do
+for f in "${FILES[@]}"; do
   case "$f" in *.md|*.py) continue ;; esac
   faces=$("$MSP" info "$f" --json 2>/dev/null | python3 -c "import sys,json; print(json.load(sys.stdin)['faces'])" 2>/dev/null || echo 0)
   singular=auto
   [[ "$faces" -gt 20000 ]] && singular=0
-  name="${f#$SHARED/}"; name="${name#$ROOT/}"
+  name="${f#"$ROOT"/}"
+  [[ -n "$SHARED" ]] && name="${name#"$SHARED"/}"
   out=$("$MSP" atlas "$f" --singularity "$singular" --json --quiet 2>&1)
   echo "$out" | python3 -c "
 import sys, json, math

@@ -1,21 +1,27 @@
 #!/usr/bin/env bash
-# Runs `msp fit` over every genus 0-3 model (shared closed_g0..closed_g3 and open, plus the
-# bundled models/) and prints one markdown row per model: genus, domain faces, control points,
+# Runs `msp fit` over the bundled models (models/) and, when the environment variable
+# MSP_SHARED_MODELS names the model collection's folder, over its closed_g0..closed_g3 and open
+# models too, and prints one markdown row per model: genus, domain faces, control points,
 # fit RMS / max over the bounding-box diagonal, seam normal jump, the tessellation's dihedral
 # angles (99th percentile, edges over 90 degrees: folds), watertight, glTF validator result and
 # seconds. Outputs (.glb, .json, .log) go to out/fit-table/.
 # Usage: scripts/fit-table.sh [--domain-faces N] [extra msp fit options...]
+#        MSP_SHARED_MODELS=DIR scripts/fit-table.sh   (the collection's models as well)
 #        MODELS="a.off b.obj" scripts/fit-table.sh   (a chosen list)
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 MSP="${MSP_BUILD_DIR:-$ROOT/build}/apps/msp"
-SHARED="${MSP_SHARED_MODELS:-$ROOT/../shared/models}"
-[[ -d "$SHARED" ]] || SHARED=/work/shared/models
+SHARED="${MSP_SHARED_MODELS:-}"
+if [[ -n "$SHARED" && ! -d "$SHARED" ]]; then
+  echo "fit-table.sh: MSP_SHARED_MODELS='$SHARED' is not a folder" >&2
+  exit 2
+fi
 OUT="$ROOT/out/fit-table"
 mkdir -p "$OUT"
 if [[ -z "${MODELS:-}" ]]; then
   MODELS=""
   for dir in closed_g0 closed_g1 closed_g2 closed_g3 open; do
+    [[ -n "$SHARED" ]] || break
     for f in "$SHARED/$dir"/*.off "$SHARED/$dir"/*.obj "$SHARED/$dir"/*.ply; do
       [[ -f "$f" ]] && MODELS+=" $f"
     done

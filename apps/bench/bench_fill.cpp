@@ -2,7 +2,6 @@
 // count, covered faces, seconds, max normal jump (degrees, 100 samples per rim edge) and the
 // position gaps over the bounding-box diagonal; a rim that cannot be filled prints the reason.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -12,6 +11,7 @@
 
 #include "bench/benchmarks.h"
 #include "ricci/mesh/io.h"
+#include "ricci/util/stopwatch.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/meet_patch.h"
 #include "spline/fill/rims.h"
@@ -19,12 +19,6 @@
 
 namespace msp::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 const char* kind_name(spline::Rim::Kind kind) {
   switch (kind) {
@@ -40,7 +34,7 @@ const char* kind_name(spline::Rim::Kind kind) {
 
 std::vector<std::string> default_models() {
   std::vector<std::string> models;
-  const std::string shared = MSP_SHARED_MODELS_DIR;
+  const std::string shared = shared_models();
   for (const char* dir : {"closed_g0", "closed_g1", "closed_g2", "closed_g3", "open"}) {
     std::vector<std::string> found;
     for (const auto& entry : std::filesystem::directory_iterator(shared + "/" + dir)) {
@@ -102,7 +96,7 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
                 const spline::FindRimsOptions& rim_options,
                 const spline::FillOptions& fill_options, const FillBenchFlags& flags) {
   const std::string name = std::filesystem::path(path).filename().string();
-  const auto start = Clock::now();
+  const ricci::Stopwatch start;
   spline::ScanFitResult fit;
   try {
     fit = spline::fit_scan(ricci::read_mesh(path), fit_options);
@@ -110,7 +104,7 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
     std::printf("%-28s fit failed: %s\n", name.c_str(), e.what());
     return;
   }
-  const double fit_seconds = seconds_since(start);
+  const double fit_seconds = start.seconds();
   const auto& mesh = fit.atlas.problem.mesh;
   if (flags.surface_steps) print_surface_steps(fit);
   // As msp fit: the cone hole also grows past faces where the spline folds.
@@ -124,12 +118,12 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
   if (rims.empty()) std::printf("%-28s fit %5.1fs  no rims\n", name.c_str(), fit_seconds);
   std::vector<spline::HoleFill> fills;
   for (const auto& rim : rims) {
-    const auto t = Clock::now();
+    const ricci::Stopwatch t;
     std::printf("%-28s fit %5.1fs  %-8s %5zu %6zu", name.c_str(), fit_seconds, kind_name(rim.kind),
                 rim.edges.size(), rim.covered_faces.size());
     try {
       const auto fill = spline::fill_rim(fit.spline, mesh, rim, fill_options);
-      std::printf(" %6.2f %9.4f %10.2e %10.2e %6d %s\n", seconds_since(t), fill.max_normal_jump_deg,
+      std::printf(" %6.2f %9.4f %10.2e %10.2e %6d %s\n", t.seconds(), fill.max_normal_jump_deg,
                   fill.max_position_gap, fill.rms_position_gap, fill.space->triangle_count(),
                   fill.g1 ? "G1" : "C0 fallback");
       fills.push_back(fill);
@@ -159,19 +153,18 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
         }
       }
     } catch (const std::exception& e) {
-      std::printf(" %6.2f  not filled: %s\n", seconds_since(t), e.what());
+      std::printf(" %6.2f  not filled: %s\n", t.seconds(), e.what());
     }
   }
   if (fills.empty()) return;
   // What msp fit shows: the surface moved to meet the patches (meet_patch.h).
-  const auto t = Clock::now();
+  const ricci::Stopwatch t;
   spline::ManifoldSpline met = fit.spline;
   met.control_points = spline::meet_patches(fit.spline, fills).control_points;
   for (std::size_t i = 0; i < fills.size(); ++i) {
     const spline::SeamReport seam = spline::measure_seam(met, fills[i]);
     std::printf("%-28s   after meet_patches: rim %zu jump_deg %.4f max_gap %.2e (%.2fs)\n",
-                name.c_str(), i, seam.max_normal_jump_deg, seam.max_position_gap,
-                seconds_since(t));
+                name.c_str(), i, seam.max_normal_jump_deg, seam.max_position_gap, t.seconds());
   }
 }
 

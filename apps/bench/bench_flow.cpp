@@ -2,7 +2,6 @@
 // subdivision, each size in a child process so its peak memory is its own.
 #include <sys/resource.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -27,15 +26,13 @@
 #include "bench/benchmarks.h"
 #include "bench/child_run.h"
 #include "msp/cli.h"
+#include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Sparse = Eigen::SparseMatrix<double>;
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 double cpu_seconds() {
   rusage u{};
@@ -56,8 +53,6 @@ long status_kb(const std::string& field) {
 // Resets VmHWM to the current RSS (Linux clear_refs 5), so the next peak is the flow's own.
 void reset_peak_memory() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
-std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
-
 ricci::Mesh load(const std::string& path, int levels) {
   ricci::Mesh mesh = ricci::read_mesh(path);
   for (int i = 0; i < levels; ++i) mesh = ricci::subdivide_midpoint(mesh);
@@ -69,7 +64,7 @@ ricci::Mesh load(const std::string& path, int levels) {
 Sparse cotangent_laplacian(const ricci::Mesh& mesh) {
   const ricci::MeshTables t = ricci::build_mesh_tables(mesh);
   const Eigen::MatrixX3d angles =
-      ricci::corner_angles(t, ricci::mesh_edge_lengths(mesh), ricci::Geometry::Euclidean);
+      ricci::corner_angles(t, ricci::mesh_edge_lengths(mesh), ricci::Geometry::euclidean);
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(9 * t.num_faces());
   for (int f = 0; f < t.num_faces(); ++f) {
@@ -94,12 +89,12 @@ double one_cholesky_seconds(const Sparse& L, ricci::LinearSolver kind, int repea
   const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(L.rows());
   for (int r = 0; r < repeats; ++r) {
     ricci::SymmetricFactorization solver(kind);
-    const auto t0 = Clock::now();
+    const ricci::Stopwatch t0;
     const double cpu0 = cpu_seconds();
     solver.analyze(L);
     if (!solver.factorize(L)) throw std::runtime_error("cotangent Laplacian factorisation failed");
     const Eigen::VectorXd x = solver.solve(rhs);
-    best = std::min(best, since(t0));
+    best = std::min(best, t0.seconds());
     cpu = std::min(cpu, cpu_seconds() - cpu0);
     if (!x.allFinite()) throw std::runtime_error("cotangent Laplacian solve is not finite");
   }
@@ -114,7 +109,7 @@ int run_flow_case(int argc, char** argv) {
   args.require_positionals(1, "msp-bench flow-one MESH [--levels N] [--gradient-max-faces F]");
   const int levels = args.get_int("levels", 0);
   const ricci::Mesh mesh = load(args.positionals()[0], levels);
-  const ricci::Targets target = ricci::uniform_target(mesh, ricci::Geometry::Euclidean);
+  const ricci::Targets target = ricci::uniform_target(mesh, ricci::Geometry::euclidean);
   ricci::FlowOptions options;
   options.fall_back_to_other_metrics = true;
   const int repeats = args.get_int("repeats", mesh.n_faces() > 500000 ? 1 : 2);
@@ -136,7 +131,8 @@ int run_flow_case(int argc, char** argv) {
 
   const Sparse L = cotangent_laplacian(mesh);
   double cholesky_cpu = 0;
-  const double cholesky = one_cholesky_seconds(L, ricci::LinearSolver::CholmodSupernodal, 3, cholesky_cpu);
+  const double cholesky =
+      one_cholesky_seconds(L, ricci::LinearSolver::cholmod_supernodal, 3, cholesky_cpu);
 
   nlohmann::json j;
   j["mesh"] = args.positionals()[0];
@@ -161,7 +157,7 @@ int run_flow_case(int argc, char** argv) {
     ricci::FlowOptions gradient = options;
     gradient.fall_back_to_other_metrics = false;
     gradient.scheme = best.metric.scheme;
-    gradient.method = ricci::FlowMethod::GradientDescent;
+    gradient.method = ricci::FlowMethod::gradient_descent;
     gradient.max_gradient_iterations = 100000;
     const ricci::FlowResult g = ricci::flow(mesh, target, gradient);
     j["gradient_seconds"] = g.timings.total;
@@ -181,7 +177,7 @@ int run_flow_benchmark(int argc, char** argv) {
     int levels;
   };
   const std::string self = self_executable();
-  const std::string m = models();
+  const std::string m = shared_models();
   std::vector<Case> cases = {{m + "/closed_g1/elk.off", 0},        {m + "/closed_g1/knot1.off", 0},
                              {m + "/bench/torus_10k.obj", 0},      {m + "/closed_g1/kitten_nf20k.off", 0},
                              {m + "/closed_g1/rocker-arm.off", 0}, {m + "/closed_g1/kitten_nf20k.off", 1},
@@ -243,7 +239,7 @@ int run_flow_benchmark(int argc, char** argv) {
 int run_solver_benchmark(int argc, char** argv) {
   Args args(argc, argv, {"no-1m"});
   args.require_known({"no-1m"});
-  const std::string m = models();
+  const std::string m = shared_models();
   std::vector<std::pair<std::string, int>> cases = {{m + "/bench/torus_10k.obj", 0},
                                                     {m + "/bench/torus_100k.obj", 0}};
   if (!args.has("no-1m")) cases.push_back({m + "/closed_g1/kitten_nf20k.off", 3});
@@ -257,8 +253,8 @@ int run_solver_benchmark(int argc, char** argv) {
     const ricci::Mesh mesh = load(path, levels);
     const ricci::MeshTables t = ricci::build_mesh_tables(mesh);
     const ricci::CirclePackingMetric metric =
-        ricci::initial_metric(t, ricci::mesh_edge_lengths(mesh), ricci::Geometry::Euclidean,
-                              ricci::Scheme::InversiveDistance, ricci::RadiusInit::Mean);
+        ricci::initial_metric(t, ricci::mesh_edge_lengths(mesh), ricci::Geometry::euclidean,
+                              ricci::Scheme::inversive_distance, ricci::RadiusInit::mean);
     ricci::FlowState state;
     ricci::evaluate_flow_state(t, metric.geometry, metric.eta,
                                ricci::u_from_radii(metric.geometry, metric.gamma), state);
@@ -268,20 +264,21 @@ int run_solver_benchmark(int argc, char** argv) {
     const Eigen::VectorXd rhs = Eigen::VectorXd::Random(H.rows());
     std::string name = path.substr(path.find_last_of('/') + 1) + " (" +
                        std::to_string(mesh.n_faces()) + " F)";
-    for (auto kind : {ricci::LinearSolver::EigenLDLT, ricci::LinearSolver::EigenLLT,
-                      ricci::LinearSolver::CholmodSimplicial, ricci::LinearSolver::CholmodSupernodal}) {
+    for (auto kind :
+         {ricci::LinearSolver::eigen_ldlt, ricci::LinearSolver::eigen_llt,
+          ricci::LinearSolver::cholmod_simplicial, ricci::LinearSolver::cholmod_supernodal}) {
       double analyse = 1e300, factor = 1e300, solve = 1e300, residual = 0;
       for (int r = 0; r < 2; ++r) {
         ricci::SymmetricFactorization solver(kind);
-        auto t0 = Clock::now();
+        ricci::Stopwatch t0;
         solver.analyze(H);
-        analyse = std::min(analyse, since(t0));
-        t0 = Clock::now();
+        analyse = std::min(analyse, t0.seconds());
+        t0.restart();
         const bool ok = solver.factorize(H);
-        factor = std::min(factor, since(t0));
-        t0 = Clock::now();
+        factor = std::min(factor, t0.seconds());
+        t0.restart();
         const Eigen::VectorXd x = solver.solve(rhs);
-        solve = std::min(solve, since(t0));
+        solve = std::min(solve, t0.seconds());
         residual = ok ? (full * x - rhs).norm() / rhs.norm() : -1;
       }
       std::cout << std::left << std::setw(30) << name << std::setw(22) << ricci::to_string(kind)

@@ -3,7 +3,6 @@
 // measured as the DMS spline fit measures them (distance of each input vertex to the surface,
 // RMS and max over vertices, divided by the input's bounding-box diagonal).
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -16,17 +15,16 @@
 #include <spline/baseline/loop_fit.h>
 
 #include "bench/benchmarks.h"
+#include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
 
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
 // Every closed genus 0-3 model (OFF/OBJ; horse.ply duplicates horse.off), sorted.
 std::vector<std::string> default_models() {
-  const fs::path root(MSP_SHARED_MODELS_DIR);
+  const fs::path root(shared_models());
   std::vector<std::string> models;
   for (const char* folder : {"closed_g0", "closed_g1", "closed_g2", "closed_g3"}) {
     std::vector<std::string> here;
@@ -73,7 +71,7 @@ int run_loop_benchmark(int argc, char** argv) {
           "[models...]\n");
       return 0;
     } else {
-      models.push_back(fs::exists(arg) ? arg : std::string(MSP_SHARED_MODELS_DIR) + "/" + arg);
+      models.push_back(fs::exists(arg) ? arg : shared_models() + "/" + arg);
     }
   }
   if (models.empty()) models = default_models();
@@ -100,11 +98,11 @@ int run_loop_benchmark(int argc, char** argv) {
     const int genus = ricci::surface_topology(dense).genus;
     for (int count : counts) {
       options.control_points = count;
-      const auto t0 = Clock::now();
+      const ricci::Stopwatch t0;
       const std::clock_t c0 = std::clock();
       try {
         const spline::LoopFitResult r = spline::fit_loop_surface(dense, options);
-        const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        const double seconds = t0.seconds();
         const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
         std::printf(
             "| %s | %d | %zu | %d | %d | %.2f | %.3e | %.3e | %.3e | %.1f | %.1f | "

@@ -4,7 +4,6 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -15,6 +14,7 @@
 #include <ricci/mesh/soup_io.h>
 
 #include "bench/benchmarks.h"
+#include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
 namespace {
@@ -23,10 +23,9 @@ template <typename Function>
 double best_ms(Function&& run) {
   double best = 1e300;
   for (int trial = 0; trial < 3; ++trial) {
-    const auto start = std::chrono::steady_clock::now();
+    const ricci::Stopwatch watch;
     run();
-    const auto stop = std::chrono::steady_clock::now();
-    best = std::min(best, std::chrono::duration<double, std::milli>(stop - start).count());
+    best = std::min(best, 1e3 * watch.seconds());
   }
   return best;
 }
@@ -36,7 +35,7 @@ double best_ms(Function&& run) {
 int run_mesh_io_benchmark(int argc, char** argv) {
   std::vector<std::string> files(argv, argv + argc);
   if (files.empty()) {
-    const std::string models = MSP_SHARED_MODELS_DIR;
+    const std::string models = shared_models();
     for (const char* name :
          {"closed_g0/venus.off", "closed_g0/armadillo.obj", "closed_g0/horse.ply",
           "open/stanford-bunny.obj", "bench/genus3_100k.obj"})

@@ -1,11 +1,11 @@
 // msp-bench one-cone / one-cone-one: the whole one-cone pipeline (valence modification, Ricci
-// flow, cut graph, layout, atlas) on the bench meshes of ../shared/models/bench and the genus 1-3
-// models, each mesh in a child process so that its peak memory is its own; the figures of
-// issue 8 against CEPS and Campen et al. (bench/README.md).
+// flow, cut graph, layout, atlas) on the bench meshes of the model collection (MSP_SHARED_MODELS,
+// folder bench/) and the genus 1-3 models, each mesh in a child process so that its peak memory
+// is its own; the figures of issue 8 against CEPS and Campen et al. (the collection's
+// bench/README.md).
 #include <sys/resource.h>
 #include <sys/wait.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,22 +28,21 @@
 #include "bench/child_run.h"
 #include "msp/cli.h"
 #include "msp/flow_options.h"
+#include "ricci/util/cross2d.h"
+#include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Sparse = Eigen::SparseMatrix<double>;
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Lower triangle of the cotangent Laplacian plus 1e-8 times its mean diagonal (SPD without
 // pinning a vertex): the one linear system a single-solve method factorises.
 Sparse regularised_cotangent_laplacian(const ricci::Mesh& mesh) {
   const ricci::MeshTables t = ricci::build_mesh_tables(mesh);
   const Eigen::MatrixX3d angles =
-      ricci::corner_angles(t, ricci::mesh_edge_lengths(mesh), ricci::Geometry::Euclidean);
+      ricci::corner_angles(t, ricci::mesh_edge_lengths(mesh), ricci::Geometry::euclidean);
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(9 * static_cast<size_t>(t.num_faces()) + static_cast<size_t>(t.num_vertices()));
   double diagonal = 0;
@@ -70,12 +69,12 @@ double one_cholesky_seconds(const Sparse& L) {
   double best = 1e300;
   const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(L.rows());
   for (int r = 0; r < 3; ++r) {
-    ricci::SymmetricFactorization solver(ricci::LinearSolver::CholmodSupernodal);
-    const auto t0 = Clock::now();
+    ricci::SymmetricFactorization solver(ricci::LinearSolver::cholmod_supernodal);
+    const ricci::Stopwatch t0;
     solver.analyze(L);
     if (!solver.factorize(L)) throw std::runtime_error("cotangent Laplacian factorisation failed");
     const Eigen::VectorXd x = solver.solve(rhs);
-    best = std::min(best, since(t0));
+    best = std::min(best, t0.seconds());
     if (!x.allFinite()) throw std::runtime_error("cotangent Laplacian solve is not finite");
   }
   return best;
@@ -89,16 +88,16 @@ struct FaceSigns {
 
 FaceSigns face_signs(const ricci::LayoutE2Result& layout, const ricci::Mesh& sliced) {
   FaceSigns s;
-  auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
   for (auto f : sliced.faces()) {
     int c[3], k = 0;
     for (auto v : sliced.fv_range(f)) c[k++] = v.idx();
-    const double area = cross(layout.edge_vector(c[0], c[1]), layout.edge_vector(c[0], c[2]));
+    const double area =
+        ricci::cross2d(layout.edge_vector(c[0], c[1]), layout.edge_vector(c[0], c[2]));
     if (area < 0) ++s.flipped;
     if (area == 0) ++s.zero;
     const Eigen::Vector2d a = layout.positions.row(c[0]), b = layout.positions.row(c[1]),
                           d = layout.positions.row(c[2]);
-    if (!(cross(b - a, d - a) > 0)) ++s.degenerate_in_doubles;
+    if (!(ricci::cross2d(b - a, d - a) > 0)) ++s.degenerate_in_doubles;
   }
   return s;
 }
@@ -177,7 +176,8 @@ void print_diagnostics(const ricci::OneConeAtlasResult& r) {
   std::cerr << "worst K vertex " << worst_v << " err " << kerr[worst_v] << " cone " << r.problem.cone << "\n";
   print_broken_trials(r);
   const ricci::MeshTables tables = ricci::build_mesh_tables(r.problem.mesh);
-  const Eigen::MatrixX3d angles = ricci::corner_angles(tables, r.flow.lengths, ricci::Geometry::Euclidean);
+  const Eigen::MatrixX3d angles =
+      ricci::corner_angles(tables, r.flow.lengths, ricci::Geometry::euclidean);
   Eigen::Index worst_face = 0, worst_corner = 0;
   const double smallest = angles.minCoeff(&worst_face, &worst_corner);
   std::cerr << "metric's smallest corner angle " << smallest << " (face " << worst_face << "), largest "
@@ -204,14 +204,12 @@ std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
     std::getline(fields, nonnegative, ':');
     rule.nonnegative_inversive_distance = nonnegative == "nonnegative";
     rule.far = parse_scheme(far);
-    rule.near = near == "tangent" ? ricci::Scheme::Combinatorial : parse_scheme(near);
+    rule.near = near == "tangent" ? ricci::Scheme::combinatorial : parse_scheme(near);
     rule.rings = std::stoi(rings);
     rules.push_back(rule);
   }
   return rules;
 }
-
-std::string models() { return std::string(MSP_SHARED_MODELS_DIR); }
 
 }  // namespace
 
@@ -224,10 +222,10 @@ int run_one_cone_case(int argc, char** argv) {
                             "[--protect-rings N] [--ring-metric FAR:NEAR:RINGS[:NEEDLE_DEG[:nonnegative]]] "
                             "[--continuation STAGES] [--seed-face F] [--verbose]");
   const std::string path = args.positionals()[0];
-  auto t0 = Clock::now();
+  ricci::Stopwatch t0;
   ricci::Mesh mesh = ricci::read_mesh(path);
   for (int i = 0; i < args.get_int("levels", 0); ++i) mesh = ricci::subdivide_midpoint(mesh);
-  const double read = since(t0);
+  const double read = t0.seconds();
 
   ricci::OneConeAtlasOptions options;
   const std::string cone = args.get_or("cone", "auto");
@@ -260,8 +258,8 @@ int run_one_cone_case(int argc, char** argv) {
       std::cerr << "  newton " << p.iteration << ": error " << p.max_error << ", step " << p.step << ", "
                 << p.seconds << " s\n";
     };
-    options.progress = [t = Clock::now()](const std::string& stage) {
-      std::cerr << std::fixed << since(t) << " s: " << stage << std::defaultfloat << "\n";
+    options.progress = [t = ricci::Stopwatch()](const std::string& stage) {
+      std::cerr << std::fixed << t.seconds() << " s: " << stage << std::defaultfloat << "\n";
     };
   }
 
@@ -315,7 +313,7 @@ int run_one_cone_case(int argc, char** argv) {
   } catch (const std::exception& e) {
     j["status"] = std::string("failed: ") + e.what();
   }
-  t0 = Clock::now();
+  t0.restart();
   const double cholesky = one_cholesky_seconds(regularised_cotangent_laplacian(mesh));
   j["cholesky"] = cholesky;
   rusage usage{};
@@ -332,7 +330,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
     std::string path, cone;
     int levels;
   };
-  const std::string m = models();
+  const std::string m = shared_models();
   std::vector<Case> cases;
   for (const char* name : {"torus_10k", "genus2_10k", "genus3_10k", "sphere_10k", "cap_10k", "torus_100k",
                            "genus2_100k", "genus3_100k", "sphere_100k", "cap_100k"}) {

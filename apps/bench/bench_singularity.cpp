@@ -1,6 +1,5 @@
 // msp-bench singularity [MESH...]: the automatic choice of the extraordinary point against the
 // paper's brute force (one full flow per vertex): distortion reached, flows run, seconds, ratio.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -11,15 +10,10 @@
 #include <ricci/singularity/choose.h>
 
 #include "bench/benchmarks.h"
+#include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 struct BruteForce {
   int vertex = -1;
@@ -29,7 +23,7 @@ struct BruteForce {
 
 BruteForce brute_force(const ricci::Mesh& mesh) {
   BruteForce best;
-  auto start = Clock::now();
+  ricci::Stopwatch start;
   for (auto v : mesh.vertices()) {
     double d = ricci::one_cone_area_distortion(mesh, v.idx());
     if (d < best.distortion) {
@@ -37,7 +31,7 @@ BruteForce brute_force(const ricci::Mesh& mesh) {
       best.vertex = v.idx();
     }
   }
-  best.seconds = seconds_since(start);
+  best.seconds = start.seconds();
   return best;
 }
 
@@ -47,7 +41,7 @@ int run_singularity_benchmark(int argc, char** argv) {
   std::vector<std::string> meshes;
   for (int i = 0; i < argc; ++i) meshes.emplace_back(argv[i]);
   if (meshes.empty()) {
-    const std::string root = MSP_SHARED_MODELS_DIR;
+    const std::string root = shared_models();
     meshes = {root + "/closed_g2/eight_cgal.off", root + "/closed_g2/joint.off", root + "/closed_g0/knight_decimated.off",
               root + "/closed_g3/helmet.off", root + "/closed_g2/eight.off"};
   }
@@ -55,9 +49,9 @@ int run_singularity_benchmark(int argc, char** argv) {
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& path : meshes) {
     ricci::Mesh mesh = ricci::read_mesh(path);
-    auto start = Clock::now();
+    ricci::Stopwatch start;
     ricci::SingularityChoice choice = ricci::choose_singularity(mesh);
-    double choice_seconds = seconds_since(start);
+    double choice_seconds = start.seconds();
     BruteForce brute = brute_force(mesh);
     std::printf("| %s | %zu | %zu | %d | %.5g | %d | %.3f | %d | %.5g | %zu | %.3f | %.4f | %.1fx |\n",
                 path.substr(path.find_last_of('/') + 1).c_str(), mesh.n_vertices(), mesh.n_faces(), choice.vertex,

@@ -8,7 +8,6 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <random>
@@ -23,28 +22,25 @@
 #include <spline/manifold/manifold_space.h>
 
 #include "bench/benchmarks.h"
+#include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 struct Stopwatch {
-  Clock::time_point wall = Clock::now();
+  ricci::Stopwatch wall;
   double cpu = now_cpu();
   static double now_cpu() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
   }
-  [[nodiscard]] double wall_seconds() const {
-    return std::chrono::duration<double>(Clock::now() - wall).count();
-  }
+  [[nodiscard]] double wall_seconds() const { return wall.seconds(); }
   [[nodiscard]] double cpu_seconds() const { return now_cpu() - cpu; }
 };
 
 std::string shared(const std::string& relative) {
-  return std::string(MSP_SHARED_MODELS_DIR) + "/" + relative;
+  return shared_models() + "/" + relative;
 }
 
 Eigen::MatrixX3d vertex_matrix(const ricci::Mesh& mesh) {

@@ -81,7 +81,7 @@ void flat_torus_row(int nx, int ny) {
 }  // namespace
 
 int run_topology_benchmark(int argc, char** argv) {
-  const std::string folder = argc > 0 ? argv[0] : std::string(MSP_SHARED_MODELS_DIR) + "/bench";
+  const std::string folder = argc > 0 ? argv[0] : shared_models() + "/bench";
   std::printf(
       "cut graph (tree-cotree from vertex 0, 3D lengths) + slicing + polygon word,\n"
       "thread CPU seconds\n");

@@ -1,8 +1,12 @@
 // msp-bench NAME [args]: benchmarks that print figures and ratios (never run as tests).
 // Each benchmark lives in its own file; this table is the only place that lists them.
+#include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 #include "bench/benchmarks.h"
 
@@ -55,9 +59,23 @@ const Benchmark kBenchmarks[] = {
 void usage() {
   std::cerr << "usage: msp-bench <name> [args]\n\nbenchmarks:\n";
   for (const auto& b : kBenchmarks) std::cerr << "  " << b.name << "\t" << b.summary << "\n";
+  std::cerr << "\nMost benchmarks read the model collection named by the environment variable\n"
+               "MSP_SHARED_MODELS (or CMake's -DMSP_SHARED_MODELS=DIR) unless given files.\n";
 }
 
 }  // namespace
+
+std::string msp::bench::shared_models() {
+  const char* env = std::getenv("MSP_SHARED_MODELS");
+  const std::string folder = env != nullptr && *env != '\0' ? env : MSP_SHARED_MODELS_DIR;
+  if (folder.empty() || !std::filesystem::is_directory(folder)) {
+    throw std::runtime_error(
+        "no model collection: set MSP_SHARED_MODELS=DIR (or configure with "
+        "-DMSP_SHARED_MODELS=DIR), or pass the meshes as arguments" +
+        (folder.empty() ? std::string() : " ('" + folder + "' is not a folder)"));
+  }
+  return folder;
+}
 
 int main(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "--help")) {

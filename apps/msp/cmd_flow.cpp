@@ -27,8 +27,8 @@ const char* kUsage =
 
 ricci::Targets parse_target(const std::string& s, const ricci::Mesh& mesh, ricci::Geometry g) {
   if (s == "uniform") return ricci::uniform_target(mesh, g);
-  if (s == "boundary") return ricci::boundary_target(mesh, ricci::BoundaryMode::SpreadByLength);
-  if (s == "boundary-loop") return ricci::boundary_target(mesh, ricci::BoundaryMode::OneLoop);
+  if (s == "boundary") return ricci::boundary_target(mesh, ricci::BoundaryMode::spread_by_length);
+  if (s == "boundary-loop") return ricci::boundary_target(mesh, ricci::BoundaryMode::one_loop);
   if (s.rfind("cone:", 0) == 0) {
     try {
       size_t used = 0;
@@ -71,7 +71,8 @@ int run_flow(int argc, char** argv) {
   if (method != "newton" && method != "gradient") {
     throw UsageError("--method must be newton or gradient, not '" + method + "'");
   }
-  options.method = method == "newton" ? ricci::FlowMethod::Newton : ricci::FlowMethod::GradientDescent;
+  options.method =
+      method == "newton" ? ricci::FlowMethod::newton : ricci::FlowMethod::gradient_descent;
   if (args.has("max-iterations")) {
     options.max_newton_iterations = options.max_gradient_iterations = args.get_int("max-iterations", 0);
   }

@@ -1,6 +1,5 @@
 // msp generate: meshes one of the project's test surfaces (closed genus 0-3, or opened by cutting
 // end caps) at a chosen size and writes it as OFF, OBJ or PLY.
-#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -11,6 +10,7 @@
 #include <ricci/mesh/generate.h>
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/primitives.h>
+#include <ricci/util/stopwatch.h>
 
 #include "msp/cli.h"
 #include "msp/commands.h"
@@ -55,10 +55,9 @@ int run_generate(int argc, char** argv) {
   if (!output) throw UsageError("-o OUT is required; usage: " + std::string(kUsage));
   const ricci::GenerateOptions options = parse_options(args);
 
-  const auto start = std::chrono::steady_clock::now();
+  const ricci::Stopwatch watch;
   const ricci::Mesh mesh = ricci::generate_surface(options);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = watch.seconds();
   ricci::write_mesh(mesh, *output);
 
   const ricci::SurfaceTopology t = ricci::surface_topology(mesh);

@@ -40,7 +40,7 @@ nlohmann::json generators_json(const ricci::Uniformization& u) {
     j["name"] = generator_name(i);
     j["theta"] = g.theta();
     j["exp_i_theta"] = complex_json(std::polar(1.0, g.theta()));
-    if (u.geometry == ricci::Geometry::Hyperbolic) {
+    if (u.geometry == ricci::Geometry::hyperbolic) {
       // z -> e^{i theta} (z - z0) / (1 - conj(z0) z)
       j["z0"] = complex_json(g.z0());
       const Eigen::Matrix3d l = ricci::lorentz_matrix(g);
@@ -74,7 +74,7 @@ nlohmann::json result_json(const std::string& path, const ricci::Mesh& mesh,
   j["timings"] = {{"double_cover", u.timings.double_cover}, {"flow", u.timings.flow},
                   {"cut", u.timings.cut}, {"layout", u.timings.layout},
                   {"polish", u.timings.polish}, {"group", u.timings.group}};
-  if (u.geometry == ricci::Geometry::Spherical) {
+  if (u.geometry == ricci::Geometry::spherical) {
     j["sphere"] = {{"max_radius_error", u.sphere.max_radius_error},
                    {"flipped_faces", u.sphere.flipped_faces},
                    {"centroid_norm", u.sphere.centroid_norm}};
@@ -82,7 +82,7 @@ nlohmann::json result_json(const std::string& path, const ricci::Mesh& mesh,
     j["polygon_residual"] = u.group.polygon_residual;
     j["relation_residual_direct"] = u.group.relation_residual_direct;
     j["side_spread"] = u.pairings.max_spread;
-    if (u.geometry == ricci::Geometry::Hyperbolic) {
+    if (u.geometry == ricci::Geometry::hyperbolic) {
       j["polish"] = {{"curvature_error_before", u.polish.error_before},
                      {"curvature_error_after", u.polish.error_after},
                      {"iterations", u.polish.iterations}};
@@ -93,7 +93,7 @@ nlohmann::json result_json(const std::string& path, const ricci::Mesh& mesh,
                    {"max_relative_length_error", u.layout.max_relative_length_error},
                    {"max_radius", u.layout.max_radius}};
   }
-  if (u.geometry == ricci::Geometry::Euclidean) {
+  if (u.geometry == ricci::Geometry::euclidean) {
     j["modulus"] = complex_json(u.modulus);
     j["reduced_modulus"] = complex_json(u.reduced_modulus);
   }
@@ -105,20 +105,20 @@ void print_summary(const ricci::Mesh& mesh, const ricci::Uniformization& u) {
             << (u.doubled ? " (double cover)" : "") << "\nvertices " << mesh.n_vertices()
             << "\nfaces " << mesh.n_faces() << "\nmax_curvature_error " << u.flow.max_error
             << "\n";
-  if (u.geometry != ricci::Geometry::Spherical) {
+  if (u.geometry != ricci::Geometry::spherical) {
     std::cout << "side_spread " << u.pairings.max_spread << "\nrelation_residual "
               << u.group.relation_residual << "\n";
     for (size_t i = 0; i < u.group.generators.size(); ++i) {
       const ricci::Mobius& g = u.group.generators[i];
       std::cout << generator_name(i) << " theta " << g.theta();
-      if (u.geometry == ricci::Geometry::Hyperbolic) {
+      if (u.geometry == ricci::Geometry::hyperbolic) {
         std::cout << " z0 " << g.z0().real() << " " << g.z0().imag() << "\n";
       } else {
         std::cout << " translation " << g(0.0).real() << " " << g(0.0).imag() << "\n";
       }
     }
   }
-  if (u.geometry == ricci::Geometry::Euclidean) {
+  if (u.geometry == ricci::Geometry::euclidean) {
     std::cout << "modulus " << u.reduced_modulus.real() << " " << u.reduced_modulus.imag() << "\n";
   }
   std::cout << "seconds " << u.timings.total << "\n";

@@ -7,29 +7,30 @@
 namespace msp {
 
 ricci::Geometry parse_geometry(const std::string& s) {
-  if (s == "euclidean" || s == "e2") return ricci::Geometry::Euclidean;
-  if (s == "hyperbolic" || s == "h2") return ricci::Geometry::Hyperbolic;
-  if (s == "spherical" || s == "s2") return ricci::Geometry::Spherical;
+  if (s == "euclidean" || s == "e2") return ricci::Geometry::euclidean;
+  if (s == "hyperbolic" || s == "h2") return ricci::Geometry::hyperbolic;
+  if (s == "spherical" || s == "s2") return ricci::Geometry::spherical;
   throw UsageError("--geometry must be euclidean, hyperbolic or spherical, not '" + s + "'");
 }
 
 ricci::Scheme parse_scheme(const std::string& s) {
-  if (s == "circle-packing") return ricci::Scheme::CirclePacking;
-  if (s == "inversive-distance") return ricci::Scheme::InversiveDistance;
-  if (s == "combinatorial") return ricci::Scheme::Combinatorial;
+  if (s == "circle-packing") return ricci::Scheme::circle_packing;
+  if (s == "inversive-distance") return ricci::Scheme::inversive_distance;
+  if (s == "combinatorial") return ricci::Scheme::combinatorial;
   throw UsageError("--metric must be circle-packing, inversive-distance or combinatorial, not '" + s + "'");
 }
 
 ricci::RadiusInit parse_radii(const std::string& s) {
-  if (s == "mean") return ricci::RadiusInit::Mean;
-  if (s == "min") return ricci::RadiusInit::Min;
-  if (s == "least-squares") return ricci::RadiusInit::LeastSquares;
+  if (s == "mean") return ricci::RadiusInit::mean;
+  if (s == "min") return ricci::RadiusInit::min;
+  if (s == "least-squares") return ricci::RadiusInit::least_squares;
   throw UsageError("--radii must be mean, min or least-squares, not '" + s + "'");
 }
 
 ricci::LinearSolver parse_solver(const std::string& s) {
-  for (auto k : {ricci::LinearSolver::Auto, ricci::LinearSolver::EigenLDLT, ricci::LinearSolver::EigenLLT,
-                 ricci::LinearSolver::CholmodSupernodal, ricci::LinearSolver::CholmodSimplicial}) {
+  for (auto k : {ricci::LinearSolver::automatic, ricci::LinearSolver::eigen_ldlt,
+                 ricci::LinearSolver::eigen_llt, ricci::LinearSolver::cholmod_supernodal,
+                 ricci::LinearSolver::cholmod_simplicial}) {
     if (s == ricci::to_string(k)) return k;
   }
   throw UsageError("unknown --solver '" + s + "'");

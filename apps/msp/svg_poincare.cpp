@@ -172,14 +172,14 @@ std::vector<std::string> caption(const ricci::Uniformization& u, const PoincareS
                 ricci::to_string(u.geometry).c_str(), u.genus,
                 u.doubled ? " (double cover of the open surface)" : "", u.flow.max_error);
   lines.push_back(buffer);
-  if (u.geometry == ricci::Geometry::Spherical) {
+  if (u.geometry == ricci::Geometry::spherical) {
     lines.push_back("conformal embedding on the unit sphere, seen from +z (front faces)");
     return lines;
   }
   std::snprintf(buffer, sizeof buffer,
                 "%s: tree-cotree fundamental domain (thick outline, triangles) and %d images under "
                 "products of <= %d side pairings",
-                u.geometry == ricci::Geometry::Hyperbolic ? "Poincare disk" : "plane",
+                u.geometry == ricci::Geometry::hyperbolic ? "Poincare disk" : "plane",
                 stats.copies_drawn - 1, o.depth);
   lines.push_back(buffer);
   lines.push_back("sides coloured by the loop whose cotree edge they hold (grey: tree arcs); fill by "
@@ -199,15 +199,15 @@ std::string uniformization_svg(const ricci::Uniformization& u, const PoincareSvg
   if (!u.converged()) throw ricci::InvalidInputError("uniformization_svg: the flow did not converge");
   PoincareSvgStats stats;
   Eigen::AlignedBox2d view(Eigen::Vector2d(-1.03, -1.03), Eigen::Vector2d(1.03, 1.03));
-  if (u.geometry == ricci::Geometry::Euclidean) {
+  if (u.geometry == ricci::Geometry::euclidean) {
     const double r = 2.2 * u.positions.cwiseAbs().maxCoeff();
     view = Eigen::AlignedBox2d(Eigen::Vector2d(-r, -r), Eigen::Vector2d(r, r));
   }
   SvgCanvas canvas(view, o.width_px);
-  if (u.geometry == ricci::Geometry::Spherical) {
+  if (u.geometry == ricci::Geometry::spherical) {
     draw_sphere(canvas, u);
   } else {
-    if (u.geometry == ricci::Geometry::Hyperbolic) {
+    if (u.geometry == ricci::Geometry::hyperbolic) {
       canvas.add("<circle cx=\"" + svg_number(canvas.px({0, 0}).x()) + "\" cy=\"" +
                  svg_number(canvas.px({0, 0}).y()) + "\" r=\"" +
                  svg_number(canvas.pixels_per_unit()) + "\" fill=\"#d9d9d9\" stroke=\"#000\" stroke-width=\"1.5\"/>");

@@ -11,6 +11,7 @@
 #include "apps/atlas_test_util.h"
 #include "apps/gltf_test_util.h"
 #include "msp/gltf_atlas.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -126,7 +127,7 @@ TEST(AtlasCheckerboard, ObjWritesMeshMaterialAndTexture) {
 
 TEST(AtlasCheckerboard, CommandLineWritesPicturesAndKeepsTheReport) {
   const fs::path dir = temp_dir();
-  const std::string model = std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off";
+  const std::string model = msp_test::test_mesh("closed_g2/eight.off");
   const std::string out = (dir / "cli.json").string();
   const std::string command = std::string(MSP_BINARY) + " atlas '" + model +
                               "' --singularity 570 --quiet --json -o '" +

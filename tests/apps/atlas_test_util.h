@@ -1,16 +1,17 @@
 #pragma once
-// Atlases of shared models built once per test binary (the pipeline takes 0.1-0.5 s each).
+// Atlases of test meshes built once per test binary (the pipeline takes 0.1-0.5 s each).
 #include <string>
 
 #include <ricci/mesh/io.h>
 #include <ricci/pipeline/one_cone_atlas.h>
+#include "test_paths.h"
 
 namespace msp_test {
 
 inline ricci::OneConeAtlasResult build_atlas(const std::string& model, int singular_vertex) {
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = singular_vertex;
-  return ricci::build_one_cone_atlas(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + model),
+  return ricci::build_one_cone_atlas(ricci::read_mesh(msp_test::test_mesh(model)),
                                      options);
 }
 

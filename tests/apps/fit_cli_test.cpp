@@ -15,6 +15,7 @@
 
 #include "apps/gltf_test_util.h"
 #include "apps/info_subprocess.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -30,7 +31,7 @@ fs::path fresh_dir(const std::string& name) {
 }
 
 std::string model(const std::string& name) {
-  return std::string(MSP_SOURCE_DIR) + "/models/" + name;
+  return msp_test::bundled_model(name);
 }
 
 nlohmann::json read_json(const fs::path& path) {

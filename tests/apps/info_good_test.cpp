@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "info_subprocess.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -60,7 +61,7 @@ TEST(InfoGood, ReadMeshGivesAClosedOutwardUnitCube) {
 }
 
 TEST(InfoGood, TextSummaryNamesEveryField) {
-  const std::string eight = std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off";
+  const std::string eight = msp_test::test_mesh("closed_g2/eight.off");
   const auto result = msp_test::run_msp({"info", eight});
   ASSERT_EQ(result.exit_status, 0) << result.err;
   for (const char* line :
@@ -71,7 +72,7 @@ TEST(InfoGood, TextSummaryNamesEveryField) {
         "problems              none"})
     EXPECT_NE(result.out.find(line), std::string::npos) << line << " missing from\n" << result.out;
   const auto quads = msp_test::run_msp(
-      {"info", "--json", std::string(MSP_SHARED_MODELS) + "/open/double-torus-3-holes_quad.off"});
+      {"info", "--json", msp_test::test_mesh("open/double-torus-3-holes_quad.off")});
   const auto info = nlohmann::json::parse(quads.out);
   EXPECT_TRUE(info["min_angle_deg"].is_null());  // no triangles to measure
   EXPECT_EQ(info["non_triangle_faces"], 201);

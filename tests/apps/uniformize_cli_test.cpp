@@ -15,12 +15,13 @@
 #include "info_subprocess.h"
 #include "msp/svg_cover.h"
 #include "msp/svg_poincare.h"
+#include "test_paths.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string model(const std::string& name) { return std::string(MSP_SHARED_MODELS) + "/" + name; }
+std::string model(const std::string& name) { return msp_test::test_mesh(name); }
 
 TEST(UniformizeCli, JsonOnGenus2HasTheContractKeysAndSmallResiduals) {
   const fs::path svg = fs::temp_directory_path() / "msp_uniformize_test_eight.svg";
@@ -58,7 +59,7 @@ TEST(UniformizeCli, JsonOnGenus2HasTheContractKeysAndSmallResiduals) {
 }
 
 TEST(UniformizeCli, TorusReportsTheModulus) {
-  const auto r = msp_test::run_msp({"uniformize", model("closed_g1/knot1.off"), "--json"});
+  const auto r = msp_test::run_msp({"uniformize", model("closed_g1/knot1.off.gz"), "--json"});
   ASSERT_EQ(r.exit_status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["geometry"], "euclidean");

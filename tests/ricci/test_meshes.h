@@ -74,8 +74,5 @@ inline void jitter(Mesh& mesh, double amount, unsigned seed) {
   for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) + OpenMesh::Vec3d(d(rng), d(rng), d(rng)));
 }
 
-inline std::string shared_model(const std::string& relative) {
-  return std::string(MSP_SHARED_MODELS) + "/" + relative;
-}
 
 }  // namespace ricci::testing

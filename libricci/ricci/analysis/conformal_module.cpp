@@ -51,7 +51,7 @@ bool parse_module_kind(const std::string& name, ModuleKind& kind) {
 namespace detail {
 
 void record_flow(const FlowResult& flow, const ModuleOptions& options, ModuleResult& result) {
-  const bool floor = flow.status == FlowStatus::Stalled && flow.max_error < options.accepted_error;
+  const bool floor = flow.status == FlowStatus::stalled && flow.max_error < options.accepted_error;
   result.converged = flow.converged() || floor;
   result.flow_iterations = flow.iterations;
   result.flow_error = flow.max_error;

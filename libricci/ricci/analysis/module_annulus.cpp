@@ -96,7 +96,7 @@ AnnulusMap annulus_map(const Mesh& mesh, const MeshTables& tables, const FlowOpt
   Targets targets;
   targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
   map.flow = flow(mesh, targets, options);
-  if (!map.flow.converged() && map.flow.status != FlowStatus::Stalled) return map;
+  if (!map.flow.converged() && map.flow.status != FlowStatus::stalled) return map;
   map.path = shortest_path_between(mesh, tables, map.flow.lengths, 0, 1);
   std::vector<char> is_cut(mesh.n_edges(), 0);
   for (HalfedgeHandle h : map.path) is_cut[mesh.edge_handle(h).idx()] = 1;

@@ -50,7 +50,7 @@ void uniformized_module(const Mesh& mesh, const ModuleOptions& options, ModuleRe
 void hyperbolic_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
                        ModuleResult& result) {
   FlowOptions flow_options = options.flow;
-  flow_options.geometry = Geometry::Hyperbolic;
+  flow_options.geometry = Geometry::hyperbolic;
   Targets targets;
   targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
   const FlowResult flow_result = flow(mesh, targets, flow_options);

@@ -1,6 +1,6 @@
 #pragma once
 // Affine atlas of a surface with a flat metric that has at most one cone (manifold-splines
-// paper, section 4, steps 4-5; ALGORITHMS.md section 6): the central chart is the layout of the
+// paper, section 4, steps 4-5): the central chart is the layout of the
 // fundamental domain; further charts cover the cut paths, unfolded across the cut; every pair
 // of overlapping charts is related by a rigid motion, computed and checked.
 #include <optional>

@@ -37,7 +37,7 @@ FlowResult flow_by_continuation(const MeshTables& tables, const CirclePackingMet
     // can fail that bound at low-valence vertices whose initial curvature is already negative,
     // so only the last stage is checked.
     CirclePackingMetric stage_metric = metric;
-    if (stage < stages) stage_metric.scheme = Scheme::InversiveDistance;
+    if (stage < stages) stage_metric.scheme = Scheme::inversive_distance;
     FlowResult result = flow(tables, stage_metric, target, stage_options);
     const int iterations = total.iterations + result.iterations;
     const int factorizations = total.factorizations + result.factorizations;

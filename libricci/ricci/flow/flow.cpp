@@ -12,15 +12,18 @@ namespace ricci {
 
 std::string to_string(FlowStatus status) {
   switch (status) {
-    case FlowStatus::Converged: return "converged";
-    case FlowStatus::MaxIterations: return "max-iterations";
-    case FlowStatus::Stalled: return "stalled";
+    case FlowStatus::converged:
+      return "converged";
+    case FlowStatus::max_iterations:
+      return "max-iterations";
+    case FlowStatus::stalled:
+      return "stalled";
     default: return "triangle-inequality";
   }
 }
 
 std::string to_string(FlowMethod method) {
-  return method == FlowMethod::Newton ? "newton" : "gradient";
+  return method == FlowMethod::newton ? "newton" : "gradient";
 }
 
 namespace detail {
@@ -43,10 +46,10 @@ std::string failure_message(const FlowRun& run, const FlowState& state, FlowStat
         << run.target[v] << ")";
   }
   out << ". Try: ";
-  if (status == FlowStatus::MaxIterations) {
+  if (status == FlowStatus::max_iterations) {
     out << "more iterations or a looser tolerance; ";
   }
-  if (run.geometry == Geometry::Spherical) {
+  if (run.geometry == Geometry::spherical) {
     out << "(S2: the spherical energy is not convex and circle packings on the sphere are only "
            "unique up to Möbius maps, so Newton from the mesh's metric can drift to degenerate "
            "triangles; start from a flat metric laid out and mapped by inverse stereographic "
@@ -66,10 +69,10 @@ namespace {
 // target, λ Σ A = 2πχ - Σ K̄, so that the initial metric is near the answer's size.
 double geometry_length_scale(const MeshTables& t, const EdgeLengths& lengths, Geometry g,
                              const Eigen::VectorXd& target) {
-  if (g == Geometry::Euclidean) return 1.0;
+  if (g == Geometry::euclidean) return 1.0;
   const double area_needed =
       curvature_sign(g) * (2.0 * M_PI * t.euler_characteristic - target.sum());
-  const double area = face_areas(t, lengths, Geometry::Euclidean).sum();
+  const double area = face_areas(t, lengths, Geometry::euclidean).sum();
   return std::sqrt(area_needed / area);
 }
 
@@ -77,7 +80,7 @@ double geometry_length_scale(const MeshTables& t, const EdgeLengths& lengths, Ge
 
 FlowResult flow(const MeshTables& tables, const CirclePackingMetric& initial,
                 const Targets& targets, const FlowOptions& options) {
-  const auto start = detail::Clock::now();
+  const Stopwatch start;
   check_targets(tables, targets, initial.geometry, initial.scheme);
   if (initial.gamma.size() != tables.num_vertices() || initial.eta.size() != tables.num_edges()) {
     throw InvalidInputError("initial metric does not match the mesh's element counts");
@@ -89,7 +92,7 @@ FlowResult flow(const MeshTables& tables, const CirclePackingMetric& initial,
   result.solver = options.solver;
   const detail::FlowRun run{tables, initial.geometry, initial.eta, targets.curvature, options, start};
   FlowState state;
-  auto t0 = detail::Clock::now();
+  Stopwatch t0;
   if (!evaluate_flow_state(tables, initial.geometry, initial.eta,
                            u_from_radii(initial.geometry, initial.gamma), state)) {
     throw InvalidInputError("the initial metric is not valid: " +
@@ -100,8 +103,8 @@ FlowResult flow(const MeshTables& tables, const CirclePackingMetric& initial,
                                                        : "vertex " + std::to_string(state.bad_vertex) +
                                                              " has a radius out of range"));
   }
-  result.timings.evaluation += detail::seconds_since(t0);
-  if (options.method == FlowMethod::Newton) {
+  result.timings.evaluation += t0.seconds();
+  if (options.method == FlowMethod::newton) {
     detail::run_newton(run, state, result);
   } else {
     detail::run_gradient_descent(run, state, result);
@@ -111,35 +114,35 @@ FlowResult flow(const MeshTables& tables, const CirclePackingMetric& initial,
   result.lengths = state.lengths;
   result.curvature = state.curvature;
   result.max_error = detail::max_error(state, run.target);
-  result.timings.total = detail::seconds_since(start);
+  result.timings.total = start.seconds();
   return result;
 }
 
 FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& options) {
-  const auto start = detail::Clock::now();
+  const Stopwatch start;
   const MeshTables tables = build_mesh_tables(mesh);
   // Gauss-Bonnet first, before any work; the valence test belongs to each attempt's metric.
   check_targets(tables, targets, options.geometry,
-                options.fall_back_to_other_metrics ? Scheme::InversiveDistance : options.scheme);
+                options.fall_back_to_other_metrics ? Scheme::inversive_distance : options.scheme);
   EdgeLengths lengths = mesh_edge_lengths(mesh);
   const double scale = geometry_length_scale(tables, lengths, options.geometry, targets.curvature);
   lengths *= scale;
   std::vector<std::pair<Scheme, RadiusInit>> attempts = {{options.scheme, options.radii}};
   if (options.fall_back_to_other_metrics) {
-    for (auto next : {std::pair{Scheme::InversiveDistance, RadiusInit::Min},
-                      std::pair{Scheme::InversiveDistance, RadiusInit::Mean},
-                      std::pair{Scheme::CirclePacking, RadiusInit::Mean},
-                      std::pair{Scheme::Combinatorial, RadiusInit::Mean}}) {
+    for (auto next : {std::pair{Scheme::inversive_distance, RadiusInit::min},
+                      std::pair{Scheme::inversive_distance, RadiusInit::mean},
+                      std::pair{Scheme::circle_packing, RadiusInit::mean},
+                      std::pair{Scheme::combinatorial, RadiusInit::mean}}) {
       if (next != attempts.front()) attempts.push_back(next);
     }
   }
   FlowResult result, best;
   std::vector<std::string> failures;
   for (const auto& [scheme, radii] : attempts) {
-    const auto attempt_start = detail::Clock::now();
+    const Stopwatch attempt_start;
     const CirclePackingMetric initial =
         initial_metric(tables, lengths, options.geometry, scheme, radii);
-    const double setup = detail::seconds_since(attempt_start);
+    const double setup = attempt_start.seconds();
     try {
       result = flow(tables, initial, targets, options);
     } catch (const InfeasibleTargetError&) {
@@ -151,13 +154,13 @@ FlowResult flow(const Mesh& mesh, const Targets& targets, const FlowOptions& opt
     if (result.converged()) break;
     // If nothing converges, report the attempt that came closest.
     if (best.error_history.empty() || result.max_error < best.max_error) best = result;
-    failures.push_back(to_string(scheme) + (radii == RadiusInit::Min ? "/min" : "/mean") + ": " +
+    failures.push_back(to_string(scheme) + (radii == RadiusInit::min ? "/min" : "/mean") + ": " +
                        result.message);
   }
   if (!result.converged() && !best.error_history.empty()) result = std::move(best);
   result.failed_attempts = std::move(failures);
   result.length_scale = scale;
-  result.timings.total = detail::seconds_since(start);
+  result.timings.total = start.seconds();
   return result;
 }
 

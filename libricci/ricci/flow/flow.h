@@ -1,10 +1,10 @@
 #pragma once
 // Discrete surface Ricci flow: find the circle-packing metric conformal to the mesh's whose
 // vertex curvature is a given target, by Newton's method on the convex Ricci energy (or the
-// papers' gradient descent, for comparison). ALGORITHMS.md §3; discrete-surface-ricci-flow §V;
-// ricci-flow-3d-shape-analysis §3.5-4.
+// papers' gradient descent, for comparison). The Ricci-flow paper (discrete-surface-ricci-flow)
+// §V; the shape-analysis paper (ricci-flow-3d-shape-analysis) §3.5-4.
 //
-//   ricci::Targets targets = ricci::uniform_target(mesh, ricci::Geometry::Euclidean);
+//   ricci::Targets targets = ricci::uniform_target(mesh, ricci::Geometry::euclidean);
 //   ricci::FlowResult result = ricci::flow(mesh, targets);
 //   if (!result.converged()) std::cerr << result.message;
 //   use(result.lengths);
@@ -23,13 +23,13 @@
 
 namespace ricci {
 
-enum class FlowMethod { Newton, GradientDescent };
+enum class FlowMethod { newton, gradient_descent };
 
 enum class FlowStatus {
-  Converged,          ///< max |K - K̄| < tolerance
-  MaxIterations,      ///< iteration budget spent while still making progress
-  Stalled,            ///< the line search found no decrease (or the factorisation failed)
-  TriangleInequality  ///< every trial step broke a triangle: the target is out of reach
+  converged,           ///< max |K - K̄| < tolerance
+  max_iterations,      ///< iteration budget spent while still making progress
+  stalled,             ///< the line search found no decrease (or the factorisation failed)
+  triangle_inequality  ///< every trial step broke a triangle: the target is out of reach
 };
 
 std::string to_string(FlowStatus status);
@@ -44,11 +44,11 @@ struct FlowProgress {
 };
 
 struct FlowOptions {
-  Geometry geometry = Geometry::Euclidean;
-  Scheme scheme = Scheme::InversiveDistance;
+  Geometry geometry = Geometry::euclidean;
+  Scheme scheme = Scheme::inversive_distance;
   /// Min (shape-analysis Alg. 1) converged on more of the shared models than Mean.
-  RadiusInit radii = RadiusInit::Min;
-  FlowMethod method = FlowMethod::Newton;
+  RadiusInit radii = RadiusInit::min;
+  FlowMethod method = FlowMethod::newton;
   /// Stop when max_i |K_i - K̄_i| is below this (radians).
   double tolerance = 1e-10;
   /// Newton iterations allowed.
@@ -58,9 +58,8 @@ struct FlowOptions {
   /// Initial gradient-descent step ε in u += ε (K̄ - K) (the papers use ≤ 0.05); halved when
   /// the error grows or a triangle breaks.
   double gradient_step = 0.1;
-  /// Sparse factorisation for Newton (Auto: Eigen LDLT below 20k unknowns, CHOLMOD supernodal
-  /// above, where it factorises 6-8x faster; see msp-bench solvers).
-  LinearSolver solver = LinearSolver::Auto;
+  /// Sparse factorisation for Newton (automatic: resolve_linear_solver).
+  LinearSolver solver = LinearSolver::automatic;
   /// Halvings of a Newton step before the line search gives up.
   int max_step_halvings = 40;
   /// When the run from (scheme, radii) does not converge, retry from the next metric of
@@ -95,7 +94,7 @@ struct FlowTimings {
 };
 
 struct FlowResult {
-  FlowStatus status = FlowStatus::Stalled;
+  FlowStatus status = FlowStatus::stalled;
   /// Empty when converged; otherwise one paragraph naming the worst vertices and what to try.
   std::string message;
   /// The final metric: radii at the end of the flow and the fixed edge quantities.
@@ -115,14 +114,14 @@ struct FlowResult {
   int factorizations = 0;
   double max_error = 0;
   /// The factorisation actually used (after any fallback).
-  LinearSolver solver = LinearSolver::Auto;
+  LinearSolver solver = LinearSolver::automatic;
   FlowTimings timings;
   /// Newton iterations whose line search broke triangles, with the first face broken.
   std::vector<BrokenTrial> broken_faces;
   /// One line per run that did not converge before the reported one (fall-back mode).
   std::vector<std::string> failed_attempts;
 
-  bool converged() const { return status == FlowStatus::Converged; }
+  bool converged() const { return status == FlowStatus::converged; }
 };
 
 /// Runs the flow from the initial metric of the mesh (options.scheme, options.radii).

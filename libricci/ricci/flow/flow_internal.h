@@ -1,18 +1,12 @@
 #pragma once
 // Shared pieces of the two flow methods (newton.cpp, gradient_descent.cpp). Not installed API.
-#include <chrono>
 #include <string>
 
 #include "ricci/flow/flow.h"
 #include "ricci/flow/flow_state.h"
+#include "ricci/util/stopwatch.h"
 
 namespace ricci::detail {
-
-using Clock = std::chrono::steady_clock;
-
-inline double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// Inputs of one run, fixed for its duration.
 struct FlowRun {
@@ -21,7 +15,7 @@ struct FlowRun {
   const Eigen::VectorXd& eta;
   const Eigen::VectorXd& target;
   const FlowOptions& options;
-  Clock::time_point start;
+  const Stopwatch& start;  ///< started with the run
 };
 
 /// max_i |K_i - K̄_i|.

@@ -6,7 +6,7 @@ namespace ricci::detail {
 
 void run_gradient_descent(const FlowRun& run, FlowState& state, FlowResult& result) {
   const FlowOptions& o = run.options;
-  const bool euclidean = run.geometry == Geometry::Euclidean;
+  const bool euclidean = run.geometry == Geometry::euclidean;
   double epsilon = o.gradient_step;
   double error = max_error(state, run.target);
   double merit = (state.curvature - run.target).norm();
@@ -15,7 +15,7 @@ void run_gradient_descent(const FlowRun& run, FlowState& state, FlowResult& resu
   Eigen::VectorXd step;
   while (error >= o.tolerance) {
     if (result.iterations >= o.max_gradient_iterations) {
-      result.status = FlowStatus::MaxIterations;
+      result.status = FlowStatus::max_iterations;
       result.message = failure_message(run, state, result.status,
                                        "gradient descent used its " +
                                            std::to_string(o.max_gradient_iterations) + " iterations");
@@ -23,7 +23,7 @@ void run_gradient_descent(const FlowRun& run, FlowState& state, FlowResult& resu
     }
     step = run.target - state.curvature;
     if (euclidean) step.array() -= step.mean();  // the papers' normalisation Σu = const
-    const auto t0 = Clock::now();
+    const Stopwatch t0;
     bool accepted = false;
     for (int halving = 0; halving <= o.max_step_halvings; ++halving, epsilon *= 0.5) {
       if (!evaluate_flow_state(run.tables, run.geometry, run.eta, state.u + epsilon * step, trial)) {
@@ -35,9 +35,9 @@ void run_gradient_descent(const FlowRun& run, FlowState& state, FlowResult& resu
         break;
       }
     }
-    result.timings.evaluation += seconds_since(t0);
+    result.timings.evaluation += t0.seconds();
     if (!accepted) {
-      result.status = FlowStatus::TriangleInequality;
+      result.status = FlowStatus::triangle_inequality;
       result.message = failure_message(run, state, result.status,
                                        "every shortened gradient step broke a triangle");
       return;
@@ -48,11 +48,11 @@ void run_gradient_descent(const FlowRun& run, FlowState& state, FlowResult& resu
     ++result.iterations;
     if (result.iterations % 100 == 0) {
       result.error_history.push_back(error);
-      if (o.progress) o.progress({result.iterations, error, epsilon, seconds_since(run.start)});
+      if (o.progress) o.progress({result.iterations, error, epsilon, run.start.seconds()});
     }
   }
   result.error_history.push_back(error);
-  result.status = FlowStatus::Converged;
+  result.status = FlowStatus::converged;
 }
 
 }  // namespace ricci::detail

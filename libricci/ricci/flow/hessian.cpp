@@ -37,7 +37,7 @@ void face_angle_derivatives(const MeshTables& t, Geometry g, const FlowState& s,
   const double sn[3] = {s.sines(f, 0), s.sines(f, 1), s.sines(f, 2)};
   const double l[3] = {s.lengths[t.face_edges(f, 0)], s.lengths[t.face_edges(f, 1)],
                        s.lengths[t.face_edges(f, 2)]};
-  if (g == Geometry::Euclidean) {
+  if (g == Geometry::euclidean) {
     // Power centre: for edge k (between i and j) h_k = (d_ik - d_ij cos θ_i)/sin θ_i, where
     // d_ij = ∂l_ij/∂u_i is the distance from v_i to the foot of the power centre on edge ij.
     double w[3];

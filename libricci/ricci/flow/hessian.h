@@ -1,5 +1,5 @@
 #pragma once
-// The Hessian of the Ricci energy, H = ∂K/∂u (ALGORITHMS.md §3).
+// The Hessian of the Ricci energy, H = ∂K/∂u (Ricci-flow paper §V, appendix D).
 //   E2: the power-centre form of shape-analysis lemma 3.6, ∂θ_i/∂u_j = h_k / l_ij with h_k the
 //       signed distance of the face's power centre to edge ij; H is a weighted graph Laplacian.
 //   H2, S2: the chain rule ∂θ/∂u = (∂θ/∂l from the cosine law) (∂l/∂u from the circle-packing

@@ -9,10 +9,14 @@ namespace ricci {
 
 std::string to_string(LinearSolver solver) {
   switch (solver) {
-    case LinearSolver::Auto: return "auto";
-    case LinearSolver::EigenLDLT: return "eigen-ldlt";
-    case LinearSolver::EigenLLT: return "eigen-llt";
-    case LinearSolver::CholmodSupernodal: return "cholmod-supernodal";
+    case LinearSolver::automatic:
+      return "auto";
+    case LinearSolver::eigen_ldlt:
+      return "eigen-ldlt";
+    case LinearSolver::eigen_llt:
+      return "eigen-llt";
+    case LinearSolver::cholmod_supernodal:
+      return "cholmod-supernodal";
     default: return "cholmod-simplicial";
   }
 }
@@ -29,12 +33,12 @@ struct SymmetricFactorization::Impl {
 };
 
 LinearSolver resolve_linear_solver(LinearSolver kind, Eigen::Index unknowns) {
-  if (kind != LinearSolver::Auto) return kind;
-  return unknowns < 20000 ? LinearSolver::EigenLDLT : LinearSolver::CholmodSupernodal;
+  if (kind != LinearSolver::automatic) return kind;
+  return unknowns < 20000 ? LinearSolver::eigen_ldlt : LinearSolver::cholmod_supernodal;
 }
 
 SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
-    : kind_(kind == LinearSolver::Auto ? LinearSolver::CholmodSupernodal : kind),
+    : kind_(kind == LinearSolver::automatic ? LinearSolver::cholmod_supernodal : kind),
       impl_(std::make_unique<Impl>()) {
   // CHOLMOD reports a non-positive-definite matrix on stderr unless told not to; the caller
   // handles the failure (libraries never print).
@@ -46,22 +50,28 @@ SymmetricFactorization::~SymmetricFactorization() = default;
 
 void SymmetricFactorization::analyze(const Sparse& lower) {
   switch (kind_) {
-    case LinearSolver::EigenLDLT: impl_->eigen_ldlt.analyzePattern(lower); break;
-    case LinearSolver::EigenLLT: impl_->eigen_llt.analyzePattern(lower); break;
-    case LinearSolver::CholmodSupernodal: impl_->cholmod_supernodal.analyzePattern(lower); break;
+    case LinearSolver::eigen_ldlt:
+      impl_->eigen_ldlt.analyzePattern(lower);
+      break;
+    case LinearSolver::eigen_llt:
+      impl_->eigen_llt.analyzePattern(lower);
+      break;
+    case LinearSolver::cholmod_supernodal:
+      impl_->cholmod_supernodal.analyzePattern(lower);
+      break;
     default: impl_->cholmod_simplicial.analyzePattern(lower); break;
   }
 }
 
 bool SymmetricFactorization::factorize(const Sparse& lower) {
   switch (kind_) {
-    case LinearSolver::EigenLDLT:
+    case LinearSolver::eigen_ldlt:
       impl_->eigen_ldlt.factorize(lower);
       return impl_->eigen_ldlt.info() == Eigen::Success;
-    case LinearSolver::EigenLLT:
+    case LinearSolver::eigen_llt:
       impl_->eigen_llt.factorize(lower);
       return impl_->eigen_llt.info() == Eigen::Success;
-    case LinearSolver::CholmodSupernodal:
+    case LinearSolver::cholmod_supernodal:
       impl_->cholmod_supernodal.factorize(lower);
       return impl_->cholmod_supernodal.info() == Eigen::Success;
     default:
@@ -72,9 +82,12 @@ bool SymmetricFactorization::factorize(const Sparse& lower) {
 
 Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const {
   switch (kind_) {
-    case LinearSolver::EigenLDLT: return impl_->eigen_ldlt.solve(rhs);
-    case LinearSolver::EigenLLT: return impl_->eigen_llt.solve(rhs);
-    case LinearSolver::CholmodSupernodal: return impl_->cholmod_supernodal.solve(rhs);
+    case LinearSolver::eigen_ldlt:
+      return impl_->eigen_ldlt.solve(rhs);
+    case LinearSolver::eigen_llt:
+      return impl_->eigen_llt.solve(rhs);
+    case LinearSolver::cholmod_supernodal:
+      return impl_->cholmod_supernodal.solve(rhs);
     default: return impl_->cholmod_simplicial.solve(rhs);
   }
 }

@@ -11,19 +11,17 @@ namespace ricci {
 
 /// Which sparse factorisation Newton uses.
 enum class LinearSolver {
-  Auto,               ///< measured default: EigenLDLT below 20k unknowns, else CholmodSupernodal
-  EigenLDLT,          ///< Eigen::SimplicialLDLT (also handles indefinite matrices)
-  EigenLLT,           ///< Eigen::SimplicialLLT
-  CholmodSupernodal,  ///< CHOLMOD supernodal LLT (BLAS level 3)
-  CholmodSimplicial   ///< CHOLMOD simplicial LDLT
+  automatic,           ///< measured default: eigen_ldlt below 20k unknowns, else cholmod_supernodal
+  eigen_ldlt,          ///< Eigen::SimplicialLDLT (also handles indefinite matrices)
+  eigen_llt,           ///< Eigen::SimplicialLLT
+  cholmod_supernodal,  ///< CHOLMOD supernodal LLT (BLAS level 3)
+  cholmod_simplicial   ///< CHOLMOD simplicial LDLT
 };
 
 std::string to_string(LinearSolver solver);
 
-/// The factorisation Auto stands for at this size (others are returned as they are). Measured
-/// (msp-bench solvers): CHOLMOD supernodal factorises a 100k-face Hessian 6-8x faster than the
-/// simplicial ones, but below ~20k unknowns its BLAS overhead makes Eigen's LDLT as fast or
-/// faster.
+/// The factorisation `automatic` stands for at this size (others are returned as they are): Eigen's
+/// LDLT below 20k unknowns, CHOLMOD supernodal above (msp-bench solvers measures both).
 [[nodiscard]] LinearSolver resolve_linear_solver(LinearSolver kind, Eigen::Index unknowns);
 
 /// A factorisation of a symmetric matrix given by its lower triangle (compressed columns).

@@ -34,9 +34,9 @@ class NewtonSystem {
   NewtonSystem(LinearSolver kind, const Eigen::SparseMatrix<double>& pattern, FlowTimings& timings)
       : factorization_(std::make_unique<SymmetricFactorization>(resolve_linear_solver(kind, pattern.rows()))),
         timings_(timings) {
-    const auto t0 = Clock::now();
+    const Stopwatch t0;
     factorization_->analyze(pattern);
-    timings_.analysis += seconds_since(t0);
+    timings_.analysis += t0.seconds();
   }
 
   LinearSolver kind() const { return factorization_->kind(); }
@@ -49,7 +49,7 @@ class NewtonSystem {
   bool solve_reusing(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs,
                      Eigen::VectorXd& x) {
     if (!factored_) return false;
-    const auto t0 = Clock::now();
+    const Stopwatch t0;
     x = factorization_->solve(rhs);
     double previous = rhs.norm();
     bool ok = false;
@@ -69,7 +69,7 @@ class NewtonSystem {
       previous = norm;
       x += factorization_->solve(residual);
     }
-    timings_.solve += seconds_since(t0);
+    timings_.solve += t0.seconds();
     return ok;
   }
 
@@ -79,11 +79,11 @@ class NewtonSystem {
   // Solves H x = rhs; returns false if no factorisation gave a finite solution.
   bool solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
     if (try_solve(H, rhs, x)) return true;
-    if (kind() != LinearSolver::EigenLDLT) {
-      factorization_ = std::make_unique<SymmetricFactorization>(LinearSolver::EigenLDLT);
-      const auto t0 = Clock::now();
+    if (kind() != LinearSolver::eigen_ldlt) {
+      factorization_ = std::make_unique<SymmetricFactorization>(LinearSolver::eigen_ldlt);
+      const Stopwatch t0;
       factorization_->analyze(H);
-      timings_.analysis += seconds_since(t0);
+      timings_.analysis += t0.seconds();
       if (try_solve(H, rhs, x)) return true;
     }
     Eigen::SparseMatrix<double> shifted = H;
@@ -99,13 +99,13 @@ class NewtonSystem {
  private:
   bool try_solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs,
                  Eigen::VectorXd& x) {
-    auto t0 = Clock::now();
+    Stopwatch t0;
     const bool ok = factorization_->factorize(H);
-    timings_.factorization += seconds_since(t0);
+    timings_.factorization += t0.seconds();
     ++factorizations_;
     factored_ = ok;
     if (!ok) return false;
-    t0 = Clock::now();
+    t0.restart();
     x = factorization_->solve(rhs);
     // Iterative refinement: H's condition number grows with the mesh (it is a Laplacian), and
     // on a million faces one triangular solve alone leaves the curvature at ~1e-10. Far from the
@@ -116,7 +116,7 @@ class NewtonSystem {
       if (residual.norm() <= 1e-14 * rhs.norm()) break;
       x += factorization_->solve(residual);
     }
-    timings_.solve += seconds_since(t0);
+    timings_.solve += t0.seconds();
     return x.allFinite();
   }
 
@@ -134,18 +134,18 @@ class NewtonSystem {
 // (Yamashita-Fukushima). λ adapts: smaller after full steps, larger after cut ones.
 bool levenberg_marquardt_step(const Eigen::SparseMatrix<double>& lower, const Eigen::VectorXd& rhs,
                               double lambda, FlowTimings& timings, Eigen::VectorXd& step) {
-  auto t0 = Clock::now();
+  Stopwatch t0;
   const Eigen::SparseMatrix<double> H = lower.selfadjointView<Eigen::Lower>();
   const double mu = lambda * rhs.norm() * std::max(max_abs_diagonal(lower), 1e-300);
   Eigen::SparseMatrix<double> normal = (H * H).pruned();
   for (int j = 0; j < normal.outerSize(); ++j) normal.coeffRef(j, j) += mu;
   const Eigen::SparseMatrix<double> normal_lower = normal.triangularView<Eigen::Lower>();
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver(normal_lower);
-  timings.factorization += seconds_since(t0);
+  timings.factorization += t0.seconds();
   if (solver.info() != Eigen::Success) return false;
-  t0 = Clock::now();
+  t0.restart();
   step = solver.solve(H * rhs);
-  timings.solve += seconds_since(t0);
+  timings.solve += t0.seconds();
   return step.allFinite();
 }
 
@@ -195,7 +195,7 @@ LineSearch line_search(const FlowRun& run, const FlowState& state, const Eigen::
 // Thurston's weights (η = cos Φ, Φ ∈ [0, π/2]) make the E2 energy convex in u (Chow-Luo);
 // inversive distances outside [0, 1] need not.
 bool convex_energy(const FlowRun& run) {
-  return run.geometry == Geometry::Euclidean && run.eta.size() > 0 && run.eta.minCoeff() >= 0.0 &&
+  return run.geometry == Geometry::euclidean && run.eta.size() > 0 && run.eta.minCoeff() >= 0.0 &&
          run.eta.maxCoeff() <= 1.0;
 }
 
@@ -207,10 +207,10 @@ void polish(const FlowRun& run, HessianAssembler& assembler, NewtonSystem& syste
             FlowResult& result) {
   const MeshTables& t = run.tables;
   const double error = max_error(state, run.target);
-  if (run.geometry != Geometry::Euclidean || result.iterations == 0 || error < 1e-12) return;
-  auto t0 = Clock::now();
+  if (run.geometry != Geometry::euclidean || result.iterations == 0 || error < 1e-12) return;
+  Stopwatch t0;
   const Eigen::SparseMatrix<double>& H = assembler.assemble(run.geometry, run.eta, state);
-  result.timings.assembly += seconds_since(t0);
+  result.timings.assembly += t0.seconds();
   const int n = assembler.num_unknowns();
   Eigen::VectorXd rhs(n), reduced(n), step(t.num_vertices());
   for (int v = 0; v < t.num_vertices(); ++v) {
@@ -221,16 +221,17 @@ void polish(const FlowRun& run, HessianAssembler& assembler, NewtonSystem& syste
     step[v] = assembler.unknown(v) >= 0 ? reduced[assembler.unknown(v)] : 0.0;
   }
   step.array() -= step.mean();
-  t0 = Clock::now();
+  t0.restart();
   FlowState trial;
   const bool valid = evaluate_flow_state(t, run.geometry, run.eta, state.u + step, trial);
-  result.timings.evaluation += seconds_since(t0);
+  result.timings.evaluation += t0.seconds();
   if (!valid || !(max_error(trial, run.target) < error)) return;
   std::swap(state, trial);
   ++result.iterations;
   result.error_history.push_back(max_error(state, run.target));
   if (run.options.progress) {
-    run.options.progress({result.iterations, result.error_history.back(), 1.0, seconds_since(run.start)});
+    run.options.progress(
+        {result.iterations, result.error_history.back(), 1.0, run.start.seconds()});
   }
 }
 
@@ -239,7 +240,7 @@ void polish(const FlowRun& run, HessianAssembler& assembler, NewtonSystem& syste
 void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   const MeshTables& t = run.tables;
   const FlowOptions& o = run.options;
-  const bool euclidean = run.geometry == Geometry::Euclidean;
+  const bool euclidean = run.geometry == Geometry::euclidean;
   // E2 gauge: H·1 = 0 (scaling all radii keeps every angle), so pin vertex 0 and solve the
   // reduced system; its dropped equation holds because Σ(K̄ - K) = 0 by Gauss-Bonnet.
   HessianAssembler assembler(t, euclidean ? 0 : -1);
@@ -260,48 +261,48 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   result.error_history.push_back(error);
   while (error >= o.tolerance) {
     if (result.iterations >= o.max_newton_iterations) {
-      result.status = FlowStatus::MaxIterations;
+      result.status = FlowStatus::max_iterations;
       result.message = failure_message(run, state, result.status,
                                        "Newton used its " + std::to_string(o.max_newton_iterations) +
                                            " iterations");
       return;
     }
-    auto t0 = Clock::now();
+    Stopwatch t0;
     const Eigen::SparseMatrix<double>& H = assembler.assemble(run.geometry, run.eta, state);
-    result.timings.assembly += seconds_since(t0);
+    result.timings.assembly += t0.seconds();
     for (int v = 0; v < t.num_vertices(); ++v) {
       if (assembler.unknown(v) >= 0) rhs[assembler.unknown(v)] = run.target[v] - state.curvature[v];
     }
-    const bool spherical = run.geometry == Geometry::Spherical;
+    const bool spherical = run.geometry == Geometry::spherical;
     // Reuse the last factorisation once Newton is in its fast phase (full steps, small error).
     const bool reuse = last_step_full && error < 1e-2;
     system.set_refinements(error < 1e-3 ? 2 : 0);
     if (spherical ? !levenberg_marquardt_step(H, rhs, lambda, result.timings, reduced_step)
                   : !((reuse && system.solve_reusing(H, rhs, reduced_step)) ||
                       system.solve(H, rhs, reduced_step))) {
-      result.status = FlowStatus::Stalled;
+      result.status = FlowStatus::stalled;
       result.message = failure_message(run, state, result.status,
                                        "no factorisation of the Hessian gave a finite step");
       return;
     }
-    result.solver = spherical ? LinearSolver::EigenLDLT : system.kind();
+    result.solver = spherical ? LinearSolver::eigen_ldlt : system.kind();
     for (int v = 0; v < t.num_vertices(); ++v) {
       step[v] = assembler.unknown(v) >= 0 ? reduced_step[assembler.unknown(v)] : 0.0;
     }
     // In E2 a constant shift of u is a global scale: keep Σu fixed as the papers normalise.
     if (euclidean) step.array() -= step.mean();
 
-    t0 = Clock::now();
+    t0.restart();
     const LineSearch search = line_search(run, state, step, merit, spherical, convex, trial);
     if (search.first_broken_face >= 0 && result.broken_faces.size() < kMaxBrokenFacesRecorded) {
       result.broken_faces.push_back({result.iterations + 1, search.first_broken_face, search.broken});
     }
-    result.timings.evaluation += seconds_since(t0);
+    result.timings.evaluation += t0.seconds();
     const double t_step = search.step;
     const int broken = search.broken;
     if (!search.accepted) {
       const bool triangles = broken > o.max_step_halvings / 2;
-      result.status = triangles ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
+      result.status = triangles ? FlowStatus::triangle_inequality : FlowStatus::stalled;
       result.message = failure_message(
           run, state, result.status,
           triangles ? std::string("every shortened Newton step broke a triangle")
@@ -318,7 +319,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     error = max_error(state, run.target);
     ++result.iterations;
     result.error_history.push_back(error);
-    if (o.progress) o.progress({result.iterations, error, t_step, seconds_since(run.start)});
+    if (o.progress) o.progress({result.iterations, error, t_step, run.start.seconds()});
     crawling = (broken > 0 && t_step < 1e-3) ? crawling + 1 : 0;
     recent_broken += broken > 0 ? 1 : 0;
     // Newton converges quadratically once it is near the answer; ten iterations without halving
@@ -327,7 +328,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     if (result.iterations % kWindow == 0) {
       const double before = result.error_history[result.error_history.size() - 1 - kWindow];
       if (error > 0.5 * before) {
-        result.status = recent_broken > 0 ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
+        result.status = recent_broken > 0 ? FlowStatus::triangle_inequality : FlowStatus::stalled;
         result.message = failure_message(
             run, state, result.status,
             "the error fell from " + std::to_string(before) + " to only " + std::to_string(error) +
@@ -344,7 +345,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     stagnant = short_step ? stagnant + 1 : 0;
     stagnant_broken = short_step ? stagnant_broken + (broken > 0 ? 1 : 0) : 0;
     if (euclidean && stagnant >= 3) {
-      result.status = stagnant_broken > 0 ? FlowStatus::TriangleInequality : FlowStatus::Stalled;
+      result.status = stagnant_broken > 0 ? FlowStatus::triangle_inequality : FlowStatus::stalled;
       result.message = failure_message(run, state, result.status,
                                        std::string("three short Newton steps in a row lowered the error by "
                                                    "less than 2% each") +
@@ -353,13 +354,13 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
       return;
     }
     if (crawling >= 8) {
-      result.status = FlowStatus::TriangleInequality;
+      result.status = FlowStatus::triangle_inequality;
       result.message = failure_message(run, state, result.status,
                                        "Newton steps keep breaking triangles and shrink below 1e-3");
       return;
     }
   }
-  result.status = FlowStatus::Converged;
+  result.status = FlowStatus::converged;
   polish(run, assembler, system, state, result);
 }
 

@@ -56,9 +56,9 @@ void check_vertex(const Mesh& mesh, int vertex) {
 Targets uniform_target(const Mesh& mesh, Geometry geometry) {
   const MeshTables t = build_mesh_tables(mesh);
   const int chi = t.euler_characteristic;
-  const bool fits = (geometry == Geometry::Euclidean && chi == 0) ||
-                    (geometry == Geometry::Hyperbolic && chi < 0) ||
-                    (geometry == Geometry::Spherical && chi > 0);
+  const bool fits = (geometry == Geometry::euclidean && chi == 0) ||
+                    (geometry == Geometry::hyperbolic && chi < 0) ||
+                    (geometry == Geometry::spherical && chi > 0);
   if (!fits) {
     throw InfeasibleTargetError("uniform target K = 0 needs " +
                                 std::string(chi == 0 ? "euclidean" : chi < 0 ? "hyperbolic" : "spherical") +
@@ -106,7 +106,7 @@ Targets boundary_target(const Mesh& mesh, BoundaryMode mode, int loop) {
   const int loops = static_cast<int>(t.boundary_loops.size());
   Targets targets{Eigen::VectorXd::Zero(t.num_vertices())};
   const double total = 2.0 * M_PI * t.euler_characteristic;
-  if (mode == BoundaryMode::SpreadByLength) {
+  if (mode == BoundaryMode::spread_by_length) {
     spread_by_length(mesh, t.boundary_loops, total, targets.curvature);
     return targets;
   }
@@ -116,7 +116,7 @@ Targets boundary_target(const Mesh& mesh, BoundaryMode mode, int loop) {
       if (loop_length(mesh, t.boundary_loops[i]) > loop_length(mesh, t.boundary_loops[loop])) loop = i;
     }
   }
-  if (mode == BoundaryMode::CircleDomain) {
+  if (mode == BoundaryMode::circle_domain) {
     for (int i = 0; i < loops; ++i) {
       const double loop_total = i == loop ? total + 2.0 * M_PI * (loops - 1) : -2.0 * M_PI;
       spread_by_length(mesh, {t.boundary_loops[i]}, loop_total, targets.curvature);
@@ -151,19 +151,19 @@ void check_targets(const MeshTables& t, const Targets& targets, Geometry geometr
   const std::string sums = "sum of target curvature " + format(sum) + ", 2πχ = " + format(needed) +
                            " (χ = " + std::to_string(t.euler_characteristic) + ")";
   const double slack = 1e-9 * (1.0 + K.cwiseAbs().sum());
-  if (geometry == Geometry::Euclidean && std::abs(sum - needed) > slack) {
+  if (geometry == Geometry::euclidean && std::abs(sum - needed) > slack) {
     throw InfeasibleTargetError("target violates Gauss-Bonnet for euclidean geometry: " + sums +
                                 "; they must be equal");
   }
-  if (geometry == Geometry::Hyperbolic && !(sum > needed + slack)) {
+  if (geometry == Geometry::hyperbolic && !(sum > needed + slack)) {
     throw InfeasibleTargetError("target violates Gauss-Bonnet for hyperbolic geometry: " + sums +
                                 "; the sum must exceed 2πχ (faces carry negative curvature)");
   }
-  if (geometry == Geometry::Spherical && !(sum < needed - slack)) {
+  if (geometry == Geometry::spherical && !(sum < needed - slack)) {
     throw InfeasibleTargetError("target violates Gauss-Bonnet for spherical geometry: " + sums +
                                 "; the sum must be below 2πχ (faces carry positive curvature)");
   }
-  if (scheme == Scheme::InversiveDistance) return;
+  if (scheme == Scheme::inversive_distance) return;
   for (int v = 0; v < t.num_vertices(); ++v) {
     if (t.is_boundary_vertex[v] || K[v] >= 0) continue;
     const double needed_valence = 4.0 - 2.0 * K[v] / M_PI;

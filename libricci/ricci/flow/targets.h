@@ -1,5 +1,6 @@
 #pragma once
-// Target curvatures for the Ricci flow (ALGORITHMS.md §3-4) and their feasibility check.
+// Target curvatures for the Ricci flow (Ricci-flow paper §V; manifold-splines paper §4) and their
+// feasibility check.
 #include <utility>
 #include <vector>
 
@@ -20,11 +21,11 @@ struct Targets {
 
 /// How boundary_target distributes the boundary's total curvature 2πχ.
 enum class BoundaryMode {
-  SpreadByLength,  ///< over all boundary vertices, proportional to their boundary edge length
-  OneLoop,         ///< over one loop only (by length); the other loops get 0 (geodesic)
+  spread_by_length,  ///< over all boundary vertices, proportional to their boundary edge length
+  one_loop,          ///< over one loop only (by length); the other loops get 0 (geodesic)
   /// Like a circle domain: every loop but the longest gets -2π (a round hole), the longest the
   /// rest, 2π(1 - 2g); each spread over its own loop by length.
-  CircleDomain
+  circle_domain
 };
 
 /// Uniformization: K̄ = 0 at every vertex (E2 for χ = 0, H2 for χ < 0, S2 for χ > 0, with the
@@ -50,7 +51,7 @@ enum class BoundaryMode {
 /// Checks a target before any work: its size, finiteness, cone angles below 2π (π on the
 /// boundary), Gauss-Bonnet (Σ K̄ = 2πχ in E2, > 2πχ in H2, < 2πχ in S2, because the faces carry
 /// λ Σ A = 2πχ - Σ K̄ of area with λ = -1 in H2 and +1 in S2), and for circle packings with
-/// Φ ∈ [0, π/2] (CirclePacking, Combinatorial) the valence a cone needs,
+/// Φ ∈ [0, π/2] (circle_packing, combinatorial) the valence a cone needs,
 /// valence ≥ 4 - 2 K̄/π (manifold-splines §4 step 2).
 /// \throw InfeasibleTargetError naming the sums or the vertex and what to do.
 void check_targets(const MeshTables& tables, const Targets& targets, Geometry geometry,

@@ -9,7 +9,7 @@ namespace {
 
 /// P_e from the two copies of e's ends: right copy (x1, y1) onto left copy (x0, y0).
 MobiusL pair_segments(ComplexL x0, ComplexL y0, ComplexL x1, ComplexL y1, Geometry geometry) {
-  if (geometry == Geometry::Hyperbolic)
+  if (geometry == Geometry::hyperbolic)
     return disk_to_centre(x0, y0).inverse() * disk_to_centre(x1, y1);
   return plane_to_centre(x0, y0).inverse() * plane_to_centre(x1, y1);
 }
@@ -86,7 +86,7 @@ void turn_clockwise(const Mesh& mesh, const EdgeLetters& letters, HalfedgeHandle
 DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const SlicedMesh& sliced,
                                const Eigen::VectorXcd& positions, Geometry geometry,
                                const std::vector<ComplexL>& precise_positions) {
-  if (geometry == Geometry::Spherical) {
+  if (geometry == Geometry::spherical) {
     throw InvalidInputError("domain_pairings: the sphere has no side pairings");
   }
   if (positions.size() != static_cast<Eigen::Index>(sliced.mesh.n_vertices()) ||

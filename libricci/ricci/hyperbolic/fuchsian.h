@@ -45,11 +45,11 @@ struct DomainPairings {
 };
 
 /// Pairings of every cut edge from the layout of the sliced disk (positions by sliced vertex
-/// index; in the disk for Hyperbolic, the plane for Euclidean), grouped into arcs.
+/// index; in the disk for hyperbolic, the plane for euclidean), grouped into arcs.
 /// `precise_positions` (optional, the same in extended precision, e.g. from layout_h2) are used
 /// instead of `positions` when given.
-/// \pre `sliced` is `mesh` cut along `cut.is_cut_edge`, closed mesh; geometry is Hyperbolic or
-///      Euclidean. \throw InvalidInputError for the spherical geometry or a size mismatch.
+/// \pre `sliced` is `mesh` cut along `cut.is_cut_edge`, closed mesh; geometry is hyperbolic or
+///      euclidean. \throw InvalidInputError for the spherical geometry or a size mismatch.
 [[nodiscard]] DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut,
                                              const SlicedMesh& sliced,
                                              const Eigen::VectorXcd& positions, Geometry geometry,

@@ -1,24 +1,19 @@
 #include "ricci/hyperbolic/uniformize.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "ricci/layout/layout_e2.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/topology/double_cover.h"
+#include "ricci/util/stopwatch.h"
 
 namespace ricci {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
 Geometry geometry_of_genus(int genus) {
-  return genus == 0 ? Geometry::Spherical
-                    : (genus == 1 ? Geometry::Euclidean : Geometry::Hyperbolic);
+  return genus == 0 ? Geometry::spherical
+                    : (genus == 1 ? Geometry::euclidean : Geometry::hyperbolic);
 }
 
 /// The flat torus: translations of the canonical generators and the modulus.
@@ -33,19 +28,19 @@ void torus_modulus(Uniformization& u) {
 
 /// Cut, slice, lay out the disk (H2 or E2) and build the holonomy group.
 void build_domain(Uniformization& u, const UniformizeOptions& options) {
-  auto t = Clock::now();
+  Stopwatch t;
   const int root = std::clamp(options.root_vertex, 0, static_cast<int>(u.surface.n_vertices()) - 1);
   u.cut = compute_cut_graph(u.surface, VertexHandle(root), u.flow.lengths);
   u.sliced = slice_along(u.surface, u.cut.is_cut_edge);
   check_disk(u.sliced, "uniformize");
-  u.timings.cut = seconds_since(t);
-  t = Clock::now();
+  u.timings.cut = t.seconds();
+  t.restart();
   const Eigen::VectorXd lengths = sliced_edge_lengths(u.sliced, u.flow.lengths);
-  if (u.geometry == Geometry::Hyperbolic) {
+  if (u.geometry == Geometry::hyperbolic) {
     // The flow's metric in extended precision (see polish_h2.h), carried onto the sliced edges.
-    const auto polish_start = Clock::now();
+    const Stopwatch polish_start;
     u.polish = polish_h2_lengths(u.surface, u.flow.lengths, u.flow.target);
-    u.timings.polish = seconds_since(polish_start);
+    u.timings.polish = polish_start.seconds();
     LengthsL precise(u.sliced.mesh.n_edges());
     for (auto e : u.sliced.mesh.edges()) {
       precise[e.idx()] = u.polish.lengths[u.sliced.to_original_edge[static_cast<size_t>(e.idx())]];
@@ -66,9 +61,9 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
     u.layout.max_relative_length_error = flat.max_relative_length_error;
     u.layout.max_radius = u.positions.cwiseAbs().maxCoeff();
   }
-  u.timings.layout = seconds_since(t);
-  t = Clock::now();
-  if (u.geometry == Geometry::Hyperbolic) {
+  u.timings.layout = t.seconds();
+  t.restart();
+  if (u.geometry == Geometry::hyperbolic) {
     u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry,
                                  u.layout.precise_positions);
     u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings, u.positions);
@@ -90,7 +85,7 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
     for (Mobius& m : u.group.generators) back(m);
     torus_modulus(u);
   }
-  u.timings.group = seconds_since(t);
+  u.timings.group = t.seconds();
 }
 
 }  // namespace
@@ -105,7 +100,7 @@ Complex reduce_modulus(Complex tau) {
 }
 
 Uniformization uniformize(const Mesh& mesh, const UniformizeOptions& options) {
-  const auto start = Clock::now();
+  const Stopwatch start;
   Uniformization u;
   const SurfaceTopology topology = surface_topology(mesh);
   if (!topology.manifold) throw TopologyError("uniformize: the mesh is not a 2-manifold");
@@ -114,10 +109,10 @@ Uniformization uniformize(const Mesh& mesh, const UniformizeOptions& options) {
                         " components (one expected)");
   }
   if (topology.boundary_loops > 0) {
-    auto t = Clock::now();
+    Stopwatch t;
     u.surface = double_cover(mesh).mesh;
     u.doubled = true;
-    u.timings.double_cover = seconds_since(t);
+    u.timings.double_cover = t.seconds();
     u.genus = 2 * topology.genus + topology.boundary_loops - 1;
   } else {
     u.surface = mesh;
@@ -126,22 +121,22 @@ Uniformization uniformize(const Mesh& mesh, const UniformizeOptions& options) {
   u.geometry = geometry_of_genus(u.genus);
   FlowOptions flow_options = options.flow;
   flow_options.geometry = u.geometry;
-  auto t = Clock::now();
+  Stopwatch t;
   u.flow = flow(u.surface, uniform_target(u.surface, u.geometry), flow_options);
-  u.timings.flow = seconds_since(t);
+  u.timings.flow = t.seconds();
   if (u.flow.converged()) {
-    if (u.geometry == Geometry::Spherical) {
-      t = Clock::now();
+    if (u.geometry == Geometry::spherical) {
+      t.restart();
       SphereLayoutOptions s;
       s.seed_face = std::max(options.seed_face, 0);
       s.centre = options.centre_sphere;
       u.sphere = layout_sphere(u.surface, u.flow.lengths, s);
-      u.timings.layout = seconds_since(t);
+      u.timings.layout = t.seconds();
     } else {
       build_domain(u, options);
     }
   }
-  u.timings.total = seconds_since(start);
+  u.timings.total = start.seconds();
   return u;
 }
 

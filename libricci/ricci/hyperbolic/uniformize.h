@@ -48,7 +48,7 @@ struct UniformizeTimings {
 };
 
 struct Uniformization {
-  Geometry geometry = Geometry::Hyperbolic;
+  Geometry geometry = Geometry::hyperbolic;
   /// The closed surface that was uniformized: the input, or its double cover (doubled = true).
   Mesh surface;
   bool doubled = false;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
 
 namespace ricci {
 namespace {
@@ -69,10 +70,6 @@ int default_seed(const Mesh& mesh, const std::vector<double>& size) {
   const auto [lo, hi] = std::minmax_element(size.begin(), size.end());
   if (*hi > 256.0 * *lo) return static_cast<int>(lo - size.begin());
   return central_face_of(mesh);
-}
-
-double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-  return u.x() * v.y() - u.y() * v.x();
 }
 
 // Double-double coordinates (Dekker/Knuth error-free sums): a position is hi + lo with |lo| at
@@ -189,11 +186,11 @@ void measure_layout(const Mesh& mesh, const Eigen::VectorXd& lengths, LayoutE2Re
     const Eigen::Vector2d ab = result.edge_vector(corner[0], corner[1]),
                           ac = result.edge_vector(corner[0], corner[2]),
                           bc = result.edge_vector(corner[1], corner[2]);
-    const double area = 0.5 * cross(ab, ac);
+    const double area = 0.5 * cross2d(ab, ac);
     result.min_signed_area = std::min(result.min_signed_area, area);
     if (!(area > 0.0)) ++result.flipped_faces;
     const Eigen::Vector2d u[3] = {ab, bc, -ac}, v[3] = {ac, -ab, -bc};
-    for (int m = 0; m < 3; ++m) angle[corner[m]] += std::atan2(cross(u[m], v[m]), u[m].dot(v[m]));
+    for (int m = 0; m < 3; ++m) angle[corner[m]] += std::atan2(cross2d(u[m], v[m]), u[m].dot(v[m]));
   }
   result.max_relative_length_error = 0.0;
   for (auto e : mesh.edges()) {

@@ -1,6 +1,6 @@
 #pragma once
 // Isometric placement of a flat, simply connected mesh in the plane from its edge lengths
-// (manifold-splines paper, section 4, step 5; ALGORITHMS.md section 5).
+// (manifold-splines paper, section 4, step 5).
 #include <functional>
 
 #include <Eigen/Core>

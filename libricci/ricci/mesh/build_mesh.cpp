@@ -19,10 +19,10 @@ namespace {
   const std::string message =
       soup.source.empty() ? problem.message : soup.source + ": " + problem.message;
   switch (problem.kind) {
-    case MeshProblemKind::kNonFiniteCoordinate:
-    case MeshProblemKind::kBadFace:
-    case MeshProblemKind::kRepeatedIndex:
-    case MeshProblemKind::kZeroArea:
+    case MeshProblemKind::non_finite_coordinate:
+    case MeshProblemKind::bad_face:
+    case MeshProblemKind::repeated_index:
+    case MeshProblemKind::zero_area:
       throw InvalidInputError(message);
     default:
       throw TopologyError(message);

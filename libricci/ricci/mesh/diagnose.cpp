@@ -62,7 +62,7 @@ void check_coordinates(Context& c) {
   c.d.bbox_diagonal = (hi - lo).allFinite() ? (hi - lo).norm() : 0.0;
   if (first_bad < 0) return;
   const auto& p = positions[first_bad];
-  add_problem(c.d, MeshProblemKind::kNonFiniteCoordinate, referenced_bad,
+  add_problem(c.d, MeshProblemKind::non_finite_coordinate, referenced_bad,
               c.soup.vertex_where(first_bad) + " has a non-finite coordinate (" +
                   number_text(p.x()) + ", " + number_text(p.y()) + ", " + number_text(p.z()) + ")",
               "such vertices");
@@ -99,14 +99,14 @@ void classify_faces(Context& c) {
   }
   c.d.degenerate_faces += repeats;
   if (first_bad >= 0)
-    add_problem(c.d, MeshProblemKind::kBadFace, c.d.bad_faces,
+    add_problem(c.d, MeshProblemKind::bad_face, c.d.bad_faces,
                 c.soup.face_where(first_bad) +
                     " has fewer than 3 vertices or an index outside [0, " + std::to_string(n) + ")",
                 "such faces");
   if (std::count(c.use_face.begin(), c.use_face.end(), 1) == 0)
-    add_problem(c.d, MeshProblemKind::kNoFaces, 1, "no usable faces", "");
+    add_problem(c.d, MeshProblemKind::no_faces, 1, "no usable faces", "");
   if (first_repeat >= 0)
-    add_problem(c.d, MeshProblemKind::kRepeatedIndex, repeats,
+    add_problem(c.d, MeshProblemKind::repeated_index, repeats,
                 c.soup.face_where(first_repeat) + " is degenerate: it repeats a vertex index",
                 "such faces");
   for (char r : c.referenced) c.d.referenced_vertices += r;
@@ -136,7 +136,7 @@ void check_edges(Context& c) {
   for (size_t k = 0; k < sides && k < 6; ++k)
     faces += (k ? ", " : "") + std::to_string(table.side(first_fin, k).face);
   if (sides > 6) faces += ", ...";
-  add_problem(c.d, MeshProblemKind::kNonManifoldEdge, c.d.non_manifold_edges,
+  add_problem(c.d, MeshProblemKind::non_manifold_edge, c.d.non_manifold_edges,
               edge_name(table.low(first_fin), table.high(first_fin)) + " is shared by " +
                   std::to_string(sides) + " faces (faces " + faces + ")",
               "non-manifold edges");
@@ -148,7 +148,7 @@ void check_orientability(Context& c) {
   const int conflict_edge = colour_orientation(table, c.soup.faces.size(), c.use_face).conflict_edge;
   c.d.orientable = conflict_edge < 0;
   if (conflict_edge >= 0)
-    add_problem(c.d, MeshProblemKind::kNonOrientable, 1,
+    add_problem(c.d, MeshProblemKind::non_orientable, 1,
                 "non-orientable: orientation conflict at " +
                     edge_name(table.low(conflict_edge), table.high(conflict_edge)),
                 "");
@@ -201,7 +201,7 @@ void check_vertex_fans(Context& c) {
   }
   c.d.vertex_manifold = c.d.non_manifold_vertices == 0;
   if (first_pinched >= 0)
-    add_problem(c.d, MeshProblemKind::kNonManifoldVertex, c.d.non_manifold_vertices,
+    add_problem(c.d, MeshProblemKind::non_manifold_vertex, c.d.non_manifold_vertices,
                 "vertex " + std::to_string(first_pinched) + " is pinched: its faces form " +
                     std::to_string(first_fans) + " fans",
                 "non-manifold vertices");
@@ -244,7 +244,7 @@ void count_topology(Context& c) {
       list += (k ? ", " : "") + std::to_string(sizes[k]);
     if (sizes.size() > 4) list += ", ...";
     c.d.problems.push_back(
-        {MeshProblemKind::kSeveralComponents, c.d.components,
+        {MeshProblemKind::several_components, c.d.components,
          std::to_string(c.d.components) + " connected components (vertex counts " + list + ")"});
   }
 }
@@ -313,7 +313,7 @@ void count_duplicate_faces(Context& c) {
   }
   if (first_a >= 0)
     add_problem(
-        c.d, MeshProblemKind::kDuplicateFace, c.d.duplicate_faces,
+        c.d, MeshProblemKind::duplicate_face, c.d.duplicate_faces,
         c.soup.face_where(first_b) + " has the same vertices as " + c.soup.face_where(first_a),
         "duplicate faces");
 }
@@ -354,7 +354,7 @@ void measure_faces(Context& c) {
   c.d.min_angle_deg = min_cos_angle > 1.5 ? 0.0 : std::acos(min_cos_angle) * 180.0 / M_PI;
   c.d.degenerate_faces += zero;
   if (first_zero >= 0)
-    add_problem(c.d, MeshProblemKind::kZeroArea, zero,
+    add_problem(c.d, MeshProblemKind::zero_area, zero,
                 c.soup.face_where(first_zero) + " has zero area", "such faces");
 }
 
@@ -365,7 +365,7 @@ bool MeshDiagnosis::clean_manifold() const {
   return has_faces && edge_manifold && vertex_manifold && orientable && bad_faces == 0 &&
          duplicate_faces == 0 &&
          std::none_of(problems.begin(), problems.end(), [](const MeshProblem& p) {
-           return p.kind == MeshProblemKind::kRepeatedIndex;
+           return p.kind == MeshProblemKind::repeated_index;
          });
 }
 

@@ -12,16 +12,16 @@ namespace ricci {
 /// The kinds of defect that keep a soup from being a clean single-component orientable
 /// 2-manifold, in the order diagnose() reports them (the first one is the headline).
 enum class MeshProblemKind {
-  kNonFiniteCoordinate,  ///< a referenced vertex has a NaN or infinite coordinate
-  kBadFace,              ///< fewer than 3 vertices or an index outside [0, #V)
-  kNoFaces,              ///< nothing left to describe
-  kRepeatedIndex,        ///< a face lists one vertex twice (degenerate)
-  kNonManifoldEdge,      ///< an edge in more than 2 faces
-  kNonManifoldVertex,    ///< a vertex whose faces form several fans (pinched)
-  kNonOrientable,        ///< no consistent orientation exists (Mobius strip, Klein bottle)
-  kDuplicateFace,        ///< two faces on the same vertex set
-  kSeveralComponents,    ///< more than one connected component
-  kZeroArea,             ///< a face of (numerically) zero area
+  non_finite_coordinate,  ///< a referenced vertex has a NaN or infinite coordinate
+  bad_face,               ///< fewer than 3 vertices or an index outside [0, #V)
+  no_faces,               ///< nothing left to describe
+  repeated_index,         ///< a face lists one vertex twice (degenerate)
+  non_manifold_edge,      ///< an edge in more than 2 faces
+  non_manifold_vertex,    ///< a vertex whose faces form several fans (pinched)
+  non_orientable,         ///< no consistent orientation exists (Mobius strip, Klein bottle)
+  duplicate_face,         ///< two faces on the same vertex set
+  several_components,     ///< more than one connected component
+  zero_area,              ///< a face of (numerically) zero area
 };
 
 /// One kind of defect: how many elements have it and a message naming the first of them.
@@ -31,7 +31,8 @@ struct MeshProblem {
   std::string message;  ///< e.g. "edge (12, 40) is shared by 3 faces (faces 7, 9, 31)"
 };
 
-/// Everything diagnose() finds. Conventions (those of ../shared/models/INDEX.md and meshstat.py):
+/// Everything diagnose() finds. Conventions (those of the INDEX.md tables of models/ and
+/// tests/data/meshes/):
 /// faces are the polygons as written (not triangulated; chi does not depend on it for manifold
 /// polygons); faces with a bad or repeated index are left out of the topology; edges are the
 /// distinct undirected polygon sides; chi = V - E + F counts referenced vertices only;

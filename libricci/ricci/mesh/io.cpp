@@ -34,19 +34,19 @@ std::string format_mesh(const Mesh& mesh, MeshFormat format) {
   out.reserve(mesh.n_vertices() * 60 + mesh.n_faces() * 24 + 256);
   const std::string counts =
       std::to_string(mesh.n_vertices()) + " " + std::to_string(mesh.n_faces());
-  if (format == MeshFormat::kOff) out += "OFF\n" + counts + " 0\n";
-  if (format == MeshFormat::kPly)
+  if (format == MeshFormat::off) out += "OFF\n" + counts + " 0\n";
+  if (format == MeshFormat::ply)
     out += "ply\nformat ascii 1.0\ncomment written by libricci\nelement vertex " +
            std::to_string(mesh.n_vertices()) +
            "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
            std::to_string(mesh.n_faces()) +
            "\nproperty list uchar int vertex_indices\nend_header\n";
-  if (format == MeshFormat::kObj) out += "# written by libricci: " + counts + " (vertices faces)\n";
+  if (format == MeshFormat::obj) out += "# written by libricci: " + counts + " (vertices faces)\n";
   for (const auto v : mesh.vertices())
-    append_vertex(out, format == MeshFormat::kObj ? "v " : "", mesh.point(v));
-  const int base = format == MeshFormat::kObj ? 1 : 0;
+    append_vertex(out, format == MeshFormat::obj ? "v " : "", mesh.point(v));
+  const int base = format == MeshFormat::obj ? 1 : 0;
   for (const auto f : mesh.faces()) {
-    out += format == MeshFormat::kObj ? "f" : std::to_string(mesh.valence(f));
+    out += format == MeshFormat::obj ? "f" : std::to_string(mesh.valence(f));
     for (const auto v : mesh.fv_range(f)) {
       out += ' ';
       out += std::to_string(v.idx() + base);
@@ -62,7 +62,7 @@ Mesh read_mesh(const std::string& path) { return build_mesh(read_soup(path)); }
 
 void write_mesh(const Mesh& mesh, const std::string& path) {
   const MeshFormat format = format_from_extension(path);
-  if (format == MeshFormat::kStl)
+  if (format == MeshFormat::stl)
     throw IOError(path + ": writing STL is not supported (use .obj, .off or .ply)");
   if (path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0)
     throw IOError(path + ": writing .gz is not supported");

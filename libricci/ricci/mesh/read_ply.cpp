@@ -13,7 +13,7 @@
 namespace ricci::detail {
 namespace {
 
-enum class PlyType { kInt8, kUInt8, kInt16, kUInt16, kInt32, kUInt32, kFloat32, kFloat64 };
+enum class PlyType { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
 
 bool type_from_name(std::string_view name, PlyType& type) {
   struct Entry {
@@ -21,12 +21,12 @@ bool type_from_name(std::string_view name, PlyType& type) {
     PlyType type;
   };
   static const Entry kTypes[] = {
-      {"char", PlyType::kInt8},      {"int8", PlyType::kInt8},       {"uchar", PlyType::kUInt8},
-      {"uint8", PlyType::kUInt8},    {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
-      {"ushort", PlyType::kUInt16},  {"uint16", PlyType::kUInt16},   {"int", PlyType::kInt32},
-      {"int32", PlyType::kInt32},    {"uint", PlyType::kUInt32},     {"uint32", PlyType::kUInt32},
-      {"float", PlyType::kFloat32},  {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
-      {"float64", PlyType::kFloat64}};
+      {"char", PlyType::int8},      {"int8", PlyType::int8},       {"uchar", PlyType::uint8},
+      {"uint8", PlyType::uint8},    {"short", PlyType::int16},     {"int16", PlyType::int16},
+      {"ushort", PlyType::uint16},  {"uint16", PlyType::uint16},   {"int", PlyType::int32},
+      {"int32", PlyType::int32},    {"uint", PlyType::uint32},     {"uint32", PlyType::uint32},
+      {"float", PlyType::float32},  {"float32", PlyType::float32}, {"double", PlyType::float64},
+      {"float64", PlyType::float64}};
   for (const auto& entry : kTypes) {
     if (name == entry.name) {
       type = entry.type;
@@ -38,17 +38,17 @@ bool type_from_name(std::string_view name, PlyType& type) {
 
 size_t type_size(PlyType type) {
   switch (type) {
-    case PlyType::kInt8:
-    case PlyType::kUInt8:
+    case PlyType::int8:
+    case PlyType::uint8:
       return 1;
-    case PlyType::kInt16:
-    case PlyType::kUInt16:
+    case PlyType::int16:
+    case PlyType::uint16:
       return 2;
-    case PlyType::kInt32:
-    case PlyType::kUInt32:
-    case PlyType::kFloat32:
+    case PlyType::int32:
+    case PlyType::uint32:
+    case PlyType::float32:
       return 4;
-    case PlyType::kFloat64:
+    case PlyType::float64:
       return 8;
   }
   return 0;
@@ -57,8 +57,8 @@ size_t type_size(PlyType type) {
 struct Property {
   std::string name;
   bool is_list = false;
-  PlyType count_type = PlyType::kUInt8;  // lists only
-  PlyType type = PlyType::kFloat32;      // the scalar, or the list's items
+  PlyType count_type = PlyType::uint8;  // lists only
+  PlyType type = PlyType::float32;      // the scalar, or the list's items
 };
 
 struct Element {
@@ -68,10 +68,10 @@ struct Element {
   std::vector<Property> properties;
 };
 
-enum class Encoding { kAscii, kLittleEndian, kBigEndian };
+enum class Encoding { ascii, little_endian, big_endian };
 
 struct Header {
-  Encoding encoding = Encoding::kAscii;
+  Encoding encoding = Encoding::ascii;
   std::vector<Element> elements;
   long body_line = 0;  // line number of the last header line
 };
@@ -95,11 +95,11 @@ Header parse_header(LineCursor& cursor, const std::string& name) {
     if (token == "format") {
       if (count < 1) fail(name, n, "format line names no format");
       if (words[0] == "ascii")
-        header.encoding = Encoding::kAscii;
+        header.encoding = Encoding::ascii;
       else if (words[0] == "binary_little_endian")
-        header.encoding = Encoding::kLittleEndian;
+        header.encoding = Encoding::little_endian;
       else if (words[0] == "binary_big_endian")
-        header.encoding = Encoding::kBigEndian;
+        header.encoding = Encoding::big_endian;
       else
         fail(name, n, "unknown PLY format " + quote_token(words[0]));
       has_format = true;
@@ -119,7 +119,7 @@ Header parse_header(LineCursor& cursor, const std::string& name) {
         if (!type_from_name(words[1], property.count_type) ||
             !type_from_name(words[2], property.type))
           fail(name, n, "unknown type in list property " + quote_token(words[3]));
-        if (property.count_type == PlyType::kFloat32 || property.count_type == PlyType::kFloat64)
+        if (property.count_type == PlyType::float32 || property.count_type == PlyType::float64)
           fail(name, n, "list property " + quote_token(words[3]) + " has a floating-point count");
         property.is_list = true;
         property.name = std::string(words[3]);
@@ -149,17 +149,17 @@ class BodyReader {
     unsigned char first_byte = 0;
     std::memcpy(&first_byte, &one, 1);
     const bool host_little = first_byte == 1;
-    swap_ = encoding == Encoding::kBigEndian
+    swap_ = encoding == Encoding::big_endian
                 ? host_little
-                : (encoding == Encoding::kLittleEndian && !host_little);
+                : (encoding == Encoding::little_endian && !host_little);
   }
 
   /// One value as a double; false at the end of the data. Sets `bad_token` on malformed text.
   bool read(PlyType type, double& value, std::string_view& bad_token) {
-    return encoding_ == Encoding::kAscii ? read_text(value, bad_token) : read_binary(type, value);
+    return encoding_ == Encoding::ascii ? read_text(value, bad_token) : read_binary(type, value);
   }
   long line() const { return line_; }
-  bool is_ascii() const { return encoding_ == Encoding::kAscii; }
+  bool is_ascii() const { return encoding_ == Encoding::ascii; }
   size_t remaining() const { return body_.size() - pos_; }
 
  private:
@@ -186,28 +186,28 @@ class BodyReader {
     if (swap_)
       for (size_t i = 0; i < size / 2; ++i) std::swap(bytes[i], bytes[size - 1 - i]);
     switch (type) {
-      case PlyType::kInt8:
+      case PlyType::int8:
         value = as<int8_t>(bytes);
         break;
-      case PlyType::kUInt8:
+      case PlyType::uint8:
         value = as<uint8_t>(bytes);
         break;
-      case PlyType::kInt16:
+      case PlyType::int16:
         value = as<int16_t>(bytes);
         break;
-      case PlyType::kUInt16:
+      case PlyType::uint16:
         value = as<uint16_t>(bytes);
         break;
-      case PlyType::kInt32:
+      case PlyType::int32:
         value = as<int32_t>(bytes);
         break;
-      case PlyType::kUInt32:
+      case PlyType::uint32:
         value = as<uint32_t>(bytes);
         break;
-      case PlyType::kFloat32:
+      case PlyType::float32:
         value = as<float>(bytes);
         break;
-      case PlyType::kFloat64:
+      case PlyType::float64:
         value = as<double>(bytes);
         break;
     }
@@ -387,7 +387,7 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
     }
   }
   if (!has_vertices) fail(name, 0, "PLY header declares no 'vertex' element");
-  if (header.encoding != Encoding::kAscii) {  // binary: no lines to name
+  if (header.encoding != Encoding::ascii) {  // binary: no lines to name
     soup.face_lines.clear();
     soup.vertex_lines.clear();
   }

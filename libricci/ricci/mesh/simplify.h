@@ -15,13 +15,10 @@ struct SimplifyOptions {
   /// Isotropic remeshing rounds after the edge collapses, for well-shaped triangles (0 = none).
   int remesh_iterations = 3;
   /// Edge-collapse engine, all Garland-Heckbert plane quadrics with the link condition and no
-  /// fold-overs. quadric: the library's own (simplify_quadric.h; it updates only the edges at
-  /// the new vertex, ~3x cheaper than CGAL's edge_collapse, which updates the 2-ring). cgal:
-  /// CGAL's all the way. staged: the own collapse down to 4x the target (and at least 16k
-  /// faces: smaller inputs are CGAL's all the way), CGAL's for the last collapses. The last collapses decide the domain's shape, and the fill's seams were found
-  /// sensitive to it (eight.off at 1000 faces: 0.24 deg with CGAL's, 1.15 deg with the own
-  /// collapse alone); the first stage only removes scan detail far below the domain's
-  /// resolution, most of the collapses of a 100k-face scan.
+  /// fold-overs. quadric: the library's own (simplify_quadric.h, cheaper). cgal: CGAL's all the
+  /// way. staged: the own collapse down to 4x the target (and at least 16k faces: smaller
+  /// inputs are CGAL's all the way), CGAL's for the last collapses, which decide the domain's
+  /// shape (docs/design-notes.md, "Simplification").
   enum class Collapse { quadric, staged, cgal };
   Collapse collapse = Collapse::staged;
 };

@@ -4,8 +4,8 @@
 //
 // Why not CGAL's edge_collapse: after every collapse it recomputes the cost and placement of the
 // whole 2-ring of edges (its policies may depend on the link); plane quadrics depend only on the
-// two end vertices, so only the edges at the new vertex change. That makes a 100k -> 4k face
-// decimation ~5x cheaper, the largest stage of `msp fit` on a scan.
+// two end vertices, so only the edges at the new vertex change, which makes the decimation of a
+// large scan several times cheaper.
 //
 // Rules (those of CGAL's GarlandHeckbert_plane_policies + Bounded_normal_change_placement):
 // vertex quadrics are sums of the unit planes of the incident faces, plus planes through

@@ -123,10 +123,10 @@ void check_soup_indices(const PolygonSoup& soup, const std::string& name) {
 MeshFormat format_from_extension(const std::string& path) {
   std::string name = detail::lower(path);
   if (detail::ends_with(name, ".gz")) name.resize(name.size() - 3);
-  if (detail::ends_with(name, ".off")) return MeshFormat::kOff;
-  if (detail::ends_with(name, ".obj")) return MeshFormat::kObj;
-  if (detail::ends_with(name, ".ply")) return MeshFormat::kPly;
-  if (detail::ends_with(name, ".stl")) return MeshFormat::kStl;
+  if (detail::ends_with(name, ".off")) return MeshFormat::off;
+  if (detail::ends_with(name, ".obj")) return MeshFormat::obj;
+  if (detail::ends_with(name, ".ply")) return MeshFormat::ply;
+  if (detail::ends_with(name, ".stl")) return MeshFormat::stl;
   const size_t slash = name.find_last_of('/');
   const size_t dot = name.find_last_of('.');
   const bool has_extension =
@@ -142,16 +142,16 @@ PolygonSoup parse_soup(std::string_view data, MeshFormat format, const std::stri
   if (data.empty()) detail::fail(name, 0, "file is empty");
   PolygonSoup soup;
   switch (format) {
-    case MeshFormat::kOff:
+    case MeshFormat::off:
       soup = detail::parse_off(data, name);
       break;
-    case MeshFormat::kObj:
+    case MeshFormat::obj:
       soup = detail::parse_obj(data, name);
       break;
-    case MeshFormat::kPly:
+    case MeshFormat::ply:
       soup = detail::parse_ply(data, name);
       break;
-    case MeshFormat::kStl:
+    case MeshFormat::stl:
       soup = detail::parse_stl(data, name);
       break;
   }

@@ -10,7 +10,7 @@
 namespace ricci {
 
 /// The mesh file formats read_soup() understands.
-enum class MeshFormat { kOff, kObj, kPly, kStl };
+enum class MeshFormat { off, obj, ply, stl };
 
 /// Format chosen by the extension (case-insensitive; a trailing ".gz" is looked through).
 /// \throw IOError naming the extension when it is not .off, .obj, .ply or .stl.

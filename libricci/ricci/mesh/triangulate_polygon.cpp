@@ -1,19 +1,16 @@
 // Ear clipping, O(k^3) in the polygon size k; mesh polygons have a handful of corners.
 #include "ricci/mesh/triangulate_polygon.h"
+#include "ricci/util/cross2d.h"
 
 #include <Eigen/Geometry>
 
 namespace ricci {
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 /// True when q lies inside or on triangle (a, b, c) given counter-clockwise.
 bool inside(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
             const Eigen::Vector2d& c) {
-  return cross2(b - a, q - a) >= 0 && cross2(c - b, q - b) >= 0 && cross2(a - c, q - c) >= 0;
+  return cross2d(b - a, q - a) >= 0 && cross2d(c - b, q - b) >= 0 && cross2d(a - c, q - c) >= 0;
 }
 
 }  // namespace
@@ -42,7 +39,7 @@ std::vector<std::array<int, 3>> triangulate_polygon(
     double fallback_turn = -INFINITY;
     for (int i = 0; i < m && best < 0; ++i) {
       const int a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
-      const double turn = cross2(flat[b] - flat[a], flat[c] - flat[b]);
+      const double turn = cross2d(flat[b] - flat[a], flat[c] - flat[b]);
       if (turn > fallback_turn) {
         fallback_turn = turn;
         fallback = i;

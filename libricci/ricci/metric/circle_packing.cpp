@@ -11,8 +11,10 @@ namespace ricci {
 
 std::string to_string(Scheme scheme) {
   switch (scheme) {
-    case Scheme::CirclePacking: return "circle-packing";
-    case Scheme::InversiveDistance: return "inversive-distance";
+    case Scheme::circle_packing:
+      return "circle-packing";
+    case Scheme::inversive_distance:
+      return "inversive-distance";
     default: return "combinatorial";
   }
 }
@@ -34,9 +36,9 @@ namespace {
 // Per-corner radii (l_ij + l_ki - l_jk)/2, reduced per vertex by mean or min.
 Eigen::VectorXd corner_radii(const MeshTables& t, const EdgeLengths& l, RadiusInit mode) {
   const int nv = t.num_vertices();
-  Eigen::VectorXd gamma = mode == RadiusInit::Min
-                              ? Eigen::VectorXd::Constant(nv, std::numeric_limits<double>::infinity())
-                              : Eigen::VectorXd::Zero(nv);
+  Eigen::VectorXd gamma = mode == RadiusInit::min ? Eigen::VectorXd::Constant(
+                                                        nv, std::numeric_limits<double>::infinity())
+                                                  : Eigen::VectorXd::Zero(nv);
   for (int f = 0; f < t.num_faces(); ++f) {
     for (int k = 0; k < 3; ++k) {
       const double opposite = l[t.face_edges(f, k)];
@@ -47,10 +49,10 @@ Eigen::VectorXd corner_radii(const MeshTables& t, const EdgeLengths& l, RadiusIn
                                 " is degenerate (its lengths violate the triangle inequality)");
       }
       const int v = t.face_vertices(f, k);
-      gamma[v] = mode == RadiusInit::Min ? std::min(gamma[v], r) : gamma[v] + r;
+      gamma[v] = mode == RadiusInit::min ? std::min(gamma[v], r) : gamma[v] + r;
     }
   }
-  if (mode != RadiusInit::Min) {
+  if (mode != RadiusInit::min) {
     for (int v = 0; v < nv; ++v) gamma[v] /= t.valence[v];
   }
   return gamma;
@@ -81,22 +83,22 @@ CirclePackingMetric initial_metric(const MeshTables& t, const EdgeLengths& lengt
   CirclePackingMetric m;
   m.geometry = g;
   m.scheme = scheme;
-  if (scheme == Scheme::Combinatorial) {
-    const double r = g == Geometry::Euclidean ? 1.0 : 0.5 * lengths.mean();
+  if (scheme == Scheme::combinatorial) {
+    const double r = g == Geometry::euclidean ? 1.0 : 0.5 * lengths.mean();
     m.gamma = Eigen::VectorXd::Constant(t.num_vertices(), r);
     m.eta = Eigen::VectorXd::Ones(t.num_edges());
     return m;
   }
-  const RadiusInit corner_mode = radii == RadiusInit::Min ? RadiusInit::Min : RadiusInit::Mean;
+  const RadiusInit corner_mode = radii == RadiusInit::min ? RadiusInit::min : RadiusInit::mean;
   m.gamma = corner_radii(t, lengths, corner_mode);
-  if (g == Geometry::Spherical) {
+  if (g == Geometry::spherical) {
     // Radii of spherical circles live in (0, π); a coarse mesh on a small sphere could exceed it.
     if (m.gamma.maxCoeff() >= M_PI) {
       throw InvalidInputError("spherical radii reach π: the lengths are too long for S2");
     }
   }
-  const bool clamp = scheme == Scheme::CirclePacking;
-  if (clamp && radii == RadiusInit::LeastSquares) {
+  const bool clamp = scheme == Scheme::circle_packing;
+  if (clamp && radii == RadiusInit::least_squares) {
     m.gamma = fit_circle_packing_radii(t, lengths, g, m.gamma);
   }
   m.eta = fitted_eta(t, lengths, g, m.gamma, clamp);

@@ -1,6 +1,6 @@
 #pragma once
-// Circle-packing metrics (ALGORITHMS.md §2): each vertex carries a radius γ_i, each edge a fixed
-// conformal quantity η_ij; edge lengths follow from the background geometry's cosine law.
+// Circle-packing metrics (Ricci-flow paper §IV): each vertex carries a radius γ_i, each edge a
+// fixed conformal quantity η_ij; edge lengths follow from the background geometry's cosine law.
 //   Thurston circle packing:  η = cos Φ, Φ ∈ [0, π/2]  (discrete-surface-ricci-flow eq. 12)
 //   inversive distance:       η = I ≥ -1 (free)        (ricci-flow-3d-shape-analysis eq. 7-8)
 //   combinatorial:            γ = const, Φ = 0         (manifold-splines §6)
@@ -14,20 +14,20 @@
 namespace ricci {
 
 /// Which conformal quantity the edges keep.
-enum class Scheme { CirclePacking, InversiveDistance, Combinatorial };
+enum class Scheme { circle_packing, inversive_distance, combinatorial };
 
 /// How the initial radii come from the mesh's lengths: per-corner radii
-/// γ_i^{jk} = (l_ij + l_ki - l_jk)/2 averaged (Mean, Ricci-flow paper §V) or minimised (Min,
+/// γ_i^{jk} = (l_ij + l_ki - l_jk)/2 averaged (mean, Ricci-flow paper §V) or minimised (min,
 /// shape-analysis Alg. 1, makes every I_ij ≥ 1), or fitted by least squares to the lengths
-/// (manifold-splines eq. 10; only differs from Mean for CirclePacking, where Φ is clamped).
-enum class RadiusInit { Mean, Min, LeastSquares };
+/// (manifold-splines eq. 10; only differs from mean for circle_packing, where Φ is clamped).
+enum class RadiusInit { mean, min, least_squares };
 
 std::string to_string(Scheme scheme);
 
 /// Radii and edge quantities of a circle-packing metric.
 struct CirclePackingMetric {
-  Geometry geometry = Geometry::Euclidean;
-  Scheme scheme = Scheme::InversiveDistance;
+  Geometry geometry = Geometry::euclidean;
+  Scheme scheme = Scheme::inversive_distance;
   /// Radius per vertex index (γ_i > 0; γ_i < π in S2).
   Eigen::VectorXd gamma;
   /// Per edge index: cos Φ_ij (circle packing, combinatorial) or I_ij (inversive distance).
@@ -37,8 +37,10 @@ struct CirclePackingMetric {
 /// Radius from the flow variable u; returns NaN when u is out of range (u ≥ 0 in H2).
 inline double radius_from_u(Geometry g, double u) {
   switch (g) {
-    case Geometry::Euclidean: return std::exp(u);
-    case Geometry::Hyperbolic: return u < 0 ? 2.0 * std::atanh(std::exp(u)) : std::nan("");
+    case Geometry::euclidean:
+      return std::exp(u);
+    case Geometry::hyperbolic:
+      return u < 0 ? 2.0 * std::atanh(std::exp(u)) : std::nan("");
     default: return 2.0 * std::atan(std::exp(u));
   }
 }
@@ -46,8 +48,10 @@ inline double radius_from_u(Geometry g, double u) {
 /// Flow variable u from a radius.
 inline double u_from_radius(Geometry g, double gamma) {
   switch (g) {
-    case Geometry::Euclidean: return std::log(gamma);
-    case Geometry::Hyperbolic: return std::log(std::tanh(0.5 * gamma));
+    case Geometry::euclidean:
+      return std::log(gamma);
+    case Geometry::hyperbolic:
+      return std::log(std::tanh(0.5 * gamma));
     default: return std::log(std::tan(0.5 * gamma));
   }
 }
@@ -60,8 +64,10 @@ inline double circle_edge_length(Geometry g, double a, double b, double eta) {
   const double q = 0.5 * ((1.0 + eta) * p * p + (1.0 - eta) * m * m);
   if (!(q > 0)) return std::nan("");
   switch (g) {
-    case Geometry::Euclidean: return 2.0 * std::sqrt(q);
-    case Geometry::Hyperbolic: return 2.0 * std::asinh(std::sqrt(q));
+    case Geometry::euclidean:
+      return 2.0 * std::sqrt(q);
+    case Geometry::hyperbolic:
+      return 2.0 * std::asinh(std::sqrt(q));
     default: return q < 1.0 ? 2.0 * std::asin(std::sqrt(q)) : std::nan("");
   }
 }
@@ -89,7 +95,7 @@ inline double circle_edge_length_du(Geometry g, double a, double b, double eta, 
 [[nodiscard]] Eigen::VectorXd u_from_radii(Geometry g, const Eigen::VectorXd& gamma);
 
 /// Initial metric from edge lengths (already in the background geometry's units).
-/// Combinatorial ignores the lengths' shape: γ = 1 in E2, half the mean length in H2/S2.
+/// Scheme::combinatorial ignores the lengths' shape: γ = 1 in E2, half the mean length in H2/S2.
 /// \throw InvalidInputError when a face violates the triangle inequality (its corner radius is
 ///        not positive), naming the face.
 [[nodiscard]] CirclePackingMetric initial_metric(const MeshTables& tables,

@@ -8,8 +8,10 @@ namespace ricci {
 
 std::string to_string(Geometry geometry) {
   switch (geometry) {
-    case Geometry::Euclidean: return "euclidean";
-    case Geometry::Hyperbolic: return "hyperbolic";
+    case Geometry::euclidean:
+      return "euclidean";
+    case Geometry::hyperbolic:
+      return "hyperbolic";
     default: return "spherical";
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Corner angles, vertex curvature, face areas and the Gauss-Bonnet check of a discrete metric
-// (edge lengths) in a background geometry. ALGORITHMS.md §1.
+// (edge lengths) in a background geometry (Ricci-flow paper §IV).
 #include <Eigen/Core>
 
 #include "ricci/mesh/mesh.h"

@@ -3,7 +3,7 @@
 // curvature, the circle-packing metrics and the Ricci flow. Everything here is inline and
 // allocation-free because the flow evaluates it millions of times.
 //
-// Notation (ALGORITHMS.md §1-2): a triangle has vertices 0,1,2, l[k] is the length of the edge
+// Notation (Ricci-flow paper §IV): a triangle has vertices 0,1,2, l[k] is the length of the edge
 // opposite vertex k and theta[k] the corner angle at vertex k. The "geometry sine" f is
 // f(x) = x (E2), sinh x (H2), sin x (S2).
 #include <algorithm>
@@ -14,7 +14,7 @@
 namespace ricci {
 
 /// Constant-curvature background geometry of a discrete metric.
-enum class Geometry { Euclidean, Hyperbolic, Spherical };
+enum class Geometry { euclidean, hyperbolic, spherical };
 
 /// "euclidean", "hyperbolic", "spherical".
 std::string to_string(Geometry geometry);
@@ -22,14 +22,16 @@ std::string to_string(Geometry geometry);
 /// Sign of the background curvature: 0 (E2), -1 (H2), +1 (S2); the λ of Gauss-Bonnet
 /// Σ K_i + λ Σ A_f = 2πχ.
 inline int curvature_sign(Geometry g) {
-  return g == Geometry::Euclidean ? 0 : (g == Geometry::Hyperbolic ? -1 : 1);
+  return g == Geometry::euclidean ? 0 : (g == Geometry::hyperbolic ? -1 : 1);
 }
 
 /// f(x) = x, sinh x or sin x.
 inline double geometry_sine(Geometry g, double x) {
   switch (g) {
-    case Geometry::Euclidean: return x;
-    case Geometry::Hyperbolic: return std::sinh(x);
+    case Geometry::euclidean:
+      return x;
+    case Geometry::hyperbolic:
+      return std::sinh(x);
     default: return std::sin(x);
   }
 }
@@ -37,8 +39,10 @@ inline double geometry_sine(Geometry g, double x) {
 /// c(x) = 1, cosh x or cos x: the derivative of geometry_sine.
 inline double geometry_cosine(Geometry g, double x) {
   switch (g) {
-    case Geometry::Euclidean: return 1.0;
-    case Geometry::Hyperbolic: return std::cosh(x);
+    case Geometry::euclidean:
+      return 1.0;
+    case Geometry::hyperbolic:
+      return std::cosh(x);
     default: return std::cos(x);
   }
 }
@@ -60,7 +64,7 @@ inline bool triangle_angles(Geometry g, const double l[3], double theta[3],
   }
   const double s = 0.5 * (l[0] + l[1] + l[2]);
   if (!(d[0] > 0 && d[1] > 0 && d[2] > 0)) return false;
-  if (g == Geometry::Spherical && !(s < M_PI)) return false;
+  if (g == Geometry::spherical && !(s < M_PI)) return false;
   const double f[3] = {geometry_sine(g, d[0]), geometry_sine(g, d[1]), geometry_sine(g, d[2])};
   const double fs = geometry_sine(g, s);
   for (int k = 0; k < 3; ++k) {
@@ -70,7 +74,7 @@ inline bool triangle_angles(Geometry g, const double l[3], double theta[3],
     if (cosine) cosine[k] = (x2 - y2) / (x2 + y2);
     if (sine) sine[k] = 2.0 * std::sqrt(x2 * y2) / (x2 + y2);
   }
-  if (g == Geometry::Euclidean) {
+  if (g == Geometry::euclidean) {
     // Rounding would make each face's angle sum miss π by a biased ulp; summed over a million
     // faces that drift breaks Σ K = 2πχ at the 1e-10 level. Closing the sum on the largest
     // angle (whose relative accuracy matters least) leaves an unbiased ulp per face.
@@ -83,7 +87,7 @@ inline bool triangle_angles(Geometry g, const double l[3], double theta[3],
 /// Area of a triangle from its lengths and angles: Heron's formula in E2 (stable ordering),
 /// π - Σθ in H2 (defect), Σθ - π in S2 (excess).
 inline double triangle_area(Geometry g, const double l[3], const double theta[3]) {
-  if (g == Geometry::Euclidean) {
+  if (g == Geometry::euclidean) {
     // Kahan's ordering a >= b >= c keeps Heron accurate for needle triangles.
     double a = l[0], b = l[1], c = l[2];
     if (a < b) std::swap(a, b);
@@ -93,7 +97,7 @@ inline double triangle_area(Geometry g, const double l[3], const double theta[3]
     return 0.25 * std::sqrt(std::max(p, 0.0));
   }
   const double sum = theta[0] + theta[1] + theta[2];
-  return g == Geometry::Hyperbolic ? M_PI - sum : sum - M_PI;
+  return g == Geometry::hyperbolic ? M_PI - sum : sum - M_PI;
 }
 
 /// Partial derivatives of the corner angles with respect to the side lengths:

@@ -2,27 +2,20 @@
 
 #include <string>
 
+#include "ricci/mesh/boundary_loops.h"
 #include "ricci/mesh/errors.h"
 
 namespace ricci {
 
 namespace {
 
+// Boundary loops as the vertex indices their halfedges start from.
 std::vector<std::vector<int>> collect_boundary_loops(const Mesh& mesh) {
   std::vector<std::vector<int>> loops;
-  std::vector<char> seen(mesh.n_halfedges(), 0);
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
+  for (const auto& halfedges : find_boundary_loops(mesh)) {
     std::vector<int> loop;
-    auto current = h;
-    // A loop on a manifold mesh closes after at most #halfedges steps; the bound guards
-    // against a corrupted structure looping forever.
-    for (size_t guard = 0; guard <= mesh.n_halfedges(); ++guard) {
-      seen[current.idx()] = 1;
-      loop.push_back(mesh.from_vertex_handle(current).idx());
-      current = mesh.next_halfedge_handle(current);
-      if (current == h) break;
-    }
+    loop.reserve(halfedges.size());
+    for (const auto h : halfedges) loop.push_back(mesh.from_vertex_handle(h).idx());
     loops.push_back(std::move(loop));
   }
   return loops;

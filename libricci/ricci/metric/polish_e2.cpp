@@ -74,7 +74,7 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
   laplacian.setFromTriplets(triplets.begin(), triplets.end());
   // The flow's factorisation (CHOLMOD supernodal on large meshes, Eigen below 20k unknowns).
   const Eigen::SparseMatrix<double> lower = laplacian.triangularView<Eigen::Lower>();
-  SymmetricFactorization solver(resolve_linear_solver(LinearSolver::Auto, lower.rows()));
+  SymmetricFactorization solver(resolve_linear_solver(LinearSolver::automatic, lower.rows()));
   solver.analyze(lower);
   PolishE2Result result;
   result.lengths = lengths;

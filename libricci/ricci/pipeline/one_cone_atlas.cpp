@@ -3,19 +3,13 @@
 #include "ricci/metric/polish_e2.h"
 
 #include <algorithm>
-#include <chrono>
 
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/util/stopwatch.h"
 
 namespace ricci {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The cut graph's root: the cone, else an interior vertex (genus 1) or vertex 0 (open).
 VertexHandle atlas_root(const OneConeProblem& problem) {
@@ -66,7 +60,7 @@ void map_problem_to_input(OneConeAtlasResult& result) {
 // when `fall_back`, solve_one_cone_flow. Fills result's problem, flow and their timings.
 void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, OneConeAtlasResult& result,
                        const std::function<void(const char*)>& report, bool fall_back) {
-  auto t = Clock::now();
+  Stopwatch t;
   Mesh cleaned;
   const Mesh* surface = &mesh;  // no copy of the input unless it is cleaned up
   if (options.collapse_short_edges || options.flip_flat_edges) {
@@ -74,17 +68,17 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
     cleaned = clean_up_surface(mesh, options, result);
     surface = &cleaned;
   }
-  result.timings.flips = seconds_since(t);
+  result.timings.flips = t.seconds();
 
   report("valence modification");
-  t = Clock::now();
+  t.restart();
   result.problem = prepare_one_cone(*surface, input_to_cleaned(result, result.chosen_vertex), options.valence);
   map_problem_to_input(result);
   result.cone_refinement = refine_around_cone(result.problem, options.cone_refinement);
-  result.timings.valence = seconds_since(t);
+  result.timings.valence = t.seconds();
 
   report("Ricci flow");
-  t = Clock::now();
+  t.restart();
   result.flow = FlowResult();
   if (result.problem.kind == OneConeKind::SingleCone && !options.cone_ring_metrics.empty()) {
     result.flow = solve_cone_ring_flow(result.problem, options.cone_ring_metrics, options.flow, options.continuation);
@@ -94,7 +88,7 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
     result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
     result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(), failures.end());
   }
-  result.timings.flow = seconds_since(t);
+  result.timings.flow = t.seconds();
 }
 
 }  // namespace
@@ -106,7 +100,7 @@ OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options)
   route.flip_flat_edges = true;
   route.flat_flips.max_normal_angle = 5.0 * M_PI / 180.0;
   route.flat_flips.max_relative_deviation = 0.01;
-  ConeRingMetric rule{Scheme::InversiveDistance, Scheme::CirclePacking, 4, options.flow.radii};
+  ConeRingMetric rule{Scheme::inversive_distance, Scheme::circle_packing, 4, options.flow.radii};
   rule.nonnegative_inversive_distance = true;
   route.cone_ring_metrics = {rule};
   route.continuation.stages = 4;
@@ -115,8 +109,9 @@ OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options)
 
 bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options) {
   return options.inversive_distance_route && options.keep_metric &&
-         options.flow.scheme == Scheme::InversiveDistance && options.flow.geometry == Geometry::Euclidean &&
-         options.cone_ring_metrics.empty() && needs_singular_vertex(mesh) && surface_topology(mesh).genus >= 2;
+         options.flow.scheme == Scheme::inversive_distance &&
+         options.flow.geometry == Geometry::euclidean && options.cone_ring_metrics.empty() &&
+         needs_singular_vertex(mesh) && surface_topology(mesh).genus >= 2;
 }
 
 double OneConeAtlasResult::relative_transition_residual() const {
@@ -125,7 +120,7 @@ double OneConeAtlasResult::relative_transition_residual() const {
 }
 
 OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
-  const auto start = Clock::now();
+  const Stopwatch start;
   const std::function<void(const char*)> report = [&](const char* stage) {
     if (options.progress) options.progress(stage);
   };
@@ -133,7 +128,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   result.chosen_vertex = options.singular_vertex;
   if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
     report("choosing the singular vertex");
-    auto t = Clock::now();
+    Stopwatch t;
     SingularityOptions choice = options.choice;
     choice.flow = options.flow;
     choice.valence = options.valence;
@@ -143,7 +138,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     SingularityChoice chosen = choose_singularity(mesh, choice);
     result.chosen_vertex = chosen.vertex;
     result.flows_for_choice = chosen.flows_run;
-    result.timings.choice = seconds_since(t);
+    result.timings.choice = t.seconds();
   }
 
   if (takes_inversive_distance_route(mesh, options)) {
@@ -162,7 +157,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   if (!result.flow.converged()) throw SolverError(result.flow.message);
   // The layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it
   // closes: remove it in long double first (metric/polish_e2.h).
-  auto t = Clock::now();
+  Stopwatch t;
   if (result.flow.max_error >= options.polish_threshold) {
     result.polish = polish_e2_lengths(result.problem.mesh, result.flow.lengths,
                                       result.problem.targets.curvature);
@@ -172,18 +167,18 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     result.polish.lengths = result.flow.lengths;
     result.polish.error_before = result.polish.error_after = result.flow.max_error;
   }
-  result.timings.polish = seconds_since(t);
+  result.timings.polish = t.seconds();
 
   report("cut graph, layout and atlas");
-  t = Clock::now();
+  t.restart();
   result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths, atlas_root(result.problem), options.atlas);
-  result.timings.atlas = seconds_since(t);
+  result.timings.atlas = t.seconds();
 
   report("distortion");
-  t = Clock::now();
+  t.restart();
   result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths);
-  result.timings.distortion = seconds_since(t);
-  result.timings.total = seconds_since(start);
+  result.timings.distortion = t.seconds();
+  result.timings.total = start.seconds();
   return result;
 }
 

@@ -43,17 +43,12 @@ struct OneConeAtlasOptions {
   SingularityOptions choice;
   AtlasOptions atlas;
   /// The long-double polish (metric/polish_e2.h) runs only when the flow's max |K - K̄|,
-  /// evaluated in double, is at least this. Measured (msp-bench one-cone-one): genus2_100k ends
-  /// Newton at 2.3e-14 and genus3_100k at 5.7e-13, where the polish (0.4-0.6 s at 100k faces)
-  /// moves the layout's relative edge error only from 5.6e-12 to 8e-12 and 5.8e-11 to 2.7e-11;
-  /// beetle ends at 1.03e-12 and needs it (1.1e-7 -> 3.8e-8), camel at 8e-15 does not
-  /// (1.3e-11 without). 0 always polishes; infinity never does.
+  /// evaluated in double, is at least this (radians). 0 always polishes; infinity never does.
   double polish_threshold = 8e-13;
   /// With keep_metric and the inversive-distance scheme on a closed surface of genus >= 2 (and no
   /// cone_ring_metrics given), first try inversive_distance_route(*this), which converges where
-  /// the plain inversive-distance flow breaks triangles (marching-cubes genus2_10k and
-  /// genus2_100k: area-weighted quasi-conformal distortion 1.12 and 1.03); if it fails, the
-  /// plain flow as asked (its failures listed first in flow.failed_attempts).
+  /// the plain inversive-distance flow breaks triangles; if it fails, the plain flow as asked
+  /// (its failures listed first in flow.failed_attempts).
   bool inversive_distance_route = true;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;

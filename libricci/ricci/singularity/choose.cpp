@@ -1,7 +1,6 @@
 #include "ricci/singularity/choose.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -13,6 +12,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/quality/distortion.h"
+#include "ricci/util/stopwatch.h"
 
 namespace ricci {
 namespace {
@@ -139,7 +139,7 @@ int verified_count(int vertices, const SingularityOptions& options) {
 }
 
 SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions& options) {
-  auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   SingularityChoice choice;
   if (!needs_singular_vertex(mesh)) {
     choice.area_distortion = one_cone_area_distortion(mesh, -1, options);
@@ -200,7 +200,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
     choice.vertex = best().vertex;
     choice.area_distortion = best().area_distortion;
   }
-  choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  choice.seconds = start.seconds();
   return choice;
 }
 

@@ -50,9 +50,12 @@ Mesh remove_star(const Mesh& mesh, int vertex, std::vector<int>& input_vertex) {
 
 const char* radius_name(RadiusInit radii) {
   switch (radii) {
-    case RadiusInit::Mean: return "mean";
-    case RadiusInit::Min: return "min";
-    case RadiusInit::LeastSquares: return "least-squares";
+    case RadiusInit::mean:
+      return "mean";
+    case RadiusInit::min:
+      return "min";
+    case RadiusInit::least_squares:
+      return "least-squares";
   }
   return "unknown";
 }
@@ -77,21 +80,21 @@ std::string to_string(OneConeKind kind) {
 
 FlowOptions one_cone_flow_options() {
   FlowOptions options;
-  options.scheme = Scheme::CirclePacking;
-  options.radii = RadiusInit::Mean;
+  options.scheme = Scheme::circle_packing;
+  options.radii = RadiusInit::mean;
   return options;
 }
 
 std::vector<std::pair<Scheme, RadiusInit>> one_cone_metric_order(OneConeKind kind) {
   if (kind == OneConeKind::SingleCone) {
-    return {{Scheme::CirclePacking, RadiusInit::Mean},
-            {Scheme::CirclePacking, RadiusInit::Min},
-            {Scheme::Combinatorial, RadiusInit::Mean}};
+    return {{Scheme::circle_packing, RadiusInit::mean},
+            {Scheme::circle_packing, RadiusInit::min},
+            {Scheme::combinatorial, RadiusInit::mean}};
   }
-  return {{Scheme::InversiveDistance, RadiusInit::Mean},
-          {Scheme::InversiveDistance, RadiusInit::Min},
-          {Scheme::CirclePacking, RadiusInit::Mean},
-          {Scheme::Combinatorial, RadiusInit::Mean}};
+  return {{Scheme::inversive_distance, RadiusInit::mean},
+          {Scheme::inversive_distance, RadiusInit::min},
+          {Scheme::circle_packing, RadiusInit::mean},
+          {Scheme::combinatorial, RadiusInit::mean}};
 }
 
 namespace {
@@ -145,7 +148,7 @@ void make_inversive_distances_nonnegative(const MeshTables& tables, const EdgeLe
     if (!changed) break;
   }
   for (int e = 0; e < tables.num_edges(); ++e) {
-    metric.eta[e] = circle_edge_eta(Geometry::Euclidean, metric.gamma[tables.edge_vertices(e, 0)],
+    metric.eta[e] = circle_edge_eta(Geometry::euclidean, metric.gamma[tables.edge_vertices(e, 0)],
                                     metric.gamma[tables.edge_vertices(e, 1)], lengths[e]);
   }
 }
@@ -154,8 +157,9 @@ void make_inversive_distances_nonnegative(const MeshTables& tables, const EdgeLe
 
 CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
                                      const ConeRingMetric& rule) {
-  CirclePackingMetric metric = initial_metric(tables, lengths, Geometry::Euclidean, rule.far, rule.radii);
-  if (rule.far == Scheme::InversiveDistance && rule.nonnegative_inversive_distance) {
+  CirclePackingMetric metric =
+      initial_metric(tables, lengths, Geometry::euclidean, rule.far, rule.radii);
+  if (rule.far == Scheme::inversive_distance && rule.nonnegative_inversive_distance) {
     make_inversive_distances_nonnegative(tables, lengths, metric);
   }
   const std::vector<int> depth = ring_depth(tables, cone, rule.rings);
@@ -167,7 +171,7 @@ CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths
     const double l[3] = {lengths[tables.face_edges(f, 0)], lengths[tables.face_edges(f, 1)],
                          lengths[tables.face_edges(f, 2)]};
     double theta[3];
-    if (triangle_angles(Geometry::Euclidean, l, theta) &&
+    if (triangle_angles(Geometry::euclidean, l, theta) &&
         std::min({theta[0], theta[1], theta[2]}) >= rule.needle_angle) {
       continue;
     }
@@ -176,7 +180,9 @@ CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths
   const Eigen::VectorXd far_eta = metric.eta;
   // Thurston's angle is the inversive distance clamped to [0, pi/2]: the same circles where
   // they overlap by less than a right angle.
-  auto near_eta = [&](int e) { return rule.near == Scheme::Combinatorial ? 1.0 : std::clamp(far_eta[e], 0.0, 1.0); };
+  auto near_eta = [&](int e) {
+    return rule.near == Scheme::combinatorial ? 1.0 : std::clamp(far_eta[e], 0.0, 1.0);
+  };
   for (int e = 0; e < tables.num_edges(); ++e) {
     if (near[e]) metric.eta[e] = near_eta(e);
   }
@@ -190,10 +196,10 @@ CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths
       double l[3], theta[3];
       for (int k = 0; k < 3; ++k) {
         const int e = tables.face_edges(f, k);
-        l[k] = circle_edge_length(Geometry::Euclidean, metric.gamma[tables.edge_vertices(e, 0)],
+        l[k] = circle_edge_length(Geometry::euclidean, metric.gamma[tables.edge_vertices(e, 0)],
                                   metric.gamma[tables.edge_vertices(e, 1)], metric.eta[e]);
       }
-      if (triangle_angles(Geometry::Euclidean, l, theta)) continue;
+      if (triangle_angles(Geometry::euclidean, l, theta)) continue;
       for (int k = 0; k < 3; ++k) {
         const int e = tables.face_edges(f, k);
         if (!near[e]) {
@@ -209,7 +215,8 @@ CirclePackingMetric cone_ring_metric(const MeshTables& tables, const EdgeLengths
 
 CirclePackingMetric cone_tangent_metric(const MeshTables& tables, const EdgeLengths& lengths, int cone,
                                         int rings, RadiusInit radii) {
-  return cone_ring_metric(tables, lengths, cone, {Scheme::CirclePacking, Scheme::Combinatorial, rings, radii});
+  return cone_ring_metric(tables, lengths, cone,
+                          {Scheme::circle_packing, Scheme::combinatorial, rings, radii});
 }
 
 namespace {
@@ -228,7 +235,7 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options
                              " rings of the cone: ";
     const MeshTables tables = build_mesh_tables(problem.mesh);
     const CirclePackingMetric initial = cone_tangent_metric(
-        tables, mesh_edge_lengths(problem.mesh), problem.cone, kConeTangentRings, RadiusInit::Mean);
+        tables, mesh_edge_lengths(problem.mesh), problem.cone, kConeTangentRings, RadiusInit::mean);
     try {
       result = flow(tables, initial, problem.targets, options);
       if (result.converged()) return result;
@@ -265,19 +272,19 @@ Targets open_surface_target(const Mesh& mesh) {
   Targets harmonic = harmonic_boundary_target(mesh);
   const double margin = 1e-3;
   if ((harmonic.curvature.array() < M_PI - margin).all()) return harmonic;
-  return boundary_target(mesh, BoundaryMode::SpreadByLength);
+  return boundary_target(mesh, BoundaryMode::spread_by_length);
 }
 
 // Boundary targets to try after the problem's own, for open surfaces.
 std::vector<std::pair<std::string, Targets>> alternative_boundary_targets(const OneConeProblem& problem) {
   std::vector<std::pair<std::string, Targets>> out;
   if (problem.kind != OneConeKind::OpenSurface) return out;
-  Targets by_length = boundary_target(problem.mesh, BoundaryMode::SpreadByLength);
+  Targets by_length = boundary_target(problem.mesh, BoundaryMode::spread_by_length);
   if (by_length.curvature != problem.targets.curvature) {
     out.emplace_back("boundary curvature spread by length", std::move(by_length));
   }
   if (problem.boundary_loops > 1) {
-    out.emplace_back("circle domain", boundary_target(problem.mesh, BoundaryMode::CircleDomain));
+    out.emplace_back("circle domain", boundary_target(problem.mesh, BoundaryMode::circle_domain));
   }
   return out;
 }
@@ -286,8 +293,8 @@ std::vector<std::pair<std::string, Targets>> alternative_boundary_targets(const 
 
 std::string to_string(const ConeRingMetric& rule) {
   return to_string(rule.far) + "/" + radius_name(rule.radii) + ", " +
-         (rule.near == Scheme::Combinatorial ? std::string("tangent") : to_string(rule.near)) + " within " +
-         std::to_string(rule.rings) + " rings of the cone";
+         (rule.near == Scheme::combinatorial ? std::string("tangent") : to_string(rule.near)) +
+         " within " + std::to_string(rule.rings) + " rings of the cone";
 }
 
 FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector<ConeRingMetric>& rules,
@@ -361,7 +368,7 @@ OneConeProblem prepare_on(const Mesh& mesh, int vertex, const ValenceOptions& va
   if (problem.genus == 0) {
     problem.kind = OneConeKind::PuncturedSphere;
     problem.mesh = remove_star(mesh, vertex, problem.input_vertex);
-    problem.targets = boundary_target(problem.mesh, BoundaryMode::SpreadByLength);
+    problem.targets = boundary_target(problem.mesh, BoundaryMode::spread_by_length);
     return problem;
   }
   problem.kind = OneConeKind::SingleCone;

@@ -75,13 +75,13 @@ inline constexpr int kMaxHandleSubdivisions = 3;
 
 /// A metric that differs near a single cone: `far` (the mesh's inversive distance or Thurston
 /// circle packing, radii by `radii`) on the edges with both ends `rings` or more rings from the
-/// cone, and `near` on the others: CirclePacking (Thurston's angles, the inversive distance
-/// clamped to [0, pi/2]) or Combinatorial (tangent circles).
+/// cone, and `near` on the others: circle_packing (Thurston's angles, the inversive distance
+/// clamped to [0, pi/2]) or combinatorial (tangent circles).
 struct ConeRingMetric {
-  Scheme far = Scheme::InversiveDistance;
-  Scheme near = Scheme::CirclePacking;
+  Scheme far = Scheme::inversive_distance;
+  Scheme near = Scheme::circle_packing;
   int rings = 4;
-  RadiusInit radii = RadiusInit::Mean;
+  RadiusInit radii = RadiusInit::mean;
   /// The edges of faces with a corner below this angle (radians, in the mesh) get `near` too,
   /// wherever they are: the inversive distance of a needle's short edge sits near -1, where its
   /// length is most sensitive to the radii (0 = none).
@@ -99,7 +99,7 @@ struct ConeRingMetric {
 /// converges, each by continuation on the target (flow/continuation.h; one stage = the plain
 /// flow). The result's failed_attempts lists the runs that did not (an initial metric that breaks
 /// a triangle counts as a failed run); the last attempt is returned when none converged
-/// (FlowStatus::Stalled with an empty metric when `rules` is empty).
+/// (FlowStatus::stalled with an empty metric when `rules` is empty).
 /// \throw InvalidInputError unless problem.kind == OneConeKind::SingleCone.
 [[nodiscard]] FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector<ConeRingMetric>& rules,
                                               const FlowOptions& options,

@@ -37,7 +37,7 @@ Eigen::SparseMatrix<double> cotangent_laplacian(const MeshTables& t, const Eigen
 Targets harmonic_boundary_target(const Mesh& mesh) {
   const MeshTables t = build_mesh_tables(mesh);
   if (t.boundary_loops.empty()) throw InvalidInputError("harmonic boundary target on a closed mesh");
-  const Eigen::MatrixX3d angles = corner_angles(t, mesh_edge_lengths(mesh), Geometry::Euclidean);
+  const Eigen::MatrixX3d angles = corner_angles(t, mesh_edge_lengths(mesh), Geometry::euclidean);
   const Eigen::VectorXd K = vertex_curvature(t, angles);
   const int n = t.num_vertices();
   std::vector<int> interior_index(n, -1);

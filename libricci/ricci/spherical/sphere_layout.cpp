@@ -16,7 +16,7 @@ double angle_at_from(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeH
   const double l[3] = {lengths[mesh.edge_handle(h1).idx()], lengths[mesh.edge_handle(h2).idx()],
                        lengths[mesh.edge_handle(h).idx()]};
   double theta[3];
-  if (!triangle_angles(Geometry::Spherical, l, theta)) {
+  if (!triangle_angles(Geometry::spherical, l, theta)) {
     throw InvalidInputError("layout_sphere: face " + std::to_string(mesh.face_handle(h).idx()) +
                             " violates the spherical triangle inequality");
   }

@@ -202,21 +202,6 @@ Eigen::VectorXd checked_edge_lengths(const Mesh& mesh, const Eigen::VectorXd& ed
   return edge_lengths;
 }
 
-std::vector<std::vector<HalfedgeHandle>> find_boundary_loops(const Mesh& mesh) {
-  std::vector<std::vector<HalfedgeHandle>> loops;
-  std::vector<char> seen(mesh.n_halfedges(), 0);
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
-    std::vector<HalfedgeHandle> loop;
-    for (auto g = h; !seen[g.idx()]; g = mesh.next_halfedge_handle(g)) {
-      seen[g.idx()] = 1;
-      loop.push_back(g);
-    }
-    loops.push_back(std::move(loop));
-  }
-  return loops;
-}
-
 CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root, const Eigen::VectorXd& edge_lengths,
                            const CutGraphOptions& options) {
   if (!root.is_valid() || root.idx() >= static_cast<int>(mesh.n_vertices())) {

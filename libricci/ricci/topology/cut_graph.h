@@ -1,6 +1,7 @@
 #pragma once
 // Cut graph through a root vertex by tree-cotree (Eppstein; Erickson-Whittlesey's greedy system
-// of loops): slicing the surface along it yields a topological disk (ALGORITHMS.md section 5).
+// of loops): slicing the surface along it yields a topological disk (manifold-splines paper,
+// section 4, step 4).
 //
 // Open surfaces are handled by contracting every boundary loop to a single node: on that closed
 // quotient surface the tree-cotree leftover edges give the 2g loops, and the tree itself supplies
@@ -9,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "ricci/mesh/boundary_loops.h"  // find_boundary_loops, used with the cut graph
 #include "ricci/mesh/mesh.h"
 
 namespace ricci {
@@ -63,9 +65,6 @@ struct CutGraph {
 [[nodiscard]] CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root,
                                          const Eigen::VectorXd& edge_lengths = {},
                                          const CutGraphOptions& options = {});
-
-/// Boundary loops of the mesh as cycles of face-less halfedges.
-[[nodiscard]] std::vector<std::vector<HalfedgeHandle>> find_boundary_loops(const Mesh& mesh);
 
 /// Checks lengths (size, finite, positive) or returns the mesh's 3D lengths when empty.
 /// \throw InvalidInputError naming the first bad edge.

@@ -1,7 +1,6 @@
 #include "spline/baseline/loop_fit.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -10,21 +9,13 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/metric/subdivide.h"
+#include "ricci/util/stopwatch.h"
 
 namespace spline {
 
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point& t) {
-  const auto now = Clock::now();
-  const double s = std::chrono::duration<double>(now - t).count();
-  t = now;
-  return s;
-}
 
 // Relative mismatch of the control-point count that triggers a second simplification.
 constexpr double kCountTolerance = 0.02;
@@ -151,13 +142,13 @@ LoopFitResult fit_loop_surface(const ricci::Mesh& dense, const LoopFitOptions& o
         "fit_loop_surface: projection_steps and parameter_corrections must be >= 0");
   }
   LoopFitResult result;
-  auto clock = Clock::now();
+  ricci::Stopwatch clock;
   result.control = loop_control_mesh(dense, options.control_points, options.remesh_iterations);
-  result.seconds_control_mesh = seconds_since(clock);
+  result.seconds_control_mesh = clock.lap();
   LoopSurfaceOptions surface_options;
   surface_options.isolation_level = options.isolation_level;
   const LoopSurface surface(result.control, surface_options);
-  result.seconds_surface = seconds_since(clock);
+  result.seconds_surface = clock.lap();
 
   const Eigen::MatrixX3d points = positions(dense);
   auto locations = loop_parameters(surface, points);
@@ -166,10 +157,10 @@ LoopFitResult fit_loop_surface(const ricci::Mesh& dense, const LoopFitOptions& o
   for (int round = 0; round <= options.parameter_corrections; ++round) {
     if (round > 0) locations = projection.locations;
     solve = fit_loop_control_points(surface, locations, points, options.smoothness);
-    result.seconds_solve += seconds_since(clock);
+    result.seconds_solve += clock.lap();
     projection = project_to_loop_surface(surface, solve.control, points, locations,
                                          options.projection_steps);
-    result.seconds_projection += seconds_since(clock);
+    result.seconds_projection += clock.lap();
   }
   for (auto v : result.control.vertices())
     result.control.set_point(v, ricci::to_openmesh(solve.control.row(v.idx())));

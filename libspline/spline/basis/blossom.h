@@ -1,13 +1,16 @@
 #pragma once
 // Polynomials of the plane in monomial form and their blossoms (polar forms), the DMS control
-// points that reproduce a polynomial, and the inverse map (ALGORITHMS.md section 7; fairing,
-// manifold-splines eq. 14, needs f^J from J's control points and its blossom at I's knot sets).
+// points that reproduce a polynomial, and the inverse map (manifold-splines paper section 5;
+// fairing, manifold-splines eq. 14, needs f^J from J's control points and its blossom at I's knot
+// sets).
 //
 // A polynomial p of degree <= n, viewed as degree n, has a unique blossom P(u_1, ..., u_n):
 // symmetric, affine in each argument, P(u, ..., u) = p(u). For a monomial x^a y^b,
-//     P = sum over disjoint S, T in {1..n}, |S| = a, |T| = b, of prod_{i in S} x_i prod_{j in T} y_j
+//     P = sum over disjoint S, T in {1..n}, |S| = a, |T| = b, of prod_{i in S} x_i prod_{j in T}
+//     y_j
 //         / (n! / (a! b! (n - a - b)!)).
-// DMS (1992): sum_I sum_beta P(t_{0,0..beta0-1}, t_{1,0..beta1-1}, t_{2,0..beta2-1}) N_{I,beta} = p.
+// DMS (1992): sum_I sum_beta P(t_{0,0..beta0-1}, t_{1,0..beta1-1}, t_{2,0..beta2-1}) N_{I,beta} =
+// p.
 #include <Eigen/Core>
 #include <vector>
 

@@ -8,11 +8,8 @@
 // reach u is present, e.g. for u in a triangle all of whose vertices are interior vertices: each
 // N_{J,beta} is supported in the hull of J's clouds, J slightly enlarged by the cloud radii.
 //
-// Cost (msp-bench dms 16, CPU time, one core, quiet machine): all non-zero functions with
-// gradient and Hessian at a point take ~3.5 / 9 / 9 / 18 us for n = 2 / 3 / 4 / 5 (values only
-// ~3.3 / 7.5 / 7.5 / 15 us); construction ~16-35 / 80 / 140-150 / 280 us and ~3.6 / 9.5 / 21 /
-// 44 KB per triangle. (Under load, with the cores at full clock, about half these times.)
-// Queries are const and thread-safe.
+// Cost: msp-bench dms prints it (docs/design-notes.md, "DMS basis", has figures). Queries are
+// const and thread-safe.
 #include <Eigen/Core>
 #include <vector>
 

@@ -8,13 +8,10 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
 
 namespace spline {
 namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 int popcount(std::uint32_t mask) { return __builtin_popcount(mask); }
 
@@ -85,7 +82,7 @@ void SimplexSplineDag::prepare_build_caches() {
     for (std::size_t y = x + 1; y < k; ++y) {
       const Eigen::Vector2d e1 = knots_[y] - knots_[x];
       for (std::size_t z = y + 1; z < k; ++z) {
-        areas_[(x * k + y) * k + z] = std::abs(cross(e1, knots_[z] - knots_[x]));
+        areas_[(x * k + y) * k + z] = std::abs(ricci::cross2d(e1, knots_[z] - knots_[x]));
       }
     }
   }

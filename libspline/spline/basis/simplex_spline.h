@@ -2,8 +2,8 @@
 // Bivariate simplex splines M(u | X) for a knot multiset X of n + 3 points (degree n), by the
 // Micchelli recurrence, memoised over knot subsets (bit masks), with exact derivative formulas.
 //
-// Normalisation (the DMS one, ALGORITHMS.md section 7): for 3 knots M = 1/|d(a,b,c)| inside the
-// triangle (d = det[1 1 1; a b c] = twice the signed area), and for more knots
+// Normalisation (the DMS one, manifold-splines paper section 5): for 3 knots M = 1/|d(a,b,c)|
+// inside the triangle (d = det[1 1 1; a b c] = twice the signed area), and for more knots
 //     M(u | X) = sum_a lambda_a(u) M(u | X \ x_a),   u = sum_a lambda_a x_a, sum_a lambda_a = 1,
 // over any affinely independent triple {x_a} of X (we take the one of largest area: choosing the
 // first found one loses partition of unity at small cloud radii). The standard simplex spline

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
 #include "spline/basis/multi_index.h"
 
 namespace spline {
@@ -25,10 +26,6 @@ std::vector<Eigen::Vector2d> concatenate(const KnotCloud& c0, const KnotCloud& c
     knots.insert(knots.end(), c->knots.begin(), c->knots.end());
   }
   return knots;
-}
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
 }
 
 // Counter-clockwise convex hull (Andrew's monotone chain, exact orientations, collinear points
@@ -81,7 +78,7 @@ TriangleBasis::TriangleBasis(const KnotCloud& cloud0, const KnotCloud& cloud1,
     const Eigen::Vector2d& a = knots[static_cast<std::size_t>(beta[0])];
     const Eigen::Vector2d& b = knots[static_cast<std::size_t>(n + 1 + beta[1])];
     const Eigen::Vector2d& c = knots[static_cast<std::size_t>(2 * (n + 1) + beta[2])];
-    const double d = std::abs(cross(b - a, c - a));
+    const double d = std::abs(ricci::cross2d(b - a, c - a));
     if (!(d > 0.0)) {
       throw ricci::InvalidInputError("triangle basis: shifted triangle of beta (" +
                                      std::to_string(beta[0]) + "," + std::to_string(beta[1]) +

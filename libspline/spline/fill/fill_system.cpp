@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
 #include "spline/basis/blossom.h"
 #include "spline/basis/multi_index.h"
 #include "spline/planar/bisect.h"
@@ -246,7 +247,7 @@ void thin_plate_rows_of(const PlanarDmsSpace& space, int k, double weight,
   const auto& t = space.triangulation();
   const Eigen::Vector3i v = t.triangles[static_cast<std::size_t>(k)];
   const Eigen::Vector2d a = t.positions[v[0]], b = t.positions[v[1]], c = t.positions[v[2]];
-  const double area = 0.5 * std::abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+  const double area = 0.5 * std::abs(ricci::cross2d(b - a, c - a));
   for (const auto& q : rule) {
     const double root = std::sqrt(weight * area * q.weight);
     const auto basis = space.evaluate_basis(q.bary[0] * a + q.bary[1] * b + q.bary[2] * c);

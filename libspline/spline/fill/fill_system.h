@@ -23,9 +23,7 @@ struct QuadraturePoint {
 /// Thin-plate quadrature points of one triangle: Dunavant's 6-point rule (exact for degree 4)
 /// on the triangle and again on its corner sub-triangles of ratio 0.3 and 0.1. Why the corners:
 /// a DMS spline can carry spikes within the knot clouds (radius < inradius / 2 around each
-/// vertex) that no point of the plain rule sees; measured on eight.off, a fit whose quadrature
-/// missed them put values 300 times the hole's size between the seam samples (the plain rule's
-/// thin-plate energy 165, densely sampled 1e11).
+/// vertex) that no point of the plain rule sees, and the fit would leave them in.
 [[nodiscard]] std::vector<QuadraturePoint> thin_plate_rule();
 
 /// "cone hole of 24 edges starting at face 17": names a rim in messages.
@@ -80,7 +78,7 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
 /// |dS/dt|. Why: at a corner the patch's Jacobian maps D's two edge directions to the
 /// surface's, and a linear map keeping the orientation keeps an angle convex or reflex; along an
 /// edge it rotates as the rim's tangent does. A convex D (layout_on_circle) folds the patch at
-/// the reflex corners of a scalloped rim (measured: 180 degrees on bunny_igl.off, genus3.off).
+/// the reflex corners of a scalloped rim.
 /// Sets what layout_on_circle sets (center: a point D is star-shaped from). Returns D's
 /// boundary counter-clockwise, or an empty vector when it is not simple or not star-shaped.
 [[nodiscard]] std::vector<Eigen::Vector2d> layout_by_development(

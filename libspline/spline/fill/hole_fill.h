@@ -1,61 +1,17 @@
 #pragma once
 // Hole filling (manifold-splines paper, section 5: "we use planar triangular B-splines to fill
-// these holes with G1 continuity along the boundaries"; ALGORITHMS.md section 7).
+// these holes with G1 continuity along the boundaries").
 //
-// A rim is a closed loop of edges with exactly one kept domain face: the cone's one-ring hole,
-// an open scan's boundary loop, or the hole left by excluded faces, each grown by a layer of
-// faces (FindRimsOptions::grow says why). A rim is filled by a planar DMS spline patch that is a
-// height field over a plane: P(u) = origin + u_x e1 + u_y e2 + h(u) n.
-//  - The plane: normal n = the mean of the surface's normals along the rim (or the rim's
-//    least-squares normal if that one sees every rim normal at a smaller angle), (e1, e2, n)
-//    right-handed. The patch's domain D is the region bounded by the rim's curve projected onto
-//    the plane; its boundary is the projected curve itself (cubic Hermite through projected
-//    samples of every rim edge), so P's boundary follows the surface's rim exactly in the plane.
-//  - The in-plane part of P is the identity (affine: reproduced exactly by the spline), so only
-//    the height h is fitted: h = the surface's height and grad h = the slope of the surface's
-//    tangent plane at samples of every rim edge (G1: P_x, P_y then lie in the surface's tangent
-//    plane; this boundary data is consistent everywhere, corners included), plus the thin-plate
-//    energy of h. One scalar sparse least-squares problem.
-//  - Orientation: P's normal (P_x x P_y) has a positive n component; the surface's normals along
-//    the rim do too (checked), so the two agree in orientation.
-// Requirements: every surface normal along the rim makes an angle below ~87 degrees with n, and
-// the projected rim is a simple polygon, star-shaped from some point.
-//
-// The parametric G1 patch (FillMethod::parametric; FillMethod::automatic uses it where the
-// height field fails or misses FillOptions::target_jump_deg, keeping the better of the two):
-//  - D is the rim developed into the plane (fill_system.h layout_by_development): a curve with
-//    the rim's 3D sample spacing that turns as the rim turns on the surface (along the edges and
-//    at the corners), the hole's curvature spread along it so that it turns once. So D's corners
-//    are convex or reflex where the rim's are: the patch's Jacobian, a linear map at a corner,
-//    cannot turn a convex angle of D into a reflex one of the rim without folding (a convex D
-//    folds: 180 degrees on bunny_igl.off and genus3.off). A D that is not simple or not
-//    star-shaped falls back to the rim laid out on a circle.
-//  - P has three coordinates, fitted at FillOptions::parametric_samples_per_edge samples per
-//    rim edge to the surface's position, to n . D_d P = 0 for D's two boundary directions d
-//    (both derivatives in the surface's tangent plane: G1; rows coupling the coordinates), and,
-//    softly (cross_weight), to an in-plane Jacobian: along D's boundary the rim's derivative,
-//    across it the tangent-plane vector S_t x n / |D_t| pointing into the hole, which fixes the
-//    orientation (P_x x P_y along n) and keeps P from folding; plus the thin plate. One sparse
-//    least-squares problem in 3 x (function count) unknowns.
-// Measured (msp fit defaults, 2000 faces; msp-bench fill --faces 2000 --per-edge for the
-// surface): genus3.off's cone hole 180 -> 3.4 degrees, bunny_igl.off 1.0, horse 0.84. What is
-// left is the surface itself: next to the rim's vertices its normal turns by 1.5-4.4 degrees
-// within 1/100 of a rim edge on the scans (bunny_npm_closed: a 4.4 degree step where the seam
-// jump is 4.9), by 60-95 degrees on joint.off and elephant_cgal.off (creased: their seams
-// stay at ~180), faster than a patch of a few triangles per rim edge can turn (refinement 6:
-// bunny_igl 1.0 -> 0.82 at 4x the cost). meet_patches (meet_patch.h) then moves the surface's
-// control points next to the rims to meet the patches: `msp fit` does, e.g. bunny_npm_closed
-// 4.2 -> 1.3 degrees, femur 6.9 -> 4.2. Both spaces keep structure at their knot clouds' scale
-// (measured on femur after it: the surface's and the patch's normals each turn by up to 2-5
-// degrees within 1/400 of a rim edge), which bounds what the two can agree on; refitting the
-// patch to the moved surface and meeting again does not converge further (4.4, 4.0 degrees
-// after 2, 3 rounds). What settled it is the patch's grid refined 8x at D's corners
-// (FillOptions::corner_refinement): there the patch can turn as fast as the surface, and the
-// seams of the genus 0-3 scans drop below 1 degree (femur 0.44, horse.ply 0.5, genus3.off
-// 0.27) but where the spline folds next to a large cone (helmet, elephant_cgal, joint: 13-180
-// degrees); the scan pipeline's domain refined around the cone (ricci::refine_around_cone)
-// removed those folds (0.75, 0.14, 0.24). Only a positions-only patch
-// (FillMethod::height_field with FillOptions::fallback) is not G1: HoleFill::g1 false.
+// A rim (find_rims) is a closed loop of domain edges with exactly one kept face: the cone's
+// one-ring hole, an open surface's boundary loop, or the hole left by excluded faces, each grown
+// by FindRimsOptions. fill_rim fills a rim with a planar DMS spline patch P that meets the
+// surface with G1 continuity: a height field P(u) = origin + u_x e1 + u_y e2 + h(u) n over a
+// plane (FillMethod::height_field; needs every rim normal within ~87 degrees of n and a simple,
+// star-shaped projected rim), or a parametric patch over the rim developed into the plane
+// (FillMethod::parametric). Both are one sparse least-squares problem: positions and tangent
+// planes at samples of every rim edge plus a thin-plate energy. Only the positions-only fallback
+// is not G1 (HoleFill::g1 false). The construction of both patches and the measurements behind
+// the defaults: docs/design-notes.md, "Hole filling".
 //
 // Rim sample convention (the weld shared with the tessellator): rim edge j is sampled at d + 1
 // points t_i = i / d, i = 0..d, linear in the barycentric coordinates of its domain face from the
@@ -110,37 +66,18 @@ struct Rim {
 
 struct FindRimsOptions {
   /// Layers of domain faces added to every hole (all domain faces touching a rim vertex, per
-  /// layer) before the rims are taken. Why: no basis function lives on the faces outside the
-  /// domain, so the spline's partition of unity fails in a thin band along the domain's rim
-  /// (measured on genus2.off at 1000 faces: sum of basis values 0.25-0.4 on the rim edges; the
-  /// surface there collapses towards the origin) and within a cloud radius of the rim vertices.
-  /// Kept faces left as islands inside a grown hole are covered too (grow > 0 only).
-  /// One layer puts every seam point more than a triangle height from the old rim vertices,
-  /// beyond the clouds (radius < inradius / 2): the partition of unity holds on the seam
-  /// (tested). 0: the rims are the domain's own (the cone's one-ring link, the boundary loops).
+  /// layer) before the rims are taken, so that the basis is a partition of unity on the seam;
+  /// kept faces left as islands inside a grown hole are covered too. 0: the rims are the
+  /// domain's own (the cone's one-ring link, the boundary loops).
   int grow = 1;
   /// Cone hole only, after the `grow` layers: more layers (the cone hole alone, face by face as
   /// in rims.h, so it stays a disk apart from the other holes) while a face on its rim has a
   /// chart scale (chart_scale_by_face) that differs from an edge neighbour's by more than this
-  /// factor. Why: near a cone of angle 2 pi alpha the flat metric scales like rho^(alpha - 1),
-  /// so the first rings around a cone of 6 pi or 10 pi are shrunk in the chart by factors that
-  /// change 4-13 times from one face to the next (elephant_cgal.off, 2000 faces: 12.9, 7.1, 3.9
-  /// on rings 0, 2, 3; the scans' 2-4 everywhere); there the fitted spline folds (its normal
-  /// turns by 16-150 degrees within 1/100 of an edge in rings 0-6, 1 degree elsewhere) and holds
-  /// most of the fit error. Covering those rings puts their points on the smooth patch and the
-  /// seam on better-conditioned faces: elephant_cgal (`msp fit` defaults, one extra layer) fit
-  /// RMS 0.215% -> 0.159% of the diagonal, max 4.6% -> 2.1%; no other genus 0-3 model grows.
-  /// Its seam stays at ~170 degrees: the spline folds up to ring 6 (a fourth layer: 16 degrees,
-  /// a fifth merges too much into the patch). <= 1: off.
+  /// factor (the first rings around a large cone, where the fitted spline folds). <= 1: off.
   double max_cone_rim_scale_ratio = 5.0;
   /// ... or while the fitted spline folds on a face of its rim: its normal turns by more than
-  /// this between points 1/100 of an edge apart along one of the face's edges
-  /// (max_normal_step_deg; given to find_rims as a function). A smooth fit turns by ~1 degree
-  /// there (the scans' median 0.4-0.5, 90th percentile 1.5, largest next to a rim 8); next to
-  /// the 10 pi cone of elephant_cgal.off and block.off the spline folds over rings 0-6 (16-150
-  /// degrees), and no patch can meet a fold (their seams: 170-180 degrees). Measured with
-  /// meet_patches (msp-bench fill --faces 2000, grow 1 / 3): block.off 169 -> 3.8 degrees,
-  /// elephant_cgal.off 179 -> 15.
+  /// this (degrees) between points 1/100 of an edge apart along one of the face's edges
+  /// (max_normal_step_deg; given to find_rims as a function). A smooth fit turns by ~1 degree.
   double max_cone_rim_normal_step_deg = 20.0;
   int max_cone_layers = 3;  ///< cap on those extra layers
   /// The first this many of those layers are taken whatever the rim's faces (still within the
@@ -200,31 +137,21 @@ struct FillOptions {
   /// regular grid over D) have sides of about (rim length in the plane) / (refinement * edges).
   int refinement = 3;
   /// The patch's triangles near D's corners (the rim's vertices) are this many times smaller
-  /// than elsewhere (patch_space). Why: next to a rim vertex the surface's normal turns within
-  /// its knot cloud, a few hundredths of a rim edge, where a patch of refinement triangles per
-  /// edge cannot follow. Measured (`msp fit` defaults, largest seam normal jump, uniform ->
-  /// refined): femur.off 4.2 -> 0.44 degrees, horse.ply 2.8 -> 0.5, genus3.off 2.7 -> 0.27,
-  /// double-torus 5.4 -> 0.44, bunny_npm_closed 1.3 -> 0.78; the fill stage costs 1-5 s more
-  /// (venus.off at 4000 faces: 1.2 s). A refined patch missing target_jump_deg is compared
-  /// with the uniform one, the smaller seam kept (helmet.off: the refined patch flips). 1: a
-  /// uniform grid.
+  /// than elsewhere (patch_space), so the patch can turn as fast as the surface next to a rim
+  /// vertex. A refined patch missing target_jump_deg is compared with the uniform one and the
+  /// smaller seam kept. 1: a uniform grid.
   int corner_refinement = 8;
-  /// ... but a rim where the surface's normal turns by more than this between samples 1/100 of
-  /// an edge apart (a fold or crease: FindRimsOptions::max_cone_rim_normal_step_deg) gets the
-  /// uniform patch only: the refined one follows the fold into the hole (elephant_cgal.off, a
-  /// 26 degree step: seam 15 -> 4.9 degrees, but the fit RMS 0.159% -> 0.286% of the diagonal,
-  /// the points over the hole farther from the patch). The scans' rims: 3.7-9 degrees.
+  /// ... but a rim where the surface's normal turns by more than this (degrees) between samples
+  /// 1/100 of an edge apart (a fold or crease) gets the uniform patch only: the refined one
+  /// would follow the fold into the hole.
   double max_refined_rim_step_deg = 20.0;
   /// Cap on rim edges * refinement: long boundary loops get a coarser patch (cost grows with the
   /// square of it).
   int max_boundary_vertices = 100;
-  /// Samples per rim edge of the seam measurement stored in HoleFill (the issue asks for 100).
+  /// Samples per rim edge of the seam measurement stored in HoleFill.
   int samples_per_edge = 100;
   /// Samples per rim edge in the least-squares objective (and of D's Hermite boundary curve).
-  /// Dense on purpose: between sparser samples the patch's slope wanders (the DMS functions'
-  /// structure at the knot-cloud scale): eight.off, 24 samples: 0.23 degrees at the samples,
-  /// 2.2 between them; 64: 0.44 (0.5-1.9 depending on the fitted surface); 96: 0.51 / 0.82 on
-  /// eight.off / genus2.off (after the merge of the composed-frame layout).
+  /// Dense on purpose: between sparser samples the patch's slope wanders.
   int fit_samples_per_edge = 96;
   double position_weight = 1e6;  ///< weight of the height rows (dimensionless, see hole_fill.cpp)
   double tangent_weight = 1e6;   ///< weight of the slope (G1) rows
@@ -232,14 +159,11 @@ struct FillOptions {
   /// along D's boundary, a tangent-plane vector into the hole across it). Low on purpose: they
   /// only keep P from folding; G1 comes from the tangent rows.
   double cross_weight = 1e5;
-  /// Parametric patch: samples per rim edge in its least-squares objective. Denser than the
-  /// height field's: with 96, bunny_igl.off's patch (2000 faces) tilts 2.9 degrees between
-  /// samples, with 200 1.1; a finer patch (refinement 6, 10) needs still more (the DMS
-  /// functions' structure at the knot-cloud scale).
+  /// Parametric patch: samples per rim edge in its least-squares objective (denser than the
+  /// height field's; a finer patch needs still more).
   int parametric_samples_per_edge = 200;
-  /// Weight of the thin-plate energy of the height. Measured on eight.off and genus2.off (cone
-  /// holes, 1000 faces): 1e-4 / 1e-3 let the slope wander between samples (1.5 / 1.1 degrees),
-  /// 1 fights the seam (2-3 degrees), 1e-2 gives 0.44 / 0.48.
+  /// Weight of the thin-plate energy of the patch (dimensionless): lower lets the slope wander
+  /// between samples, higher fights the seam.
   double smoothing = 1e-2;
   /// Smallest accepted cosine between the plane's normal and the surface's normals on the rim.
   double min_normal_cosine = 0.05;
@@ -302,7 +226,7 @@ struct HoleFill {
   [[nodiscard]] SplineJet jet(const Eigen::Vector2d& u) const;
 };
 
-/// Fills one rim of `spline` (see the header comment for the method).
+/// Fills one rim of `spline` with a G1 patch (FillOptions::method; the header comment).
 /// \pre `domain_mesh` is the spline space's mesh; `rim` came from find_rims on them.
 /// \throw ricci::InvalidInputError on bad options, a rim of fewer than 3 edges, or a rim that
 ///        is no height field over any tried plane (a normal too steep, a projection that is

@@ -6,16 +6,13 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
 
 namespace spline::fill_detail {
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 double orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  return cross(b - a, c - a);
+  return ricci::cross2d(b - a, c - a);
 }
 
 // Polar angles of a closed ring around `center`, unwrapped to increase from about `start`.
@@ -156,7 +153,7 @@ double star_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vec
   double worst = INFINITY;
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const Eigen::Vector2d a = polygon[i] - c, b = polygon[(i + 1) % polygon.size()] - c;
-    worst = std::min(worst, cross(a, b) / (a.norm() * b.norm() + 1e-300));
+    worst = std::min(worst, ricci::cross2d(a, b) / (a.norm() * b.norm() + 1e-300));
   }
   return worst;
 }
@@ -169,7 +166,7 @@ bool star_center(const std::vector<Eigen::Vector2d>& polygon, Eigen::Vector2d& c
   Eigen::Vector2d lo = polygon[0], hi = polygon[0];
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const Eigen::Vector2d a = polygon[i], b = polygon[(i + 1) % polygon.size()];
-    centroid += (a + b) * cross(a, b);
+    centroid += (a + b) * ricci::cross2d(a, b);
     mean += a;
     lo = lo.cwiseMin(a);
     hi = hi.cwiseMax(a);
@@ -206,7 +203,7 @@ double polygon_perimeter(const std::vector<Eigen::Vector2d>& polygon) {
 double polygon_area(const std::vector<Eigen::Vector2d>& polygon) {
   double sum = 0.0;
   for (std::size_t i = 0; i < polygon.size(); ++i)
-    sum += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+    sum += ricci::cross2d(polygon[i], polygon[(i + 1) % polygon.size()]);
   return 0.5 * sum;
 }
 

@@ -5,9 +5,11 @@
 #include <cstddef>
 #include <string>
 
+#include "ricci/mesh/boundary_loops.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/topology_util.h"
 #include "ricci/topology/slice.h"
+#include "ricci/util/cross2d.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/rims.h"
 
@@ -101,13 +103,8 @@ struct Loops {
 Loops boundary_loops(const ricci::Mesh& mesh) {
   Loops loops;
   loops.of_halfedge.assign(mesh.n_halfedges(), -1);
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || loops.of_halfedge[h.idx()] >= 0) continue;
-    auto c = h;
-    do {
-      loops.of_halfedge[c.idx()] = loops.count;
-      c = mesh.next_halfedge_handle(c);
-    } while (c != h && loops.of_halfedge[c.idx()] < 0);
+  for (const auto& loop : ricci::find_boundary_loops(mesh)) {
+    for (const auto h : loop) loops.of_halfedge[h.idx()] = loops.count;
     ++loops.count;
   }
   return loops;
@@ -570,7 +567,7 @@ std::vector<double> chart_scale_by_face(const ManifoldSplineSpace& space, const 
     const Eigen::Matrix<double, 3, 2> p = space.atlas().face_positions(space.chart_of(f), f);
     const Eigen::Vector2d a = (p.row(1) - p.row(0)).transpose();
     const Eigen::Vector2d b = (p.row(2) - p.row(0)).transpose();
-    const double chart_area = 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    const double chart_area = 0.5 * std::abs(ricci::cross2d(a, b));
     Eigen::Vector3d corner[3];
     int k = 0;
     for (auto v : mesh.fv_range(mesh.face_handle(f))) corner[k++] = ricci::to_eigen(mesh.point(v));

@@ -14,8 +14,7 @@ struct RimMergeOptions {
   /// A boundary loop's hole with another hole (when the union is a disk). Off: such a layer is
   /// redone face by face, so every boundary loop keeps its own rim (for loops left open: the
   /// surface keeps the input's boundary loops, at the price of the band between two loops a
-  /// ring apart, where the partition of unity fails: beetle.off, 2000 faces: fit max 1.2% of
-  /// the diagonal instead of 0.36%).
+  /// ring apart, where the partition of unity fails).
   bool boundary_loops = true;
 };
 

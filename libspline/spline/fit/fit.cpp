@@ -4,7 +4,6 @@
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -12,22 +11,20 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/topology/slice.h"
+#include "ricci/util/cross2d.h"
+#include "ricci/util/stopwatch.h"
 #include "spline/basis/multi_index.h"
 #include "spline/fair/constrained_solve.h"
 #include "spline/fit/normal_equations.h"
+#include "spline/tessellate/parallel_for.h"
 
 namespace spline {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 double chart_area(const Eigen::Matrix<double, 3, 2>& p) {
   const Eigen::Vector2d e1 = (p.row(1) - p.row(0)).transpose();
   const Eigen::Vector2d e2 = (p.row(2) - p.row(0)).transpose();
-  return 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+  return 0.5 * std::abs(ricci::cross2d(e1, e2));
 }
 
 Eigen::Vector3d face_point(const ricci::Mesh& mesh, int face, const Eigen::Vector3d& bary) {
@@ -312,7 +309,7 @@ FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup
                          const std::vector<DomainPoint>& parameters,
                          const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
                          const Eigen::MatrixX3d& reference, const FitOptions& options) {
-  const auto start = Clock::now();
+  const ricci::Stopwatch start;
   FitResult result;
   result.points = domain_point_count(space, parameters);
   const std::vector<detail::FaceRowsSpec> rows = data_rows(space, parameters);
@@ -321,9 +318,9 @@ FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup
       space, rows, parameters, points, 0.0, initial, threads);
   normal.lower += setup.regulariser.lower;
   normal.rhs += setup.regulariser.rhs;
-  result.seconds_assemble = seconds_since(start);
+  result.seconds_assemble = start.seconds();
 
-  const auto solve_start = Clock::now();
+  const ricci::Stopwatch solve_start;
   ConstrainedSolveOptions solve_options;
   solve_options.penalty = options.constraint_penalty;
   solve_options.max_iterations = options.constraint_iterations;
@@ -355,7 +352,7 @@ FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup
       }
     }
   }
-  result.seconds_solve = seconds_since(solve_start);
+  result.seconds_solve = solve_start.seconds();
 
   const Eigen::MatrixX3d residual =
       detail::residuals_at_parameters(normal, rows, points, result.control_points);
@@ -371,9 +368,9 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
                              const std::vector<DomainPoint>& parameters,
                              const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
                              const FitOptions& options) {
-  const auto start = Clock::now();
+  const ricci::Stopwatch start;
   const FitSetup setup = prepare_fit(space, parameters, points, initial, options);
-  const double setup_seconds = seconds_since(start);
+  const double setup_seconds = start.seconds();
   FitResult result = fit_with_setup(space, setup, parameters, points, initial, initial, options);
   result.seconds_assemble += setup_seconds;
   return result;
@@ -430,7 +427,7 @@ FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint
   const auto count = static_cast<int>(parameters.size());
   Eigen::VectorXd distance = Eigen::VectorXd::Constant(count, -1.0);  // -1: skipped
   threads = std::max(1, std::min(threads, std::max(count, 1)));
-  detail::run_workers(threads, [&](int t) {
+  run_workers(threads, [&](int t) {
     for (int k = t; k < count; k += threads) {
       if (parameters[k].face < 0 || !spline.space->in_domain(parameters[k].face)) continue;
       const Eigen::Vector3d p = points.row(k).transpose();
@@ -486,7 +483,7 @@ CorrectedParameters correct_parameters(const ManifoldSpline& spline,
   const auto count = static_cast<int>(parameters.size());
   std::vector<char> moved(parameters.size(), 0);
   threads = std::max(1, std::min(threads, std::max(count, 1)));
-  detail::run_workers(threads, [&](int t) {
+  run_workers(threads, [&](int t) {
     for (int k = t; k < count; k += threads) {
       const DomainPoint& start = parameters[k];
       if (start.face < 0 || !space.in_domain(start.face)) continue;
@@ -503,10 +500,10 @@ CorrectedParameters correct_parameters(const ManifoldSpline& spline,
 }
 
 ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) {
-  const auto total_start = Clock::now();
+  const ricci::Stopwatch total_start;
   const auto stage = [&](const char* name) {
     if (options.progress) options.progress(name);
-    return Clock::now();
+    return ricci::Stopwatch();
   };
   ScanFitResult result;
   auto t = stage("simplify");
@@ -517,7 +514,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   if (simplified && options.boundary_follow.max_rounds > 0) {
     result.boundary_follow = ricci::follow_boundary(domain, dense, options.boundary_follow);
   }
-  result.timings.simplify = seconds_since(t);
+  result.timings.simplify = t.seconds();
 
   t = stage("atlas");
   // The collar's outer boundary takes the boundary's geodesic curvature; where the flow cannot
@@ -535,7 +532,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     }
   }
   if (!collared) result.atlas = ricci::build_one_cone_atlas(domain, options.atlas);
-  result.timings.atlas = seconds_since(t);
+  result.timings.atlas = t.seconds();
 
   t = stage("space");
   const ricci::Mesh& mesh = result.atlas.problem.mesh;
@@ -544,7 +541,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   space_options.knots = options.knots;
   auto space = std::make_shared<ManifoldSplineSpace>(mesh, result.atlas.atlas, space_options);
   const Eigen::MatrixX3d initial = piecewise_linear_control_points(*space, mesh);
-  result.timings.space = seconds_since(t);
+  result.timings.space = t.seconds();
 
   t = stage("parameters");
   // Data: the scan's vertices and face centroids (points of the input surface), by closest point;
@@ -569,7 +566,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     if (!covered) ++result.uncovered_points;
   }
   result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
-  result.timings.parameters = seconds_since(t);
+  result.timings.parameters = t.seconds();
 
   t = stage("fit");
   FitOptions fit_options = options.fit;
@@ -577,7 +574,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
   const FitSetup setup = prepare_fit(*space, parameters, data, initial, fit_options);
   result.fit = fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options);
-  result.timings.fit = seconds_since(t);
+  result.timings.fit = t.seconds();
 
   result.spline.space = space;
   result.spline.control_points = result.fit.control_points;
@@ -593,7 +590,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   }
   if (options.parameter_corrections > 0) {
     result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
-    result.timings.correction = seconds_since(t);
+    result.timings.correction = t.seconds();
   }
   if (fit_options.constraint_r >= 0 && fit_options.constraint_r == options.fair_r) {
     // Fitted inside the constraint set: eq. 14's projection would return the same points.
@@ -606,9 +603,9 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     fair_options.r = options.fair_r;
     result.fairing = fair(*space, result.fit.control_points, fair_options);
     result.spline.control_points = result.fairing.control_points;
-    result.timings.fair = seconds_since(t);
+    result.timings.fair = t.seconds();
   }
-  result.timings.total = seconds_since(total_start);
+  result.timings.total = total_start.seconds();
   return result;
 }
 

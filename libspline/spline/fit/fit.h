@@ -31,30 +31,23 @@ struct FitOptions {
   /// N the number of points, E the thin-plate energy int (|F_uu|^2 + 2 |F_uv|^2 + |F_vv|^2),
   /// A the domain's area and h its mean edge length, so lambda compares a point residual with a
   /// second difference over one edge (dimensionless). Lower lambda lowers the RMS at the points
-  /// and lets the surface fold between them: measured (`msp fit` defaults otherwise, RMS in % of
-  /// the diagonal, tessellation edges whose triangles' normals differ by more than 60 degrees),
-  /// 1e-5 -> 1e-4: camel 0.186 -> 0.187 / 355 -> 307, horse 0.062 -> 0.064 / 199 -> 68;
-  /// 1e-3 puts camel at 0.20.
+  /// and lets the surface fold between them.
   double smoothing = 1e-4;
   /// true: E, A and h are those of the surface, not of the charts: face I's part of E is
   /// weighted by s_I^2 = 1 / J_I, J_I = |F0_u x F0_v| at I's centre for the initial surface F0
   /// (the area ratio 3D / chart), which is the thin-plate energy in a locally isometric
-  /// parameterisation. The one-cone atlas shrinks parts of the surface by factors of 10-1000 in
-  /// the chart (genus 0: 1e4); measured in the chart the energy over-smooths them by s^-4 (elk,
-  /// r = 1: RMS 0.69% -> 0.22% of the diagonal with this on). false: chart measure.
+  /// parameterisation (the one-cone atlas shrinks parts of the surface by large factors in the
+  /// chart, where a chart-measured energy over-smooths them). false: chart measure.
   bool isometric_smoothing = true;
   /// Faces within `rim_rings` (edge-adjacency) rings of the domain's rim (the cone's hole, open
   /// boundaries) use at least this smoothing: their functions lack neighbours (no partition of
-  /// unity) and few points reach them, so with 1e-5 the surface there swings its normal by up
-  /// to 150 degrees within a face, which no G1 hole filling can meet (eight.off: seam 152 deg
-  /// with 1e-5 everywhere, < 1 deg with this).
+  /// unity) and few points reach them, so with light smoothing the surface there swings its
+  /// normal more than a G1 hole filling can meet.
   double rim_smoothing = 1e-3;
   int rim_rings = 3;
   /// Faces reached by fewer points than they carry functions ((n + 1)(n + 2) / 2) use at least
   /// this smoothing: the points cannot determine them, and with lambda alone the surface folds
-  /// there (eight.off, its own 1536-face domain with 2302 points for 33480 functions: 86
-  /// tessellation edges over 60 degrees with 1e-5, none with this; elk.off 1035 -> 65, femur.off
-  /// 1906 -> 314, at RMS 0.060 -> 0.072%, 0.148 -> 0.166%, 0.148 -> 0.161% of the diagonal).
+  /// there.
   double sparse_smoothing = 1e-3;
   /// Keeps the normal matrix SPD where no point reaches a function (dimensionless, tiny).
   double anchor = 1e-8;
@@ -138,36 +131,21 @@ struct ScanFitOptions {
   int degree = 3;
   int fair_r = 1;  ///< fairing after the fit; -1 = none
   /// Fit subject to the fairing constraints of fair_r (then fairing changes nothing and is
-  /// skipped); false: fit freely, then fair by eq. 14 (projection of the control points).
-  /// Measured (msp-bench spline-fit, ~2k domain faces): the r = 1 space is C^1-cubic-like, about
-  /// F dimensions per coordinate (r = 0: V + 2E + F; free: 10 F), and projecting a free fit onto
-  /// it in control-point norm loses the fit (elk: RMS 7.9% of the diagonal, max 141%), while
-  /// fitting inside it gives 0.19%.
+  /// skipped); false: fit freely, then fair by eq. 14 (projection of the control points), which
+  /// loses most of the fit.
   bool constrained_fit = true;  // (when true, fairing afterwards is skipped: it changes nothing)
-  /// Rounds of parameter correction (correct_parameters, then refit) after the first fit. The
-  /// first parameters are closest points on the piecewise-linear domain mesh, which lies up to
-  /// 1-2% of the diagonal off the surface where the simplification is coarse for the curvature
-  /// (camel, femur: the 10% of points farthest from the domain mesh hold half of the squared
-  /// error); there the tangential part of the foot-point error is fitted as if it were shape.
-  /// Measured (msp-bench spline-fit --r 1, ~2k domain faces, RMS in % of the diagonal, rounds
-  /// 0 / 1 / 2 / 3): camel 0.228 / 0.171 / 0.152 / 0.143, femur 0.205 / 0.170 / 0.158 / 0.150,
-  /// elk 0.187 / 0.144 / 0.126 / 0.117; each round costs one projection of every point and one
-  /// refit (the thin-plate rows and constraints are reused). One round by default: it gives most
-  /// of the gain, and the second moves the surface next to the hole enough to change the G1
-  /// fill's seam (bundled genus2.off, 1000 faces: max normal jump 0.68 / 0.60 / 1.03 degrees).
+  /// Rounds of parameter correction (correct_parameters, then refit) after the first fit: the
+  /// first parameters are closest points on the piecewise-linear domain mesh, whose tangential
+  /// foot-point error would otherwise be fitted as if it were shape. Each round costs one
+  /// projection of every point and one refit.
   int parameter_corrections = 1;
-  /// Gauss-Newton steps of each correction's projection (project_to_spline). Starting from the
-  /// domain mesh's closest point the foot point is near: 2 -> 6 steps changes the RMS by < 1%
-  /// of itself (camel).
+  /// Gauss-Newton steps of each correction's projection (project_to_spline).
   int correction_iterations = 2;
   FitOptions fit;
   FairOptions fair;  ///< its r is replaced by fair_r
   KnotCloudOptions knots;
   /// The atlas, with the cone's neighbourhood sampled densely (cone_refinement, 2 levels of 6
-  /// rings: ricci/singularity/one_cone.h). Measured (`msp fit` defaults, ~2000 faces, largest
-  /// seam normal jump without -> with): elephant_cgal.off 21 -> 0.14 degrees, helmet.off 13 ->
-  /// 0.75, joint.off 179 -> 0.24, and the fit RMS falls on every genus 2-3 model (joint 1.56%
-  /// -> 0.21% of the diagonal, genus3.off 0.077% -> 0.026%), for ~2000 more domain faces.
+  /// rings: ricci/singularity/one_cone.h), so the spline does not fold next to a large cone.
   ricci::OneConeAtlasOptions atlas = [] {
     ricci::OneConeAtlasOptions o;
     o.cone_refinement.levels = 2;

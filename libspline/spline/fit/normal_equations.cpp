@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
-#include <functional>
 #include <stdexcept>
-#include <thread>
+
+#include "spline/tessellate/parallel_for.h"
 
 namespace spline::detail {
 namespace {
@@ -152,28 +151,6 @@ void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vect
 }
 
 }  // namespace
-
-void run_workers(int count, const std::function<void(int)>& work) {
-  if (count <= 1) {
-    work(0);
-    return;
-  }
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(count));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < count; ++t) {
-    pool.emplace_back([&, t] {
-      try {
-        work(t);
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    });
-  }
-  for (auto& th : pool) th.join();
-  for (const auto& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
-}
 
 const std::vector<QuadraturePoint>& triangle_quadrature() {
   static const std::vector<QuadraturePoint> rule = [] {

@@ -8,7 +8,6 @@
 // (msp-bench spline, horse row).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <functional>
 #include <vector>
 
 #include "spline/manifold/manifold_space.h"
@@ -50,10 +49,6 @@ struct NormalEquations {
                                                        const std::vector<FaceRowsSpec>& rows_by_face,
                                                        const Eigen::MatrixX3d& points,
                                                        const Eigen::MatrixX3d& control_points);
-
-/// Runs work(t) for t = 0..count-1 on count threads (inline when count == 1) and rethrows the
-/// first exception of the lowest-numbered worker.
-void run_workers(int count, const std::function<void(int)>& work);
 
 /// The 6-point quadrature rule on a triangle (Dunavant, exact for degree 4): barycentrics and
 /// weights summing to one.

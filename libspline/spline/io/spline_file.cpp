@@ -81,7 +81,7 @@ ricci::Mesh read_mesh(ByteReader& in) {
   const ricci::MeshDiagnosis diagnosis = ricci::diagnose(soup);
   for (const ricci::MeshProblem& problem : diagnosis.problems) {
     // Tiny faces do not break the data structures; the charts' checks cover the geometry.
-    if (problem.kind == ricci::MeshProblemKind::kZeroArea) continue;
+    if (problem.kind == ricci::MeshProblemKind::zero_area) continue;
     throw ricci::TopologyError(in.source() + ": domain mesh: " + problem.message);
   }
   if (!diagnosis.consistently_oriented) {

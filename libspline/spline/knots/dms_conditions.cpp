@@ -5,19 +5,16 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
 #include "spline/basis/multi_index.h"
 #include "spline/basis/orientation.h"
 
 namespace spline {
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 double signed_double_area(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                           const Eigen::Vector2d& c) {
-  return cross(b - a, c - a);
+  return ricci::cross2d(b - a, c - a);
 }
 
 // Sutherland-Hodgman: the part of the convex polygon left of the directed line a -> b.
@@ -28,7 +25,7 @@ std::vector<Eigen::Vector2d> clip(const std::vector<Eigen::Vector2d>& polygon,
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const Eigen::Vector2d& p = polygon[i];
     const Eigen::Vector2d& q = polygon[(i + 1) % polygon.size()];
-    const double sp = cross(e, p - a), sq = cross(e, q - a);
+    const double sp = ricci::cross2d(e, p - a), sq = ricci::cross2d(e, q - a);
     if (sp >= 0.0) out.push_back(p);
     if ((sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0)) out.push_back(p + (sp / (sp - sq)) * (q - p));
   }
@@ -38,7 +35,7 @@ std::vector<Eigen::Vector2d> clip(const std::vector<Eigen::Vector2d>& polygon,
 double polygon_area(const std::vector<Eigen::Vector2d>& polygon) {
   double twice = 0.0;
   for (std::size_t i = 0; i < polygon.size(); ++i) {
-    twice += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+    twice += ricci::cross2d(polygon[i], polygon[(i + 1) % polygon.size()]);
   }
   return 0.5 * twice;
 }

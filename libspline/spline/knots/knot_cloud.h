@@ -1,6 +1,6 @@
 #pragma once
 // Knot clouds of DMS triangular B-splines: each domain vertex v carries knots t_{v,0} = v and
-// t_{v,1..n} close to v (manifold-splines paper section 5; ALGORITHMS.md section 7).
+// t_{v,1..n} close to v (manifold-splines paper section 5).
 //
 // The rule (make_knot_cloud): the n extra knots sit on a jittered spiral-like pattern around v,
 // at distance r * s_j (s_j in [1 - radius_jitter, 1]) with r = radius_fraction * (smallest inradius

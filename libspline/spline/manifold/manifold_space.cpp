@@ -11,6 +11,7 @@
 #include "ricci/atlas/rigid_motion.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/topology/slice.h"
+#include "ricci/util/cross2d.h"
 
 namespace spline {
 namespace {
@@ -103,7 +104,7 @@ void ManifoldSplineSpace::build_domain(const ricci::Mesh& mesh) {
       const Eigen::Vector2d a = chart.positions.row(chart.corners(r, 0)).transpose();
       const Eigen::Vector2d b = chart.positions.row(chart.corners(r, 1)).transpose();
       const Eigen::Vector2d c = chart.positions.row(chart.corners(r, 2)).transpose();
-      const double cross = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+      const double cross = ricci::cross2d(b - a, c - a);
       if (!(cross > 0.0)) usable[chart.faces[row]] = 0;
     }
   }

@@ -1,6 +1,6 @@
 #pragma once
-// The manifold DMS spline space over ricci's affine atlas (manifold-splines paper section 5,
-// ALGORITHMS.md section 7): F(u) = sum_I sum_beta c_{I,beta} N_{I,beta}(tau_I(u)).
+// The manifold DMS spline space over ricci's affine atlas (manifold-splines paper section 5):
+// F(u) = sum_I sum_beta c_{I,beta} N_{I,beta}(tau_I(u)).
 //
 // Knots. Every domain vertex v has ONE home cloud, made by make_knot_cloud (knot_cloud.h: the rule
 // and its reasons) in a home chart where v's whole domain one-ring is one planar piece: the
@@ -107,8 +107,8 @@ class ManifoldSplineSpace {
 
   /// All functions non-zero at the point (value or derivatives), jets in `chart`'s frame
   /// (chart -1: chart_of(face)). `tie` picks the side of knot lines (one-sided derivatives).
-  /// BasisDerivatives::none: the functions with a non-zero value, values only (15-20% cheaper,
-  /// msp-bench dms; the values are the same numbers).
+  /// BasisDerivatives::none: the functions with a non-zero value, values only (cheaper; the
+  /// values are the same numbers).
   /// \throw ricci::InvalidInputError for a face outside the domain or a chart not holding it.
   [[nodiscard]] std::vector<ManifoldBasisSample> evaluate_basis(
       const DomainPoint& point, int chart = -1, const TieBreak& tie = {},

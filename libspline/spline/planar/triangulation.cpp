@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
 #include "spline/basis/orientation.h"
 
 namespace spline {
@@ -87,7 +88,7 @@ std::vector<VertexRing> vertex_rings(const PlanarTriangulation& triangulation) {
 double inradius(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
   const Eigen::Vector2d e1 = b - a, e2 = c - a;
-  const double area = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+  const double area = 0.5 * std::abs(ricci::cross2d(e1, e2));
   return 2.0 * area / (ab + bc + ca);
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
 
 namespace spline {
 namespace {
@@ -15,7 +16,7 @@ double uv_per_length(const Tessellation& t) {
     const auto& r = t.render_triangles[i];
     const Eigen::Vector2d a = t.uvs.row(r[1]) - t.uvs.row(r[0]),
                           b = t.uvs.row(r[2]) - t.uvs.row(r[0]);
-    uv_area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+    uv_area += 0.5 * std::abs(ricci::cross2d(a, b));
     const auto& p = t.triangles[i];
     const Eigen::Vector3d e = t.positions.row(p[1]) - t.positions.row(p[0]),
                           f = t.positions.row(p[2]) - t.positions.row(p[0]);

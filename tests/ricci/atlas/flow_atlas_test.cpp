@@ -7,6 +7,7 @@
 #include "ricci/mesh/io.h"
 #include "ricci/singularity/one_cone.h"
 #include "ricci/topology/test_grids.h"
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
@@ -21,7 +22,7 @@ struct FlatMetric {
 /// pipeline's flow with its metric fall-backs; the root is the cone, or `cone` itself when the
 /// surface needs none (genus 1, open).
 FlatMetric one_cone_metric(const std::string& model, int cone) {
-  const OneConeProblem problem = prepare_one_cone(read_mesh(test::shared_model(model)), cone);
+  const OneConeProblem problem = prepare_one_cone(read_mesh(msp_test::test_mesh(model)), cone);
   const FlowResult flow_result = solve_one_cone_flow(problem, one_cone_flow_options());
   EXPECT_TRUE(flow_result.converged()) << flow_result.message;
   FlatMetric m;
@@ -103,7 +104,7 @@ TEST(AtlasOnFlow, GenusThreeConeMetric) {
 }
 
 TEST(AtlasOnFlow, GenusOneFlatMetricHasTranslationsOnly) {
-  const FlatMetric m = one_cone_metric("closed_g1/knot1.off", 0);
+  const FlatMetric m = one_cone_metric("closed_g1/knot1.off.gz", 0);
   const AffineAtlas atlas = build_affine_atlas(m.mesh, m.lengths, m.cone);
   EXPECT_FALSE(atlas.root_is_cone);
   expect_sound_atlas(m, atlas);

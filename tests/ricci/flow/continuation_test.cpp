@@ -7,16 +7,17 @@
 #include "ricci/mesh/primitives.h"
 #include "ricci/metric/curvature.h"
 #include "ricci/singularity/one_cone.h"
+#include "test_paths.h"
 
 namespace {
 
 // The 6 pi cone of the eight at vertex 5, its cone-tangent metric and the direct flow from it.
 struct EightCone {
   ricci::OneConeProblem problem =
-      ricci::prepare_one_cone(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off"), 5);
+      ricci::prepare_one_cone(ricci::read_mesh(msp_test::test_mesh("closed_g2/eight.off")), 5);
   ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
-  ricci::CirclePackingMetric initial =
-      ricci::cone_tangent_metric(t, ricci::mesh_edge_lengths(problem.mesh), problem.cone, 3, ricci::RadiusInit::Mean);
+  ricci::CirclePackingMetric initial = ricci::cone_tangent_metric(
+      t, ricci::mesh_edge_lengths(problem.mesh), problem.cone, 3, ricci::RadiusInit::mean);
   ricci::FlowResult direct = ricci::flow(t, initial, problem.targets, ricci::one_cone_flow_options());
 
   [[nodiscard]] ricci::FlowResult by_continuation(int stages) const {
@@ -37,7 +38,8 @@ TEST(Continuation, EndsAtTheDirectFlowsMetric) {
   EXPECT_EQ(walked.target, problem.targets.curvature);
   EXPECT_GT(walked.iterations, direct.iterations / 2);  // summed over the stages
   EXPECT_LT((walked.lengths - direct.lengths).cwiseAbs().maxCoeff(), 1e-8 * direct.lengths.maxCoeff());
-  const Eigen::VectorXd k = ricci::vertex_curvature(eight.t, walked.lengths, ricci::Geometry::Euclidean);
+  const Eigen::VectorXd k =
+      ricci::vertex_curvature(eight.t, walked.lengths, ricci::Geometry::euclidean);
   EXPECT_LT((k - problem.targets.curvature).cwiseAbs().maxCoeff(), 1e-9);
 }
 

@@ -6,11 +6,11 @@
 #include <ricci/metric/curvature.h>
 
 #include "ricci/test_meshes.h"
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
 
-using testing::shared_model;
 
 void expect_finite(const FlowResult& r) {
   EXPECT_TRUE(r.lengths.allFinite());
@@ -23,29 +23,30 @@ class FlatTorusTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(FlatTorusTest, ConvergesInFewNewtonIterations) {
   const std::string name = GetParam();
-  const Mesh mesh = name == "procedural" ? testing::torus(40, 25) : read_mesh(shared_model(name));
+  const Mesh mesh =
+      name == "procedural" ? testing::torus(40, 25) : read_mesh(msp_test::test_mesh(name));
   FlowOptions options;
   options.fall_back_to_other_metrics = true;
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::euclidean), options);
   ASSERT_TRUE(r.converged()) << r.message;
   EXPECT_LT(r.max_error, 1e-10);
   EXPECT_LE(r.iterations, 15);
   expect_finite(r);
   // The reported curvature is the metric's own.
   const MeshTables t = build_mesh_tables(mesh);
-  EXPECT_LT(vertex_curvature(t, r.lengths, Geometry::Euclidean).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_LT(vertex_curvature(t, r.lengths, Geometry::euclidean).cwiseAbs().maxCoeff(), 1e-10);
 }
 
 INSTANTIATE_TEST_SUITE_P(Genus1, FlatTorusTest,
-                         ::testing::Values("procedural", "closed_g1/kitten_nf20k.off",
-                                           "closed_g1/rocker-arm.off", "closed_g1/knot1.off",
+                         ::testing::Values("procedural", "closed_g1/kitten_nf20k.off.gz",
+                                           "closed_g1/rocker-arm.off.gz", "closed_g1/knot1.off.gz",
                                            "closed_g1/elk.off"));
 
 TEST(Flow, InversiveDistanceConvergesOnKittenWithoutFallback) {
-  const Mesh mesh = read_mesh(shared_model("closed_g1/kitten_nf20k.off"));
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/kitten_nf20k.off.gz"));
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::euclidean));
   ASSERT_TRUE(r.converged()) << r.message;
-  EXPECT_EQ(r.metric.scheme, Scheme::InversiveDistance);
+  EXPECT_EQ(r.metric.scheme, Scheme::inversive_distance);
   EXPECT_TRUE(r.failed_attempts.empty());
   // Quadratic convergence: each of the last steps at least squares the error (up to a factor).
   const auto& h = r.error_history;
@@ -57,15 +58,15 @@ TEST(Flow, InversiveDistanceConvergesOnKittenWithoutFallback) {
 class HyperbolicTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(HyperbolicTest, UniformizationSatisfiesGaussBonnet) {
-  const Mesh mesh = read_mesh(shared_model(GetParam()));
+  const Mesh mesh = read_mesh(msp_test::test_mesh(GetParam()));
   FlowOptions options;
-  options.geometry = Geometry::Hyperbolic;
+  options.geometry = Geometry::hyperbolic;
   options.fall_back_to_other_metrics = true;
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Hyperbolic), options);
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::hyperbolic), options);
   ASSERT_TRUE(r.converged()) << r.message;
   EXPECT_LT(r.max_error, 1e-10);
   const MeshTables t = build_mesh_tables(mesh);
-  const double area = face_areas(t, r.lengths, Geometry::Hyperbolic).sum();
+  const double area = face_areas(t, r.lengths, Geometry::hyperbolic).sum();
   // Σ K - Σ A = 2πχ with K = 0: the hyperbolic area is -2πχ = 4π(g - 1).
   EXPECT_NEAR(r.curvature.sum() - area, 2 * M_PI * t.euler_characteristic, 1e-8);
   EXPECT_NEAR(area, -2 * M_PI * t.euler_characteristic, 1e-8);
@@ -73,15 +74,15 @@ TEST_P(HyperbolicTest, UniformizationSatisfiesGaussBonnet) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Genus2And3, HyperbolicTest,
-                         ::testing::Values("closed_g2/eight.off", "closed_g3/genus3.off",
+                         ::testing::Values("closed_g2/eight.off", "closed_g3/genus3.off.gz",
                                            "closed_g3/helmet.off"));
 
 TEST(Flow, SphericalEitherConvergesOrSaysWhy) {
-  const Mesh mesh = read_mesh(shared_model("closed_g0/knight_decimated.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g0/knight_decimated.off"));
   FlowOptions options;
-  options.geometry = Geometry::Spherical;
+  options.geometry = Geometry::spherical;
   options.tolerance = 1e-8;
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Spherical), options);
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::spherical), options);
   expect_finite(r);
   if (r.converged()) {
     EXPECT_LT(r.max_error, 1e-8);
@@ -92,35 +93,35 @@ TEST(Flow, SphericalEitherConvergesOrSaysWhy) {
 }
 
 TEST(Flow, SphericalUniformizationOfAGenus0Model) {
-  const Mesh mesh = read_mesh(shared_model("closed_g0/bunny_npm_closed.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g0/bunny_npm_closed.off"));
   FlowOptions options;
-  options.geometry = Geometry::Spherical;
+  options.geometry = Geometry::spherical;
   options.tolerance = 1e-8;
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Spherical), options);
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::spherical), options);
   ASSERT_TRUE(r.converged()) << r.message;
   EXPECT_LT(r.max_error, 1e-8);
   const MeshTables t = build_mesh_tables(mesh);
   // Σ K + Σ A = 4π with K = 0: the triangles tile the unit sphere.
-  EXPECT_NEAR(face_areas(t, r.lengths, Geometry::Spherical).sum(), 4 * M_PI, 1e-6);
+  EXPECT_NEAR(face_areas(t, r.lengths, Geometry::spherical).sum(), 4 * M_PI, 1e-6);
 }
 
 TEST(Flow, SphericalConvergesOnARoundSphere) {
   // The octahedral sphere's own metric is close to the uniformization: Newton gets there.
   const Mesh mesh = testing::sphere(3);
   FlowOptions options;
-  options.geometry = Geometry::Spherical;
+  options.geometry = Geometry::spherical;
   options.tolerance = 1e-8;
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Spherical), options);
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::spherical), options);
   ASSERT_TRUE(r.converged()) << r.message;
   const MeshTables t = build_mesh_tables(mesh);
-  EXPECT_NEAR(face_areas(t, r.lengths, Geometry::Spherical).sum(), 4 * M_PI, 1e-6);
+  EXPECT_NEAR(face_areas(t, r.lengths, Geometry::spherical).sum(), 4 * M_PI, 1e-6);
 }
 
 TEST(Flow, OpenSurfaceWithBoundaryCurvatureSpreadByLength) {
-  const Mesh mesh = read_mesh(shared_model("open/head.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("open/head.off"));
   FlowOptions options;
   options.fall_back_to_other_metrics = true;
-  const Targets targets = boundary_target(mesh, BoundaryMode::SpreadByLength);
+  const Targets targets = boundary_target(mesh, BoundaryMode::spread_by_length);
   const MeshTables t = build_mesh_tables(mesh);
   EXPECT_NEAR(targets.curvature.sum(), 2 * M_PI * t.euler_characteristic, 1e-12);
   const FlowResult r = flow(mesh, targets, options);
@@ -129,15 +130,15 @@ TEST(Flow, OpenSurfaceWithBoundaryCurvatureSpreadByLength) {
 }
 
 TEST(Flow, ScalingTheMeshChangesNothingButTheScale) {
-  Mesh mesh = read_mesh(shared_model("closed_g1/knot1.off"));
-  const FlowResult a = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
+  Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/knot1.off.gz"));
+  const FlowResult a = flow(mesh, uniform_target(mesh, Geometry::euclidean));
   for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * 1e3);
-  const FlowResult b = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
+  const FlowResult b = flow(mesh, uniform_target(mesh, Geometry::euclidean));
   ASSERT_TRUE(a.converged() && b.converged());
   EXPECT_EQ(a.iterations, b.iterations);
   const MeshTables t = build_mesh_tables(mesh);
-  const Eigen::MatrixX3d angles_a = corner_angles(t, a.lengths, Geometry::Euclidean);
-  const Eigen::MatrixX3d angles_b = corner_angles(t, b.lengths, Geometry::Euclidean);
+  const Eigen::MatrixX3d angles_a = corner_angles(t, a.lengths, Geometry::euclidean);
+  const Eigen::MatrixX3d angles_b = corner_angles(t, b.lengths, Geometry::euclidean);
   EXPECT_LT((angles_a - angles_b).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LT(((b.lengths / 1e3 - a.lengths).array() / a.lengths.array()).abs().maxCoeff(), 1e-9);
 }
@@ -146,9 +147,9 @@ TEST(Flow, GradientDescentReachesTheNewtonAnswer) {
   const Mesh mesh = testing::torus(12, 8);
   FlowOptions options;
   options.tolerance = 1e-9;
-  const FlowResult newton = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
-  options.method = FlowMethod::GradientDescent;
-  const FlowResult gradient = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
+  const FlowResult newton = flow(mesh, uniform_target(mesh, Geometry::euclidean), options);
+  options.method = FlowMethod::gradient_descent;
+  const FlowResult gradient = flow(mesh, uniform_target(mesh, Geometry::euclidean), options);
   ASSERT_TRUE(newton.converged() && gradient.converged()) << gradient.message;
   EXPECT_GT(gradient.iterations, 10 * newton.iterations);
   EXPECT_LT(((gradient.lengths - newton.lengths).array() / newton.lengths.array()).abs().maxCoeff(), 1e-7);
@@ -162,7 +163,7 @@ TEST(Flow, ProgressIsReportedEveryNewtonIteration) {
     ++calls;
     EXPECT_EQ(p.iteration, calls);
   };
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::euclidean), options);
   EXPECT_EQ(calls, r.iterations);
 }
 
@@ -171,11 +172,11 @@ TEST(Targets, GaussBonnetViolationsAreRefusedBeforeAnyWork) {
   Targets bad{Eigen::VectorXd::Zero(torus.n_vertices())};
   bad.curvature[3] = 0.1;
   EXPECT_THROW((void)flow(torus, bad), InfeasibleTargetError);
-  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
-  EXPECT_THROW((void)uniform_target(eight, Geometry::Euclidean), InfeasibleTargetError);
+  const Mesh eight = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
+  EXPECT_THROW((void)uniform_target(eight, Geometry::euclidean), InfeasibleTargetError);
   // H2 needs Σ K̄ > 2πχ: a flat one-cone target has Σ K̄ = 2πχ exactly.
   FlowOptions h2;
-  h2.geometry = Geometry::Hyperbolic;
+  h2.geometry = Geometry::hyperbolic;
   try {
     (void)flow(eight, single_cone_target(eight, 0), h2);
     FAIL() << "expected InfeasibleTargetError";
@@ -188,9 +189,9 @@ TEST(Targets, GaussBonnetViolationsAreRefusedBeforeAnyWork) {
 }
 
 TEST(Targets, ConeNeedingMoreValenceAsksForValenceModification) {
-  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh eight = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   FlowOptions options;
-  options.scheme = Scheme::CirclePacking;
+  options.scheme = Scheme::circle_packing;
   try {
     (void)flow(eight, single_cone_target(eight, 0), options);
     FAIL() << "expected InfeasibleTargetError";
@@ -200,7 +201,7 @@ TEST(Targets, ConeNeedingMoreValenceAsksForValenceModification) {
 }
 
 TEST(Targets, HelpersDistributeCurvature) {
-  const Mesh eight = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh eight = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   const Targets cone = single_cone_target(eight, 5);
   EXPECT_DOUBLE_EQ(cone.curvature[5], -4 * M_PI);
   EXPECT_EQ(cone.curvature.cwiseAbs().sum(), 4 * M_PI);
@@ -208,47 +209,47 @@ TEST(Targets, HelpersDistributeCurvature) {
   EXPECT_DOUBLE_EQ(cones.curvature.sum(), -4 * M_PI);
   EXPECT_THROW((void)cones_target(eight, {{1, 1.0}, {1, 1.0}}), InvalidInputError);
   EXPECT_THROW((void)single_cone_target(eight, -1), InvalidInputError);
-  const Mesh head = read_mesh(shared_model("open/head.off"));
-  const Targets loop = boundary_target(head, BoundaryMode::OneLoop);
+  const Mesh head = read_mesh(msp_test::test_mesh("open/head.off"));
+  const Targets loop = boundary_target(head, BoundaryMode::one_loop);
   const MeshTables t = build_mesh_tables(head);
   EXPECT_NEAR(loop.curvature.sum(), 2 * M_PI * t.euler_characteristic, 1e-12);
   int nonzero = 0;
   for (int v = 0; v < loop.curvature.size(); ++v) nonzero += loop.curvature[v] != 0;
   EXPECT_LT(nonzero, static_cast<int>(t.boundary_loops[0].size() + t.boundary_loops[1].size() +
                                       t.boundary_loops[2].size()));
-  EXPECT_THROW((void)boundary_target(eight, BoundaryMode::SpreadByLength), InvalidInputError);
+  EXPECT_THROW((void)boundary_target(eight, BoundaryMode::spread_by_length), InvalidInputError);
 }
 
 TEST(Flow, UnreachableTargetReturnsAStatusNamingTheWorstVertices) {
   // elk's inversive-distance metric has no flat solution with intact triangles.
-  const Mesh mesh = read_mesh(shared_model("closed_g1/elk.off"));
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/elk.off"));
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::euclidean));
   ASSERT_FALSE(r.converged());
-  EXPECT_EQ(r.status, FlowStatus::TriangleInequality);
+  EXPECT_EQ(r.status, FlowStatus::triangle_inequality);
   EXPECT_NE(r.message.find("worst vertices"), std::string::npos);
   EXPECT_NE(r.message.find("valence modification"), std::string::npos);
   expect_finite(r);
 }
 
 TEST(Flow, IterationBudgetIsAStatus) {
-  const Mesh mesh = read_mesh(shared_model("closed_g1/knot1.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/knot1.off.gz"));
   FlowOptions options;
   options.max_newton_iterations = 1;
-  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Euclidean), options);
-  EXPECT_EQ(r.status, FlowStatus::MaxIterations);
+  const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::euclidean), options);
+  EXPECT_EQ(r.status, FlowStatus::max_iterations);
   EXPECT_EQ(r.iterations, 1);
   EXPECT_LT(r.error_history[1], r.error_history[0]);
 }
 
 TEST(Flow, EverySolverGivesTheSameMetric) {
-  const Mesh mesh = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   FlowOptions options;
-  options.geometry = Geometry::Hyperbolic;
+  options.geometry = Geometry::hyperbolic;
   EdgeLengths reference;
-  for (auto solver : {LinearSolver::EigenLDLT, LinearSolver::EigenLLT, LinearSolver::CholmodSupernodal,
-                      LinearSolver::CholmodSimplicial}) {
+  for (auto solver : {LinearSolver::eigen_ldlt, LinearSolver::eigen_llt,
+                      LinearSolver::cholmod_supernodal, LinearSolver::cholmod_simplicial}) {
     options.solver = solver;
-    const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::Hyperbolic), options);
+    const FlowResult r = flow(mesh, uniform_target(mesh, Geometry::hyperbolic), options);
     ASSERT_TRUE(r.converged()) << to_string(solver);
     EXPECT_EQ(r.solver, solver);
     if (reference.size() == 0) reference = r.lengths;

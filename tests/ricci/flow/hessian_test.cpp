@@ -30,12 +30,12 @@ Eigen::VectorXd curvature_at(const MeshTables& t, const CirclePackingMetric& m, 
 TEST_P(HessianTest, MatchesFiniteDifferencesOfCurvature) {
   const auto [g, scheme] = GetParam();
   // S2 needs short edges on a sphere; E2/H2 use a jittered torus (scaled down for H2).
-  Mesh mesh = g == Geometry::Spherical ? testing::sphere(2) : testing::torus(9, 7);
+  Mesh mesh = g == Geometry::spherical ? testing::sphere(2) : testing::torus(9, 7);
   testing::jitter(mesh, 0.04, 11);
   const MeshTables t = build_mesh_tables(mesh);
   EdgeLengths l = mesh_edge_lengths(mesh);
-  if (g == Geometry::Hyperbolic) l *= 0.6;
-  CirclePackingMetric m = initial_metric(t, l, g, scheme, RadiusInit::Mean);
+  if (g == Geometry::hyperbolic) l *= 0.6;
+  CirclePackingMetric m = initial_metric(t, l, g, scheme, RadiusInit::mean);
   // Move away from the initial metric so the test is generic.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> d(-0.05, 0.05);
@@ -57,23 +57,22 @@ TEST_P(HessianTest, MatchesFiniteDifferencesOfCurvature) {
     worst = std::max(worst, (dense.col(column) - fd).cwiseAbs().maxCoeff() / scale);
   }
   EXPECT_LT(worst, 1e-6) << to_string(g) << " " << to_string(scheme);
-  if (g == Geometry::Euclidean) {
+  if (g == Geometry::euclidean) {
     // Scaling every radius keeps every angle: H·1 = 0.
     EXPECT_LT((dense * Eigen::VectorXd::Ones(u.size())).cwiseAbs().maxCoeff(), 1e-12 * dense.cwiseAbs().maxCoeff());
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllGeometriesAndMetrics, HessianTest,
-    ::testing::Values(Case{Geometry::Euclidean, Scheme::CirclePacking},
-                      Case{Geometry::Euclidean, Scheme::InversiveDistance},
-                      Case{Geometry::Euclidean, Scheme::Combinatorial},
-                      Case{Geometry::Hyperbolic, Scheme::CirclePacking},
-                      Case{Geometry::Hyperbolic, Scheme::InversiveDistance},
-                      Case{Geometry::Hyperbolic, Scheme::Combinatorial},
-                      Case{Geometry::Spherical, Scheme::CirclePacking},
-                      Case{Geometry::Spherical, Scheme::InversiveDistance},
-                      Case{Geometry::Spherical, Scheme::Combinatorial}));
+INSTANTIATE_TEST_SUITE_P(AllGeometriesAndMetrics, HessianTest,
+                         ::testing::Values(Case{Geometry::euclidean, Scheme::circle_packing},
+                                           Case{Geometry::euclidean, Scheme::inversive_distance},
+                                           Case{Geometry::euclidean, Scheme::combinatorial},
+                                           Case{Geometry::hyperbolic, Scheme::circle_packing},
+                                           Case{Geometry::hyperbolic, Scheme::inversive_distance},
+                                           Case{Geometry::hyperbolic, Scheme::combinatorial},
+                                           Case{Geometry::spherical, Scheme::circle_packing},
+                                           Case{Geometry::spherical, Scheme::inversive_distance},
+                                           Case{Geometry::spherical, Scheme::combinatorial}));
 
 }  // namespace
 }  // namespace ricci

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ricci/test_meshes.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -52,7 +53,7 @@ TEST(MspFlow, PrintsOneJsonObjectAndWritesLengths) {
   namespace fs = std::filesystem;
   const fs::path lengths = fs::temp_directory_path() / "msp_flow_test_lengths.txt";
   fs::remove(lengths);
-  const ProcessRun run = run_msp(ricci::testing::shared_model("closed_g1/knot1.off") +
+  const ProcessRun run = run_msp(msp_test::test_mesh("closed_g1/knot1.off.gz") +
                           " --json --lengths-out " + lengths.string());
   ASSERT_EQ(run.status, 0) << run.err;
   const auto j = nlohmann::json::parse(run.out);
@@ -76,7 +77,7 @@ TEST(MspFlow, PrintsOneJsonObjectAndWritesLengths) {
 }
 
 TEST(MspFlow, InfeasibleTargetExitsNonZeroWithOneLine) {
-  const ProcessRun run = run_msp(ricci::testing::shared_model("closed_g2/eight.off") + " --target uniform");
+  const ProcessRun run = run_msp(msp_test::test_mesh("closed_g2/eight.off") + " --target uniform");
   EXPECT_EQ(run.status, 1);
   EXPECT_EQ(count_lines(run.err), 1) << run.err;
   EXPECT_NE(run.err.find("hyperbolic"), std::string::npos) << run.err;
@@ -86,7 +87,7 @@ TEST(MspFlow, NonConvergentRunExitsNonZeroWithOneLineAndNoLengths) {
   namespace fs = std::filesystem;
   const fs::path lengths = fs::temp_directory_path() / "msp_flow_test_no_lengths.txt";
   fs::remove(lengths);
-  const ProcessRun run = run_msp(ricci::testing::shared_model("closed_g1/elk.off") +
+  const ProcessRun run = run_msp(msp_test::test_mesh("closed_g1/elk.off") +
                           " --metric inversive-distance --quiet --lengths-out " + lengths.string());
   EXPECT_EQ(run.status, 1);
   EXPECT_EQ(count_lines(run.err), 1) << run.err;
@@ -95,8 +96,8 @@ TEST(MspFlow, NonConvergentRunExitsNonZeroWithOneLineAndNoLengths) {
 }
 
 TEST(MspFlow, BadOptionsAreUsageErrors) {
-  EXPECT_EQ(run_msp(ricci::testing::shared_model("closed_g1/knot1.off") + " --geometry flat").status, 2);
-  EXPECT_EQ(run_msp(ricci::testing::shared_model("closed_g1/knot1.off") + " --target cone:x").status, 2);
+  EXPECT_EQ(run_msp(msp_test::test_mesh("closed_g1/knot1.off.gz") + " --geometry flat").status, 2);
+  EXPECT_EQ(run_msp(msp_test::test_mesh("closed_g1/knot1.off.gz") + " --target cone:x").status, 2);
 }
 
 }  // namespace

@@ -5,13 +5,11 @@
 #include <ricci/hyperbolic/klein.h>
 #include <ricci/hyperbolic/uniformize.h>
 #include <ricci/mesh/io.h>
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
 
-std::string shared_model(const std::string& name) {
-  return std::string(MSP_SHARED_MODELS) + "/" + name;
-}
 
 struct ModelCase {
   const char* path;
@@ -29,10 +27,10 @@ void PrintTo(const ModelCase& c, std::ostream* os) { *os << c.path; }
 class HyperbolicModel : public ::testing::TestWithParam<ModelCase> {};
 
 TEST_P(HyperbolicModel, DomainGroupAndRelation) {
-  const Mesh mesh = read_mesh(shared_model(GetParam().path));
+  const Mesh mesh = read_mesh(msp_test::test_mesh(GetParam().path));
   const Uniformization u = uniformize(mesh);
   ASSERT_TRUE(u.converged()) << u.flow.message;
-  EXPECT_EQ(u.geometry, Geometry::Hyperbolic);
+  EXPECT_EQ(u.geometry, Geometry::hyperbolic);
   EXPECT_LT(u.flow.max_error, 1e-10);
   // The metric the layout uses is the flow's polished in long double: its angle defects (each a
   // rotation that the relator sees conjugated by products of norm ~1e3) are gone.
@@ -102,7 +100,7 @@ double layout_mismatch(const Mesh& sliced, int face, const Eigen::VectorXcd& a,
 }
 
 TEST_P(HyperbolicModel, SeedFaceIndependence) {
-  const Mesh mesh = read_mesh(shared_model(GetParam().path));
+  const Mesh mesh = read_mesh(msp_test::test_mesh(GetParam().path));
   UniformizeOptions first, second;
   first.seed_face = -1;
   const Uniformization a = uniformize(mesh, first);
@@ -161,14 +159,15 @@ TEST_P(HyperbolicModel, SeedFaceIndependence) {
 INSTANTIATE_TEST_SUITE_P(
     Genus2To4, HyperbolicModel,
     ::testing::Values(ModelCase{"closed_g2/eight.off"}, ModelCase{"closed_g2/eight_cgal.off"},
-                      ModelCase{"closed_g2/cup.off"},
+                      ModelCase{"closed_g2/cup.off.gz"},
                       // femur's shortest edge is 1.8e-13 (hyperbolic):
                       // a double coordinate at |z| = 0.98 is already
                       // 3e-15 in distance, 1% of that edge.
-                      ModelCase{"closed_g2/femur.off", 1e-9, 1e-9, 2e-2},
+                      ModelCase{"closed_g2/femur.off.gz", 1e-9, 1e-9, 2e-2},
                       ModelCase{"closed_g3/helmet.off"}, ModelCase{"closed_g3/block.off"},
-                      ModelCase{"closed_g3/genus3.off"}, ModelCase{"closed_g3/elephant_cgal.off"},
-                      ModelCase{"closed_g4plus/fertility.off"},
+                      ModelCase{"closed_g3/genus3.off.gz"},
+                      ModelCase{"closed_g3/elephant_cgal.off"},
+                      ModelCase{"closed_g4plus/fertility.off.gz"},
                       ModelCase{"closed_g4plus/anchor.off"}));
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <ricci/hyperbolic/polish_h2.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
@@ -43,11 +44,11 @@ struct Flowed {
 };
 
 Flowed flowed_eight() {
-  Flowed f{read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/eight_cgal.off"), {}};
+  Flowed f{read_mesh(msp_test::test_mesh("closed_g2/eight_cgal.off")), {}};
   FlowOptions o;
-  o.geometry = Geometry::Hyperbolic;
+  o.geometry = Geometry::hyperbolic;
   o.tolerance = 1e-12;
-  f.flow = flow(f.mesh, uniform_target(f.mesh, Geometry::Hyperbolic), o);
+  f.flow = flow(f.mesh, uniform_target(f.mesh, Geometry::hyperbolic), o);
   return f;
 }
 

@@ -10,11 +10,11 @@
 #include <ricci/metric/mesh_tables.h>
 #include <ricci/spherical/sphere_layout.h>
 #include <ricci/topology/double_cover.h>
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
 
-std::string shared_model(const std::string& name) { return std::string(MSP_SHARED_MODELS) + "/" + name; }
 
 Mesh scaled(Mesh mesh, double s) {
   for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * s);
@@ -28,7 +28,7 @@ TEST(FlatTorus, TorusOfRevolutionHasTheAnalyticModulusAndScaleInvariance) {
   const Mesh mesh = make_torus(60, 24, R, r);
   const Uniformization u = uniformize(mesh);
   ASSERT_TRUE(u.converged()) << u.flow.message;
-  EXPECT_EQ(u.geometry, Geometry::Euclidean);
+  EXPECT_EQ(u.geometry, Geometry::euclidean);
   EXPECT_LT(u.flow.max_error, 1e-10);
   ASSERT_EQ(u.translations.size(), 2u);
   // Pure translations: the flat torus has no rotational holonomy; they commute.
@@ -45,7 +45,7 @@ TEST(FlatTorus, TorusOfRevolutionHasTheAnalyticModulusAndScaleInvariance) {
 }
 
 TEST(FlatTorus, KnotModelIsFlatWithCommutingTranslations) {
-  const Uniformization u = uniformize(read_mesh(shared_model("closed_g1/knot1.off")));
+  const Uniformization u = uniformize(read_mesh(msp_test::test_mesh("closed_g1/knot1.off.gz")));
   ASSERT_TRUE(u.converged()) << u.flow.message;
   EXPECT_EQ(u.layout.flipped_faces, 0);
   EXPECT_LT(u.layout.max_relative_length_error, 1e-9);
@@ -61,14 +61,14 @@ TEST(Sphere, EmbeddingIsIsometricToTheFlowMetricOnTheUnitSphere) {
   options.centre_sphere = false;
   const Uniformization u = uniformize(mesh, options);
   ASSERT_TRUE(u.converged()) << u.flow.message;
-  EXPECT_EQ(u.geometry, Geometry::Spherical);
+  EXPECT_EQ(u.geometry, Geometry::spherical);
   EXPECT_LT(u.flow.max_error, 1e-10);
   EXPECT_LT(u.sphere.max_radius_error, 1e-12);
   EXPECT_EQ(u.sphere.flipped_faces, 0);
   EXPECT_LT(u.sphere.max_relative_length_error, 1e-9);
   // Corner angles of the embedded spherical triangles equal the flow metric's.
   const MeshTables tables = build_mesh_tables(u.surface);
-  const Eigen::MatrixX3d angles = corner_angles(tables, u.flow.lengths, Geometry::Spherical);
+  const Eigen::MatrixX3d angles = corner_angles(tables, u.flow.lengths, Geometry::spherical);
   double worst = 0.0;
   for (int f = 0; f < tables.num_faces(); ++f) {
     for (int k = 0; k < 3; ++k) {
@@ -84,7 +84,7 @@ TEST(Sphere, EmbeddingIsIsometricToTheFlowMetricOnTheUnitSphere) {
 }
 
 TEST(Sphere, CentringMovesTheCentroidToTheOriginAndKeepsOrientation) {
-  const Mesh mesh = read_mesh(shared_model("closed_g0/bunny_npm_closed.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g0/bunny_npm_closed.off"));
   const Uniformization u = uniformize(mesh);
   ASSERT_TRUE(u.converged()) << u.flow.message;
   EXPECT_LT(u.sphere.max_radius_error, 1e-12);
@@ -102,8 +102,8 @@ TEST(DoubleCover, IsClosedOrientableOfGenus2gPlusBMinus1) {
   cases.push_back({make_planar_grid(4, 3, 1.0, 1.0), 0});  // corner diagonals are chords
   cases.push_back({make_annulus(3, 12), 1});
   cases.push_back({make_open_genus(1, 2, 2), 3});
-  cases.push_back({read_mesh(shared_model("open/eight_hole.off")), 4});
-  cases.push_back({read_mesh(shared_model("open/head.off")), 2});
+  cases.push_back({read_mesh(msp_test::test_mesh("open/eight_hole.off")), 4});
+  cases.push_back({read_mesh(msp_test::test_mesh("open/head.off")), 2});
   for (const Case& c : cases) {
     const SurfaceTopology before = surface_topology(c.mesh);
     ASSERT_EQ(2 * before.genus + before.boundary_loops - 1, c.genus);
@@ -133,14 +133,14 @@ TEST(DoubleCover, UniformizationMakesTheBoundaryGeodesic) {
   // head.off: genus 0 with 3 holes, its double has genus 2 (H2). On the double every vertex is
   // flat; by the mirror symmetry each boundary vertex then has angle π on the original side,
   // i.e. zero geodesic curvature.
-  const Mesh mesh = read_mesh(shared_model("open/head.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("open/head.off"));
   const Uniformization u = uniformize(mesh);
   ASSERT_TRUE(u.converged()) << u.flow.message;
   EXPECT_TRUE(u.doubled);
   EXPECT_EQ(u.genus, 2);
-  EXPECT_EQ(u.geometry, Geometry::Hyperbolic);
+  EXPECT_EQ(u.geometry, Geometry::hyperbolic);
   const MeshTables tables = build_mesh_tables(u.surface);
-  const Eigen::MatrixX3d angles = corner_angles(tables, u.flow.lengths, Geometry::Hyperbolic);
+  const Eigen::MatrixX3d angles = corner_angles(tables, u.flow.lengths, Geometry::hyperbolic);
   Eigen::VectorXd original_side = Eigen::VectorXd::Zero(mesh.n_vertices());
   for (int f = 0; f < static_cast<int>(mesh.n_faces()); ++f) {
     for (int k = 0; k < 3; ++k) original_side[tables.face_vertices(f, k)] += angles(f, k);

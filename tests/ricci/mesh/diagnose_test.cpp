@@ -21,7 +21,7 @@ void expect_clean(const ricci::MeshDiagnosis& d) {
 
 MeshProblemKind first_kind(const ricci::MeshDiagnosis& d) {
   EXPECT_FALSE(d.problems.empty());
-  return d.problems.empty() ? MeshProblemKind::kNoFaces : d.problems.front().kind;
+  return d.problems.empty() ? MeshProblemKind::no_faces : d.problems.front().kind;
 }
 
 TEST(Diagnose, TetrahedronIsASphere) {
@@ -74,7 +74,7 @@ TEST(Diagnose, MobiusStripAndKleinBottleAreNonOrientable) {
   EXPECT_FALSE(strip.orientable);
   EXPECT_EQ(strip.boundary_loops, 1);  // the Mobius strip's boundary is one circle
   EXPECT_EQ(strip.euler_characteristic, 0);
-  EXPECT_EQ(first_kind(strip), MeshProblemKind::kNonOrientable);
+  EXPECT_EQ(first_kind(strip), MeshProblemKind::non_orientable);
   EXPECT_NE(strip.problems.front().message.find("orientation conflict at edge ("),
             std::string::npos);
   EXPECT_FALSE(strip.clean_manifold());
@@ -92,7 +92,7 @@ TEST(Diagnose, TwoTetrahedraAreTwoComponents) {
   EXPECT_EQ(d.euler_characteristic, 4);
   EXPECT_EQ(d.genus, 0);
   EXPECT_TRUE(d.clean_manifold());  // INDEX.md's column allows several components
-  EXPECT_EQ(first_kind(d), MeshProblemKind::kSeveralComponents);
+  EXPECT_EQ(first_kind(d), MeshProblemKind::several_components);
   EXPECT_EQ(d.problems.front().message, "2 connected components (vertex counts 4, 4)");
 }
 
@@ -110,7 +110,7 @@ TEST(Diagnose, BowtieVertexIsPinched) {
   EXPECT_EQ(d.components, 1);
   EXPECT_EQ(d.euler_characteristic, 3);  // 7 - 12 + 8
   EXPECT_EQ(d.genus, -0.5);              // not a manifold: the formula gives a half-integer
-  EXPECT_EQ(first_kind(d), MeshProblemKind::kNonManifoldVertex);
+  EXPECT_EQ(first_kind(d), MeshProblemKind::non_manifold_vertex);
   EXPECT_EQ(d.problems.front().message, "vertex 0 is pinched: its faces form 2 fans");
 }
 
@@ -121,7 +121,7 @@ TEST(Diagnose, FinEdgeIsNonManifold) {
   const auto d = diagnose(soup);
   EXPECT_FALSE(d.edge_manifold);
   EXPECT_EQ(d.non_manifold_edges, 1);
-  EXPECT_EQ(first_kind(d), MeshProblemKind::kNonManifoldEdge);
+  EXPECT_EQ(first_kind(d), MeshProblemKind::non_manifold_edge);
   EXPECT_EQ(d.problems.front().message, "edge (0, 3) is shared by 3 faces (faces 0, 1, 2)");
   EXPECT_FALSE(d.clean_manifold());
 }
@@ -143,10 +143,10 @@ TEST(Diagnose, DegenerateFacesByRepeatedIndexOrCollinearCorners) {
   soup.face_lines[9] = 42;
   const auto d = diagnose(soup);
   EXPECT_EQ(d.degenerate_faces, 2);
-  EXPECT_EQ(first_kind(d), MeshProblemKind::kRepeatedIndex);
+  EXPECT_EQ(first_kind(d), MeshProblemKind::repeated_index);
   EXPECT_EQ(d.problems.front().message,
             "face 9 (line 42) is degenerate: it repeats a vertex index");
-  EXPECT_EQ(d.problems.back().kind, MeshProblemKind::kZeroArea);
+  EXPECT_EQ(d.problems.back().kind, MeshProblemKind::zero_area);
   EXPECT_EQ(d.problems.back().message, "face 8 has zero area");
 }
 
@@ -169,7 +169,7 @@ TEST(Diagnose, NonFiniteCoordinatesMatterOnlyWhenReferenced) {
   expect_clean(d);
   soup.positions[2].z() = INFINITY;
   d = diagnose(soup);
-  EXPECT_EQ(first_kind(d), MeshProblemKind::kNonFiniteCoordinate);
+  EXPECT_EQ(first_kind(d), MeshProblemKind::non_finite_coordinate);
   EXPECT_EQ(d.problems.front().message, "vertex 2 has a non-finite coordinate (0, 1, inf)");
 }
 
@@ -184,7 +184,7 @@ TEST(Diagnose, DuplicatesAndBadFaces) {
   EXPECT_EQ(d.duplicate_vertices, 2);
   EXPECT_EQ(d.duplicate_faces, 1);
   EXPECT_EQ(d.bad_faces, 2);
-  EXPECT_EQ(first_kind(d), MeshProblemKind::kBadFace);
+  EXPECT_EQ(first_kind(d), MeshProblemKind::bad_face);
   EXPECT_NE(std::find_if(d.problems.begin(), d.problems.end(),
                          [](const ricci::MeshProblem& p) {
                            return p.message == "face 4 has the same vertices as face 2";
@@ -194,7 +194,7 @@ TEST(Diagnose, DuplicatesAndBadFaces) {
 
 TEST(Diagnose, EmptySoupHasNoFacesProblem) {
   const auto d = diagnose(ricci::PolygonSoup{});
-  EXPECT_EQ(first_kind(d), MeshProblemKind::kNoFaces);
+  EXPECT_EQ(first_kind(d), MeshProblemKind::no_faces);
   EXPECT_FALSE(d.clean_manifold());
 }
 

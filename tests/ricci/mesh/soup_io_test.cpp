@@ -13,6 +13,7 @@
 #include "ricci/mesh/diagnose.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/soup_io.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -217,9 +218,9 @@ TEST_F(SoupIo, GzipOfAnyFormatAndCaseInsensitiveExtensions) {
       write("D.OBJ", "v 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 -2.25\nf 1 2 3\nf 1 3 4\n")));
 }
 
-TEST_F(SoupIo, SharedDragonIsGzippedBinaryPly) {
+TEST_F(SoupIo, DragonIsGzippedBinaryPly) {
   const auto soup =
-      ricci::read_soup(std::string(MSP_SHARED_MODELS) + "/nonmanifold/dragon_vrip_res4.ply.gz");
+      ricci::read_soup(msp_test::test_mesh("nonmanifold/dragon_vrip_res4.ply.gz"));
   EXPECT_EQ(soup.positions.size(), 5205u);
   EXPECT_EQ(soup.faces.size(), 11102u);
 }
@@ -296,20 +297,20 @@ void expect_parsed_or_io_error(std::string_view data, ricci::MeshFormat format) 
 
 TEST_F(SoupIo, TruncatedAndCorruptedFilesOnlyEverThrowIOError) {
   const std::pair<std::string, ricci::MeshFormat> samples[] = {
-      {"OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0.5\n0 1 -2.25\n3 0 1 2\n3 0 2 3\n", ricci::MeshFormat::kOff},
+      {"OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0.5\n0 1 -2.25\n3 0 1 2\n3 0 2 3\n", ricci::MeshFormat::off},
       {"v 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 -2.25\nf 1/1 2/2 3/3\nf -4 -2 -1\n",
-       ricci::MeshFormat::kObj},
+       ricci::MeshFormat::obj},
       {ply_header("ascii", "float", "int") +
            "0 7 0 0 0\n1 200 0 0 1 5\n1 1 1 0.5 0\n0 1 1 -2.25 2 1 2\n"
            "3 0 1 2 0.5\n3 0 2 3 1\n0 1\n",
-       ricci::MeshFormat::kPly},
-      {binary_ply<float, int32_t>("float", "int", false), ricci::MeshFormat::kPly},
-      {binary_ply<double, uint16_t>("double", "ushort", true), ricci::MeshFormat::kPly},
-      {binary_stl(false), ricci::MeshFormat::kStl},
+       ricci::MeshFormat::ply},
+      {binary_ply<float, int32_t>("float", "int", false), ricci::MeshFormat::ply},
+      {binary_ply<double, uint16_t>("double", "ushort", true), ricci::MeshFormat::ply},
+      {binary_stl(false), ricci::MeshFormat::stl},
       {"solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 "
        "0\nendloop\n"
        "endfacet\nendsolid s\n",
-       ricci::MeshFormat::kStl}};
+       ricci::MeshFormat::stl}};
   std::mt19937 random(12345);
   for (const auto& [data, format] : samples) {
     for (size_t length = 0; length <= data.size(); ++length)

@@ -10,13 +10,12 @@
 #include <ricci/metric/subdivide.h>
 
 #include "ricci/test_meshes.h"
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
 
-using testing::shared_model;
-
-const Geometry kGeometries[] = {Geometry::Euclidean, Geometry::Hyperbolic, Geometry::Spherical};
+const Geometry kGeometries[] = {Geometry::euclidean, Geometry::hyperbolic, Geometry::spherical};
 
 // Lengths suitable for every geometry: the unit sphere's chords are short enough for S2.
 EdgeLengths sphere_lengths(const Mesh& mesh) { return mesh_edge_lengths(mesh); }
@@ -24,12 +23,12 @@ EdgeLengths sphere_lengths(const Mesh& mesh) { return mesh_edge_lengths(mesh); }
 TEST(TriangleAngles, EquilateralInEachGeometry) {
   const double l = 0.8, side[3] = {l, l, l};
   double theta[3];
-  ASSERT_TRUE(triangle_angles(Geometry::Euclidean, side, theta));
+  ASSERT_TRUE(triangle_angles(Geometry::euclidean, side, theta));
   EXPECT_NEAR(theta[0], M_PI / 3, 1e-15);
-  ASSERT_TRUE(triangle_angles(Geometry::Hyperbolic, side, theta));
+  ASSERT_TRUE(triangle_angles(Geometry::hyperbolic, side, theta));
   // Hyperbolic cosine law with equal sides: cos θ = cosh l / (1 + cosh l).
   EXPECT_NEAR(std::cos(theta[1]), std::cosh(l) / (1 + std::cosh(l)), 1e-15);
-  ASSERT_TRUE(triangle_angles(Geometry::Spherical, side, theta));
+  ASSERT_TRUE(triangle_angles(Geometry::spherical, side, theta));
   EXPECT_NEAR(std::cos(theta[2]), std::cos(l) / (1 + std::cos(l)), 1e-15);
 }
 
@@ -37,7 +36,7 @@ TEST(TriangleAngles, NeedleAngleIsAccurateWhereAcosIsNot) {
   // Isosceles needle: the apex angle is 2 asin(ε/2), about ε; acos(1 - ε²/2) loses it.
   const double eps = 1e-9, l[3] = {eps, 1.0, 1.0};
   double theta[3], c[3], s[3];
-  ASSERT_TRUE(triangle_angles(Geometry::Euclidean, l, theta, c, s));
+  ASSERT_TRUE(triangle_angles(Geometry::euclidean, l, theta, c, s));
   EXPECT_NEAR(theta[0] / (2 * std::asin(eps / 2)), 1.0, 1e-12);
   EXPECT_NEAR(theta[0] + theta[1] + theta[2], M_PI, 1e-15);
   EXPECT_NEAR(s[0] / std::sin(theta[0]), 1.0, 1e-12);
@@ -46,10 +45,10 @@ TEST(TriangleAngles, NeedleAngleIsAccurateWhereAcosIsNot) {
 TEST(TriangleAngles, RejectsTriangleInequalityAndLongSphericalPerimeter) {
   double theta[3];
   const double flat[3] = {1.0, 2.0, 3.0};
-  EXPECT_FALSE(triangle_angles(Geometry::Euclidean, flat, theta));
+  EXPECT_FALSE(triangle_angles(Geometry::euclidean, flat, theta));
   const double big[3] = {2.2, 2.2, 2.2};  // perimeter 6.6 > 2π
-  EXPECT_FALSE(triangle_angles(Geometry::Spherical, big, theta));
-  EXPECT_TRUE(triangle_angles(Geometry::Hyperbolic, big, theta));
+  EXPECT_FALSE(triangle_angles(Geometry::spherical, big, theta));
+  EXPECT_TRUE(triangle_angles(Geometry::hyperbolic, big, theta));
 }
 
 TEST(CirclePacking, InversiveDistanceReproducesLengthsInEveryGeometry) {
@@ -58,11 +57,11 @@ TEST(CirclePacking, InversiveDistanceReproducesLengthsInEveryGeometry) {
   const MeshTables t = build_mesh_tables(mesh);
   const EdgeLengths l = sphere_lengths(mesh);
   for (Geometry g : kGeometries) {
-    for (RadiusInit r : {RadiusInit::Mean, RadiusInit::Min}) {
-      const CirclePackingMetric m = initial_metric(t, l, g, Scheme::InversiveDistance, r);
+    for (RadiusInit r : {RadiusInit::mean, RadiusInit::min}) {
+      const CirclePackingMetric m = initial_metric(t, l, g, Scheme::inversive_distance, r);
       const EdgeLengths back = circle_packing_lengths(t, m);
       EXPECT_LT(((back - l).array() / l.array()).abs().maxCoeff(), 1e-12) << to_string(g);
-      if (r == RadiusInit::Min) {
+      if (r == RadiusInit::min) {
         EXPECT_GE(m.eta.minCoeff(), 1.0 - 1e-12) << to_string(g);
       }
     }
@@ -70,26 +69,30 @@ TEST(CirclePacking, InversiveDistanceReproducesLengthsInEveryGeometry) {
 }
 
 TEST(CirclePacking, ThurstonWeightsAreClampedAndCombinatorialIsUniform) {
-  const Mesh mesh = read_mesh(shared_model("closed_g1/kitten_nf20k.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/kitten_nf20k.off.gz"));
   const MeshTables t = build_mesh_tables(mesh);
   const EdgeLengths l = mesh_edge_lengths(mesh);
-  const CirclePackingMetric cp = initial_metric(t, l, Geometry::Euclidean, Scheme::CirclePacking, RadiusInit::Mean);
+  const CirclePackingMetric cp =
+      initial_metric(t, l, Geometry::euclidean, Scheme::circle_packing, RadiusInit::mean);
   EXPECT_GE(cp.eta.minCoeff(), 0.0);
   EXPECT_LE(cp.eta.maxCoeff(), 1.0);
-  const CirclePackingMetric comb = initial_metric(t, l, Geometry::Euclidean, Scheme::Combinatorial, RadiusInit::Mean);
+  const CirclePackingMetric comb =
+      initial_metric(t, l, Geometry::euclidean, Scheme::combinatorial, RadiusInit::mean);
   const EdgeLengths lc = circle_packing_lengths(t, comb);
   EXPECT_NEAR(lc.minCoeff(), 2.0, 1e-15);
   EXPECT_NEAR(lc.maxCoeff(), 2.0, 1e-15);
 }
 
 TEST(CirclePacking, LeastSquaresFitIsNoWorseThanMeanRadii) {
-  const Mesh mesh = read_mesh(shared_model("closed_g1/knot1.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g1/knot1.off.gz"));
   const MeshTables t = build_mesh_tables(mesh);
   const EdgeLengths l = mesh_edge_lengths(mesh);
-  const CirclePackingMetric mean = initial_metric(t, l, Geometry::Euclidean, Scheme::CirclePacking, RadiusInit::Mean);
-  const CirclePackingMetric fit = initial_metric(t, l, Geometry::Euclidean, Scheme::CirclePacking, RadiusInit::LeastSquares);
-  const double cost_mean = circle_packing_fit_cost(t, l, Geometry::Euclidean, mean.gamma);
-  const double cost_fit = circle_packing_fit_cost(t, l, Geometry::Euclidean, fit.gamma);
+  const CirclePackingMetric mean =
+      initial_metric(t, l, Geometry::euclidean, Scheme::circle_packing, RadiusInit::mean);
+  const CirclePackingMetric fit =
+      initial_metric(t, l, Geometry::euclidean, Scheme::circle_packing, RadiusInit::least_squares);
+  const double cost_mean = circle_packing_fit_cost(t, l, Geometry::euclidean, mean.gamma);
+  const double cost_fit = circle_packing_fit_cost(t, l, Geometry::euclidean, fit.gamma);
   ASSERT_GT(cost_mean, 0.0);
   EXPECT_LT(cost_fit, 0.5 * cost_mean);
   // The cost is what the clamped lengths actually miss.
@@ -111,30 +114,31 @@ TEST(CirclePacking, LengthDerivativeMatchesFiniteDifferences) {
   }
 }
 
-// Gauss-Bonnet on every class of shared model: closed genus 0..9 and open surfaces.
+// Gauss-Bonnet on every class of test mesh: closed genus 0..9 and open surfaces.
 class GaussBonnetOnModels : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(GaussBonnetOnModels, HoldsInEveryGeometry) {
-  const Mesh mesh = read_mesh(shared_model(GetParam()));
+  const Mesh mesh = read_mesh(msp_test::test_mesh(GetParam()));
   const MeshTables t = build_mesh_tables(mesh);
   EdgeLengths l = mesh_edge_lengths(mesh);
-  EXPECT_LT(std::abs(gauss_bonnet_residual(t, l, Geometry::Euclidean)), 1e-8 * t.num_vertices());
+  EXPECT_LT(std::abs(gauss_bonnet_residual(t, l, Geometry::euclidean)), 1e-8 * t.num_vertices());
   // Short lengths are valid in H2 and S2 too (mean edge 0.01).
   l *= 0.01 / l.mean();
-  EXPECT_LT(std::abs(gauss_bonnet_residual(t, l, Geometry::Hyperbolic)), 1e-8 * t.num_vertices());
-  EXPECT_LT(std::abs(gauss_bonnet_residual(t, l, Geometry::Spherical)), 1e-8 * t.num_vertices());
+  EXPECT_LT(std::abs(gauss_bonnet_residual(t, l, Geometry::hyperbolic)), 1e-8 * t.num_vertices());
+  EXPECT_LT(std::abs(gauss_bonnet_residual(t, l, Geometry::spherical)), 1e-8 * t.num_vertices());
   // The E2 curvature of the embedded mesh alone sums to 2πχ.
-  EXPECT_NEAR(vertex_curvature(t, mesh_edge_lengths(mesh), Geometry::Euclidean).sum(),
+  EXPECT_NEAR(vertex_curvature(t, mesh_edge_lengths(mesh), Geometry::euclidean).sum(),
               2 * M_PI * t.euler_characteristic, 1e-8 * t.num_vertices());
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Models, GaussBonnetOnModels,
-    ::testing::Values("closed_g0/knight_decimated.off", "closed_g0/spot.obj", "closed_g1/elk.off",
-                      "closed_g1/knot1.off", "closed_g2/eight.off", "closed_g2/joint.off",
+    ::testing::Values("closed_g0/knight_decimated.off", "closed_g0/spot.obj.gz",
+                      "closed_g1/elk.off", "closed_g1/knot1.off.gz", "closed_g2/eight.off",
+                      "closed_g2/joint.off",
                       "closed_g3/helmet.off", "closed_g3/block.off", "closed_g4plus/anchor.off",
                       "closed_g4plus/couplingdown.off", "open/head.off", "open/eight_hole.off",
-                      "open/holes.off"));
+                      "open/holes.off.gz"));
 
 TEST(MeshTables, RecordTopology) {
   const MeshTables disk = build_mesh_tables(testing::square(4));
@@ -148,7 +152,7 @@ TEST(MeshTables, RecordTopology) {
 }
 
 TEST(Subdivide, MidpointKeepsTopologyAndHalvesLengths) {
-  const Mesh mesh = read_mesh(shared_model("closed_g2/eight.off"));
+  const Mesh mesh = read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   const Mesh fine = subdivide_midpoint(mesh);
   EXPECT_EQ(fine.n_vertices(), mesh.n_vertices() + mesh.n_edges());
   EXPECT_EQ(fine.n_faces(), 4 * mesh.n_faces());
@@ -172,12 +176,12 @@ TEST(Curvature, BadLengthsThrowNamingTheFace) {
   EdgeLengths l = mesh_edge_lengths(mesh);
   l[t.face_edges(3, 0)] = 10.0;
   try {
-    (void)corner_angles(t, l, Geometry::Euclidean);
+    (void)corner_angles(t, l, Geometry::euclidean);
     FAIL() << "expected InvalidInputError";
   } catch (const InvalidInputError& e) {
     EXPECT_NE(std::string(e.what()).find("face"), std::string::npos);
   }
-  EXPECT_THROW((void)corner_angles(t, EdgeLengths(3), Geometry::Euclidean), InvalidInputError);
+  EXPECT_THROW((void)corner_angles(t, EdgeLengths(3), Geometry::euclidean), InvalidInputError);
 }
 
 }  // namespace

@@ -10,21 +10,21 @@
 
 #include "ricci/mesh/io.h"
 #include "ricci/pipeline/one_cone_atlas.h"
+#include "ricci/util/cross2d.h"
+#include "test_paths.h"
 
 namespace {
 
 struct Case {
-  const char* path;  // "models/..." (bundled) or relative to the shared models
+  const char* path;  // "models/..." (bundled) or relative to tests/data/meshes
   int singular_vertex;  // -1: automatic choice
   double shortest_edge;  // an upper bound of the shortest edge / domain diameter (the premise)
 };
 
 std::string resolve(const std::string& path) {
-  if (path.rfind("models/", 0) == 0) return std::string(MSP_SOURCE_DIR) + "/" + path;
-  return std::string(MSP_SHARED_MODELS) + "/" + path;
+  if (path.rfind("models/", 0) == 0) return msp_test::bundled_model(path.substr(7));
+  return msp_test::test_mesh(path);
 }
-
-double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
 
 class TenPiConeLayout : public ::testing::TestWithParam<Case> {};
 
@@ -43,7 +43,8 @@ TEST_P(TenPiConeLayout, EveryFacePositiveEveryEdgeExact) {
   for (auto f : sliced.faces()) {
     int v[3], k = 0;
     for (auto w : sliced.fv_range(f)) v[k++] = w.idx();
-    const double area = cross(layout.edge_vector(v[0], v[1]), layout.edge_vector(v[0], v[2]));
+    const double area =
+        ricci::cross2d(layout.edge_vector(v[0], v[1]), layout.edge_vector(v[0], v[2]));
     flipped += area < 0;
     zero += area == 0;
   }
@@ -71,7 +72,7 @@ TEST_P(TenPiConeLayout, EveryFacePositiveEveryEdgeExact) {
 
 INSTANTIATE_TEST_SUITE_P(GenusThree, TenPiConeLayout,
                          ::testing::Values(Case{"models/genus3.off", 0, 1e-9},
-                                           Case{"bench/genus3_10k.obj", 0, 1e-12},
+                                           Case{"bench/genus3_10k.obj.gz", 0, 1e-12},
                                            Case{"models/genus3.off", -1, 1e-6}));
 
 }  // namespace

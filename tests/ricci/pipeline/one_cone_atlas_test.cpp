@@ -9,17 +9,18 @@
 
 #include "ricci/mesh/io.h"
 #include "ricci/pipeline/one_cone_atlas.h"
+#include "test_paths.h"
 
 namespace {
 
 struct Case {
-  const char* path;  // relative to the shared models, or "models/..." for bundled ones
+  const char* path;  // "models/..." (bundled) or relative to tests/data/meshes
   int singular_vertex;
 };
 
 std::string resolve(const std::string& path) {
-  if (path.rfind("models/", 0) == 0) return std::string(MSP_SOURCE_DIR) + "/" + path;
-  return std::string(MSP_SHARED_MODELS) + "/" + path;
+  if (path.rfind("models/", 0) == 0) return msp_test::bundled_model(path.substr(7));
+  return msp_test::test_mesh(path);
 }
 
 // Edge-length errors of the laid-out fundamental domain against the flat metric: the largest
@@ -84,18 +85,18 @@ TEST_P(OneConeAtlasRegression, FlatOneConeAtlasIsExact) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    SharedAndBundledModels, OneConeAtlasRegression,
+    TestAndBundledModels, OneConeAtlasRegression,
     ::testing::Values(Case{"closed_g0/knight_decimated.off", 0}, Case{"models/genus0.off", 10},
-                      Case{"closed_g1/knot1.off", -1}, Case{"closed_g1/elk.off", -1},
+                      Case{"closed_g1/knot1.off.gz", -1}, Case{"closed_g1/elk.off", -1},
                       Case{"models/genus1.off", -1}, Case{"closed_g2/eight.off", 0},
                       Case{"closed_g2/eight_cgal.off", 3}, Case{"models/genus2.off", 0},
                       Case{"closed_g3/elephant_cgal.off", 0}, Case{"models/genus3.off", 0},
                       Case{"open/head.off", -1}, Case{"open/eight_hole.off", -1},
                       Case{"open/intersection_quads.off", -1}, Case{"models/genus2_hole.off", -1},
-                      Case{"models/cap_open.off", -1}, Case{"open/lion.off", -1},
+                      Case{"models/cap_open.off", -1}, Case{"open/lion.off.gz", -1},
                       Case{"open/double-torus-3-holes_quad.off", -1},
-                      Case{"open/mech-holes-shark.off", -1}, Case{"closed_g2/joint.off", -1},
-                      Case{"closed_g2/femur.off", 1458}));
+                      Case{"open/mech-holes-shark.off.gz", -1}, Case{"closed_g2/joint.off", -1},
+                      Case{"closed_g2/femur.off.gz", 1458}));
 
 TEST(OneConeAtlas, AutomaticChoiceRunsFewFlows) {
   ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
@@ -147,12 +148,12 @@ namespace {
 // energy (a residual-only search accepted an overshooting first step and the next Hessian was
 // singular: three metrics failed and the combinatorial one, which ignores the mesh, was used).
 TEST(OneConeAtlas, TenPiConeOnMarchingCubesKeepsTheMeshConformalMetric) {
-  ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj"));
+  ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj.gz"));
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
   const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
   EXPECT_TRUE(r.flow.failed_attempts.empty()) << r.flow.failed_attempts.front();
-  EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::CirclePacking);
+  EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::circle_packing);
   EXPECT_LT(r.flow.max_error, 1e-10);
   EXPECT_EQ(r.atlas.layout.flipped_faces, 0);
   EXPECT_LT(r.relative_transition_residual(), 1e-9);
@@ -162,14 +163,14 @@ TEST(OneConeAtlas, TenPiConeOnMarchingCubesKeepsTheMeshConformalMetric) {
 // genus2_10k: the flow records which face broke each line search, a valid face index, and
 // stops with a triangle-inequality status instead of crawling.
 TEST(OneConeAtlas, BrokenTrianglesAreRecorded) {
-  ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj"));
+  ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
   const ricci::OneConeProblem problem = ricci::prepare_one_cone(mesh, 0);
   ricci::FlowOptions options = ricci::one_cone_flow_options();
-  options.scheme = ricci::Scheme::InversiveDistance;
-  options.radii = ricci::RadiusInit::Min;
+  options.scheme = ricci::Scheme::inversive_distance;
+  options.radii = ricci::RadiusInit::min;
   const ricci::FlowResult r = ricci::flow(problem.mesh, problem.targets, options);
   ASSERT_FALSE(r.converged());
-  EXPECT_EQ(r.status, ricci::FlowStatus::TriangleInequality);
+  EXPECT_EQ(r.status, ricci::FlowStatus::triangle_inequality);
   ASSERT_FALSE(r.broken_faces.empty());
   EXPECT_LE(r.broken_faces.size(), ricci::kMaxBrokenFacesRecorded);
   for (const ricci::BrokenTrial& b : r.broken_faces) {
@@ -200,7 +201,7 @@ ricci::OneConeAtlasOptions cleaned_up_options() {
 // packing reaches the 10pi cone) the default metric still gives an exact atlas, and the problem
 // maps its vertices back to the input's.
 TEST(OneConeAtlas, CleanedUpSurfaceKeepsTheAtlasExact) {
-  const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj"));
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj.gz"));
   ricci::OneConeAtlasOptions options = cleaned_up_options();
   options.flat_flips.protected_rings = 6;
   const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
@@ -226,15 +227,15 @@ TEST(OneConeAtlas, CleanedUpSurfaceKeepsTheAtlasExact) {
 // median 1.07; CEPS reports 1.03-1.13 on such meshes) where the circle packing gives 1.67, with
 // an exact atlas.
 TEST(OneConeAtlas, InversiveDistanceRouteIsNearlyConformalAndExact) {
-  const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj"));
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
   options.keep_metric = true;
-  options.flow.scheme = ricci::Scheme::InversiveDistance;
-  options.flow.radii = ricci::RadiusInit::Mean;
+  options.flow.scheme = ricci::Scheme::inversive_distance;
+  options.flow.radii = ricci::RadiusInit::mean;
   EXPECT_TRUE(ricci::takes_inversive_distance_route(mesh, options));
   const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
-  EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::InversiveDistance);
+  EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::inversive_distance);
   EXPECT_TRUE(r.flow.failed_attempts.empty()) << r.flow.failed_attempts.front();
   EXPECT_GT(r.flat_flips.flips, 1000);
   EXPECT_LT(r.flow.max_error, 1e-10);
@@ -247,12 +248,12 @@ TEST(OneConeAtlas, InversiveDistanceRouteIsNearlyConformalAndExact) {
 }
 
 TEST(OneConeAtlas, InversiveDistanceRouteOnlyWhenAskedForOnASingleCone) {
-  const ricci::Mesh genus2 = ricci::read_mesh(resolve("bench/genus2_10k.obj"));
-  const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj"));
+  const ricci::Mesh genus2 = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
+  const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj.gz"));
   ricci::OneConeAtlasOptions options;
   EXPECT_FALSE(ricci::takes_inversive_distance_route(genus2, options));  // the default metric order
   options.keep_metric = true;
-  options.flow.scheme = ricci::Scheme::InversiveDistance;
+  options.flow.scheme = ricci::Scheme::inversive_distance;
   EXPECT_TRUE(ricci::takes_inversive_distance_route(genus2, options));
   EXPECT_FALSE(ricci::takes_inversive_distance_route(torus, options));  // no cone
   options.inversive_distance_route = false;

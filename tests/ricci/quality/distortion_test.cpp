@@ -6,6 +6,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
 #include "ricci/quality/distortion.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -15,7 +16,7 @@ Eigen::VectorXd own_lengths(const ricci::Mesh& mesh) {
   return l;
 }
 
-ricci::Mesh eight() { return ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off"); }
+ricci::Mesh eight() { return ricci::read_mesh(msp_test::test_mesh("closed_g2/eight.off")); }
 
 TEST(Distortion, OwnMetricHasNoDistortion) {
   auto mesh = eight();

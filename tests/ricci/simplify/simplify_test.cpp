@@ -6,11 +6,12 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
 #include "ricci/mesh/simplify.h"
+#include "test_paths.h"
 
 namespace {
 
-ricci::Mesh shared_model(const std::string& relative) {
-  return ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + relative);
+ricci::Mesh read_test_mesh(const std::string& relative) {
+  return ricci::read_mesh(msp_test::test_mesh(relative));
 }
 
 int euler_characteristic(const ricci::Mesh& m) {
@@ -19,7 +20,7 @@ int euler_characteristic(const ricci::Mesh& m) {
 
 // Open scans keep a slightly worse corner at the boundary, where remeshing cannot relax freely.
 void expect_simplified_with_same_topology(const std::string& model, int target, double min_angle = 5.0) {
-  ricci::Mesh dense = shared_model(model);
+  ricci::Mesh dense = read_test_mesh(model);
   ricci::SimplifyOptions options;
   options.target_faces = target;
   auto r = ricci::simplify_mesh(dense, options);
@@ -30,13 +31,13 @@ void expect_simplified_with_same_topology(const std::string& model, int target, 
 }
 
 TEST(Simplify, KeepsGenusOnRealScans) {
-  expect_simplified_with_same_topology("closed_g1/kitten_nf20k.off", 2000);
-  expect_simplified_with_same_topology("closed_g3/genus3.off", 2000);
-  expect_simplified_with_same_topology("closed_g2/cup.off", 2000);
+  expect_simplified_with_same_topology("closed_g1/kitten_nf20k.off.gz", 2000);
+  expect_simplified_with_same_topology("closed_g3/genus3.off.gz", 2000);
+  expect_simplified_with_same_topology("closed_g2/cup.off.gz", 2000);
 }
 
 TEST(Simplify, KeepsBoundariesOfOpenScans) {
-  expect_simplified_with_same_topology("open/lion.off", 2000, 2.0);
+  expect_simplified_with_same_topology("open/lion.off.gz", 2000, 2.0);
 }
 
 // Largest distance from the result's vertices to the dense surface, over the bbox diagonal.
@@ -54,8 +55,9 @@ double max_deviation(const ricci::Mesh& dense, const ricci::Mesh& result) {
 // policies: same topology, and the shape kept as closely (vertices within 0.5% of the diagonal
 // of the scan, and not more than 1.5x CGAL's deviation plus 0.05%).
 TEST(Simplify, OwnQuadricCollapseKeepsTheShapeLikeCgal) {
-  for (const char* model : {"closed_g1/kitten_nf20k.off", "closed_g2/cup.off", "open/lion.off"}) {
-    const ricci::Mesh dense = shared_model(model);
+  for (const char* model :
+       {"closed_g1/kitten_nf20k.off.gz", "closed_g2/cup.off.gz", "open/lion.off.gz"}) {
+    const ricci::Mesh dense = read_test_mesh(model);
     ricci::SimplifyOptions options;
     options.target_faces = 2000;
     options.remesh_iterations = 0;
@@ -75,12 +77,12 @@ TEST(Simplify, OwnQuadricCollapseKeepsTheShapeLikeCgal) {
 TEST(Simplify, RefusesTinyTargets) {
   ricci::SimplifyOptions options;
   options.target_faces = 2;
-  EXPECT_THROW((void)ricci::simplify_mesh(shared_model("closed_g2/eight.off"), options),
+  EXPECT_THROW((void)ricci::simplify_mesh(read_test_mesh("closed_g2/eight.off"), options),
                ricci::InvalidInputError);
 }
 
 TEST(ClosestPoints, VerticesProjectOntoThemselvesAndBarycentricsRebuildThePoint) {
-  ricci::Mesh mesh = shared_model("closed_g2/eight.off");
+  ricci::Mesh mesh = read_test_mesh("closed_g2/eight.off");
   Eigen::MatrixX3d queries(mesh.n_vertices(), 3);
   for (auto v : mesh.vertices()) queries.row(v.idx()) = ricci::to_eigen(mesh.point(v)).transpose();
   queries.array() += 1e-3;  // off the surface a little

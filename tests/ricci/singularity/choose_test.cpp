@@ -7,11 +7,12 @@
 
 #include "ricci/mesh/io.h"
 #include "ricci/singularity/choose.h"
+#include "test_paths.h"
 
 namespace {
 
-ricci::Mesh shared_model(const std::string& relative) {
-  return ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + relative);
+ricci::Mesh read_test_mesh(const std::string& relative) {
+  return ricci::read_mesh(msp_test::test_mesh(relative));
 }
 
 // The paper's brute force: one full flow per vertex.
@@ -30,7 +31,7 @@ double brute_force_best(const ricci::Mesh& mesh, int& best_vertex) {
 // `fewer_flows`: how many times fewer flows than the brute force the choice must run (on a few
 // hundred vertices it verifies V / 20 candidates plus the descents, so about 4-10x).
 void expect_close_to_brute_force(const std::string& model, int fewer_flows = 4) {
-  ricci::Mesh mesh = shared_model(model);
+  ricci::Mesh mesh = read_test_mesh(model);
   auto choice = ricci::choose_singularity(mesh);
   int brute_vertex = -1;
   double brute = brute_force_best(mesh, brute_vertex);
@@ -57,14 +58,14 @@ TEST(ChooseSingularity, MatchesBruteForceOnGenusZero) {
 }
 
 TEST(ChooseSingularity, GenusOneAndOpenSurfacesNeedNoVertex) {
-  auto choice = ricci::choose_singularity(shared_model("closed_g1/knot1.off"));
+  auto choice = ricci::choose_singularity(read_test_mesh("closed_g1/knot1.off.gz"));
   EXPECT_EQ(choice.vertex, -1);
   EXPECT_EQ(choice.flows_run, 1);
   EXPECT_TRUE(std::isfinite(choice.area_distortion));
 }
 
 TEST(ChooseSingularity, LinearRankingCoversEveryInteriorVertexSorted) {
-  auto mesh = shared_model("closed_g2/eight.off");
+  auto mesh = read_test_mesh("closed_g2/eight.off");
   auto ranked = ricci::rank_singularities(mesh);
   EXPECT_EQ(ranked.size(), mesh.n_vertices());
   EXPECT_TRUE(std::is_sorted(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {

@@ -11,11 +11,12 @@
 #include "ricci/mesh/primitives.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "ricci/singularity/one_cone.h"
+#include "test_paths.h"
 
 namespace {
 
-ricci::Mesh shared_model(const std::string& relative) {
-  return ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + relative);
+ricci::Mesh read_test_mesh(const std::string& relative) {
+  return ricci::read_mesh(msp_test::test_mesh(relative));
 }
 
 double total_area(const ricci::Mesh& mesh) {
@@ -33,7 +34,7 @@ double longest_spoke(const ricci::Mesh& mesh, int cone) {
 
 TEST(ConeRefinement, DenserAtTheConeWithTheSurfaceTopologyAndConeKept) {
   const ricci::OneConeProblem before =
-      ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
+      ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 5);
   ricci::OneConeProblem after = before;
   const ricci::ConeRefinement done = ricci::refine_around_cone(after, {2, 6});
 
@@ -66,11 +67,12 @@ TEST(ConeRefinement, DenserAtTheConeWithTheSurfaceTopologyAndConeKept) {
 }
 
 TEST(ConeRefinement, OnlySingleConesAndValidOptions) {
-  ricci::OneConeProblem torus = ricci::prepare_one_cone(shared_model("closed_g1/knot1.off"), 0);
+  ricci::OneConeProblem torus =
+      ricci::prepare_one_cone(read_test_mesh("closed_g1/knot1.off.gz"), 0);
   const auto faces = torus.mesh.n_faces();
   EXPECT_EQ(ricci::refine_around_cone(torus, {2, 6}).levels, 0);
   EXPECT_EQ(torus.mesh.n_faces(), faces);
-  ricci::OneConeProblem cone = ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
+  ricci::OneConeProblem cone = ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 5);
   EXPECT_EQ(ricci::refine_around_cone(cone, {0, 6}).added_faces, 0);
   EXPECT_THROW((void)ricci::refine_around_cone(cone, {-1, 6}), ricci::InvalidInputError);
   EXPECT_THROW((void)ricci::refine_around_cone(cone, {1, 0}), ricci::InvalidInputError);
@@ -82,7 +84,7 @@ TEST(ConeRefinement, RefinedAtlasIsExact) {
   for (const char* path : {"closed_g2/eight.off", "closed_g3/elephant_cgal.off"}) {
     ricci::OneConeAtlasOptions options;
     options.cone_refinement.levels = 2;
-    const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(shared_model(path), options);
+    const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(read_test_mesh(path), options);
     EXPECT_GT(r.cone_refinement.added_faces, 0) << path;
     EXPECT_LT(r.flow.max_error, 1e-9) << path;
     const int chi = 2 - 2 * r.problem.genus;

@@ -11,11 +11,12 @@
 #include "ricci/mesh/io.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/singularity/one_cone.h"
+#include "test_paths.h"
 
 namespace {
 
-ricci::Mesh shared_model(const std::string& relative) {
-  return ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + relative);
+ricci::Mesh read_test_mesh(const std::string& relative) {
+  return ricci::read_mesh(msp_test::test_mesh(relative));
 }
 
 // Runs the flow on the problem and checks the curvature reached its target everywhere.
@@ -27,7 +28,7 @@ ricci::FlowResult expect_flow_reaches_target(const ricci::OneConeProblem& proble
 }
 
 TEST(OneCone, GenusTwoGetsOneConeOfCurvatureTwoPiChi) {
-  auto mesh = shared_model("closed_g2/eight.off");
+  auto mesh = read_test_mesh("closed_g2/eight.off");
   auto problem = ricci::prepare_one_cone(mesh, 5);
   EXPECT_EQ(problem.kind, ricci::OneConeKind::SingleCone);
   EXPECT_EQ(problem.genus, 2);
@@ -39,7 +40,7 @@ TEST(OneCone, GenusTwoGetsOneConeOfCurvatureTwoPiChi) {
 }
 
 TEST(OneCone, GenusThreeConeAngleIsTenPi) {
-  auto mesh = shared_model("closed_g3/genus3.off");
+  auto mesh = read_test_mesh("closed_g3/genus3.off.gz");
   auto problem = ricci::prepare_one_cone(mesh, 100);
   EXPECT_EQ(problem.kind, ricci::OneConeKind::SingleCone);
   auto r = expect_flow_reaches_target(problem);
@@ -49,12 +50,14 @@ TEST(OneCone, GenusThreeConeAngleIsTenPi) {
 // The first single-cone metric: Thurston's angles of the mesh except tangent circles on every
 // edge within 3 rings of the cone; on genus3_100k it is the one that converges (bench one-cone).
 TEST(OneCone, ConeTangentMetricIsTangentNearTheConeAndTheMeshsPackingElsewhere) {
-  auto problem = ricci::prepare_one_cone(shared_model("closed_g3/genus3.off"), 100);
+  auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g3/genus3.off.gz"), 100);
   const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
-  const auto packing = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean,
-                                             ricci::Scheme::CirclePacking, ricci::RadiusInit::Mean);
-  const auto blended = ricci::cone_tangent_metric(t, lengths, problem.cone, 3, ricci::RadiusInit::Mean);
+  const auto packing =
+      ricci::initial_metric(t, lengths, ricci::Geometry::euclidean, ricci::Scheme::circle_packing,
+                            ricci::RadiusInit::mean);
+  const auto blended =
+      ricci::cone_tangent_metric(t, lengths, problem.cone, 3, ricci::RadiusInit::mean);
   std::vector<char> near(problem.mesh.n_vertices(), 0);  // within 2 rings: its edges reach ring 3
   near[problem.cone] = 1;
   for (auto v : ricci::ring_neighbourhood(problem.mesh, problem.mesh.vertex_handle(problem.cone), 2)) near[v.idx()] = 1;
@@ -77,13 +80,14 @@ TEST(OneCone, ConeTangentMetricIsTangentNearTheConeAndTheMeshsPackingElsewhere) 
 // Inversive distance far from the cone reproduces the mesh there; Thurston's angles near it are
 // that inversive distance clamped to [0, pi/2], with the same radii.
 TEST(OneCone, ConeRingMetricKeepsTheMeshFarFromTheConeAndClampsNearIt) {
-  auto problem = ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
+  auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 5);
   const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
-  const auto inversive = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean,
-                                               ricci::Scheme::InversiveDistance, ricci::RadiusInit::Mean);
-  const ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::CirclePacking, 4,
-                                   ricci::RadiusInit::Mean};
+  const auto inversive =
+      ricci::initial_metric(t, lengths, ricci::Geometry::euclidean,
+                            ricci::Scheme::inversive_distance, ricci::RadiusInit::mean);
+  const ricci::ConeRingMetric rule{ricci::Scheme::inversive_distance, ricci::Scheme::circle_packing,
+                                   4, ricci::RadiusInit::mean};
   const auto mixed = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
   EXPECT_EQ(mixed.gamma, inversive.gamma);
   std::vector<char> near(problem.mesh.n_vertices(), 0);  // within 3 rings: its edges reach ring 4
@@ -105,14 +109,14 @@ TEST(OneCone, ConeRingMetricKeepsTheMeshFarFromTheConeAndClampsNearIt) {
 }
 
 TEST(OneCone, ConeRingMetricClampsTheEdgesOfNeedles) {
-  auto problem = ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
+  auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 5);
   const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
-  ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::Combinatorial, 1,
-                             ricci::RadiusInit::Mean};
+  ricci::ConeRingMetric rule{ricci::Scheme::inversive_distance, ricci::Scheme::combinatorial, 1,
+                             ricci::RadiusInit::mean};
   rule.needle_angle = 0.5;  // radians: most of the eight's faces
   const auto mixed = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
-  const Eigen::MatrixX3d angles = ricci::corner_angles(t, lengths, ricci::Geometry::Euclidean);
+  const Eigen::MatrixX3d angles = ricci::corner_angles(t, lengths, ricci::Geometry::euclidean);
   int needles = 0;
   for (int f = 0; f < t.num_faces(); ++f) {
     if (angles.row(f).minCoeff() >= rule.needle_angle) continue;
@@ -126,13 +130,14 @@ TEST(OneCone, ConeRingMetricClampsTheEdgesOfNeedles) {
 // faces that mix clamped and free weights and fail the triangle inequality join the clamped side,
 // so the initial metric is valid (genus2_10k at 6 rings breaks faces without that).
 TEST(OneCone, ConeRingMetricWithNonnegativeInversiveDistancesIsAValidMetric) {
-  auto problem = ricci::prepare_one_cone(shared_model("bench/genus2_10k.obj"), 0);
+  auto problem = ricci::prepare_one_cone(read_test_mesh("bench/genus2_10k.obj.gz"), 0);
   const ricci::MeshTables t = ricci::build_mesh_tables(problem.mesh);
   const ricci::EdgeLengths lengths = ricci::mesh_edge_lengths(problem.mesh);
-  const auto mean = ricci::initial_metric(t, lengths, ricci::Geometry::Euclidean, ricci::Scheme::InversiveDistance,
-                                          ricci::RadiusInit::Mean);
-  ricci::ConeRingMetric rule{ricci::Scheme::InversiveDistance, ricci::Scheme::CirclePacking, 6,
-                             ricci::RadiusInit::Mean};
+  const auto mean =
+      ricci::initial_metric(t, lengths, ricci::Geometry::euclidean,
+                            ricci::Scheme::inversive_distance, ricci::RadiusInit::mean);
+  ricci::ConeRingMetric rule{ricci::Scheme::inversive_distance, ricci::Scheme::circle_packing, 6,
+                             ricci::RadiusInit::mean};
   rule.nonnegative_inversive_distance = true;
   const auto metric = ricci::cone_ring_metric(t, lengths, problem.cone, rule);
   EXPECT_GE(metric.eta.minCoeff(), 0.0);
@@ -142,25 +147,26 @@ TEST(OneCone, ConeRingMetricWithNonnegativeInversiveDistancesIsAValidMetric) {
   int reproduced = 0;
   for (int e = 0; e < t.num_edges(); ++e) reproduced += std::abs(l[e] - lengths[e]) <= 1e-12 * lengths[e];
   EXPECT_GT(reproduced, t.num_edges() * 9 / 10);
-  EXPECT_NO_THROW((void)ricci::corner_angles(t, l, ricci::Geometry::Euclidean));
+  EXPECT_NO_THROW((void)ricci::corner_angles(t, l, ricci::Geometry::euclidean));
 }
 
 TEST(OneCone, ConeRingFlowReachesTheConeAndRefusesOtherProblems) {
-  auto problem = ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 5);
-  const std::vector<ricci::ConeRingMetric> rules = {
-      {ricci::Scheme::InversiveDistance, ricci::Scheme::Combinatorial, 3, ricci::RadiusInit::Mean}};
+  auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 5);
+  const std::vector<ricci::ConeRingMetric> rules = {{ricci::Scheme::inversive_distance,
+                                                     ricci::Scheme::combinatorial, 3,
+                                                     ricci::RadiusInit::mean}};
   const ricci::FlowResult r = ricci::solve_cone_ring_flow(problem, rules, ricci::one_cone_flow_options());
   ASSERT_TRUE(r.converged()) << r.message;
   EXPECT_LT(r.max_error, 1e-9);
   EXPECT_NEAR(2 * M_PI - r.curvature[problem.cone], 6 * M_PI, 1e-9);
   EXPECT_TRUE(r.failed_attempts.empty());
-  auto torus = ricci::prepare_one_cone(shared_model("closed_g1/knot1.off"), 0);
+  auto torus = ricci::prepare_one_cone(read_test_mesh("closed_g1/knot1.off.gz"), 0);
   EXPECT_THROW((void)ricci::solve_cone_ring_flow(torus, rules, ricci::one_cone_flow_options()),
                ricci::InvalidInputError);
 }
 
 TEST(OneCone, GenusOneIsAFlatTorusWithoutCone) {
-  auto problem = ricci::prepare_one_cone(shared_model("closed_g1/knot1.off"), 0);
+  auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g1/knot1.off.gz"), 0);
   EXPECT_EQ(problem.kind, ricci::OneConeKind::FlatTorus);
   EXPECT_EQ(problem.cone, -1);
   EXPECT_NEAR(problem.targets.curvature.cwiseAbs().maxCoeff(), 0.0, 0.0);
@@ -168,7 +174,7 @@ TEST(OneCone, GenusOneIsAFlatTorusWithoutCone) {
 }
 
 TEST(OneCone, GenusZeroRemovesTheStarAndBendsTheNewBoundary) {
-  auto mesh = shared_model("closed_g0/knight_decimated.off");
+  auto mesh = read_test_mesh("closed_g0/knight_decimated.off");
   auto problem = ricci::prepare_one_cone(mesh, 7);
   EXPECT_EQ(problem.kind, ricci::OneConeKind::PuncturedSphere);
   EXPECT_EQ(problem.mesh.n_vertices() + 1, mesh.n_vertices());
@@ -178,7 +184,7 @@ TEST(OneCone, GenusZeroRemovesTheStarAndBendsTheNewBoundary) {
 }
 
 TEST(OneCone, OpenSurfacePushesCurvatureToTheBoundary) {
-  auto mesh = shared_model("open/head.off");
+  auto mesh = read_test_mesh("open/head.off");
   auto problem = ricci::prepare_one_cone(mesh, -1);
   EXPECT_EQ(problem.kind, ricci::OneConeKind::OpenSurface);
   EXPECT_EQ(problem.boundary_loops, 3);
@@ -187,7 +193,7 @@ TEST(OneCone, OpenSurfacePushesCurvatureToTheBoundary) {
 }
 
 TEST(OneCone, VertexOutOfRangeIsRefused) {
-  EXPECT_THROW((void)ricci::prepare_one_cone(shared_model("closed_g2/eight.off"), 100000),
+  EXPECT_THROW((void)ricci::prepare_one_cone(read_test_mesh("closed_g2/eight.off"), 100000),
                ricci::InvalidInputError);
 }
 
@@ -196,8 +202,8 @@ TEST(OneCone, VertexOutOfRangeIsRefused) {
 namespace {
 
 TEST(OneCone, CircleDomainTargetMakesRoundHoles) {
-  auto mesh = shared_model("open/holes.off");  // genus 0, 7 boundary loops
-  auto targets = ricci::boundary_target(mesh, ricci::BoundaryMode::CircleDomain);
+  auto mesh = read_test_mesh("open/holes.off.gz");  // genus 0, 7 boundary loops
+  auto targets = ricci::boundary_target(mesh, ricci::BoundaryMode::circle_domain);
   auto tables = ricci::build_mesh_tables(mesh);
   ASSERT_EQ(tables.boundary_loops.size(), 7u);
   EXPECT_NEAR(targets.curvature.sum(), 2 * M_PI * tables.euler_characteristic, 1e-9);
@@ -215,7 +221,7 @@ TEST(OneCone, CircleDomainTargetMakesRoundHoles) {
 }
 
 TEST(OneCone, ScanWithManyHolesFallsBackToACircleDomain) {
-  auto problem = ricci::prepare_one_cone(shared_model("open/mech-holes-shark.off"), -1);
+  auto problem = ricci::prepare_one_cone(read_test_mesh("open/mech-holes-shark.off.gz"), -1);
   auto r = expect_flow_reaches_target(problem);
   EXPECT_FALSE(r.failed_attempts.empty());  // spread by length fails on this scan
 }

@@ -10,16 +10,18 @@
 #include "ricci/metric/mesh_tables.h"
 #include "ricci/singularity/one_cone.h"
 #include "ricci/singularity/open_target.h"
+#include "test_paths.h"
 
 namespace {
 
-ricci::Mesh shared_model(const std::string& relative) {
-  return ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + relative);
+ricci::Mesh read_test_mesh(const std::string& relative) {
+  return ricci::read_mesh(msp_test::test_mesh(relative));
 }
 
 TEST(HarmonicBoundaryTarget, SumsToTwoPiChiWithAFlatInterior) {
-  for (const char* path : {"open/lion.off", "open/head.off", "open/double-torus-3-holes_quad.off"}) {
-    const ricci::Mesh mesh = shared_model(path);
+  for (const char* path :
+       {"open/lion.off.gz", "open/head.off", "open/double-torus-3-holes_quad.off"}) {
+    const ricci::Mesh mesh = read_test_mesh(path);
     const ricci::MeshTables t = ricci::build_mesh_tables(mesh);
     const ricci::Targets targets = ricci::harmonic_boundary_target(mesh);
     EXPECT_NEAR(targets.curvature.sum(), 2 * M_PI * t.euler_characteristic, 1e-10) << path;
@@ -36,7 +38,7 @@ TEST(HarmonicBoundaryTarget, APlanarMeshKeepsItsOwnBoundaryCurvature) {
   const ricci::Mesh disk = ricci::make_disk(6, 24);
   const ricci::MeshTables t = ricci::build_mesh_tables(disk);
   const Eigen::VectorXd K =
-      ricci::vertex_curvature(t, ricci::mesh_edge_lengths(disk), ricci::Geometry::Euclidean);
+      ricci::vertex_curvature(t, ricci::mesh_edge_lengths(disk), ricci::Geometry::euclidean);
   const ricci::Targets targets = ricci::harmonic_boundary_target(disk);
   for (int v = 0; v < t.num_vertices(); ++v) {
     EXPECT_NEAR(targets.curvature[v], t.is_boundary_vertex[v] ? K[v] : 0.0, 1e-12) << v;
@@ -65,11 +67,11 @@ TEST(HarmonicBoundaryTarget, KeepsTheBoundaryShapeBetterThanSpreadingByLength) {
   // nonlinear flow the boundary edges keep their lengths up to one scale much better than with
   // 2*pi*chi spread by length (whose flow breaks triangles on this 5-hole scan, so compare on a
   // 3-hole one that both reach).
-  const ricci::Mesh mesh = shared_model("open/head.off");
+  const ricci::Mesh mesh = read_test_mesh("open/head.off");
   ricci::OneConeProblem problem = ricci::prepare_one_cone(mesh, -1);
   ASSERT_EQ(problem.kind, ricci::OneConeKind::OpenSurface);
   const double harmonic = boundary_scale_spread(problem);
-  problem.targets = ricci::boundary_target(problem.mesh, ricci::BoundaryMode::SpreadByLength);
+  problem.targets = ricci::boundary_target(problem.mesh, ricci::BoundaryMode::spread_by_length);
   const double by_length = boundary_scale_spread(problem);
   EXPECT_LT(harmonic, 0.25 * by_length) << harmonic << " vs " << by_length;
 }

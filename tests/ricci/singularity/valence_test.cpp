@@ -6,6 +6,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
 #include "ricci/singularity/valence.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -32,8 +33,8 @@ int euler_characteristic(const Mesh& m) {
   return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) + static_cast<int>(m.n_faces());
 }
 
-Mesh shared_model(const std::string& relative) {
-  return ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + relative);
+Mesh read_test_mesh(const std::string& relative) {
+  return ricci::read_mesh(msp_test::test_mesh(relative));
 }
 
 TEST(Valence, RequiredConeValenceFollowsThePaperBound) {
@@ -56,7 +57,7 @@ void expect_geometry_kept(const Mesh& before, const ricci::ValenceResult& r) {
 }
 
 TEST(Valence, Genus2ConeReachesTwelveNeighboursWithGeometryUnchanged) {
-  Mesh mesh = shared_model("closed_g2/eight.off");
+  Mesh mesh = read_test_mesh("closed_g2/eight.off");
   ricci::ValenceOptions options;
   options.cone_curvature = -4 * M_PI;
   auto r = ricci::modify_valence(mesh, mesh.vertex_handle(0), options);
@@ -72,7 +73,7 @@ TEST(Valence, Genus2ConeReachesTwelveNeighboursWithGeometryUnchanged) {
 }
 
 TEST(Valence, Genus3ConeReachesTwentyNeighbours) {
-  Mesh mesh = shared_model("closed_g3/helmet.off");
+  Mesh mesh = read_test_mesh("closed_g3/helmet.off");
   ricci::ValenceOptions options;
   options.cone_curvature = -8 * M_PI;
   auto r = ricci::modify_valence(mesh, mesh.vertex_handle(17), options);
@@ -81,7 +82,7 @@ TEST(Valence, Genus3ConeReachesTwentyNeighbours) {
 }
 
 TEST(Valence, NothingToDoLeavesTheMeshAlone) {
-  Mesh mesh = shared_model("closed_g1/knot1.off");
+  Mesh mesh = read_test_mesh("closed_g1/knot1.off.gz");
   ricci::ValenceOptions options;
   options.ring_valence = 0;
   auto r = ricci::modify_valence(mesh, mesh.vertex_handle(0), options);
@@ -90,7 +91,7 @@ TEST(Valence, NothingToDoLeavesTheMeshAlone) {
 }
 
 TEST(Valence, BoundaryOrMissingConeIsRefused) {
-  Mesh mesh = shared_model("open/head.off");
+  Mesh mesh = read_test_mesh("open/head.off");
   ricci::VertexHandle boundary_vertex;
   for (auto v : mesh.vertices()) {
     if (mesh.is_boundary(v)) {

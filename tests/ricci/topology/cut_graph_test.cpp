@@ -8,6 +8,7 @@
 #include "ricci/topology/polygon_word.h"
 #include "ricci/topology/slice.h"
 #include "ricci/topology/test_grids.h"
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
@@ -176,7 +177,7 @@ class CutGraphOnModels : public ::testing::TestWithParam<ModelCase> {};
 
 TEST_P(CutGraphOnModels, SlicesIntoADiskWithTwoGLoops) {
   const ModelCase c = GetParam();
-  const Mesh mesh = read_mesh(test::shared_model(c.path));
+  const Mesh mesh = read_mesh(msp_test::test_mesh(c.path));
   // Two roots: vertex 0 and one in the middle of the index range (often elsewhere on the shape).
   for (int root : {0, static_cast<int>(mesh.n_vertices() / 2)}) {
     SCOPED_TRACE(std::string(c.path) + " root " + std::to_string(root));
@@ -196,12 +197,13 @@ TEST_P(CutGraphOnModels, SlicesIntoADiskWithTwoGLoops) {
 INSTANTIATE_TEST_SUITE_P(
     Models, CutGraphOnModels,
     ::testing::Values(
-        ModelCase{"closed_g1/kitten_nf20k.off", 1, 0}, ModelCase{"closed_g1/knot1.off", 1, 0},
-        ModelCase{"closed_g2/eight.off", 2, 0}, ModelCase{"closed_g2/joint.off", 2, 0},
-        ModelCase{"closed_g3/genus3.off", 3, 0}, ModelCase{"closed_g4plus/fertility.off", 4, 0},
+        ModelCase{"closed_g1/kitten_nf20k.off.gz", 1, 0},
+        ModelCase{"closed_g1/knot1.off.gz", 1, 0}, ModelCase{"closed_g2/eight.off", 2, 0},
+        ModelCase{"closed_g2/joint.off", 2, 0}, ModelCase{"closed_g3/genus3.off.gz", 3, 0},
+        ModelCase{"closed_g4plus/fertility.off.gz", 4, 0},
         ModelCase{"closed_g4plus/couplingdown.off", 9, 0}, ModelCase{"open/head.off", 0, 3},
-        ModelCase{"open/holes.off", 0, 7}, ModelCase{"open/eight_hole.off", 2, 1},
-        ModelCase{"open/eight_open.off", 0, 4}, ModelCase{"open/beetle.off", 0, 11}),
+        ModelCase{"open/holes.off.gz", 0, 7}, ModelCase{"open/eight_hole.off", 2, 1},
+        ModelCase{"open/eight_open.off", 0, 4}, ModelCase{"open/beetle.off.gz", 0, 11}),
     [](const auto& info) {
       std::string name = info.param.path;
       for (char& ch : name) {

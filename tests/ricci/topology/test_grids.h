@@ -1,7 +1,6 @@
 #pragma once
 // Small procedural meshes for the topology, layout and atlas tests: a jittered planar grid
-// (open disk, non-uniform lengths) and the path of a shared model. Flat tori come from
-// ricci/mesh/primitives.h.
+// (open disk, non-uniform lengths). Flat tori come from ricci/mesh/primitives.h.
 #include <cmath>
 #include <string>
 
@@ -40,8 +39,5 @@ inline Mesh planar_grid(int nx, int ny, double width, double height) {
   return mesh;
 }
 
-inline std::string shared_model(const std::string& relative) {
-  return std::string(MSP_SHARED_MODELS) + "/" + relative;
-}
 
 }  // namespace ricci::test

@@ -15,11 +15,11 @@
 #include "ricci/mesh/primitives.h"
 #include "spline/baseline/loop_fit.h"
 #include "spline/baseline/loop_surface.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
 
-const std::string kModels = MSP_SHARED_MODELS;
 
 Eigen::MatrixX3d positions(const ricci::Mesh& mesh) {
   Eigen::MatrixX3d x(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
@@ -131,7 +131,7 @@ ricci::Mesh perturbed_icosphere() {
 // at their dyadic (u, v): checks the scheme, the boundary-free masks and the ptex convention.
 TEST(LoopSurface, MatchesIndependentLoopLimitPoints) {
   for (const ricci::Mesh& control :
-       {perturbed_icosphere(), ricci::read_mesh(kModels + "/closed_g2/eight_cgal.off")}) {
+       {perturbed_icosphere(), ricci::read_mesh(msp_test::test_mesh("closed_g2/eight_cgal.off"))}) {
     const LoopSurface surface(control);
     const LimitSamples s = loop_limit_samples(control, 2);
     const Eigen::MatrixX3d patch_points = surface.patch_points(positions(control));
@@ -184,7 +184,7 @@ TEST(LoopSurface, DesignMatrixMatchesPatchEvaluationAndDerivatives) {
 // give back exactly those control points with lambda = 0.
 TEST(LoopFit, RecoversControlPointsOfExactLimitSamples) {
   for (const ricci::Mesh& control :
-       {perturbed_icosphere(), ricci::read_mesh(kModels + "/closed_g2/eight_cgal.off")}) {
+       {perturbed_icosphere(), ricci::read_mesh(msp_test::test_mesh("closed_g2/eight_cgal.off"))}) {
     const LoopSurface surface(control);
     const LimitSamples s = loop_limit_samples(control, 2);
     const LoopSolve solve = fit_loop_control_points(surface, s.locations, s.points, 0.0);
@@ -267,7 +267,7 @@ TEST(LoopFit, ProjectionReachesPointsOnTheSurface) {
 
 // Spot (2930 vertices) with about 500 control points.
 TEST(LoopFit, FitsClosedGenusZeroScan) {
-  const ricci::Mesh dense = ricci::read_mesh(kModels + "/closed_g0/spot.obj");
+  const ricci::Mesh dense = ricci::read_mesh(msp_test::test_mesh("closed_g0/spot.obj.gz"));
   LoopFitOptions options;
   options.control_points = 500;
   const LoopFitResult r = fit_loop_surface(dense, options);
@@ -284,7 +284,7 @@ TEST(LoopFit, FitsClosedGenusZeroScan) {
 
 // head.off: 3 boundary loops; boundary interpolation keeps the fit finite and close.
 TEST(LoopFit, FitsOpenScan) {
-  const ricci::Mesh dense = ricci::read_mesh(kModels + "/open/head.off");
+  const ricci::Mesh dense = ricci::read_mesh(msp_test::test_mesh("open/head.off"));
   LoopFitOptions options;
   options.control_points = 500;
   const LoopFitResult r = fit_loop_surface(dense, options);
@@ -296,7 +296,7 @@ TEST(LoopFit, FitsOpenScan) {
 }
 
 TEST(LoopFit, BadInputThrows) {
-  const ricci::Mesh dense = ricci::read_mesh(kModels + "/closed_g0/knight_decimated.off");
+  const ricci::Mesh dense = ricci::read_mesh(msp_test::test_mesh("closed_g0/knight_decimated.off"));
   LoopFitOptions options;
   EXPECT_THROW((void)fit_loop_surface(ricci::Mesh(), options), ricci::InvalidInputError);
   options.control_points = 3;

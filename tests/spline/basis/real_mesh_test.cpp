@@ -15,6 +15,7 @@
 #include "spline/basis/planar_space.h"
 #include "spline/knots/dms_conditions.h"
 #include "spline/knots/knot_cloud.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
@@ -74,7 +75,7 @@ class RealMeshPatch : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RealMeshPatch, PartitionOfUnityAndReproduction) {
   const ricci::VertexFaceArrays mesh =
-      ricci::to_arrays(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + GetParam()));
+      ricci::to_arrays(ricci::read_mesh(msp_test::test_mesh(GetParam())));
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> pick(0, static_cast<int>(mesh.V.rows()) - 1);
   int patches = 0;
@@ -107,8 +108,8 @@ TEST_P(RealMeshPatch, PartitionOfUnityAndReproduction) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, RealMeshPatch,
-                         ::testing::Values("closed_g0/bunny_igl.off", "closed_g0/horse.off",
-                                           "open/lion.off", "open/head.off"));
+                         ::testing::Values("closed_g0/bunny_igl.off.gz", "closed_g0/camel.off.gz",
+                                           "open/lion.off.gz", "open/head.off"));
 
 }  // namespace
 }  // namespace spline

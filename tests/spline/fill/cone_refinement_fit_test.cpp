@@ -9,6 +9,7 @@
 #include "spline/fill/fill_fixtures.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fit/fit.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
@@ -34,8 +35,8 @@ double quantile(const std::vector<double>& sorted, double q) {
 // median 0.41 degrees with and without the refinement, 99th percentile 0.92 -> 2.9, largest
 // 1.1 -> 8.0 (in the refined rings next to the hole; no fold, which shows as tens of degrees).
 TEST(ConeRefinementFit, SmoothAwayFromTheHoleAndMetByThePatch) {
-  const auto& plain = testing::fitted_scan(testing::bundled_model("genus2.off"), 1000, 0);
-  const auto& refined = testing::fitted_scan(testing::bundled_model("genus2.off"), 1000);
+  const auto& plain = testing::fitted_scan(msp_test::bundled_model("genus2.off"), 1000, 0);
+  const auto& refined = testing::fitted_scan(msp_test::bundled_model("genus2.off"), 1000);
   EXPECT_GT(refined.atlas.cone_refinement.added_faces, 0);
   EXPECT_EQ(plain.atlas.cone_refinement.added_faces, 0);
   const std::vector<double> steps = steps_away_from_rim(refined, 3);

@@ -7,6 +7,7 @@
 
 #include "ricci/mesh/io.h"
 #include "spline/fit/fit.h"
+#include "test_paths.h"
 
 namespace spline::testing {
 
@@ -28,11 +29,5 @@ inline const ScanFitResult& fitted_scan(const std::string& path, int faces = 100
   return *slot;
 }
 
-inline std::string bundled_model(const std::string& name) {
-  return std::string(MSP_SOURCE_DIR) + "/models/" + name;
-}
-inline std::string shared_model(const std::string& name) {
-  return std::string(MSP_SHARED_MODELS) + "/" + name;
-}
 
 }  // namespace spline::testing

@@ -14,6 +14,7 @@
 #include "spline/fill/hole_fill.h"
 #include "spline/fit/fit.h"
 #include "spline/manifold/manifold_fixtures.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
@@ -249,7 +250,7 @@ TEST(FillRim, ParametricPatchReproducesAPlane) {
 // samples per rim edge.
 TEST(FillRim, MeetsFittedScansWithG1) {
   for (const std::string& path :
-       {testing::shared_model("closed_g2/eight.off"), testing::bundled_model("genus2.off")}) {
+       {msp_test::test_mesh("closed_g2/eight.off"), msp_test::bundled_model("genus2.off")}) {
     const auto& fit = testing::fitted_scan(path, 1000);
     const auto& mesh = fit.atlas.problem.mesh;
     const auto rims = find_rims(*fit.spline.space, mesh);
@@ -273,7 +274,7 @@ TEST(FillRim, MeetsFittedScansWithG1) {
 // domain is not refined around the cone: with the pipeline's refinement the hole is smaller
 // and a height field (0.11 degrees), and this rim is the hard case the fallbacks are for.
 TEST(FillRim, Genus3ConeHoleParametricPatch) {
-  const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 2000, 0);
+  const auto& fit = testing::fitted_scan(msp_test::bundled_model("genus3.off"), 2000, 0);
   const auto& mesh = fit.atlas.problem.mesh;
   const auto rims = find_rims(*fit.spline.space, mesh);
   ASSERT_EQ(rims.size(), 1u);
@@ -302,7 +303,7 @@ TEST(FillRim, Genus3ConeHoleParametricPatch) {
 
 // Scaling the surface by 1000 and moving it scales the patch: same angles, same relative gaps.
 TEST(FillRim, ScaleInvariant) {
-  const auto& fit = testing::fitted_scan(testing::shared_model("closed_g2/eight.off"), 1000);
+  const auto& fit = testing::fitted_scan(msp_test::test_mesh("closed_g2/eight.off"), 1000);
   const ricci::Mesh& mesh = fit.atlas.problem.mesh;
   const auto rims = find_rims(*fit.spline.space, mesh);
   FillOptions options;
@@ -347,7 +348,7 @@ TEST(FillRim, BadInputThrows) {
 // The tessellation is a disk whose boundary is the d * m rim samples in order, consistently
 // oriented with the surface (checked against the surface's normals at the rim).
 TEST(TessellateFill, DiskGluedToTheRimWithTheSurfaceOrientation) {
-  const auto& fit = testing::fitted_scan(testing::shared_model("closed_g2/eight.off"), 1000);
+  const auto& fit = testing::fitted_scan(msp_test::test_mesh("closed_g2/eight.off"), 1000);
   const auto& mesh = fit.atlas.problem.mesh;
   const auto rims = find_rims(*fit.spline.space, mesh);
   const HoleFill fill = fill_rim(fit.spline, mesh, rims[0]);

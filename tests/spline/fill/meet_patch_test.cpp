@@ -12,6 +12,7 @@
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/meet_patch.h"
 #include "spline/fit/fit.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
@@ -24,7 +25,7 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
   // smoothing of earlier defaults (1e-5 everywhere): the defaults' smoother surface (sparse
   // faces at 1e-3) turns less next to the rim, and moving it there no longer helps (2.3 -> 2.6
   // degrees; msp fit keeps a moved surface only when its seam drops).
-  const auto& fit = testing::fitted_scan(testing::bundled_model("genus3.off"), 2000, 0, 1e-5);
+  const auto& fit = testing::fitted_scan(msp_test::bundled_model("genus3.off"), 2000, 0, 1e-5);
   const auto& mesh = fit.atlas.problem.mesh;
   const auto rims = find_rims(*fit.spline.space, mesh);
   ASSERT_EQ(rims.size(), 1u);
@@ -89,7 +90,7 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
 // (genus2.off at 1000 faces, faces 3 or more rings from the rim: 99th percentile 0.92 -> 2.9
 // degrees, largest 1.1 -> 8.0), which ConeRefinement.KeepsTheFitSmooth bounds.
 TEST(MaxNormalStep, SmallOnASmoothFitLargeWhereTheSplineCollapses) {
-  const auto& fit = testing::fitted_scan(testing::bundled_model("genus2.off"), 1000, 0);
+  const auto& fit = testing::fitted_scan(msp_test::bundled_model("genus2.off"), 1000, 0);
   const auto rings = domain_rim_rings(*fit.spline.space);
   double far = 0.0, next_to_rim = 0.0;
   for (int d = 0; d < fit.spline.space->domain_face_count(); ++d) {
@@ -105,7 +106,7 @@ TEST(MaxNormalStep, SmallOnASmoothFitLargeWhereTheSplineCollapses) {
 }
 
 TEST(MeetPatches, BadOptionsThrow) {
-  const auto& fit = testing::fitted_scan(testing::shared_model("closed_g2/eight.off"), 1000);
+  const auto& fit = testing::fitted_scan(msp_test::test_mesh("closed_g2/eight.off"), 1000);
   MeetPatchOptions bad;
   bad.samples_per_edge = 0;
   EXPECT_THROW((void)meet_patches(fit.spline, {}, bad), ricci::InvalidInputError);

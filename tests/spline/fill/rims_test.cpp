@@ -21,6 +21,7 @@
 #include "ricci/topology/slice.h"
 #include "spline/fill/rims.h"
 #include "spline/tessellate/tessellate.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
@@ -238,11 +239,11 @@ TEST(Rims, BadMasksThrow) {
 // must still be one disk.
 TEST(Rims, OpenScansWithNearbyLoops) {
   for (const auto& [model, loops] :
-       std::vector<std::pair<std::string, int>>{{"open/beetle.off", 11}}) {
+       std::vector<std::pair<std::string, int>>{{"open/beetle.off.gz", 11}}) {
     ricci::SimplifyOptions options;
     options.target_faces = 2000;
     const ricci::Mesh mesh =
-        ricci::simplify_mesh(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + model),
+        ricci::simplify_mesh(ricci::read_mesh(msp_test::test_mesh(model)),
                              options)
             .mesh;
     ASSERT_EQ(ricci::surface_topology(mesh).boundary_loops, loops) << model;
@@ -392,7 +393,7 @@ TEST(Rims, ConeHoleGrowsPastFolds) {
 TEST(Rims, PuncturedSphereHasOneRim) {
   for (const std::string model : {"closed_g0/knight_decimated.off"}) {
     const auto a =
-        ricci::build_one_cone_atlas(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + model));
+        ricci::build_one_cone_atlas(ricci::read_mesh(msp_test::test_mesh(model)));
     ASSERT_EQ(a.problem.kind, ricci::OneConeKind::PuncturedSphere) << model;
     const ricci::Mesh& mesh = a.problem.mesh;
     const auto& domain = a.atlas.in_domain;

@@ -10,6 +10,7 @@
 #include "spline/fit/fit.h"
 #include "spline/fit/normal_equations.h"
 #include "spline/manifold/manifold_fixtures.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
@@ -126,7 +127,7 @@ TEST(Fit, ProjectionFindsTheFootPoint) {
 // The whole pipeline on the bundled genus-1 model (3000 faces) with a 600-face domain: the fitted
 // and faired cubic spline stays within a small fraction of the bounding-box diagonal.
 TEST(Fit, ScanPipelineFitsTheBundledTorus) {
-  const ricci::Mesh dense = ricci::read_mesh(std::string(MSP_SOURCE_DIR) + "/models/genus1.off");
+  const ricci::Mesh dense = ricci::read_mesh(msp_test::bundled_model("genus1.off"));
   ScanFitOptions options;
   options.domain_faces = 600;
   const ScanFitResult result = fit_scan(dense, options);
@@ -383,7 +384,7 @@ TEST(Fit, ParameterCorrectionLowersTheErrorOfAFitToExactData) {
 // default parameter correction it is 0.170%.
 TEST(Fit, ScanPipelineFitsFemurBelowTwoPerMilleAtR1) {
   const ricci::Mesh dense =
-      ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/femur.off");
+      ricci::read_mesh(msp_test::test_mesh("closed_g2/femur.off.gz"));
   ScanFitOptions options;
   options.domain_faces = 2000;
   options.fair_r = 1;
@@ -405,7 +406,7 @@ TEST(Fit, ScanPipelineFitsFemurBelowTwoPerMilleAtR1) {
 // left out like those on rim edges. Fitted, they made spikes of 47% of the diagonal.
 TEST(Fit, ScanPipelineLeavesOutPointsAtRimVertices) {
   const ricci::Mesh dense =
-      ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g0/knight_decimated.off");
+      ricci::read_mesh(msp_test::test_mesh("closed_g0/knight_decimated.off"));
   ScanFitOptions options;
   options.fair_r = 1;
   options.parameter_corrections = 0;  // the parameters are the closest points themselves

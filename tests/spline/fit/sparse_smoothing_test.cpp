@@ -1,5 +1,5 @@
 // FitOptions::sparse_smoothing: faces reached by fewer points than they carry functions are
-// smoothed more, so the fitted surface does not fold between the points. The shared "eight"
+// smoothed more, so the fitted surface does not fold between the points. The test mesh "eight"
 // (1536 faces, its own domain: 2302 points for ~33k functions) folds with the light smoothing
 // alone and does not with the defaults, at a small cost in RMS.
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include "spline/fit/fit.h"
 #include "spline/tessellate/dihedral.h"
 #include "spline/tessellate/tessellate.h"
+#include "test_paths.h"
 
 namespace spline {
 namespace {
@@ -22,7 +23,7 @@ struct Outcome {
 
 Outcome fit_eight(double sparse_smoothing) {
   const ricci::Mesh dense =
-      ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g2/eight.off");
+      ricci::read_mesh(msp_test::test_mesh("closed_g2/eight.off"));
   ScanFitOptions options;
   options.fit.smoothing = 1e-5;
   options.fit.sparse_smoothing = sparse_smoothing;

@@ -8,6 +8,7 @@
 #include "ricci/mesh/simplify.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "spline/manifold/manifold_space.h"
+#include "test_paths.h"
 
 namespace spline::testing {
 
@@ -16,7 +17,7 @@ inline const ricci::OneConeAtlasResult& small_atlas(const std::string& model, in
   const std::string key = model + "/" + std::to_string(faces);
   auto& slot = cache[key];
   if (!slot) {
-    const ricci::Mesh dense = ricci::read_mesh(std::string(MSP_SOURCE_DIR) + "/models/" + model);
+    const ricci::Mesh dense = ricci::read_mesh(msp_test::bundled_model(model));
     ricci::SimplifyOptions options;
     options.target_faces = faces;
     slot = std::make_unique<ricci::OneConeAtlasResult>(

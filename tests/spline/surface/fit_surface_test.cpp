@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "test_paths.h"
 #include "apps/info_subprocess.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
@@ -200,7 +201,7 @@ TEST_P(FitSurfaceSeams, BelowOneDegreeAtTheDefaults) {
   FitSurfaceOptions options;
   options.density = 3;
   const FittedSurface r =
-      fit_surface(ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/" + c.model), options);
+      fit_surface(ricci::read_mesh(msp_test::test_mesh(c.model)), options);
   EXPECT_TRUE(r.watertight) << c.model;
   EXPECT_LT(std::max(r.edge_normal_jump_deg, r.fill_normal_jump_deg), 1.0) << c.model;
   EXPECT_LT(r.fit_rms / r.bbox_diagonal, c.max_rms_relative) << c.model;
@@ -209,7 +210,7 @@ TEST_P(FitSurfaceSeams, BelowOneDegreeAtTheDefaults) {
 
 INSTANTIATE_TEST_SUITE_P(Scans, FitSurfaceSeams,
                          ::testing::Values(SeamCase{"closed_g0/bunny_npm_closed.off", 0.002},
-                                           SeamCase{"closed_g2/femur.off", 0.002},
+                                           SeamCase{"closed_g2/femur.off.gz", 0.002},
                                            SeamCase{"closed_g2/joint.off", 0.0035},
                                            SeamCase{"closed_g3/block.off", 0.002},
                                            SeamCase{"closed_g3/elephant_cgal.off", 0.002},
@@ -228,7 +229,7 @@ INSTANTIATE_TEST_SUITE_P(Scans, FitSurfaceSeams,
 TEST(FitSurface, PuncturedSphereIsCapped) {
   FitSurfaceOptions options = small_options();
   const FittedSurface r = fit_surface(
-      ricci::read_mesh(std::string(MSP_SHARED_MODELS) + "/closed_g0/knight_decimated.off"),
+      ricci::read_mesh(msp_test::test_mesh("closed_g0/knight_decimated.off")),
       options);
   EXPECT_TRUE(r.watertight);
   EXPECT_EQ(r.surface.fills.size(), 1u);

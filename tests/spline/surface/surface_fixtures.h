@@ -5,9 +5,11 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "spline/fill/fill_fixtures.h"
 #include "spline/fill/hole_fill.h"
+#include "spline/fill/rims.h"
 #include "spline/surface/spline_surface.h"
 
 namespace spline::testing {
@@ -17,15 +19,23 @@ inline const SplineSurface& small_surface(const std::string& model, int faces = 
   static std::map<std::string, std::unique_ptr<SplineSurface>> cache;
   auto& slot = cache[model + "/" + std::to_string(faces)];
   if (!slot) {
-    const ScanFitResult& fit = fitted_scan(bundled_model(model), faces, 0);
+    const ScanFitResult& fit = fitted_scan(msp_test::bundled_model(model), faces, 0);
     auto surface = std::make_unique<SplineSurface>();
     surface->domain = fit.atlas.problem.mesh;
     surface->spline = fit.spline;
     surface->singular_vertex = fit.atlas.problem.cone;
     const ManifoldSplineSpace& space = *fit.spline.space;
     surface->skipped_faces.assign(surface->domain.n_faces(), 0);
-    for (int f = 0; f < space.face_count(); ++f) surface->skipped_faces[f] = !space.in_domain(f);
-    for (const Rim& rim : find_rims(space, surface->domain)) {
+    const std::vector<char>& collar = fit.collar_faces;  // open models' ghost faces
+    for (int f = 0; f < space.face_count(); ++f) {
+      surface->skipped_faces[f] = !space.in_domain(f) || (!collar.empty() && collar[f]);
+    }
+    std::vector<char> domain(surface->domain.n_faces(), 0);
+    for (int f = 0; f < space.face_count(); ++f) domain[f] = space.in_domain(f) ? 1 : 0;
+    FindRimsOptions rim_options;
+    rim_options.boundary_faces = collar;
+    for (const Rim& rim : find_rims(surface->domain, domain, space.atlas().in_domain,
+                                    rim_options)) {
       for (int f : rim.covered_faces) surface->skipped_faces[f] = 1;
       if (rim.kind == Rim::Kind::boundary) {
         surface->open_rims.push_back(rim);
