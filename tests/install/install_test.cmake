@@ -3,6 +3,7 @@
 #   examples  configure and build examples/ against the prefix, run both programs on
 #             models/genus2.off and check their outputs
 #   headers   compile every installed header alone (tests/install/headers)
+#   subdirectory  configure tests/install/subdirectory, which add_subdirectory()s the project
 cmake_minimum_required(VERSION 3.22)
 set(prefix "${MSP_WORK_DIR}/prefix")
 
@@ -86,6 +87,13 @@ elseif(MSP_STEP STREQUAL "examples")
   if(NOT genus EQUAL 2 OR NOT loops EQUAL 1 OR NOT manifold)
     message(FATAL_ERROR "genus2.ply: genus ${genus}, ${loops} boundary loops, manifold ${manifold}")
   endif()
+
+elseif(MSP_STEP STREQUAL "subdirectory")
+  set(binary "${MSP_WORK_DIR}-subdirectory")  # not in the fixture's folder: runs alongside
+  file(REMOVE_RECURSE "${binary}")
+  run(${CMAKE_COMMAND} -S "${MSP_SOURCE_DIR}/tests/install/subdirectory" -B "${binary}"
+      -G "${MSP_GENERATOR}" "-DCMAKE_CXX_COMPILER=${MSP_CXX_COMPILER}"
+      "-DMSP_SOURCE_DIR=${MSP_SOURCE_DIR}")
 
 elseif(MSP_STEP STREQUAL "headers")
   build_outside("${MSP_SOURCE_DIR}/tests/install/headers" "${MSP_WORK_DIR}/headers")
