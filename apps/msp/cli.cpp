@@ -103,7 +103,7 @@ OptionSpec quiet_option() { return {"quiet", "", "print no progress lines on std
 
 OptionSpec metric_option(const std::string& fallback) {
   return {"metric", "circle-packing|inversive-distance|combinatorial",
-          "the discrete conformal metric (without it: " + fallback + ")"};
+          "the discrete conformal metric, used alone (without it: " + fallback + ")"};
 }
 
 OptionSpec radii_option() {

@@ -14,10 +14,12 @@
 //   1. write `const CommandSpec& NAME_command()` returning a function-local static CommandSpec:
 //      the usage's positionals and every name of its old require_known list (a name in the old
 //      `flags` list is a switch: empty value; "output" is also -o), each with a help line, and
-//      the shared options (json_option(), quiet_option(), ...) where the meaning is theirs;
+//      the shared options (json_option(), quiet_option(), ...) where the meaning is theirs
+//      (every subcommand takes quiet_option(); a test checks it);
 //   2. replace the three lines `Args args(argc, argv, {...}); args.require_known({...});
 //      args.require_positionals(n, kUsage);` by `Args args(argc, argv, NAME_command());`;
-//   3. declare NAME_command in commands.h and list {NAME_command, run_NAME} in main.cpp;
+//   3. declare NAME_command next to run_NAME in commands.h and list {NAME_command, run_NAME}
+//      in subcommands() (commands.cpp), where `msp --help` finds it;
 //   4. `scripts/readme-usage.sh` regenerates the README's usage block.
 // The accessors (has, get, get_or, get_double, get_int) are unchanged.
 #include <cstdint>
@@ -76,8 +78,8 @@ struct CommandSpec {
 // Options several subcommands share, so the name means the same everywhere.
 [[nodiscard]] OptionSpec json_option();   ///< --json: one JSON object on stdout instead of text.
 [[nodiscard]] OptionSpec quiet_option();  ///< --quiet: no progress lines on stderr.
-/// --metric circle-packing|inversive-distance|combinatorial; `fallback` says what happens
-/// without it.
+/// --metric circle-packing|inversive-distance|combinatorial: that metric alone, no fall-back to
+/// the others (with --radii too); `fallback` says what happens without it.
 [[nodiscard]] OptionSpec metric_option(const std::string& fallback);
 [[nodiscard]] OptionSpec radii_option();   ///< --radii mean|min|least-squares.
 [[nodiscard]] OptionSpec solver_option();  ///< --solver auto|eigen-ldlt|...

@@ -133,7 +133,7 @@ const CommandSpec& uniformize_command() {
        {"root", "V", "the vertex the cut graph's loops are based at (0)"},
        solver_option(),
        tolerance_option("1e-12"),
-       metric_option("chosen per surface, falling back to the others if it fails"),
+       metric_option("inversive-distance, falling back to the others if it fails"),
        radii_option(),
        quiet_option()}};
   return spec;
@@ -147,6 +147,8 @@ int run_uniformize(int argc, char** argv) {
   options.flow.solver = parse_solver(args.get_or("solver", "auto"));
   if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
+  // As in msp flow and msp atlas: an explicit metric is used alone.
+  options.flow.fall_back_to_other_metrics = !args.has("metric") && !args.has("radii");
   options.flow.tolerance = args.get_double("tolerance", options.flow.tolerance);
   const int depth = args.get_int("depth", 5);
   if (depth < 0 || depth > 6) throw UsageError("--depth must be between 0 and 6");

@@ -6,9 +6,12 @@ namespace msp {
 
 const std::vector<Subcommand>& subcommands() {
   static const std::vector<Subcommand> list = {
-      {info_command, run_info},         {generate_command, run_generate},
-      {flow_command, run_flow},         {atlas_command, run_atlas},
-      {uniformize_command, run_uniformize}, {fit_command, run_fit},
+      {info_command, run_info},
+      {generate_command, run_generate},
+      {flow_command, run_flow},
+      {atlas_command, run_atlas},
+      {uniformize_command, run_uniformize},
+      {fit_command, run_fit},
   };
   return list;
 }

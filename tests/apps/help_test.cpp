@@ -84,16 +84,20 @@ TEST(HelpText, BadCommandLinesGetOneLineAndStatusTwo) {
 }
 
 // The shared switches mean the same on every subcommand: --quiet is accepted everywhere (the
-// issue's `msp uniformize --quiet`), --json everywhere but where it names a file (msp fit).
+// issue's `msp uniformize --quiet`); --json, where there is one, prints JSON on stdout, but in
+// msp fit, where it has always named the report file.
 TEST(HelpText, SharedSwitchesAreAcceptedEverywhere) {
   for (const auto& command : msp::subcommands()) {
     const msp::CommandSpec& spec = command.spec();
-    bool quiet = false, json = false;
+    bool quiet = false, json = true;
     for (const auto& option : spec.options) {
       if (option.name == "quiet")
         quiet = option.value.empty() && option.help == msp::quiet_option().help;
       if (option.name == "json")
         json = option.value.empty() ? option.help == msp::json_option().help : spec.name == "fit";
+      if (option.name == "metric") {
+        EXPECT_EQ(option.value, msp::metric_option("").value);
+      }
     }
     EXPECT_TRUE(quiet) << spec.name;
     EXPECT_TRUE(json) << spec.name;
