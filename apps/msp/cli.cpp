@@ -27,7 +27,8 @@ const OptionSpec* find_option(const CommandSpec& spec, const std::string& name) 
 std::string option_usage(const OptionSpec& o) {
   std::string text = o.name == "output" ? "-o" : "--" + o.name;
   if (!o.value.empty()) text += " " + o.value;
-  return o.required ? text : "[" + text + "]";
+  if (!o.required) text = "[" + text + "]";
+  return o.repeatable ? text + "..." : text;
 }
 
 std::string see_help(const CommandSpec& spec) {
@@ -75,7 +76,8 @@ std::string help_text(const CommandSpec& spec) {
   for (const auto& o : spec.options) {
     std::string left = o.name == "output" ? "-o, --output" : "--" + o.name;
     if (!o.value.empty()) left += " " + o.value;
-    rows.emplace_back(left, o.help + (o.required ? " (required)" : ""));
+    rows.emplace_back(left, o.help + (o.required ? " (required)" : "") +
+                                (o.repeatable ? " (may be given more than once)" : ""));
   }
   rows.emplace_back("-h, --help", "print this help and exit");
   std::size_t column = 0;
@@ -152,17 +154,24 @@ Args::Args(int argc, char** argv, const CommandSpec& spec) : spec_(&spec) {
     if (!option) {
       throw UsageError(a == "-o" ? "option -o is not supported here" : "unknown option " + shown);
     }
-    if (option->value.empty()) {
-      if (value) throw UsageError("option " + shown + " takes no value");
-      options_[name] = "";
-      continue;
+    Occurrence occurrence{name, {}};
+    const std::size_t arity = value_count(*option);
+    if (arity == 0 && value) throw UsageError("option " + shown + " takes no value");
+    if (value) occurrence.values.push_back(*value);
+    while (occurrence.values.size() < arity) {
+      if (i + 1 >= argc || looks_like_option(argv[i + 1])) {
+        throw UsageError("option " + shown + " needs " +
+                         (arity == 1 ? "a value" : std::to_string(arity) + " values") + " (" +
+                         option->value + ")");
+      }
+      occurrence.values.push_back(argv[++i]);
     }
-    if (!value) {
-      if (i + 1 >= argc || looks_like_option(argv[i + 1]))
-        throw UsageError("option " + shown + " needs a value (" + option->value + ")");
-      value = argv[++i];
-    }
-    options_[name] = *value;
+    if (occurrence.values.size() > arity)
+      throw UsageError("option " + shown + " takes " + std::to_string(arity) + " values");
+    std::string joined;
+    for (const auto& v : occurrence.values) joined += (joined.empty() ? "" : " ") + v;
+    options_[name] = joined;  // a repeated option: the last one
+    occurrences_.push_back(std::move(occurrence));
   }
   for (const auto& o : spec.options) {
     if (o.required && !options_.count(o.name))
@@ -204,6 +213,13 @@ void Args::check_declared(const std::string& name) const {
                            ", which its CommandSpec does not declare");
 }
 
+std::size_t value_count(const OptionSpec& option) {
+  std::istringstream words(option.value);
+  std::size_t count = 0;
+  for (std::string word; words >> word;) ++count;
+  return count;
+}
+
 bool Args::has(const std::string& name) const {
   check_declared(name);
   return options_.count(name) > 0;
@@ -214,6 +230,14 @@ std::optional<std::string> Args::get(const std::string& name) const {
   auto it = options_.find(name);
   if (it == options_.end()) return std::nullopt;
   return it->second;
+}
+
+std::vector<std::vector<std::string>> Args::get_all(const std::string& name) const {
+  check_declared(name);
+  std::vector<std::vector<std::string>> all;
+  for (const auto& o : occurrences_)
+    if (o.name == name) all.push_back(o.values);
+  return all;
 }
 
 std::string Args::get_or(const std::string& name, const std::string& fallback) const {

@@ -15,7 +15,9 @@
 //      the usage's positionals and every name of its old require_known list (a name in the old
 //      `flags` list is a switch: empty value; "output" is also -o), each with a help line, and
 //      the shared options (json_option(), quiet_option(), ...) where the meaning is theirs
-//      (every subcommand takes quiet_option(); a test checks it);
+//      (every subcommand takes quiet_option(); a test checks it); an option of several values
+//      is one OptionSpec with a placeholder of that many words, `repeatable` if it may recur
+//      (then Args::occurrences() replaces a hand-written pre-pass over argv);
 //   2. replace the three lines `Args args(argc, argv, {...}); args.require_known({...});
 //      args.require_positionals(n, kUsage);` by `Args args(argc, argv, NAME_command());`;
 //   3. declare NAME_command next to run_NAME in commands.h and list {NAME_command, run_NAME}
@@ -48,13 +50,18 @@ struct HelpRequested {
   const CommandSpec* spec;
 };
 
-/// One option: `--name VALUE`, or the switch `--name` when `value` is empty.
+/// One option: `--name VALUE`, or the switch `--name` when `value` is empty. A value of k words
+/// ("X Y Z") takes k values (`--move 1 2 3`).
 struct OptionSpec {
   std::string name;   ///< Long name without the dashes; "output" is also spelled -o.
   std::string value;  ///< What the value is, as the usage shows it ("N", "OUT.glb"); empty: switch.
   std::string help;   ///< One line: what it does, its unit and default.
-  bool required = false;  ///< Shown without brackets; a command line without it is refused.
+  bool required = false;    ///< Shown without brackets; a command line without it is refused.
+  bool repeatable = false;  ///< Shown with "..."; every occurrence is kept (Args::get_all).
 };
+
+/// The number of values `option` takes: the words of its value placeholder.
+[[nodiscard]] std::size_t value_count(const OptionSpec& option);
 
 struct PositionalSpec {
   std::string name;  ///< As the usage shows it ("MESH").
@@ -106,7 +113,19 @@ class Args {
   /// For Args built from a CommandSpec, naming an option the spec lacks is a programming error:
   /// std::logic_error (main() reports an internal error).
   bool has(const std::string& name) const;
+  /// The value of the option's last occurrence (the values of a multi-value option joined by
+  /// single spaces).
   std::optional<std::string> get(const std::string& name) const;
+  /// Every occurrence of the option, in command-line order, each its values.
+  std::vector<std::vector<std::string>> get_all(const std::string& name) const;
+  /// One option as given on the command line.
+  struct Occurrence {
+    std::string name;
+    std::vector<std::string> values;
+  };
+  /// Every option given, in command-line order (how repeated options of several kinds
+  /// interleave). Empty for old-style Args.
+  const std::vector<Occurrence>& occurrences() const { return occurrences_; }
   std::string get_or(const std::string& name, const std::string& fallback) const;
   double get_double(const std::string& name, double fallback) const;
   int get_int(const std::string& name, int fallback) const;
@@ -121,6 +140,7 @@ class Args {
   const CommandSpec* spec_ = nullptr;
   std::vector<std::string> positionals_;
   std::map<std::string, std::string> options_;
+  std::vector<Occurrence> occurrences_;
 };
 
 }  // namespace msp

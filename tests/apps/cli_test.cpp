@@ -76,6 +76,29 @@ TEST(ArgsSpec, RefusesWhatTheSpecDoesNotSay) {
   EXPECT_THROW((void)args.has("degre"), std::logic_error);
 }
 
+TEST(ArgsSpec, MultiValueAndRepeatedOptions) {
+  const msp::CommandSpec spec{"demo",
+                              "a command for the tests",
+                              {},
+                              {{"move", "INDEX DX DY DZ", "move a point", false, true},
+                               {"ball", "X Y Z R", "a ball", false, true},
+                               {"degree", "n", "the degree"}}};
+  const auto args = parse(spec, {"--move", "3", "0", "-0.5", "1e-3", "--ball", "1", "2", "3", "4",
+                                 "--move=7", "1", "1", "1", "--degree", "2", "--degree", "5"});
+  using Values = std::vector<std::string>;
+  EXPECT_EQ(args.get_all("move"),
+            (std::vector<Values>{{"3", "0", "-0.5", "1e-3"}, {"7", "1", "1", "1"}}));
+  EXPECT_EQ(args.get("ball"), "1 2 3 4");
+  EXPECT_EQ(args.get_int("degree", 0), 5);  // a repeated single option: the last one
+  ASSERT_EQ(args.occurrences().size(), 5u);
+  EXPECT_EQ(args.occurrences()[1].name, "ball");  // the order given
+  EXPECT_EQ(args.occurrences()[2].name, "move");
+  EXPECT_THROW(parse(spec, {"--move", "3", "0", "1"}), msp::UsageError);
+  EXPECT_THROW(parse(spec, {"--move", "3", "0", "1", "--degree", "2"}), msp::UsageError);
+  EXPECT_EQ(msp::usage_text(spec),
+            "msp demo [--move INDEX DX DY DZ]... [--ball X Y Z R]... [--degree n]\n");
+}
+
 TEST(ArgsSpec, HelpAnywhereWins) {
   const auto spec = test_spec();
   for (const auto& words : std::vector<std::vector<std::string>>{

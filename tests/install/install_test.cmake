@@ -23,6 +23,10 @@ function(build_outside source binary)
   find_program(ccache ccache)
   if(ccache)
     set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${ccache}")
+    # Paths relative to the source tree in the cache key (as the project's own build does): hits
+    # across clones whose build tree is inside the source tree.
+    set(ENV{CCACHE_BASEDIR} "${MSP_SOURCE_DIR}")
+    set(ENV{CCACHE_NOHASHDIR} 1)
   endif()
   run(${CMAKE_COMMAND} -S "${source}" -B "${binary}" -G "${MSP_GENERATOR}"
       -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_COMPILER=${MSP_CXX_COMPILER}" ${launcher}
