@@ -24,6 +24,7 @@ set(MSP_PRIVATE_HEADERS
   spline/fill/fill_system.h
   spline/fill/patch_domain.h
   spline/fit/normal_equations.h
+  spline/io/byte_stream.h
   spline/tessellate/parallel_for.h)
 
 # The include folder of a library target: the source folder when building, the installed one

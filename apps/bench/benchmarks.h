@@ -18,5 +18,10 @@ int run_fill_benchmark(int argc, char** argv);    // bench_fill.cpp
 int run_one_cone_benchmark(int argc, char** argv);  // bench_one_cone.cpp
 int run_one_cone_case(int argc, char** argv);       // bench_one_cone.cpp
 int run_uniformize_benchmark(int argc, char** argv);  // bench_uniformize.cpp
+/// The delivered .glb measured against its scan from outside (issue 15's checker).
+int run_check_glb(int argc, char** argv);  // bench_check_glb.cpp
+int run_eval_benchmark(int argc, char** argv);        // bench_surface.cpp
+int run_bezier_benchmark(int argc, char** argv);      // bench_surface.cpp
+int run_spline_file_benchmark(int argc, char** argv);  // bench_spline_file.cpp
 
 }  // namespace msp::bench

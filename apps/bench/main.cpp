@@ -40,8 +40,16 @@ const Benchmark kBenchmarks[] = {
     {"one-cone-one", msp::bench::run_one_cone_case, "one row of 'one-cone' in this process"},
     {"topology", msp::bench::run_topology_benchmark,
      "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
+    {"eval", msp::bench::run_eval_benchmark,
+     "surface evaluation (position, normal, curvatures) us/point; closest-point index and queries"},
+    {"bezier", msp::bench::run_bezier_benchmark,
+     "Bezier export of a fitted surface: seconds, patches and knot segments per face"},
+    {"spline-file", msp::bench::run_spline_file_benchmark,
+     "spline file (.msp) of a 4000-face domain fit: size per section, save / load ms vs the fit"},
     {"uniformize", msp::bench::run_uniformize_benchmark,
      "issue 7: uniformization (flow, cut, layout, Fuchsian group) at the Ricci-flow paper's Table I sizes"},
+    {"check-glb", msp::bench::run_check_glb,
+     "OUT.glb SCAN [--json]: the written surface against the scan, both ways (rms, max, coverage, folds)"},
 };
 
 void usage() {

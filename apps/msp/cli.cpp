@@ -177,7 +177,10 @@ Args::Args(int argc, char** argv, const CommandSpec& spec) : spec_(&spec) {
     if (o.required && !options_.count(o.name))
       throw UsageError(option_usage(o) + " is required" + see_help(spec));
   }
-  if (positionals_.size() > spec.positionals.size())
+  const bool variadic = !spec.positionals.empty() && spec.positionals.back().name.size() > 3 &&
+                       spec.positionals.back().name.compare(
+                           spec.positionals.back().name.size() - 3, 3, "...") == 0;
+  if (positionals_.size() > spec.positionals.size() && !variadic)
     throw UsageError("unexpected argument '" + positionals_[spec.positionals.size()] + "'" +
                      see_help(spec));
   if (positionals_.size() < spec.positionals.size())

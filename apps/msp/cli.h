@@ -72,7 +72,8 @@ struct PositionalSpec {
 struct CommandSpec {
   std::string name;     ///< "fit": `msp fit`.
   std::string summary;  ///< One line for `msp --help`.
-  std::vector<PositionalSpec> positionals;  ///< All required, in order.
+  /// All required, in order; a last one whose name ends in "..." ("MESH...") takes one or more.
+  std::vector<PositionalSpec> positionals;
   std::vector<OptionSpec> options;
 };
 

@@ -10,13 +10,15 @@
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <spline/basis/multi_index.h>
+#include <spline/io/spline_file.h>
+#include <spline/surface/fit_surface.h>
 #include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
 #include "msp/flow_options.h"
 #include "msp/commands.h"
 #include "msp/fit_export.h"
-#include "msp/fit_pipeline.h"
+#include "msp/fit_report.h"
 
 namespace msp {
 namespace {
@@ -59,8 +61,8 @@ class Progress {
   Clock::time_point started_;
 };
 
-FitRunOptions parse_options(const Args& args) {
-  FitRunOptions o;
+spline::FitSurfaceOptions parse_options(const Args& args) {
+  spline::FitSurfaceOptions o;
   o.domain_faces = args.get_int("domain-faces", o.domain_faces);
   if (o.domain_faces < 1) throw UsageError("--domain-faces must be positive");
   o.degree = args.get_int("degree", o.degree);
@@ -90,10 +92,12 @@ void check_outputs(const Args& args) {
     throw UsageError("--obj must name an .obj file, not '" + *obj + "'");
   if (auto ply = args.get("ply"); ply && !ends_with(*ply, ".ply"))
     throw UsageError("--ply must name a .ply file, not '" + *ply + "'");
-  if (!glb && !args.has("obj") && !args.has("ply") && !args.has("json"))
-    throw UsageError("nothing to write: give -o OUT.glb (or --obj, --ply, --json)");
+  if (auto msp = args.get("spline"); msp && !ends_with(*msp, ".msp"))
+    throw UsageError("--spline must name an .msp file, not '" + *msp + "'");
+  if (!glb && !args.has("obj") && !args.has("ply") && !args.has("json") && !args.has("spline"))
+    throw UsageError("nothing to write: give -o OUT.glb (or --obj, --ply, --json, --spline)");
   // A missing folder is found before the work, not after the first file is written.
-  for (const char* name : {"output", "obj", "ply", "json"}) {
+  for (const char* name : {"output", "obj", "ply", "json", "spline"}) {
     const auto path = args.get(name);
     if (!path) continue;
     const std::filesystem::path folder = std::filesystem::path(*path).parent_path();
@@ -138,6 +142,7 @@ const CommandSpec& fit_command() {
        {"smoothing", "LAMBDA", "weight of the thin-plate energy (1e-4)"},
        {"obj", "OUT.obj", "also write the tessellation as OBJ"},
        {"ply", "OUT.ply", "also write the tessellation as PLY"},
+       {"spline", "OUT.msp", "also write the spline itself as a spline file (.msp)"},
        {"checkerboard", "", "texture the surface with the atlas' checkerboard"},
        {"checker-squares", "N", "checkerboard squares along each side, 1 to 256 (32)"},
        {"control-net", "", "add the control net (lines) to the glTF"},
@@ -150,7 +155,7 @@ const CommandSpec& fit_command() {
 int run_fit(int argc, char** argv) {
   const Args args(argc, argv, fit_command());
   check_outputs(args);
-  FitRunOptions options = parse_options(args);
+  spline::FitSurfaceOptions options = parse_options(args);
   FitSceneOptions scene_options;
   scene_options.checkerboard = args.has("checkerboard");
   scene_options.texture.squares = args.get_int("checker-squares", scene_options.texture.squares);
@@ -168,12 +173,12 @@ int run_fit(int argc, char** argv) {
   const std::string path = args.positionals()[0];
   progress.start("read");
   auto t = Clock::now();
-  FitRun run;
+  spline::FittedSurface run;
   double read_seconds = 0.0;
   try {
     const ricci::Mesh mesh = ricci::read_mesh(path);
     read_seconds = std::chrono::duration<double>(Clock::now() - t).count();
-    run = run_fit_pipeline(mesh, options);
+    run = spline::fit_surface(mesh, options);
   } catch (...) {
     progress.abort();
     throw;
@@ -182,7 +187,7 @@ int run_fit(int argc, char** argv) {
   // Every output is made in memory first, then written: a failure leaves no file behind.
   progress.start("export");
   t = Clock::now();
-  std::vector<std::uint8_t> glb, ply;
+  std::vector<std::uint8_t> glb, ply, spline_file;
   std::string obj;
   nlohmann::json report = fit_report_json(path, run, options);
   if (args.has("output")) {
@@ -191,6 +196,10 @@ int run_fit(int argc, char** argv) {
   }
   if (args.has("obj")) obj = tessellation_obj(run.tessellation);
   if (args.has("ply")) ply = tessellation_ply(run.tessellation);
+  if (args.has("spline")) {
+    spline_file =
+        spline::encode_spline_surface(run.surface, {{"tool", "msp fit"}, {"input", path}});
+  }
   const double export_seconds = std::chrono::duration<double>(Clock::now() - t).count();
   auto& seconds = report["seconds"];
   seconds["read"] = read_seconds;
@@ -201,6 +210,7 @@ int run_fit(int argc, char** argv) {
   if (args.has("output")) write_bytes_atomically(*args.get("output"), glb);
   if (args.has("obj")) write_text_atomically(*args.get("obj"), obj);
   if (args.has("ply")) write_bytes_atomically(*args.get("ply"), ply);
+  if (args.has("spline")) write_bytes_atomically(*args.get("spline"), spline_file);
   if (args.has("json")) write_text_atomically(*args.get("json"), report.dump(2) + "\n");
   progress.finish();
   if (!args.has("quiet")) {

@@ -12,6 +12,11 @@ const std::vector<Subcommand>& subcommands() {
       {atlas_command, run_atlas},
       {uniformize_command, run_uniformize},
       {fit_command, run_fit},
+      {edit_command, run_edit},
+      {eval_command, run_eval},
+      {bezier_command, run_bezier},
+      {module_command, run_module},
+      {index_command, run_index},
   };
   return list;
 }

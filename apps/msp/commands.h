@@ -21,6 +21,16 @@ const CommandSpec& uniformize_command();
 int run_uniformize(int argc, char** argv);
 const CommandSpec& fit_command();
 int run_fit(int argc, char** argv);
+const CommandSpec& edit_command();
+int run_edit(int argc, char** argv);
+const CommandSpec& eval_command();
+int run_eval(int argc, char** argv);
+const CommandSpec& bezier_command();
+int run_bezier(int argc, char** argv);
+const CommandSpec& module_command();
+int run_module(int argc, char** argv);
+const CommandSpec& index_command();
+int run_index(int argc, char** argv);
 
 /// A subcommand as main() dispatches it.
 struct Subcommand {

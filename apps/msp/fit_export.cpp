@@ -101,13 +101,13 @@ std::vector<int> halfedge_samples(const ricci::Mesh& mesh, const spline::Manifol
   return {};
 }
 
-void add_cut_loops(const FitRun& run, gltf::Scene& scene) {
-  const auto& atlas = run.scan.atlas.atlas;
-  const ricci::Mesh& mesh = run.scan.atlas.problem.mesh;
-  const auto& space = *run.scan.spline.space;
-  const auto& t = run.tessellation;
+void add_cut_loops(const spline::FittedSurface& fitted, gltf::Scene& scene) {
+  const auto& atlas = fitted.atlas.atlas;
+  const ricci::Mesh& mesh = fitted.surface.domain;
+  const auto& space = *fitted.surface.spline.space;
+  const auto& t = fitted.tessellation;
   const Eigen::MatrixX3d normals = tessellation_normals(t);
-  const double lift = 2e-3 * run.bbox_diagonal;
+  const double lift = 2e-3 * fitted.bbox_diagonal;
   const auto names = loop_names(atlas);
   for (std::size_t loop = 0; loop < atlas.cut.loops.size(); ++loop) {
     gltf::Mesh lines;
@@ -132,17 +132,17 @@ void add_cut_loops(const FitRun& run, gltf::Scene& scene) {
     lines.extras = {{"loop", loop}, {"name", names[loop]}};
     scene.meshes.push_back(std::move(lines));
   }
-  const auto& problem = run.scan.atlas.problem;
-  if (problem.cone >= 0) {
+  const int cone_vertex = fitted.surface.singular_vertex;
+  if (cone_vertex >= 0) {
     gltf::Mesh cone;
     cone.name = "extraordinary point";
     cone.topology = gltf::Topology::points;
     cone.positions.resize(1, 3);
     cone.positions.row(0) =
-        ricci::to_eigen(problem.mesh.point(problem.mesh.vertex_handle(problem.cone))).transpose();
+        ricci::to_eigen(mesh.point(mesh.vertex_handle(cone_vertex))).transpose();
     cone.material.name = "extraordinary point";
     cone.material.base_color = gltf::linear_colour({220, 30, 30});
-    cone.extras = {{"domain_vertex", problem.cone},
+    cone.extras = {{"domain_vertex", cone_vertex},
                    {"note", "the cone's star lies outside the spline domain (filled hole)"}};
     scene.meshes.push_back(std::move(cone));
   }
@@ -150,15 +150,16 @@ void add_cut_loops(const FitRun& run, gltf::Scene& scene) {
 
 }  // namespace
 
-gltf::Scene fit_scene(const FitRun& run, const FitSceneOptions& options) {
+gltf::Scene fit_scene(const spline::FittedSurface& fitted, const FitSceneOptions& options) {
+  const spline::SplineSurface& surface = fitted.surface;
   gltf::Scene scene;
   scene.name = "fit";
   scene.extras = options.extras;
-  scene.meshes.push_back(surface_mesh(run.tessellation, options, !run.watertight));
-  if (options.control_net) scene.meshes.push_back(control_net_mesh(run.scan.spline));
+  scene.meshes.push_back(surface_mesh(fitted.tessellation, options, !fitted.watertight));
+  if (options.control_net) scene.meshes.push_back(control_net_mesh(surface.spline));
   if (options.domain)
-    scene.meshes.push_back(domain_mesh_lines(run.scan.atlas.problem.mesh, *run.scan.spline.space));
-  if (options.cut_loops) add_cut_loops(run, scene);
+    scene.meshes.push_back(domain_mesh_lines(surface.domain, *surface.spline.space));
+  if (options.cut_loops) add_cut_loops(fitted, scene);
   return scene;
 }
 

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include <spline/surface/fit_surface.h>
 #include <spline/tessellate/tessellate.h>
 #include <nlohmann/json.hpp>
 
-#include "msp/fit_pipeline.h"
 #include "msp/io/gltf_writer.h"
 #include "msp/io/tessellation_io.h"
 #include "msp/io/texture_image.h"
@@ -27,6 +27,7 @@ struct FitSceneOptions {
 
 /// The scene "fit": mesh "surface" (render vertices: positions, unit normals, uvs = central
 /// chart scaled into [0, 1]^2), and the optional line/point meshes.
-[[nodiscard]] gltf::Scene fit_scene(const FitRun& run, const FitSceneOptions& options = {});
+[[nodiscard]] gltf::Scene fit_scene(const spline::FittedSurface& fitted,
+                                    const FitSceneOptions& options = {});
 
 }  // namespace msp

@@ -291,14 +291,14 @@ TEST(FitCli, RefusesNonManifoldInput) {
 TEST(FitCli, RefusesTooFewDomainFaces) {
   expect_refused("few", {{model("genus2.off"), "--domain-faces", "10", "-o", "{OUT}/x.glb",
                           "--json", "{OUT}/x.json", "--quiet"},
-                         "--domain-faces 10 is too few",
+                         "too few domain faces: 10",
                          1});
   // Without --quiet the progress line is closed before the error line.
   const fs::path dir = fresh_dir("few_loud");
   const auto r =
       run_msp({"fit", model("genus2.off"), "--domain-faces", "10", "-o", (dir / "x.glb").string()});
   EXPECT_EQ(r.exit_status, 1);
-  EXPECT_NE(r.err.find("\nmsp fit: error: --domain-faces 10 is too few"), std::string::npos)
+  EXPECT_NE(r.err.find("\nmsp fit: error: too few domain faces: 10"), std::string::npos)
       << r.err;
   EXPECT_TRUE(fs::is_empty(dir));
 }

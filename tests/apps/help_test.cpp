@@ -72,6 +72,11 @@ TEST(HelpText, BadCommandLinesGetOneLineAndStatusTwo) {
          {std::vector<std::string>{name, "x.off", "--no-such-option"},
           std::vector<std::string>{name, "x.off", "-x"},
           std::vector<std::string>{name, "x.off", "y.off", "z.off"}}) {
+      // Three meshes are a good command line where the last positional takes several (MESH...).
+      const auto& positionals = command.spec().positionals;
+      if (args.size() == 4 && !positionals.empty() &&
+          positionals.back().name.find("...") != std::string::npos)
+        continue;
       const auto r = run_msp(args);
       EXPECT_EQ(r.exit_status, 2) << name << ": " << r.err;
       EXPECT_EQ(line_count(r.err), 1) << name << ": " << r.err;

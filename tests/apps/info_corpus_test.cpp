@@ -58,8 +58,10 @@ std::string bad_path(const char* name) { return std::string(MSP_TEST_DATA) + "/b
 TEST(InfoCorpus, EveryBadFileIsInTheTableAndViceVersa) {
   std::set<std::string> listed, present;
   for (const auto& bad : kBadFiles) listed.insert(bad.name);
-  for (const auto& entry : fs::directory_iterator(std::string(MSP_TEST_DATA) + "/bad"))
-    present.insert(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(std::string(MSP_TEST_DATA) + "/bad")) {
+    // Spline files (.msp) have their own table (tests/spline/io/bad_splines.h).
+    if (entry.path().extension() != ".msp") present.insert(entry.path().filename().string());
+  }
   EXPECT_EQ(listed, present);
 }
 

@@ -66,12 +66,15 @@ void write_mesh(const Mesh& mesh, const std::string& path) {
     throw IOError(path + ": writing STL is not supported (use .obj, .off or .ply)");
   if (path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0)
     throw IOError(path + ": writing .gz is not supported");
-  const std::string text = format_mesh(mesh, format);
+  write_file_atomically(path, format_mesh(mesh, format));
+}
+
+void write_file_atomically(const std::string& path, std::string_view bytes) {
   std::random_device entropy;
   const std::string temp = path + ".tmp" + std::to_string(entropy());
   std::FILE* file = std::fopen(temp.c_str(), "wb");
   if (!file) throw IOError(path + ": cannot create " + temp);
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
   const bool closed = std::fclose(file) == 0;
   std::error_code error;
   if (written && closed) std::filesystem::rename(temp, path, error);

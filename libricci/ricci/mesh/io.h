@@ -2,6 +2,7 @@
 // Reading and writing meshes. Readers refuse malformed files with an IOError naming the file and
 // the line (or face/vertex index) at fault.
 #include <string>
+#include <string_view>
 
 #include "ricci/mesh/mesh.h"
 
@@ -18,5 +19,9 @@ namespace ricci {
 /// shortest decimal form that reads back to the same double. The file appears atomically
 /// (written to a temporary next to it, then renamed). \throw IOError.
 void write_mesh(const Mesh& mesh, const std::string& path);
+
+/// Writes `bytes` to `path` atomically: to a temporary next to it, then renamed into place, so a
+/// reader never sees a half-written file and a failure leaves nothing behind. \throw IOError.
+void write_file_atomically(const std::string& path, std::string_view bytes);
 
 }  // namespace ricci

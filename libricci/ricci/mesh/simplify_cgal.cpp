@@ -48,7 +48,7 @@ void remesh(SurfaceMesh& mesh, int target_faces, int iterations) {
   PMP::isotropic_remeshing(faces(mesh), edge_length_for(mesh, target_faces), mesh,
                            CGAL::parameters::number_of_iterations(static_cast<unsigned>(iterations))
                                .protect_constraints(false)
-                               .relax_constraints(true));
+                               .relax_constraints(false));
   mesh.collect_garbage();
 }
 

@@ -150,6 +150,9 @@ struct FindRimsOptions {
   /// ... and on the domain faces the cone hole may cover (a coarse domain, e.g. joint.off's 540
   /// faces, distorted everywhere, would otherwise lose a large part of its spline to the patch).
   double max_cone_cover_fraction = 0.08;
+  /// By face, nonzero: a face beyond the surface's own boundary (the scan fit's boundary collar,
+  /// fitted but not part of the surface): not kept, and its hole is a boundary hole. Empty: none.
+  std::vector<char> boundary_faces{};
 };
 
 /// By face: the chart's length scale over the surface's, sqrt(chart area / 3D area) of the

@@ -75,13 +75,17 @@ ricci::HalfedgeHandle next_rim_halfedge(const Regions& regions, const ricci::Mes
                              std::to_string(mesh.to_vertex_handle(h).idx()));
 }
 
-Regions initial_regions(const std::vector<char>& domain, const std::vector<char>& atlas_domain) {
+Regions initial_regions(const std::vector<char>& domain, const std::vector<char>& atlas_domain,
+                        const std::vector<char>& boundary_faces) {
   Regions regions;
   regions.kept.assign(domain.size(), 0);
   regions.rank.assign(domain.size(), 3);
   for (std::size_t i = 0; i < domain.size(); ++i) {
-    regions.kept[i] = domain[i] ? 1 : 0;
-    if (!regions.kept[i]) {
+    const bool beyond = !boundary_faces.empty() && boundary_faces[i];
+    regions.kept[i] = domain[i] && !beyond ? 1 : 0;
+    if (beyond) {
+      regions.rank[i] = kind_rank(Rim::Kind::boundary);
+    } else if (!regions.kept[i]) {
       regions.rank[i] = kind_rank(atlas_domain[i] ? Rim::Kind::excluded : Rim::Kind::cone_hole);
     }
   }
@@ -496,17 +500,20 @@ std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& dom
                            const std::function<double(int)>& normal_step_deg) {
   const std::size_t faces = mesh.n_faces();
   if (domain.size() != faces || atlas_domain.size() != faces ||
-      !(chart_scale.empty() || chart_scale.size() == faces)) {
+      !(chart_scale.empty() || chart_scale.size() == faces) ||
+      !(options.boundary_faces.empty() || options.boundary_faces.size() == faces)) {
     throw ricci::InvalidInputError("find_rims: the mesh has " + std::to_string(faces) +
                                    " faces, the domain masks " + std::to_string(domain.size()) +
                                    " and " + std::to_string(atlas_domain.size()) +
-                                   ", the chart scales " + std::to_string(chart_scale.size()));
+                                   ", the chart scales " + std::to_string(chart_scale.size()) +
+                                   ", the boundary faces " +
+                                   std::to_string(options.boundary_faces.size()));
   }
   if (options.grow < 0) {
     throw ricci::InvalidInputError("find_rims: grow must be >= 0, got " +
                                    std::to_string(options.grow));
   }
-  Regions regions = initial_regions(domain, atlas_domain);
+  Regions regions = initial_regions(domain, atlas_domain, options.boundary_faces);
   const Loops loops = boundary_loops(mesh);
   for (int layer = 0; layer < options.grow; ++layer) grow_layer(regions, mesh, loops, merge);
   grow_cone_hole_while_distorted(regions, mesh, loops, domain, chart_scale, normal_step_deg,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "ricci/mesh/boundary_follow.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/topology/slice.h"
@@ -70,6 +71,44 @@ bool lacks_partition_of_unity(const ManifoldSplineSpace& space, const std::vecto
   const int ring = rings[static_cast<std::size_t>(space.domain_index(p.face))];
   if (ring < 0 || ring > 1) return false;
   return !is_partition_of_unity(space.evaluate_basis(p, -1, {}, BasisDerivatives::none));
+}
+
+bool has_boundary(const ricci::Mesh& mesh) {
+  for (auto h : mesh.halfedges()) {
+    if (mesh.is_boundary(h)) return true;
+  }
+  return false;
+}
+
+// Faces of the problem's mesh in the collar: a corner that was a collar vertex of the flow's
+// input (index >= surface_vertices). Faces of vertices added later (splits: input_vertex -1)
+// alone take their edge neighbours' side, ghost if any is.
+std::vector<char> collar_faces(const ricci::OneConeProblem& problem, int surface_vertices) {
+  const ricci::Mesh& mesh = problem.mesh;
+  std::vector<char> ghost(mesh.n_faces(), 0), known(mesh.n_faces(), 0);
+  for (auto f : mesh.faces()) {
+    for (auto v : mesh.fv_range(f)) {
+      const int input = problem.input_vertex[static_cast<std::size_t>(v.idx())];
+      if (input < 0) continue;
+      known[static_cast<std::size_t>(f.idx())] = 1;
+      if (input >= surface_vertices) ghost[static_cast<std::size_t>(f.idx())] = 1;
+    }
+  }
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (auto f : mesh.faces()) {
+      const auto i = static_cast<std::size_t>(f.idx());
+      if (known[i]) continue;
+      for (auto g : mesh.ff_range(f)) {
+        const auto j = static_cast<std::size_t>(g.idx());
+        if (!known[j]) continue;
+        known[i] = 1;
+        ghost[i] = static_cast<char>(ghost[i] | ghost[j]);
+        changed = true;
+      }
+    }
+  }
+  return ghost;
 }
 
 }  // namespace
@@ -473,13 +512,29 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   auto t = stage("simplify");
   ricci::SimplifyOptions simplify;
   simplify.target_faces = options.domain_faces;
-  const ricci::Mesh domain = static_cast<int>(dense.n_faces()) > options.domain_faces
-                                 ? ricci::simplify_mesh(dense, simplify).mesh
-                                 : dense;
+  const bool simplified = static_cast<int>(dense.n_faces()) > options.domain_faces;
+  ricci::Mesh domain = simplified ? ricci::simplify_mesh(dense, simplify).mesh : dense;
+  if (simplified && options.boundary_follow.max_rounds > 0) {
+    result.boundary_follow = ricci::follow_boundary(domain, dense, options.boundary_follow);
+  }
   result.timings.simplify = seconds_since(t);
 
   t = stage("atlas");
-  result.atlas = ricci::build_one_cone_atlas(domain, options.atlas);
+  // The collar's outer boundary takes the boundary's geodesic curvature; where the flow cannot
+  // reach that target on the collared mesh (eight_hole.off: genus 2, one small hole), the
+  // surface is fitted without it.
+  bool collared = false;
+  if (options.collar.rings > 0 && has_boundary(domain)) {
+    const ricci::CollarResult collar = ricci::add_boundary_collar(domain, options.collar);
+    try {
+      result.atlas = ricci::build_one_cone_atlas(collar.mesh, options.atlas);
+      result.collar_faces = collar_faces(result.atlas.problem, collar.original_vertices);
+      collared = true;
+    } catch (const ricci::Error& e) {
+      result.collar_refused = e.what();
+    }
+  }
+  if (!collared) result.atlas = ricci::build_one_cone_atlas(domain, options.atlas);
   result.timings.atlas = seconds_since(t);
 
   t = stage("space");

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "ricci/mesh/mesh.h"
+#include "ricci/mesh/boundary_follow.h"
+#include "ricci/mesh/collar.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "spline/fair/fair.h"
 #include "spline/manifold/manifold_space.h"
@@ -171,6 +173,15 @@ struct ScanFitOptions {
     o.cone_refinement.levels = 2;
     return o;
   }();
+  /// Open surfaces: ghost rings added outside the simplified domain's boundary loops
+  /// (ricci/mesh/collar.h) before the atlas, so the spline has its full basis on every face of
+  /// the surface up to the boundary; ScanFitResult::collar_faces says which faces to drop.
+  /// rings = 0: none (the band along the boundary then lacks the partition of unity).
+  ricci::CollarOptions collar;
+  /// Open surfaces: the simplified domain's boundary edges split until its boundary follows the
+  /// scan's within boundary_follow.tolerance of the diagonal (ricci/mesh/boundary_follow.h), so
+  /// the surface's boundary reaches the scan's. max_rounds = 0: off.
+  ricci::BoundaryFollowOptions boundary_follow;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;
 };
@@ -194,6 +205,14 @@ struct ScanFitResult {
   FairResult fairing;
   ScanFitTimings timings;
   int corrections = 0;  ///< parameter-correction rounds run
+  /// By face of the domain mesh (atlas.problem.mesh): nonzero on the ghost faces of the
+  /// boundary collar (ScanFitOptions::collar), which are fitted but are not the surface; empty
+  /// when no collar was added (closed surfaces, collar.rings = 0, or refused).
+  std::vector<char> collar_faces;
+  /// Why the collar was dropped (the atlas failed on the collared mesh), empty otherwise.
+  std::string collar_refused;
+  /// What follow_boundary did to the simplified domain (zeros when nothing was simplified).
+  ricci::BoundaryFollowResult boundary_follow;
 };
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -27,6 +28,35 @@ int corner_at(const ricci::Chart& chart, int row, int vertex) {
   return -1;
 }
 
+// A given home cloud (ManifoldSplineSpace's second constructor): n + 1 finite knots starting
+// exactly at the vertex, the others closer to it than half the smallest inradius of its
+// triangles (the bound under which knot_cloud.h guarantees the DMS conditions).
+void check_home_cloud(const KnotCloud& cloud, int vertex, int degree,
+                      const Eigen::Vector2d& center, const std::vector<Eigen::Vector2d>& ring,
+                      bool closed) {
+  const std::string where = "manifold spline: home cloud of vertex " + std::to_string(vertex);
+  if (cloud.degree() != degree) {
+    throw InvalidInputError(where + " has " + std::to_string(cloud.knots.size()) +
+                            " knots, degree " + std::to_string(degree) + " needs " +
+                            std::to_string(degree + 1));
+  }
+  if (cloud.knots[0] != center) {
+    throw InvalidInputError(where + " does not start at the vertex's home-chart position");
+  }
+  const std::size_t fan = closed ? ring.size() : ring.size() - 1;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < fan; ++i) {
+    smallest = std::min(smallest, inradius(center, ring[i], ring[(i + 1) % ring.size()]));
+  }
+  for (const Eigen::Vector2d& knot : cloud.knots) {
+    if (!knot.allFinite() || !((knot - center).norm() < 0.5 * smallest)) {
+      throw InvalidInputError(where + " has a knot " +
+                              (knot.allFinite() ? "farther than half the smallest inradius"
+                                                : "that is not finite"));
+    }
+  }
+}
+
 }  // namespace
 
 ManifoldSplineSpace::~ManifoldSplineSpace() = default;
@@ -34,6 +64,24 @@ ManifoldSplineSpace::~ManifoldSplineSpace() = default;
 ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::AffineAtlas& atlas,
                                          const ManifoldSplineOptions& options)
     : degree_(options.degree), atlas_(atlas) {
+  build_domain(mesh);
+  build_home_clouds(mesh, options, nullptr);
+  chart_spaces_.resize(atlas_.charts.size());
+  chart_once_ = std::make_unique<std::once_flag[]>(atlas_.charts.size());
+}
+
+ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::AffineAtlas& atlas,
+                                         int degree, std::vector<KnotCloud> home_clouds)
+    : degree_(degree), atlas_(atlas) {
+  build_domain(mesh);
+  ManifoldSplineOptions options;
+  options.degree = degree;
+  build_home_clouds(mesh, options, &home_clouds);
+  chart_spaces_.resize(atlas_.charts.size());
+  chart_once_ = std::make_unique<std::once_flag[]>(atlas_.charts.size());
+}
+
+void ManifoldSplineSpace::build_domain(const ricci::Mesh& mesh) {
   if (degree_ < 1 || degree_ > kMaxDmsDegree) {
     throw InvalidInputError("manifold spline: degree " + std::to_string(degree_) + " outside 1.." +
                             std::to_string(kMaxDmsDegree));
@@ -80,22 +128,30 @@ ManifoldSplineSpace::ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::A
     domain_faces_.push_back(i);
     for (int k = 0; k < 3; ++k) vertex_faces_[mesh.to_vertex_handle(hs[k]).idx()].push_back(i);
   }
-  build_home_clouds(mesh, options);
-  chart_spaces_.resize(atlas_.charts.size());
-  chart_once_ = std::make_unique<std::once_flag[]>(atlas_.charts.size());
 }
 
 // Home cloud of v: made in the neighbourhood chart of v's lowest domain face, which holds v's
 // whole domain star glued around one copy of v (the atlas guarantees this per face).
 void ManifoldSplineSpace::build_home_clouds(const ricci::Mesh& mesh,
-                                            const ManifoldSplineOptions& options) {
+                                            const ManifoldSplineOptions& options,
+                                            std::vector<KnotCloud>* given) {
   const std::size_t n_vertices = mesh.n_vertices();
+  if (given && given->size() != n_vertices) {
+    throw InvalidInputError("manifold spline: " + std::to_string(given->size()) +
+                            " home clouds for " + std::to_string(n_vertices) + " vertices");
+  }
   home_clouds_.assign(n_vertices, {});
   home_chart_.assign(n_vertices, -1);
   home_face_.assign(n_vertices, -1);
   for (std::size_t v = 0; v < n_vertices; ++v) {
     const auto& star = vertex_faces_[v];
-    if (star.empty()) continue;
+    if (star.empty()) {
+      if (given && !(*given)[v].knots.empty()) {
+        throw InvalidInputError("manifold spline: vertex " + std::to_string(v) +
+                                " is in no domain face but has a home cloud");
+      }
+      continue;
+    }
     const int vertex = static_cast<int>(v);
     const int home_face = *std::min_element(star.begin(), star.end());
     const int chart_index = atlas_.neighbourhood_chart[home_face];
@@ -140,9 +196,14 @@ void ManifoldSplineSpace::build_home_clouds(const ricci::Mesh& mesh,
     }
     home_chart_[v] = chart_index;
     home_face_[v] = home_face;
-    home_clouds_[v] =
-        make_knot_cloud(degree_, static_cast<std::uint64_t>(vertex),
-                        chart.positions.row(copy).transpose(), ring, closed, options.knots);
+    const Eigen::Vector2d center = chart.positions.row(copy).transpose();
+    if (given) {
+      check_home_cloud((*given)[v], vertex, degree_, center, ring, closed);
+      home_clouds_[v] = std::move((*given)[v]);
+    } else {
+      home_clouds_[v] = make_knot_cloud(degree_, static_cast<std::uint64_t>(vertex), center, ring,
+                                        closed, options.knots);
+    }
   }
 }
 

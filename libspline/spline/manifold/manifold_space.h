@@ -60,6 +60,16 @@ class ManifoldSplineSpace {
   ///        ricci::TopologyError when a domain vertex has no chart holding its one-ring.
   ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::AffineAtlas& atlas,
                       const ManifoldSplineOptions& options = {});
+  /// The same space with given home clouds (by vertex, as home_cloud() returns them: empty for
+  /// vertices outside the domain) instead of make_knot_cloud's: for a space read back from a
+  /// file, so that it does not depend on the platform's sin / cos. Each cloud must start at its
+  /// vertex's home-chart position (exactly) and keep its knots closer to it than half the
+  /// smallest inradius of the vertex's domain triangles there (which guarantees the DMS
+  /// conditions, knot_cloud.h).
+  /// \throw as above, and ricci::InvalidInputError naming the first vertex whose cloud breaks
+  ///        that (or a cloud count other than the vertex count, a degree other than `degree`).
+  ManifoldSplineSpace(const ricci::Mesh& mesh, const ricci::AffineAtlas& atlas, int degree,
+                      std::vector<KnotCloud> home_clouds);
   ~ManifoldSplineSpace();
   ManifoldSplineSpace(const ManifoldSplineSpace&) = delete;
   ManifoldSplineSpace& operator=(const ManifoldSplineSpace&) = delete;
@@ -123,7 +133,10 @@ class ManifoldSplineSpace {
   [[nodiscard]] const ChartSpace& chart_space(int chart) const;
 
  private:
-  void build_home_clouds(const ricci::Mesh& mesh, const ManifoldSplineOptions& options);
+  void build_domain(const ricci::Mesh& mesh);
+  // Makes the home clouds by `options`, or checks and installs `given` when it is not null.
+  void build_home_clouds(const ricci::Mesh& mesh, const ManifoldSplineOptions& options,
+                         std::vector<KnotCloud>* given);
   [[nodiscard]] KnotCloud cloud_in_chart(int chart, int face, int corner) const;
   [[nodiscard]] std::unique_ptr<ChartSpace> build_chart_space(int chart) const;
 

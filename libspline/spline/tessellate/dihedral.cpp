@@ -29,6 +29,7 @@ DihedralReport dihedral_angles(const std::vector<std::array<int, 3>>& triangles,
   }
   std::sort(sides.begin(), sides.end());
   std::vector<double> angles;
+  DihedralReport report;
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i;
     while (j < sides.size() && sides[j].first == sides[i].first) ++j;
@@ -36,10 +37,13 @@ DihedralReport dihedral_angles(const std::vector<std::array<int, 3>>& triangles,
       const double angle =
           ricci::angle_between(normals[sides[i].second], normals[sides[i + 1].second]);
       angles.push_back(angle * 180.0 / M_PI);
+      if (angles.back() > 90.0) {
+        report.fold_edges.push_back({static_cast<int>(sides[i].first >> 32),
+                                     static_cast<int>(sides[i].first & 0xffffffffu)});
+      }
     }
     i = j;
   }
-  DihedralReport report;
   report.edges = static_cast<int>(angles.size());
   if (angles.empty()) return report;
   for (double a : angles) {

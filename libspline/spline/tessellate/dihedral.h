@@ -14,6 +14,8 @@ struct DihedralReport {
   double median_deg = 0.0, p99_deg = 0.0, max_deg = 0.0;
   int over_60_deg = 0;  ///< Edges whose triangles' normals differ by more than 60 degrees.
   int over_90_deg = 0;  ///< ... by more than 90 degrees: the surface folds back there.
+  /// Where: the edges over 90 degrees (position indices, smaller first), in edge order.
+  std::vector<std::array<int, 2>> fold_edges;
 };
 
 /// Angles between the normals of the two triangles at every edge shared by exactly two

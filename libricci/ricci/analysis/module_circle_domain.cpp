@@ -1,0 +1,197 @@
+// The circle domain of a multiply connected domain (ricci-flow-3d-shape-analysis §5.1.3): the
+// flat metric conformal to the mesh whose boundary loops have constant geodesic curvature (total
+// 2π on c0, -2π on each hole) is found by a fixed-point iteration on the Ricci flow's boundary
+// targets (each loop's total spread by the current metric's lengths, the flow restarted from
+// the last metric, whose discrete conformal structure never changes); laid out, it is a disk
+// with circular holes, then normalised by a Möbius map. Koebe's fill-and-map iteration
+// (Algorithm 7), which re-derives the discrete structure from each step's planar layout, was
+// tried first and drifted away from the answer over the sweeps.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <Eigen/Dense>
+
+#include "ricci/analysis/module_internal.h"
+#include "ricci/layout/layout_e2.h"
+#include "ricci/topology/cut_graph.h"
+
+namespace ricci::detail {
+
+namespace {
+
+struct Circle {
+  Complex centre;
+  double radius = 0;
+};
+
+/// The point p inside the unit disk that the automorphism z -> (z - p) / (1 - conj(p) z) sends
+/// to the common centre of the unit circle and `circle`'s image: the one of the two points
+/// symmetric with respect to both circles (x and 1/x on the ray through the centre a, with
+/// (x - |a|)(1/x - |a|) = r²) that lies inside the disk.
+Complex concentric_point(const Circle& circle) {
+  const double a = std::abs(circle.centre), r = circle.radius;
+  if (a < 1e-15) return 0;
+  const double b = 1 + a * a - r * r;
+  const double x = (b - std::sqrt(std::max(0.0, b * b - 4 * a * a))) / (2 * a);
+  return x * circle.centre / a;
+}
+
+/// Least-squares (Kåsa) circle through planar points, fitted about their centroid.
+Circle fit_circle(const std::vector<Complex>& points) {
+  Complex mean = 0;
+  for (Complex p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::MatrixX3d a(static_cast<Eigen::Index>(points.size()), 3);
+  Eigen::VectorXd b(a.rows());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    const Complex q = points[static_cast<size_t>(i)] - mean;
+    a.row(i) << q.real(), q.imag(), 1.0;
+    b[i] = -std::norm(q);
+  }
+  const Eigen::Vector3d x = a.colPivHouseholderQr().solve(b);
+  const Complex centre(-0.5 * x[0], -0.5 * x[1]);
+  return {centre + mean, std::sqrt(std::max(0.0, std::norm(centre) - x[2]))};
+}
+
+/// Loops by 3D length, longest first (c0, c1, ...).
+std::vector<int> loops_by_length(const Mesh& mesh, const MeshTables& tables) {
+  std::vector<double> length(tables.boundary_loops.size(), 0.0);
+  for (size_t k = 0; k < length.size(); ++k) {
+    const std::vector<int>& loop = tables.boundary_loops[k];
+    for (size_t i = 0; i < loop.size(); ++i) {
+      length[k] += (mesh.point(mesh.vertex_handle(loop[i])) -
+                    mesh.point(mesh.vertex_handle(loop[(i + 1) % loop.size()])))
+                       .norm();
+    }
+  }
+  std::vector<int> order(length.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return length[a] > length[b]; });
+  return order;
+}
+
+}  // namespace
+
+void circle_domain_module(const Mesh& mesh, const MeshTables& tables,
+                          const ModuleOptions& options, ModuleResult& result) {
+  const std::vector<int> order = loops_by_length(mesh, tables);
+  const int holes = static_cast<int>(order.size()) - 1;
+  const int vertices = tables.num_vertices();
+  // Constant geodesic curvature on each loop: its total (2π on c0, -2π on each hole) spread by
+  // the current metric's boundary lengths; repeated until the spread stops changing.
+  std::vector<double> total(order.size(), -2 * M_PI);
+  total[order[0]] = 2 * M_PI;
+  const auto targets_for = [&](const EdgeLengths& lengths) {
+    Targets targets;
+    targets.curvature = Eigen::VectorXd::Zero(vertices);
+    for (size_t k = 0; k < tables.boundary_loops.size(); ++k) {
+      const std::vector<int>& loop = tables.boundary_loops[k];
+      std::vector<double> edge(loop.size());
+      double length = 0;
+      for (size_t i = 0; i < loop.size(); ++i) {
+        const VertexHandle next = mesh.vertex_handle(loop[(i + 1) % loop.size()]);
+        const HalfedgeHandle h = mesh.find_halfedge(mesh.vertex_handle(loop[i]), next);
+        edge[i] = lengths[mesh.edge_handle(h).idx()];
+        length += edge[i];
+      }
+      for (size_t i = 0; i < loop.size(); ++i) {
+        const double dual = 0.5 * (edge[i] + edge[(i + loop.size() - 1) % loop.size()]);
+        targets.curvature[loop[i]] = total[k] * dual / length;
+      }
+    }
+    return targets;
+  };
+  const MeshTables& t = tables;
+  Targets targets = targets_for(mesh_edge_lengths(mesh));
+  FlowResult current = flow(mesh, targets, options.flow);
+  int iterations = current.iterations;
+  double last_change = INFINITY;
+  for (int sweep = 1; sweep <= options.max_circle_iterations; ++sweep) {
+    record_flow(current, options, result);
+    result.flow_iterations = iterations;
+    result.circle_iterations = sweep;
+    if (!result.converged) return;
+    const Targets next = targets_for(current.lengths);
+    const double change = (next.curvature - targets.curvature).cwiseAbs().maxCoeff();
+    // The circle domains form a family (Möbius maps of the disk) along which the targets may
+    // keep sliding at a constant rate once the shape is round: stop when a small change stalls.
+    const bool sliding = sweep > 3 && change > 0.9 * last_change && change < 1e-5;
+    if (change < options.circle_tolerance || sliding) break;
+    last_change = change;
+    // Half steps: the full update overshoots and grows.
+    targets.curvature += 0.5 * (next.curvature - targets.curvature);
+    current = flow(t, current.metric, targets, options.flow);
+    iterations += current.iterations;
+  }
+  // Lay the flat surface out, cut along tree paths from c0 to the holes: the holonomy around
+  // each round hole is trivial, so the copies of a cut vertex coincide.
+  const int root = tables.boundary_loops[order[0]][0];
+  const CutGraph cut = compute_cut_graph(mesh, mesh.vertex_handle(root), current.lengths);
+  const SlicedMesh sliced = slice_along(mesh, cut.is_cut_edge);
+  check_disk(sliced, "circle-domain slice");
+  const LayoutE2Result layout =
+      layout_e2(sliced.mesh, sliced_edge_lengths(sliced, current.lengths));
+  std::vector<Complex> z(vertices);
+  for (int s = 0; s < static_cast<int>(sliced.mesh.n_vertices()); ++s) {
+    z[sliced.to_original_vertex[s]] = Complex(layout.positions(s, 0), layout.positions(s, 1));
+  }
+  const auto circle_of = [&](int k) {
+    std::vector<Complex> points;
+    for (int v : tables.boundary_loops[k]) points.push_back(z[v]);
+    return fit_circle(points);
+  };
+  // c0 onto the unit circle, then the disk automorphism that makes c1 concentric with it.
+  const Circle outer = circle_of(order[0]);
+  for (Complex& p : z) p = (p - outer.centre) / outer.radius;
+  const Circle inner = circle_of(order[1]);
+  const Complex p = concentric_point(inner);
+  for (Complex& q : z) q = (q - p) / (1.0 - std::conj(p) * q);
+  std::vector<Circle> circles;
+  for (int k : order) circles.push_back(circle_of(k));
+  // Rotate c2's centre onto the positive real axis.
+  const Complex turn = std::abs(circles[2].centre) > 0
+                           ? std::conj(circles[2].centre) / std::abs(circles[2].centre)
+                           : Complex(1);
+  for (Complex& q : z) q *= turn;
+  result.roundness = 0;
+  for (size_t k = 0; k < circles.size(); ++k) {
+    circles[k].centre *= turn;
+    for (int v : tables.boundary_loops[order[k]]) {
+      result.roundness =
+          std::max(result.roundness,
+                   std::abs(std::abs(z[v] - circles[k].centre) - circles[k].radius) /
+                       circles[k].radius);
+    }
+  }
+  if (result.roundness > options.max_roundness) {
+    result.converged = false;
+    result.message = "the circle-domain iteration did not converge: a boundary vertex is " +
+                     std::to_string(result.roundness) +
+                     " of its loop's radius off its circle after " +
+                     std::to_string(result.circle_iterations) + " flows";
+  }
+  for (int k = 1; k <= holes; ++k) {
+    const std::string index = std::to_string(k);
+    if (k >= 3) {
+      result.values.push_back(circles[k].centre.real());
+      result.names.push_back("x" + index);
+    }
+    if (k >= 2) {
+      result.values.push_back(k == 2 ? circles[k].centre.real() : circles[k].centre.imag());
+      result.names.push_back((k == 2 ? "x" : "y") + index);
+    }
+    result.values.push_back(circles[k].radius);
+    result.names.push_back("r" + index);
+  }
+  CanonicalDomain& domain = result.domain;
+  domain.positions.resize(vertices, 2);
+  for (int v = 0; v < vertices; ++v) domain.positions.row(v) << z[v].real(), z[v].imag();
+  copy_faces(mesh, domain);
+  for (int k = 0; k <= holes; ++k) {
+    domain.boundaries.push_back(tables.boundary_loops[order[k]]);
+    domain.boundary_loop.push_back(k);
+  }
+}
+
+}  // namespace ricci::detail

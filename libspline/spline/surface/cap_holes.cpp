@@ -1,0 +1,179 @@
+#include "spline/surface/cap_holes.h"
+
+#include <algorithm>
+#include <optional>
+#include <utility>
+
+#include "ricci/mesh/errors.h"
+#include "spline/fill/hole_fill.h"
+#include "spline/fill/meet_patch.h"
+#include "spline/fill/rims.h"
+
+namespace spline {
+namespace {
+
+const char* rim_kind_name(Rim::Kind kind) {
+  switch (kind) {
+    case Rim::Kind::cone_hole:
+      return "cone hole";
+    case Rim::Kind::boundary:
+      return "boundary";
+    case Rim::Kind::excluded:
+      return "excluded faces";
+  }
+  return "rim";
+}
+
+// The surface next to the rims moved to meet the patches (spline/fill/meet_patch.h), then the
+// seams measured again; kept only when the largest seam drops (it is a least-squares compromise
+// along the whole rim: where the seam is already small it can grow a little).
+void move_surface_to_patches(SplineSurface& surface) {
+  auto& fills = surface.fills;
+  if (fills.empty()) return;
+  ManifoldSpline moved = surface.spline;
+  moved.control_points = meet_patches(surface.spline, fills).control_points;
+  std::vector<SeamReport> seams;
+  double before = 0.0, after = 0.0;
+  for (const auto& fill : fills) {
+    seams.push_back(measure_seam(moved, fill));
+    before = std::max(before, fill.max_normal_jump_deg);
+    after = std::max(after, seams.back().max_normal_jump_deg);
+  }
+  if (!(after < before)) return;
+  surface.spline = std::move(moved);
+  for (std::size_t i = 0; i < fills.size(); ++i) {
+    fills[i].max_normal_jump_deg = seams[i].max_normal_jump_deg;
+    fills[i].max_position_gap = seams[i].max_position_gap;
+    fills[i].rms_position_gap = seams[i].rms_position_gap;
+  }
+}
+
+// The rims, and the cone hole's patch when one was made while choosing them.
+struct ChosenRims {
+  std::vector<Rim> rims;
+  int cone = -1;  ///< index of the cone hole's rim, -1 without one
+  std::optional<HoleFill> cone_fill;
+};
+
+int cone_rim(const std::vector<Rim>& rims) {
+  for (std::size_t i = 0; i < rims.size(); ++i) {
+    if (rims[i].kind == Rim::Kind::cone_hole) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// The cone hole grows past faces where the chart is badly conditioned or the spline folds
+// (FindRimsOptions). A cone patch that still flips (a seam above 90 degrees: the patch folds
+// where the rim turns too fast for it) is retried on the hole grown by one and then two more
+// layers (within FindRimsOptions' caps), keeping the smallest seam (block.off at 2000 faces:
+// 169 degrees, one more layer 2.4).
+ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in_domain,
+                       const std::vector<char>& collar_faces, const RimMergeOptions& merge,
+                       const FillOptions& cone_options) {
+  const auto& space = *surface.spline.space;
+  const std::vector<double> scale = chart_scale_by_face(space, surface.domain);
+  const auto normal_step = [&surface](int face) {
+    return max_normal_step_deg(surface.spline, face);
+  };
+  const auto find = [&](int extra_layers) {
+    FindRimsOptions rim_options;
+    rim_options.extra_cone_layers = extra_layers;
+    rim_options.boundary_faces = collar_faces;
+    return find_rims(surface.domain, in_domain, space.atlas().in_domain, rim_options, merge,
+                     scale, normal_step);
+  };
+  ChosenRims chosen;
+  chosen.rims = find(0);
+  chosen.cone = cone_rim(chosen.rims);
+  if (chosen.cone < 0) return chosen;
+  chosen.cone_fill = fill_rim(surface.spline, surface.domain, chosen.rims[chosen.cone],
+                              cone_options);
+  constexpr double kFlipped = 90.0;
+  for (int extra = 1; extra <= 2 && chosen.cone_fill->max_normal_jump_deg > kFlipped; ++extra) {
+    std::vector<Rim> rims = find(extra);
+    const int cone = cone_rim(rims);
+    if (cone < 0 || rims[cone].covered_faces == chosen.rims[chosen.cone].covered_faces) break;
+    HoleFill fill = fill_rim(surface.spline, surface.domain, rims[cone], cone_options);
+    if (fill.max_normal_jump_deg < chosen.cone_fill->max_normal_jump_deg) {
+      chosen.rims = std::move(rims);
+      chosen.cone = cone;
+      chosen.cone_fill = std::move(fill);
+    }
+  }
+  return chosen;
+}
+
+FillOptions fill_options_for(bool input_boundary) {
+  FillOptions fill_options;
+  // The punctured sphere's hole is a cone hole in all but name: filled like one (its
+  // projection may fold; the patch is laid out on a circle either way). Without the
+  // fallback its fold left the only rim of camel.off and knight_decimated.off open.
+  fill_options.require_simple_projection = input_boundary;
+  // Boundary loops the caller asked to cap are capped too when no height field fits them
+  // (most of them, e.g. beetle.off's merged ones): watertight, not G1, counted in
+  // fallback_fills.
+  fill_options.fallback_boundary = true;
+  return fill_options;
+}
+
+}  // namespace
+
+CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options) {
+  const auto& space = *surface.spline.space;
+  const int faces = static_cast<int>(surface.domain.n_faces());
+  std::vector<char> in_domain(static_cast<std::size_t>(faces), 0);
+  for (int f = 0; f < faces; ++f) in_domain[static_cast<std::size_t>(f)] = space.in_domain(f);
+  surface.skipped_faces.assign(in_domain.size(), 0);
+  const std::vector<char>& collar = options.collar_faces;
+  if (!collar.empty() && collar.size() != in_domain.size()) {
+    throw ricci::InvalidInputError("cap_holes: " + std::to_string(collar.size()) +
+                                   " collar flags for " + std::to_string(faces) + " faces");
+  }
+  for (std::size_t f = 0; f < in_domain.size(); ++f) {
+    surface.skipped_faces[f] = !in_domain[f] || (!collar.empty() && collar[f]);
+  }
+  // Nearby boundary loops merge into one hole only when they will be capped: left open, every
+  // input loop keeps its own rim, so the surface keeps the input's boundary loops.
+  RimMergeOptions merge;
+  merge.boundary_loops = options.fill_boundaries || !options.open_input;
+  ChosenRims chosen = choose_rims(surface, in_domain, collar, merge, fill_options_for(false));
+  CapHolesReport report;
+  surface.fills.clear();
+  surface.open_rims.clear();
+  for (std::size_t r = 0; r < chosen.rims.size(); ++r) {
+    Rim& rim = chosen.rims[r];
+    // A closed input's domain boundary is the punctured sphere's removed star: always capped.
+    const bool input_boundary = rim.kind == Rim::Kind::boundary && options.open_input;
+    if (input_boundary) ++report.boundary_rims;
+    // An open rim's band is kept with a collar (the spline is a partition of unity up to the
+    // boundary there) and skipped without one: the spline collapses in that band (holes.off
+    // with the band kept: fit max 27% of the diagonal, 1.8% without it).
+    if (input_boundary && !options.fill_boundaries) {
+      if (collar.empty()) {
+        for (int f : rim.covered_faces) surface.skipped_faces[static_cast<std::size_t>(f)] = 1;
+      }
+      surface.open_rims.push_back(std::move(rim));
+      continue;
+    }
+    for (int f : rim.covered_faces) surface.skipped_faces[static_cast<std::size_t>(f)] = 1;
+    try {
+      surface.fills.push_back(static_cast<int>(r) == chosen.cone
+                                  ? std::move(*chosen.cone_fill)
+                                  : fill_rim(surface.spline, surface.domain, rim,
+                                             fill_options_for(input_boundary)));
+      if (!surface.fills.back().g1) ++report.fallback_fills;
+    } catch (const ricci::InvalidInputError& e) {
+      // A boundary whose projection folds cannot be capped: left open and reported.
+      report.failures.push_back(std::string(rim_kind_name(rim.kind)) + ": " + e.what());
+      surface.open_rims.push_back(std::move(rim));
+    }
+  }
+  move_surface_to_patches(surface);
+  for (const auto& fill : surface.fills) {
+    report.max_normal_jump_deg = std::max(report.max_normal_jump_deg, fill.max_normal_jump_deg);
+    report.max_position_gap = std::max(report.max_position_gap, fill.max_position_gap);
+  }
+  return report;
+}
+
+}  // namespace spline

@@ -1,0 +1,43 @@
+#pragma once
+// The hole-filling stage of fit_surface: which rims of a fitted spline are capped by patches
+// (fill/hole_fill.h), with which fill options and retries, and the spline moved to meet the
+// patches (fill/meet_patch.h).
+#include <string>
+#include <vector>
+
+#include "spline/surface/spline_surface.h"
+
+namespace spline {
+
+struct CapHolesOptions {
+  /// The input had boundary loops of its own (then the domain's boundary rims are those loops;
+  /// otherwise the only boundary is the puncture of a closed genus-0 input, always capped).
+  bool open_input = false;
+  bool fill_boundaries = false;  ///< Also cap the input's own boundary loops.
+  /// By domain face, nonzero: a ghost face of the scan fit's boundary collar
+  /// (ScanFitResult::collar_faces), fitted but beyond the surface's boundary: skipped, and the
+  /// rims along it are boundary rims. Empty: no collar.
+  std::vector<char> collar_faces;
+};
+
+struct CapHolesReport {
+  std::vector<std::string> failures;  ///< Rims whose fill was refused: "kind: reason".
+  int boundary_rims = 0;   ///< Rims along the input's boundary loops (see FittedSurface).
+  int fallback_fills = 0;  ///< Patches that are the positions-only fallback (not G1).
+  double max_normal_jump_deg = 0.0;  ///< Largest seam normal jump over the patches.
+  double max_position_gap = 0.0;     ///< Largest patch - spline gap over the domain diagonal.
+};
+
+/// Finds the rims of surface.spline over surface.domain and caps them: the cone hole (grown
+/// past badly conditioned or folded faces; a patch that flips, seam > 90 degrees, is retried on
+/// the hole grown by one and two more layers, the smallest seam kept), excluded-face holes, and
+/// boundary rims as options say; a rim whose fill throws ricci::InvalidInputError stays open
+/// and is reported. Then the spline's control points next to the rims move to meet the patches
+/// (kept only when the largest seam drops). Sets surface.fills, open_rims, skipped_faces (the
+/// faces outside the domain, the collar, and every rim's covered faces; an open rim's too when
+/// there is no collar) and surface.spline.
+/// \pre surface.domain and surface.spline as fit_scan leaves them; fills and open_rims empty.
+/// \throw ricci::SolverError when a patch's system cannot be solved; as find_rims.
+[[nodiscard]] CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options);
+
+}  // namespace spline

@@ -1,0 +1,288 @@
+#include "spline/surface/fit_surface.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <string>
+#include <utility>
+
+#include "ricci/mesh/arrays.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/simplify.h"
+#include "spline/surface/cap_holes.h"
+#include "spline/surface/tessellate_surface.h"
+#include "spline/tessellate/parallel_for.h"
+
+namespace spline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Wall-clock and CPU seconds of consecutive stages: a stage ends when the next one begins.
+class StageClock {
+ public:
+  StageClock(FittedSurface& out, const FitSurfaceOptions& options)
+      : out_(out), progress_(options.progress) {}
+  void begin(const std::string& name) {
+    if (!stage_.empty()) {
+      out_.seconds.emplace_back(stage_, seconds_since(stage_start_));
+      out_.cpu_seconds.emplace_back(stage_, process_cpu_seconds() - cpu_start_);
+    }
+    cpu_start_ = process_cpu_seconds();
+    stage_ = name;
+    stage_start_ = Clock::now();
+    if (progress_ && !name.empty()) progress_(name);
+  }
+  void finish() {
+    begin("");
+    out_.seconds.emplace_back("total", seconds_since(total_start_));
+    out_.cpu_seconds.emplace_back("total", process_cpu_seconds() - cpu_total_);
+  }
+
+ private:
+  FittedSurface& out_;
+  const std::function<void(const std::string&)>& progress_;
+  Clock::time_point total_start_ = Clock::now();
+  double cpu_total_ = process_cpu_seconds();
+  Clock::time_point stage_start_ = total_start_;
+  double cpu_start_ = cpu_total_;
+  std::string stage_;
+};
+
+// Closed surfaces other than tori carry an extraordinary point; open ones and tori none.
+bool needs_singularity(const ricci::SurfaceTopology& t) {
+  return t.boundary_loops == 0 && t.genus != 1;
+}
+
+// The interior vertex of `domain` nearest to `point`.
+int nearest_interior_vertex(const ricci::Mesh& domain, const Eigen::Vector3d& point) {
+  int best = -1;
+  double best_distance = 0.0;
+  for (auto v : domain.vertices()) {
+    if (domain.is_boundary(v)) continue;
+    const double d = (ricci::to_eigen(domain.point(v)) - point).squaredNorm();
+    if (best < 0 || d < best_distance) {
+      best = v.idx();
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+// The caller's singular vertex (an index of the input) as a vertex of the domain mesh fit_scan
+// will build: the simplification is deterministic, so running it here gives the same mesh.
+int domain_singular_vertex(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
+  const int v = options.singular_vertex;
+  if (v < 0) return -1;
+  if (v >= static_cast<int>(dense.n_vertices())) {
+    throw ricci::InvalidInputError("singular vertex " + std::to_string(v) +
+                                   " is out of range (the mesh has " +
+                                   std::to_string(dense.n_vertices()) + " vertices)");
+  }
+  if (dense.is_boundary(dense.vertex_handle(v))) {
+    throw ricci::InvalidInputError("singular vertex " + std::to_string(v) +
+                                   " lies on the boundary (the extraordinary point must be an "
+                                   "interior vertex)");
+  }
+  if (static_cast<int>(dense.n_faces()) <= options.domain_faces) return v;
+  ricci::SimplifyOptions simplify;
+  simplify.target_faces = options.domain_faces;
+  const ricci::Mesh domain = ricci::simplify_mesh(dense, simplify).mesh;
+  return nearest_interior_vertex(domain, ricci::to_eigen(dense.point(dense.vertex_handle(v))));
+}
+
+void check_domain_size(const ricci::Mesh& dense, const ricci::SurfaceTopology& input,
+                       const FitSurfaceOptions& options) {
+  const int minimum = minimum_domain_faces(input.genus);
+  const std::string genus = std::to_string(input.genus);
+  if (options.domain_faces < minimum) {
+    throw ricci::InvalidInputError("too few domain faces: " +
+                                   std::to_string(options.domain_faces) + " for a genus-" + genus +
+                                   " surface (at least " + std::to_string(minimum) + ")");
+  }
+  if (static_cast<int>(dense.n_faces()) < minimum) {
+    throw ricci::InvalidInputError("the mesh has " + std::to_string(dense.n_faces()) +
+                                   " faces, too few for a genus-" + genus +
+                                   " spline domain (at least " + std::to_string(minimum) + ")");
+  }
+}
+
+ScanFitOptions scan_options(const FitSurfaceOptions& options) {
+  ScanFitOptions scan;
+  scan.domain_faces = options.domain_faces;
+  scan.degree = options.degree;
+  scan.fair_r = options.fairness;
+  scan.fit.smoothing = options.smoothing;
+  scan.atlas.cone_refinement = options.cone_refinement;
+  return scan;
+}
+
+// Gauss-Newton steps of the projection: the distance is stationary in the parameter, so its
+// error is second order in the step left (cup.off: 6 -> 2 steps moves the RMS by 0.07% of
+// itself, the maximum not at all, for half the evaluations).
+constexpr int kProjectionIterations = 2;
+
+// Distance from `target` to the patch (Gauss-Newton in D from the nearest tessellation vertex),
+// -1 when the patch has no interior vertex.
+double distance_to_patch(const HoleFill& fill, const PatchTessellation& patch,
+                         const Eigen::Vector3d& target) {
+  if (patch.positions.rows() == 0) return -1.0;
+  Eigen::Index nearest = 0;
+  (patch.positions.rowwise() - target.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
+  Eigen::Vector2d u = patch.parameters.row(nearest).transpose();
+  PatchPoint p = fill.evaluate(u);
+  double best = (p.position - target).norm();
+  double radius = 0.0;
+  for (const auto& c : fill.corners) radius = std::max(radius, (c - fill.center).norm());
+  for (int it = 0; it < kProjectionIterations; ++it) {
+    Eigen::Matrix<double, 3, 2> j;
+    j << p.du, p.dv;
+    const Eigen::Matrix2d jtj = j.transpose() * j;
+    if (!(std::abs(jtj.determinant()) > 1e-300)) break;
+    const Eigen::Vector2d next = u - jtj.ldlt().solve(j.transpose() * (p.position - target));
+    // Beyond D: the closest point is on the spline, which is measured there.
+    if ((next - fill.center).norm() > radius) break;
+    const PatchPoint trial = fill.evaluate(next);
+    const double d = (trial.position - target).norm();
+    if (!(d < best)) break;
+    best = d;
+    u = next;
+    p = trial;
+  }
+  return best;
+}
+
+// Distance to the nearest patch, -1 when there is none.
+double distance_to_fills(const SplineSurface& surface,
+                         const std::vector<PatchTessellation>& patches,
+                         const Eigen::Vector3d& target) {
+  double best = -1.0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    const double d = distance_to_patch(surface.fills[i], patches[i], target);
+    if (d >= 0 && (best < 0 || d < best)) best = d;
+  }
+  return best;
+}
+
+// Distances of the input's vertices to the surface shown: the spline by closest-point
+// projection from their parameters; vertices whose parameter is outside the tessellated faces
+// (the cone's star, a patch's covered faces) to the nearest patch. In parallel.
+void measure_fit(const ricci::Mesh& dense, const std::vector<DomainPoint>& parameters,
+                 const std::vector<PatchTessellation>& patches, FittedSurface& out) {
+  const SplineSurface& surface = out.surface;
+  const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
+  std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
+  std::vector<char> on_fill(distance.size(), 0);
+  parallel_for(distance.size(), 0, [&](std::size_t k) {
+    const DomainPoint& start = parameters[k];
+    const Eigen::Vector3d target = points.row(static_cast<Eigen::Index>(k)).transpose();
+    if (start.face >= 0 && !surface.skipped_faces[static_cast<std::size_t>(start.face)]) {
+      distance[k] =
+          project_to_spline(surface.spline, start, target, kProjectionIterations).distance;
+      return;
+    }
+    distance[k] = distance_to_fills(surface, patches, target);
+    on_fill[k] = distance[k] >= 0;
+  });
+  for (char c : on_fill) out.fit_points_on_fills += c;
+  double sum = 0.0;
+  for (double d : distance) {
+    if (d < 0) continue;
+    sum += d * d;
+    out.fit_max = std::max(out.fit_max, d);
+    ++out.fit_points;
+  }
+  out.fit_rms = out.fit_points > 0 ? std::sqrt(sum / out.fit_points) : 0.0;
+  out.bbox_diagonal =
+      points.rows() > 0 ? (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm() : 0.0;
+}
+
+// Topology and smoothness of the tessellation and the spline's own seams.
+void measure_surface(FittedSurface& out) {
+  const Tessellation& t = out.tessellation;
+  out.topology = check_watertight(t.triangles, t.positions);
+  // The rims left open on purpose: each is one boundary loop of the result (nearby input loops
+  // merged into one rim count once).
+  const int expected_loops =
+      static_cast<int>(out.surface.open_rims.size() - out.fill_failures.size());
+  out.float_topology = float_welded_topology(t);
+  out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
+  out.watertight = out.topology.matches(out.input.genus, expected_loops) &&
+                   out.float_topology.matches(out.input.genus, expected_loops);
+  out.edge_normal_jump_deg = max_edge_normal_jump_deg(out.surface.spline, out.surface.domain, 1,
+                                                      0, out.surface.skipped_faces);
+}
+
+// fit_scan's result split: the spline and its domain into the surface, the atlas kept.
+void take_scan(ScanFitResult&& scan, FittedSurface& out) {
+  out.atlas = std::move(scan.atlas);
+  const auto& problem = out.atlas.problem;
+  out.surface.domain = problem.mesh;
+  out.surface.spline = std::move(scan.spline);
+  out.surface.singular_vertex = problem.cone;
+  out.fit_constraint_residual = scan.fit.max_constraint_residual;
+  out.collar_faces = std::move(scan.collar_faces);
+  out.collar_refused = std::move(scan.collar_refused);
+  out.boundary_follow = scan.boundary_follow;
+}
+
+}  // namespace
+
+int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
+
+FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
+  FittedSurface out;
+  StageClock clock(out, options);
+  out.input = ricci::surface_topology(dense);
+  check_domain_size(dense, out.input, options);
+
+  ScanFitOptions scan = scan_options(options);
+  if (options.singular_vertex >= 0) {
+    clock.begin("singularity");
+    const int vertex = domain_singular_vertex(dense, options);  // checks range and boundary
+    if (needs_singularity(out.input)) scan.atlas.singular_vertex = vertex;
+  }
+  scan.progress = [&clock](const std::string& stage) { clock.begin(stage); };
+  ScanFitResult fitted = fit_scan(dense, scan);
+  const std::vector<DomainPoint> parameters = std::move(fitted.vertex_parameters);
+  take_scan(std::move(fitted), out);
+
+  clock.begin("fill");
+  CapHolesOptions cap;
+  cap.open_input = out.input.boundary_loops > 0;
+  cap.fill_boundaries = options.fill_boundaries;
+  cap.collar_faces = out.collar_faces;
+  CapHolesReport capped = cap_holes(out.surface, cap);
+  out.fill_failures = std::move(capped.failures);
+  out.boundary_rims = capped.boundary_rims;
+  out.fallback_fills = capped.fallback_fills;
+  out.fill_normal_jump_deg = capped.max_normal_jump_deg;
+  out.fill_position_gap = capped.max_position_gap;
+
+  clock.begin("tessellate");
+  TessellationOptions tess;
+  tess.density = options.density > 0
+                     ? options.density
+                     : default_density(out.surface.spline.space->domain_face_count());
+  std::vector<PatchTessellation> patches;
+  out.tessellation = tessellate_surface(out.surface, tess, patches);
+
+  clock.begin("measure");
+  measure_surface(out);
+  measure_fit(dense, parameters, patches, out);
+  clock.finish();
+  return out;
+}
+
+}  // namespace spline

@@ -1,0 +1,102 @@
+#pragma once
+// The whole scan-to-surface job in one call: the scan fit (simplify, one-cone atlas, spline
+// space, parameters, constrained fit, parameter correction), the patches capping the cone's
+// hole (and, on request, the input's boundary loops), the surface moved to meet them, a
+// watertight tessellation of spline and patches, and the figures that say whether it worked
+// (distance to the scan, seam normal jumps, topology of the tessellation). `msp fit` is this
+// call plus file output.
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ricci/mesh/mesh.h"
+#include "ricci/mesh/primitives.h"
+#include "ricci/pipeline/one_cone_atlas.h"
+#include "spline/fit/fit.h"
+#include "spline/surface/spline_surface.h"
+#include "spline/tessellate/dihedral.h"
+#include "spline/tessellate/tessellate.h"
+
+namespace spline {
+
+struct FitSurfaceOptions {
+  int domain_faces = 2000;  ///< Target face count of the simplified domain mesh.
+  int degree = 3;           ///< n of the DMS spline, 1..kMaxDmsDegree.
+  int fairness = 1;         ///< r of the fairing constraints the fit obeys (-1: none).
+  /// Weight of the fit's thin-plate energy (FitOptions::smoothing, dimensionless).
+  double smoothing = FitOptions{}.smoothing;
+  /// Input-mesh vertex of the extraordinary point (an interior vertex), -1 to choose it by
+  /// least area distortion. Ignored, but still checked, where there is no cone (open, tori).
+  int singular_vertex = -1;
+  bool fill_boundaries = false;  ///< Also cap the input's own boundary loops.
+  /// Tessellation samples per domain edge - 1; 0: chosen by domain size (default_density).
+  int density = 0;
+  /// Denser domain around the cone (levels 0: off; ricci/singularity/one_cone.h).
+  ricci::ConeRefinementOptions cone_refinement = ScanFitOptions{}.atlas.cone_refinement;
+  /// Optional: called with a stage name when the stage starts (the names of `seconds`).
+  std::function<void(const std::string& stage)> progress;
+};
+
+/// Wall-clock or CPU seconds by stage, in the order run, then "total".
+using StageSeconds = std::vector<std::pair<std::string, double>>;
+
+struct FittedSurface {
+  /// The delivered surface: domain mesh, spline (moved to meet the patches), the patches,
+  /// the rims left open and the faces the patches cover.
+  SplineSurface surface;
+  ricci::SurfaceTopology input;  ///< Of the input mesh.
+  /// The one-cone atlas the spline is built on (cut loops, charts, flow, cone refinement);
+  /// atlas.problem.mesh equals surface.domain.
+  ricci::OneConeAtlasResult atlas;
+  double fit_constraint_residual = 0.0;  ///< Largest |C c| of the constrained fit.
+  /// Open inputs: by domain face, the ghost faces of the boundary collar (ScanFitResult); why
+  /// the collar was dropped, if it was; what follow_boundary did to the domain's boundary.
+  std::vector<char> collar_faces;
+  std::string collar_refused;
+  ricci::BoundaryFollowResult boundary_follow;
+  /// tessellate_surface(surface) at the chosen density: spline and patches, welded.
+  Tessellation tessellation;
+  WatertightReport topology;  ///< Of the tessellation (position indices).
+  /// Of the tessellation rounded to float and welded by value, as a file holds it (a surface
+  /// that collapses somewhere shows degenerate triangles here, not in `topology`).
+  WatertightReport float_topology;
+  /// Angles between adjacent triangles of the tessellation (folds show as > 90 degrees).
+  DihedralReport surface_dihedral;
+  /// Manifold (as computed and float-welded) of the input's genus, with one boundary loop per
+  /// rim left open on purpose (a failed fill leaves one more: not watertight).
+  bool watertight = false;
+  std::vector<std::string> fill_failures;  ///< Rims whose fill was refused, with the reason.
+  /// Rims along the input's boundary loops: with fill_boundaries fewer than its loops where
+  /// loops a ring or two apart merged into one hole (spline/fill/rims.h); without, one per loop.
+  int boundary_rims = 0;
+  int fallback_fills = 0;           ///< Patches that are the positions-only fallback (not G1).
+  double fit_rms = 0.0, fit_max = 0.0;  ///< Input vertices to the surface (projection).
+  int fit_points = 0;                   ///< Input vertices measured.
+  int fit_points_on_fills = 0;          ///< Of those, measured against a patch.
+  double bbox_diagonal = 0.0;           ///< Of the input.
+  double edge_normal_jump_deg = 0.0;    ///< Across domain edges (the spline's own seams).
+  double fill_normal_jump_deg = 0.0;    ///< Across the patches' rims.
+  double fill_position_gap = 0.0;       ///< Largest gap patch - spline over the domain diagonal.
+  StageSeconds seconds;                 ///< Wall clock by stage.
+  /// CPU seconds of the process (all threads) by stage: on a shared machine the wall clock
+  /// includes waiting for a core, this does not.
+  StageSeconds cpu_seconds;
+};
+
+/// Smallest FitSurfaceOptions::domain_faces for a surface of this genus: the domain must hold
+/// the cone's star, the cut graph's 2g loops and a vertex chart around each.
+[[nodiscard]] int minimum_domain_faces(int genus);
+
+/// Fits the surface to `dense` (its vertices and face centroids) and caps its holes: the cone
+/// hole always (grown, and retried on a bigger hole where its patch flips), excluded-face holes
+/// always, boundary loops with fill_boundaries (a closed genus-0 input's puncture always).
+/// Stages: "singularity" (with a given vertex), fit_scan's, "fill", "tessellate", "measure".
+/// \pre `dense` is a connected oriented 2-manifold triangle mesh.
+/// \throw ricci::InvalidInputError for a singular vertex out of range or on the boundary, or
+///        fewer domain faces (asked for, or in the mesh) than minimum_domain_faces; as fit_scan
+///        otherwise.
+[[nodiscard]] FittedSurface fit_surface(const ricci::Mesh& dense,
+                                        const FitSurfaceOptions& options = {});
+
+}  // namespace spline

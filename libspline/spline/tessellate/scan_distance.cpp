@@ -1,0 +1,189 @@
+#include "spline/tessellate/scan_distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/soup_distance.h"
+#include "spline/tessellate/parallel_for.h"
+
+namespace spline {
+namespace {
+
+// Distances of every row of `points` to `tree`, in parallel (queries on a const tree).
+template <class Tree>
+Eigen::VectorXd parallel_distances(const Tree& tree, const Eigen::MatrixX3d& points,
+                                   int threads) {
+  Eigen::VectorXd out(points.rows());
+  parallel_for(static_cast<std::size_t>(points.rows()), threads, [&](std::size_t i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    out[row] = tree.closest(points.row(row).transpose()).distance;
+  });
+  return out;
+}
+
+// Every surface vertex used by a triangle, then every non-degenerate triangle's centroid.
+Eigen::MatrixX3d surface_samples(const Eigen::MatrixX3d& positions,
+                                 const std::vector<std::array<int, 3>>& triangles) {
+  std::vector<char> used(static_cast<std::size_t>(positions.rows()), 0);
+  for (const auto& t : triangles) {
+    for (int v : t) used[static_cast<std::size_t>(v)] = 1;
+  }
+  std::vector<Eigen::Vector3d> points;
+  for (Eigen::Index v = 0; v < positions.rows(); ++v) {
+    if (used[static_cast<std::size_t>(v)]) points.emplace_back(positions.row(v).transpose());
+  }
+  for (const auto& t : triangles) {
+    const Eigen::Vector3d a = positions.row(t[0]), b = positions.row(t[1]), c = positions.row(t[2]);
+    if ((b - a).cross(c - a).norm() > 0.0) points.push_back((a + b + c) / 3.0);
+  }
+  Eigen::MatrixX3d out(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  }
+  return out;
+}
+
+void check_indices(const Eigen::MatrixX3d& positions,
+                   const std::vector<std::array<int, 3>>& triangles, const char* what) {
+  if (triangles.empty()) throw ricci::InvalidInputError(std::string(what) + ": no triangle");
+  for (const auto& t : triangles) {
+    for (int v : t) {
+      if (v < 0 || v >= positions.rows()) {
+        throw ricci::InvalidInputError(std::string(what) + ": index " + std::to_string(v) +
+                                       " out of range");
+      }
+      if (!positions.row(v).allFinite()) {
+        throw ricci::InvalidInputError(std::string(what) + ": position " + std::to_string(v) +
+                                       " is not finite");
+      }
+    }
+  }
+}
+
+// The ends and midpoint of every edge.
+Eigen::MatrixX3d edge_samples(const Eigen::MatrixX3d& positions,
+                              const std::vector<std::array<int, 2>>& edges) {
+  Eigen::MatrixX3d out(static_cast<Eigen::Index>(3 * edges.size()), 3);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const Eigen::RowVector3d a = positions.row(edges[e][0]), b = positions.row(edges[e][1]);
+    const auto row = static_cast<Eigen::Index>(3 * e);
+    out.row(row) = a;
+    out.row(row + 1) = 0.5 * (a + b);
+    out.row(row + 2) = b;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::array<int, 2>> soup_boundary_edges(const std::vector<std::array<int, 3>>& triangles) {
+  std::map<std::pair<int, int>, int> count;
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      ++count[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::vector<std::array<int, 2>> out;
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (a != b && count[{std::min(a, b), std::max(a, b)}] == 1) out.push_back({a, b});
+    }
+  }
+  return out;
+}
+
+ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_positions,
+                                        const std::vector<std::array<int, 3>>& surface_triangles,
+                                        const Eigen::MatrixX3d& scan_positions,
+                                        const std::vector<std::array<int, 3>>& scan_triangles,
+                                        const ScanDistanceOptions& options) {
+  check_indices(surface_positions, surface_triangles, "surface");
+  check_indices(scan_positions, scan_triangles, "scan");
+  if (!(options.coverage_tolerance > 0.0)) {
+    throw ricci::InvalidInputError("coverage tolerance must be positive");
+  }
+  ScanDistanceReport report;
+  report.bbox_diagonal =
+      (scan_positions.colwise().maxCoeff() - scan_positions.colwise().minCoeff()).norm();
+  report.coverage_tolerance = options.coverage_tolerance * report.bbox_diagonal;
+
+  const ricci::TriangleSoupDistance surface(surface_positions, surface_triangles);
+  const ricci::TriangleSoupDistance scan(scan_positions, scan_triangles);
+
+  // Every scan vertex to the surface.
+  const Eigen::VectorXd fit = parallel_distances(surface, scan_positions, options.threads);
+  report.scan_points = static_cast<int>(fit.size());
+  Eigen::Index farthest = 0;
+  report.fit_max = fit.maxCoeff(&farthest);
+  report.fit_max_point = scan_positions.row(farthest).transpose();
+  report.fit_rms = std::sqrt(fit.squaredNorm() / static_cast<double>(fit.size()));
+
+  // The surface back to the scan.
+  const Eigen::MatrixX3d samples = surface_samples(surface_positions, surface_triangles);
+  Eigen::VectorXd back = parallel_distances(scan, samples, options.threads);
+  report.surface_points = static_cast<int>(back.size());
+  report.surface_to_scan_max = back.maxCoeff(&farthest);
+  report.surface_to_scan_max_point = samples.row(farthest).transpose();
+  std::vector<double> sorted(back.data(), back.data() + back.size());
+  const auto k = static_cast<std::size_t>(0.99 * static_cast<double>(sorted.size() - 1));
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
+  report.surface_to_scan_p99 = sorted[k];
+
+  // Coverage: four samples per scan triangle, area-weighted.
+  Eigen::MatrixX3d cover(static_cast<Eigen::Index>(4 * scan_triangles.size()), 3);
+  Eigen::VectorXd area(static_cast<Eigen::Index>(scan_triangles.size()));
+  for (std::size_t t = 0; t < scan_triangles.size(); ++t) {
+    const auto& tri = scan_triangles[t];
+    const Eigen::RowVector3d a = scan_positions.row(tri[0]), b = scan_positions.row(tri[1]),
+                             c = scan_positions.row(tri[2]);
+    area[static_cast<Eigen::Index>(t)] = 0.5 * (b - a).cross(c - a).norm();
+    const auto row = static_cast<Eigen::Index>(4 * t);
+    cover.row(row) = (a + b + c) / 3.0;
+    cover.row(row + 1) = (4.0 * a + b + c) / 6.0;
+    cover.row(row + 2) = (a + 4.0 * b + c) / 6.0;
+    cover.row(row + 3) = (a + b + 4.0 * c) / 6.0;
+  }
+  const Eigen::VectorXd cover_distance = parallel_distances(surface, cover, options.threads);
+  double covered = 0.0;
+  for (Eigen::Index t = 0; t < area.size(); ++t) {
+    int inside = 0;
+    for (int s = 0; s < 4; ++s) inside += cover_distance[4 * t + s] <= report.coverage_tolerance;
+    covered += area[t] * inside / 4.0;
+  }
+  report.coverage = area.sum() > 0.0 ? covered / area.sum() : 1.0;
+
+  // Boundaries.
+  const auto surface_rim = soup_boundary_edges(surface_triangles);
+  const auto scan_rim = soup_boundary_edges(scan_triangles);
+  report.surface_boundary_edges = static_cast<int>(surface_rim.size());
+  report.scan_boundary_edges = static_cast<int>(scan_rim.size());
+  if (!surface_rim.empty() && !scan_rim.empty()) {
+    const ricci::SegmentSoupDistance surface_curve(surface_positions, surface_rim);
+    const ricci::SegmentSoupDistance scan_curve(scan_positions, scan_rim);
+    const Eigen::MatrixX3d surface_side = edge_samples(surface_positions, surface_rim);
+    const Eigen::MatrixX3d scan_side = edge_samples(scan_positions, scan_rim);
+    const Eigen::VectorXd out = parallel_distances(scan_curve, surface_side, options.threads);
+    const Eigen::VectorXd in = parallel_distances(surface_curve, scan_side, options.threads);
+    Eigen::Index worst_out = 0, worst_in = 0;
+    report.surface_boundary_to_scan_boundary = out.maxCoeff(&worst_out);
+    report.scan_boundary_to_surface_boundary = in.maxCoeff(&worst_in);
+    const bool outward =
+        report.surface_boundary_to_scan_boundary >= report.scan_boundary_to_surface_boundary;
+    report.boundary_hausdorff = outward ? report.surface_boundary_to_scan_boundary
+                                        : report.scan_boundary_to_surface_boundary;
+    report.boundary_hausdorff_point = outward ? surface_side.row(worst_out).transpose()
+                                              : scan_side.row(worst_in).transpose();
+  }
+  return report;
+}
+
+}  // namespace spline

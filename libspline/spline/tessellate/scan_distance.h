@@ -1,0 +1,59 @@
+#pragma once
+// How far a delivered surface (a triangle soup: the tessellation as written) is from the scan it
+// was fitted to, measured both ways by global closest-point queries (AABB trees, ricci's
+// soup_distance.h): every scan vertex to the surface, points sampled on the surface to the scan,
+// the share of the scan's area the surface reaches, and the distance between the two boundaries.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace spline {
+
+struct ScanDistanceOptions {
+  /// A scan point is covered when the surface passes within this distance, as a fraction of the
+  /// scan's bounding-box diagonal.
+  double coverage_tolerance = 0.005;
+  int threads = 0;  ///< Query threads; 0 = all cores.
+};
+
+/// Distances are absolute (the scan's units); divide by bbox_diagonal for fractions.
+struct ScanDistanceReport {
+  double bbox_diagonal = 0.0;  ///< Of the scan's vertices.
+  /// Every scan vertex to the surface (none left out).
+  int scan_points = 0;
+  double fit_rms = 0.0, fit_max = 0.0;
+  Eigen::Vector3d fit_max_point = Eigen::Vector3d::Zero();  ///< The scan vertex farthest away.
+  /// Surface to scan: every surface vertex and every non-degenerate triangle's centroid.
+  int surface_points = 0;
+  double surface_to_scan_p99 = 0.0, surface_to_scan_max = 0.0;
+  Eigen::Vector3d surface_to_scan_max_point = Eigen::Vector3d::Zero();
+  /// Share of the scan's area within coverage_tolerance of the surface (each scan triangle
+  /// weighted by the share of its four samples, corners' centroid and the three points at
+  /// barycentric (2/3, 1/6, 1/6), that are covered).
+  double coverage = 0.0;
+  double coverage_tolerance = 0.0;  ///< Absolute.
+  /// Boundary edges (in one triangle only) of each, and the two one-sided distances between the
+  /// boundary curves (largest distance of a sample of one, the edges' ends and midpoints, to the
+  /// other's edges) and their maximum, the Hausdorff distance. -1 when either side has no
+  /// boundary (a closed surface and a closed scan: nothing to compare).
+  int scan_boundary_edges = 0, surface_boundary_edges = 0;
+  double surface_boundary_to_scan_boundary = -1.0, scan_boundary_to_surface_boundary = -1.0;
+  double boundary_hausdorff = -1.0;
+  /// The boundary sample (of either side) at the Hausdorff distance from the other boundary.
+  Eigen::Vector3d boundary_hausdorff_point = Eigen::Vector3d::Zero();
+};
+
+/// Measures `surface` (positions, triangles by position index) against the scan (the same).
+/// \throw ricci::InvalidInputError for indices out of range, non-finite positions, an empty
+///        surface or scan, or a coverage tolerance that is not positive.
+[[nodiscard]] ScanDistanceReport measure_against_scan(
+    const Eigen::MatrixX3d& surface_positions,
+    const std::vector<std::array<int, 3>>& surface_triangles,
+    const Eigen::MatrixX3d& scan_positions, const std::vector<std::array<int, 3>>& scan_triangles,
+    const ScanDistanceOptions& options = {});
+
+/// Edges of exactly one triangle (position indices, in triangle order): the soup's boundary.
+[[nodiscard]] std::vector<std::array<int, 2>> soup_boundary_edges(
+    const std::vector<std::array<int, 3>>& triangles);
+
+}  // namespace spline

@@ -1,0 +1,111 @@
+// add_boundary_collar: ghost rings outside the boundary keep the topology, the orientation and
+// the original faces, lie in the tangent plane, and leave closed meshes alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "ricci/mesh/boundary_follow.h"
+#include "ricci/mesh/collar.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
+
+namespace ricci {
+namespace {
+
+int boundary_vertices(const Mesh& mesh) {
+  int count = 0;
+  for (auto v : mesh.vertices()) count += mesh.is_boundary(v);
+  return count;
+}
+
+double min_area(const Mesh& mesh) {
+  double smallest = INFINITY;
+  for (auto f : mesh.faces()) {
+    std::array<Eigen::Vector3d, 3> p;
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) p[static_cast<std::size_t>(k++)] = to_eigen(mesh.point(v));
+    smallest = std::min(smallest, 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).z());
+  }
+  return smallest;
+}
+
+TEST(BoundaryCollar, AnAnnulusKeepsItsTopologyAndGrowsOutwardsInItsPlane) {
+  const Mesh annulus = make_annulus(4, 24, 0.5, 1.0);
+  const int b = boundary_vertices(annulus);  // both circles
+  const CollarResult collar = add_boundary_collar(annulus);
+  const Mesh& m = collar.mesh;
+  EXPECT_EQ(collar.original_faces, static_cast<int>(annulus.n_faces()));
+  EXPECT_EQ(static_cast<int>(m.n_faces()), collar.original_faces + 2 * 2 * b);
+  EXPECT_EQ(static_cast<int>(m.n_vertices()), collar.original_vertices + 2 * b);
+  // Euler characteristic and boundary count kept (annulus: chi = 0, two loops).
+  const int chi = static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) +
+                  static_cast<int>(m.n_faces());
+  EXPECT_EQ(chi, 0);
+  EXPECT_EQ(boundary_vertices(m), b);
+  // Original faces and positions untouched; rings numbered outwards.
+  for (int f = 0; f < collar.original_faces; ++f) EXPECT_EQ(collar.ring[f], 0);
+  for (int f = collar.original_faces; f < static_cast<int>(m.n_faces()); ++f) {
+    EXPECT_GE(collar.ring[f], 1);
+    EXPECT_LE(collar.ring[f], 2);
+  }
+  for (auto v : annulus.vertices()) EXPECT_EQ(m.point(v), annulus.point(v));
+  // Planar input: the collar stays in z = 0, counter-clockwise like the annulus (no fold), and
+  // every new vertex is outside the annulus' ring: radius < 0.5 or > 1.
+  EXPECT_GT(min_area(m), 0.0);
+  for (int v = collar.original_vertices; v < static_cast<int>(m.n_vertices()); ++v) {
+    const Eigen::Vector3d p = to_eigen(m.point(VertexHandle(v)));
+    EXPECT_EQ(p.z(), 0.0);
+    const double r = std::hypot(p.x(), p.y());
+    EXPECT_TRUE(r < 0.5 - 1e-3 || r > 1.0 + 1e-3) << r;
+  }
+}
+
+TEST(BoundaryCollar, ClosedMeshesComeBackUnchangedAndBadOptionsThrow) {
+  const Mesh sphere = make_icosphere(1);
+  const CollarResult collar = add_boundary_collar(sphere);
+  EXPECT_EQ(collar.mesh.n_faces(), sphere.n_faces());
+  EXPECT_EQ(collar.mesh.n_vertices(), sphere.n_vertices());
+  CollarOptions bad;
+  bad.rings = 0;
+  EXPECT_THROW((void)add_boundary_collar(sphere, bad), InvalidInputError);
+  bad.rings = 1;
+  bad.width = 0.0;
+  EXPECT_THROW((void)add_boundary_collar(sphere, bad), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace ricci
+
+// follow_boundary: a coarse disk (2 rings, 16 boundary vertices) against a fine one (12 rings,
+// 96): the coarse chords lie 1 - cos(pi / 16) = 0.019 from the unit circle, 0.68% of the
+// diagonal; splitting the boundary edges brings both boundaries within the tolerance.
+namespace ricci {
+namespace {
+
+TEST(FollowBoundary, ACoarseCircleFollowsAFineOneWithinTheTolerance) {
+  const Mesh fine = make_disk(12, 8);
+  Mesh coarse = make_disk(2, 8);
+  const auto faces_before = coarse.n_faces();
+  BoundaryFollowOptions options;
+  options.tolerance = 0.002;
+  const BoundaryFollowResult r = follow_boundary(coarse, fine, options);
+  EXPECT_GT(r.distance_before, 0.006);
+  EXPECT_LE(r.distance_after, options.tolerance);
+  EXPECT_GT(r.splits, 0);
+  EXPECT_EQ(coarse.n_faces(), faces_before + static_cast<std::size_t>(r.splits));
+  // Still a planar disk, counter-clockwise (nothing folded), chi = 1.
+  EXPECT_GT(min_area(coarse), 0.0);
+  const int chi = static_cast<int>(coarse.n_vertices()) - static_cast<int>(coarse.n_edges()) +
+                  static_cast<int>(coarse.n_faces());
+  EXPECT_EQ(chi, 1);
+  // Closed meshes: nothing to follow.
+  Mesh sphere = make_icosphere(1);
+  EXPECT_EQ(follow_boundary(sphere, fine).splits, 0);
+  EXPECT_THROW((void)follow_boundary(coarse, fine, BoundaryFollowOptions{0.0, 3}),
+               InvalidInputError);
+}
+
+}  // namespace
+}  // namespace ricci

@@ -1,0 +1,143 @@
+// measure_against_scan and the AABB soups under it: distances both ways, coverage and the
+// boundary distance on surfaces whose answers are known in closed form.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/soup_distance.h"
+#include "spline/tessellate/dihedral.h"
+#include "spline/tessellate/scan_distance.h"
+
+namespace spline {
+namespace {
+
+using Triangles = std::vector<std::array<int, 3>>;
+
+struct Grid {
+  Eigen::MatrixX3d positions;
+  Triangles triangles;
+};
+
+// The square [0, width] x [0, 1] at height z, n x n cells of two triangles each.
+Grid grid(int n, double width, double z) {
+  Grid g;
+  g.positions.resize((n + 1) * (n + 1), 3);
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) g.positions.row(j * (n + 1) + i) << width * i / n, 1.0 * j / n, z;
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      g.triangles.push_back({a, b, c});
+      g.triangles.push_back({a, c, d});
+    }
+  }
+  return g;
+}
+
+TEST(TriangleSoupDistance, ClosestPointsOfASquareAreKnown) {
+  const Grid g = grid(4, 1.0, 0.0);
+  const ricci::TriangleSoupDistance soup(g.positions, g.triangles);
+  EXPECT_EQ(soup.triangle_count(), 32);
+  const ricci::SoupHit above = soup.closest(Eigen::Vector3d(0.3, 0.6, 0.25));
+  EXPECT_NEAR(above.distance, 0.25, 1e-15);
+  EXPECT_TRUE(above.point.isApprox(Eigen::Vector3d(0.3, 0.6, 0.0), 1e-15));
+  // Outside the square: the distance to its nearest edge point (1, 1, 0).
+  EXPECT_NEAR(soup.closest(Eigen::Vector3d(2.0, 2.0, 0.0)).distance, std::sqrt(2.0), 1e-14);
+  Eigen::MatrixX3d queries(2, 3);
+  queries << 0.5, 0.5, -1.0, 0.1, 0.9, 0.5;
+  const Eigen::VectorXd d = soup.distances(queries);
+  EXPECT_NEAR(d[0], 1.0, 1e-15);
+  EXPECT_NEAR(d[1], 0.5, 1e-15);
+}
+
+TEST(TriangleSoupDistance, DegenerateTrianglesAreLeftOutAndBadSoupsThrow) {
+  Eigen::MatrixX3d p(4, 3);
+  p << 0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 1, 0;
+  const ricci::TriangleSoupDistance soup(p, {{0, 1, 2}, {0, 0, 3}, {0, 1, 3}});
+  EXPECT_EQ(soup.triangle_count(), 1);
+  EXPECT_EQ(soup.closest(Eigen::Vector3d(0.2, 0.2, 1.0)).primitive, 2);
+  EXPECT_THROW(ricci::TriangleSoupDistance(p, {{0, 1, 2}}), ricci::InvalidInputError);
+  EXPECT_THROW(ricci::TriangleSoupDistance(p, {{0, 1, 7}}), ricci::InvalidInputError);
+  p(3, 1) = std::nan("");
+  EXPECT_THROW(ricci::TriangleSoupDistance(p, {{0, 1, 3}}), ricci::InvalidInputError);
+}
+
+TEST(SegmentSoupDistance, DistanceToAPolyline) {
+  Eigen::MatrixX3d p(3, 3);
+  p << 0, 0, 0, 1, 0, 0, 1, 1, 0;
+  const ricci::SegmentSoupDistance curve(p, {{0, 1}, {1, 2}});
+  EXPECT_NEAR(curve.closest(Eigen::Vector3d(0.5, -0.5, 0.0)).distance, 0.5, 1e-15);
+  EXPECT_NEAR(curve.closest(Eigen::Vector3d(2.0, 0.5, 0.0)).distance, 1.0, 1e-15);
+  EXPECT_EQ(curve.closest(Eigen::Vector3d(2.0, 0.5, 0.0)).primitive, 1);
+  EXPECT_THROW(ricci::SegmentSoupDistance(p, {}), ricci::InvalidInputError);
+}
+
+TEST(MeasureAgainstScan, AParallelCopyIsItsOffsetAwayBothWays) {
+  const Grid scan = grid(10, 1.0, 0.0);
+  const Grid surface = grid(7, 1.0, 0.01);  // another triangulation, lifted by 0.01
+  ScanDistanceOptions options;
+  options.coverage_tolerance = 0.02;  // of the diagonal sqrt(2): 0.028 > 0.01
+  const ScanDistanceReport r = measure_against_scan(surface.positions, surface.triangles,
+                                                    scan.positions, scan.triangles, options);
+  EXPECT_NEAR(r.bbox_diagonal, std::sqrt(2.0), 1e-15);
+  EXPECT_EQ(r.scan_points, 121);
+  EXPECT_EQ(r.surface_points, 64 + 98);
+  EXPECT_NEAR(r.fit_rms, 0.01, 1e-12);
+  EXPECT_NEAR(r.fit_max, 0.01, 1e-12);
+  EXPECT_NEAR(r.surface_to_scan_p99, 0.01, 1e-12);
+  EXPECT_NEAR(r.surface_to_scan_max, 0.01, 1e-12);
+  EXPECT_NEAR(r.coverage, 1.0, 1e-15);
+  EXPECT_NEAR(r.boundary_hausdorff, 0.01, 1e-12);
+  options.coverage_tolerance = 0.005;  // 0.0071 < 0.01: nothing covered
+  EXPECT_NEAR(measure_against_scan(surface.positions, surface.triangles, scan.positions,
+                                   scan.triangles, options)
+                  .coverage,
+              0.0, 1e-15);
+}
+
+TEST(MeasureAgainstScan, ASurfaceThatStopsShortIsSeenFromTheScan) {
+  const Grid scan = grid(10, 1.0, 0.0);
+  const Grid half = grid(5, 0.5, 0.0);  // covers x <= 0.5 only
+  const ScanDistanceReport r =
+      measure_against_scan(half.positions, half.triangles, scan.positions, scan.triangles);
+  EXPECT_NEAR(r.fit_max, 0.5, 1e-12);              // the scan's far side
+  EXPECT_NEAR(r.surface_to_scan_max, 0.0, 1e-12);  // the surface lies on the scan
+  EXPECT_NEAR(r.coverage, 0.5, 1e-12);  // the right half's samples are >= 0.1 / 6 away
+  EXPECT_NEAR(r.scan_boundary_to_surface_boundary, 0.5, 1e-12);
+  // The cut x = 0.5 is half a unit from the scan's rim at its middle.
+  EXPECT_NEAR(r.surface_boundary_to_scan_boundary, 0.5, 1e-12);
+  EXPECT_NEAR(r.boundary_hausdorff, 0.5, 1e-12);
+}
+
+TEST(MeasureAgainstScan, ASpikeIsSeenFromTheSurfaceOnly) {
+  const Grid scan = grid(10, 1.0, 0.0);
+  Grid spiked = scan;
+  spiked.positions(60, 2) = 3.0;  // the vertex (0.5, 0.5) pulled 3 units up
+  const ScanDistanceReport r =
+      measure_against_scan(spiked.positions, spiked.triangles, scan.positions, scan.triangles);
+  EXPECT_NEAR(r.surface_to_scan_max, 3.0, 1e-12);
+  EXPECT_TRUE(r.surface_to_scan_max_point.isApprox(Eigen::Vector3d(0.5, 0.5, 3.0), 1e-12));
+  // Every scan vertex is still near the spiked surface (the centre 0.1 / sqrt(1 + 1/900) from
+  // the spike's flanks).
+  EXPECT_LT(r.fit_max, 0.1);
+  const DihedralReport folds = dihedral_angles(spiked.triangles, spiked.positions);
+  EXPECT_EQ(folds.over_90_deg, static_cast<int>(folds.fold_edges.size()));
+}
+
+TEST(MeasureAgainstScan, ClosedSurfacesHaveNoBoundaryFigure) {
+  Eigen::MatrixX3d p(4, 3);
+  p << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  const Triangles tetra = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  const ScanDistanceReport r = measure_against_scan(p, tetra, p, tetra);
+  EXPECT_EQ(r.scan_boundary_edges, 0);
+  EXPECT_EQ(r.boundary_hausdorff, -1.0);
+  EXPECT_EQ(r.fit_max, 0.0);
+  EXPECT_THROW((void)measure_against_scan(p, {}, p, tetra), ricci::InvalidInputError);
+}
+
+}  // namespace
+}  // namespace spline
