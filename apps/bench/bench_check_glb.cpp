@@ -16,7 +16,7 @@
 #include <spline/tessellate/scan_distance.h>
 
 #include "bench/benchmarks.h"
-#include "msp/gltf_reader.h"
+#include "msp/io/gltf_reader.h"
 
 namespace msp::bench {
 

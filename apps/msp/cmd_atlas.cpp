@@ -19,12 +19,6 @@
 namespace msp {
 namespace {
 
-const char* kUsage =
-    "msp atlas MESH [--singularity auto|VERTEX] [--metric "
-    "circle-packing|inversive-distance|combinatorial] "
-    "[--radii mean|min|least-squares] [--tolerance T] [-o PICTURE.svg] [--cover-depth N] "
-    "[--checkerboard OUT.glb|OUT.obj] [--checker-squares N] [--quiet] [--json]";
-
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -138,11 +132,26 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh,
 
 }  // namespace
 
+const CommandSpec& atlas_command() {
+  static const CommandSpec spec{
+      "atlas",
+      "one-cone flat metric, cut graph, layout and affine atlas",
+      {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
+      {singularity_option(),
+       metric_option("chosen per surface, falling back to the others if it fails"),
+       radii_option(),
+       tolerance_option("1e-10"),
+       {"output", "PICTURE.svg", "write the fundamental domain and its neighbouring copies"},
+       {"cover-depth", "N", "copies in the picture: products of up to N side pairings"},
+       {"checkerboard", "OUT.glb|OUT.obj", "write the mesh textured with the atlas' checkerboard"},
+       {"checker-squares", "N", "checkerboard squares along each side, 1 to 256 (32)"},
+       quiet_option(),
+       json_option()}};
+  return spec;
+}
+
 int run_atlas(int argc, char** argv) {
-  Args args(argc, argv, {"json", "quiet"});
-  args.require_known({"singularity", "metric", "radii", "tolerance", "quiet", "json", "output",
-                      "cover-depth", "checkerboard", "checker-squares"});
-  args.require_positionals(1, kUsage);
+  const Args args(argc, argv, atlas_command());
   if (auto svg = args.get("output"); svg && !ends_with(*svg, ".svg"))
     throw UsageError("-o must name an .svg file, not '" + *svg + "'");
   if (auto out = args.get("checkerboard");

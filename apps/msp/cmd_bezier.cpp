@@ -17,13 +17,20 @@
 
 namespace msp {
 
+const CommandSpec& bezier_command() {
+  static const CommandSpec spec{
+      "bezier",
+      "export a spline file's exact polynomial pieces as Bezier patches (JSON)",
+      {{"SPLINE.msp", "the spline file to export"}},
+      {{"output", "PATCHES.json", "write the Bezier patches (docs/bezier.md)", true},
+       json_option(),
+       quiet_option()}};
+  return spec;
+}
+
 int run_bezier(int argc, char** argv) {
-  const char* usage = "msp bezier SPLINE.msp -o PATCHES.json [--json]";
-  Args args(argc, argv, {"json"});
-  args.require_known({"output", "json"});
-  args.require_positionals(1, usage);
-  const auto output = args.get("output");
-  if (!output) throw UsageError("-o PATCHES.json is required; usage: " + std::string(usage));
+  const Args args(argc, argv, bezier_command());
+  const auto output = args.get("output");  // required: Args has checked it
   const std::string& input = args.positionals()[0];
   const auto start = std::chrono::steady_clock::now();
   const spline::SplineSurface surface = spline::load_spline_surface(input);

@@ -21,10 +21,6 @@
 namespace msp {
 namespace {
 
-const char* kUsage =
-    "msp edit SPLINE.msp [--move-region X Y Z RADIUS DX DY DZ]... "
-    "[--move-point INDEX DX DY DZ]... -o EDITED.msp [--json]";
-
 struct Move {
   std::string option;          // "move-region" or "move-point"
   std::vector<double> values;  // 7 or 4 numbers
@@ -40,23 +36,13 @@ double parse_number(const std::string& text, const std::string& option) {
   throw UsageError("option --" + option + " expects numbers, got '" + text + "'");
 }
 
-// Takes the multi-value options out of argv (Args gives each option one value); the rest is
-// left for Args.
-std::vector<Move> take_moves(int argc, char** argv, std::vector<char*>& rest) {
+// The moves in command-line order (Args has checked how many values each one has).
+std::vector<Move> moves_of(const Args& args) {
   std::vector<Move> moves;
-  for (int i = 0; i < argc; ++i) {
-    const std::string a = argv[i];
-    const int count = a == "--move-region" ? 7 : a == "--move-point" ? 4 : 0;
-    if (count == 0) {
-      rest.push_back(argv[i]);
-      continue;
-    }
-    Move move{a.substr(2), {}};
-    if (i + count >= argc) {
-      throw UsageError("option " + a + " needs " + std::to_string(count) + " numbers");
-    }
-    for (int k = 1; k <= count; ++k) move.values.push_back(parse_number(argv[i + k], move.option));
-    i += count;
+  for (const auto& occurrence : args.occurrences()) {
+    if (occurrence.name != "move-region" && occurrence.name != "move-point") continue;
+    Move move{occurrence.name, {}};
+    for (const auto& v : occurrence.values) move.values.push_back(parse_number(v, move.option));
     moves.push_back(move);
   }
   return moves;
@@ -75,16 +61,29 @@ spline::EditReport apply(spline::SplineSurface& surface, const Move& move) {
 
 }  // namespace
 
+const CommandSpec& edit_command() {
+  static const CommandSpec spec{
+      "edit",
+      "move control points of a spline file (.msp): by index or a region",
+      {{"SPLINE.msp", "the spline file to edit"}},
+      {{"move-region", "X Y Z RADIUS DX DY DZ",
+        "move the control points within RADIUS of (X, Y, Z) by (DX, DY, DZ), weighted by a "
+        "smooth falloff",
+        false, true},
+       {"move-point", "INDEX DX DY DZ", "move control point INDEX by (DX, DY, DZ)", false, true},
+       {"output", "EDITED.msp", "write the edited spline file", true},
+       json_option(),
+       quiet_option()}};
+  return spec;
+}
+
 int run_edit(int argc, char** argv) {
-  std::vector<char*> rest;
-  const std::vector<Move> moves = take_moves(argc, argv, rest);
-  Args args(static_cast<int>(rest.size()), rest.data(), {"json"});
-  args.require_known({"output", "json"});
-  args.require_positionals(1, kUsage);
-  const auto output = args.get("output");
-  if (!output) throw UsageError("-o EDITED.msp is required; usage: " + std::string(kUsage));
+  const Args args(argc, argv, edit_command());
+  const std::vector<Move> moves = moves_of(args);
+  const auto output = args.get("output");  // required: Args has checked it
   if (moves.empty()) {
-    throw UsageError("give --move-region or --move-point; usage: " + std::string(kUsage));
+    throw UsageError("give --move-region or --move-point (msp edit --help describes the "
+                     "command line)");
   }
   const std::string& input = args.positionals()[0];
   const auto start = std::chrono::steady_clock::now();

@@ -23,8 +23,6 @@
 namespace msp {
 namespace {
 
-const char* kUsage = "msp eval SPLINE.msp (--points P.csv | --closest Q.xyz) [--json]";
-
 // The numbers of each data line of a text file (commas count as blanks), `count` per line.
 std::vector<std::vector<double>> read_rows(const std::string& path, std::size_t count) {
   std::ifstream in(path);
@@ -98,14 +96,27 @@ std::string text_line(const spline::SurfaceDifferential& d) {
 
 }  // namespace
 
+const CommandSpec& eval_command() {
+  static const CommandSpec spec{
+      "eval",
+      "evaluate a spline file: position, derivatives, normal, curvatures (points, closest points)",
+      {{"SPLINE.msp", "the spline file to evaluate"}},
+      {{"points", "P.csv",
+        "evaluate at domain points, one \"face, b0, b1, b2\" per line (one of --points, "
+        "--closest)"},
+       {"closest", "Q.xyz", "evaluate at the surface points closest to \"x y z\" per line"},
+       json_option(),
+       quiet_option()}};
+  return spec;
+}
+
 int run_eval(int argc, char** argv) {
-  Args args(argc, argv, {"json"});
-  args.require_known({"points", "closest", "json"});
-  args.require_positionals(1, kUsage);
+  const Args args(argc, argv, eval_command());
   const auto points_path = args.get("points");
   const auto closest_path = args.get("closest");
   if (points_path.has_value() == closest_path.has_value()) {
-    throw UsageError("give one of --points or --closest; usage: " + std::string(kUsage));
+    throw UsageError("give one of --points or --closest (msp eval --help describes the "
+                     "command line)");
   }
   const std::string& input = args.positionals()[0];
   const spline::SplineSurface surface = spline::load_spline_surface(input);

@@ -23,13 +23,6 @@
 namespace msp {
 namespace {
 
-const char* kUsage =
-    "msp fit MESH -o OUT.glb [--domain-faces N] [--degree n] [--fairness r] "
-    "[--singularity auto|VERTEX] [--fill-boundaries] [--json REPORT] [--density d] "
-    "[--cone-refinement LEVELS] [--smoothing LAMBDA] "
-    "[--obj OUT.obj] [--ply OUT.ply] [--spline OUT.msp] [--checkerboard] [--checker-squares N] "
-    "[--control-net] [--domain] [--cut-loops] [--quiet]";
-
 using Clock = std::chrono::steady_clock;
 
 bool ends_with(const std::string& s, const std::string& suffix) {
@@ -132,14 +125,35 @@ nlohmann::json scene_extras(const nlohmann::json& report) {
 
 }  // namespace
 
+const CommandSpec& fit_command() {
+  static const CommandSpec spec{
+      "fit",
+      "fit a manifold spline to a mesh and export glTF",
+      {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
+      {{"output", "OUT.glb", "write the surface as binary glTF"},
+       {"domain-faces", "N", "simplify the mesh to about N faces for the domain (2000)"},
+       {"degree", "n", "degree of the DMS spline (3)"},
+       {"fairness", "r", "fit inside the fairing constraints of order r; -1: none (1)"},
+       singularity_option(),
+       {"fill-boundaries", "", "also cap the input's boundary loops with G1 patches"},
+       {"json", "REPORT", "write the JSON report to the file REPORT"},
+       {"density", "d", "tessellation samples per domain edge (chosen by domain size)"},
+       {"cone-refinement", "LEVELS", "1-to-4 splits of the domain around the cone, 0 to 4 (2)"},
+       {"smoothing", "LAMBDA", "weight of the thin-plate energy (1e-4)"},
+       {"obj", "OUT.obj", "also write the tessellation as OBJ"},
+       {"ply", "OUT.ply", "also write the tessellation as PLY"},
+       {"spline", "OUT.msp", "also write the spline itself as a spline file (.msp)"},
+       {"checkerboard", "", "texture the surface with the atlas' checkerboard"},
+       {"checker-squares", "N", "checkerboard squares along each side, 1 to 256 (32)"},
+       {"control-net", "", "add the control net (lines) to the glTF"},
+       {"domain", "", "add the domain mesh's edges (lines) to the glTF"},
+       {"cut-loops", "", "add the cut loops and the extraordinary point to the glTF"},
+       quiet_option()}};
+  return spec;
+}
+
 int run_fit(int argc, char** argv) {
-  Args args(argc, argv,
-            {"fill-boundaries", "checkerboard", "control-net", "domain", "cut-loops", "quiet"});
-  args.require_known({"output", "domain-faces", "degree", "fairness", "singularity",
-                      "fill-boundaries", "json", "density", "cone-refinement", "smoothing", "obj",
-                      "ply", "spline", "checkerboard", "checker-squares", "control-net", "domain",
-                      "cut-loops", "quiet"});
-  args.require_positionals(1, kUsage);
+  const Args args(argc, argv, fit_command());
   check_outputs(args);
   spline::FitSurfaceOptions options = parse_options(args);
   FitSceneOptions scene_options;

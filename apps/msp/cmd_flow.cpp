@@ -18,13 +18,6 @@ namespace msp {
 
 namespace {
 
-const char* kUsage =
-    "msp flow MESH [--geometry euclidean|hyperbolic|spherical] "
-    "[--metric circle-packing|inversive-distance|combinatorial] [--radii mean|min|least-squares] "
-    "[--target uniform|cone:VERTEX|boundary|boundary-loop] [--method newton|gradient] "
-    "[--solver auto|eigen-ldlt|eigen-llt|cholmod-supernodal|cholmod-simplicial] [--tolerance T] "
-    "[--max-iterations N] [--lengths-out FILE] [--quiet] [--json]";
-
 ricci::Targets parse_target(const std::string& s, const ricci::Mesh& mesh, ricci::Geometry g) {
   if (s == "uniform") return ricci::uniform_target(mesh, g);
   if (s == "boundary") return ricci::boundary_target(mesh, ricci::BoundaryMode::spread_by_length);
@@ -54,11 +47,29 @@ std::string lengths_text(const ricci::Mesh& mesh, const ricci::EdgeLengths& leng
 
 }  // namespace
 
+const CommandSpec& flow_command() {
+  static const CommandSpec spec{
+      "flow",
+      "discrete Ricci flow to a target curvature (E2, H2, S2)",
+      {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
+      {{"geometry", "euclidean|hyperbolic|spherical", "the background geometry (euclidean)"},
+       metric_option("inversive-distance, falling back to the others if it fails"),
+       radii_option(),
+       {"target", "uniform|cone:VERTEX|boundary|boundary-loop",
+        "the target curvature: uniform, one cone at VERTEX, flat with a curved boundary spread "
+        "by length or on one loop (uniform)"},
+       {"method", "newton|gradient", "Newton's method or gradient descent (newton)"},
+       solver_option(),
+       tolerance_option("1e-10"),
+       {"max-iterations", "N", "at most N Newton or gradient steps"},
+       {"lengths-out", "FILE", "write the flat metric: one line 'from to length' per edge"},
+       quiet_option(),
+       json_option()}};
+  return spec;
+}
+
 int run_flow(int argc, char** argv) {
-  Args args(argc, argv, {"json", "quiet"});
-  args.require_known({"geometry", "metric", "radii", "target", "method", "solver", "tolerance",
-                      "max-iterations", "lengths-out", "quiet", "json"});
-  args.require_positionals(1, kUsage);
+  const Args args(argc, argv, flow_command());
   ricci::FlowOptions options;
   options.geometry = parse_geometry(args.get_or("geometry", "euclidean"));
   options.scheme = parse_scheme(args.get_or("metric", "inversive-distance"));

@@ -15,11 +15,6 @@ namespace msp {
 
 namespace {
 
-const char* kUsage =
-    "msp index MESH... [--json] [--tolerance T] "
-    "[--solver auto|eigen-ldlt|eigen-llt|cholmod-supernodal|cholmod-simplicial] "
-    "[--metric circle-packing|inversive-distance] [--radii mean|min|least-squares]";
-
 std::string fixed(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%9.5f", value);
@@ -93,11 +88,23 @@ nlohmann::json groups_json(const std::vector<ricci::ModuleGroup>& groups) {
 
 }  // namespace
 
+const CommandSpec& index_command() {
+  static const CommandSpec spec{
+      "index",
+      "conformal modules of meshes grouped by topology, distances",
+      {{"MESH...", "the input meshes (one or more): OBJ, OFF, PLY or STL, also gzipped"}},
+      {json_option(),
+       tolerance_option("1e-11"),
+       solver_option(),
+       metric_option("circle-packing, no fall-back"),
+       radii_option(),
+       quiet_option()}};
+  return spec;
+}
+
 int run_index(int argc, char** argv) {
-  Args args(argc, argv, {"json"});
-  args.require_known({"json", "tolerance", "solver", "metric", "radii"});
-  if (args.positionals().empty()) throw UsageError(std::string("usage: ") + kUsage);
-  const ricci::ModuleOptions options = parse_module_options(args);
+  const Args args(argc, argv, index_command());
+  const ricci::ModuleOptions options = parse_module_options(args, false);
   const std::vector<std::string>& paths = args.positionals();
   std::vector<ricci::ModuleResult> modules;
   nlohmann::json meshes = nlohmann::json::array();

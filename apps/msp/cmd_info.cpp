@@ -104,10 +104,19 @@ void print_text(std::ostream& out, const std::string& path, const ricci::MeshDia
 
 }  // namespace
 
+const CommandSpec& info_command() {
+  static const CommandSpec spec{
+      "info",
+      "describe a mesh: counts, topology, defects",
+      {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
+      {json_option(),
+       {"strict", "", "exit 1 unless the mesh is a clean single-component orientable 2-manifold"},
+       quiet_option()}};
+  return spec;
+}
+
 int run_info(int argc, char** argv) {
-  Args args(argc, argv, {"json", "strict"});
-  args.require_known({"json", "strict"});
-  args.require_positionals(1, "msp info MESH [--json] [--strict]");
+  const Args args(argc, argv, info_command());
   const std::string& path = args.positionals()[0];
   const ricci::PolygonSoup soup = ricci::read_soup(path);  // throws IOError: main() reports it
   const ricci::MeshDiagnosis diagnosis = ricci::diagnose(soup);

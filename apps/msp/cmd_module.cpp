@@ -15,12 +15,6 @@ namespace msp {
 
 namespace {
 
-const char* kUsage =
-    "msp module MESH [--json] [-o domain.svg] [--corners a,b,c,d] "
-    "[--kind auto|annulus|rectangle|flat-torus|circle-domain|hyperbolic|fuchsian] [--tolerance T] "
-    "[--solver auto|eigen-ldlt|eigen-llt|cholmod-supernodal|cholmod-simplicial] "
-    "[--metric circle-packing|inversive-distance] [--radii mean|min|least-squares]";
-
 void print_summary(const ricci::Mesh& mesh, const ricci::ModuleResult& r) {
   std::cout << "kind " << ricci::to_string(r.kind) << "\ngenus " << r.genus
             << "\nboundary_loops " << r.boundary_loops << "\nvertices " << mesh.n_vertices()
@@ -50,12 +44,27 @@ void print_summary(const ricci::Mesh& mesh, const ricci::ModuleResult& r) {
 
 }  // namespace
 
+const CommandSpec& module_command() {
+  static const CommandSpec spec{
+      "module",
+      "conformal module: annulus, rectangle, flat torus, hyperbolic",
+      {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
+      {json_option(),
+       {"output", "domain.svg", "draw the canonical domain as SVG"},
+       {"corners", "a,b,c,d", "four boundary vertices: the module of the rectangle they make"},
+       {"kind", "auto|annulus|rectangle|flat-torus|circle-domain|hyperbolic|fuchsian",
+        "the module to compute (auto: chosen from the topology)"},
+       tolerance_option("1e-11"),
+       solver_option(),
+       metric_option("circle-packing, no fall-back"),
+       radii_option(),
+       quiet_option()}};
+  return spec;
+}
+
 int run_module(int argc, char** argv) {
-  Args args(argc, argv, {"json"});
-  args.require_known(
-      {"output", "json", "corners", "kind", "tolerance", "solver", "metric", "radii"});
-  args.require_positionals(1, kUsage);
-  const ricci::ModuleOptions options = parse_module_options(args);
+  const Args args(argc, argv, module_command());
+  const ricci::ModuleOptions options = parse_module_options(args, true);
   const std::string path = args.positionals()[0];
   ricci::Mesh mesh;
   const ricci::ModuleResult result = module_of_file(path, options, mesh);

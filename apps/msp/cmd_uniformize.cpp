@@ -20,11 +20,6 @@ namespace msp {
 
 namespace {
 
-const char* kUsage =
-    "msp uniformize MESH [-o cover.svg] [--json] [--depth N] [--seed-face F] [--root V] "
-    "[--solver auto|eigen-ldlt|eigen-llt|cholmod-supernodal|cholmod-simplicial] [--tolerance T] "
-    "[--metric circle-packing|inversive-distance|combinatorial] [--radii mean|min|least-squares]";
-
 nlohmann::json complex_json(ricci::Complex z) { return {z.real(), z.imag()}; }
 
 /// a1 b1 a2 b2 ... for the canonical generators.
@@ -126,16 +121,34 @@ void print_summary(const ricci::Mesh& mesh, const ricci::Uniformization& u) {
 
 }  // namespace
 
+const CommandSpec& uniformize_command() {
+  static const CommandSpec spec{
+      "uniformize",
+      "hyperbolic / spherical / flat uniformization structures (Fuchsian group, modulus)",
+      {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
+      {{"output", "cover.svg", "write the Poincare-disk picture of a few rings of the cover"},
+       json_option(),
+       {"depth", "N", "rings of the universal cover in the picture, 0 to 6 (5)"},
+       {"seed-face", "F", "the face the layout starts from (the most central one)"},
+       {"root", "V", "the vertex the cut graph's loops are based at (0)"},
+       solver_option(),
+       tolerance_option("1e-12"),
+       metric_option("inversive-distance, falling back to the others if it fails"),
+       radii_option(),
+       quiet_option()}};
+  return spec;
+}
+
 int run_uniformize(int argc, char** argv) {
-  Args args(argc, argv, {"json"});
-  args.require_known({"output", "json", "depth", "seed-face", "root", "solver", "tolerance", "metric", "radii"});
-  args.require_positionals(1, kUsage);
+  const Args args(argc, argv, uniformize_command());
   ricci::UniformizeOptions options;
   options.seed_face = args.get_int("seed-face", -1);
   options.root_vertex = args.get_int("root", 0);
   options.flow.solver = parse_solver(args.get_or("solver", "auto"));
   if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
+  // As in msp flow and msp atlas: an explicit metric is used alone.
+  options.flow.fall_back_to_other_metrics = !args.has("metric") && !args.has("radii");
   options.flow.tolerance = args.get_double("tolerance", options.flow.tolerance);
   const int depth = args.get_int("depth", 5);
   if (depth < 0 || depth > 6) throw UsageError("--depth must be between 0 and 6");

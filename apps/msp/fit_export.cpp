@@ -15,62 +15,15 @@
 namespace msp {
 namespace {
 
-// Unit normals by position; a zero normal (singular parametrisation) takes the area-weighted
-// normal of its triangles so every exported normal is a unit vector.
-Eigen::MatrixX3d safe_normals(const spline::Tessellation& t) {
-  Eigen::MatrixX3d n = t.normals;
-  Eigen::MatrixX3d area = Eigen::MatrixX3d::Zero(n.rows(), 3);
-  bool any_zero = false;
-  for (Eigen::Index i = 0; i < n.rows(); ++i) any_zero = any_zero || !(n.row(i).norm() > 0.5);
-  if (!any_zero) return n;
-  for (const auto& tri : t.triangles) {
-    const Eigen::RowVector3d a = t.positions.row(tri[0]), b = t.positions.row(tri[1]),
-                             c = t.positions.row(tri[2]);
-    const Eigen::RowVector3d cross = (b - a).cross(c - a);
-    for (int v : tri) area.row(v) += cross;
-  }
-  for (Eigen::Index i = 0; i < n.rows(); ++i) {
-    if (n.row(i).norm() > 0.5) continue;
-    const double len = area.row(i).norm();
-    n.row(i) = len > 0 ? Eigen::RowVector3d(area.row(i) / len) : Eigen::RowVector3d(0, 0, 1);
-  }
-  return n;
-}
-
 gltf::Mesh surface_mesh(const spline::Tessellation& t, const FitSceneOptions& options,
                         bool double_sided) {
-  const Eigen::MatrixX3d normals = safe_normals(t);
-  gltf::Mesh surface;
-  surface.name = "surface";
-  const auto n = static_cast<Eigen::Index>(t.render_position.size());
-  surface.positions.resize(n, 3);
-  surface.normals.resize(n, 3);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    surface.positions.row(i) = t.positions.row(t.render_position[static_cast<std::size_t>(i)]);
-    surface.normals.row(i) = normals.row(t.render_position[static_cast<std::size_t>(i)]);
-  }
-  // The central chart scaled into the unit square, v pointing down the image (as msp atlas).
-  const Eigen::RowVector2d lo = t.uvs.colwise().minCoeff(), hi = t.uvs.colwise().maxCoeff();
-  const double side = (hi - lo).maxCoeff();
-  const double scale = side > 0 && std::isfinite(side) ? 1.0 / side : 1.0;
-  surface.uvs.resize(n, 2);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    surface.uvs(i, 0) = (t.uvs(i, 0) - lo.x()) * scale;
-    surface.uvs(i, 1) = 1.0 - (t.uvs(i, 1) - lo.y()) * scale;
-  }
-  surface.indices.reserve(3 * t.render_triangles.size());
-  for (const auto& tri : t.render_triangles)
-    for (int v : tri) surface.indices.push_back(static_cast<std::uint32_t>(v));
+  gltf::Mesh surface = tessellation_gltf_mesh(t);
   surface.material.name = options.checkerboard ? "checkerboard" : "spline";
-  surface.material.base_color =
-      options.checkerboard ? std::array<double, 4>{1, 1, 1, 1} : gltf::linear_colour({196, 178, 150});
+  if (options.checkerboard) surface.material.base_color = {1, 1, 1, 1};
   surface.material.double_sided = double_sided;
   if (options.checkerboard)
     surface.material.texture =
         gltf::Texture{encode_png(checkerboard(options.texture)), true, false};
-  surface.extras = {{"uv", "central chart of the affine atlas, scaled into the unit square"},
-                    {"uv_per_metric_unit", scale},
-                    {"density", t.density}};
   return surface;
 }
 
@@ -153,7 +106,7 @@ void add_cut_loops(const spline::FittedSurface& fitted, gltf::Scene& scene) {
   const ricci::Mesh& mesh = fitted.surface.domain;
   const auto& space = *fitted.surface.spline.space;
   const auto& t = fitted.tessellation;
-  const Eigen::MatrixX3d normals = safe_normals(t);
+  const Eigen::MatrixX3d normals = tessellation_normals(t);
   const double lift = 2e-3 * fitted.bbox_diagonal;
   const auto names = loop_names(atlas);
   for (std::size_t loop = 0; loop < atlas.cut.loops.size(); ++loop) {
@@ -195,11 +148,6 @@ void add_cut_loops(const spline::FittedSurface& fitted, gltf::Scene& scene) {
   }
 }
 
-void put(std::vector<std::uint8_t>& out, const void* data, std::size_t bytes) {
-  const auto* p = static_cast<const std::uint8_t*>(data);
-  out.insert(out.end(), p, p + bytes);
-}
-
 }  // namespace
 
 gltf::Scene fit_scene(const spline::FittedSurface& fitted, const FitSceneOptions& options) {
@@ -213,61 +161,6 @@ gltf::Scene fit_scene(const spline::FittedSurface& fitted, const FitSceneOptions
     scene.meshes.push_back(domain_mesh_lines(surface.domain, *surface.spline.space));
   if (options.cut_loops) add_cut_loops(fitted, scene);
   return scene;
-}
-
-std::string tessellation_obj(const spline::Tessellation& t) {
-  const Eigen::MatrixX3d normals = safe_normals(t);
-  std::ostringstream out;
-  out.precision(17);
-  out << "# manifold spline tessellation (msp fit), density " << t.density << "\n";
-  for (Eigen::Index i = 0; i < t.positions.rows(); ++i)
-    out << "v " << t.positions(i, 0) << " " << t.positions(i, 1) << " " << t.positions(i, 2)
-        << "\n";
-  for (Eigen::Index i = 0; i < normals.rows(); ++i)
-    out << "vn " << normals(i, 0) << " " << normals(i, 1) << " " << normals(i, 2) << "\n";
-  for (Eigen::Index i = 0; i < t.uvs.rows(); ++i)
-    out << "vt " << t.uvs(i, 0) << " " << t.uvs(i, 1) << "\n";
-  for (std::size_t f = 0; f < t.triangles.size(); ++f) {
-    out << "f";
-    for (int k = 0; k < 3; ++k) {
-      const int p = t.triangles[f][k] + 1, uv = t.render_triangles[f][k] + 1;
-      out << " " << p << "/" << uv << "/" << p;
-    }
-    out << "\n";
-  }
-  return out.str();
-}
-
-std::vector<std::uint8_t> tessellation_ply(const spline::Tessellation& t) {
-  static_assert(sizeof(float) == 4 && sizeof(double) == 8, "IEEE sizes");
-  const Eigen::MatrixX3d normals = safe_normals(t);
-  std::ostringstream header;
-  header << "ply\nformat binary_little_endian 1.0\ncomment manifold spline tessellation (msp fit)\n"
-         << "element vertex " << t.positions.rows() << "\n"
-         << "property double x\nproperty double y\nproperty double z\n"
-         << "property float nx\nproperty float ny\nproperty float nz\n"
-         << "element face " << t.triangles.size() << "\n"
-         << "property list uchar int vertex_indices\nend_header\n";
-  std::vector<std::uint8_t> out;
-  const std::string h = header.str();
-  put(out, h.data(), h.size());
-  // Little-endian hosts only (x86-64, arm64): the bytes are written as they are in memory.
-  for (Eigen::Index i = 0; i < t.positions.rows(); ++i) {
-    for (int c = 0; c < 3; ++c) put(out, &t.positions(i, c), 8);
-    for (int c = 0; c < 3; ++c) {
-      const float n = static_cast<float>(normals(i, c));
-      put(out, &n, 4);
-    }
-  }
-  for (const auto& tri : t.triangles) {
-    const std::uint8_t three = 3;
-    put(out, &three, 1);
-    for (int v : tri) {
-      const std::int32_t index = v;
-      put(out, &index, 4);
-    }
-  }
-  return out;
 }
 
 }  // namespace msp

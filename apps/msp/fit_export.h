@@ -1,7 +1,7 @@
 #pragma once
 // Outputs of `msp fit`: the tessellated spline as a glTF scene (surface with atlas texture
 // coordinates, optional checkerboard, control net, domain mesh, cut loops, extraordinary point,
-// metadata in extras) and as OBJ or PLY.
+// metadata in extras); OBJ and PLY come from msp/io/tessellation_io.h.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -10,8 +10,9 @@
 #include <spline/tessellate/tessellate.h>
 #include <nlohmann/json.hpp>
 
-#include "msp/gltf_writer.h"
-#include "msp/texture_image.h"
+#include "msp/io/gltf_writer.h"
+#include "msp/io/tessellation_io.h"
+#include "msp/io/texture_image.h"
 
 namespace msp {
 
@@ -28,11 +29,5 @@ struct FitSceneOptions {
 /// chart scaled into [0, 1]^2), and the optional line/point meshes.
 [[nodiscard]] gltf::Scene fit_scene(const spline::FittedSurface& fitted,
                                     const FitSceneOptions& options = {});
-
-/// Wavefront OBJ text: v/vn by position index (welded), vt by render vertex, faces v/vt/vn.
-[[nodiscard]] std::string tessellation_obj(const spline::Tessellation& t);
-
-/// Binary little-endian PLY: welded vertices (double x y z, float nx ny nz), triangles.
-[[nodiscard]] std::vector<std::uint8_t> tessellation_ply(const spline::Tessellation& t);
 
 }  // namespace msp

@@ -11,8 +11,8 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "msp/gltf_writer.h"
-#include "msp/texture_image.h"
+#include "msp/io/gltf_writer.h"
+#include "msp/io/texture_image.h"
 
 namespace msp {
 

@@ -33,14 +33,16 @@ std::vector<int> parse_corners(const std::string& text) {
 
 }  // namespace
 
-ricci::ModuleOptions parse_module_options(const Args& args) {
+ricci::ModuleOptions parse_module_options(const Args& args, bool shape) {
   ricci::ModuleOptions options;
-  try {
-    options.force_kind = ricci::parse_module_kind(args.get_or("kind", "auto"), options.kind);
-  } catch (const ricci::InvalidInputError& e) {
-    throw UsageError(e.what());
+  if (shape) {
+    try {
+      options.force_kind = ricci::parse_module_kind(args.get_or("kind", "auto"), options.kind);
+    } catch (const ricci::InvalidInputError& e) {
+      throw UsageError(e.what());
+    }
+    if (auto corners = args.get("corners")) options.corners = parse_corners(*corners);
   }
-  if (auto corners = args.get("corners")) options.corners = parse_corners(*corners);
   options.flow.tolerance = args.get_double("tolerance", options.flow.tolerance);
   if (!(options.flow.tolerance > 0)) throw UsageError("--tolerance must be positive");
   options.flow.solver = parse_solver(args.get_or("solver", "auto"));

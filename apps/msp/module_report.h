@@ -11,9 +11,10 @@
 
 namespace msp {
 
-/// --kind, --corners a,b,c,d, --tolerance, --solver, --metric, --radii.
+/// --tolerance, --solver, --metric, --radii, and with `shape` (msp module, not msp index) --kind
+/// and --corners a,b,c,d.
 /// \throw UsageError for malformed values.
-[[nodiscard]] ricci::ModuleOptions parse_module_options(const Args& args);
+[[nodiscard]] ricci::ModuleOptions parse_module_options(const Args& args, bool shape);
 
 /// The module as one JSON object: mesh, counts, kind, values by name, vector, invariant,
 /// roundness, corners, the flow's figures and the seconds.

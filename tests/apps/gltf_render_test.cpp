@@ -9,8 +9,8 @@
 
 #include <tiny_gltf.h>
 
-#include "msp/gltf_writer.h"
-#include "msp/texture_image.h"
+#include "msp/io/gltf_writer.h"
+#include "msp/io/texture_image.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <tiny_gltf.h>
 
 #include "apps/gltf_test_util.h"
-#include "msp/gltf_writer.h"
-#include "msp/texture_image.h"
+#include "msp/io/gltf_writer.h"
+#include "msp/io/texture_image.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // PNG encoding follows the PNG specification (signature, IHDR, IDAT, IEND chunks with CRC-32);
 // zlib supplies deflate and the CRC.
-#include "msp/texture_image.h"
+#include "msp/io/texture_image.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
 // glTF 2.0 binary writer (Khronos glTF 2.0 specification, sections 3.6 buffers/accessors,
 // 3.7 meshes, 3.9 materials, 4.4 GLB). tinygltf serialises; this file lays the data out.
-#include "msp/gltf_writer.h"
+#include "msp/io/gltf_writer.h"
 
 #include <cmath>
 #include <cstring>
@@ -11,7 +11,7 @@
 #include <ricci/mesh/errors.h>
 #include <tiny_gltf.h>
 
-#include "msp/cli.h"
+#include "msp/io/atomic_file.h"
 
 namespace msp::gltf {
 namespace {

@@ -1,4 +1,4 @@
-#include "msp/gltf_reader.h"
+#include "msp/io/gltf_reader.h"
 
 #include <cstring>
 #include <map>
