@@ -1,5 +1,5 @@
-// Fits a manifold spline to a scan and writes the fitted surface.
-//   fit_scan MESH OUT.ply|OUT.obj|OUT.glb [DOMAIN_FACES]
+// Fits a manifold spline to a scan, saves the spline and writes the surface.
+//   fit_scan MESH OUT.msp OUT.ply|OUT.obj|OUT.glb [DOMAIN_FACES]
 // MESH is any OBJ, OFF, PLY or STL triangle mesh (a connected oriented 2-manifold of any genus).
 #include <cstdio>
 #include <exception>
@@ -8,34 +8,33 @@
 #include <msp/io/tessellation_io.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
-#include <spline/fit/fit.h>
-#include <spline/tessellate/tessellate.h>
+#include <spline/io/spline_file.h>
+#include <spline/surface/fit_surface.h>
 
 int main(int argc, char** argv) {
-  if (argc < 3 || argc > 4) {
-    std::fprintf(stderr, "usage: fit_scan MESH OUT.ply|OUT.obj|OUT.glb [DOMAIN_FACES]\n");
+  if (argc < 4 || argc > 5) {
+    std::fprintf(stderr, "usage: fit_scan MESH OUT.msp OUT.ply|OUT.obj|OUT.glb [DOMAIN_FACES]\n");
     return 2;
   }
   try {
     const ricci::Mesh scan = ricci::read_mesh(argv[1]);
 
-    // Simplify the scan to a domain mesh, build its one-cone affine atlas, fit the DMS spline
-    // to the scan's points inside the fairing constraints.
-    spline::ScanFitOptions options;
-    if (argc == 4) options.domain_faces = std::stoi(argv[3]);
-    const spline::ScanFitResult fit = spline::fit_scan(scan, options);
+    // The whole job of `msp fit` in one call: simplify the scan to a domain mesh, one-cone
+    // affine atlas, DMS spline fitted inside the fairing constraints, the cone's hole capped by
+    // a G1 patch, a watertight tessellation and the report's figures.
+    spline::FitSurfaceOptions options;
+    if (argc == 5) options.domain_faces = std::stoi(argv[4]);
+    const spline::FittedSurface fitted = spline::fit_surface(scan, options);
 
-    // Sample the spline 4 times per domain edge: a welded triangle mesh with exact normals.
-    spline::TessellationOptions sampling;
-    sampling.density = 4;
-    const spline::Tessellation surface = spline::tessellate(fit.spline, fit.atlas.problem.mesh,
-                                                            sampling);
-    msp::write_tessellation(surface, argv[2]);
+    // The spline itself (evaluated bit for bit the same when loaded again), and the triangles.
+    spline::save_spline_surface(fitted.surface, argv[2]);
+    msp::write_tessellation(fitted.tessellation, argv[3]);
 
-    std::printf("%s: %d domain faces, %d control points, fit rms %.3g, %zu triangles -> %s\n",
-                argv[1], static_cast<int>(fit.atlas.problem.mesh.n_faces()),
-                static_cast<int>(fit.spline.control_points.rows()), fit.fit.rms_at_parameters,
-                surface.triangles.size(), argv[2]);
+    std::printf("%s: genus %d, %d control points, fit rms %.3g of the diagonal, %zu triangles, "
+                "watertight %s -> %s, %s\n",
+                argv[1], fitted.input.genus, fitted.surface.spline.space->function_count(),
+                fitted.fit_rms / fitted.bbox_diagonal, fitted.tessellation.triangles.size(),
+                fitted.watertight ? "yes" : "no", argv[2], argv[3]);
     return 0;
   } catch (const ricci::Error& e) {  // bad input, unreadable file, failed solve
     std::fprintf(stderr, "fit_scan: %s\n", e.what());

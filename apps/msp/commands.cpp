@@ -15,6 +15,7 @@ const std::vector<Subcommand>& subcommands() {
       {edit_command, run_edit},
       {eval_command, run_eval},
       {bezier_command, run_bezier},
+      {tessellate_command, run_tessellate},
       {module_command, run_module},
       {index_command, run_index},
   };

@@ -27,6 +27,8 @@ const CommandSpec& eval_command();
 int run_eval(int argc, char** argv);
 const CommandSpec& bezier_command();
 int run_bezier(int argc, char** argv);
+const CommandSpec& tessellate_command();
+int run_tessellate(int argc, char** argv);
 const CommandSpec& module_command();
 int run_module(int argc, char** argv);
 const CommandSpec& index_command();
