@@ -41,6 +41,20 @@ Point3 checked_point(const Eigen::MatrixX3d& positions, int index, const char* w
 
 Eigen::Vector3d to_vector(const Point3& p) { return Eigen::Vector3d(p.x(), p.y(), p.z()); }
 
+// The nearest primitive of a tree holding `first`'s primitives; `original` maps their order to
+// the soup's indices.
+template <class Tree, class Iterator>
+SoupHit closest_in(const Tree& tree, Iterator first, const std::vector<int>& original,
+                   const Eigen::Vector3d& query) {
+  const auto [point, primitive] =
+      tree.closest_point_and_primitive(Point3(query.x(), query.y(), query.z()));
+  SoupHit hit;
+  hit.primitive = original[static_cast<std::size_t>(primitive - first)];
+  hit.point = to_vector(point);
+  hit.distance = (hit.point - query).norm();
+  return hit;
+}
+
 }  // namespace
 
 struct TriangleSoupDistance::Tree {
@@ -79,13 +93,7 @@ int TriangleSoupDistance::triangle_count() const {
 }
 
 SoupHit TriangleSoupDistance::closest(const Eigen::Vector3d& query) const {
-  const Point3 q(query.x(), query.y(), query.z());
-  const auto [point, primitive] = tree_->tree.closest_point_and_primitive(q);
-  SoupHit hit;
-  hit.primitive = tree_->original[static_cast<std::size_t>(primitive - tree_->first)];
-  hit.point = to_vector(point);
-  hit.distance = (hit.point - query).norm();
-  return hit;
+  return closest_in(tree_->tree, tree_->first, tree_->original, query);
 }
 
 Eigen::VectorXd TriangleSoupDistance::distances(const Eigen::MatrixX3d& queries) const {
@@ -124,13 +132,7 @@ SegmentSoupDistance::SegmentSoupDistance(const Eigen::MatrixX3d& positions,
 SegmentSoupDistance::~SegmentSoupDistance() = default;
 
 SoupHit SegmentSoupDistance::closest(const Eigen::Vector3d& query) const {
-  const Point3 q(query.x(), query.y(), query.z());
-  const auto [point, primitive] = tree_->tree.closest_point_and_primitive(q);
-  SoupHit hit;
-  hit.primitive = tree_->original[static_cast<std::size_t>(primitive - tree_->first)];
-  hit.point = to_vector(point);
-  hit.distance = (hit.point - query).norm();
-  return hit;
+  return closest_in(tree_->tree, tree_->first, tree_->original, query);
 }
 
 Eigen::VectorXd SegmentSoupDistance::distances(const Eigen::MatrixX3d& queries) const {

@@ -35,14 +35,6 @@ Eigen::Vector3d face_point(const ricci::Mesh& mesh, int face, const Eigen::Vecto
   return p;
 }
 
-// Barycentric coordinates of u in the chart triangle p.
-Eigen::Vector3d barycentric_in(const Eigen::Matrix<double, 3, 2>& p, const Eigen::Vector2d& u) {
-  Eigen::Matrix2d m;
-  m.col(0) = (p.row(1) - p.row(0)).transpose();
-  m.col(1) = (p.row(2) - p.row(0)).transpose();
-  const Eigen::Vector2d l = m.partialPivLu().solve(u - p.row(0).transpose());
-  return {1.0 - l.x() - l.y(), l.x(), l.y()};
-}
 
 // True when the point lies on an edge of the domain's rim (an edge whose other face is missing
 // or outside the domain): a projection clamped there is over the hole (or beyond an open

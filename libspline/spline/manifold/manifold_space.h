@@ -23,6 +23,7 @@
 // face can reach it (clouds stay inside their vertex stars), so those are kept: this also makes
 // self-overlapping charts (the central chart around a cone of angle 6 pi) harmless.
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <array>
 #include <memory>
 #include <mutex>
@@ -190,6 +191,17 @@ struct ManifoldSpline {
 /// the functions of the faces beyond it are missing.
 [[nodiscard]] bool is_partition_of_unity(const std::vector<ManifoldBasisSample>& samples,
                                          double tolerance = 1e-9);
+
+/// Barycentric coordinates of the chart point u in the chart triangle p (rows: its corners).
+/// \pre p is not degenerate.
+[[nodiscard]] inline Eigen::Vector3d barycentric_in(const Eigen::Matrix<double, 3, 2>& p,
+                                                    const Eigen::Vector2d& u) {
+  Eigen::Matrix2d m;
+  m.col(0) = (p.row(1) - p.row(0)).transpose();
+  m.col(1) = (p.row(2) - p.row(0)).transpose();
+  const Eigen::Vector2d l = m.partialPivLu().solve(u - p.row(0).transpose());
+  return {1.0 - l.x() - l.y(), l.x(), l.y()};
+}
 
 /// Combines basis samples with control points (rows indexed by function) into a surface jet.
 [[nodiscard]] SurfaceJet combine(const std::vector<ManifoldBasisSample>& samples,

@@ -83,14 +83,6 @@ bool split(const Polygon& polygon, const Segment& s, Polygon& left, Polygon& rig
   return left.size() >= 3 && right.size() >= 3;
 }
 
-// Barycentric coordinates of u in the chart triangle p (rows: corners).
-Eigen::Vector3d barycentric_in(const Eigen::Matrix<double, 3, 2>& p, const Eigen::Vector2d& u) {
-  Eigen::Matrix2d m;
-  m.col(0) = (p.row(1) - p.row(0)).transpose();
-  m.col(1) = (p.row(2) - p.row(0)).transpose();
-  const Eigen::Vector2d l = m.partialPivLu().solve(u - p.row(0).transpose());
-  return {1.0 - l.x() - l.y(), l.x(), l.y()};
-}
 
 // The segments between knots of one knot set of the functions reaching `face`, in the face's
 // (lambda_1, lambda_2) coordinates, those that meet the face; without repeats.

@@ -59,14 +59,6 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Matrix3d& t, const Eigen::Vecto
   return {1.0 - v - w, v, w};
 }
 
-// Barycentric coordinates of u in the chart triangle p (rows: corners).
-Eigen::Vector3d barycentric_in(const Eigen::Matrix<double, 3, 2>& p, const Eigen::Vector2d& u) {
-  Eigen::Matrix2d m;
-  m.col(0) = (p.row(1) - p.row(0)).transpose();
-  m.col(1) = (p.row(2) - p.row(0)).transpose();
-  const Eigen::Vector2d l = m.partialPivLu().solve(u - p.row(0).transpose());
-  return {1.0 - l.x() - l.y(), l.x(), l.y()};
-}
 
 // A bounding-volume tree over the candidate triangles (median splits, leaves of <= 4).
 class TriangleTree {
