@@ -2,9 +2,10 @@
 # Runs `msp fit` over the bundled models (models/) and, when the environment variable
 # MSP_SHARED_MODELS names the model collection's folder, over its closed_g0..closed_g3 and open
 # models too, and prints one markdown row per model: genus, domain faces, control points,
-# fit RMS / max over the bounding-box diagonal, seam normal jump, the tessellation's dihedral
-# angles (99th percentile, edges over 90 degrees: folds), watertight, glTF validator result and
-# seconds. Outputs (.glb, .json, .log) go to out/fit-table/.
+# fit RMS / max of every input vertex to the delivered surface over the bounding-box diagonal,
+# surface-to-scan 99th percentile / max, boundary Hausdorff distance (open models), seam normal
+# jump, the tessellation's dihedral angles (99th percentile, edges over 90 degrees: folds),
+# watertight, glTF validator result and seconds. Outputs (.glb, .json, .log) go to out/fit-table/.
 # Usage: scripts/fit-table.sh [--domain-faces N] [extra msp fit options...]
 #        MSP_SHARED_MODELS=DIR scripts/fit-table.sh   (the collection's models as well)
 #        MODELS="a.off b.obj" scripts/fit-table.sh   (a chosen list)
@@ -37,14 +38,14 @@ validate() {
     echo "no validator"
   fi
 }
-echo "| model | genus | bdry | domain faces | control points | fit rms / diag | fit max / diag | seam jump (deg) | dihedral p99 (deg) | folds | watertight | validator | seconds |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| model | genus | bdry | domain faces | control points | fit rms / diag | fit max / diag | surface to scan p99 / max | boundary | seam jump (deg) | dihedral p99 (deg) | folds | watertight | validator | seconds |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for model in $MODELS; do
   dir="$(basename "$(dirname "$model")")"
   name="$dir/$(basename "$model")"
   stem="$OUT/${dir}_$(basename "${model%.*}")"
   if ! "$MSP" fit "$model" -o "$stem.glb" --json "$stem.json" "$@" 2>"$stem.log"; then
-    echo "| $name | failed: $(tail -1 "$stem.log" | cut -c1-120) |||||||||||| "
+    echo "| $name | failed: $(tail -1 "$stem.log" | cut -c1-120) |||||||||||||| "
     continue
   fi
   check="$(validate "$stem.glb")"
@@ -52,9 +53,13 @@ for model in $MODELS; do
 import json, sys
 r = json.load(open(sys.argv[1]))
 d = r["surface_dihedral"]
-print("| %s | %d | %d | %d | %d | %.3g%% | %.3g%% | %.2g | %.3g | %d | %s | %s | %.1f |" % (
+s2s = r["surface_to_scan"]
+bnd = r["boundary"]["hausdorff_relative"]
+print("| %s | %d | %d | %d | %d | %.3g%% | %.3g%% | %.3g%% / %.3g%% | %s | %.2g | %.3g | %d | %s | %s | %.1f |" % (
     sys.argv[2], r["genus"], r["boundary_loops"], r["domain_faces"], r["control_points"],
-    100 * r["fit_rms_relative"], 100 * r["fit_max_relative"], r["seam_normal_jump_max_deg"],
+    100 * r["fit_rms_relative"], 100 * r["fit_max_relative"], 100 * s2s["p99_relative"],
+    100 * s2s["max_relative"], "-" if bnd < 0 else "%.3g%%" % (100 * bnd),
+    r["seam_normal_jump_max_deg"],
     d["p99_deg"], d["edges_over_90_deg"],
     "yes" if r["watertight"] else "NO (%d open)" % r["open_rims"], sys.argv[3],
     r["seconds"]["total"]))

@@ -81,6 +81,9 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   o.cone_refinement.levels = args.get_int("cone-refinement", o.cone_refinement.levels);
   if (o.cone_refinement.levels < 0 || o.cone_refinement.levels > 4)
     throw UsageError("--cone-refinement must be in [0, 4]");
+  o.max_surface_deviation = args.get_double("max-deviation", o.max_surface_deviation);
+  if (!(o.max_surface_deviation >= 0.0 && o.max_surface_deviation <= 10.0))
+    throw UsageError("--max-deviation must be in [0, 10] (a fraction of the diagonal; 0: off)");
   return o;
 }
 
@@ -140,6 +143,8 @@ const CommandSpec& fit_command() {
        {"density", "d", "tessellation samples per domain edge (chosen by domain size)"},
        {"cone-refinement", "LEVELS", "1-to-4 splits of the domain around the cone, 0 to 4 (2)"},
        {"smoothing", "LAMBDA", "weight of the thin-plate energy (1e-4)"},
+       {"max-deviation", "F",
+        "fail when the surface strays farther than F diagonals from the input; 0: off (0.05)"},
        {"obj", "OUT.obj", "also write the tessellation as OBJ"},
        {"ply", "OUT.ply", "also write the tessellation as PLY"},
        {"spline", "OUT.msp", "also write the spline itself as a spline file (.msp)"},
@@ -214,14 +219,17 @@ int run_fit(int argc, char** argv) {
   if (args.has("json")) write_text_atomically(*args.get("json"), report.dump(2) + "\n");
   progress.finish();
   if (!args.has("quiet")) {
-    char line[256];
+    char line[320];
     std::snprintf(line, sizeof line,
                   "msp fit: genus %d, %d domain faces, %d control points, fit rms %.3g%% max "
-                  "%.3g%% of the diagonal, seam jump %.3g deg, %s, %.2f s\n",
+                  "%.3g%% of the diagonal, surface to scan max %.3g%%, %d folds, seam jump "
+                  "%.3g deg, %s, %.2f s\n",
                   report["genus"].get<int>(), report["domain_faces"].get<int>(),
                   report["control_points"].get<int>(),
                   100 * report["fit_rms_relative"].get<double>(),
                   100 * report["fit_max_relative"].get<double>(),
+                  100 * report["surface_to_scan"]["max_relative"].get<double>(),
+                  report["folds"]["count"].get<int>(),
                   report["seam_normal_jump_max_deg"].get<double>(),
                   report["watertight"].get<bool>() ? "watertight" : "NOT watertight",
                   seconds["total"].get<double>());

@@ -59,15 +59,54 @@ nlohmann::json dihedral_json(const spline::DihedralReport& d) {
           {"edges_over_90_deg", d.over_90_deg}};
 }
 
-// Open inputs: the ghost collar and how the domain's boundary was made to follow the scan's.
-nlohmann::json boundary_json(const spline::FittedSurface& fitted) {
+nlohmann::json point_json(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+// Relative to the input's diagonal; a negative figure (nothing to measure) stays -1.
+double relative(double x, double diag) { return x < 0.0 ? -1.0 : x / diag; }
+
+// The boundary of the output against the input's (Hausdorff both ways), the ghost collar and
+// how the domain's boundary was made to follow the scan's.
+nlohmann::json boundary_json(const spline::FittedSurface& fitted, double diag) {
   const auto& f = fitted.boundary_follow;
+  const auto& d = fitted.delivered;
   const auto ghosts = std::count(fitted.collar_faces.begin(), fitted.collar_faces.end(), 1);
-  return {{"collar_faces", ghosts},
+  return {{"input_boundary_edges", d.scan_boundary_edges},
+          {"surface_boundary_edges", d.surface_boundary_edges},
+          {"hausdorff_relative", relative(d.boundary_hausdorff, diag)},
+          {"surface_to_input_relative", relative(d.surface_boundary_to_scan_boundary, diag)},
+          {"input_to_surface_relative", relative(d.scan_boundary_to_surface_boundary, diag)},
+          {"hausdorff_point", point_json(d.boundary_hausdorff_point)},
+          {"collar_faces", ghosts},
           {"collar_refused", fitted.collar_refused},
           {"follow_splits", f.splits},
           {"follow_distance_before_relative", f.distance_before},
           {"follow_distance_after_relative", f.distance_after}};
+}
+
+// Points of the delivered surface back to the input, and the share of the input it reaches.
+nlohmann::json surface_to_scan_json(const spline::ScanDistanceReport& d, double diag) {
+  nlohmann::json out = {{"points", d.surface_points},
+                        {"points_left_out", d.surface_points_left_out},
+                        {"p99_relative", d.surface_to_scan_p99 / diag},
+                        {"max_relative", d.surface_to_scan_max / diag},
+                        {"max_point", point_json(d.surface_to_scan_max_point)}};
+  if (d.surface_points_left_out > 0)
+    out["left_out_because"] = "on patches capping the input's boundary loops (--fill-boundaries)";
+  return out;
+}
+
+// Where the surface folds: the midpoints of the first fold edges (all of them are counted in
+// surface_dihedral.edges_over_90_deg).
+nlohmann::json folds_json(const spline::FittedSurface& fitted) {
+  constexpr std::size_t kListed = 50;
+  const auto& edges = fitted.surface_dihedral.fold_edges;
+  const auto& x = fitted.tessellation.positions;
+  nlohmann::json points = nlohmann::json::array();
+  for (std::size_t i = 0; i < std::min(edges.size(), kListed); ++i) {
+    const Eigen::Vector3d mid = 0.5 * (x.row(edges[i][0]) + x.row(edges[i][1])).transpose();
+    points.push_back(point_json(mid));
+  }
+  return {{"count", edges.size()}, {"listed", points.size()}, {"points", points}};
 }
 
 }  // namespace
@@ -98,6 +137,17 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"fit_rms_relative", fitted.fit_rms / diag},
       {"fit_max_relative", fitted.fit_max / diag},
       {"fit_points", fitted.fit_points},
+      {"fit_max_point", point_json(fitted.delivered.fit_max_point)},
+      {"surface_to_scan", surface_to_scan_json(fitted.delivered, diag)},
+      {"coverage",
+       {{"fraction", fitted.delivered.coverage},
+        {"tolerance_relative", fitted.delivered.coverage_tolerance / diag}}},
+      {"folds", folds_json(fitted)},
+      {"projection",
+       {{"rms_relative", fitted.projection_rms / diag},
+        {"max_relative", fitted.projection_max / diag},
+        {"points", fitted.projection_points},
+        {"points_on_fills", fitted.fit_points_on_fills}}},
       {"bbox_diagonal", fitted.bbox_diagonal},
       {"seam_normal_jump_max_deg",
        std::max(fitted.edge_normal_jump_deg, fitted.fill_normal_jump_deg)},
@@ -113,7 +163,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"watertight", fitted.watertight},
       {"tessellation", tessellation_json(fitted)},
       {"surface_dihedral", dihedral_json(fitted.surface_dihedral)},
-      {"boundary", boundary_json(fitted)},
+      {"boundary", boundary_json(fitted, diag)},
       {"fit_constraint_residual", fitted.fit_constraint_residual},
       {"seconds", stage_seconds_json(fitted.seconds)},
       {"cpu_seconds", stage_seconds_json(fitted.cpu_seconds)},

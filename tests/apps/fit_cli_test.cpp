@@ -8,8 +8,12 @@
 #include <map>
 #include <tuple>
 
+#include "msp/io/gltf_reader.h"
+#include <ricci/mesh/arrays.h>
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/primitives.h>
+#include <spline/tessellate/dihedral.h>
+#include <spline/tessellate/scan_distance.h>
 #include <spline/tessellate/tessellate.h>
 #include <tiny_gltf.h>
 
@@ -259,6 +263,53 @@ TEST(FitCli, ProgressLinesPerStage) {
   }
 }
 
+// The report's figures are those of the written .glb measured from outside (read back by
+// libio's reader, every scan vertex to it and its points back to the scan): a real open scan
+// (boundary figures) and a closed genus-2 model with a cone.
+TEST(FitCli, ReportMeasuresTheWrittenGlb) {
+  for (const std::string& input : {msp_test::test_mesh("open/eight_open.off"), model("genus2.off")}) {
+    const fs::path dir = fresh_dir("outside");
+    const auto r = run_msp(args({"fit", input, "-o", (dir / "s.glb").string(), "--json",
+                                 (dir / "s.json").string()}));
+    ASSERT_EQ(r.exit_status, 0) << r.err;
+    const nlohmann::json report = read_json(dir / "s.json");
+    const auto glb = msp::gltf::read_glb_triangles((dir / "s.glb").string());
+    const auto scan = ricci::to_arrays(ricci::read_mesh(input));
+    std::vector<std::array<int, 3>> scan_triangles;
+    for (Eigen::Index f = 0; f < scan.F.rows(); ++f)
+      scan_triangles.push_back({scan.F(f, 0), scan.F(f, 1), scan.F(f, 2)});
+    const auto d =
+        spline::measure_against_scan(glb.positions, glb.triangles, scan.V, scan_triangles);
+    const double diag = d.bbox_diagonal;
+    const auto near = [](double reported, double measured) {
+      return std::abs(reported - measured) <= 0.01 * std::abs(measured) + 1e-12;
+    };
+    EXPECT_EQ(report["fit_points"].get<int>(), scan.V.rows()) << input;  // every vertex
+    EXPECT_TRUE(near(report["fit_rms"].get<double>(), d.fit_rms)) << input;
+    EXPECT_TRUE(near(report["fit_max"].get<double>(), d.fit_max)) << input;
+    const auto& s2s = report["surface_to_scan"];
+    EXPECT_TRUE(near(s2s["p99_relative"].get<double>() * diag, d.surface_to_scan_p99)) << input;
+    EXPECT_TRUE(near(s2s["max_relative"].get<double>() * diag, d.surface_to_scan_max)) << input;
+    EXPECT_TRUE(near(report["coverage"]["fraction"].get<double>(), d.coverage)) << input;
+    const double hausdorff = report["boundary"]["hausdorff_relative"].get<double>();
+    if (d.boundary_hausdorff < 0) {
+      EXPECT_EQ(hausdorff, -1.0) << input;  // closed: no boundary to compare
+    } else {
+      EXPECT_TRUE(near(hausdorff * diag, d.boundary_hausdorff)) << input;
+    }
+    EXPECT_EQ(report["folds"]["count"].get<int>(),
+              spline::dihedral_angles(glb.triangles, glb.positions).over_90_deg)
+        << input;
+    // And they are good: the surface reaches the scan, its boundary too, nothing sticks out.
+    EXPECT_LT(d.fit_rms, 0.005 * diag) << input;
+    EXPECT_LT(d.surface_to_scan_max, 0.02 * diag) << input;
+    EXPECT_GT(d.coverage, 0.99) << input;
+    if (d.scan_boundary_edges > 0) {
+      EXPECT_LT(d.boundary_hausdorff, 0.005 * diag) << input;
+    }
+  }
+}
+
 struct BadCase {
   std::vector<std::string> arguments;  // after "fit"; {OUT} is the output folder
   std::string message;                 // part of the one stderr line
@@ -319,6 +370,20 @@ TEST(FitCli, RefusesSingularVertexOnTheBoundary) {
                  {{model("genus2.off"), "--singularity", "999999", "-o", "{OUT}/x.glb", "--quiet"},
                   "out of range",
                   1});
+}
+
+// The guard against points of the surface far from the scan: with a limit no surface meets,
+// the run fails loudly and writes nothing.
+TEST(FitCli, SurfaceFarFromTheScanFailsTheRun) {
+  expect_refused("deviation", {{model("genus1.off"), "--max-deviation", "1e-7", "--domain-faces",
+                                "400", "--density", "2", "-o", "{OUT}/x.glb", "--json",
+                                "{OUT}/x.json", "--quiet"},
+                               "of the bounding-box diagonal from the input (limit",
+                               1});
+  expect_refused("deviation-arg",
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--max-deviation", "-1"},
+                  "--max-deviation",
+                  2});
 }
 
 TEST(FitCli, RefusesUnreadableFiles) {

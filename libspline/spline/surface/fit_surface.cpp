@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <string>
 #include <utility>
@@ -175,10 +176,10 @@ double distance_to_fills(const SplineSurface& surface,
   return best;
 }
 
-// Distances of the input's vertices to the surface shown: the spline by closest-point
+// Distances of the input's vertices to the exact surface: the spline by closest-point
 // projection from their parameters; vertices whose parameter is outside the tessellated faces
 // (the cone's star, a patch's covered faces) to the nearest patch. In parallel.
-void measure_fit(const ricci::Mesh& dense, const std::vector<DomainPoint>& parameters,
+void measure_projection(const ricci::Mesh& dense, const std::vector<DomainPoint>& parameters,
                  const std::vector<PatchTessellation>& patches, FittedSurface& out) {
   const SplineSurface& surface = out.surface;
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
@@ -200,12 +201,50 @@ void measure_fit(const ricci::Mesh& dense, const std::vector<DomainPoint>& param
   for (double d : distance) {
     if (d < 0) continue;
     sum += d * d;
-    out.fit_max = std::max(out.fit_max, d);
-    ++out.fit_points;
+    out.projection_max = std::max(out.projection_max, d);
+    ++out.projection_points;
   }
-  out.fit_rms = out.fit_points > 0 ? std::sqrt(sum / out.fit_points) : 0.0;
-  out.bbox_diagonal =
-      points.rows() > 0 ? (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm() : 0.0;
+  out.projection_rms = out.projection_points > 0 ? std::sqrt(sum / out.projection_points) : 0.0;
+}
+
+// The delivered surface (as a file holds it) against the whole input, both ways; the guard
+// against points of the surface far from the input.
+void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                       FittedSurface& out) {
+  const ricci::VertexFaceArrays input = ricci::to_arrays(dense);
+  std::vector<std::array<int, 3>> input_triangles(static_cast<std::size_t>(input.F.rows()));
+  for (Eigen::Index f = 0; f < input.F.rows(); ++f)
+    input_triangles[static_cast<std::size_t>(f)] = {input.F(f, 0), input.F(f, 1), input.F(f, 2)};
+  const TriangleSoup soup = float_welded(out.tessellation);
+  // Patches capping the input's own boundary loops cover what the scan does not have: they are
+  // left out of the surface-to-scan direction (and counted there).
+  ScanDistanceOptions measure = options.measure;
+  const auto& fills = out.surface.fills;
+  const auto& face = out.tessellation.triangle_face;
+  measure.unmeasured_surface_triangles.assign(face.size(), 0);
+  for (std::size_t t = 0; t < face.size(); ++t) {
+    if (face[t] >= 0) continue;
+    const auto& fill = fills[static_cast<std::size_t>(-1 - face[t])];
+    measure.unmeasured_surface_triangles[t] =
+        out.input.boundary_loops > 0 && fill.rim.kind == Rim::Kind::boundary;
+  }
+  out.delivered = measure_against_scan(soup.positions, soup.triangles, input.V, input_triangles,
+                                       measure);
+  out.bbox_diagonal = out.delivered.bbox_diagonal;
+  out.fit_rms = out.delivered.fit_rms;
+  out.fit_max = out.delivered.fit_max;
+  out.fit_points = out.delivered.scan_points;
+  const double limit = options.max_surface_deviation * out.bbox_diagonal;
+  if (options.max_surface_deviation > 0 && out.delivered.surface_to_scan_max > limit) {
+    const Eigen::Vector3d& p = out.delivered.surface_to_scan_max_point;
+    char where[160];
+    std::snprintf(where, sizeof where, "(%.6g, %.6g, %.6g) lies %.3g%%", p.x(), p.y(), p.z(),
+                  100.0 * out.delivered.surface_to_scan_max / out.bbox_diagonal);
+    throw ricci::SolverError("fit_surface: the surface point " + std::string(where) +
+                             " of the bounding-box diagonal from the input (limit " +
+                             std::to_string(100.0 * options.max_surface_deviation) +
+                             "%): a spike or a sheet sticking out; nothing is delivered");
+  }
 }
 
 // Topology and smoothness of the tessellation and the spline's own seams.
@@ -280,7 +319,8 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
 
   clock.begin("measure");
   measure_surface(out);
-  measure_fit(dense, parameters, patches, out);
+  measure_projection(dense, parameters, patches, out);
+  measure_delivered(dense, options, out);
   clock.finish();
   return out;
 }

@@ -16,6 +16,7 @@
 #include "spline/fit/fit.h"
 #include "spline/surface/spline_surface.h"
 #include "spline/tessellate/dihedral.h"
+#include "spline/tessellate/scan_distance.h"
 #include "spline/tessellate/tessellate.h"
 
 namespace spline {
@@ -32,6 +33,12 @@ struct FitSurfaceOptions {
   bool fill_boundaries = false;  ///< Also cap the input's own boundary loops.
   /// Tessellation samples per domain edge - 1; 0: chosen by domain size (default_density).
   int density = 0;
+  /// The run fails (ricci::SolverError, nothing delivered) when a point of the tessellated
+  /// surface lies farther than this fraction of the input's bounding-box diagonal from the input
+  /// (a spike or a sheet sticking out); 0 turns the guard off.
+  double max_surface_deviation = 0.05;
+  /// Measures of the delivered surface against the input (coverage tolerance, threads).
+  ScanDistanceOptions measure;
   /// Denser domain around the cone (levels 0: off; ricci/singularity/one_cone.h).
   ricci::ConeRefinementOptions cone_refinement = ScanFitOptions{}.atlas.cone_refinement;
   /// Optional: called with a stage name when the stage starts (the names of `seconds`).
@@ -71,9 +78,21 @@ struct FittedSurface {
   /// loops a ring or two apart merged into one hole (spline/fill/rims.h); without, one per loop.
   int boundary_rims = 0;
   int fallback_fills = 0;           ///< Patches that are the positions-only fallback (not G1).
-  double fit_rms = 0.0, fit_max = 0.0;  ///< Input vertices to the surface (projection).
-  int fit_points = 0;                   ///< Input vertices measured.
-  int fit_points_on_fills = 0;          ///< Of those, measured against a patch.
+  /// The delivered surface (the tessellation rounded to float and welded, as a file holds it)
+  /// measured against the input by global closest-point queries both ways: every input vertex
+  /// to the surface, the surface's vertices and triangle centroids to the input, coverage and
+  /// the distance between the two boundaries (spline/tessellate/scan_distance.h).
+  ScanDistanceReport delivered;
+  /// delivered.fit_rms / fit_max / scan_points: every input vertex to the delivered surface.
+  double fit_rms = 0.0, fit_max = 0.0;
+  int fit_points = 0;
+  /// The exact spline's distances: input vertices whose parameter lies on a tessellated face,
+  /// projected onto the spline from that parameter; the others (the cone's star, faces a patch
+  /// covers) measured against the nearest patch; a vertex near neither is left out (counted
+  /// in fit_points - projection_points).
+  double projection_rms = 0.0, projection_max = 0.0;
+  int projection_points = 0;
+  int fit_points_on_fills = 0;          ///< Of the projected points, measured against a patch.
   double bbox_diagonal = 0.0;           ///< Of the input.
   double edge_normal_jump_deg = 0.0;    ///< Across domain edges (the spline's own seams).
   double fill_normal_jump_deg = 0.0;    ///< Across the patches' rims.
@@ -94,8 +113,9 @@ struct FittedSurface {
 /// Stages: "singularity" (with a given vertex), fit_scan's, "fill", "tessellate", "measure".
 /// \pre `dense` is a connected oriented 2-manifold triangle mesh.
 /// \throw ricci::InvalidInputError for a singular vertex out of range or on the boundary, or
-///        fewer domain faces (asked for, or in the mesh) than minimum_domain_faces; as fit_scan
-///        otherwise.
+///        fewer domain faces (asked for, or in the mesh) than minimum_domain_faces;
+///        ricci::SolverError when the surface strays farther than max_surface_deviation from the
+///        input; as fit_scan otherwise.
 [[nodiscard]] FittedSurface fit_surface(const ricci::Mesh& dense,
                                         const FitSurfaceOptions& options = {});
 

@@ -53,7 +53,7 @@ Tessellation tessellate_surface(const SplineSurface& surface, const Tessellation
   return tessellate_surface(surface, options, patches);
 }
 
-WatertightReport float_welded_topology(const Tessellation& t) {
+TriangleSoup float_welded(const Tessellation& t) {
   struct Key {
     float x, y, z;
     bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -75,16 +75,21 @@ WatertightReport float_welded_topology(const Tessellation& t) {
     if (inserted) keys.push_back(k);
     welded[static_cast<std::size_t>(i)] = it->second;
   }
-  Eigen::MatrixX3d positions(static_cast<Eigen::Index>(keys.size()), 3);
+  TriangleSoup soup;
+  soup.positions.resize(static_cast<Eigen::Index>(keys.size()), 3);
   for (std::size_t i = 0; i < keys.size(); ++i)
-    positions.row(static_cast<Eigen::Index>(i)) << keys[i].x, keys[i].y, keys[i].z;
-  std::vector<std::array<int, 3>> triangles;
-  triangles.reserve(t.triangles.size());
+    soup.positions.row(static_cast<Eigen::Index>(i)) << keys[i].x, keys[i].y, keys[i].z;
+  soup.triangles.reserve(t.triangles.size());
   for (const auto& tri : t.triangles)
-    triangles.push_back({welded[static_cast<std::size_t>(tri[0])],
-                         welded[static_cast<std::size_t>(tri[1])],
-                         welded[static_cast<std::size_t>(tri[2])]});
-  return check_watertight(triangles, positions);
+    soup.triangles.push_back({welded[static_cast<std::size_t>(tri[0])],
+                              welded[static_cast<std::size_t>(tri[1])],
+                              welded[static_cast<std::size_t>(tri[2])]});
+  return soup;
+}
+
+WatertightReport float_welded_topology(const Tessellation& t) {
+  const TriangleSoup soup = float_welded(t);
+  return check_watertight(soup.triangles, soup.positions);
 }
 
 }  // namespace spline

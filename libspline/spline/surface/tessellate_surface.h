@@ -2,6 +2,8 @@
 // Watertight tessellation of a SplineSurface: the spline over its tessellated domain faces
 // (tessellate/tessellate.h) with every fill patch welded in along its rim
 // (tessellate/tessellate_fill.h), so spline and patches are one welded surface.
+#include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "spline/fill/hole_fill.h"
@@ -30,8 +32,17 @@ namespace spline {
                                               const TessellationOptions& options,
                                               std::vector<PatchTessellation>& patches);
 
-/// Topology of the tessellation as a file holds it: positions rounded to float and equal ones
-/// welded (a glTF or PLY reader's view).
+/// A triangle soup: positions and triangles by position index.
+struct TriangleSoup {
+  Eigen::MatrixX3d positions;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+/// The tessellation as a file holds it: positions rounded to float and equal ones welded (a
+/// glTF or PLY reader's view), triangles in tessellation order.
+[[nodiscard]] TriangleSoup float_welded(const Tessellation& tessellation);
+
+/// Topology of float_welded(tessellation).
 [[nodiscard]] WatertightReport float_welded_topology(const Tessellation& tessellation);
 
 }  // namespace spline

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <map>
 #include <string>
 #include <utility>
 
@@ -29,19 +28,37 @@ Eigen::VectorXd parallel_distances(const Tree& tree, const Eigen::MatrixX3d& poi
 }
 
 // Every surface vertex used by a triangle, then every non-degenerate triangle's centroid.
+// The vertices of the measured triangles and their non-degenerate centroids; `left_out`
+// counts the samples of the others (vertices that no measured triangle uses).
 Eigen::MatrixX3d surface_samples(const Eigen::MatrixX3d& positions,
-                                 const std::vector<std::array<int, 3>>& triangles) {
-  std::vector<char> used(static_cast<std::size_t>(positions.rows()), 0);
-  for (const auto& t : triangles) {
-    for (int v : t) used[static_cast<std::size_t>(v)] = 1;
+                                 const std::vector<std::array<int, 3>>& triangles,
+                                 const std::vector<char>& unmeasured, int& left_out) {
+  const auto measured = [&unmeasured](std::size_t t) {
+    return unmeasured.empty() || !unmeasured[t];
+  };
+  std::vector<char> used(static_cast<std::size_t>(positions.rows()), 0);  // 1 any, 2 measured
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (int v : triangles[t]) {
+      char& u = used[static_cast<std::size_t>(v)];
+      u = std::max<char>(u, measured(t) ? 2 : 1);
+    }
   }
+  left_out = 0;
   std::vector<Eigen::Vector3d> points;
   for (Eigen::Index v = 0; v < positions.rows(); ++v) {
-    if (used[static_cast<std::size_t>(v)]) points.emplace_back(positions.row(v).transpose());
+    const char u = used[static_cast<std::size_t>(v)];
+    if (u == 2) points.emplace_back(positions.row(v).transpose());
+    left_out += u == 1;
   }
-  for (const auto& t : triangles) {
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
     const Eigen::Vector3d a = positions.row(t[0]), b = positions.row(t[1]), c = positions.row(t[2]);
-    if ((b - a).cross(c - a).norm() > 0.0) points.push_back((a + b + c) / 3.0);
+    if (!((b - a).cross(c - a).norm() > 0.0)) continue;
+    if (measured(i)) {
+      points.push_back((a + b + c) / 3.0);
+    } else {
+      ++left_out;
+    }
   }
   Eigen::MatrixX3d out(static_cast<Eigen::Index>(points.size()), 3);
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -84,18 +101,25 @@ Eigen::MatrixX3d edge_samples(const Eigen::MatrixX3d& positions,
 }  // namespace
 
 std::vector<std::array<int, 2>> soup_boundary_edges(const std::vector<std::array<int, 3>>& triangles) {
-  std::map<std::pair<int, int>, int> count;
-  for (const auto& t : triangles) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = t[k], b = t[(k + 1) % 3];
-      ++count[{std::min(a, b), std::max(a, b)}];
-    }
-  }
+  // Undirected edges sorted, so that an edge's copies are adjacent.
+  const auto key = [](int a, int b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
+           static_cast<std::uint32_t>(std::max(a, b));
+  };
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * triangles.size());
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) edges.push_back(key(t[k], t[(k + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  const auto single = [&edges](std::uint64_t e) {
+    const auto range = std::equal_range(edges.begin(), edges.end(), e);
+    return range.second - range.first == 1;
+  };
   std::vector<std::array<int, 2>> out;
   for (const auto& t : triangles) {
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
-      if (a != b && count[{std::min(a, b), std::max(a, b)}] == 1) out.push_back({a, b});
+      if (a != b && single(key(a, b))) out.push_back({a, b});
     }
   }
   return out;
@@ -110,6 +134,12 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
   check_indices(scan_positions, scan_triangles, "scan");
   if (!(options.coverage_tolerance > 0.0)) {
     throw ricci::InvalidInputError("coverage tolerance must be positive");
+  }
+  const std::vector<char>& unmeasured = options.unmeasured_surface_triangles;
+  if (!unmeasured.empty() && unmeasured.size() != surface_triangles.size()) {
+    throw ricci::InvalidInputError("unmeasured_surface_triangles has " +
+                                   std::to_string(unmeasured.size()) + " flags for " +
+                                   std::to_string(surface_triangles.size()) + " triangles");
   }
   ScanDistanceReport report;
   report.bbox_diagonal =
@@ -128,7 +158,9 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
   report.fit_rms = std::sqrt(fit.squaredNorm() / static_cast<double>(fit.size()));
 
   // The surface back to the scan.
-  const Eigen::MatrixX3d samples = surface_samples(surface_positions, surface_triangles);
+  const Eigen::MatrixX3d samples = surface_samples(surface_positions, surface_triangles,
+                                                   unmeasured, report.surface_points_left_out);
+  if (samples.rows() == 0) throw ricci::InvalidInputError("surface: every triangle left out");
   Eigen::VectorXd back = parallel_distances(scan, samples, options.threads);
   report.surface_points = static_cast<int>(back.size());
   report.surface_to_scan_max = back.maxCoeff(&farthest);
@@ -159,7 +191,7 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
     for (int s = 0; s < 4; ++s) inside += cover_distance[4 * t + s] <= report.coverage_tolerance;
     covered += area[t] * inside / 4.0;
   }
-  report.coverage = area.sum() > 0.0 ? covered / area.sum() : 1.0;
+  report.coverage = area.sum() > 0.0 ? std::min(1.0, covered / area.sum()) : 1.0;
 
   // Boundaries.
   const auto surface_rim = soup_boundary_edges(surface_triangles);

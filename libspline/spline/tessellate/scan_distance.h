@@ -14,6 +14,9 @@ struct ScanDistanceOptions {
   /// scan's bounding-box diagonal.
   double coverage_tolerance = 0.005;
   int threads = 0;  ///< Query threads; 0 = all cores.
+  /// By surface triangle, nonzero: left out of the surface-to-scan direction (a patch that caps
+  /// a hole of the scan has no scan to be near). Empty: every triangle measured.
+  std::vector<char> unmeasured_surface_triangles;
 };
 
 /// Distances are absolute (the scan's units); divide by bbox_diagonal for fractions.
@@ -23,8 +26,10 @@ struct ScanDistanceReport {
   int scan_points = 0;
   double fit_rms = 0.0, fit_max = 0.0;
   Eigen::Vector3d fit_max_point = Eigen::Vector3d::Zero();  ///< The scan vertex farthest away.
-  /// Surface to scan: every surface vertex and every non-degenerate triangle's centroid.
+  /// Surface to scan: every surface vertex and every non-degenerate triangle's centroid (of
+  /// the measured triangles); surface_points_left_out: those of the unmeasured ones.
   int surface_points = 0;
+  int surface_points_left_out = 0;
   double surface_to_scan_p99 = 0.0, surface_to_scan_max = 0.0;
   Eigen::Vector3d surface_to_scan_max_point = Eigen::Vector3d::Zero();
   /// Share of the scan's area within coverage_tolerance of the surface (each scan triangle
@@ -45,7 +50,8 @@ struct ScanDistanceReport {
 
 /// Measures `surface` (positions, triangles by position index) against the scan (the same).
 /// \throw ricci::InvalidInputError for indices out of range, non-finite positions, an empty
-///        surface or scan, or a coverage tolerance that is not positive.
+///        surface or scan, every surface triangle unmeasured, unmeasured flags of another size,
+///        or a coverage tolerance that is not positive.
 [[nodiscard]] ScanDistanceReport measure_against_scan(
     const Eigen::MatrixX3d& surface_positions,
     const std::vector<std::array<int, 3>>& surface_triangles,

@@ -128,6 +128,37 @@ TEST(MeasureAgainstScan, ASpikeIsSeenFromTheSurfaceOnly) {
   EXPECT_EQ(folds.over_90_deg, static_cast<int>(folds.fold_edges.size()));
 }
 
+// Triangles left out of the surface-to-scan direction (a patch over a hole of the scan): the
+// spike on them is not seen there, its samples are counted as left out, the other way is whole.
+TEST(MeasureAgainstScan, UnmeasuredTrianglesAreLeftOutAndCounted) {
+  const Grid scan = grid(10, 1.0, 0.0);
+  Grid spiked = scan;
+  spiked.positions(60, 2) = 3.0;
+  ScanDistanceOptions options;
+  options.unmeasured_surface_triangles.assign(spiked.triangles.size(), 0);
+  int spike_triangles = 0;
+  for (std::size_t t = 0; t < spiked.triangles.size(); ++t) {
+    for (int v : spiked.triangles[t]) {
+      if (v == 60) {
+        options.unmeasured_surface_triangles[t] = 1;
+        ++spike_triangles;
+        break;
+      }
+    }
+  }
+  ASSERT_EQ(spike_triangles, 6);
+  const ScanDistanceReport r = measure_against_scan(spiked.positions, spiked.triangles,
+                                                    scan.positions, scan.triangles, options);
+  EXPECT_NEAR(r.surface_to_scan_max, 0.0, 1e-12);
+  EXPECT_EQ(r.surface_points_left_out, 6 + 1);  // their centroids and the spike's vertex
+  EXPECT_EQ(r.surface_points + r.surface_points_left_out, 121 + 200);
+  EXPECT_EQ(r.scan_points, 121);
+  options.unmeasured_surface_triangles.pop_back();
+  EXPECT_THROW((void)measure_against_scan(spiked.positions, spiked.triangles, scan.positions,
+                                          scan.triangles, options),
+               ricci::InvalidInputError);
+}
+
 TEST(MeasureAgainstScan, ClosedSurfacesHaveNoBoundaryFigure) {
   Eigen::MatrixX3d p(4, 3);
   p << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
