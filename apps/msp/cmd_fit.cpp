@@ -81,6 +81,12 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   o.cone_refinement.levels = args.get_int("cone-refinement", o.cone_refinement.levels);
   if (o.cone_refinement.levels < 0 || o.cone_refinement.levels > 4)
     throw UsageError("--cone-refinement must be in [0, 4]");
+  o.refinement_rounds = args.get_int("refine-rounds", o.refinement_rounds);
+  if (o.refinement_rounds < 0 || o.refinement_rounds > 8)
+    throw UsageError("--refine-rounds must be in [0, 8]");
+  o.tolerance = args.get_double("tolerance", o.tolerance);
+  if (!(o.tolerance >= 0.0 && o.tolerance < 1.0))
+    throw UsageError("--tolerance must be in [0, 1) (a fraction of the diagonal; 0: folds only)");
   o.max_surface_deviation = args.get_double("max-deviation", o.max_surface_deviation);
   if (!(o.max_surface_deviation >= 0.0 && o.max_surface_deviation <= 10.0))
     throw UsageError("--max-deviation must be in [0, 10] (a fraction of the diagonal; 0: off)");
@@ -143,6 +149,9 @@ const CommandSpec& fit_command() {
        {"density", "d", "tessellation samples per domain edge (chosen by domain size)"},
        {"cone-refinement", "LEVELS", "1-to-4 splits of the domain around the cone, 0 to 4 (2)"},
        {"smoothing", "LAMBDA", "weight of the thin-plate energy (1e-4)"},
+       {"tolerance", "F",
+        "refine the domain where the input is farther than F diagonals from the surface (0)"},
+       {"refine-rounds", "N", "domain refinements where the surface folds or misses (1)"},
        {"max-deviation", "F",
         "fail when the surface strays farther than F diagonals from the input; 0: off (0.05)"},
        {"obj", "OUT.obj", "also write the tessellation as OBJ"},

@@ -106,7 +106,36 @@ nlohmann::json folds_json(const spline::FittedSurface& fitted) {
     const Eigen::Vector3d mid = 0.5 * (x.row(edges[i][0]) + x.row(edges[i][1])).transpose();
     points.push_back(point_json(mid));
   }
-  return {{"count", edges.size()}, {"listed", points.size()}, {"points", points}};
+  // Folds on the fill patches (both ends on a patch's triangles) and on the spline.
+  const auto& t = fitted.tessellation;
+  std::vector<char> on_patch(static_cast<std::size_t>(x.rows()), 0);
+  for (std::size_t i = 0; i < t.triangles.size(); ++i)
+    if (t.triangle_face[i] < 0)
+      for (int v : t.triangles[i]) on_patch[static_cast<std::size_t>(v)] = 1;
+  int patch_folds = 0;
+  for (const auto& e : edges)
+    patch_folds += on_patch[static_cast<std::size_t>(e[0])] && on_patch[static_cast<std::size_t>(e[1])];
+  return {{"count", edges.size()},
+          {"on_patches", patch_folds},
+          {"listed", points.size()},
+          {"points", points}};
+}
+
+// Every fit round: the first, then each refinement of the domain (the best one delivered).
+nlohmann::json refinement_json(const spline::FittedSurface& fitted,
+                               const spline::FitSurfaceOptions& options) {
+  nlohmann::json rounds = nlohmann::json::array();
+  for (const auto& r : fitted.refinement) {
+    rounds.push_back({{"domain_faces", r.domain_faces},
+                      {"control_points", r.control_points},
+                      {"folds", r.folds},
+                      {"projection_rms_relative", r.projection_rms / fitted.bbox_diagonal},
+                      {"projection_max_relative", r.projection_max / fitted.bbox_diagonal},
+                      {"vertices_over_tolerance", r.vertices_over_tolerance}});
+  }
+  return {{"max_rounds", options.refinement_rounds},
+          {"tolerance_relative", options.tolerance},
+          {"rounds", rounds}};
 }
 
 }  // namespace
@@ -143,6 +172,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
        {{"fraction", fitted.delivered.coverage},
         {"tolerance_relative", fitted.delivered.coverage_tolerance / diag}}},
       {"folds", folds_json(fitted)},
+      {"refinement", refinement_json(fitted, options)},
       {"projection",
        {{"rms_relative", fitted.projection_rms / diag},
         {"max_relative", fitted.projection_max / diag},

@@ -49,4 +49,14 @@ struct SurfacePoint {
 /// The closest point on `mesh` of every row of `queries` (#Q by 3), by an AABB tree.
 [[nodiscard]] std::vector<SurfacePoint> closest_points(const Mesh& mesh, const Eigen::MatrixX3d& queries);
 
+/// The same for oriented queries (`normals`: a unit normal per query, or a zero row for none):
+/// the closest point on a face of `mesh` whose normal makes an angle below 90 degrees with the
+/// query's, looked for within `search_radius` of the query, so that a point on one side of a
+/// thin part is not placed on the other side; the plain closest point where no face within
+/// the radius agrees. \throw InvalidInputError when normals has another number of rows.
+[[nodiscard]] std::vector<SurfacePoint> closest_points(const Mesh& mesh,
+                                                       const Eigen::MatrixX3d& queries,
+                                                       const Eigen::MatrixX3d& normals,
+                                                       double search_radius);
+
 }  // namespace ricci

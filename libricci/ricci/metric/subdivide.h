@@ -16,7 +16,7 @@ namespace ricci {
 /// a single split edge is bisected from its opposite corner, so no T-junction remains. Midpoints
 /// lie on the straight edges (the surface is unchanged). Vertex i keeps index i; midpoints are
 /// appended. Returns the mesh unchanged (a copy) when nothing is flagged.
-/// 	hrow InvalidInputError if a face is not a triangle or `refine` has the wrong size.
+/// \throw InvalidInputError if a face is not a triangle or `refine` has the wrong size.
 [[nodiscard]] Mesh subdivide_midpoint_locally(const Mesh& mesh, const std::vector<char>& refine);
 
 }  // namespace ricci

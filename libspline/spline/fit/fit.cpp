@@ -3,6 +3,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -491,6 +492,73 @@ CorrectedParameters correct_parameters(const ManifoldSpline& spline,
   return result;
 }
 
+namespace {
+
+// Radius of the oriented closest-point search, in mean domain edge lengths.
+constexpr double kOrientedSearchEdges = 3.0;
+
+// Points of the input surface to fit, each with the input's unit normal there.
+struct DataPoints {
+  Eigen::MatrixX3d positions, normals;
+};
+
+// The input's vertices (first, in index order; area-weighted normals), its face centroids,
+// then, while fewer than `wanted`, the interior points of a barycentric grid of level m on
+// every face ((m - 1)(m - 2) / 2 of them, the centroid not twice).
+DataPoints data_points(const ricci::Mesh& dense, Eigen::Index wanted) {
+  const Eigen::Index nv = static_cast<Eigen::Index>(dense.n_vertices());
+  const Eigen::Index nf = static_cast<Eigen::Index>(dense.n_faces());
+  const auto per_face = [](int m) {
+    return static_cast<Eigen::Index>((m - 1) * (m - 2) / 2 - (m % 3 == 0 ? 1 : 0));
+  };
+  int level = 3;  // the centroid only
+  while (level < 16 && nv + nf + nf * per_face(level) < wanted) ++level;
+  std::vector<Eigen::Vector3d> grid;  // barycentric, interior, the centroid left out
+  for (int i = 1; i < level; ++i) {
+    for (int j = 1; i + j < level; ++j) {
+      const int k = level - i - j;
+      if (3 * i != level || 3 * j != level) grid.emplace_back(i, j, k);
+    }
+  }
+  const Eigen::Index rows = nv + nf * (1 + static_cast<Eigen::Index>(grid.size()));
+  DataPoints data{Eigen::MatrixX3d(rows, 3), Eigen::MatrixX3d::Zero(rows, 3)};
+  for (auto v : dense.vertices())
+    data.positions.row(v.idx()) = ricci::to_eigen(dense.point(v)).transpose();
+  Eigen::Index row = nv + nf;
+  for (auto f : dense.faces()) {
+    Eigen::Matrix3d corners;
+    std::array<int, 3> ids{};
+    int c = 0;
+    for (auto v : dense.fv_range(f)) {
+      ids[static_cast<std::size_t>(c)] = v.idx();
+      corners.col(c++) = ricci::to_eigen(dense.point(v));
+    }
+    const Eigen::Vector3d area_normal =
+        (corners.col(1) - corners.col(0)).cross(corners.col(2) - corners.col(0));
+    for (int id : ids) data.normals.row(id) += area_normal.transpose();
+    const Eigen::Vector3d n = area_normal.normalized();
+    data.positions.row(nv + f.idx()) = corners.rowwise().mean().transpose();
+    data.normals.row(nv + f.idx()) = n.transpose();
+    for (const Eigen::Vector3d& b : grid) {
+      data.positions.row(row) = (corners * b / level).transpose();
+      data.normals.row(row++) = n.transpose();
+    }
+  }
+  for (Eigen::Index v = 0; v < nv; ++v) {
+    const double length = data.normals.row(v).norm();
+    if (length > 0.0) data.normals.row(v) /= length;
+  }
+  return data;
+}
+
+double mean_edge_length(const ricci::Mesh& mesh) {
+  double sum = 0.0;
+  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
+  return mesh.n_edges() > 0 ? sum / static_cast<double>(mesh.n_edges()) : 0.0;
+}
+
+}  // namespace
+
 ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) {
   const ricci::Stopwatch total_start;
   const auto stage = [&](const char* name) {
@@ -501,11 +569,16 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   auto t = stage("simplify");
   ricci::SimplifyOptions simplify;
   simplify.target_faces = options.domain_faces;
-  const bool simplified = static_cast<int>(dense.n_faces()) > options.domain_faces;
-  ricci::Mesh domain = simplified ? ricci::simplify_mesh(dense, simplify).mesh : dense;
+  const bool simplified =
+      !options.domain &&
+      (options.remesh_coarse_inputs || static_cast<int>(dense.n_faces()) > options.domain_faces);
+  ricci::Mesh domain = options.domain ? *options.domain
+                       : simplified   ? ricci::simplify_mesh(dense, simplify).mesh
+                                      : dense;
   if (simplified && options.boundary_follow.max_rounds > 0) {
     result.boundary_follow = ricci::follow_boundary(domain, dense, options.boundary_follow);
   }
+  result.domain = domain;
   result.timings.simplify = t.seconds();
 
   t = stage("atlas");
@@ -541,14 +614,16 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   // basis is no partition of unity: a punctured sphere's removed star lands there, and fitted
   // it dragged the rim, bunny: rim faces' RMS 4%) are left to the fill patches.
   const Eigen::Index nv = static_cast<Eigen::Index>(dense.n_vertices());
-  Eigen::MatrixX3d data(nv + static_cast<Eigen::Index>(dense.n_faces()), 3);
-  for (auto v : dense.vertices()) data.row(v.idx()) = ricci::to_eigen(dense.point(v)).transpose();
-  for (auto f : dense.faces()) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (auto v : dense.fv_range(f)) c += ricci::to_eigen(dense.point(v));
-    data.row(nv + f.idx()) = (c / 3.0).transpose();
-  }
-  const auto closest = ricci::closest_points(mesh, data);
+  const DataPoints points = data_points(
+      dense, static_cast<Eigen::Index>(options.data_points_per_control_point *
+                                       static_cast<double>(space->function_count())));
+  const Eigen::MatrixX3d& data = points.positions;
+  // Oriented: a point on one side of a thin part is placed on that side of the domain.
+  const auto closest =
+      options.oriented_parameters
+          ? ricci::closest_points(mesh, data, points.normals,
+                                  kOrientedSearchEdges * mean_edge_length(mesh))
+          : ricci::closest_points(mesh, data);
   std::vector<DomainPoint> parameters(closest.size());
   const std::vector<int> rings = domain_rim_rings(*space);
   for (std::size_t k = 0; k < closest.size(); ++k) {

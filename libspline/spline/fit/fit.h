@@ -5,6 +5,7 @@
 // fair) of manifold-splines section 5.
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -160,6 +161,21 @@ struct ScanFitOptions {
   /// scan's within boundary_follow.tolerance of the diagonal (ricci/mesh/boundary_follow.h), so
   /// the surface's boundary reaches the scan's. max_rounds = 0: off.
   ricci::BoundaryFollowOptions boundary_follow;
+  /// An input of at most domain_faces faces (a coarse CAD mesh, often with slivers) is
+  /// isotropically remeshed to domain_faces for the domain, like a simplified scan; false: the
+  /// input itself is the domain.
+  bool remesh_coarse_inputs = true;
+  /// Data points: the input's vertices and face centroids, plus points on a barycentric grid of
+  /// each input face until there are at least this many per control point (a coarse input
+  /// gives too few points for the spline's control points otherwise).
+  double data_points_per_control_point = 1.0;
+  /// Each data point's parameter is the closest point of the domain on a face facing the same
+  /// way as the input there (ricci::closest_points with normals), not merely the closest point:
+  /// on thin parts (ears, fins, handles) the closest point can lie on the other side.
+  bool oriented_parameters = true;
+  /// The domain mesh to build the spline on instead of simplifying the input (a domain refined
+  /// after an earlier fit); it must have the input's topology. Empty: simplify the input.
+  std::optional<ricci::Mesh> domain;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;
 };
@@ -191,6 +207,9 @@ struct ScanFitResult {
   std::string collar_refused;
   /// What follow_boundary did to the simplified domain (zeros when nothing was simplified).
   ricci::BoundaryFollowResult boundary_follow;
+  /// The domain before the collar and the atlas (simplified, boundary followed, or the given
+  /// ScanFitOptions::domain): what a refinement of the domain starts from.
+  ricci::Mesh domain;
 };
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the

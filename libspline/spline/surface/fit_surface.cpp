@@ -11,6 +11,7 @@
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
+#include "ricci/metric/subdivide.h"
 #include "spline/surface/cap_holes.h"
 #include "spline/surface/tessellate_surface.h"
 #include "spline/tessellate/parallel_for.h"
@@ -37,8 +38,8 @@ class StageClock {
       : out_(out), progress_(options.progress) {}
   void begin(const std::string& name) {
     if (!stage_.empty()) {
-      out_.seconds.emplace_back(stage_, seconds_since(stage_start_));
-      out_.cpu_seconds.emplace_back(stage_, process_cpu_seconds() - cpu_start_);
+      add(out_.seconds, stage_, seconds_since(stage_start_));
+      add(out_.cpu_seconds, stage_, process_cpu_seconds() - cpu_start_);
     }
     cpu_start_ = process_cpu_seconds();
     stage_ = name;
@@ -52,6 +53,17 @@ class StageClock {
   }
 
  private:
+  // A stage run again (a refinement round) adds to its first entry.
+  static void add(StageSeconds& stages, const std::string& name, double seconds) {
+    for (auto& [stage, s] : stages) {
+      if (stage == name) {
+        s += seconds;
+        return;
+      }
+    }
+    stages.emplace_back(name, seconds);
+  }
+
   FittedSurface& out_;
   const std::function<void(const std::string&)>& progress_;
   Clock::time_point total_start_ = Clock::now();
@@ -179,8 +191,11 @@ double distance_to_fills(const SplineSurface& surface,
 // Distances of the input's vertices to the exact surface: the spline by closest-point
 // projection from their parameters; vertices whose parameter is outside the tessellated faces
 // (the cone's star, a patch's covered faces) to the nearest patch. In parallel.
-void measure_projection(const ricci::Mesh& dense, const std::vector<DomainPoint>& parameters,
-                 const std::vector<PatchTessellation>& patches, FittedSurface& out) {
+// Returns the distance of every input vertex (-1: left out).
+std::vector<double> measure_projection(const ricci::Mesh& dense,
+                                       const std::vector<DomainPoint>& parameters,
+                                       const std::vector<PatchTessellation>& patches,
+                                       FittedSurface& out) {
   const SplineSurface& surface = out.surface;
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
@@ -205,6 +220,7 @@ void measure_projection(const ricci::Mesh& dense, const std::vector<DomainPoint>
     ++out.projection_points;
   }
   out.projection_rms = out.projection_points > 0 ? std::sqrt(sum / out.projection_points) : 0.0;
+  return distance;
 }
 
 // The delivered surface (as a file holds it) against the whole input, both ways; the guard
@@ -276,25 +292,22 @@ void take_scan(ScanFitResult&& scan, FittedSurface& out) {
   out.boundary_follow = scan.boundary_follow;
 }
 
-}  // namespace
+// What one fit round leaves for the refinement: the domain it was built on and the distance of
+// every input vertex to the surface (-1: not measured).
+struct Round {
+  ricci::Mesh domain;
+  std::vector<double> vertex_distance;
+};
 
-int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
-
-FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
-  FittedSurface out;
-  StageClock clock(out, options);
-  out.input = ricci::surface_topology(dense);
-  check_domain_size(dense, out.input, options);
-
-  ScanFitOptions scan = scan_options(options);
-  if (options.singular_vertex >= 0) {
-    clock.begin("singularity");
-    const int vertex = domain_singular_vertex(dense, options);  // checks range and boundary
-    if (needs_singularity(out.input)) scan.atlas.singular_vertex = vertex;
-  }
-  scan.progress = [&clock](const std::string& stage) { clock.begin(stage); };
+// One whole fit: fit_scan, the patches, the tessellation (at `density`, 0: by domain size) and
+// the measures of the surface itself; the delivered-surface measures come once, at the end.
+Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
+                const FitSurfaceOptions& options, int density, StageClock& clock,
+                FittedSurface& out) {
   ScanFitResult fitted = fit_scan(dense, scan);
   const std::vector<DomainPoint> parameters = std::move(fitted.vertex_parameters);
+  Round round;
+  round.domain = std::move(fitted.domain);
   take_scan(std::move(fitted), out);
 
   clock.begin("fill");
@@ -311,15 +324,167 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
 
   clock.begin("tessellate");
   TessellationOptions tess;
-  tess.density = options.density > 0
-                     ? options.density
-                     : default_density(out.surface.spline.space->domain_face_count());
+  tess.density = density > 0                ? density
+                 : options.density > 0      ? options.density
+                                            : default_density(
+                                             out.surface.spline.space->domain_face_count());
   std::vector<PatchTessellation> patches;
   out.tessellation = tessellate_surface(out.surface, tess, patches);
 
   clock.begin("measure");
   measure_surface(out);
-  measure_projection(dense, parameters, patches, out);
+  round.vertex_distance = measure_projection(dense, parameters, patches, out);
+  return round;
+}
+
+int vertices_over(const std::vector<double>& distance, double limit) {
+  int count = 0;
+  for (double d : distance) count += d > limit;
+  return count;
+}
+
+RefinementRound round_summary(const FittedSurface& out, const Round& round,
+                              const FitSurfaceOptions& options) {
+  RefinementRound r;
+  r.domain_faces = out.surface.spline.space->domain_face_count();
+  r.control_points = out.surface.spline.space->function_count();
+  r.folds = out.surface_dihedral.over_90_deg;
+  r.projection_rms = out.projection_rms;
+  r.projection_max = out.projection_max;
+  if (options.tolerance > 0.0)
+    r.vertices_over_tolerance =
+        vertices_over(round.vertex_distance, options.tolerance * out.bbox_diagonal);
+  return r;
+}
+
+double input_diagonal(const ricci::Mesh& dense) {
+  const Eigen::MatrixX3d x = ricci::to_arrays(dense).V;
+  return x.rows() > 0 ? (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm() : 0.0;
+}
+
+// The domain split 1-to-4 (red-green, ricci::subdivide_midpoint_locally) on the faces nearest
+// to `points` and their neighbours; the new vertices moved onto the input (closest point on a
+// face facing the same way), so the finer domain follows the shape.
+ricci::Mesh refine_domain(const ricci::Mesh& domain, const ricci::Mesh& dense,
+                          const std::vector<Eigen::Vector3d>& points) {
+  Eigen::MatrixX3d queries(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    queries.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  std::vector<char> near_vertex(domain.n_vertices(), 0);
+  for (const auto& hit : ricci::closest_points(domain, queries))
+    for (auto v : domain.fv_range(domain.face_handle(hit.face))) near_vertex[v.idx()] = 1;
+  std::vector<char> refine(domain.n_faces(), 0);
+  for (auto f : domain.faces())
+    for (auto v : domain.fv_range(f)) refine[f.idx()] |= near_vertex[v.idx()];
+  ricci::Mesh refined = ricci::subdivide_midpoint_locally(domain, refine);
+  const auto first_new = static_cast<Eigen::Index>(domain.n_vertices());
+  const auto added = static_cast<Eigen::Index>(refined.n_vertices()) - first_new;
+  if (added <= 0) return refined;
+  refined.request_vertex_normals();
+  refined.request_face_normals();
+  refined.update_normals();
+  Eigen::MatrixX3d moved(added, 3), normals(added, 3);
+  double edge = 0.0;
+  for (auto e : refined.edges()) edge += refined.calc_edge_length(e);
+  edge /= static_cast<double>(std::max<std::size_t>(refined.n_edges(), 1));
+  for (Eigen::Index i = 0; i < added; ++i) {
+    const auto v = refined.vertex_handle(static_cast<int>(first_new + i));
+    moved.row(i) = ricci::to_eigen(refined.point(v)).transpose();
+    normals.row(i) = ricci::to_eigen(refined.normal(v)).transpose();
+  }
+  const auto hits = ricci::closest_points(dense, moved, normals, 2.0 * edge);
+  for (Eigen::Index i = 0; i < added; ++i) {
+    const auto v = refined.vertex_handle(static_cast<int>(first_new + i));
+    if (refined.is_boundary(v)) continue;  // the boundary stays on the followed curve
+    const Eigen::Vector3d& p = hits[static_cast<std::size_t>(i)].point;
+    refined.set_point(v, ricci::Mesh::Point(p.x(), p.y(), p.z()));
+  }
+  refined.release_vertex_normals();
+  refined.release_face_normals();
+  return refined;
+}
+
+// Where the domain is refined: the folds' midpoints and, with a tolerance, the input vertices
+// farther than it from the surface.
+std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
+                                               const FitSurfaceOptions& options,
+                                               const FittedSurface& out, const Round& round) {
+  std::vector<Eigen::Vector3d> points;
+  const auto& x = out.tessellation.positions;
+  for (const auto& e : out.surface_dihedral.fold_edges)
+    points.emplace_back(0.5 * (x.row(e[0]) + x.row(e[1])).transpose());
+  if (options.tolerance > 0.0) {
+    const double limit = options.tolerance * out.bbox_diagonal;
+    for (std::size_t v = 0; v < round.vertex_distance.size(); ++v) {
+      if (round.vertex_distance[v] > limit)
+        points.push_back(ricci::to_eigen(dense.point(dense.vertex_handle(static_cast<int>(v)))));
+    }
+  }
+  return points;
+}
+
+// A refined round is kept when it folds less, or as little with fewer vertices over the
+// tolerance (with one), or as few with a lower RMS.
+bool better(const FittedSurface& next, const Round& next_round, const FittedSurface& out,
+            const Round& round, const FitSurfaceOptions& options) {
+  const int folds_next = next.surface_dihedral.over_90_deg, folds = out.surface_dihedral.over_90_deg;
+  if (folds_next != folds) return folds_next < folds;
+  if (options.tolerance > 0.0) {
+    const double limit = options.tolerance * next.bbox_diagonal;
+    const int over_next = vertices_over(next_round.vertex_distance, limit);
+    const int over = vertices_over(round.vertex_distance, limit);
+    if (over_next != over) return over_next < over;
+  }
+  return next.projection_rms < out.projection_rms;
+}
+
+}  // namespace
+
+int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
+
+FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
+  if (options.refinement_rounds < 0 || !(options.tolerance >= 0.0)) {
+    throw ricci::InvalidInputError("fit_surface: refinement_rounds and tolerance must be >= 0");
+  }
+  FittedSurface out;
+  StageClock clock(out, options);
+  out.input = ricci::surface_topology(dense);
+  out.bbox_diagonal = input_diagonal(dense);
+  check_domain_size(dense, out.input, options);
+
+  ScanFitOptions scan = scan_options(options);
+  if (options.singular_vertex >= 0) {
+    clock.begin("singularity");
+    const int vertex = domain_singular_vertex(dense, options);  // checks range and boundary
+    if (needs_singularity(out.input)) scan.atlas.singular_vertex = vertex;
+  }
+  scan.progress = [&clock](const std::string& stage) { clock.begin(stage); };
+  Round best = fit_round(dense, scan, options, 0, clock, out);
+  out.refinement.push_back(round_summary(out, best, options));
+
+  // Refinement: the domain split where the surface folds or misses the input by more than the
+  // tolerance, the same cone kept, and the whole fit run again; the best round is delivered.
+  for (int round = 1; round <= options.refinement_rounds; ++round) {
+    const std::vector<Eigen::Vector3d> where = refinement_points(dense, options, out, best);
+    if (where.empty()) break;
+    clock.begin("refine");
+    scan.domain = refine_domain(best.domain, dense, where);
+    scan.boundary_follow.max_rounds = 0;  // the refined domain keeps the followed boundary
+    if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
+    FittedSurface next;
+    next.input = out.input;
+    next.bbox_diagonal = out.bbox_diagonal;
+    Round candidate = fit_round(dense, scan, options, out.tessellation.density, clock, next);
+    out.refinement.push_back(round_summary(next, candidate, options));
+    if (!better(next, candidate, out, best, options)) break;
+    next.seconds = std::move(out.seconds);
+    next.cpu_seconds = std::move(out.cpu_seconds);
+    next.refinement = std::move(out.refinement);
+    out = std::move(next);
+    best = std::move(candidate);
+  }
+
+  clock.begin("measure");
   measure_delivered(dense, options, out);
   clock.finish();
   return out;

@@ -37,12 +37,28 @@ struct FitSurfaceOptions {
   /// surface lies farther than this fraction of the input's bounding-box diagonal from the input
   /// (a spike or a sheet sticking out); 0 turns the guard off.
   double max_surface_deviation = 0.05;
+  /// Refinement rounds: after a fit whose surface folds (normals turning by more than 90
+  /// degrees across a tessellation edge) or, with a tolerance, misses input vertices by more
+  /// than it, the domain is split around those places (new vertices on the input) and the fit
+  /// run again with the same cone; the best round (fewest folds, then fewest vertices over the
+  /// tolerance, then lowest RMS) is delivered. 0: one fit.
+  int refinement_rounds = 1;
+  /// Error goal as a fraction of the input's bounding-box diagonal (0: folds only).
+  double tolerance = 0.0;
   /// Measures of the delivered surface against the input (coverage tolerance, threads).
   ScanDistanceOptions measure;
   /// Denser domain around the cone (levels 0: off; ricci/singularity/one_cone.h).
   ricci::ConeRefinementOptions cone_refinement = ScanFitOptions{}.atlas.cone_refinement;
   /// Optional: called with a stage name when the stage starts (the names of `seconds`).
   std::function<void(const std::string& stage)> progress;
+};
+
+/// One fit round of fit_surface (the first, then each refinement).
+struct RefinementRound {
+  int domain_faces = 0, control_points = 0;
+  int folds = 0;  ///< Tessellation edges over 90 degrees.
+  double projection_rms = 0.0, projection_max = 0.0;  ///< As FittedSurface's.
+  int vertices_over_tolerance = -1;                   ///< -1 without a tolerance.
 };
 
 /// Wall-clock or CPU seconds by stage, in the order run, then "total".
@@ -97,7 +113,9 @@ struct FittedSurface {
   double edge_normal_jump_deg = 0.0;    ///< Across domain edges (the spline's own seams).
   double fill_normal_jump_deg = 0.0;    ///< Across the patches' rims.
   double fill_position_gap = 0.0;       ///< Largest gap patch - spline over the domain diagonal.
-  StageSeconds seconds;                 ///< Wall clock by stage.
+  /// Every round run (the first, then the refinements); the surface is the best one's.
+  std::vector<RefinementRound> refinement;
+  StageSeconds seconds;                 ///< Wall clock by stage (a stage run again adds up).
   /// CPU seconds of the process (all threads) by stage: on a shared machine the wall clock
   /// includes waiting for a core, this does not.
   StageSeconds cpu_seconds;
@@ -110,10 +128,11 @@ struct FittedSurface {
 /// Fits the surface to `dense` (its vertices and face centroids) and caps its holes: the cone
 /// hole always (grown, and retried on a bigger hole where its patch flips), excluded-face holes
 /// always, boundary loops with fill_boundaries (a closed genus-0 input's puncture always).
-/// Stages: "singularity" (with a given vertex), fit_scan's, "fill", "tessellate", "measure".
+/// Stages: "singularity" (with a given vertex), fit_scan's, "fill", "tessellate", "measure",
+/// then "refine" and the same again per refinement round, and the last "measure".
 /// \pre `dense` is a connected oriented 2-manifold triangle mesh.
-/// \throw ricci::InvalidInputError for a singular vertex out of range or on the boundary, or
-///        fewer domain faces (asked for, or in the mesh) than minimum_domain_faces;
+/// \throw ricci::InvalidInputError for a singular vertex out of range or on the boundary, a
+///        negative refinement_rounds or tolerance, or fewer domain faces (asked for, or in the mesh) than minimum_domain_faces;
 ///        ricci::SolverError when the surface strays farther than max_surface_deviation from the
 ///        input; as fit_scan otherwise.
 [[nodiscard]] FittedSurface fit_surface(const ricci::Mesh& dense,

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
@@ -17,6 +18,7 @@
 #include "apps/info_subprocess.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
+#include "ricci/mesh/primitives.h"
 #include "spline/surface/fit_surface.h"
 #include "spline/surface/tessellate_surface.h"
 
@@ -237,6 +239,84 @@ TEST(FitSurface, PuncturedSphereIsCapped) {
   EXPECT_EQ(r.boundary_rims, 0);
   EXPECT_TRUE(r.topology.closed(0));
 }
+
+}  // namespace
+}  // namespace spline
+
+namespace spline {
+namespace {
+
+// Shapes a spline folds on when its domain is too coarse or its parameters land on the wrong
+// side: thin parts a few domain edges thick, and an open boundary that waves. Each fit at the
+// default options must not fold (no tessellation edge over 90 degrees), must stay near the
+// input both ways and, when open, reach the input's boundary.
+struct ThinCase {
+  std::string name;
+  ricci::Mesh mesh;
+};
+
+// A sphere squashed into a plate `thickness` thick (its rim is the thin part).
+ricci::Mesh plate(double thickness) {
+  ricci::Mesh m = ricci::make_icosphere(5);
+  for (auto v : m.vertices()) {
+    auto p = m.point(v);
+    m.set_point(v, ricci::Mesh::Point(p[0], p[1], 0.5 * thickness * p[2]));
+  }
+  return m;
+}
+
+// A fin: a plate bent into a quarter of a cylinder (thin and curved).
+ricci::Mesh fin(double thickness) {
+  ricci::Mesh m = plate(thickness);
+  for (auto v : m.vertices()) {
+    auto p = m.point(v);
+    const double angle = 0.8 * p[0], radius = 1.5 + p[2];
+    m.set_point(v, ricci::Mesh::Point(radius * std::sin(angle), p[1], radius * std::cos(angle)));
+  }
+  return m;
+}
+
+// An annulus whose outer boundary waves in and out and up and down.
+ricci::Mesh wavy_annulus() {
+  ricci::Mesh m = ricci::make_annulus(24, 240, 0.4, 1.0);
+  for (auto v : m.vertices()) {
+    auto p = m.point(v);
+    const double r = std::hypot(p[0], p[1]), angle = std::atan2(p[1], p[0]);
+    const double s = 1.0 + 0.12 * r * std::sin(7 * angle);
+    m.set_point(v, ricci::Mesh::Point(s * p[0], s * p[1], 0.15 * r * r * std::cos(5 * angle)));
+  }
+  return m;
+}
+
+class FitSurfaceThinParts : public ::testing::TestWithParam<int> {};
+
+ThinCase thin_case(int k) {
+  switch (k) {
+    case 0: return {"plate 0.08 thick", plate(0.08)};
+    case 1: return {"fin 0.08 thick", fin(0.08)};
+    case 2: return {"torus with a thin tube", ricci::make_torus(160, 24, 1.0, 0.06)};
+    default: return {"wavy annulus", wavy_annulus()};
+  }
+}
+
+TEST_P(FitSurfaceThinParts, NoFoldAndNearTheInputBothWays) {
+  const ThinCase c = thin_case(GetParam());
+  const FittedSurface r = fit_surface(c.mesh);
+  const double diag = r.bbox_diagonal;
+  EXPECT_TRUE(r.watertight) << c.name;
+  EXPECT_EQ(r.surface_dihedral.over_90_deg, 0) << c.name;
+  EXPECT_EQ(r.fit_points, static_cast<int>(c.mesh.n_vertices())) << c.name;
+  EXPECT_LT(r.fit_rms, 0.002 * diag) << c.name;
+  EXPECT_LT(r.fit_max, 0.02 * diag) << c.name;
+  EXPECT_LT(r.delivered.surface_to_scan_max, 0.02 * diag) << c.name;
+  EXPECT_GT(r.delivered.coverage, 0.99) << c.name;
+  if (r.input.boundary_loops > 0) {
+    EXPECT_GE(r.delivered.boundary_hausdorff, 0.0) << c.name;
+    EXPECT_LT(r.delivered.boundary_hausdorff, 0.005 * diag) << c.name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, FitSurfaceThinParts, ::testing::Values(0, 1, 2, 3));
 
 }  // namespace
 }  // namespace spline
