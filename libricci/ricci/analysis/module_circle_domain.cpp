@@ -54,7 +54,8 @@ Circle fit_circle(const std::vector<Complex>& points) {
   return {centre + mean, std::sqrt(std::max(0.0, std::norm(centre) - x[2]))};
 }
 
-/// Loops by 3D length, longest first (c0, c1, ...).
+}  // namespace
+
 std::vector<int> loops_by_length(const Mesh& mesh, const MeshTables& tables) {
   std::vector<double> length(tables.boundary_loops.size(), 0.0);
   for (size_t k = 0; k < length.size(); ++k) {
@@ -70,8 +71,6 @@ std::vector<int> loops_by_length(const Mesh& mesh, const MeshTables& tables) {
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return length[a] > length[b]; });
   return order;
 }
-
-}  // namespace
 
 void circle_domain_module(const Mesh& mesh, const MeshTables& tables,
                           const ModuleOptions& options, ModuleResult& result) {
