@@ -31,6 +31,7 @@ nlohmann::json match_json(const std::string& path_a, const std::string& path_b,
   const auto side = [](const ricci::ParameterDomain& d) {
     nlohmann::json j;
     j["feature"] = d.feature;
+    j["metric"] = d.metric;
     j["loop_order"] = d.loop_order;
     j["flow_iterations"] = d.flow_iterations;
     j["max_curvature_error"] = d.flow_error;
@@ -66,9 +67,10 @@ void print_summary(const ricci::MatchResult& r) {
     std::cout << "correspondence_error_percent " << 100 * r.correspondence_error << "\n";
   }
   std::cout << "flipped_faces " << r.flipped_faces << "\nflipped_faces_b " << r.flipped_faces_b
-            << "\nsnapped_vertices " << r.snapped_vertices << "\nflow_iterations "
-            << r.a.flow_iterations << " " << r.b.flow_iterations << "\nseconds " << r.seconds
-            << " (A " << r.a.seconds << ", B " << r.b.seconds << ")\n";
+            << "\nsnapped_vertices " << r.snapped_vertices << "\nmetrics " << r.a.metric << " "
+            << r.b.metric << "\nflow_iterations " << r.a.flow_iterations << " "
+            << r.b.flow_iterations << "\nseconds " << r.seconds << " (A " << r.a.seconds << ", B "
+            << r.b.seconds << ")\n";
 }
 
 /// One textured glTF mesh of a parameter domain: the cut mesh in 3D, uv = the common domain.

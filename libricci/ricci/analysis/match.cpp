@@ -197,6 +197,7 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
                       to_string(flat.status) + ", max |K - target| " +
                       std::to_string(flat.max_error) + ")");
   }
+  domain.metric = to_string(flat.metric.scheme);
   domain.flow_iterations = flat.iterations;
   domain.flow_error = flat.max_error;
   // Step 4: one ray from p to each loop, longest loop first, vertex-disjoint.
@@ -395,7 +396,8 @@ void rectangle_domain(const Mesh& mesh, const MeshTables& tables, const std::vec
   module.accepted_error = options.accepted_error;
   module.force_kind = true;
   module.kind = ModuleKind::Rectangle;
-  module.retry = false;  // the map needs the mesh's own vertices
+  module.retry = false;                            // the map needs the mesh's own vertices
+  module.flow.fall_back_to_other_metrics = false;  // the rectangle must be conformal
   const ModuleResult rectangle = conformal_module(mesh, module);
   if (!rectangle.converged && !(rectangle.flow_error < options.accepted_error)) {
     throw SolverError(std::string("the Ricci flow of ") + name +
@@ -403,6 +405,7 @@ void rectangle_domain(const Mesh& mesh, const MeshTables& tables, const std::vec
   }
   domain.flow_iterations = rectangle.flow_iterations;
   domain.flow_error = rectangle.flow_error;
+  domain.metric = to_string(options.flow.scheme);
   domain.corners = rectangle.corners;
   domain.faces = rectangle.domain.faces;
   domain.positions = rectangle.domain.positions;

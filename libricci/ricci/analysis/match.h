@@ -48,13 +48,17 @@ struct MatchOptions {
   int feature_a = -1;
   int feature_b = -1;
   /// Flow settings; a flow that stops short of the tolerance but below accepted_error (max
-  /// |K - K̄|, radians) counts as converged.
+  /// |K - K̄|, radians) counts as converged. The map is a harmonic map onto a convex polygon,
+  /// one-to-one whatever the metric, which only places the cuts and weighs the edges: when the
+  /// inversive-distance metric fails (slivers, a large cone), the flow falls back to the other
+  /// metrics, down to the combinatorial one (not conformal; ParameterDomain::metric says).
   FlowOptions flow = [] {
     FlowOptions o;
     o.tolerance = 1e-8;
+    o.fall_back_to_other_metrics = true;
     return o;
   }();
-  double accepted_error = 1e-7;
+  double accepted_error = 1e-6;
   /// The cone's curvature 2 pi chi is spread evenly over the feature vertex and the interior
   /// vertices within this many rings of it (0: the vertex alone).
   int cone_rings = 2;
@@ -82,6 +86,7 @@ struct ParameterDomain {
   int feature = -1;                     ///< The cone vertex (cone star), else -1.
   std::vector<int> corners;             ///< Rectangle: the corner vertices, ccw from corner 0.
   std::vector<int> loop_order;          ///< Cone star: loops (by 3D length rank) around p, ccw.
+  std::string metric;  ///< The metric of the flow that converged (FlowResult::metric.scheme).
   int flow_iterations = 0;
   double flow_error = 0;  ///< max |K - K̄| of the flow.
   double seconds = 0;     ///< Flow, cut and parametrisation of this surface.
