@@ -66,9 +66,17 @@ void check_feature(const MeshTables& tables, int v, const char* name) {
     throw InvalidInputError(std::string("feature vertex ") + std::to_string(v) + " of " + name +
                             " is on the boundary; the cone needs an interior vertex");
   }
+  const int loops = static_cast<int>(tables.boundary_loops.size());
+  if (tables.valence[v] < loops) {
+    throw InvalidInputError(std::string("feature vertex ") + std::to_string(v) + " of " + name +
+                            " has " + std::to_string(tables.valence[v]) +
+                            " neighbours, fewer than the " + std::to_string(loops) +
+                            " boundary loops its cuts must reach");
+  }
 }
 
-/// The interior vertex farthest from the boundary along edge paths (3D lengths).
+/// The interior vertex farthest from the boundary along edge paths (3D lengths), among those
+/// with at least one neighbour per boundary loop (a ray leaves through each) if there are any.
 int default_feature(const Mesh& mesh, const MeshTables& tables) {
   const EdgeLengths lengths = mesh_edge_lengths(mesh);
   std::vector<double> dist(tables.num_vertices(), kInfinity);
@@ -93,9 +101,16 @@ int default_feature(const Mesh& mesh, const MeshTables& tables) {
       }
     }
   }
+  const int loops = static_cast<int>(tables.boundary_loops.size());
   int best = -1;
+  bool best_enough = false;
   for (int v = 0; v < tables.num_vertices(); ++v) {
-    if (!tables.is_boundary_vertex[v] && (best < 0 || dist[v] > dist[best])) best = v;
+    if (tables.is_boundary_vertex[v]) continue;
+    const bool enough = tables.valence[v] >= loops;
+    if (best < 0 || (enough && !best_enough) || (enough == best_enough && dist[v] > dist[best])) {
+      best = v;
+      best_enough = enough;
+    }
   }
   if (best < 0) throw InvalidInputError("the mesh has no interior vertex");
   return best;
@@ -205,13 +220,43 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
   for (int k = 0; k < loops; ++k) {
     for (int v : tables.boundary_loops[k]) loop_of[v] = k;
   }
-  std::vector<char> used(n, 0), is_cut(mesh.n_edges(), 0);
-  used[p] = 1;
-  std::vector<int> end_rank(n, -1);
+  // Rays are taken in rank order (the same on both surfaces), then, if one is blocked, nearest
+  // loop first (fewest detours around earlier rays).
+  std::vector<double> reach(loops);
   for (int rank = 0; rank < loops; ++rank) {
-    const auto path = ray_to_loop(mesh, loop_of, flat.lengths, p, order[rank], used);
-    for (HalfedgeHandle h : path) is_cut[mesh.edge_handle(h).idx()] = 1;
-    end_rank[mesh.to_vertex_handle(path.back()).idx()] = rank;
+    std::vector<char> none(n, 0);
+    none[p] = 1;
+    double length = 0;
+    for (HalfedgeHandle h : ray_to_loop(mesh, loop_of, flat.lengths, p, order[rank], none)) {
+      length += flat.lengths[mesh.edge_handle(h).idx()];
+    }
+    reach[rank] = length;
+  }
+  std::vector<int> by_reach(loops), by_rank(loops);
+  for (int rank = 0; rank < loops; ++rank) by_reach[rank] = by_rank[rank] = rank;
+  std::stable_sort(by_reach.begin(), by_reach.end(),
+                   [&](int x, int y) { return reach[x] < reach[y]; });
+  std::vector<char> is_cut;
+  std::vector<int> end_rank;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const std::vector<int>& ranks = attempt == 0 ? by_rank : by_reach;
+    std::vector<char> used(n, 0);
+    used[p] = 1;
+    is_cut.assign(mesh.n_edges(), 0);
+    end_rank.assign(n, -1);
+    try {
+      for (int rank : ranks) {
+        const auto path = ray_to_loop(mesh, loop_of, flat.lengths, p, order[rank], used);
+        for (HalfedgeHandle h : path) is_cut[mesh.edge_handle(h).idx()] = 1;
+        end_rank[mesh.to_vertex_handle(path.back()).idx()] = rank;
+      }
+      break;
+    } catch (const TopologyError&) {
+      if (attempt == 0) continue;
+      throw TopologyError(std::string(name) + ": no vertex-disjoint shortest paths join the " +
+                          "feature vertex " + std::to_string(p) +
+                          " to every boundary loop; choose another feature vertex");
+    }
   }
   Star star;
   star.sliced = slice_along(mesh, is_cut);

@@ -43,7 +43,8 @@ struct MatchOptions {
   /// euclidean (Algorithm 8). hyperbolic (Algorithm 9) is refused: not implemented.
   MatchMethod method = MatchMethod::euclidean;
   /// Interior vertices of A and B that correspond (the cone of the cone star); both -1 = the
-  /// interior vertex farthest (3D edge paths) from the boundary of each surface. A disk with
+  /// interior vertex farthest (3D edge paths) from the boundary of each surface among those
+  /// with a neighbour per boundary loop. A disk with
   /// both -1 is matched through the rectangle.
   int feature_a = -1;
   int feature_b = -1;
@@ -58,7 +59,7 @@ struct MatchOptions {
     o.fall_back_to_other_metrics = true;
     return o;
   }();
-  double accepted_error = 1e-6;
+  double accepted_error = 1e-4;
   /// The cone's curvature 2 pi chi is spread evenly over the feature vertex and the interior
   /// vertices within this many rings of it (0: the vertex alone).
   int cone_rings = 2;
@@ -117,10 +118,12 @@ struct MatchResult {
 /// Matches A to B (see the file comment).
 /// \pre connected oriented triangle 2-manifolds without degenerate faces.
 /// \throw InvalidInputError for the hyperbolic method, different topologies, closed surfaces,
-///        genus above 0, a feature vertex out of range or on the boundary, only one feature
+///        genus above 0, a feature vertex out of range, on the boundary or with fewer
+///        neighbours than boundary loops, only one feature
 ///        or corner set given, bad corners (see conformal_module), or cuts leaving the features
 ///        in a different order of loops; TopologyError for a non-manifold or disconnected
-///        mesh; SolverError when a flow does not converge.
+///        mesh, or when no vertex-disjoint shortest paths join the feature to every loop;
+///        SolverError when a flow does not converge.
 [[nodiscard]] MatchResult match_surfaces(const Mesh& a, const Mesh& b,
                                          const MatchOptions& options = {});
 
