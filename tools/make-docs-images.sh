@@ -27,4 +27,17 @@ genus1_elk closed_g1/elk.off auto 30 20 1000
 genus2_eight closed_g2/eight.off 570 20 35 1000
 genus3 closed_g3/genus3.off 17 0 60 860
 LIST
+
+# msp match: the head against a copy stretched by 1.3 across the face and bent (z += 0.4 y^2 in
+# units of the head's size, about its centre), the nose-bridge vertex 185 as the feature on both.
+awk 'NR == 2 {n = $1} NR > 2 && NR <= n + 2 {
+       cx = -0.28916; cy = 8.6530005; cz = 0.005765; s = 17.414001
+       x = ($1 - cx) / s * 1.3; y = ($2 - cy) / s; z = ($3 - cz) / s + 0.4 * y * y
+       printf "%.9g %.9g %.9g\n", x * s + cx, y * s + cy, z * s + cz; next} {print}' \
+  "$models/open/head.off" >"$work/head_deformed.off"
+"$msp" match "$models/open/head.off" "$work/head_deformed.off" --feature-a 185 --feature-b 185 \
+  -o "$work/head.map" --glb "$work/match_head.glb" --quiet >/dev/null
+node "$root/tools/validate.mjs" "$work/match_head.glb"
+node "$root/tools/render.mjs" "$work/match_head.glb" "$out/match_head.png" --width 1000 --height 500 \
+  --azimuth 0 --elevation 0
 ls -l "$out"

@@ -213,6 +213,10 @@ std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
 
 }  // namespace
 
+double cholmod_laplacian_seconds(const ricci::Mesh& mesh) {
+  return one_cholesky_seconds(regularised_cotangent_laplacian(mesh));
+}
+
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",

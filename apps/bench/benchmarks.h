@@ -2,6 +2,8 @@
 // Entry points of the msp-bench benchmarks (one file each), dispatched by bench/main.cpp.
 #include <string>
 
+#include "ricci/mesh/mesh.h"
+
 namespace msp::bench {
 
 /// The folder of the model collection the benchmarks read by default: the environment variable
@@ -30,5 +32,11 @@ int run_check_glb(int argc, char** argv);  // bench_check_glb.cpp
 int run_eval_benchmark(int argc, char** argv);        // bench_surface.cpp
 int run_bezier_benchmark(int argc, char** argv);      // bench_surface.cpp
 int run_spline_file_benchmark(int argc, char** argv);  // bench_spline_file.cpp
+/// Issue 17: conformal module and surface matching at ~20k and ~100k faces.
+int run_match_benchmark(int argc, char** argv);  // bench_match.cpp
+
+/// Best of 3 CHOLMOD supernodal analyse + factorise + solve of the mesh's (regularised)
+/// cotangent Laplacian: the unit the benchmarks' ratios count in (bench_one_cone.cpp).
+double cholmod_laplacian_seconds(const ricci::Mesh& mesh);
 
 }  // namespace msp::bench

@@ -18,6 +18,7 @@ const std::vector<Subcommand>& subcommands() {
       {tessellate_command, run_tessellate},
       {module_command, run_module},
       {index_command, run_index},
+      {match_command, run_match},
   };
   return list;
 }

@@ -33,6 +33,8 @@ const CommandSpec& module_command();
 int run_module(int argc, char** argv);
 const CommandSpec& index_command();
 int run_index(int argc, char** argv);
+const CommandSpec& match_command();
+int run_match(int argc, char** argv);
 
 /// A subcommand as main() dispatches it.
 struct Subcommand {

@@ -9,9 +9,7 @@
 
 namespace msp {
 
-namespace {
-
-std::vector<int> parse_corners(const std::string& text) {
+std::vector<int> parse_corners(const std::string& text, const std::string& option) {
   std::vector<int> corners;
   std::stringstream stream(text);
   std::string item;
@@ -22,16 +20,14 @@ std::vector<int> parse_corners(const std::string& text) {
       if (used != item.size() || v < 0) throw std::invalid_argument("not a vertex");
       corners.push_back(v);
     } catch (const std::exception&) {
-      throw UsageError("--corners expects four vertex indices a,b,c,d, got '" + text + "'");
+      throw UsageError("--" + option + " expects four vertex indices a,b,c,d, got '" + text + "'");
     }
   }
   if (corners.size() != 4) {
-    throw UsageError("--corners expects four vertex indices a,b,c,d, got '" + text + "'");
+    throw UsageError("--" + option + " expects four vertex indices a,b,c,d, got '" + text + "'");
   }
   return corners;
 }
-
-}  // namespace
 
 ricci::ModuleOptions parse_module_options(const Args& args, bool shape) {
   ricci::ModuleOptions options;
@@ -41,7 +37,7 @@ ricci::ModuleOptions parse_module_options(const Args& args, bool shape) {
     } catch (const ricci::InvalidInputError& e) {
       throw UsageError(e.what());
     }
-    if (auto corners = args.get("corners")) options.corners = parse_corners(*corners);
+    if (auto corners = args.get("corners")) options.corners = parse_corners(*corners, "corners");
   }
   options.flow.tolerance = args.get_double("tolerance", options.flow.tolerance);
   if (!(options.flow.tolerance > 0)) throw UsageError("--tolerance must be positive");

@@ -2,14 +2,18 @@
 // Shared by msp module and msp index: the module options from the command line and a module's
 // JSON report.
 #include <string>
+#include <vector>
 
-#include <nlohmann/json.hpp>
 #include <ricci/analysis/conformal_module.h>
 #include <ricci/mesh/mesh.h>
+#include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
 
 namespace msp {
+
+/// Four vertex indices "a,b,c,d" given to --`option`. \throw UsageError otherwise.
+[[nodiscard]] std::vector<int> parse_corners(const std::string& text, const std::string& option);
 
 /// --tolerance, --solver, --metric, --radii, and with `shape` (msp module, not msp index) --kind
 /// and --corners a,b,c,d.

@@ -62,6 +62,11 @@ struct ModuleOptions {
   /// (radians), or after max_circle_iterations flows.
   double circle_tolerance = 1e-9;
   int max_circle_iterations = 100;
+  /// Circle domain: once the targets change by less than 1e-3, the domain is laid out after
+  /// each flow, and the iteration stops when no normalised centre or radius moved by more than
+  /// this since the last flow (the targets may keep sliding along the Möbius maps of the disk,
+  /// which do not move the normalised module).
+  double circle_module_tolerance = 1e-7;
   /// Circle domain: a result whose boundary vertices leave their fitted circles by more than
   /// this fraction of the radius is reported as not converged.
   double max_roundness = 0.05;

@@ -31,6 +31,9 @@ struct AnnulusMap {
 [[nodiscard]] AnnulusMap annulus_map(const Mesh& mesh, const MeshTables& tables,
                                      const FlowOptions& options, int outer_vertex);
 
+/// Indices of tables.boundary_loops by 3D length, longest first (c0, c1, ...).
+[[nodiscard]] std::vector<int> loops_by_length(const Mesh& mesh, const MeshTables& tables);
+
 /// Genus 0, two boundaries: the annulus module.
 void annulus_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
                     ModuleResult& result);

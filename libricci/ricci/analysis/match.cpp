@@ -1,0 +1,725 @@
+// Deformable surface matching (Algorithm 8): the rectangle of a disk, or the cone star of a
+// multiply connected domain carried harmonically onto a common convex polygon; the map located
+// by a grid over B's parameter domain; the shape error of eq. (13).
+#include "ricci/analysis/match.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <queue>
+#include <sstream>
+
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
+#include "ricci/analysis/conformal_module.h"
+#include "ricci/analysis/module_internal.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
+#include "ricci/metric/mesh_tables.h"
+#include "ricci/singularity/valence.h"
+#include "ricci/topology/slice.h"
+#include "ricci/util/cross2d.h"
+#include "ricci/util/stopwatch.h"
+
+namespace ricci {
+
+std::string to_string(MatchMethod method) {
+  return method == MatchMethod::euclidean ? "euclidean" : "hyperbolic";
+}
+
+MatchMethod parse_match_method(const std::string& name) {
+  if (name == "euclidean") return MatchMethod::euclidean;
+  if (name == "hyperbolic") return MatchMethod::hyperbolic;
+  throw InvalidInputError("unknown matching method '" + name + "' (euclidean, hyperbolic)");
+}
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+std::string topology_text(const SurfaceTopology& t) {
+  return "genus " + std::to_string(t.genus) + " with " + std::to_string(t.boundary_loops) +
+         " boundary loop" + (t.boundary_loops == 1 ? "" : "s");
+}
+
+/// \throw TopologyError unless one connected 2-manifold.
+SurfaceTopology checked_topology(const Mesh& mesh, const char* name) {
+  const SurfaceTopology t = surface_topology(mesh);
+  if (!t.manifold) throw TopologyError(std::string(name) + " is not a 2-manifold");
+  if (t.components != 1) {
+    throw TopologyError(std::string(name) + " has " + std::to_string(t.components) +
+                        " components; matching needs one");
+  }
+  return t;
+}
+
+/// \throw InvalidInputError for a vertex out of range or on the boundary.
+void check_feature(const MeshTables& tables, int v, const char* name) {
+  const int n = tables.num_vertices();
+  if (v < 0 || v >= n) {
+    throw InvalidInputError(std::string("feature vertex ") + std::to_string(v) + " of " + name +
+                            " is out of range [0, " + std::to_string(n) + ")");
+  }
+  if (tables.is_boundary_vertex[v]) {
+    throw InvalidInputError(std::string("feature vertex ") + std::to_string(v) + " of " + name +
+                            " is on the boundary; the cone needs an interior vertex");
+  }
+  const int loops = static_cast<int>(tables.boundary_loops.size());
+  if (tables.valence[v] < loops) {
+    throw InvalidInputError(std::string("feature vertex ") + std::to_string(v) + " of " + name +
+                            " has " + std::to_string(tables.valence[v]) +
+                            " neighbours, fewer than the " + std::to_string(loops) +
+                            " boundary loops its cuts must reach");
+  }
+}
+
+/// The interior vertex farthest from the boundary along edge paths (3D lengths), among those
+/// with at least one neighbour per boundary loop (a ray leaves through each) if there are any.
+int default_feature(const Mesh& mesh, const MeshTables& tables) {
+  const EdgeLengths lengths = mesh_edge_lengths(mesh);
+  std::vector<double> dist(tables.num_vertices(), kInfinity);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (const auto& loop : tables.boundary_loops) {
+    for (int v : loop) {
+      dist[v] = 0;
+      queue.push({0.0, v});
+    }
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[v]) continue;
+    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
+      const int w = mesh.to_vertex_handle(h).idx();
+      const double nd = d + lengths[mesh.edge_handle(h).idx()];
+      if (nd < dist[w]) {
+        dist[w] = nd;
+        queue.push({nd, w});
+      }
+    }
+  }
+  const int loops = static_cast<int>(tables.boundary_loops.size());
+  int best = -1;
+  bool best_enough = false;
+  for (int v = 0; v < tables.num_vertices(); ++v) {
+    if (tables.is_boundary_vertex[v]) continue;
+    const bool enough = tables.valence[v] >= loops;
+    if (best < 0 || (enough && !best_enough) || (enough == best_enough && dist[v] > dist[best])) {
+      best = v;
+      best_enough = enough;
+    }
+  }
+  if (best < 0) throw InvalidInputError("the mesh has no interior vertex");
+  return best;
+}
+
+/// Shortest edge path (under `lengths`) from interior vertex p to boundary loop `target`,
+/// through interior vertices not `used` by earlier paths, ending at its first vertex on the
+/// loop. Marks its vertices used. \throw TopologyError when the loop cannot be reached.
+std::vector<HalfedgeHandle> ray_to_loop(const Mesh& mesh, const std::vector<int>& loop_of,
+                                        const EdgeLengths& lengths, int p, int target,
+                                        std::vector<char>& used) {
+  const int n = static_cast<int>(loop_of.size());
+  std::vector<double> dist(n, kInfinity);
+  std::vector<HalfedgeHandle> parent(n);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  dist[p] = 0;
+  queue.push({0.0, p});
+  int end = -1;
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[v]) continue;
+    if (loop_of[v] == target) {
+      end = v;
+      break;
+    }
+    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
+      const int w = mesh.to_vertex_handle(h).idx();
+      if (used[w] || (loop_of[w] >= 0 && loop_of[w] != target)) continue;
+      const double nd = d + lengths[mesh.edge_handle(h).idx()];
+      if (nd < dist[w]) {
+        dist[w] = nd;
+        parent[w] = h;
+        queue.push({nd, w});
+      }
+    }
+  }
+  if (end < 0) {
+    throw TopologyError("no path from the feature vertex reaches boundary loop " +
+                        std::to_string(target) + " without crossing the other cuts");
+  }
+  std::vector<HalfedgeHandle> path;
+  for (int v = end; v != p; v = mesh.from_vertex_handle(parent[v]).idx()) {
+    path.push_back(parent[v]);
+    used[v] = 1;
+  }
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+/// A surface cut along its cone star: the disk, its boundary walk and the walk's arcs.
+struct Star {
+  SlicedMesh sliced;
+  Eigen::VectorXd lengths;      ///< Flat lengths by sliced edge.
+  std::vector<int> walk;        ///< The disk's boundary, counter-clockwise, from a copy of p.
+  std::vector<double> arc;      ///< Flat arc length along the walk (walk.size() + 1 entries).
+  std::vector<int> corners;     ///< Walk positions of the 3 (n + 1) arc ends.
+  std::vector<int> loop_order;  ///< Loop rank of each ray, in walk order.
+};
+
+/// Algorithm 8, steps 1-4 and the cut: flow, rays, slice, boundary walk.
+Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOptions& options,
+               const char* name, ParameterDomain& domain) {
+  const int n = tables.num_vertices();
+  const int loops = static_cast<int>(tables.boundary_loops.size());
+  const std::vector<int> order = detail::loops_by_length(mesh, tables);
+  Targets targets;
+  targets.curvature = Eigen::VectorXd::Zero(n);
+  if (loops >= 2) {
+    // A single vertex of valence ~6 cannot take -2π or less under the inversive-distance
+    // metric (the triangle inequality breaks): the cone is spread over p's interior rings.
+    std::vector<int> cone = {p};
+    for (VertexHandle v : ring_neighbourhood(mesh, mesh.vertex_handle(p), options.cone_rings)) {
+      if (!tables.is_boundary_vertex[v.idx()]) cone.push_back(v.idx());
+    }
+    for (int v : cone) {
+      targets.curvature[v] = 2 * M_PI * (2 - loops) / static_cast<double>(cone.size());
+    }
+  } else {
+    // A disk: p is a plain vertex; the boundary carries 2π spread by 3D length.
+    const std::vector<int>& loop = tables.boundary_loops[0];
+    std::vector<double> edge(loop.size());
+    double total = 0;
+    for (size_t i = 0; i < loop.size(); ++i) {
+      edge[i] = (mesh.point(mesh.vertex_handle(loop[i])) -
+                 mesh.point(mesh.vertex_handle(loop[(i + 1) % loop.size()])))
+                    .norm();
+      total += edge[i];
+    }
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const double dual = 0.5 * (edge[i] + edge[(i + loop.size() - 1) % loop.size()]);
+      targets.curvature[loop[i]] = 2 * M_PI * dual / total;
+    }
+  }
+  const FlowResult flat = flow(mesh, targets, options.flow);
+  if (!flat.converged() && !(flat.max_error < options.accepted_error)) {
+    throw SolverError(std::string("the Ricci flow of ") + name + " did not converge (" +
+                      to_string(flat.status) + ", max |K - target| " +
+                      std::to_string(flat.max_error) + ")");
+  }
+  domain.metric = to_string(flat.metric.scheme);
+  domain.flow_iterations = flat.iterations;
+  domain.flow_error = flat.max_error;
+  // Step 4: one ray from p to each loop, longest loop first, vertex-disjoint.
+  std::vector<int> loop_of(n, -1);
+  for (int k = 0; k < loops; ++k) {
+    for (int v : tables.boundary_loops[k]) loop_of[v] = k;
+  }
+  // Rays are taken in rank order (the same on both surfaces), then, if one is blocked, nearest
+  // loop first (fewest detours around earlier rays).
+  std::vector<double> reach(loops);
+  for (int rank = 0; rank < loops; ++rank) {
+    std::vector<char> none(n, 0);
+    none[p] = 1;
+    double length = 0;
+    for (HalfedgeHandle h : ray_to_loop(mesh, loop_of, flat.lengths, p, order[rank], none)) {
+      length += flat.lengths[mesh.edge_handle(h).idx()];
+    }
+    reach[rank] = length;
+  }
+  std::vector<int> by_reach(loops), by_rank(loops);
+  for (int rank = 0; rank < loops; ++rank) by_reach[rank] = by_rank[rank] = rank;
+  std::stable_sort(by_reach.begin(), by_reach.end(),
+                   [&](int x, int y) { return reach[x] < reach[y]; });
+  std::vector<char> is_cut;
+  std::vector<int> end_rank;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const std::vector<int>& ranks = attempt == 0 ? by_rank : by_reach;
+    std::vector<char> used(n, 0);
+    used[p] = 1;
+    is_cut.assign(mesh.n_edges(), 0);
+    end_rank.assign(n, -1);
+    try {
+      for (int rank : ranks) {
+        const auto path = ray_to_loop(mesh, loop_of, flat.lengths, p, order[rank], used);
+        for (HalfedgeHandle h : path) is_cut[mesh.edge_handle(h).idx()] = 1;
+        end_rank[mesh.to_vertex_handle(path.back()).idx()] = rank;
+      }
+      break;
+    } catch (const TopologyError&) {
+      if (attempt == 0) continue;
+      throw TopologyError(std::string(name) + ": no vertex-disjoint shortest paths join the " +
+                          "feature vertex " + std::to_string(p) +
+                          " to every boundary loop; choose another feature vertex");
+    }
+  }
+  Star star;
+  star.sliced = slice_along(mesh, is_cut);
+  check_disk(star.sliced, "cone-star cut");
+  star.lengths = sliced_edge_lengths(star.sliced, flat.lengths);
+  const MeshTables cut_tables = build_mesh_tables(star.sliced.mesh);
+  // Face-less halfedges run clockwise: reversed, the surface is on the left.
+  std::vector<int> walk(cut_tables.boundary_loops[0].rbegin(), cut_tables.boundary_loops[0].rend());
+  const auto original = [&](int s) { return star.sliced.to_original_vertex[s]; };
+  const auto is_corner = [&](int s) { return original(s) == p || end_rank[original(s)] >= 0; };
+  // Start at the copy of p whose next arc goes out to c0.
+  const int m = static_cast<int>(walk.size());
+  int start = -1;
+  for (int i = 0; i < m && start < 0; ++i) {
+    if (original(walk[i]) != p) continue;
+    int j = (i + 1) % m;
+    while (!is_corner(walk[j])) j = (j + 1) % m;
+    if (end_rank[original(walk[j])] == 0) start = i;
+  }
+  if (start < 0) throw TopologyError(std::string(name) + ": the cone star has no ray to c0");
+  std::rotate(walk.begin(), walk.begin() + start, walk.end());
+  star.walk = walk;
+  star.arc.assign(m + 1, 0.0);
+  for (int i = 0; i < m; ++i) {
+    const HalfedgeHandle h = star.sliced.mesh.find_halfedge(
+        star.sliced.mesh.vertex_handle(walk[i]), star.sliced.mesh.vertex_handle(walk[(i + 1) % m]));
+    star.arc[i + 1] = star.arc[i] + star.lengths[star.sliced.mesh.edge_handle(h).idx()];
+    if (is_corner(walk[i])) star.corners.push_back(i);
+  }
+  // The walk is p, e_k, e_k, p, e_j, e_j, ...: out along a ray, around its loop, back.
+  bool pattern = static_cast<int>(star.corners.size()) == 3 * loops;
+  for (int r = 0; pattern && r < loops; ++r) {
+    const int a = original(walk[star.corners[3 * r]]);
+    const int b = original(walk[star.corners[3 * r + 1]]);
+    const int c = original(walk[star.corners[3 * r + 2]]);
+    pattern = a == p && b == c && end_rank[b] >= 0;
+    if (pattern) star.loop_order.push_back(end_rank[b]);
+  }
+  if (!pattern) {
+    throw TopologyError(std::string(name) + ": the cut disk's boundary is not out-around-back " +
+                        "along each ray");
+  }
+  domain.loop_order = star.loop_order;
+  return star;
+}
+
+/// The relative flat length of each of the walk's arcs.
+std::vector<double> arc_fractions(const Star& star) {
+  std::vector<double> fractions;
+  const size_t k = star.corners.size();
+  for (size_t j = 0; j < k; ++j) {
+    const int from = star.corners[j];
+    const int to = j + 1 < k ? star.corners[j + 1] : static_cast<int>(star.walk.size());
+    fractions.push_back((star.arc[to] - star.arc[from]) / star.arc.back());
+  }
+  return fractions;
+}
+
+/// Steps 6-7: the disk's boundary on the unit circle (arc j spans extents[j] of the turn,
+/// parametrised by flat arc length), the interior by the mean-value harmonic map of the flat
+/// metric. \throw SolverError when the sparse solve fails.
+Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& extents) {
+  const Mesh& cut = star.sliced.mesh;
+  const int n = static_cast<int>(cut.n_vertices());
+  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
+  std::vector<char> fixed(n, 0);
+  const int m = static_cast<int>(star.walk.size());
+  double start = 0;
+  for (size_t j = 0; j < star.corners.size(); ++j) {
+    const int from = star.corners[j];
+    const int to = j + 1 < star.corners.size() ? star.corners[j + 1] : m;
+    const double length = star.arc[to] - star.arc[from];
+    for (int i = from; i < to; ++i) {
+      const double t = length > 0 ? (star.arc[i] - star.arc[from]) / length : 0;
+      const double angle = 2 * M_PI * (start + t * extents[j]);
+      x.row(star.walk[i]) << std::cos(angle), std::sin(angle);
+      fixed[star.walk[i]] = 1;
+    }
+    start += extents[j];
+  }
+  std::vector<int> unknown(n, -1);
+  int unknowns = 0;
+  for (int v = 0; v < n; ++v) {
+    if (!fixed[v]) unknown[v] = unknowns++;
+  }
+  if (unknowns == 0) return x;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+  const auto couple = [&](int i, int j, double w) {
+    if (fixed[i]) return;
+    entries.emplace_back(unknown[i], unknown[i], w);
+    if (fixed[j]) {
+      rhs.row(unknown[i]) += w * x.row(j);
+    } else {
+      entries.emplace_back(unknown[i], unknown[j], -w);
+    }
+  };
+  for (FaceHandle f : cut.faces()) {
+    const auto h = face_halfedges(cut, f);
+    int v[3];
+    double a[3];  // a[k]: the side from corner k - 1 to corner k
+    for (int k = 0; k < 3; ++k) {
+      v[k] = cut.to_vertex_handle(h[k]).idx();
+      a[k] = star.lengths[cut.edge_handle(h[k]).idx()];
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double s = a[k], t = a[(k + 1) % 3], o = a[(k + 2) % 3];
+      const double c = std::clamp((s * s + t * t - o * o) / (2 * s * t), -1.0, 1.0);
+      const double half = std::tan(0.5 * std::acos(c));
+      couple(v[k], v[(k + 2) % 3], half / s);
+      couple(v[k], v[(k + 1) % 3], half / t);
+    }
+  }
+  Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(matrix);
+  if (lu.info() != Eigen::Success) {
+    throw SolverError("the harmonic map's sparse LU factorisation failed");
+  }
+  const Eigen::MatrixX2d solved = lu.solve(rhs);
+  for (int v = 0; v < n; ++v) {
+    if (!fixed[v]) x.row(v) = solved.row(unknown[v]);
+  }
+  return x;
+}
+
+void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
+  domain.faces.resize(static_cast<Eigen::Index>(sliced.mesh.n_faces()), 3);
+  for (FaceHandle f : sliced.mesh.faces()) {
+    int k = 0;
+    for (VertexHandle v : sliced.mesh.fv_range(f)) domain.faces(f.idx(), k++) = v.idx();
+  }
+  domain.to_original_vertex = sliced.to_original_vertex;
+}
+
+/// Four boundary vertices of a disk where the boundary turns most in 3D (pi minus the sum of the
+/// face angles there), each at least 1/20 of the boundary's length from the others, starting
+/// from the lowest index.
+std::vector<int> turning_corners(const Mesh& mesh, const MeshTables& tables) {
+  const std::vector<int>& loop = tables.boundary_loops[0];
+  const int m = static_cast<int>(loop.size());
+  if (m < 4) throw InvalidInputError("the boundary has fewer than four vertices");
+  std::vector<double> turning(m), arc(m + 1, 0.0);
+  for (int i = 0; i < m; ++i) {
+    const VertexHandle v = mesh.vertex_handle(loop[i]);
+    double angle = 0;
+    for (HalfedgeHandle h : mesh.voh_range(v)) {
+      if (!mesh.is_boundary(h)) angle += mesh.calc_sector_angle(h);
+    }
+    turning[i] = M_PI - angle;
+    arc[i + 1] =
+        arc[i] + (mesh.point(v) - mesh.point(mesh.vertex_handle(loop[(i + 1) % m]))).norm();
+  }
+  std::vector<int> order(m);
+  for (int i = 0; i < m; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int x, int y) { return turning[x] > turning[y]; });
+  std::vector<int> chosen;
+  for (int i : order) {
+    bool apart = true;
+    for (int j : chosen) {
+      const double d = std::abs(arc[i] - arc[j]);
+      apart = apart && std::min(d, arc[m] - d) >= arc[m] / 20;
+    }
+    if (apart) chosen.push_back(i);
+    if (chosen.size() == 4) break;
+  }
+  if (chosen.size() < 4) throw InvalidInputError("no four corners spread along the boundary");
+  std::vector<int> corners;
+  for (int i : chosen) corners.push_back(loop[i]);
+  std::iter_swap(corners.begin(), std::min_element(corners.begin(), corners.end()));
+  return corners;
+}
+
+/// The rectangle of a disk, scaled to the unit square.
+void rectangle_domain(const Mesh& mesh, const MeshTables& tables, const std::vector<int>& corners,
+                      const MatchOptions& options, const char* name, ParameterDomain& domain) {
+  ModuleOptions module;
+  module.corners = corners.empty() ? turning_corners(mesh, tables) : corners;
+  module.flow = options.flow;
+  module.accepted_error = options.accepted_error;
+  module.force_kind = true;
+  module.kind = ModuleKind::Rectangle;
+  module.retry = false;                            // the map needs the mesh's own vertices
+  module.flow.fall_back_to_other_metrics = false;  // the rectangle must be conformal
+  const ModuleResult rectangle = conformal_module(mesh, module);
+  if (!rectangle.converged && !(rectangle.flow_error < options.accepted_error)) {
+    throw SolverError(std::string("the Ricci flow of ") + name +
+                      " to the rectangle did not converge: " + rectangle.message);
+  }
+  domain.flow_iterations = rectangle.flow_iterations;
+  domain.flow_error = rectangle.flow_error;
+  domain.metric = to_string(options.flow.scheme);
+  domain.corners = rectangle.corners;
+  domain.faces = rectangle.domain.faces;
+  domain.positions = rectangle.domain.positions;
+  domain.positions.col(1) /= rectangle.values[0];
+  domain.to_original_vertex.resize(mesh.n_vertices());
+  for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) domain.to_original_vertex[v] = v;
+}
+
+double signed_area(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return 0.5 * cross2d(b - a, c - a);
+}
+
+/// Point location in a planar triangulation: a uniform grid of face boxes.
+class Locator {
+ public:
+  struct Hit {
+    int face = -1;
+    Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+    double distance = kInfinity;  ///< 0 inside a face.
+  };
+
+  Locator(const Eigen::MatrixX2d& positions, const Eigen::MatrixX3i& faces)
+      : p_(positions), f_(faces) {
+    lo_ = p_.colwise().minCoeff().transpose();
+    const Eigen::Vector2d hi = p_.colwise().maxCoeff().transpose();
+    const double side = std::max(hi.x() - lo_.x(), hi.y() - lo_.y());
+    cells_ = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(f_.rows()))));
+    cell_ = std::max(side, 1e-300) / cells_;
+    bins_.resize(static_cast<size_t>(cells_) * cells_);
+    for (int f = 0; f < f_.rows(); ++f) {
+      Eigen::Vector2d a = p_.row(f_(f, 0)).transpose(), b = a;
+      for (int k = 1; k < 3; ++k) {
+        a = a.cwiseMin(p_.row(f_(f, k)).transpose());
+        b = b.cwiseMax(p_.row(f_(f, k)).transpose());
+      }
+      for (int i = cell(a.x() - lo_.x()); i <= cell(b.x() - lo_.x()); ++i) {
+        for (int j = cell(a.y() - lo_.y()); j <= cell(b.y() - lo_.y()); ++j) {
+          bins_[static_cast<size_t>(i) * cells_ + j].push_back(f);
+        }
+      }
+    }
+  }
+
+  /// The face containing q, or the closest point of the triangulation to q.
+  [[nodiscard]] Hit locate(const Eigen::Vector2d& q) const {
+    const int ci = cell(q.x() - lo_.x()), cj = cell(q.y() - lo_.y());
+    Hit best;
+    for (int r = 0; r <= cells_; ++r) {
+      for (int i = ci - r; i <= ci + r; ++i) {
+        for (int j = cj - r; j <= cj + r; ++j) {
+          if (std::max(std::abs(i - ci), std::abs(j - cj)) != r) continue;
+          if (i < 0 || j < 0 || i >= cells_ || j >= cells_) continue;
+          for (int f : bins_[static_cast<size_t>(i) * cells_ + j]) {
+            const Hit hit = closest(f, q);
+            if (hit.distance < best.distance) best = hit;
+            if (best.distance == 0) return best;
+          }
+        }
+      }
+      if (best.distance <= r * cell_) return best;
+    }
+    return best;
+  }
+
+ private:
+  int cell(double offset) const {
+    return std::clamp(static_cast<int>(offset / cell_), 0, cells_ - 1);
+  }
+
+  Hit closest(int f, const Eigen::Vector2d& q) const {
+    const Eigen::Vector2d v[3] = {p_.row(f_(f, 0)).transpose(), p_.row(f_(f, 1)).transpose(),
+                                  p_.row(f_(f, 2)).transpose()};
+    Hit hit;
+    hit.face = f;
+    const double area = signed_area(v[0], v[1], v[2]);
+    if (area > 0) {
+      const Eigen::Vector3d w(signed_area(q, v[1], v[2]) / area, signed_area(v[0], q, v[2]) / area,
+                              signed_area(v[0], v[1], q) / area);
+      if (w.minCoeff() >= -1e-12) {
+        hit.weights = w.cwiseMax(0.0) / w.cwiseMax(0.0).sum();
+        hit.distance = 0;
+        return hit;
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d a = v[k], b = v[(k + 1) % 3];
+      const double length2 = (b - a).squaredNorm();
+      const double t = length2 > 0 ? std::clamp((q - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
+      const double d = (q - (a + t * (b - a))).norm();
+      if (d < hit.distance) {
+        hit.distance = d;
+        hit.weights.setZero();
+        hit.weights[k] = 1 - t;
+        hit.weights[(k + 1) % 3] = t;
+      }
+    }
+    return hit;
+  }
+
+  const Eigen::MatrixX2d& p_;
+  const Eigen::MatrixX3i& f_;
+  Eigen::Vector2d lo_;
+  int cells_ = 1;
+  double cell_ = 1;
+  std::vector<std::vector<int>> bins_;
+};
+
+double diagonal(const Mesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInfinity), hi = -lo;
+  for (VertexHandle v : mesh.vertices()) {
+    lo = lo.cwiseMin(to_eigen(mesh.point(v)));
+    hi = hi.cwiseMax(to_eigen(mesh.point(v)));
+  }
+  return (hi - lo).norm();
+}
+
+/// Area-weighted mean over A's faces of the mean distance at their corners, over `scale`.
+double mean_distance(const Mesh& a, const std::vector<double>& distance, double scale) {
+  double sum = 0, area = 0;
+  for (FaceHandle f : a.faces()) {
+    const double face_area = a.calc_face_area(f);
+    double d = 0;
+    for (VertexHandle v : a.fv_range(f)) d += distance[v.idx()];
+    sum += face_area * d / 3;
+    area += face_area;
+  }
+  return sum / (area * scale);
+}
+
+}  // namespace
+
+MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& options) {
+  const Stopwatch watch;
+  if (options.method == MatchMethod::hyperbolic) {
+    throw InvalidInputError(
+        "the hyperbolic matching method (Algorithm 9) is not implemented; "
+        "use the euclidean one");
+  }
+  const SurfaceTopology ta = checked_topology(a, "A"), tb = checked_topology(b, "B");
+  if (ta.genus != tb.genus || ta.boundary_loops != tb.boundary_loops) {
+    throw InvalidInputError("A is " + topology_text(ta) + " and B " + topology_text(tb) +
+                            "; matching needs the same topology");
+  }
+  if (ta.boundary_loops == 0 || ta.genus > 0) {
+    throw InvalidInputError("matching needs genus-0 surfaces with boundary; the meshes are " +
+                            topology_text(ta));
+  }
+  if ((options.feature_a == -1) != (options.feature_b == -1)) {
+    throw InvalidInputError("give feature vertices on both surfaces or on neither");
+  }
+  const MeshTables tables_a = build_mesh_tables(a), tables_b = build_mesh_tables(b);
+  MatchResult result;
+  Stopwatch stage;
+  if (ta.boundary_loops == 1 && options.feature_a == -1) {
+    result.domain = "rectangle";
+    if (options.corners_a.empty() != options.corners_b.empty()) {
+      throw InvalidInputError("give rectangle corners on both surfaces or on neither");
+    }
+    rectangle_domain(a, tables_a, options.corners_a, options, "A", result.a);
+    result.a.seconds = stage.lap();
+    rectangle_domain(b, tables_b, options.corners_b, options, "B", result.b);
+    result.b.seconds = stage.lap();
+  } else {
+    result.domain = "cone star";
+    if (!options.corners_a.empty() || !options.corners_b.empty()) {
+      throw InvalidInputError("rectangle corners are for disks without feature vertices");
+    }
+    if (options.feature_a != -1) {
+      check_feature(tables_a, options.feature_a, "A");
+      check_feature(tables_b, options.feature_b, "B");
+    }
+    result.a.feature = options.feature_a != -1 ? options.feature_a : default_feature(a, tables_a);
+    result.b.feature = options.feature_b != -1 ? options.feature_b : default_feature(b, tables_b);
+    const Star star_a = cone_star(a, tables_a, result.a.feature, options, "A", result.a);
+    result.a.seconds = stage.lap();
+    const Star star_b = cone_star(b, tables_b, result.b.feature, options, "B", result.b);
+    result.b.seconds = stage.lap();
+    if (star_a.loop_order != star_b.loop_order) {
+      throw InvalidInputError(
+          "the cuts leave the feature vertex towards the boundary loops in "
+          "a different order on A and B; choose other feature vertices");
+    }
+    const std::vector<double> fa = arc_fractions(star_a), fb = arc_fractions(star_b);
+    std::vector<double> extents(fa.size());
+    for (size_t j = 0; j < fa.size(); ++j) extents[j] = 0.5 * (fa[j] + fb[j]);
+    result.a.positions = star_positions(star_a, extents);
+    fill_cut_domain(star_a.sliced, result.a);
+    result.a.seconds += stage.lap();
+    result.b.positions = star_positions(star_b, extents);
+    fill_cut_domain(star_b.sliced, result.b);
+    result.b.seconds += stage.lap();
+  }
+  // Locate every copy of A's vertices in B's domain (phi is the identity there).
+  const Locator locator(result.b.positions, result.b.faces);
+  const Eigen::Index copies = result.a.positions.rows();
+  Eigen::MatrixX2d image(copies, 2);
+  std::vector<Locator::Hit> hits(static_cast<size_t>(copies));
+  for (Eigen::Index s = 0; s < copies; ++s) {
+    const Locator::Hit hit = locator.locate(result.a.positions.row(s).transpose());
+    hits[static_cast<size_t>(s)] = hit;
+    image.row(s).setZero();
+    for (int k = 0; k < 3; ++k) {
+      image.row(s) += hit.weights[k] * result.b.positions.row(result.b.faces(hit.face, k));
+    }
+    if (hit.distance > 0) {
+      ++result.snapped_vertices;
+      result.snap_distance = std::max(result.snap_distance, hit.distance);
+    }
+  }
+  const int na = static_cast<int>(a.n_vertices());
+  result.map.resize(static_cast<size_t>(na));
+  std::vector<char> done(static_cast<size_t>(na), 0);
+  for (Eigen::Index s = 0; s < copies; ++s) {
+    const int v = result.a.to_original_vertex[static_cast<size_t>(s)];
+    if (done[v]) continue;
+    done[v] = 1;
+    const Locator::Hit& hit = hits[static_cast<size_t>(s)];
+    MapPoint& point = result.map[v];
+    point.face = hit.face;
+    point.weights = hit.weights;
+    for (int k = 0; k < 3; ++k) {
+      point.vertices[k] = result.b.to_original_vertex[result.b.faces(hit.face, k)];
+    }
+  }
+  for (Eigen::Index f = 0; f < result.a.faces.rows(); ++f) {
+    const auto& F = result.a.faces;
+    if (signed_area(image.row(F(f, 0)), image.row(F(f, 1)), image.row(F(f, 2))) <= 0) {
+      ++result.flipped_faces;
+    }
+  }
+  for (Eigen::Index f = 0; f < result.b.faces.rows(); ++f) {
+    const auto& F = result.b.faces;
+    const auto& P = result.b.positions;
+    if (signed_area(P.row(F(f, 0)), P.row(F(f, 1)), P.row(F(f, 2))) <= 0) ++result.flipped_faces_b;
+  }
+  // Eq. (13), and against the vertex correspondence when the meshes share their connectivity.
+  const auto on_b = [&](const MapPoint& point) {
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      r += point.weights[k] * to_eigen(b.point(b.vertex_handle(point.vertices[k])));
+    }
+    return r;
+  };
+  const double diag = diagonal(b);
+  std::vector<double> shape(static_cast<size_t>(na)), correspondence(static_cast<size_t>(na));
+  const bool same = a.n_vertices() == b.n_vertices() && a.n_faces() == b.n_faces() &&
+                    tables_a.face_vertices == tables_b.face_vertices;
+  for (int v = 0; v < na; ++v) {
+    const Eigen::Vector3d r = on_b(result.map[v]);
+    shape[v] = (to_eigen(a.point(a.vertex_handle(v))) - r).norm();
+    if (same) correspondence[v] = (to_eigen(b.point(b.vertex_handle(v))) - r).norm();
+  }
+  result.shape_error = mean_distance(a, shape, diag);
+  result.correspondence_error =
+      same ? mean_distance(a, correspondence, diag) : std::numeric_limits<double>::quiet_NaN();
+  result.seconds = watch.seconds();
+  return result;
+}
+
+std::string surface_map_text(const MatchResult& result, int vertices_b, int faces_b) {
+  std::ostringstream out;
+  out << "msp-map 1 " << result.map.size() << " " << vertices_b << " " << faces_b << "\n";
+  char line[160];
+  for (const MapPoint& p : result.map) {
+    std::snprintf(line, sizeof(line), "%d %d %d %d %.17g %.17g %.17g\n", p.face, p.vertices[0],
+                  p.vertices[1], p.vertices[2], p.weights[0], p.weights[1], p.weights[2]);
+    out << line;
+  }
+  return out.str();
+}
+
+}  // namespace ricci

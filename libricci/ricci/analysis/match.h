@@ -1,0 +1,134 @@
+#pragma once
+// Deformable surface matching through canonical domains (ricci-flow-3d-shape-analysis §5.2,
+// Algorithm 8): each surface is carried by the Ricci flow to a planar parameter domain, the two
+// domains are made to coincide on a common convex polygon, and the map A -> B is
+// tau_B^-1 o phi o tau_A, written as barycentric coordinates of each vertex of A in a face of B.
+//   rectangle   genus 0, one boundary, no feature vertices: both surfaces conformally onto
+//               rectangles (Ricci flow, geodesic curvature pi/2 at four corners: given, or
+//               where the boundary turns most), each scaled to the unit square; phi is the
+//               affine map between the rectangles.
+//   cone star   genus 0, n + 1 >= 2 boundaries (or one boundary with a feature vertex): the
+//               flat metric with geodesic boundaries and the whole curvature 2 pi chi at a cone
+//               on the feature vertex p (Algorithm 8, steps 1-3; with one boundary, p is a
+//               plain vertex and the boundary carries 2 pi), cut along vertex-disjoint shortest
+//               paths (flat metric) from p to each boundary (step 4), which leaves one disk
+//               whose boundary is 3 (n + 1) arcs: out along a cut, around a boundary loop, back
+//               along the cut. Both disks are carried onto the same convex polygon inscribed in
+//               the unit circle, each arc spanning the mean of its two relative flat lengths
+//               and parametrised by flat arc length, by the harmonic map with mean-value
+//               weights of the flat metric (one-to-one onto a convex polygon: Rado, Floater);
+//               phi is the identity of that polygon (steps 6-8 with one convex piece per
+//               surface instead of the paper's pieces bounded by geodesic loops, step 5).
+// Boundary loops correspond by 3D length (c0 the longest, as for the circle-domain module);
+// the cuts must leave the feature vertex in the same cyclic order of loops on both surfaces.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ricci/flow/flow.h"
+#include "ricci/mesh/mesh.h"
+
+namespace ricci {
+
+enum class MatchMethod { euclidean, hyperbolic };
+
+/// "euclidean", "hyperbolic".
+std::string to_string(MatchMethod method);
+/// \throw InvalidInputError for another name.
+[[nodiscard]] MatchMethod parse_match_method(const std::string& name);
+
+struct MatchOptions {
+  /// euclidean (Algorithm 8). hyperbolic (Algorithm 9) is refused: not implemented.
+  MatchMethod method = MatchMethod::euclidean;
+  /// Interior vertices of A and B that correspond (the cone of the cone star); both -1 = the
+  /// interior vertex farthest (3D edge paths) from the boundary of each surface among those
+  /// with a neighbour per boundary loop. A disk with
+  /// both -1 is matched through the rectangle.
+  int feature_a = -1;
+  int feature_b = -1;
+  /// Flow settings; a flow that stops short of the tolerance but below accepted_error (max
+  /// |K - K̄|, radians) counts as converged. The map is a harmonic map onto a convex polygon,
+  /// one-to-one whatever the metric, which only places the cuts and weighs the edges: when the
+  /// inversive-distance metric fails (slivers, a large cone), the flow falls back to the other
+  /// metrics, down to the combinatorial one (not conformal; ParameterDomain::metric says).
+  FlowOptions flow = [] {
+    FlowOptions o;
+    o.tolerance = 1e-8;
+    o.fall_back_to_other_metrics = true;
+    return o;
+  }();
+  double accepted_error = 1e-4;
+  /// The cone's curvature 2 pi chi is spread evenly over the feature vertex and the interior
+  /// vertices within this many rings of it (0: the vertex alone).
+  int cone_rings = 2;
+  /// Rectangle: four boundary vertices of A and the four of B they correspond to, in the
+  /// boundary's counter-clockwise order (ModuleOptions::corners). Empty = the four vertices
+  /// where the boundary turns most in 3D, at least 1/20 of its length apart, the lowest index
+  /// first.
+  std::vector<int> corners_a;
+  std::vector<int> corners_b;
+};
+
+/// Where a vertex of A lands on B: inside face `face` of B (index in B), the point
+/// sum_k weights[k] * B.point(vertices[k]) (weights >= 0, summing to 1).
+struct MapPoint {
+  int face = -1;
+  std::array<int, 3> vertices = {-1, -1, -1};
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+};
+
+/// One surface in the common parameter domain: the mesh cut open (the rectangle: not cut).
+struct ParameterDomain {
+  Eigen::MatrixX3i faces;               ///< By face of the mesh (same index), into positions.
+  Eigen::MatrixX2d positions;           ///< By cut vertex, in the unit square or unit disk.
+  std::vector<int> to_original_vertex;  ///< By cut vertex: the mesh vertex.
+  int feature = -1;                     ///< The cone vertex (cone star), else -1.
+  std::vector<int> corners;             ///< Rectangle: the corner vertices, ccw from corner 0.
+  std::vector<int> loop_order;          ///< Cone star: loops (by 3D length rank) around p, ccw.
+  std::string metric;  ///< The metric of the flow that converged (FlowResult::metric.scheme).
+  int flow_iterations = 0;
+  double flow_error = 0;  ///< max |K - K̄| of the flow.
+  double seconds = 0;     ///< Flow, cut and parametrisation of this surface.
+};
+
+struct MatchResult {
+  std::string domain;         ///< "rectangle" or "cone star".
+  std::vector<MapPoint> map;  ///< By vertex of A.
+  ParameterDomain a, b;
+  /// Shape error d_g of eq. (13): the area-weighted mean of |r_A(p) - r_B(phi(p))| over A,
+  /// divided by B's bounding-box diagonal (a fraction; x100 for %).
+  double shape_error = 0;
+  /// When A and B have the same vertex count and faces: d_g of the map against the vertex
+  /// correspondence (r_A replaced by r_B of the same vertex index): 0 for the identity. NaN
+  /// otherwise.
+  double correspondence_error = 0;
+  /// Faces of A whose image in B's parameter domain has signed area <= 0, and faces of B
+  /// reversed or degenerate in the parameter domain. The map is one-to-one when both are 0.
+  int flipped_faces = 0;
+  int flipped_faces_b = 0;
+  /// Vertices of A that fell outside B's parameter domain (on its boundary, within rounding
+  /// or the boundary's chords) and were moved to the nearest point of it.
+  int snapped_vertices = 0;
+  double snap_distance = 0;  ///< Largest such move, in parameter units.
+  double seconds = 0;        ///< Wall clock of the whole call.
+};
+
+/// Matches A to B (see the file comment).
+/// \pre connected oriented triangle 2-manifolds without degenerate faces.
+/// \throw InvalidInputError for the hyperbolic method, different topologies, closed surfaces,
+///        genus above 0, a feature vertex out of range, on the boundary or with fewer
+///        neighbours than boundary loops, only one feature
+///        or corner set given, bad corners (see conformal_module), or cuts leaving the features
+///        in a different order of loops; TopologyError for a non-manifold or disconnected
+///        mesh, or when no vertex-disjoint shortest paths join the feature to every loop;
+///        SolverError when a flow does not converge.
+[[nodiscard]] MatchResult match_surfaces(const Mesh& a, const Mesh& b,
+                                         const MatchOptions& options = {});
+
+/// The map as text (docs/match-map.md): a header line "msp-map 1 <vertices of A> <vertices of
+/// B> <faces of B>", then one line per vertex of A: "face i j k wi wj wk".
+[[nodiscard]] std::string surface_map_text(const MatchResult& result, int vertices_b, int faces_b);
+
+}  // namespace ricci

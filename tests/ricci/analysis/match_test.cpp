@@ -1,0 +1,152 @@
+// Surface matching (Algorithm 8): a planar strip and a plate with holes against their isometric
+// bendings onto a cylinder come back as the identity (the vertex correspondence within 0.1% of
+// the diagonal), one-to-one; two triangulations of one plate match with a small shape error;
+// bad input is refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <ricci/analysis/match.h>
+#include <ricci/mesh/errors.h>
+#include <ricci/mesh/primitives.h>
+
+#include "ricci/analysis/analysis_meshes.h"
+#include "ricci/test_meshes.h"
+
+namespace ricci {
+namespace {
+
+using testing::TestCircle;
+
+/// The plane z = 0 rolled onto the cylinder of radius `radius` about the line x = 0, z =
+/// radius: an isometry of the plane onto the cylinder.
+Mesh rolled(const Mesh& flat, double radius) {
+  return testing::mapped(flat, [radius](const Eigen::Vector3d& p) {
+    const double angle = p.x() / radius;
+    return Eigen::Vector3d(radius * std::sin(angle), p.y(), radius * (1 - std::cos(angle)));
+  });
+}
+
+/// The interior vertex closest to (x, y).
+int vertex_near(const Mesh& mesh, double x, double y) {
+  int best = -1;
+  double best_d = 1e300;
+  for (VertexHandle v : mesh.vertices()) {
+    if (mesh.is_boundary(v)) continue;
+    const double d = std::hypot(mesh.point(v)[0] - x, mesh.point(v)[1] - y);
+    if (d < best_d) best_d = d, best = v.idx();
+  }
+  return best;
+}
+
+/// The map is one-to-one and sends each vertex to its own copy within `tolerance` of the
+/// diagonal.
+void expect_identity(const MatchResult& r, double tolerance) {
+  EXPECT_EQ(r.flipped_faces, 0);
+  EXPECT_EQ(r.flipped_faces_b, 0);
+  EXPECT_LT(r.correspondence_error, tolerance);
+  for (const MapPoint& p : r.map) {
+    ASSERT_GE(p.face, 0);
+    EXPECT_NEAR(p.weights.sum(), 1.0, 1e-12);
+    EXPECT_GE(p.weights.minCoeff(), 0.0);
+  }
+}
+
+const std::vector<TestCircle> kTwoHoles = {{-0.35, 0.1, 0.2}, {0.4, -0.1, 0.15}};
+const std::vector<TestCircle> kThreeHoles = {
+    {-0.4, 0.2, 0.18}, {0.4, 0.25, 0.15}, {0.0, -0.45, 0.2}};
+
+TEST(Match, StripRolledOntoCylinderIsTheIdentity) {
+  const Mesh flat = make_planar_grid(60, 20, 3.0, 1.0);
+  const Mesh bent = rolled(flat, 1.0);  // 3 radians of the cylinder
+  const MatchResult r = match_surfaces(flat, bent);
+  EXPECT_EQ(r.domain, "rectangle");
+  EXPECT_EQ(r.a.corners, (std::vector<int>{0, 60, 1280, 1220}));
+  EXPECT_EQ(r.b.corners, r.a.corners);
+  expect_identity(r, 1e-3);
+  // The positions differ (the strip is bent): eq. (13) sees the bending, not the map.
+  EXPECT_GT(r.shape_error, 0.05);
+  // A strip against itself is matched exactly.
+  const MatchResult self = match_surfaces(flat, flat);
+  EXPECT_LT(self.shape_error, 1e-9);
+}
+
+TEST(Match, StripWithFeatureUsesTheConeStar) {
+  const Mesh flat = make_planar_grid(60, 20, 3.0, 1.0);
+  const Mesh bent = rolled(flat, 1.0);
+  MatchOptions options;
+  // Off the middle line: the shortest path to the boundary is unique.
+  options.feature_a = options.feature_b = vertex_near(flat, 1.5, 0.3);
+  const MatchResult r = match_surfaces(flat, bent, options);
+  EXPECT_EQ(r.domain, "cone star");
+  expect_identity(r, 1e-3);
+}
+
+TEST(Match, PlateWithHolesRolledIsTheIdentity) {
+  for (const auto& holes : {kTwoHoles, kThreeHoles}) {
+    const Mesh flat = testing::circle_domain_mesh(holes, 0.05);
+    const Mesh bent = rolled(flat, 0.8);
+    const MatchResult r = match_surfaces(flat, bent);
+    EXPECT_EQ(r.domain, "cone star");
+    EXPECT_EQ(r.a.loop_order.size(), holes.size() + 1);
+    EXPECT_EQ(r.a.loop_order, r.b.loop_order);
+    expect_identity(r, 1e-3);
+  }
+}
+
+TEST(Match, TwoTriangulationsOfOnePlate) {
+  const Mesh a = testing::circle_domain_mesh(kTwoHoles, 0.05, 1);
+  const Mesh b = testing::circle_domain_mesh(kTwoHoles, 0.04, 2);
+  MatchOptions options;
+  options.feature_a = vertex_near(a, 0.0, 0.5);
+  options.feature_b = vertex_near(b, 0.0, 0.5);
+  const MatchResult r = match_surfaces(a, b, options);
+  EXPECT_EQ(r.flipped_faces, 0);
+  EXPECT_EQ(r.flipped_faces_b, 0);
+  EXPECT_TRUE(std::isnan(r.correspondence_error));
+  // The same plane: each point should land near itself.
+  EXPECT_LT(r.shape_error, 0.01);
+}
+
+TEST(Match, BadInput) {
+  const Mesh disk = make_planar_grid(10, 10, 1.0, 1.0);
+  const Mesh plate = testing::circle_domain_mesh(kTwoHoles, 0.1);
+  EXPECT_THROW((void)match_surfaces(disk, plate), InvalidInputError);
+  EXPECT_THROW((void)match_surfaces(testing::torus(20, 10), testing::torus(20, 10)),
+               InvalidInputError);
+  MatchOptions options;
+  options.feature_a = 5;  // only one side
+  EXPECT_THROW((void)match_surfaces(plate, plate, options), InvalidInputError);
+  options.feature_b = 100000;
+  EXPECT_THROW((void)match_surfaces(plate, plate, options), InvalidInputError);
+  options.feature_a = options.feature_b = 0;  // (0, 0): a corner, on the boundary
+  EXPECT_THROW((void)match_surfaces(disk, disk, options), InvalidInputError);
+  options = {};
+  options.method = MatchMethod::hyperbolic;
+  EXPECT_THROW((void)match_surfaces(plate, plate, options), InvalidInputError);
+  EXPECT_THROW((void)parse_match_method("spherical"), InvalidInputError);
+}
+
+TEST(Match, MapText) {
+  const Mesh flat = make_planar_grid(8, 4, 2.0, 1.0);
+  const MatchResult r = match_surfaces(flat, rolled(flat, 1.0));
+  std::istringstream in(surface_map_text(r, 45, 64));
+  std::string magic;
+  int version = 0, va = 0, vb = 0, fb = 0;
+  in >> magic >> version >> va >> vb >> fb;
+  EXPECT_EQ(magic, "msp-map");
+  EXPECT_EQ(version, 1);
+  EXPECT_EQ(va, 45);
+  int lines = 0, face = 0, i = 0, j = 0, k = 0;
+  double wi = 0, wj = 0, wk = 0;
+  while (in >> face >> i >> j >> k >> wi >> wj >> wk) {
+    EXPECT_TRUE(face >= 0 && face < fb);
+    EXPECT_NEAR(wi + wj + wk, 1.0, 1e-12);
+    ++lines;
+  }
+  EXPECT_EQ(lines, va);
+}
+
+}  // namespace
+}  // namespace ricci
