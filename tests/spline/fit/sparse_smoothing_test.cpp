@@ -27,6 +27,10 @@ Outcome fit_eight(double sparse_smoothing) {
   ScanFitOptions options;
   options.fit.smoothing = 1e-5;
   options.fit.sparse_smoothing = sparse_smoothing;
+  // The eight as its own domain with its vertices and centroids only: sparse data, the case
+  // the sparse smoothing is for (fit_scan's defaults remesh and sample it densely).
+  options.remesh_coarse_inputs = false;
+  options.data_points_per_control_point = 0.0;
   const ScanFitResult fit = fit_scan(dense, options);
   TessellationOptions tess;
   tess.density = 7;
