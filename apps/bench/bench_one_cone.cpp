@@ -80,6 +80,14 @@ double one_cholesky_seconds(const Sparse& L) {
   return best;
 }
 
+}  // namespace
+
+double cotangent_cholesky_seconds(const ricci::Mesh& mesh) {
+  return one_cholesky_seconds(regularised_cotangent_laplacian(mesh));
+}
+
+namespace {
+
 // Faces of the central chart with negative / zero signed area, from the layout's double-double
 // edge vectors, and those whose plain double corner positions give area <= 0.
 struct FaceSigns {
@@ -314,7 +322,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["status"] = std::string("failed: ") + e.what();
   }
   t0.restart();
-  const double cholesky = one_cholesky_seconds(regularised_cotangent_laplacian(mesh));
+  const double cholesky = cotangent_cholesky_seconds(mesh);
   j["cholesky"] = cholesky;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

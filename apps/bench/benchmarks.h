@@ -2,12 +2,18 @@
 // Entry points of the msp-bench benchmarks (one file each), dispatched by bench/main.cpp.
 #include <string>
 
+#include <ricci/mesh/mesh.h>
+
 namespace msp::bench {
 
 /// The folder of the model collection the benchmarks read by default: the environment variable
 /// MSP_SHARED_MODELS, else CMake's -DMSP_SHARED_MODELS=DIR (empty by default).
 /// \throw std::runtime_error saying how to set it when neither names a folder.
 std::string shared_models();
+
+/// Seconds of one CHOLMOD supernodal analyse + factorise + solve of the mesh's cotangent
+/// Laplacian (best of 3): the unit the benchmarks' ratios divide by (bench_one_cone.cpp).
+double cotangent_cholesky_seconds(const ricci::Mesh& mesh);
 
 int run_flow_benchmark(int argc, char** argv);  // bench_flow.cpp
 int run_flow_case(int argc, char** argv);       // bench_flow.cpp
