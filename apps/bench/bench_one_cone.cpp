@@ -296,6 +296,10 @@ int run_one_cone_case(int argc, char** argv) {
     j["atlas"] = t.atlas;
     j["distortion"] = t.distortion;
     j["total"] = t.flips + t.valence + t.flow + t.polish + t.atlas;
+    j["total_with_choice"] = t.total;  // everything build_one_cone_atlas did, msp atlas' seconds
+    j["solves_for_choice"] = r.solves_for_choice;
+    j["flows_for_choice"] = r.flows_for_choice;
+    j["metric_route"] = r.flow.metric_name;
     j["newton"] = r.flow.iterations;
     j["factorizations"] = r.flow.factorizations;
     const auto& ft = r.flow.timings;

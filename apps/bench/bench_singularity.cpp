@@ -1,4 +1,4 @@
-// msp-bench singularity [--brute] [MESH...]: the automatic choice of the extraordinary point:
+// msp-bench singularity [--brute] [--verification-work W] [MESH...]: the automatic choice of the extraordinary point:
 // vertices the linear model scored, its back-substitutions, the real flows run, seconds and
 // seconds / one CHOLMOD solve of the cotangent Laplacian of the same mesh; with --brute, against
 // the paper's brute force (one full flow per vertex): distortion reached and their ratio.
@@ -42,7 +42,9 @@ BruteForce brute_force(const ricci::Mesh& mesh) {
 
 int run_singularity_benchmark(int argc, char** argv) {
   Args args(argc, argv, {"brute"});
-  args.require_known({"brute"});
+  args.require_known({"brute", "verification-work"});
+  ricci::SingularityOptions options;
+  if (args.has("verification-work")) options.verification_work = args.get_double("verification-work", 0);
   std::vector<std::string> meshes = args.positionals();
   const bool brute = args.has("brute");
   if (meshes.empty()) {
@@ -59,7 +61,7 @@ int run_singularity_benchmark(int argc, char** argv) {
   for (const auto& path : meshes) {
     ricci::Mesh mesh = ricci::read_mesh(path);
     ricci::Stopwatch start;
-    ricci::SingularityChoice choice = ricci::choose_singularity(mesh);
+    ricci::SingularityChoice choice = ricci::choose_singularity(mesh, options);
     const double choice_seconds = start.seconds();
     double distortion = choice.area_distortion;
     if (!std::isfinite(distortion)) distortion = ricci::one_cone_area_distortion(mesh, choice.vertex);

@@ -120,6 +120,9 @@ struct FlowResult {
   std::vector<BrokenTrial> broken_faces;
   /// One line per run that did not converge before the reported one (fall-back mode).
   std::vector<std::string> failed_attempts;
+  /// The initial metric the reported run started from, named by the one-cone solvers
+  /// (singularity/one_cone.h, e.g. "circle-packing/mean"); empty from flow() itself.
+  std::string metric_name;
 
   bool converged() const { return status == FlowStatus::converged; }
 };

@@ -59,13 +59,14 @@ TEST(ChooseSingularity, MatchesBruteForceOnGenusZero) {
   expect_close_to_brute_force("closed_g0/knight_decimated.off");
 }
 
-// The bundled genus-2 and genus-3 models (3k faces, 1.5k vertices): the choice (linear sample,
-// zoom search, about 30 verifying flows) within 5% of the best of every vertex's flow (run at
-// tolerance 1e-7: the distortions compared agree to ~1e-7).
-TEST(ChooseSingularity, WithinFivePercentOfBruteForceOnBundledModels) {
+// The bundled genus-2 model (3k faces, 1.5k vertices; msp-bench singularity --brute has the
+// genus-3 one): the choice (linear sample, zoom search, about 20 verifying flows) within 5% of
+// the best of every vertex's flow (run at tolerance 1e-7: the distortions compared agree to
+// ~1e-7). The linear model's choice alone is 17% off here.
+TEST(ChooseSingularity, WithinFivePercentOfBruteForceOnBundledModel) {
   ricci::SingularityOptions loose;
   loose.flow.tolerance = 1e-7;
-  for (const char* name : {"genus2.off", "genus3.off"}) {
+  for (const char* name : {"genus2.off"}) {
     const ricci::Mesh mesh = ricci::read_mesh(msp_test::bundled_model(name));
     const ricci::SingularityChoice choice = ricci::choose_singularity(mesh, loose);
     int brute_vertex = -1;
