@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "ricci/mesh/io.h"
 #include "ricci/pipeline/one_cone_atlas.h"
@@ -182,6 +183,37 @@ TEST(OneConeAtlas, BrokenTrianglesAreRecorded) {
     EXPECT_LE(b.iteration, r.iterations + 1);
     EXPECT_GE(b.trials, 1);
   }
+}
+
+// The staged flow is taken straight away where the one-shot flow is predicted to fail: at the
+// 10pi cone of genus3_10k the plain inversive-distance flow's first Newton step is cut below
+// 1/64 and gains under 2% (it fails after three such steps); with give_up_on_short_first_step
+// the run ends after that one step. A flow whose first step is full is not stopped.
+TEST(OneConeAtlas, ShortFirstStepPredictsTheOneShotFailure) {
+  ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj.gz"));
+  const ricci::OneConeProblem problem = ricci::prepare_one_cone(mesh, 0);
+  ricci::FlowOptions options = ricci::one_cone_flow_options();
+  options.scheme = ricci::Scheme::inversive_distance;
+  options.radii = ricci::RadiusInit::mean;
+  std::vector<double> steps;
+  options.progress = [&](const ricci::FlowProgress& p) { steps.push_back(p.step); };
+  const ricci::FlowResult plain = ricci::flow(problem.mesh, problem.targets, options);
+  ASSERT_FALSE(plain.converged());
+  ASSERT_GE(plain.error_history.size(), 2u);
+  ASSERT_LT(steps.front(), 1.0 / 64);
+  ASSERT_GT(plain.error_history[1], 0.98 * plain.error_history[0]);
+  options.give_up_on_short_first_step = true;
+  const ricci::FlowResult predicted = ricci::flow(problem.mesh, problem.targets, options);
+  EXPECT_FALSE(predicted.converged());
+  EXPECT_EQ(predicted.iterations, 1);
+  EXPECT_LT(predicted.iterations, plain.iterations);
+  EXPECT_NE(predicted.message.find("predicted"), std::string::npos) << predicted.message;
+
+  const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj.gz"));
+  const ricci::OneConeProblem flat = ricci::prepare_one_cone(torus, -1);
+  ricci::FlowOptions easy = ricci::one_cone_flow_options();
+  easy.give_up_on_short_first_step = true;
+  EXPECT_TRUE(ricci::flow(flat.mesh, flat.targets, easy).converged());
 }
 
 }  // namespace
