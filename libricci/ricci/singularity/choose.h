@@ -31,7 +31,7 @@ struct SingularityOptions {
   /// threefold, down to two rings.
   int linear_search_starts = 3;
   /// Real flows allowed: floor(verification_work / V^2), at most max_verified_flows (about 30
-  /// at 5k vertices, 7 at 10k, none from 25k on).
+  /// at 5k vertices, 7 at 10k, none above 27.4k).
   double verification_work = 7.5e8;
   int max_verified_flows = 400;
   /// The best linear candidates verified with a flow first (within the budget)...
