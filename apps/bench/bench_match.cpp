@@ -56,7 +56,7 @@ ricci::Mesh deformed(const ricci::Mesh& mesh) {
 void row(const std::string& models, const Case& c) {
   const ricci::Mesh a = prepared(models, c);
   const ricci::Mesh b = deformed(a);
-  const double chol = cholmod_laplacian_seconds(a);
+  const double chol = cotangent_cholesky_seconds(a);
   ricci::ModuleOptions module_options;
   module_options.retry = false;
   const ricci::ModuleResult module = ricci::conformal_module(a, module_options);

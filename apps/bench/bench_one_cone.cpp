@@ -80,6 +80,14 @@ double one_cholesky_seconds(const Sparse& L) {
   return best;
 }
 
+}  // namespace
+
+double cotangent_cholesky_seconds(const ricci::Mesh& mesh) {
+  return one_cholesky_seconds(regularised_cotangent_laplacian(mesh));
+}
+
+namespace {
+
 // Faces of the central chart with negative / zero signed area, from the layout's double-double
 // edge vectors, and those whose plain double corner positions give area <= 0.
 struct FaceSigns {
@@ -213,10 +221,6 @@ std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
 
 }  // namespace
 
-double cholmod_laplacian_seconds(const ricci::Mesh& mesh) {
-  return one_cholesky_seconds(regularised_cotangent_laplacian(mesh));
-}
-
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
@@ -292,6 +296,10 @@ int run_one_cone_case(int argc, char** argv) {
     j["atlas"] = t.atlas;
     j["distortion"] = t.distortion;
     j["total"] = t.flips + t.valence + t.flow + t.polish + t.atlas;
+    j["total_with_choice"] = t.total;  // everything build_one_cone_atlas did, msp atlas' seconds
+    j["solves_for_choice"] = r.solves_for_choice;
+    j["flows_for_choice"] = r.flows_for_choice;
+    j["metric_route"] = r.flow.metric_name;
     j["newton"] = r.flow.iterations;
     j["factorizations"] = r.flow.factorizations;
     const auto& ft = r.flow.timings;
@@ -318,7 +326,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["status"] = std::string("failed: ") + e.what();
   }
   t0.restart();
-  const double cholesky = one_cholesky_seconds(regularised_cotangent_laplacian(mesh));
+  const double cholesky = cotangent_cholesky_seconds(mesh);
   j["cholesky"] = cholesky;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

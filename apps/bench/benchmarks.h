@@ -11,6 +11,10 @@ namespace msp::bench {
 /// \throw std::runtime_error saying how to set it when neither names a folder.
 std::string shared_models();
 
+/// Seconds of one CHOLMOD supernodal analyse + factorise + solve of the mesh's cotangent
+/// Laplacian (best of 3): the unit the benchmarks' ratios divide by (bench_one_cone.cpp).
+double cotangent_cholesky_seconds(const ricci::Mesh& mesh);
+
 int run_flow_benchmark(int argc, char** argv);  // bench_flow.cpp
 int run_flow_case(int argc, char** argv);       // bench_flow.cpp
 int run_solver_benchmark(int argc, char** argv);  // bench_flow.cpp
@@ -34,9 +38,5 @@ int run_bezier_benchmark(int argc, char** argv);      // bench_surface.cpp
 int run_spline_file_benchmark(int argc, char** argv);  // bench_spline_file.cpp
 /// Issue 17: conformal module and surface matching at ~20k and ~100k faces.
 int run_match_benchmark(int argc, char** argv);  // bench_match.cpp
-
-/// Best of 3 CHOLMOD supernodal analyse + factorise + solve of the mesh's (regularised)
-/// cotangent Laplacian: the unit the benchmarks' ratios count in (bench_one_cone.cpp).
-double cholmod_laplacian_seconds(const ricci::Mesh& mesh);
 
 }  // namespace msp::bench

@@ -36,7 +36,7 @@ const Benchmark kBenchmarks[] = {
     {"dms", msp::bench::run_dms_benchmark,
      "DMS triangular B-spline basis, degrees 2..5: DAG build, memory, us per point, PU error"},
     {"singularity", msp::bench::run_singularity_benchmark,
-     "automatic choice of the extraordinary point vs the paper's brute force (one flow per vertex)"},
+     "automatic singularity: solves, flows, s / one Cholesky [--brute: vs one flow per vertex]"},
     {"fill", msp::bench::run_fill_benchmark,
      "hole filling on fitted scans: per rim edges, seconds, max normal jump, position gaps"},
     {"one-cone", msp::bench::run_one_cone_benchmark,

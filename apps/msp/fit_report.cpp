@@ -158,6 +158,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
        {{"levels", atlas.cone_refinement.levels},
         {"rings", options.cone_refinement.rings},
         {"added_faces", atlas.cone_refinement.added_faces}}},
+      {"metric", {{"route", atlas.flow.metric_name}, {"refused", atlas.flow.failed_attempts}}},
       {"control_points", space.function_count()},
       {"degree", space.degree()},
       {"fairness", options.fairness},

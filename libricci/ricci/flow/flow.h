@@ -62,6 +62,10 @@ struct FlowOptions {
   LinearSolver solver = LinearSolver::automatic;
   /// Halvings of a Newton step before the line search gives up.
   int max_step_halvings = 40;
+  /// E2: end the run when its first Newton step is short (under 1/64 of the step, lowering the
+  /// error by under 2%): a prediction that it fails, for a caller with a staged fall-back
+  /// (flow/continuation.h). Otherwise three such steps in a row end it.
+  bool give_up_on_short_first_step = false;
   /// When the run from (scheme, radii) does not converge, retry from the next metric of
   /// inversive-distance/min → inversive-distance/mean → circle-packing/mean → combinatorial
   /// (the last always satisfies Thurston's conditions for cones of valence ≥ 4 - 2K̄/π, but is
@@ -120,6 +124,9 @@ struct FlowResult {
   std::vector<BrokenTrial> broken_faces;
   /// One line per run that did not converge before the reported one (fall-back mode).
   std::vector<std::string> failed_attempts;
+  /// The initial metric the reported run started from, named by the one-cone solvers
+  /// (singularity/one_cone.h, e.g. "circle-packing/mean"); empty from flow() itself.
+  std::string metric_name;
 
   bool converged() const { return status == FlowStatus::converged; }
 };

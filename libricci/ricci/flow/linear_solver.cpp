@@ -92,4 +92,16 @@ Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const 
   }
 }
 
+Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs) const {
+  switch (kind_) {
+    case LinearSolver::eigen_ldlt:
+      return impl_->eigen_ldlt.solve(rhs);
+    case LinearSolver::eigen_llt:
+      return impl_->eigen_llt.solve(rhs);
+    case LinearSolver::cholmod_supernodal:
+      return impl_->cholmod_supernodal.solve(rhs);
+    default: return impl_->cholmod_simplicial.solve(rhs);
+  }
+}
+
 }  // namespace ricci

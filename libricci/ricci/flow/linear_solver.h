@@ -38,6 +38,8 @@ class SymmetricFactorization {
   bool factorize(const Eigen::SparseMatrix<double>& lower);
   /// Solves with the last successful factorisation.
   [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  /// Solves for every column of `rhs` at once (blocked back-substitution).
+  [[nodiscard]] Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& rhs) const;
 
   LinearSolver kind() const { return kind_; }
 

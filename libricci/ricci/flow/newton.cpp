@@ -344,6 +344,13 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
     const bool short_step = t_step < 1.0 / 64 && error > 0.98 * previous_error;
     stagnant = short_step ? stagnant + 1 : 0;
     stagnant_broken = short_step ? stagnant_broken + (broken > 0 ? 1 : 0) : 0;
+    if (euclidean && short_step && o.give_up_on_short_first_step && result.iterations == 1) {
+      result.status = broken > 0 ? FlowStatus::triangle_inequality : FlowStatus::stalled;
+      result.message = failure_message(run, state, result.status,
+                                       "the first Newton step was cut below 1/64 and lowered the error by "
+                                       "less than 2% (predicted to fail in one go)");
+      return;
+    }
     if (euclidean && stagnant >= 3) {
       result.status = stagnant_broken > 0 ? FlowStatus::triangle_inequality : FlowStatus::stalled;
       result.message = failure_message(run, state, result.status,

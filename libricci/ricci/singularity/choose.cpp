@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
-#include <random>
 #include <set>
 
-#include <Eigen/SparseCholesky>
-
+#include "ricci/flow/linear_solver.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/quality/distortion.h"
@@ -18,6 +17,10 @@ namespace ricci {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Right-hand sides solved together (one blocked back-substitution).
+constexpr int kBlockColumns = 32;
+// Vertices scored per level of the linear zoom search.
+constexpr int kZoomSamples = 24;
 
 double cot_at(const Mesh& mesh, HalfedgeHandle h) {
   // Cotangent of the corner opposite halfedge h (inside h's face).
@@ -27,12 +30,14 @@ double cot_at(const Mesh& mesh, HalfedgeHandle h) {
   return OpenMesh::dot(u, v) / std::max(OpenMesh::cross(u, v).norm(), 1e-300);
 }
 
-// Cotangent Laplacian (positive semi-definite) with weights clamped at zero: a ranking model,
-// it must stay factorisable on meshes with obtuse triangles. A tiny diagonal shift removes the
-// constant kernel; every right-hand side below sums to zero, so the shift does not bias u.
+// Lower triangle of the cotangent Laplacian (positive semi-definite) with weights clamped at
+// zero: a ranking model, it must stay factorisable on meshes with obtuse triangles. A tiny
+// diagonal shift removes the constant kernel; every right-hand side below sums to zero, so the
+// shift does not bias u.
 Eigen::SparseMatrix<double> shifted_laplacian(const Mesh& mesh) {
   std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(mesh.n_vertices());
+  triplets.reserve(mesh.n_edges() + mesh.n_vertices());
+  Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
   for (auto e : mesh.edges()) {
     double w = 0;
     for (int side = 0; side < 2; ++side) {
@@ -40,17 +45,17 @@ Eigen::SparseMatrix<double> shifted_laplacian(const Mesh& mesh) {
       if (!mesh.is_boundary(h)) w += 0.5 * cot_at(mesh, h);
     }
     w = std::max(w, 1e-6);
-    int i = mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx();
-    int j = mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx();
-    triplets.emplace_back(i, j, -w);
-    triplets.emplace_back(j, i, -w);
+    const int i = mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx();
+    const int j = mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx();
+    triplets.emplace_back(std::max(i, j), std::min(i, j), -w);
     diagonal[i] += w;
     diagonal[j] += w;
   }
-  double shift = 1e-9 * diagonal.mean();
+  const double shift = 1e-9 * diagonal.mean();
   for (int i = 0; i < diagonal.size(); ++i) triplets.emplace_back(i, i, diagonal[i] + shift);
   Eigen::SparseMatrix<double> L(diagonal.size(), diagonal.size());
   L.setFromTriplets(triplets.begin(), triplets.end());
+  L.makeCompressed();
   return L;
 }
 
@@ -66,62 +71,201 @@ Eigen::VectorXd angle_defects(const Mesh& mesh) {
   return K;
 }
 
-// Predicted area distortion of the log-scale field u: faces scale by exp(2 * mean u).
-double predicted_distortion(const Eigen::VectorXd& u, const Eigen::VectorXd& log_area,
-                            const Eigen::MatrixX3i& faces) {
-  Eigen::VectorXd d(faces.rows());
-  for (int f = 0; f < faces.rows(); ++f) d[f] = -2.0 / 3.0 * (u[faces(f, 0)] + u[faces(f, 1)] + u[faces(f, 2)]);
-  // log(S/sum S) - log(s/sum s) = d - log(sum S) + log(sum S e^{-d}); normalise in log space.
-  double peak = (log_area - d).maxCoeff();
-  double log_flat_total = peak + std::log((log_area - d).array().unaryExpr([&](double x) { return std::exp(x - peak); }).sum());
-  double peak2 = log_area.maxCoeff();
-  double log_total = peak2 + std::log((log_area.array() - peak2).exp().sum());
-  Eigen::ArrayXd r = d.array() - log_total + log_flat_total;
-  return r.square().mean();
-}
+// The linearised one-cone model: one factorisation, one back-substitution per candidate.
+class LinearModel {
+ public:
+  explicit LinearModel(const Mesh& mesh)
+      : n_(static_cast<int>(mesh.n_vertices())),
+        solver_(resolve_linear_solver(LinearSolver::automatic, n_)) {
+    const Eigen::SparseMatrix<double> L = shifted_laplacian(mesh);
+    solver_.analyze(L);
+    if (!solver_.factorize(L)) {
+      throw SolverError("singularity ranking: Laplacian factorisation failed");
+    }
+    cone_ = 2.0 * M_PI * surface_topology(mesh).euler_characteristic;
+    Eigen::VectorXd base_rhs = -angle_defects(mesh);
+    base_rhs.array() += cone_ / n_;  // with the cone's mean removed, the rhs sums to 0
+    u0_ = solver_.solve(base_rhs);
+    ++solves_;
+    faces_.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
+    log_area_.resize(static_cast<Eigen::Index>(mesh.n_faces()));
+    for (auto f : mesh.faces()) {
+      int k = 0;
+      for (auto v : mesh.fv_range(f)) faces_(f.idx(), k++) = v.idx();
+      log_area_[f.idx()] = std::log(std::max(mesh.calc_face_area(f), 1e-300));
+    }
+    const double peak = log_area_.maxCoeff();
+    log_total_ = peak + std::log((log_area_.array() - peak).exp().sum());
+  }
 
-std::vector<int> ranked_vertex_pool(const Mesh& mesh, int limit) {
-  std::vector<int> pool(mesh.n_vertices());
-  std::iota(pool.begin(), pool.end(), 0);
-  pool.erase(std::remove_if(pool.begin(), pool.end(),
-                            [&](int v) { return mesh.is_boundary(mesh.vertex_handle(v)); }),
-             pool.end());
-  if (static_cast<int>(pool.size()) > limit) {
-    std::mt19937 rng(12345);
-    std::shuffle(pool.begin(), pool.end(), rng);
-    pool.resize(static_cast<size_t>(limit));
+  // Predicted area distortion of a cone at each vertex (cached).
+  std::vector<double> score(const std::vector<int>& vertices) {
+    std::vector<int> todo;
+    for (int p : vertices) {
+      if (!cache_.count(p) && std::find(todo.begin(), todo.end(), p) == todo.end()) {
+        todo.push_back(p);
+      }
+    }
+    for (size_t start = 0; start < todo.size(); start += kBlockColumns) {
+      const size_t count = std::min<size_t>(kBlockColumns, todo.size() - start);
+      Eigen::MatrixXd rhs = Eigen::MatrixXd::Constant(n_, static_cast<Eigen::Index>(count), -1.0 / n_);
+      for (size_t j = 0; j < count; ++j) rhs(todo[start + j], static_cast<Eigen::Index>(j)) += 1.0;
+      const Eigen::MatrixXd green = solver_.solve_columns(rhs);
+      solves_ += static_cast<int>(count);
+      for (size_t j = 0; j < count; ++j) {
+        cache_[todo[start + j]] = distortion(u0_ + cone_ * green.col(static_cast<Eigen::Index>(j)));
+      }
+    }
+    std::vector<double> out;
+    out.reserve(vertices.size());
+    for (int p : vertices) out.push_back(cache_.at(p));
+    return out;
+  }
+
+  double scored(int p) const { return cache_.count(p) ? cache_.at(p) : kInfinity; }
+  int solves() const { return solves_; }
+  const std::map<int, double>& cache() const { return cache_; }
+
+ private:
+  // Predicted area distortion of the log-scale field u: faces scale by exp(2 * mean u).
+  // log(S/sum S) - log(s/sum s) = d - log(sum S) + log(sum S e^{-d}), normalised in log space.
+  double distortion(const Eigen::VectorXd& u) const {
+    const Eigen::Index F = faces_.rows();
+    Eigen::ArrayXd d(F);
+    for (Eigen::Index f = 0; f < F; ++f) {
+      d[f] = -2.0 / 3.0 * (u[faces_(f, 0)] + u[faces_(f, 1)] + u[faces_(f, 2)]);
+    }
+    const Eigen::ArrayXd flat = log_area_.array() - d;
+    const double peak = flat.maxCoeff();
+    const double log_flat_total = peak + std::log((flat - peak).exp().sum());
+    return (d - log_total_ + log_flat_total).square().mean();
+  }
+
+  int n_;
+  SymmetricFactorization solver_;
+  double cone_ = 0, log_total_ = 0;
+  Eigen::VectorXd u0_, log_area_;
+  Eigen::MatrixX3i faces_;
+  std::map<int, double> cache_;
+  int solves_ = 0;
+};
+
+std::vector<int> interior_vertices(const Mesh& mesh) {
+  std::vector<int> pool;
+  for (auto v : mesh.vertices()) {
+    if (!mesh.is_boundary(v)) pool.push_back(v.idx());
   }
   return pool;
+}
+
+// Ring distances from `source`, at most `limit` rings; -1 beyond. `rings[r]` lists the vertices
+// at distance r in breadth-first order.
+std::vector<std::vector<int>> rings_around(const Mesh& mesh, int source, int limit) {
+  std::vector<int> depth(mesh.n_vertices(), -1);
+  std::vector<std::vector<int>> rings{{source}};
+  depth[static_cast<size_t>(source)] = 0;
+  for (int r = 1; r <= limit; ++r) {
+    std::vector<int> next;
+    for (int v : rings.back()) {
+      for (auto w : mesh.vv_range(mesh.vertex_handle(v))) {
+        if (depth[static_cast<size_t>(w.idx())] >= 0) continue;
+        depth[static_cast<size_t>(w.idx())] = r;
+        next.push_back(w.idx());
+      }
+    }
+    if (next.empty()) break;
+    rings.push_back(std::move(next));
+  }
+  return rings;
+}
+
+// Farthest-point sample of `count` interior vertices by ring distance, from the first one.
+std::vector<int> spread_sample(const Mesh& mesh, const std::vector<int>& pool, int count) {
+  if (static_cast<int>(pool.size()) <= count) return pool;
+  std::vector<int> distance(mesh.n_vertices(), std::numeric_limits<int>::max());
+  std::vector<char> interior(mesh.n_vertices(), 0);
+  for (int v : pool) interior[static_cast<size_t>(v)] = 1;
+  std::vector<int> sample;
+  int next = pool.front();
+  while (static_cast<int>(sample.size()) < count) {
+    sample.push_back(next);
+    // Breadth-first update of the distance to the sample, stopping where it does not improve.
+    std::vector<int> frontier{next};
+    distance[static_cast<size_t>(next)] = 0;
+    while (!frontier.empty()) {
+      std::vector<int> grown;
+      for (int v : frontier) {
+        for (auto w : mesh.vv_range(mesh.vertex_handle(v))) {
+          int& dw = distance[static_cast<size_t>(w.idx())];
+          if (dw <= distance[static_cast<size_t>(v)] + 1) continue;
+          dw = distance[static_cast<size_t>(v)] + 1;
+          grown.push_back(w.idx());
+        }
+      }
+      frontier = std::move(grown);
+    }
+    int farthest = -1;
+    for (int v : pool) {
+      if (farthest < 0 || distance[static_cast<size_t>(v)] > distance[static_cast<size_t>(farthest)]) {
+        farthest = v;
+      }
+    }
+    if (distance[static_cast<size_t>(farthest)] == 0) break;
+    next = farthest;
+  }
+  return sample;
+}
+
+int ranked_count(int interior, int vertices, const SingularityOptions& options) {
+  const double budget = options.ranking_work / std::max(vertices, 1);
+  const int count = static_cast<int>(std::clamp(budget, static_cast<double>(options.min_ranked_vertices),
+                                                static_cast<double>(options.max_ranked_vertices)));
+  return std::min(interior, count);
+}
+
+// Zoom search on the linear model from `centre`: a farthest-point sample of the vertices
+// within `radius` rings is scored (one blocked solve), the centre moves to the best of them,
+// and the radius shrinks threefold, down to two rings (the real flows' one-ring descent, when
+// the budget has flows, or the smoothness of the distortion in the cone's position takes over).
+void zoom_search(const Mesh& mesh, LinearModel& model, int centre, int radius) {
+  while (radius >= 2) {
+    std::vector<int> ball;
+    for (const auto& ring : rings_around(mesh, centre, radius)) {
+      for (int v : ring) {
+        if (!mesh.is_boundary(mesh.vertex_handle(v))) ball.push_back(v);
+      }
+    }
+    const std::vector<int> sample = spread_sample(mesh, ball, kZoomSamples);
+    const std::vector<double> scores = model.score(sample);
+    double best = model.scored(centre);
+    for (size_t i = 0; i < sample.size(); ++i) {
+      if (scores[i] < best) {
+        best = scores[i];
+        centre = sample[i];
+      }
+    }
+    radius /= 3;
+  }
+}
+
+std::vector<SingularityScore> sorted_scores(const std::map<int, double>& cache) {
+  std::vector<SingularityScore> scores;
+  scores.reserve(cache.size());
+  for (const auto& [vertex, score] : cache) scores.push_back({vertex, score});
+  std::stable_sort(scores.begin(), scores.end(), [](const SingularityScore& a, const SingularityScore& b) {
+    return a.area_distortion < b.area_distortion;
+  });
+  return scores;
 }
 
 }  // namespace
 
 std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const SingularityOptions& options) {
-  const int n = static_cast<int>(mesh.n_vertices());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(shifted_laplacian(mesh));
-  if (solver.info() != Eigen::Success) throw SolverError("singularity ranking: Laplacian factorisation failed");
-  const double cone = 2.0 * M_PI * surface_topology(mesh).euler_characteristic;
-  Eigen::VectorXd base_rhs = -angle_defects(mesh);
-  base_rhs.array() += cone / n;  // with the cone's mean removed, the right-hand side sums to 0
-  Eigen::VectorXd u0 = solver.solve(base_rhs);
-  Eigen::MatrixX3i faces(mesh.n_faces(), 3);
-  Eigen::VectorXd log_area(mesh.n_faces());
-  for (auto f : mesh.faces()) {
-    int k = 0;
-    for (auto v : mesh.fv_range(f)) faces(f.idx(), k++) = v.idx();
-    log_area[f.idx()] = std::log(std::max(mesh.calc_face_area(f), 1e-300));
-  }
-  std::vector<SingularityScore> scores;
-  Eigen::VectorXd unit = Eigen::VectorXd::Constant(n, -1.0 / n);
-  for (int p : ranked_vertex_pool(mesh, options.max_ranked_vertices)) {
-    unit[p] += 1.0;
-    Eigen::VectorXd u = u0 + cone * solver.solve(unit);
-    unit[p] -= 1.0;
-    scores.push_back({p, predicted_distortion(u, log_area, faces)});
-  }
-  std::sort(scores.begin(), scores.end(),
-            [](const SingularityScore& a, const SingularityScore& b) { return a.area_distortion < b.area_distortion; });
-  return scores;
+  LinearModel model(mesh);
+  const std::vector<int> pool = interior_vertices(mesh);
+  const int count = ranked_count(static_cast<int>(pool.size()), static_cast<int>(mesh.n_vertices()), options);
+  (void)model.score(spread_sample(mesh, pool, count));
+  return sorted_scores(model.cache());
 }
 
 double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options) {
@@ -132,10 +276,8 @@ double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityO
 }
 
 int verified_count(int vertices, const SingularityOptions& options) {
-  // Small meshes: one flow per 20 vertices, but no more than about 4e4 / V flows (each costs
-  // O(V)), so the extra checks fade out by a few thousand vertices.
-  const int extra = std::min(vertices / 20, static_cast<int>(4e4 / std::max(vertices, 1)));
-  return std::max(options.verified_candidates, extra);
+  const double v = std::max(vertices, 1);
+  return static_cast<int>(std::min<double>(options.max_verified_flows, std::floor(options.verification_work / (v * v))));
 }
 
 SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions& options) {
@@ -144,26 +286,65 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   if (!needs_singular_vertex(mesh)) {
     choice.area_distortion = one_cone_area_distortion(mesh, -1, options);
     choice.flows_run = 1;
-  } else {
-    std::set<int> checked;
-    auto verify = [&](int v) {
-      if (!checked.insert(v).second) return;
-      choice.verified.push_back({v, one_cone_area_distortion(mesh, v, options)});
-      ++choice.flows_run;
-    };
-    std::vector<SingularityScore> ranked = rank_singularities(mesh, options);
-    const int count = verified_count(static_cast<int>(mesh.n_vertices()), options);
-    for (int i = 0; i < std::min<int>(count, static_cast<int>(ranked.size())); ++i) {
-      verify(ranked[static_cast<size_t>(i)].vertex);
+    choice.seconds = start.seconds();
+    return choice;
+  }
+  // 1. The linear model on a spread sample, then zoom searches from the best few.
+  LinearModel model(mesh);
+  const std::vector<int> pool = interior_vertices(mesh);
+  if (pool.empty()) throw InvalidInputError("no interior vertex to put the singularity on");
+  const int vertices = static_cast<int>(mesh.n_vertices());
+  const int count = ranked_count(static_cast<int>(pool.size()), vertices, options);
+  (void)model.score(spread_sample(mesh, pool, count));
+  if (count < static_cast<int>(pool.size())) {
+    // Sample spacing in rings: count disks of radius r cover about count * 3 r^2 vertices.
+    const int radius = std::max(
+        2, static_cast<int>(std::sqrt(static_cast<double>(pool.size()) / (3.0 * count))) + 1);
+    // Zoom searches from the best few sampled vertices, fewer as the mesh grows (each costs
+    // about three blocked solves).
+    const int starts = std::clamp(
+        static_cast<int>(options.ranking_work / (static_cast<double>(vertices) * kBlockColumns)), 1,
+        std::max(1, options.linear_search_starts));
+    const std::vector<SingularityScore> sampled = sorted_scores(model.cache());
+    for (int i = 0; i < std::min<int>(starts, static_cast<int>(sampled.size())); ++i) {
+      zoom_search(mesh, model, sampled[static_cast<size_t>(i)].vertex, radius);
     }
-    auto score_of = [&](int v) {
-      for (const auto& s : choice.verified) {
-        if (s.vertex == v) return s.area_distortion;
-      }
-      return kInfinity;
-    };
-    auto descend = [&](int centre) {
-      for (int round = 0; round < 10; ++round) {
+  }
+  const std::vector<SingularityScore> ranked = sorted_scores(model.cache());
+  choice.ranked = static_cast<int>(ranked.size());
+
+  // 2. Real flows within the budget: the best linear candidates, then one-ring descents.
+  int budget = verified_count(vertices, options);
+  std::set<int> checked;
+  auto verify = [&](int v) {
+    if (budget <= 0 || !checked.insert(v).second) return;
+    choice.verified.push_back({v, one_cone_area_distortion(mesh, v, options)});
+    ++choice.flows_run;
+    --budget;
+  };
+  for (int i = 0; i < std::min<int>(options.verified_candidates, choice.ranked); ++i) {
+    verify(ranked[static_cast<size_t>(i)].vertex);
+  }
+  auto score_of = [&](int v) {
+    for (const auto& s : choice.verified) {
+      if (s.vertex == v) return s.area_distortion;
+    }
+    return kInfinity;
+  };
+  auto by_distortion = [](const SingularityScore& a, const SingularityScore& b) {
+    return a.area_distortion < b.area_distortion;
+  };
+  if (options.refine_in_one_ring && !choice.verified.empty()) {
+    // Greedy descent over one-rings from the best few verified vertices (the linear model
+    // can misjudge a whole region, so one basin is not enough), each until its vertex beats
+    // all its neighbours or the budget is spent.
+    std::vector<SingularityScore> starts = choice.verified;
+    std::sort(starts.begin(), starts.end(), by_distortion);
+    starts.resize(std::min<size_t>(starts.size(), static_cast<size_t>(options.descent_starts)));
+    for (const SingularityScore& s : starts) {
+      if (!std::isfinite(s.area_distortion)) continue;
+      int centre = s.vertex;
+      for (int round = 0; round < 10 && budget > 0; ++round) {
         int next = centre;
         for (auto w : mesh.vv_range(mesh.vertex_handle(centre))) {
           if (mesh.is_boundary(w)) continue;
@@ -173,33 +354,23 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
         if (next == centre) break;
         centre = next;
       }
-    };
-    auto best = [&] {
-      return *std::min_element(choice.verified.begin(), choice.verified.end(),
-                               [](const SingularityScore& a, const SingularityScore& b) {
-                                 return a.area_distortion < b.area_distortion;
-                               });
-    };
-    if (options.refine_in_one_ring && !choice.verified.empty()) {
-      // Greedy descent over one-rings from the best few verified vertices (the linear model
-      // can misjudge a whole region, so one basin is not enough), each until its vertex beats
-      // all its neighbours.
-      std::vector<SingularityScore> starts = choice.verified;
-      std::sort(starts.begin(), starts.end(), [](const SingularityScore& a, const SingularityScore& b) {
-        return a.area_distortion < b.area_distortion;
-      });
-      starts.resize(std::min<std::size_t>(starts.size(), static_cast<std::size_t>(options.descent_starts)));
-      for (const SingularityScore& start : starts) {
-        if (!std::isfinite(start.area_distortion)) continue;
-        descend(start.vertex);
-      }
     }
-    if (choice.verified.empty() || !std::isfinite(best().area_distortion)) {
-      throw SolverError("no candidate singular vertex gave a converging flow; try valence options or another metric");
-    }
-    choice.vertex = best().vertex;
-    choice.area_distortion = best().area_distortion;
   }
+  if (choice.verified.empty()) {
+    // The linear model's choice, verified by the caller's own flow.
+    choice.vertex = ranked.front().vertex;
+    choice.area_distortion = std::numeric_limits<double>::quiet_NaN();
+  } else {
+    const SingularityScore best = *std::min_element(choice.verified.begin(), choice.verified.end(), by_distortion);
+    if (!std::isfinite(best.area_distortion)) {
+      throw SolverError(
+          "no candidate singular vertex gave a converging flow; try valence options or another metric");
+    }
+    choice.vertex = best.vertex;
+    choice.area_distortion = best.area_distortion;
+  }
+  choice.predicted_area_distortion = model.score({choice.vertex})[0];
+  choice.linear_solves = model.solves();
   choice.seconds = start.seconds();
   return choice;
 }

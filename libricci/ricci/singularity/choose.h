@@ -1,10 +1,15 @@
 #pragma once
 // Choosing the extraordinary point: the vertex whose one-cone flat metric has the least area
 // distortion (manifold-splines paper, section 4, step 1). The paper runs one Ricci flow per
-// vertex. Here a linearised model ranks every vertex with one factorisation (the flat metric's
-// log-scale is, to first order, u = L^+ (K_target - K), so a cone at p adds 2*pi*chi times the
-// Green's function of p), and only the best few candidates and the neighbours of the winner are
-// checked with real flows.
+// vertex. Here a linearised model ranks vertices with one factorisation of the cotangent
+// Laplacian (the flat metric's log-scale is, to first order, u = L^+ (K_target - K), so a cone
+// at p adds 2*pi*chi times the Green's function of p): a spread sample of vertices, then a
+// zoom search of shrinking ring radius around the best few, every candidate costing one
+// back-substitution (done in blocks). Real flows check the best candidates only within a work
+// budget that falls as 1 / V^2: on small meshes (where flows are cheap and the linear model's
+// ranking is noisiest) they verify the top candidates and descend over one-rings; from a few
+// tens of thousands of vertices the choice is the linear model's and costs about one
+// factorisation and a few solves.
 #include <vector>
 
 #include "ricci/flow/flow.h"
@@ -14,20 +19,32 @@
 namespace ricci {
 
 struct SingularityOptions {
-  /// Candidates from the linear ranking checked with a full flow: at least this many, more on
-  /// small meshes (min(V / 20, 4e4 / V)), where flows are cheap and the linear model's
-  /// ranking is noisiest.
+  /// Vertices the linear model scores in its first, spread sample: all of them up to this many
+  /// vertex-solves (about ranking_work / V vertices, at least min_ranked_vertices and at most
+  /// max_ranked_vertices; a farthest-point sample by ring distance when not all).
+  double ranking_work = 1.5e6;
+  int min_ranked_vertices = 32;
+  int max_ranked_vertices = 5000;
+  /// Zoom search on the linear model from the best few sampled vertices (at most this many,
+  /// fewer on large meshes: about ranking_work / (32 V)): a spread sample of the vertices
+  /// within the sample spacing is scored, the centre moves to the best, the radius shrinks
+  /// threefold, down to two rings.
+  int linear_search_starts = 3;
+  /// Real flows allowed: floor(verification_work / V^2), at most max_verified_flows (about 30
+  /// at 5k vertices, 7 at 10k, none above 27.4k).
+  double verification_work = 7.5e8;
+  int max_verified_flows = 400;
+  /// The best linear candidates verified with a flow first (within the budget)...
   int verified_candidates = 8;
-  /// Then greedy descent over one-rings (each step checks a vertex's neighbours and moves to
-  /// the best) from the `descent_starts` best verified vertices.
+  /// ...then greedy descent over one-rings with flows (each step checks a vertex's neighbours
+  /// and moves to the best) from the `descent_starts` best verified vertices, while the budget
+  /// lasts.
   bool refine_in_one_ring = true;
   int descent_starts = 3;
-  /// Above this many vertices, the linear model ranks a seeded random sample of this size.
-  int max_ranked_vertices = 5000;
-  /// Flow settings for the verifying flows (tolerance 1e-9 is plenty to compare distortions).
+  /// Flow settings for the verifying flows (tolerance 1e-8 is plenty to compare distortions).
   FlowOptions flow = [] {
     FlowOptions o = one_cone_flow_options();
-    o.tolerance = 1e-9;
+    o.tolerance = 1e-8;
     return o;
   }();
   ValenceOptions valence;
@@ -41,10 +58,16 @@ struct SingularityScore {
 };
 
 struct SingularityChoice {
-  int vertex = -1;                ///< -1 when the topology needs no singular vertex
-  double area_distortion = 0.0;   ///< of the chosen vertex's flat metric
+  int vertex = -1;  ///< -1 when the topology needs no singular vertex
+  /// Of the chosen vertex's flat metric, measured by its flow; NaN when no flow verified it
+  /// (large meshes: the linear model's choice, see predicted_area_distortion).
+  double area_distortion = 0.0;
+  /// The linear model's prediction for the chosen vertex (0 when no vertex is needed).
+  double predicted_area_distortion = 0.0;
   std::vector<SingularityScore> verified;  ///< every vertex checked with a full flow
   int flows_run = 0;
+  int ranked = 0;         ///< vertices the linear model scored
+  int linear_solves = 0;  ///< back-substitutions with the Laplacian's factorisation
   double seconds = 0.0;
 };
 
@@ -53,14 +76,18 @@ struct SingularityChoice {
 [[nodiscard]] double one_cone_area_distortion(const Mesh& mesh, int vertex,
                                               const SingularityOptions& options = {});
 
-/// Candidates verified with a flow for a mesh of this many vertices.
+/// Real flows the choice may run on a mesh of this many vertices.
 [[nodiscard]] int verified_count(int vertices, const SingularityOptions& options);
 
-/// Predicted area distortion of every vertex (or a sample) by the linearised model.
-[[nodiscard]] std::vector<SingularityScore> rank_singularities(const Mesh& mesh,
-                                                               const SingularityOptions& options = {});
+/// Predicted area distortion of the first, spread sample of vertices (every interior vertex
+/// up to options' ranking budget), by the linearised model, best first.
+/// \throw SolverError when the Laplacian cannot be factorised.
+[[nodiscard]] std::vector<SingularityScore> rank_singularities(
+    const Mesh& mesh, const SingularityOptions& options = {});
 
-/// The chosen vertex. \pre a connected closed or open 2-manifold. \throw as flow().
-[[nodiscard]] SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions& options = {});
+/// The chosen vertex. \pre a connected closed or open 2-manifold.
+/// \throw SolverError when no verified candidate converges; as flow().
+[[nodiscard]] SingularityChoice choose_singularity(const Mesh& mesh,
+                                                   const SingularityOptions& options = {});
 
 }  // namespace ricci

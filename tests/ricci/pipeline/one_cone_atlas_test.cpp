@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "ricci/mesh/io.h"
 #include "ricci/pipeline/one_cone_atlas.h"
@@ -147,10 +148,12 @@ namespace {
 // circles near the cone converges on its own once the line search follows the convex Ricci
 // energy (a residual-only search accepted an overshooting first step and the next Hessian was
 // singular: three metrics failed and the combinatorial one, which ignores the mesh, was used).
+// The circle-packing route alone (the inversive-distance route, tried first by default, off).
 TEST(OneConeAtlas, TenPiConeOnMarchingCubesKeepsTheMeshConformalMetric) {
   ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj.gz"));
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
+  options.inversive_distance_route = false;
   const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
   EXPECT_TRUE(r.flow.failed_attempts.empty()) << r.flow.failed_attempts.front();
   EXPECT_EQ(r.flow.metric.scheme, ricci::Scheme::circle_packing);
@@ -180,6 +183,37 @@ TEST(OneConeAtlas, BrokenTrianglesAreRecorded) {
     EXPECT_LE(b.iteration, r.iterations + 1);
     EXPECT_GE(b.trials, 1);
   }
+}
+
+// The staged flow is taken straight away where the one-shot flow is predicted to fail: at the
+// 10pi cone of genus3_10k the plain inversive-distance flow's first Newton step is cut below
+// 1/64 and gains under 2% (it fails after three such steps); with give_up_on_short_first_step
+// the run ends after that one step. A flow whose first step is full is not stopped.
+TEST(OneConeAtlas, ShortFirstStepPredictsTheOneShotFailure) {
+  ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj.gz"));
+  const ricci::OneConeProblem problem = ricci::prepare_one_cone(mesh, 0);
+  ricci::FlowOptions options = ricci::one_cone_flow_options();
+  options.scheme = ricci::Scheme::inversive_distance;
+  options.radii = ricci::RadiusInit::mean;
+  std::vector<double> steps;
+  options.progress = [&](const ricci::FlowProgress& p) { steps.push_back(p.step); };
+  const ricci::FlowResult plain = ricci::flow(problem.mesh, problem.targets, options);
+  ASSERT_FALSE(plain.converged());
+  ASSERT_GE(plain.error_history.size(), 2u);
+  ASSERT_LT(steps.front(), 1.0 / 64);
+  ASSERT_GT(plain.error_history[1], 0.98 * plain.error_history[0]);
+  options.give_up_on_short_first_step = true;
+  const ricci::FlowResult predicted = ricci::flow(problem.mesh, problem.targets, options);
+  EXPECT_FALSE(predicted.converged());
+  EXPECT_EQ(predicted.iterations, 1);
+  EXPECT_LT(predicted.iterations, plain.iterations);
+  EXPECT_NE(predicted.message.find("predicted"), std::string::npos) << predicted.message;
+
+  const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj.gz"));
+  const ricci::OneConeProblem flat = ricci::prepare_one_cone(torus, -1);
+  ricci::FlowOptions easy = ricci::one_cone_flow_options();
+  easy.give_up_on_short_first_step = true;
+  EXPECT_TRUE(ricci::flow(flat.mesh, flat.targets, easy).converged());
 }
 
 }  // namespace
@@ -247,17 +281,45 @@ TEST(OneConeAtlas, InversiveDistanceRouteIsNearlyConformalAndExact) {
   EXPECT_LT(r.relative_transition_residual(), 1e-9);
 }
 
-TEST(OneConeAtlas, InversiveDistanceRouteOnlyWhenAskedForOnASingleCone) {
+// The metric routes' order on a single cone: the inversive-distance route by default or when
+// asked for, never when another metric is asked for or there is no cone.
+TEST(OneConeAtlas, InversiveDistanceRouteByDefaultOrWhenAskedForOnASingleCone) {
   const ricci::Mesh genus2 = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
   const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj.gz"));
   ricci::OneConeAtlasOptions options;
-  EXPECT_FALSE(ricci::takes_inversive_distance_route(genus2, options));  // the default metric order
-  options.keep_metric = true;
+  EXPECT_TRUE(ricci::takes_inversive_distance_route(genus2, options));  // the default
+  EXPECT_FALSE(ricci::takes_inversive_distance_route(torus, options));  // no cone
+  options.keep_metric = true;  // circle packing asked for
+  EXPECT_FALSE(ricci::takes_inversive_distance_route(genus2, options));
   options.flow.scheme = ricci::Scheme::inversive_distance;
   EXPECT_TRUE(ricci::takes_inversive_distance_route(genus2, options));
   EXPECT_FALSE(ricci::takes_inversive_distance_route(torus, options));  // no cone
   options.inversive_distance_route = false;
   EXPECT_FALSE(ricci::takes_inversive_distance_route(genus2, options));
+}
+
+// By default the most conformal route that converges wins: on genus2_10k the inversive-distance
+// route (QC near 1), named in flow.metric_name with nothing refused; with the route switched
+// off (as when it fails), the circle packing with tangent circles at the cone, far less
+// conformal.
+TEST(OneConeAtlas, DefaultMetricIsTheMostConformalRouteThatConverges) {
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  const ricci::OneConeAtlasResult best = ricci::build_one_cone_atlas(mesh, options);
+  EXPECT_EQ(best.flow.metric.scheme, ricci::Scheme::inversive_distance);
+  EXPECT_EQ(best.flow.metric_name.rfind("inversive-distance route", 0), 0u) << best.flow.metric_name;
+  EXPECT_TRUE(best.flow.failed_attempts.empty());
+  EXPECT_LT(best.distortion.quasi_conformal_area_mean, 1.2);
+  EXPECT_EQ(best.atlas.layout.flipped_faces, 0);
+  EXPECT_LT(best.relative_transition_residual(), 1e-9);
+
+  options.inversive_distance_route = false;
+  const ricci::OneConeAtlasResult next = ricci::build_one_cone_atlas(mesh, options);
+  EXPECT_EQ(next.flow.metric.scheme, ricci::Scheme::circle_packing);
+  EXPECT_NE(next.flow.metric_name.find("tangent"), std::string::npos) << next.flow.metric_name;
+  EXPECT_GT(next.distortion.quasi_conformal_area_mean, best.distortion.quasi_conformal_area_mean + 0.2);
+  EXPECT_EQ(next.atlas.layout.flipped_faces, 0);
 }
 
 }  // namespace
