@@ -10,6 +10,7 @@ PACKAGES=(
   libsuitesparse-dev libopenblas0-pthread
   libgtest-dev
   chromium fonts-dejavu-core
+  python3-dev python3-pip python3-venv
 )
 # Node.js may come from another source (with its own npm); only ask Debian for it when absent.
 command -v node >/dev/null 2>&1 || PACKAGES+=(nodejs)
@@ -41,4 +42,23 @@ if [[ -f "$TOOLS/package-lock.json" ]]; then
   else
     echo "install-deps: tools/node_modules up to date" >&2
   fi
+fi
+
+# Python packages of the binding (python/), its tests and the batch runs, from PyPI into the
+# machine's python3 (the one CMake finds) when one of them is missing.
+PY_PACKAGES=(nanobind scikit-build-core numpy pytest dask distributed pandas pyarrow tqdm)
+PY_MODULES="nanobind,scikit_build_core,numpy,pytest,dask,distributed,pandas,pyarrow,tqdm"
+if ! python3 -c "import $PY_MODULES" 2>/dev/null; then
+  echo "install-deps: pip install ${PY_PACKAGES[*]}" >&2
+  PIP_FLAGS=(--quiet --disable-pip-version-check)
+  # Debian's python3 is "externally managed": pip needs to be told to install into it.
+  if python3 -c "import sys, sysconfig, os; sys.exit(not os.path.exists(os.path.join(
+      sysconfig.get_path('stdlib'), 'EXTERNALLY-MANAGED')))"; then
+    PIP_FLAGS+=(--break-system-packages)
+  fi
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+  $SUDO python3 -m pip install "${PIP_FLAGS[@]}" "${PY_PACKAGES[@]}"
+else
+  echo "install-deps: Python packages present" >&2
 fi

@@ -8,6 +8,7 @@
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <ricci/pipeline/one_cone_atlas.h>
+#include <msp/report/ricci_reports.h>
 #include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
@@ -55,84 +56,6 @@ void write_pictures(const Args& args, const std::string& path,
   }
 }
 
-// The fundamental polygon's boundary word, e.g. "a0 a1 a0^-1 a1^-1" (b: boundary loops).
-std::string polygon_word_text(const ricci::FundamentalPolygon& polygon) {
-  std::string text;
-  for (const auto& letter : polygon.word) {
-    if (!text.empty()) text += " ";
-    text += (letter.kind == ricci::PolygonLetter::Kind::loop ? "a" : "b") +
-            std::to_string(letter.index);
-    if (letter.sign < 0) text += "^-1";
-  }
-  return text;
-}
-
-nlohmann::json singularities_json(const ricci::OneConeAtlasResult& r) {
-  nlohmann::json list = nlohmann::json::array();
-  if (r.problem.cone >= 0) {
-    double K = r.flow.curvature[r.problem.cone];
-    list.push_back({{"vertex", r.chosen_vertex}, {"curvature", K}, {"cone_angle", 2 * M_PI - K}});
-  } else if (r.problem.kind == ricci::OneConeKind::PuncturedSphere) {
-    list.push_back({{"vertex", r.chosen_vertex}, {"removed_star", true}});
-  }
-  return list;
-}
-
-nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh,
-                           const ricci::OneConeAtlasResult& r) {
-  const auto& t = r.timings;
-  return {{"mesh", path},
-          {"vertices", mesh.n_vertices()},
-          {"faces", mesh.n_faces()},
-          {"genus", r.problem.genus},
-          {"boundary_loops", r.problem.boundary_loops},
-          {"kind", ricci::to_string(r.problem.kind)},
-          {"singularities", singularities_json(r)},
-          {"valence_splits", r.problem.valence_splits},
-          {"subdivisions", r.problem.subdivisions},
-          {"polish_error_before", r.polish.error_before},
-          {"polish_error_after", r.polish.error_after},
-          {"polish_iterations", r.polish.iterations},
-          {"polished", r.polished},
-          {"flows_for_choice", r.flows_for_choice},
-          {"solves_for_choice", r.solves_for_choice},
-          {"newton_iterations", r.flow.iterations},
-          {"metric", ricci::to_string(r.flow.metric.scheme)},
-          {"failed_metrics", r.flow.failed_attempts},
-          {"metric_route", r.flow.metric_name},
-          {"quasi_conformal_area_mean", r.distortion.quasi_conformal_area_mean},
-          {"max_curvature_error", r.flow.max_error},
-          {"transition_residual", r.relative_transition_residual()},
-          {"transition_residual_absolute",
-           std::max(r.atlas.max_transition_residual, r.atlas.max_side_pairing_residual)},
-          {"flipped_faces", r.atlas.layout.flipped_faces},
-          {"layout_length_error", r.atlas.layout.max_relative_length_error},
-          {"domain_length_error", r.atlas.domain_max_relative_length_error},
-          {"domain_length_error_absolute", r.atlas.domain_diameter > 0
-                                               ? r.atlas.domain_max_absolute_length_error / r.atlas.domain_diameter
-                                               : 0.0},
-          {"max_vertex_angle", r.atlas.layout.max_vertex_angle},
-          {"relator_residual", r.atlas.relator_holonomy_translation / std::max(r.atlas.domain_diameter, 1e-300)},
-          {"charts", r.atlas.charts.size()},
-          {"uncovered_faces", r.atlas.uncovered_faces},
-          {"polygon_word", polygon_word_text(r.atlas.polygon)},
-          {"canonical_word", r.atlas.polygon.canonical},
-          {"area_distortion", r.distortion.area_distortion},
-          {"angle_ratio_p05", r.distortion.angle_ratio_p05},
-          {"angle_ratio_p50", r.distortion.angle_ratio_p50},
-          {"angle_ratio_p95", r.distortion.angle_ratio_p95},
-          {"quasi_conformal_mean", r.distortion.quasi_conformal_mean},
-          {"quasi_conformal_max", r.distortion.quasi_conformal_max},
-          {"seconds", t.total},
-          {"stage_seconds",
-           {{"choice", t.choice},
-            {"valence", t.valence},
-            {"flow", t.flow},
-            {"polish", t.polish},
-            {"atlas", t.atlas},
-            {"distortion", t.distortion}}}};
-}
-
 }  // namespace
 
 const CommandSpec& atlas_command() {
@@ -175,7 +98,7 @@ int run_atlas(int argc, char** argv) {
   const std::string path = args.positionals()[0];
   const ricci::Mesh mesh = ricci::read_mesh(path);
   const ricci::OneConeAtlasResult result = ricci::build_one_cone_atlas(mesh, options);
-  nlohmann::json report = report_json(path, mesh, result);
+  nlohmann::json report = atlas_report_json(path, mesh, result);
   write_pictures(args, path, result, report);
   if (args.has("json")) {
     std::cout << report.dump() << "\n";

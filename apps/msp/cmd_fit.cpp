@@ -18,7 +18,7 @@
 #include "msp/flow_options.h"
 #include "msp/commands.h"
 #include "msp/fit_export.h"
-#include "msp/fit_report.h"
+#include "msp/report/fit_report.h"
 
 namespace msp {
 namespace {

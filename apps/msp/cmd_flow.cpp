@@ -4,6 +4,7 @@
 #include <iostream>
 #include <sstream>
 
+#include <msp/report/ricci_reports.h>
 #include <nlohmann/json.hpp>
 #include <ricci/flow/flow.h>
 #include <ricci/mesh/errors.h>
@@ -105,28 +106,7 @@ int run_flow(int argc, char** argv) {
     write_text_atomically(*out, lengths_text(mesh, result.lengths));
   }
   if (args.has("json")) {
-    nlohmann::json j;
-    j["mesh"] = path;
-    j["status"] = ricci::to_string(result.status);
-    j["iterations"] = result.iterations;
-    j["factorizations"] = result.factorizations;
-    j["max_curvature_error"] = result.max_error;
-    j["seconds"] = result.timings.total;
-    j["vertices"] = mesh.n_vertices();
-    j["faces"] = mesh.n_faces();
-    j["geometry"] = ricci::to_string(options.geometry);
-    j["metric"] = ricci::to_string(result.metric.scheme);
-    j["failed_attempts"] = result.failed_attempts;
-    j["method"] = ricci::to_string(options.method);
-    j["solver"] = ricci::to_string(result.solver);
-    j["error_history"] = result.error_history;
-    j["timings"] = {{"setup", result.timings.setup},
-                    {"evaluation", result.timings.evaluation},
-                    {"assembly", result.timings.assembly},
-                    {"analysis", result.timings.analysis},
-                    {"factorization", result.timings.factorization},
-                    {"solve", result.timings.solve}};
-    if (!result.converged()) j["message"] = result.message;
+    const nlohmann::json j = flow_report_json(path, mesh, options, result);
     std::cout << j.dump() << "\n";
   } else {
     std::cout << "status " << ricci::to_string(result.status) << "\niterations "

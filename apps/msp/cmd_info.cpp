@@ -10,6 +10,7 @@
 #include <ricci/mesh/diagnose.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/soup_io.h>
+#include <msp/report/ricci_reports.h>
 #include <nlohmann/json.hpp>
 
 #include "msp/cli.h"
@@ -18,50 +19,10 @@
 namespace msp {
 namespace {
 
-/// Genus as an integer when it is one (every 2-manifold), else the half-integer.
-nlohmann::ordered_json genus_json(double genus) {
-  if (genus == std::floor(genus)) return static_cast<long long>(genus);
-  return genus;
-}
-
 std::string genus_text(double genus) {
   std::ostringstream out;
   out << genus;
   return out.str();
-}
-
-bool has_triangles(const ricci::MeshDiagnosis& d);
-
-/// The keys in reading order (ordered_json), snake_case as the issue specifies.
-nlohmann::ordered_json to_json(const std::string& path, const ricci::MeshDiagnosis& d) {
-  nlohmann::ordered_json problems = nlohmann::ordered_json::array();
-  for (const auto& problem : d.problems) problems.push_back(problem.message);
-  return {{"file", path},
-          {"vertices", d.vertices},
-          {"edges", d.edges},
-          {"faces", d.faces},
-          {"components", d.components},
-          {"boundary_loops", d.boundary_loops},
-          {"euler_characteristic", d.euler_characteristic},
-          {"genus", genus_json(d.genus)},
-          {"manifold", d.edge_manifold && d.vertex_manifold},
-          {"edge_manifold", d.edge_manifold},
-          {"vertex_manifold", d.vertex_manifold},
-          {"orientable", d.orientable},
-          {"consistently_oriented", d.consistently_oriented},
-          {"clean_manifold", d.clean_manifold()},
-          {"degenerate_faces", d.degenerate_faces},
-          {"duplicate_vertices", d.duplicate_vertices},
-          {"duplicate_faces", d.duplicate_faces},
-          {"unreferenced_vertices", d.unreferenced_vertices},
-          {"non_triangle_faces", d.non_triangle_faces},
-          {"non_manifold_edges", d.non_manifold_edges},
-          {"non_manifold_vertices", d.non_manifold_vertices},
-          {"non_finite_vertices", d.non_finite_vertices},
-          {"boundary_edges", d.boundary_edges},
-          {"bbox_diagonal", d.bbox_diagonal},
-          {"min_angle_deg", has_triangles(d) ? nlohmann::ordered_json(d.min_angle_deg) : nlohmann::ordered_json()},
-          {"problems", problems}};
 }
 
 bool has_triangles(const ricci::MeshDiagnosis& d) { return d.non_triangle_faces < d.faces; }
@@ -121,7 +82,7 @@ int run_info(int argc, char** argv) {
   const ricci::PolygonSoup soup = ricci::read_soup(path);  // throws IOError: main() reports it
   const ricci::MeshDiagnosis diagnosis = ricci::diagnose(soup);
   if (args.has("json"))
-    std::cout << to_json(path, diagnosis).dump(2) << "\n";
+    std::cout << mesh_info_json(path, diagnosis).dump(2) << "\n";
   else
     print_text(std::cout, path, diagnosis);
   std::cout.flush();

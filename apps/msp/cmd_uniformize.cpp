@@ -5,6 +5,7 @@
 // Poincaré-disk picture of a few rings of the universal cover.
 #include <iostream>
 
+#include <msp/report/ricci_reports.h>
 #include <nlohmann/json.hpp>
 #include <ricci/hyperbolic/klein.h>
 #include <ricci/hyperbolic/uniformize.h>
@@ -19,81 +20,6 @@
 namespace msp {
 
 namespace {
-
-nlohmann::json complex_json(ricci::Complex z) { return {z.real(), z.imag()}; }
-
-/// a1 b1 a2 b2 ... for the canonical generators.
-std::string generator_name(size_t i) {
-  return std::string(i % 2 == 0 ? "a" : "b") + std::to_string(i / 2 + 1);
-}
-
-nlohmann::json generators_json(const ricci::Uniformization& u) {
-  nlohmann::json list = nlohmann::json::array();
-  for (size_t i = 0; i < u.group.generators.size(); ++i) {
-    const ricci::Mobius& g = u.group.generators[i];
-    nlohmann::json j;
-    j["name"] = generator_name(i);
-    j["theta"] = g.theta();
-    j["exp_i_theta"] = complex_json(std::polar(1.0, g.theta()));
-    if (u.geometry == ricci::Geometry::hyperbolic) {
-      // z -> e^{i theta} (z - z0) / (1 - conj(z0) z)
-      j["z0"] = complex_json(g.z0());
-      const Eigen::Matrix3d l = ricci::lorentz_matrix(g);
-      j["klein"] = {{l(0, 0), l(0, 1), l(0, 2)}, {l(1, 0), l(1, 1), l(1, 2)}, {l(2, 0), l(2, 1), l(2, 2)}};
-      j["translation_length"] = 2.0 * std::acosh(std::max(1.0, 0.5 * std::abs(g.m.trace().real())));
-    } else {
-      // z -> e^{i theta} z + t (a translation on the flat torus)
-      j["translation"] = complex_json(g(0.0));
-    }
-    j["word"] = u.group.basis.generators[i].size();
-    list.push_back(j);
-  }
-  return list;
-}
-
-nlohmann::json result_json(const std::string& path, const ricci::Mesh& mesh,
-                           const ricci::Uniformization& u) {
-  nlohmann::json j;
-  j["mesh"] = path;
-  j["vertices"] = mesh.n_vertices();
-  j["faces"] = mesh.n_faces();
-  j["geometry"] = ricci::to_string(u.geometry);
-  j["genus"] = u.genus;
-  j["double_cover"] = u.doubled;
-  j["metric"] = ricci::to_string(u.flow.metric.scheme);
-  j["iterations"] = u.flow.iterations;
-  j["max_curvature_error"] = u.flow.max_error;
-  j["generators"] = generators_json(u);
-  j["relation_residual"] = u.group.relation_residual;
-  j["seconds"] = u.timings.total;
-  j["timings"] = {{"double_cover", u.timings.double_cover}, {"flow", u.timings.flow},
-                  {"cut", u.timings.cut}, {"layout", u.timings.layout},
-                  {"polish", u.timings.polish}, {"group", u.timings.group}};
-  if (u.geometry == ricci::Geometry::spherical) {
-    j["sphere"] = {{"max_radius_error", u.sphere.max_radius_error},
-                   {"flipped_faces", u.sphere.flipped_faces},
-                   {"centroid_norm", u.sphere.centroid_norm}};
-  } else {
-    j["polygon_residual"] = u.group.polygon_residual;
-    j["relation_residual_direct"] = u.group.relation_residual_direct;
-    j["side_spread"] = u.pairings.max_spread;
-    if (u.geometry == ricci::Geometry::hyperbolic) {
-      j["polish"] = {{"curvature_error_before", u.polish.error_before},
-                     {"curvature_error_after", u.polish.error_after},
-                     {"iterations", u.polish.iterations}};
-    }
-    j["sides"] = 2 * u.pairings.arcs.size();
-    j["layout"] = {{"seed_face", u.layout.seed_face},
-                   {"flipped_faces", u.layout.flipped_faces},
-                   {"max_relative_length_error", u.layout.max_relative_length_error},
-                   {"max_radius", u.layout.max_radius}};
-  }
-  if (u.geometry == ricci::Geometry::euclidean) {
-    j["modulus"] = complex_json(u.modulus);
-    j["reduced_modulus"] = complex_json(u.reduced_modulus);
-  }
-  return j;
-}
 
 void print_summary(const ricci::Mesh& mesh, const ricci::Uniformization& u) {
   std::cout << "geometry " << ricci::to_string(u.geometry) << "\ngenus " << u.genus
@@ -163,7 +89,7 @@ int run_uniformize(int argc, char** argv) {
     write_text_atomically(*out, uniformization_svg(u, svg));
   }
   if (args.has("json")) {
-    std::cout << result_json(path, mesh, u).dump() << "\n";
+    std::cout << uniformize_report_json(path, mesh, u).dump() << "\n";
   } else {
     print_summary(mesh, u);
   }

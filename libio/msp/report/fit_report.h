@@ -1,5 +1,6 @@
 #pragma once
-// The JSON report of `msp fit` (issue 6): spline::fit_surface's figures under the report's keys.
+// The JSON report of `msp fit` (issue 6) and of the Python binding's fit: spline::fit_surface's
+// figures under the report's keys.
 #include <string>
 
 #include <spline/surface/fit_surface.h>

@@ -1,4 +1,4 @@
-#include "msp/fit_report.h"
+#include "msp/report/fit_report.h"
 
 #include <algorithm>
 #include <cmath>
