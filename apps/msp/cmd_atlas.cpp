@@ -96,7 +96,8 @@ nlohmann::json report_json(const std::string& path, const ricci::Mesh& mesh,
           {"polished", r.polished},
           {"flows_for_choice", r.flows_for_choice},
           {"newton_iterations", r.flow.iterations},
-          {"metric", ricci::to_string(r.flow.metric.scheme)},
+          {"metric", r.intrinsic ? "intrinsic-delaunay" : ricci::to_string(r.flow.metric.scheme)},
+          {"intrinsic_flips", r.intrinsic_flips},
           {"failed_metrics", r.flow.failed_attempts},
           {"max_curvature_error", r.flow.max_error},
           {"transition_residual", r.relative_transition_residual()},
@@ -138,7 +139,9 @@ const CommandSpec& atlas_command() {
       "one-cone flat metric, cut graph, layout and affine atlas",
       {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
       {singularity_option(),
-       metric_option("chosen per surface, falling back to the others if it fails"),
+       metric_option("chosen per surface, falling back to the others and then to "
+                     "intrinsic-delaunay if they fail",
+                     true),
        radii_option(),
        tolerance_option("1e-10"),
        {"output", "PICTURE.svg", "write the fundamental domain and its neighbouring copies"},
@@ -160,9 +163,14 @@ int run_atlas(int argc, char** argv) {
   }
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
-  if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
+  const bool intrinsic = args.get_or("metric", "") == "intrinsic-delaunay";
+  if (intrinsic) {
+    options.route = ricci::FlowRoute::intrinsic_delaunay;
+  } else if (args.has("metric")) {
+    options.flow.scheme = parse_scheme(*args.get("metric"));
+  }
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
-  options.keep_metric = args.has("metric") || args.has("radii");
+  options.keep_metric = (args.has("metric") && !intrinsic) || args.has("radii");
   options.flow.tolerance = args.get_double("tolerance", 1e-10);
   if (!args.has("quiet")) {
     options.progress = [](const std::string& stage) {

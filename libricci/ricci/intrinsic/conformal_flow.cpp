@@ -134,10 +134,16 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
   Eigen::VectorXd gradient = eval.curvature - target;
   double error = gradient.cwiseAbs().maxCoeff();
   Stopwatch clock;
+  double best = error;
+  int since_best = 0;
   for (int iteration = 0; error > tolerance; ++iteration) {
     if (iteration >= max_iterations) {
       reason = "iteration budget spent";
       return FlowStatus::max_iterations;
+    }
+    if (error < options.freeze_connectivity_below && since_best >= options.plateau_iterations) {
+      reason = "rounding plateau: no progress in " + std::to_string(since_best) + " iterations";
+      return FlowStatus::stalled;
     }
     clock.restart();
     const Eigen::SparseMatrix<double> lower = reduced_laplacian(tri, eval.cotangents, pinned);
@@ -208,6 +214,12 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
       return FlowStatus::stalled;
     }
     ++result.iterations;
+    if (error < 0.5 * best) {
+      best = error;
+      since_best = 0;
+    } else {
+      ++since_best;
+    }
     result.max_error = (eval.curvature - result.target).cwiseAbs().maxCoeff();
     result.error_history.push_back(result.max_error);
     if (options.progress)
@@ -254,6 +266,22 @@ IntrinsicFlowResult intrinsic_conformal_flow(IntrinsicTriangulation initial,
   if (!result.converged()) result.message = failure_message(result, reason);
   result.timings.total = start.seconds();
   return result;
+}
+
+FlowResult to_flow_result(const IntrinsicFlowResult& r) {
+  FlowResult flow;
+  flow.status = r.status;
+  flow.message = r.message;
+  flow.u = r.u;
+  flow.curvature = r.curvature;
+  flow.target = r.target;
+  flow.error_history = r.error_history;
+  flow.iterations = r.iterations;
+  flow.factorizations = r.factorizations;
+  flow.max_error = r.max_error;
+  flow.solver = r.solver;
+  flow.timings = r.timings;
+  return flow;
 }
 
 }  // namespace ricci

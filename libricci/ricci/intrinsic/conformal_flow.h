@@ -44,6 +44,10 @@ struct IntrinsicFlowOptions {
   /// finishes on it (quadratically; at the answer it is Delaunay up to this order). Flipping to
   /// the end can make Newton circle between the triangulations of nearly co-circular quads.
   double freeze_connectivity_below = 1e-6;
+  /// Below freeze_connectivity_below, the flow stops (stalled) after this many iterations
+  /// without halving max |K - K̄|: the double evaluation's rounding floor (long needles next to
+  /// a large cone), which a long-double polish (metric/polish_e2.h) can pass.
+  int plateau_iterations = 12;
   /// Optional progress report, after each Newton iteration.
   std::function<void(const FlowProgress&)> progress;
 };
@@ -78,5 +82,10 @@ struct IntrinsicFlowResult {
 [[nodiscard]] IntrinsicFlowResult intrinsic_conformal_flow(
     IntrinsicTriangulation initial, const Eigen::VectorXd& target,
     const IntrinsicFlowOptions& options = {});
+
+/// The result's figures (status, message, u, curvature, target, history, iterations,
+/// factorisations, error, solver, timings) as a FlowResult, whose metric and lengths stay empty
+/// (the lengths belong to the flipped triangulation: to_mesh).
+[[nodiscard]] FlowResult to_flow_result(const IntrinsicFlowResult& result);
 
 }  // namespace ricci

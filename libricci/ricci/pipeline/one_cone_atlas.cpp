@@ -116,27 +116,28 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   if (!result.flow.message.empty()) failures.push_back(result.flow.message);
   const IntrinsicFlowResult r =
       intrinsic_conformal_flow(result.problem.mesh, result.problem.targets, settings);
-  FlowResult flow;
-  flow.status = r.status;
-  flow.message = r.message;
-  flow.u = r.u;
-  flow.curvature = r.curvature;
-  flow.target = r.target;
-  flow.error_history = r.error_history;
-  flow.iterations = r.iterations;
-  flow.factorizations = r.factorizations;
-  flow.max_error = r.max_error;
-  flow.solver = r.solver;
-  flow.timings = r.timings;
+  FlowResult flow = to_flow_result(r);
   flow.failed_attempts = failures;
   result.intrinsic_flips = r.flips;
-  if (r.converged()) {
-    if (!is_simplicial(r.triangulation)) {
-      flow.status = FlowStatus::stalled;
-      flow.message = "the intrinsic Delaunay triangulation has a loop or a double edge "
-                     "(not supported by the atlas)";
-    } else {
-      IntrinsicMesh domain = to_mesh(r.triangulation, r.u, to_arrays(result.problem.mesh).V);
+  // A flow stopped at its rounding floor is finished by the long-double polish.
+  const bool near = r.converged() || r.max_error < settings.freeze_connectivity_below;
+  if (near && !is_simplicial(r.triangulation)) {
+    flow.status = FlowStatus::stalled;
+    flow.message = "the intrinsic Delaunay triangulation has a loop or a double edge "
+                   "(not supported by the atlas)";
+  } else if (near) {
+    IntrinsicMesh domain = to_mesh(r.triangulation, r.u, to_arrays(result.problem.mesh).V);
+    if (!r.converged()) {
+      const PolishE2Result polish =
+          polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature);
+      if (polish.error_after <= settings.tolerance) {
+        domain.lengths = polish.lengths;
+        flow.status = FlowStatus::converged;
+        flow.message.clear();
+        flow.max_error = polish.error_after;
+      }
+    }
+    if (flow.status == FlowStatus::converged) {
       result.problem.mesh = std::move(domain.mesh);
       flow.lengths = std::move(domain.lengths);
       result.intrinsic = true;
@@ -191,7 +192,10 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   };
   OneConeAtlasResult result;
   result.chosen_vertex = options.singular_vertex;
-  const bool intrinsic_only = options.route == FlowRoute::intrinsic_delaunay;
+  const bool intrinsic_only =
+      options.route == FlowRoute::intrinsic_delaunay ||
+      (options.route == FlowRoute::automatic && needs_singular_vertex(mesh) &&
+       surface_topology(mesh).genus >= options.intrinsic_from_genus);
   bool fixed_failed = false;  // no candidate vertex converged with the fixed-connectivity flows
   if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
     report("choosing the singular vertex");

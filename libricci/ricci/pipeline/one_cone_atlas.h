@@ -21,7 +21,8 @@ namespace ricci {
 /// Which flow computes the one-cone metric.
 enum class FlowRoute {
   /// The fixed-connectivity flows (flow.h); where they do not converge (or no candidate
-  /// singular vertex converges), the intrinsic Delaunay flow.
+  /// singular vertex converges), the intrinsic Delaunay flow; closed surfaces of genus
+  /// intrinsic_from_genus or more take the intrinsic flow directly.
   automatic,
   fixed_connectivity,  ///< flow.h's circle-packing family only
   /// intrinsic/conformal_flow.h only (closed surfaces: single cones and flat tori); the
@@ -43,6 +44,9 @@ struct OneConeAtlasOptions {
   /// tolerance, solver and progress are taken from `flow`).
   FlowRoute route = FlowRoute::automatic;
   IntrinsicFlowOptions intrinsic;
+  /// automatic: closed surfaces of this genus or more take the intrinsic flow directly (the
+  /// fixed-connectivity flows break triangles under cones of -12 pi and beyond).
+  int intrinsic_from_genus = 4;
   /// Collapse of edges much shorter than the median (mesh/collapse_short_edges.h) before
   /// anything else; the singular vertex is kept. The problem's `input_vertex` maps back.
   bool collapse_short_edges = false;
