@@ -43,7 +43,7 @@ struct IntrinsicFlowOptions {
   /// Once max |K - K̄| is below this (radians), the triangulation stops flipping and Newton
   /// finishes on it (quadratically; at the answer it is Delaunay up to this order). Flipping to
   /// the end can make Newton circle between the triangulations of nearly co-circular quads.
-  double freeze_connectivity_below = 1e-6;
+  double freeze_connectivity_below = 1e-4;
   /// Below freeze_connectivity_below, the flow stops (stalled) after this many iterations
   /// without halving max |K - K̄|: the double evaluation's rounding floor (long needles next to
   /// a large cone), which a long-double polish (metric/polish_e2.h) can pass.
