@@ -37,9 +37,11 @@ namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
 
+}  // namespace
+
 // Lower triangle of the cotangent Laplacian plus 1e-8 times its mean diagonal (SPD without
 // pinning a vertex): the one linear system a single-solve method factorises.
-Sparse regularised_cotangent_laplacian(const ricci::Mesh& mesh) {
+Eigen::SparseMatrix<double> regularised_cotangent_laplacian(const ricci::Mesh& mesh) {
   const ricci::MeshTables t = ricci::build_mesh_tables(mesh);
   const Eigen::MatrixX3d angles =
       ricci::corner_angles(t, ricci::mesh_edge_lengths(mesh), ricci::Geometry::euclidean);
@@ -58,14 +60,14 @@ Sparse regularised_cotangent_laplacian(const ricci::Mesh& mesh) {
   }
   const double shift = 1e-8 * diagonal / t.num_vertices();
   for (int v = 0; v < t.num_vertices(); ++v) triplets.emplace_back(v, v, shift);
-  Sparse L(t.num_vertices(), t.num_vertices());
+  Eigen::SparseMatrix<double> L(t.num_vertices(), t.num_vertices());
   L.setFromTriplets(triplets.begin(), triplets.end());
   L.makeCompressed();
   return L;
 }
 
 // Best of 3: CHOLMOD supernodal analyse + factorise + solve.
-double one_cholesky_seconds(const Sparse& L) {
+double one_cholesky_seconds(const Eigen::SparseMatrix<double>& L) {
   double best = 1e300;
   const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(L.rows());
   for (int r = 0; r < 3; ++r) {
@@ -79,8 +81,6 @@ double one_cholesky_seconds(const Sparse& L) {
   }
   return best;
 }
-
-}  // namespace
 
 double cotangent_cholesky_seconds(const ricci::Mesh& mesh) {
   return one_cholesky_seconds(regularised_cotangent_laplacian(mesh));

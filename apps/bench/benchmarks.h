@@ -2,6 +2,8 @@
 // Entry points of the msp-bench benchmarks (one file each), dispatched by bench/main.cpp.
 #include <string>
 
+#include <Eigen/SparseCore>
+
 #include "ricci/mesh/mesh.h"
 
 namespace msp::bench {
@@ -30,6 +32,12 @@ int run_loop_benchmark(int argc, char** argv);    // bench_loop.cpp
 int run_fill_benchmark(int argc, char** argv);    // bench_fill.cpp
 int run_one_cone_benchmark(int argc, char** argv);  // bench_one_cone.cpp
 int run_one_cone_case(int argc, char** argv);       // bench_one_cone.cpp
+int run_intrinsic_benchmark(int argc, char** argv);  // bench_intrinsic.cpp
+
+/// Lower triangle of the mesh's cotangent Laplacian plus 1e-8 times its mean diagonal (SPD).
+Eigen::SparseMatrix<double> regularised_cotangent_laplacian(const ricci::Mesh& mesh);  // bench_one_cone.cpp
+/// Best of 3 CHOLMOD supernodal analyse + factorise + solve of `L`, seconds.
+double one_cholesky_seconds(const Eigen::SparseMatrix<double>& L);  // bench_one_cone.cpp
 int run_uniformize_benchmark(int argc, char** argv);  // bench_uniformize.cpp
 /// The delivered .glb measured against its scan from outside (issue 15's checker).
 int run_check_glb(int argc, char** argv);  // bench_check_glb.cpp

@@ -42,6 +42,8 @@ const Benchmark kBenchmarks[] = {
     {"one-cone", msp::bench::run_one_cone_benchmark,
      "issue 8: whole one-cone pipeline per bench/genus 1-3 mesh vs one Cholesky [--million] [--metric M]"},
     {"one-cone-one", msp::bench::run_one_cone_case, "one row of 'one-cone' in this process"},
+    {"intrinsic", msp::bench::run_intrinsic_benchmark,
+     "issue 20: one cone by the intrinsic Delaunay flow on genus 4-10 slabs [--faces N,...]"},
     {"topology", msp::bench::run_topology_benchmark,
      "cut graph + slicing on the bench meshes; cut, layout and atlas on flat torus grids"},
     {"eval", msp::bench::run_eval_benchmark,

@@ -103,8 +103,10 @@ OptionSpec json_option() {
 
 OptionSpec quiet_option() { return {"quiet", "", "print no progress lines on stderr"}; }
 
-OptionSpec metric_option(const std::string& fallback) {
-  return {"metric", "circle-packing|inversive-distance|combinatorial",
+OptionSpec metric_option(const std::string& fallback, bool intrinsic) {
+  return {"metric",
+          intrinsic ? "circle-packing|inversive-distance|combinatorial|intrinsic-delaunay"
+                    : "circle-packing|inversive-distance|combinatorial",
           "the discrete conformal metric, used alone (without it: " + fallback + ")"};
 }
 

@@ -88,7 +88,9 @@ struct CommandSpec {
 [[nodiscard]] OptionSpec quiet_option();  ///< --quiet: no progress lines on stderr.
 /// --metric circle-packing|inversive-distance|combinatorial: that metric alone, no fall-back to
 /// the others (with --radii too); `fallback` says what happens without it.
-[[nodiscard]] OptionSpec metric_option(const std::string& fallback);
+/// --metric; `intrinsic` adds intrinsic-delaunay (the vertex-scaling flow with intrinsic
+/// Delaunay flips, ricci/intrinsic/conformal_flow.h) for the commands that offer it.
+[[nodiscard]] OptionSpec metric_option(const std::string& fallback, bool intrinsic = false);
 [[nodiscard]] OptionSpec radii_option();   ///< --radii mean|min|least-squares.
 [[nodiscard]] OptionSpec solver_option();  ///< --solver auto|eigen-ldlt|...
 /// --tolerance T: the flow's stopping tolerance on max |K - target|, default `fallback`.

@@ -64,7 +64,9 @@ const CommandSpec& atlas_command() {
       "one-cone flat metric, cut graph, layout and affine atlas",
       {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
       {singularity_option(),
-       metric_option("chosen per surface, falling back to the others if it fails"),
+       metric_option("chosen per surface, falling back to the others and then to "
+                     "intrinsic-delaunay if they fail",
+                     true),
        radii_option(),
        tolerance_option("1e-10"),
        {"output", "PICTURE.svg", "write the fundamental domain and its neighbouring copies"},
@@ -86,9 +88,14 @@ int run_atlas(int argc, char** argv) {
   }
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
-  if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
+  const bool intrinsic = args.get_or("metric", "") == "intrinsic-delaunay";
+  if (intrinsic) {
+    options.route = ricci::FlowRoute::intrinsic_delaunay;
+  } else if (args.has("metric")) {
+    options.flow.scheme = parse_scheme(*args.get("metric"));
+  }
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
-  options.keep_metric = args.has("metric") || args.has("radii");
+  options.keep_metric = (args.has("metric") && !intrinsic) || args.has("radii");
   options.flow.tolerance = args.get_double("tolerance", 1e-10);
   if (!args.has("quiet")) {
     options.progress = [](const std::string& stage) {

@@ -7,6 +7,7 @@
 #include <msp/report/ricci_reports.h>
 #include <nlohmann/json.hpp>
 #include <ricci/flow/flow.h>
+#include <ricci/intrinsic/conformal_flow.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <ricci/metric/mesh_tables.h>
@@ -46,6 +47,18 @@ std::string lengths_text(const ricci::Mesh& mesh, const ricci::EdgeLengths& leng
   return out.str();
 }
 
+// One line 'from to length' per edge of the flipped triangulation (its own edges).
+std::string lengths_text(const ricci::IntrinsicTriangulation& tri, const Eigen::VectorXd& u) {
+  std::ostringstream out;
+  out << std::setprecision(17);
+  for (int e = 0; e < tri.edge_count(); ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    out << tri.tail[static_cast<size_t>(h)] << " " << tri.head(h) << " "
+        << std::exp(tri.log_length_at(e, u)) << "\n";
+  }
+  return out.str();
+}
+
 }  // namespace
 
 const CommandSpec& flow_command() {
@@ -54,7 +67,9 @@ const CommandSpec& flow_command() {
       "discrete Ricci flow to a target curvature (E2, H2, S2)",
       {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
       {{"geometry", "euclidean|hyperbolic|spherical", "the background geometry (euclidean)"},
-       metric_option("inversive-distance, falling back to the others if it fails"),
+       metric_option("inversive-distance, falling back to the others and then (closed, "
+                     "euclidean) to intrinsic-delaunay if they fail",
+                     true),
        radii_option(),
        {"target", "uniform|cone:VERTEX|boundary|boundary-loop",
         "the target curvature: uniform, one cone at VERTEX, flat with a curved boundary spread "
@@ -63,7 +78,9 @@ const CommandSpec& flow_command() {
        solver_option(),
        tolerance_option("1e-10"),
        {"max-iterations", "N", "at most N Newton or gradient steps"},
-       {"lengths-out", "FILE", "write the flat metric: one line 'from to length' per edge"},
+       {"lengths-out", "FILE",
+        "write the flat metric: one line 'from to length' per edge (intrinsic-delaunay: per "
+        "edge of the flipped triangulation)"},
        quiet_option(),
        json_option()}};
   return spec;
@@ -73,7 +90,9 @@ int run_flow(int argc, char** argv) {
   const Args args(argc, argv, flow_command());
   ricci::FlowOptions options;
   options.geometry = parse_geometry(args.get_or("geometry", "euclidean"));
-  options.scheme = parse_scheme(args.get_or("metric", "inversive-distance"));
+  const bool intrinsic_only = args.get_or("metric", "") == "intrinsic-delaunay";
+  options.scheme = intrinsic_only ? ricci::Scheme::inversive_distance
+                                  : parse_scheme(args.get_or("metric", "inversive-distance"));
   // Without an explicit --metric, try the conformal metrics first and fall back (reported).
   options.fall_back_to_other_metrics = !args.has("metric") && !args.has("radii");
   options.radii = parse_radii(args.get_or("radii", "min"));
@@ -100,20 +119,48 @@ int run_flow(int argc, char** argv) {
   const ricci::Mesh mesh = ricci::read_mesh(path);
   const ricci::Targets targets =
       parse_target(args.get_or("target", "uniform"), mesh, options.geometry);
-  const ricci::FlowResult result = ricci::flow(mesh, targets, options);
+  if (intrinsic_only && options.geometry != ricci::Geometry::euclidean) {
+    throw UsageError("--metric intrinsic-delaunay needs --geometry euclidean");
+  }
+  // The intrinsic flow runs alone when asked, and after the fixed-connectivity metrics when
+  // they all fail on a closed surface in E2 (reported as `metric`).
+  ricci::FlowResult result;
+  if (!intrinsic_only) result = ricci::flow(mesh, targets, options);
+  const bool closed_e2 = options.geometry == ricci::Geometry::euclidean &&
+                         ricci::build_mesh_tables(mesh).boundary_loops.empty();
+  std::string metric = intrinsic_only ? "intrinsic-delaunay" : ricci::to_string(result.metric.scheme);
+  int flips = 0;
+  ricci::IntrinsicFlowResult intrinsic;
+  if (intrinsic_only || (!result.converged() && options.fall_back_to_other_metrics && closed_e2)) {
+    ricci::IntrinsicFlowOptions settings;
+    settings.tolerance = options.tolerance;
+    settings.solver = options.solver;
+    settings.progress = options.progress;
+    if (args.has("max-iterations")) settings.max_iterations = options.max_newton_iterations;
+    std::vector<std::string> failures = result.failed_attempts;
+    if (!intrinsic_only) failures.push_back(result.message);
+    intrinsic = ricci::intrinsic_conformal_flow(mesh, targets, settings);
+    result = ricci::to_flow_result(intrinsic);
+    result.failed_attempts = failures;
+    metric = "intrinsic-delaunay";
+    flips = intrinsic.flips;
+  }
 
   if (auto out = args.get("lengths-out"); out && result.converged()) {
-    write_text_atomically(*out, lengths_text(mesh, result.lengths));
+    write_text_atomically(*out, metric == "intrinsic-delaunay"
+                                    ? lengths_text(intrinsic.triangulation, intrinsic.u)
+                                    : lengths_text(mesh, result.lengths));
   }
   if (args.has("json")) {
-    const nlohmann::json j = flow_report_json(path, mesh, options, result);
+    nlohmann::json j = flow_report_json(path, mesh, options, result);
+    j["metric"] = metric;  // the intrinsic flow, when it ran
+    j["intrinsic_flips"] = flips;
     std::cout << j.dump() << "\n";
   } else {
     std::cout << "status " << ricci::to_string(result.status) << "\niterations "
               << result.iterations << "\nmax_curvature_error " << result.max_error
               << "\nseconds " << result.timings.total << "\nvertices " << mesh.n_vertices()
-              << "\nfaces " << mesh.n_faces() << "\nmetric "
-              << ricci::to_string(result.metric.scheme) << "\n";
+              << "\nfaces " << mesh.n_faces() << "\nmetric " << metric << "\n";
   }
   if (!result.converged()) throw ricci::SolverError(result.message);
   return 0;

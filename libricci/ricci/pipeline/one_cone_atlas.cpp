@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/util/stopwatch.h"
@@ -56,10 +57,9 @@ void map_problem_to_input(OneConeAtlasResult& result) {
   result.problem.chosen_vertex = result.chosen_vertex;
 }
 
-// Clean-up, valence modification and flow: the cone-ring metrics first (single cones), then,
-// when `fall_back`, solve_one_cone_flow. Fills result's problem, flow and their timings.
-void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, OneConeAtlasResult& result,
-                       const std::function<void(const char*)>& report, bool fall_back) {
+// Clean-up, valence modification and cone refinement: fills result's problem and timings.
+void prepare_problem(const Mesh& mesh, const OneConeAtlasOptions& options,
+                     OneConeAtlasResult& result, const std::function<void(const char*)>& report) {
   Stopwatch t;
   Mesh cleaned;
   const Mesh* surface = &mesh;  // no copy of the input unless it is cleaned up
@@ -76,9 +76,15 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
   map_problem_to_input(result);
   result.cone_refinement = refine_around_cone(result.problem, options.cone_refinement);
   result.timings.valence = t.seconds();
+}
 
+// prepare_problem, then the flow: the cone-ring metrics first (single cones), then, when
+// `fall_back`, solve_one_cone_flow. Fills result's problem, flow and their timings.
+void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, OneConeAtlasResult& result,
+                       const std::function<void(const char*)>& report, bool fall_back) {
+  prepare_problem(mesh, options, result, report);
   report("Ricci flow");
-  t.restart();
+  Stopwatch t;
   result.flow = FlowResult();
   if (result.problem.kind == OneConeKind::SingleCone && !options.cone_ring_metrics.empty()) {
     result.flow = solve_cone_ring_flow(result.problem, options.cone_ring_metrics, options.flow, options.continuation);
@@ -125,7 +131,67 @@ void polish_lengths(const OneConeAtlasOptions& options, OneConeAtlasResult& resu
   }
 }
 
+bool intrinsic_applies(const OneConeProblem& problem) {
+  return problem.kind == OneConeKind::SingleCone || problem.kind == OneConeKind::FlatTorus;
+}
+
+// The intrinsic Delaunay flow on the problem's mesh and targets. When it converges, the problem's
+// mesh becomes its triangulation (vertices kept) and result.flow carries its figures and
+// lengths; the failures of earlier flows stay listed in flow.failed_attempts.
+void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& result,
+                     const std::function<void(const char*)>& report) {
+  report("intrinsic Delaunay flow");
+  Stopwatch t;
+  IntrinsicFlowOptions settings = options.intrinsic;
+  settings.tolerance = options.flow.tolerance;
+  settings.solver = options.flow.solver;
+  settings.progress = options.flow.progress;
+  std::vector<std::string> failures = result.flow.failed_attempts;
+  if (!result.flow.message.empty()) failures.push_back(result.flow.message);
+  const IntrinsicFlowResult r =
+      intrinsic_conformal_flow(result.problem.mesh, result.problem.targets, settings);
+  FlowResult flow = to_flow_result(r);
+  flow.failed_attempts = failures;
+  result.intrinsic_flips = r.flips;
+  // A flow stopped at its rounding floor is finished by the long-double polish.
+  const bool near = r.converged() || r.max_error < settings.freeze_connectivity_below;
+  if (near && !is_simplicial(r.triangulation)) {
+    flow.status = FlowStatus::stalled;
+    flow.message = "the intrinsic Delaunay triangulation has a loop or a double edge "
+                   "(not supported by the atlas)";
+  } else if (near) {
+    IntrinsicMesh domain = to_mesh(r.triangulation, r.u, to_arrays(result.problem.mesh).V);
+    if (!r.converged()) {
+      const PolishE2Result polish =
+          polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature);
+      if (polish.error_after <= settings.tolerance) {
+        domain.lengths = polish.lengths;
+        flow.status = FlowStatus::converged;
+        flow.message.clear();
+        flow.max_error = polish.error_after;
+      }
+    }
+    if (flow.status == FlowStatus::converged) {
+      result.problem.mesh = std::move(domain.mesh);
+      flow.lengths = std::move(domain.lengths);
+      result.intrinsic = true;
+    }
+  }
+  result.flow = std::move(flow);
+  result.timings.flow += t.seconds();
+}
+
 }  // namespace
+
+std::string to_string(FlowRoute route) {
+  switch (route) {
+    case FlowRoute::fixed_connectivity:
+      return "fixed-connectivity";
+    case FlowRoute::intrinsic_delaunay:
+      return "intrinsic-delaunay";
+    default: return "automatic";
+  }
+}
 
 OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options) {
   OneConeAtlasOptions route = options;
@@ -162,6 +228,11 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   };
   OneConeAtlasResult result;
   result.chosen_vertex = options.singular_vertex;
+  const bool intrinsic_only =
+      options.route == FlowRoute::intrinsic_delaunay ||
+      (options.route == FlowRoute::automatic && needs_singular_vertex(mesh) &&
+       surface_topology(mesh).genus >= options.intrinsic_from_genus);
+  bool fixed_failed = false;  // no candidate vertex converged with the fixed-connectivity flows
   if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
     report("choosing the singular vertex");
     Stopwatch t;
@@ -173,14 +244,33 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     // The plain inversive-distance flow the route replaces fails at most candidates of a
     // marching-cubes or CAD mesh: rank them with the default metrics instead.
     choice.keep_metric = options.keep_metric && !takes_inversive_distance_route(mesh, options);
-    SingularityChoice chosen = choose_singularity(mesh, choice);
-    result.chosen_vertex = chosen.vertex;
-    result.flows_for_choice = chosen.flows_run;
-    result.solves_for_choice = chosen.linear_solves;
+    if (intrinsic_only) {
+      result.chosen_vertex = rank_singularities(mesh, choice).front().vertex;
+    } else {
+      try {
+        SingularityChoice chosen = choose_singularity(mesh, choice);
+        result.chosen_vertex = chosen.vertex;
+        result.flows_for_choice = chosen.flows_run;
+        result.solves_for_choice = chosen.linear_solves;
+      } catch (const SolverError& error) {
+        if (options.route == FlowRoute::fixed_connectivity) throw;
+        // No candidate converged with fixed connectivity: the intrinsic flow converges at any
+        // vertex; take the linear model's best.
+        result.chosen_vertex = rank_singularities(mesh, choice).front().vertex;
+        result.flow.failed_attempts.push_back(error.what());
+        fixed_failed = true;
+      }
+    }
     result.timings.choice = t.seconds();
   }
 
-  if (takes_inversive_distance_route(mesh, options)) {
+  if (intrinsic_only || fixed_failed) {
+    prepare_problem(mesh, options, result, report);
+    if (!intrinsic_applies(result.problem)) {
+      throw InvalidInputError("the intrinsic Delaunay flow needs a closed surface of genus >= 1");
+    }
+    solve_intrinsic(options, result, report);
+  } else if (takes_inversive_distance_route(mesh, options)) {
     OneConeAtlasResult attempt = result;
     prepare_and_solve(mesh, inversive_distance_route(options), attempt, report, false);
     Stopwatch polish;
@@ -205,6 +295,10 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     polish_lengths(options, result);
     result.timings.polish = polish.seconds();
   }
+  if (!result.flow.converged() && options.route == FlowRoute::automatic && !fixed_failed &&
+      intrinsic_applies(result.problem)) {
+    solve_intrinsic(options, result, report);
+  }
   if (!result.flow.converged()) throw SolverError(result.flow.message);
 
   report("cut graph, layout and atlas");
@@ -214,7 +308,13 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
 
   report("distortion");
   t.restart();
-  result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths);
+  try {
+    result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths);
+  } catch (const InvalidInputError&) {
+    // The flipped triangulation's faces are not the input's: one may be flat in 3D (three
+    // vertices on a line), where the distortion is undefined. The report stays empty (0 faces).
+    if (!result.intrinsic) throw;
+  }
   result.timings.distortion = t.seconds();
   result.timings.total = start.seconds();
   return result;

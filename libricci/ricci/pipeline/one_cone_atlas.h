@@ -7,6 +7,7 @@
 
 #include "ricci/atlas/atlas.h"
 #include "ricci/flow/flow.h"
+#include "ricci/intrinsic/conformal_flow.h"
 #include "ricci/mesh/collapse_short_edges.h"
 #include "ricci/mesh/flat_flips.h"
 #include "ricci/mesh/mesh.h"
@@ -17,6 +18,21 @@
 
 namespace ricci {
 
+/// Which flow computes the one-cone metric.
+enum class FlowRoute {
+  /// The fixed-connectivity flows (flow.h); where they do not converge (or no candidate
+  /// singular vertex converges), the intrinsic Delaunay flow; closed surfaces of genus
+  /// intrinsic_from_genus or more take the intrinsic flow directly.
+  automatic,
+  fixed_connectivity,  ///< flow.h's circle-packing family only
+  /// intrinsic/conformal_flow.h only (closed surfaces: single cones and flat tori); the
+  /// singular vertex is the linear model's best when it is chosen automatically.
+  intrinsic_delaunay
+};
+
+/// "automatic", "fixed-connectivity", "intrinsic-delaunay".
+[[nodiscard]] std::string to_string(FlowRoute route);
+
 struct OneConeAtlasOptions {
   /// Input vertex index of the singularity, or -1 to choose it (least area distortion).
   int singular_vertex = -1;
@@ -24,6 +40,13 @@ struct OneConeAtlasOptions {
   /// (one_cone_metric_order) unless `keep_metric`, which forces flow.scheme and flow.radii.
   FlowOptions flow = one_cone_flow_options();
   bool keep_metric = false;
+  /// Which flow runs (see FlowRoute); `intrinsic` holds the intrinsic flow's settings (its
+  /// tolerance, solver and progress are taken from `flow`).
+  FlowRoute route = FlowRoute::automatic;
+  IntrinsicFlowOptions intrinsic;
+  /// automatic: closed surfaces of this genus or more take the intrinsic flow directly (the
+  /// fixed-connectivity flows break triangles under cones of -12 pi and beyond).
+  int intrinsic_from_genus = 4;
   /// Collapse of edges much shorter than the median (mesh/collapse_short_edges.h) before
   /// anything else; the singular vertex is kept. The problem's `input_vertex` maps back.
   bool collapse_short_edges = false;
@@ -69,6 +92,13 @@ struct OneConeAtlasResult {
   ShortEdgeCollapse short_edges;
   /// The flow's result; its `lengths` are replaced by the polished ones (below).
   FlowResult flow;
+  /// Whether the intrinsic Delaunay flow made the metric: problem.mesh is then its flipped
+  /// triangulation (the same vertices with the same indices, positions and input_vertex map;
+  /// other faces and edges) and flow.lengths its lengths; flow.metric is empty.
+  bool intrinsic = false;
+  int intrinsic_flips = 0;  ///< Ptolemy flips the intrinsic flow made (0 when it did not run)
+  /// (With `intrinsic`, `distortion` compares the metric with the flipped faces' 3D triangles,
+  /// and is left empty when one of those is degenerate.)
   /// Long-double polish of the flow's lengths before the layout (error_before/after: max
   /// |K - K̄| evaluated in long double). When skipped (polish_threshold), error_before and
   /// error_after hold the flow's double-precision defect and iterations is 0.
@@ -97,8 +127,9 @@ struct OneConeAtlasResult {
 [[nodiscard]] bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options);
 
 /// \pre a connected, oriented 2-manifold triangle mesh.
-/// \throw InvalidInputError / TopologyError for bad input; SolverError when the flow does not
-///        converge (its message names the worst vertices and what to try).
+/// \throw InvalidInputError / TopologyError for bad input; InfeasibleTargetError for a target
+///        the theory forbids; SolverError when the flow does not converge (its message names the
+///        worst vertices and what to try).
 [[nodiscard]] OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options = {});
 
 }  // namespace ricci

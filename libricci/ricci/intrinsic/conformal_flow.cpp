@@ -1,0 +1,287 @@
+#include "ricci/intrinsic/conformal_flow.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "ricci/flow/linear_solver.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/metric/mesh_tables.h"
+#include "ricci/util/stopwatch.h"
+
+namespace ricci {
+namespace {
+
+std::string format(double x) {
+  std::ostringstream out;
+  out.precision(12);
+  out << x;
+  return out.str();
+}
+
+void check_intrinsic_target(const IntrinsicTriangulation& tri, const Eigen::VectorXd& target) {
+  if (target.size() != tri.vertex_count) {
+    throw InvalidInputError("target curvature has " + std::to_string(target.size()) +
+                            " entries for " + std::to_string(tri.vertex_count) + " vertices");
+  }
+  for (int v = 0; v < tri.vertex_count; ++v) {
+    if (!std::isfinite(target[v]) || !(target[v] < 2.0 * M_PI)) {
+      throw InfeasibleTargetError("target curvature " + format(target[v]) + " at vertex " +
+                                  std::to_string(v) + " asks for a cone angle <= 0");
+    }
+  }
+  const double sum = target.sum(), expected = 2.0 * M_PI * euler_characteristic(tri);
+  if (std::abs(sum - expected) > 1e-8 * (1.0 + target.cwiseAbs().sum())) {
+    throw InfeasibleTargetError("target violates Gauss-Bonnet: sum of target curvatures " +
+                                format(sum) + " != 2 pi chi = " + format(expected) +
+                                " (chi = " + std::to_string(euler_characteristic(tri)) + ")");
+  }
+}
+
+// The vertex pinned at u = 0 (the Laplacian's kernel): the one farthest in hops from the vertex
+// of largest |target|, where the scale factors stay moderate.
+int pinned_vertex(const IntrinsicTriangulation& tri, const Eigen::VectorXd& target) {
+  Eigen::Index start = 0;
+  target.cwiseAbs().maxCoeff(&start);
+  std::vector<std::vector<int>> neighbours(static_cast<size_t>(tri.vertex_count));
+  for (size_t h = 0; h < tri.tail.size(); ++h) {
+    neighbours[static_cast<size_t>(tri.tail[h])].push_back(tri.head(static_cast<int>(h)));
+  }
+  std::vector<char> seen(static_cast<size_t>(tri.vertex_count), 0);
+  std::queue<int> queue;
+  queue.push(static_cast<int>(start));
+  seen[static_cast<size_t>(start)] = 1;
+  int last = static_cast<int>(start);
+  while (!queue.empty()) {
+    last = queue.front();
+    queue.pop();
+    for (int w : neighbours[static_cast<size_t>(last)]) {
+      if (!seen[static_cast<size_t>(w)]) {
+        seen[static_cast<size_t>(w)] = 1;
+        queue.push(w);
+      }
+    }
+  }
+  return last;
+}
+
+// State of the flow at one u: Delaunay triangulation, angles, cotangents and curvature.
+struct Evaluation {
+  Eigen::MatrixX3d angles, cotangents;
+  Eigen::VectorXd curvature;
+};
+
+bool evaluate(IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
+              const IntrinsicFlowOptions& options, bool flip, Evaluation& eval, int& flips) {
+  if (flip) {
+    const DelaunayFlipResult flipped = flip_to_delaunay(tri, u, options.delaunay_margin);
+    flips += flipped.flips;
+    if (!flipped.delaunay) return false;
+  }
+  if (!intrinsic_corner_angles(tri, u, eval.angles, &eval.cotangents)) return false;
+  eval.curvature = intrinsic_curvature(tri, eval.angles);
+  return eval.curvature.allFinite();
+}
+
+// Lower triangle of the cotangent Laplacian without the pinned vertex's row and column.
+Eigen::SparseMatrix<double> reduced_laplacian(const IntrinsicTriangulation& tri,
+                                              const Eigen::MatrixX3d& cot, int pinned) {
+  const auto row = [pinned](int v) { return v < pinned ? v : v - 1; };
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(tri.tail.size() * 3);
+  for (int f = 0; f < tri.face_count(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      // The corner at tail(3f + k) faces the edge from tail(3f + k + 1) to tail(3f + k + 2).
+      const int i = tri.tail[static_cast<size_t>(3 * f + (k + 1) % 3)];
+      const int j = tri.tail[static_cast<size_t>(3 * f + (k + 2) % 3)];
+      const double w = 0.5 * cot(f, k);
+      if (i != pinned) entries.emplace_back(row(i), row(i), w);
+      if (j != pinned) entries.emplace_back(row(j), row(j), w);
+      if (i != pinned && j != pinned) {
+        entries.emplace_back(std::max(row(i), row(j)), std::min(row(i), row(j)),
+                             i == j ? -2.0 * w : -w);
+      }
+    }
+  }
+  const int n = tri.vertex_count - 1;
+  Eigen::SparseMatrix<double> lower(n, n);
+  lower.setFromTriplets(entries.begin(), entries.end());
+  return lower;
+}
+
+std::string failure_message(const IntrinsicFlowResult& result, const std::string& reason) {
+  Eigen::Index worst = 0;
+  (result.curvature - result.target).cwiseAbs().maxCoeff(&worst);
+  return "intrinsic conformal flow " + to_string(result.status) + " after " +
+         std::to_string(result.iterations) + " Newton iterations (" + reason +
+         "): max |K - K̄| = " + format(result.max_error) + " at vertex " + std::to_string(worst) +
+         "; try a larger --max-iterations or --tolerance";
+}
+
+// One Newton solve towards `target` from result.u (with `eval` its evaluation), until max |K - K̄|
+// is below `tolerance` or `max_iterations` pass. Updates result's u, flips, iterations, timings,
+// max_error and history. Returns the status and sets `reason` when it is not converged.
+FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::VectorXd& target,
+                  double tolerance, int max_iterations, int pinned,
+                  const IntrinsicFlowOptions& options, const Stopwatch& start,
+                  std::string& reason) {
+  IntrinsicTriangulation& tri = result.triangulation;
+  const int n = tri.vertex_count;
+  Eigen::VectorXd gradient = eval.curvature - target;
+  double error = gradient.cwiseAbs().maxCoeff();
+  Stopwatch clock;
+  double best = error;
+  int since_best = 0;
+  for (int iteration = 0; error > tolerance; ++iteration) {
+    if (iteration >= max_iterations) {
+      reason = "iteration budget spent";
+      return FlowStatus::max_iterations;
+    }
+    if (error < options.freeze_connectivity_below && since_best >= options.plateau_iterations) {
+      reason = "rounding plateau: no progress in " + std::to_string(since_best) + " iterations";
+      return FlowStatus::stalled;
+    }
+    clock.restart();
+    const Eigen::SparseMatrix<double> lower = reduced_laplacian(tri, eval.cotangents, pinned);
+    result.timings.assembly += clock.seconds();
+    SymmetricFactorization factorization(result.solver);
+    clock.restart();
+    factorization.analyze(lower);  // flips change the pattern
+    result.timings.analysis += clock.seconds();
+    clock.restart();
+    const bool factored = factorization.factorize(lower);
+    result.timings.factorization += clock.seconds();
+    ++result.factorizations;
+    if (!factored) {
+      reason = "the cotangent Laplacian did not factorise";
+      return FlowStatus::stalled;
+    }
+    Eigen::VectorXd rhs(n - 1);
+    for (int v = 0; v < n; ++v) {
+      if (v != pinned) rhs[v < pinned ? v : v - 1] = -gradient[v];
+    }
+    clock.restart();
+    const Eigen::VectorXd reduced = factorization.solve(rhs);
+    result.timings.solve += clock.seconds();
+    Eigen::VectorXd direction = Eigen::VectorXd::Zero(n);
+    for (int v = 0; v < n; ++v) {
+      if (v != pinned) direction[v] = reduced[v < pinned ? v : v - 1];
+    }
+    if (!direction.allFinite()) {
+      reason = "the Newton step is not finite";
+      return FlowStatus::stalled;
+    }
+    // Along the line the energy is convex with slope phi'(t) = (K - K̄) . d, phi'(0) < 0. A step
+    // is taken when phi'(t) <= 0.8 |phi'(0)| (Hager and Zhang's approximate Armijo condition
+    // with delta = 0.1: the trapezoid estimate of the energy drops by a tenth of the linear
+    // model's); otherwise the step shrinks to the secant estimate of the minimum, by 0.1-0.5.
+    // Near the answer, where the slopes are rounding noise, a step lowering max |K - K̄| is taken.
+    const double slope0 = gradient.dot(direction);
+    const bool flip = error >= options.freeze_connectivity_below;
+    clock.restart();
+    double step = 1.0;
+    bool accepted = false;
+    for (int trial_count = 0; trial_count <= options.max_step_halvings; ++trial_count) {
+      const Eigen::VectorXd trial = result.u + step * direction;
+      Evaluation trial_eval;
+      if (!evaluate(tri, trial, options, flip, trial_eval, result.flips)) {
+        step *= 0.5;
+        continue;
+      }
+      const Eigen::VectorXd trial_gradient = trial_eval.curvature - target;
+      const double slope = trial_gradient.dot(direction);
+      const double trial_error = trial_gradient.cwiseAbs().maxCoeff();
+      if (slope <= -options.slope_fraction * slope0 || (error < 1e-6 && trial_error < error)) {
+        result.u = trial;
+        eval = std::move(trial_eval);
+        gradient = trial_gradient;
+        error = trial_error;
+        accepted = true;
+        break;
+      }
+      const double secant = slope0 < 0 && slope > slope0 ? -slope0 / (slope - slope0) : 0.5;
+      step *= std::clamp(secant, options.min_shrink, 0.5);
+    }
+    result.timings.evaluation += clock.seconds();
+    if (!accepted) {
+      Evaluation back;  // leave the triangulation Delaunay at the last accepted u
+      evaluate(tri, result.u, options, flip, back, result.flips);
+      reason = "the line search found no decrease";
+      return FlowStatus::stalled;
+    }
+    ++result.iterations;
+    if (error < 0.5 * best) {
+      best = error;
+      since_best = 0;
+    } else {
+      ++since_best;
+    }
+    result.max_error = (eval.curvature - result.target).cwiseAbs().maxCoeff();
+    result.error_history.push_back(result.max_error);
+    if (options.progress)
+      options.progress({result.iterations, result.max_error, step, start.seconds()});
+  }
+  return FlowStatus::converged;
+}
+
+}  // namespace
+
+IntrinsicFlowResult intrinsic_conformal_flow(const Mesh& mesh, const Targets& targets,
+                                             const IntrinsicFlowOptions& options) {
+  return intrinsic_conformal_flow(make_intrinsic_triangulation(mesh, mesh_edge_lengths(mesh)),
+                                  targets.curvature, options);
+}
+
+IntrinsicFlowResult intrinsic_conformal_flow(IntrinsicTriangulation initial,
+                                             const Eigen::VectorXd& target,
+                                             const IntrinsicFlowOptions& options) {
+  const Stopwatch start;
+  check_intrinsic_target(initial, target);
+  IntrinsicFlowResult result;
+  result.triangulation = std::move(initial);
+  result.target = target;
+  const int n = result.triangulation.vertex_count;
+  result.u = Eigen::VectorXd::Zero(n);
+  const int pinned = pinned_vertex(result.triangulation, target);
+  result.solver = resolve_linear_solver(options.solver, n - 1);
+
+  Evaluation eval;
+  if (!evaluate(result.triangulation, result.u, options, true, eval, result.flips)) {
+    throw InvalidInputError(
+        "intrinsic conformal flow: the input's lengths break a triangle inequality");
+  }
+  result.max_error = (eval.curvature - target).cwiseAbs().maxCoeff();
+  result.error_history.push_back(result.max_error);
+  result.timings.setup = start.seconds();
+  std::string reason;
+  const FlowStatus status = newton(result, eval, target, options.tolerance, options.max_iterations,
+                                   pinned, options, start, reason);
+  result.curvature = eval.curvature;
+  result.max_error = (eval.curvature - target).cwiseAbs().maxCoeff();
+  result.status = result.max_error <= options.tolerance ? FlowStatus::converged : status;
+  if (!result.converged()) result.message = failure_message(result, reason);
+  result.timings.total = start.seconds();
+  return result;
+}
+
+FlowResult to_flow_result(const IntrinsicFlowResult& r) {
+  FlowResult flow;
+  flow.status = r.status;
+  flow.message = r.message;
+  flow.u = r.u;
+  flow.curvature = r.curvature;
+  flow.target = r.target;
+  flow.error_history = r.error_history;
+  flow.iterations = r.iterations;
+  flow.factorizations = r.factorizations;
+  flow.max_error = r.max_error;
+  flow.solver = r.solver;
+  flow.timings = r.timings;
+  return flow;
+}
+
+}  // namespace ricci

@@ -1,0 +1,91 @@
+#pragma once
+// Discrete conformal (vertex-scaling) flow with intrinsic Delaunay flips: the metric with
+// lengths l_ij = exp((u_i + u_j) / 2) l_ij^0, re-triangulated by Ptolemy flips to stay Delaunay
+// at every u, whose vertex curvature reaches a target. Newton's method on the convex, C^1
+// energy of Gillespie, Springborn and Crane 2021 ("Discrete conformal equivalence of polyhedral
+// surfaces", sections 4-5; Gu, Luo, Sun, Wu 2018 for the existence): its gradient is K - K̄
+// and its Hessian the cotangent Laplacian of the Delaunay triangulation. Any target meeting
+// Gauss-Bonnet with cone angles > 0 has a solution, so a single cone of curvature 2 pi chi
+// converges at every genus, where the fixed-connectivity flows (flow.h) break triangles.
+//
+//   ricci::IntrinsicFlowResult r =
+//       ricci::intrinsic_conformal_flow(mesh, ricci::single_cone_target(mesh, cone));
+//   if (r.converged()) use(ricci::to_mesh(r.triangulation, r.u, positions));
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ricci/flow/flow.h"
+#include "ricci/flow/targets.h"
+#include "ricci/intrinsic/intrinsic_triangulation.h"
+#include "ricci/mesh/mesh.h"
+
+namespace ricci {
+
+struct IntrinsicFlowOptions {
+  /// Stop when max_i |K_i - K̄_i| is below this (radians).
+  double tolerance = 1e-10;
+  /// Newton iterations allowed.
+  int max_iterations = 400;
+  /// Halvings of a Newton step before the line search gives up.
+  int max_step_halvings = 60;
+  /// A step is taken when the energy's slope along it is at most this times |slope at 0|
+  /// (0: only up to the line's minimum).
+  double slope_fraction = 0.0;
+  /// Smallest factor a rejected step shrinks by (the secant estimate is clamped to [this, 0.5]).
+  double min_shrink = 0.25;
+  /// Sparse factorisation of the cotangent Laplacian (automatic: resolve_linear_solver).
+  LinearSolver solver = LinearSolver::automatic;
+  /// An edge is flipped when 2 (cos alpha + cos beta) is below -delaunay_margin.
+  double delaunay_margin = 1e-12;
+  /// Once max |K - K̄| is below this (radians), the triangulation stops flipping and Newton
+  /// finishes on it (quadratically; at the answer it is Delaunay up to this order). Flipping to
+  /// the end can make Newton circle between the triangulations of nearly co-circular quads.
+  double freeze_connectivity_below = 1e-4;
+  /// Below freeze_connectivity_below, the flow stops (stalled) after this many iterations
+  /// without halving max |K - K̄|: the double evaluation's rounding floor (long needles next to
+  /// a large cone), which a long-double polish (metric/polish_e2.h) can pass.
+  int plateau_iterations = 12;
+  /// Optional progress report, after each Newton iteration.
+  std::function<void(const FlowProgress&)> progress;
+};
+
+struct IntrinsicFlowResult {
+  /// converged, max_iterations or stalled (the line search found no step).
+  FlowStatus status = FlowStatus::stalled;
+  std::string message;  ///< empty when converged
+  /// The final triangulation, Delaunay at `u`; its vertices are the input's.
+  IntrinsicTriangulation triangulation;
+  Eigen::VectorXd u;  ///< log scale factors by vertex (one vertex pinned at 0)
+  Eigen::VectorXd curvature, target;
+  std::vector<double> error_history;  ///< max |K - K̄| before the first iteration and after each
+  int iterations = 0;
+  int flips = 0;  ///< Ptolemy flips, including those of rejected line-search trials
+  int factorizations = 0;
+  double max_error = 0;
+  LinearSolver solver = LinearSolver::automatic;
+  FlowTimings timings;
+
+  [[nodiscard]] bool converged() const { return status == FlowStatus::converged; }
+};
+
+/// Runs the flow from the mesh's own edge lengths (first flipped to intrinsic Delaunay).
+/// \pre a closed, connected triangle 2-manifold without degenerate faces.
+/// \throw InfeasibleTargetError when the target breaks Gauss-Bonnet or asks for a cone angle
+///        <= 0; InvalidInputError for a mesh with boundary or a size mismatch.
+[[nodiscard]] IntrinsicFlowResult intrinsic_conformal_flow(
+    const Mesh& mesh, const Targets& targets, const IntrinsicFlowOptions& options = {});
+
+/// Runs the flow from a given triangulation (its log lengths at u = 0). \throw as above.
+[[nodiscard]] IntrinsicFlowResult intrinsic_conformal_flow(
+    IntrinsicTriangulation initial, const Eigen::VectorXd& target,
+    const IntrinsicFlowOptions& options = {});
+
+/// The result's figures (status, message, u, curvature, target, history, iterations,
+/// factorisations, error, solver, timings) as a FlowResult, whose metric and lengths stay empty
+/// (the lengths belong to the flipped triangulation: to_mesh).
+[[nodiscard]] FlowResult to_flow_result(const IntrinsicFlowResult& result);
+
+}  // namespace ricci

@@ -1,0 +1,257 @@
+#include "ricci/intrinsic/intrinsic_triangulation.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "ricci/mesh/errors.h"
+#include "ricci/metric/geometry.h"
+
+namespace ricci {
+namespace {
+
+// log(e^a + e^b) without overflow.
+double log_sum_exp(double a, double b) {
+  const double m = std::max(a, b);
+  return m + std::log(std::exp(a - m) + std::exp(b - m));
+}
+
+// (b^2 + c^2 - a^2) / (b c) for the face of halfedge h, a its edge: 2 cos of the angle opposite.
+double opposite_cosine_twice(const IntrinsicTriangulation& tri, int h, const Eigen::VectorXd& u) {
+  const double a = tri.log_length_at(tri.edge[static_cast<size_t>(h)], u);
+  const double b =
+      tri.log_length_at(tri.edge[static_cast<size_t>(IntrinsicTriangulation::next(h))], u);
+  const double c =
+      tri.log_length_at(tri.edge[static_cast<size_t>(IntrinsicTriangulation::prev(h))], u);
+  return std::exp(b - c) + std::exp(c - b) - std::exp(2.0 * a - b - c);
+}
+
+}  // namespace
+
+double IntrinsicTriangulation::log_length_at(int e, const Eigen::VectorXd& u) const {
+  const int h = edge_halfedge[static_cast<size_t>(e)];
+  return log_length[e] + 0.5 * (u[tail[static_cast<size_t>(h)]] + u[head(h)]);
+}
+
+IntrinsicTriangulation make_intrinsic_triangulation(const Mesh& mesh,
+                                                    const Eigen::VectorXd& edge_lengths) {
+  if (edge_lengths.size() != static_cast<Eigen::Index>(mesh.n_edges())) {
+    throw InvalidInputError("intrinsic triangulation: " + std::to_string(edge_lengths.size()) +
+                            " edge lengths for " + std::to_string(mesh.n_edges()) + " edges");
+  }
+  IntrinsicTriangulation tri;
+  tri.vertex_count = static_cast<int>(mesh.n_vertices());
+  const size_t halfedges = 3 * mesh.n_faces();
+  tri.tail.assign(halfedges, -1);
+  tri.twin.assign(halfedges, -1);
+  tri.edge.assign(halfedges, -1);
+  tri.edge_halfedge.assign(mesh.n_edges(), -1);
+  tri.log_length.resize(static_cast<Eigen::Index>(mesh.n_edges()));
+  std::vector<int> slot_of(mesh.n_halfedges(), -1);
+  for (auto f : mesh.faces()) {
+    int k = 0;
+    for (auto h : mesh.fh_range(f)) {
+      if (k == 3)
+        throw InvalidInputError("intrinsic triangulation: face " + std::to_string(f.idx()) +
+                                " is not a triangle");
+      const int slot = 3 * f.idx() + k++;
+      slot_of[static_cast<size_t>(h.idx())] = slot;
+      tri.tail[static_cast<size_t>(slot)] = mesh.from_vertex_handle(h).idx();
+      tri.edge[static_cast<size_t>(slot)] = mesh.edge_handle(h).idx();
+      tri.edge_halfedge[static_cast<size_t>(mesh.edge_handle(h).idx())] = slot;
+    }
+  }
+  for (auto h : mesh.halfedges()) {
+    const int slot = slot_of[static_cast<size_t>(h.idx())];
+    const int opposite = slot_of[static_cast<size_t>(mesh.opposite_halfedge_handle(h).idx())];
+    if (slot < 0 || opposite < 0) {
+      throw InvalidInputError(
+          "intrinsic triangulation: the mesh has a boundary (closed surfaces only)");
+    }
+    tri.twin[static_cast<size_t>(slot)] = opposite;
+  }
+  for (auto e : mesh.edges()) {
+    const double l = edge_lengths[e.idx()];
+    if (!(l > 0) || !std::isfinite(l)) {
+      throw InvalidInputError("intrinsic triangulation: edge " + std::to_string(e.idx()) +
+                              " has length " + std::to_string(l));
+    }
+    tri.log_length[e.idx()] = std::log(l);
+  }
+  return tri;
+}
+
+bool is_flippable(const IntrinsicTriangulation& tri, int e) {
+  const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+  return h / 3 != tri.twin[static_cast<size_t>(h)] / 3;
+}
+
+void flip_edge(IntrinsicTriangulation& tri, int e) {
+  using T = IntrinsicTriangulation;
+  const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+  const int t = tri.twin[static_cast<size_t>(h)];
+  // Face A = (i, j, k) with h: i->j, ha: j->k, hb: k->i; face B = (j, i, l) with t: j->i,
+  // tb1: i->l, tb2: l->j. After the flip A = (l, k, i) in slots (h, ha, hb) and
+  // B = (k, l, j) in slots (t, tb1, tb2).
+  const int ha = T::next(h), hb = T::prev(h), tb1 = T::next(t), tb2 = T::prev(t);
+  const int k = tri.tail[static_cast<size_t>(hb)], l = tri.tail[static_cast<size_t>(tb2)];
+  const double ij = tri.log_length[e];
+  const double jk = tri.log_length[tri.edge[static_cast<size_t>(ha)]];
+  const double ki = tri.log_length[tri.edge[static_cast<size_t>(hb)]];
+  const double il = tri.log_length[tri.edge[static_cast<size_t>(tb1)]];
+  const double lj = tri.log_length[tri.edge[static_cast<size_t>(tb2)]];
+  tri.log_length[e] = log_sum_exp(ki + lj, il + jk) - ij;
+
+  const std::array<int, 4> from = {hb, tb1, tb2, ha};
+  const std::array<int, 4> to = {ha, hb, tb1, tb2};
+  std::array<int, 4> old_tail{}, old_twin{}, old_edge{};
+  for (size_t n = 0; n < 4; ++n) {
+    old_tail[n] = tri.tail[static_cast<size_t>(from[n])];
+    old_twin[n] = tri.twin[static_cast<size_t>(from[n])];
+    old_edge[n] = tri.edge[static_cast<size_t>(from[n])];
+  }
+  const auto moved = [&](int slot) {
+    for (size_t n = 0; n < 4; ++n) {
+      if (from[n] == slot) return to[n];
+    }
+    return slot;
+  };
+  for (size_t n = 0; n < 4; ++n) {
+    const auto s = static_cast<size_t>(to[n]);
+    tri.tail[s] = old_tail[n];
+    tri.edge[s] = old_edge[n];
+    tri.edge_halfedge[static_cast<size_t>(old_edge[n])] = to[n];
+  }
+  for (size_t n = 0; n < 4; ++n) {
+    const int twin = moved(old_twin[n]);
+    tri.twin[static_cast<size_t>(to[n])] = twin;
+    tri.twin[static_cast<size_t>(twin)] = to[n];
+  }
+  tri.tail[static_cast<size_t>(h)] = l;
+  tri.tail[static_cast<size_t>(t)] = k;
+  tri.twin[static_cast<size_t>(h)] = t;
+  tri.twin[static_cast<size_t>(t)] = h;
+  tri.edge_halfedge[static_cast<size_t>(e)] = h;
+}
+
+double delaunay_measure(const IntrinsicTriangulation& tri, int e, const Eigen::VectorXd& u) {
+  const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+  return opposite_cosine_twice(tri, h, u) +
+         opposite_cosine_twice(tri, tri.twin[static_cast<size_t>(h)], u);
+}
+
+DelaunayFlipResult flip_to_delaunay(IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
+                                    double margin, double max_flips_per_edge) {
+  DelaunayFlipResult result;
+  const int edges = tri.edge_count();
+  std::vector<int> stack(static_cast<size_t>(edges));
+  std::vector<char> queued(static_cast<size_t>(edges), 1);
+  for (int e = 0; e < edges; ++e) stack[static_cast<size_t>(e)] = e;
+  const double budget = max_flips_per_edge * edges;
+  while (!stack.empty()) {
+    const int e = stack.back();
+    stack.pop_back();
+    queued[static_cast<size_t>(e)] = 0;
+    if (!is_flippable(tri, e) || !(delaunay_measure(tri, e, u) < -margin)) continue;
+    if (result.flips >= budget) return result;
+    flip_edge(tri, e);
+    ++result.flips;
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    const int t = tri.twin[static_cast<size_t>(h)];
+    for (int s : {IntrinsicTriangulation::next(h), IntrinsicTriangulation::prev(h),
+                  IntrinsicTriangulation::next(t), IntrinsicTriangulation::prev(t)}) {
+      const int f = tri.edge[static_cast<size_t>(s)];
+      if (!queued[static_cast<size_t>(f)]) {
+        queued[static_cast<size_t>(f)] = 1;
+        stack.push_back(f);
+      }
+    }
+  }
+  result.delaunay = true;
+  return result;
+}
+
+bool intrinsic_corner_angles(const IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
+                             Eigen::MatrixX3d& angles, Eigen::MatrixX3d* cotangents) {
+  const int faces = tri.face_count();
+  angles.resize(faces, 3);
+  if (cotangents) cotangents->resize(faces, 3);
+  for (int f = 0; f < faces; ++f) {
+    // l[k] is opposite corner k, the tail of halfedge 3f + k: the edge of halfedge 3f + k + 1.
+    double log_l[3];
+    for (int k = 0; k < 3; ++k)
+      log_l[k] = tri.log_length_at(tri.edge[static_cast<size_t>(3 * f + (k + 1) % 3)], u);
+    const double scale = std::max({log_l[0], log_l[1], log_l[2]});
+    const double l[3] = {std::exp(log_l[0] - scale), std::exp(log_l[1] - scale),
+                         std::exp(log_l[2] - scale)};
+    double theta[3], cosine[3], sine[3];
+    if (!triangle_angles(Geometry::euclidean, l, theta, cosine, sine)) return false;
+    for (int k = 0; k < 3; ++k) {
+      angles(f, k) = theta[k];
+      if (cotangents) (*cotangents)(f, k) = cosine[k] / sine[k];
+    }
+  }
+  return true;
+}
+
+Eigen::VectorXd intrinsic_curvature(const IntrinsicTriangulation& tri,
+                                    const Eigen::MatrixX3d& angles) {
+  Eigen::VectorXd curvature = Eigen::VectorXd::Constant(tri.vertex_count, 2.0 * M_PI);
+  for (int f = 0; f < tri.face_count(); ++f) {
+    for (int k = 0; k < 3; ++k) curvature[tri.tail[static_cast<size_t>(3 * f + k)]] -= angles(f, k);
+  }
+  return curvature;
+}
+
+int euler_characteristic(const IntrinsicTriangulation& tri) {
+  return tri.vertex_count - tri.edge_count() + tri.face_count();
+}
+
+bool is_simplicial(const IntrinsicTriangulation& tri) {
+  std::set<std::pair<int, int>> pairs;
+  for (int e = 0; e < tri.edge_count(); ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    const int a = tri.tail[static_cast<size_t>(h)], b = tri.head(h);
+    if (a == b || !pairs.emplace(std::min(a, b), std::max(a, b)).second) return false;
+  }
+  return true;
+}
+
+IntrinsicMesh to_mesh(const IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
+                      const Eigen::MatrixX3d& positions) {
+  if (positions.rows() != tri.vertex_count || u.size() != tri.vertex_count) {
+    throw InvalidInputError(
+        "intrinsic triangulation: positions or scale factors do not match its " +
+        std::to_string(tri.vertex_count) + " vertices");
+  }
+  if (!is_simplicial(tri)) {
+    throw TopologyError(
+        "intrinsic triangulation: a loop or a double edge, not a simplicial complex");
+  }
+  IntrinsicMesh out;
+  for (int v = 0; v < tri.vertex_count; ++v)
+    out.mesh.add_vertex(to_openmesh(positions.row(v).transpose()));
+  for (int f = 0; f < tri.face_count(); ++f) {
+    const FaceHandle face = out.mesh.add_face(
+        out.mesh.vertex_handle(static_cast<unsigned>(tri.tail[static_cast<size_t>(3 * f)])),
+        out.mesh.vertex_handle(static_cast<unsigned>(tri.tail[static_cast<size_t>(3 * f + 1)])),
+        out.mesh.vertex_handle(static_cast<unsigned>(tri.tail[static_cast<size_t>(3 * f + 2)])));
+    if (!face.is_valid())
+      throw TopologyError("intrinsic triangulation: face " + std::to_string(f) +
+                          " is not manifold");
+  }
+  out.lengths.resize(static_cast<Eigen::Index>(out.mesh.n_edges()));
+  for (int e = 0; e < tri.edge_count(); ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    const HalfedgeHandle mh = out.mesh.find_halfedge(
+        out.mesh.vertex_handle(static_cast<unsigned>(tri.tail[static_cast<size_t>(h)])),
+        out.mesh.vertex_handle(static_cast<unsigned>(tri.head(h))));
+    out.lengths[out.mesh.edge_handle(mh).idx()] = std::exp(tri.log_length_at(e, u));
+  }
+  return out;
+}
+
+}  // namespace ricci

@@ -1,0 +1,64 @@
+// msp flow and msp atlas with --metric intrinsic-delaunay on a genus-4 surface made here: the
+// flow converges with flips and reports its metric; the atlas on the flipped triangulation has
+// rigid transitions and no flipped face; --geometry other than euclidean is refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include <unistd.h>
+
+#include <ricci/mesh/io.h>
+#include <ricci/mesh/primitives.h>
+#include <nlohmann/json.hpp>
+
+#include "info_subprocess.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+class IntrinsicCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() / ("msp_intrinsic_cli_" + std::to_string(::getpid()));
+    fs::create_directories(folder_);
+    mesh_ = (folder_ / "genus4.off").string();
+    ricci::write_mesh(ricci::make_genus_slab(4, 2, 4), mesh_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  fs::path folder_;
+  std::string mesh_;
+};
+
+TEST_F(IntrinsicCli, FlowConvergesWithFlips) {
+  const auto r = msp_test::run_msp(
+      {"flow", mesh_, "--metric", "intrinsic-delaunay", "--target", "cone:0", "--json", "--quiet"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["metric"], "intrinsic-delaunay");
+  EXPECT_EQ(j["status"], "converged");
+  EXPECT_GT(j["intrinsic_flips"].get<int>(), 0);
+  EXPECT_LT(j["max_curvature_error"].get<double>(), 1e-10);
+}
+
+TEST_F(IntrinsicCli, AtlasOnTheFlippedTriangulation) {
+  const auto r = msp_test::run_msp({"atlas", mesh_, "--json", "--quiet"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["metric"], "intrinsic-delaunay");  // genus 4: the automatic route's choice
+  EXPECT_EQ(j["genus"], 4);
+  EXPECT_EQ(j["flipped_faces"], 0);
+  EXPECT_LT(j["transition_residual"].get<double>(), 1e-9);
+  EXPECT_NEAR(j["singularities"][0]["cone_angle"].get<double>(), 14 * M_PI, 1e-8);
+}
+
+TEST_F(IntrinsicCli, RefusesANonEuclideanGeometry) {
+  const auto r = msp_test::run_msp(
+      {"flow", mesh_, "--metric", "intrinsic-delaunay", "--geometry", "hyperbolic", "--quiet"});
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_NE(r.err.find("euclidean"), std::string::npos) << r.err;
+}
+
+}  // namespace

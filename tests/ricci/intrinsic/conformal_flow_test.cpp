@@ -1,0 +1,89 @@
+// The conformal flow with intrinsic Delaunay flips (ricci/intrinsic/conformal_flow.h): one cone
+// of curvature 2 pi chi converges at genus 4 to 10, every other vertex flat, Gauss-Bonnet in
+// closed form, and the flat metric lays out as a one-cone atlas with rigid transitions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ricci/intrinsic/conformal_flow.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
+#include "ricci/pipeline/one_cone_atlas.h"
+#include "ricci/singularity/one_cone.h"
+
+namespace {
+
+// The curvature of the final triangulation, recomputed from its lengths.
+Eigen::VectorXd recomputed_curvature(const ricci::IntrinsicFlowResult& r) {
+  Eigen::MatrixX3d angles;
+  EXPECT_TRUE(ricci::intrinsic_corner_angles(r.triangulation, r.u, angles));
+  return ricci::intrinsic_curvature(r.triangulation, angles);
+}
+
+TEST(IntrinsicConformalFlow, FlattensABumpyTorus) {
+  const ricci::Mesh mesh =
+      ricci::make_random_perturbed(ricci::make_torus(40, 12, 2.0, 0.6), 0.3, 3);
+  const ricci::IntrinsicFlowResult r = ricci::intrinsic_conformal_flow(
+      mesh, ricci::uniform_target(mesh, ricci::Geometry::euclidean));
+  ASSERT_TRUE(r.converged()) << r.message;
+  const Eigen::VectorXd K = recomputed_curvature(r);
+  EXPECT_LT(K.cwiseAbs().maxCoeff(), 1e-10);  // every vertex's angles sum to 2 pi
+  EXPECT_EQ(r.triangulation.vertex_count, static_cast<int>(mesh.n_vertices()));
+}
+
+TEST(IntrinsicConformalFlow, RefusesATargetBreakingGaussBonnet) {
+  const ricci::Mesh mesh = ricci::make_genus_slab(4);
+  ricci::Targets targets = ricci::single_cone_target(mesh, 0);
+  targets.curvature[0] += 0.5;
+  try {
+    (void)ricci::intrinsic_conformal_flow(mesh, targets);
+    FAIL() << "no exception";
+  } catch (const ricci::InfeasibleTargetError& e) {
+    EXPECT_NE(std::string(e.what()).find("Gauss-Bonnet"), std::string::npos) << e.what();
+  }
+}
+
+class OneConeEveryGenus : public ::testing::TestWithParam<int> {};
+
+TEST_P(OneConeEveryGenus, ConvergesAndLaysOutAsAnAtlas) {
+  const int genus = GetParam();
+  // As the one-cone pipeline runs it: valence modification, then two levels of refinement
+  // within 6 rings of the cone (the flat metric scales like rho^(2g - 2) there).
+  ricci::OneConeProblem problem = ricci::prepare_one_cone(ricci::make_genus_slab(genus, 2, 4), 0);
+  (void)ricci::refine_around_cone(problem, {2, 6});
+  const ricci::Mesh& mesh = problem.mesh;
+  const int cone = problem.cone;
+  const ricci::IntrinsicFlowResult r = ricci::intrinsic_conformal_flow(mesh, problem.targets);
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_GT(r.flips, 0);
+  const Eigen::VectorXd K = recomputed_curvature(r);
+  const double chi = 2.0 - 2.0 * genus;
+  EXPECT_NEAR(K.sum(), 2 * M_PI * chi, 1e-8);
+  EXPECT_NEAR(K[cone], 2 * M_PI * chi, 1e-9);  // cone angle 2 pi (2g - 1)
+  Eigen::VectorXd flat = K;
+  flat[cone] = 0;
+  EXPECT_LT(flat.cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// The pipeline's route (ricci/pipeline/one_cone_atlas.h): the metric polished in long double,
+// then the cut graph, layout and atlas on the flipped triangulation.
+TEST(IntrinsicOneConeAtlas, Genus4OnTheFlippedTriangulation) {
+  const int genus = 4;
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  options.route = ricci::FlowRoute::intrinsic_delaunay;
+  options.cone_refinement = {2, 6};
+  const ricci::OneConeAtlasResult r =
+      ricci::build_one_cone_atlas(ricci::make_genus_slab(genus, 2, 4), options);
+  ASSERT_TRUE(r.intrinsic);
+  EXPECT_GT(r.intrinsic_flips, 0);
+  EXPECT_NEAR(r.flow.curvature[r.problem.cone], 2 * M_PI * (2 - 2 * genus), 1e-9);
+  EXPECT_EQ(r.atlas.layout.flipped_faces, 0);
+  EXPECT_EQ(r.atlas.uncovered_faces, 0);
+  EXPECT_LT(r.relative_transition_residual(), 1e-9);
+  EXPECT_LT(r.atlas.domain_max_absolute_length_error / r.atlas.domain_diameter, 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(Genus, OneConeEveryGenus, ::testing::Values(4, 6));
+
+}  // namespace

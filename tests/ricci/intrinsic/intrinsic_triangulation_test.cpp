@@ -1,0 +1,128 @@
+// Intrinsic triangulations (ricci/intrinsic/intrinsic_triangulation.h): Ptolemy flips keep a
+// valid Delta-complex, are involutions, reproduce Euclidean distances on cyclic quads, and
+// flipping to Delaunay keeps Gauss-Bonnet and leaves every edge Delaunay.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "ricci/intrinsic/intrinsic_triangulation.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
+#include "ricci/metric/mesh_tables.h"
+
+namespace {
+
+using ricci::IntrinsicTriangulation;
+
+// Twins are an involution between different slots of opposite direction, and every edge's
+// two halfedges point back to it.
+void expect_valid(const IntrinsicTriangulation& tri) {
+  for (size_t h = 0; h < tri.tail.size(); ++h) {
+    const int t = tri.twin[h];
+    ASSERT_NE(t, static_cast<int>(h));
+    ASSERT_EQ(tri.twin[static_cast<size_t>(t)], static_cast<int>(h));
+    ASSERT_EQ(tri.edge[static_cast<size_t>(t)], tri.edge[h]);
+    ASSERT_EQ(tri.tail[static_cast<size_t>(t)], tri.head(static_cast<int>(h)));
+  }
+  for (int e = 0; e < tri.edge_count(); ++e) {
+    ASSERT_EQ(tri.edge[static_cast<size_t>(tri.edge_halfedge[static_cast<size_t>(e)])], e);
+  }
+}
+
+TEST(IntrinsicTriangulation, FromMeshIsValidWithItsEulerCharacteristic) {
+  const ricci::Mesh mesh = ricci::make_genus_slab(4);
+  const IntrinsicTriangulation tri =
+      ricci::make_intrinsic_triangulation(mesh, ricci::mesh_edge_lengths(mesh));
+  expect_valid(tri);
+  EXPECT_EQ(ricci::euler_characteristic(tri), -6);
+  EXPECT_TRUE(ricci::is_simplicial(tri));
+}
+
+TEST(IntrinsicTriangulation, RefusesABoundary) {
+  const ricci::Mesh mesh = ricci::make_disk(2, 6);
+  EXPECT_THROW((void)ricci::make_intrinsic_triangulation(mesh, ricci::mesh_edge_lengths(mesh)),
+               ricci::InvalidInputError);
+}
+
+TEST(IntrinsicTriangulation, FlipTwiceRestoresLengthsAndFlipIsPtolemy) {
+  const ricci::Mesh mesh = ricci::make_random_perturbed(ricci::make_icosphere(2), 0.3, 7);
+  IntrinsicTriangulation tri =
+      ricci::make_intrinsic_triangulation(mesh, ricci::mesh_edge_lengths(mesh));
+  const Eigen::VectorXd before = tri.log_length;
+  for (int e = 0; e < tri.edge_count(); e += 7) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    const int t = tri.twin[static_cast<size_t>(h)];
+    const auto len = [&](int s) {
+      return std::exp(tri.log_length[tri.edge[static_cast<size_t>(s)]]);
+    };
+    const double ptolemy =
+        (len(IntrinsicTriangulation::prev(h)) * len(IntrinsicTriangulation::prev(t)) +
+         len(IntrinsicTriangulation::next(h)) * len(IntrinsicTriangulation::next(t))) /
+        len(h);
+    const int k = tri.tail[static_cast<size_t>(IntrinsicTriangulation::prev(h))];
+    const int l = tri.tail[static_cast<size_t>(IntrinsicTriangulation::prev(t))];
+    ricci::flip_edge(tri, e);
+    expect_valid(tri);
+    const int g = tri.edge_halfedge[static_cast<size_t>(e)];
+    EXPECT_EQ(std::min(tri.tail[static_cast<size_t>(g)], tri.head(g)), std::min(k, l));
+    EXPECT_EQ(std::max(tri.tail[static_cast<size_t>(g)], tri.head(g)), std::max(k, l));
+    EXPECT_NEAR(std::exp(tri.log_length[e]), ptolemy, 1e-12 * ptolemy);
+    ricci::flip_edge(tri, e);
+    expect_valid(tri);
+  }
+  EXPECT_LT((tri.log_length - before).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+// Four points on a circle: the Ptolemy flip gives the Euclidean length of the other diagonal.
+TEST(IntrinsicTriangulation, CyclicQuadFlipIsEuclidean) {
+  const double angles[4] = {0.1, 1.9, 3.0, 4.4};  // counter-clockwise on the unit circle
+  Eigen::Vector2d p[4];
+  for (int n = 0; n < 4; ++n) p[n] = {std::cos(angles[n]), std::sin(angles[n])};
+  // A closed surface holding the quad: the doubled quad (two copies glued along the rim), i.e.
+  // the boundary of a tetrahedron with vertices 0..3 and lengths of the planar quad.
+  ricci::Mesh mesh;
+  std::vector<ricci::VertexHandle> v;
+  for (int n = 0; n < 4; ++n) v.push_back(mesh.add_vertex({p[n].x(), p[n].y(), 0.0}));
+  mesh.add_face(v[0], v[1], v[2]);
+  mesh.add_face(v[0], v[2], v[3]);
+  mesh.add_face(v[0], v[3], v[1]);  // these two faces hold the "back" copy of the quad
+  mesh.add_face(v[1], v[3], v[2]);
+  Eigen::VectorXd lengths(static_cast<Eigen::Index>(mesh.n_edges()));
+  for (auto e : mesh.edges()) {
+    const auto a = mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx();
+    const auto b = mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx();
+    lengths[e.idx()] = (p[a] - p[b]).norm();
+  }
+  IntrinsicTriangulation tri = ricci::make_intrinsic_triangulation(mesh, lengths);
+  const ricci::EdgeHandle diagonal = mesh.edge_handle(mesh.find_halfedge(v[0], v[2]));
+  ricci::flip_edge(tri, diagonal.idx());
+  EXPECT_NEAR(std::exp(tri.log_length[diagonal.idx()]), (p[1] - p[3]).norm(), 1e-14);
+}
+
+TEST(IntrinsicTriangulation, DelaunayFlipsKeepGaussBonnetAndLeaveEveryEdgeDelaunay) {
+  for (int genus : {0, 1, 4}) {
+    ricci::Mesh mesh = genus == 0   ? ricci::make_icosphere(3)
+                       : genus == 1 ? ricci::make_torus(30, 8, 2.0, 0.5)
+                                    : ricci::make_genus_slab(genus, 2, 2);
+    mesh = ricci::make_random_perturbed(mesh, 0.4, 11);
+    IntrinsicTriangulation tri =
+        ricci::make_intrinsic_triangulation(mesh, ricci::mesh_edge_lengths(mesh));
+    const Eigen::VectorXd u = Eigen::VectorXd::Zero(tri.vertex_count);
+    const ricci::DelaunayFlipResult flipped = ricci::flip_to_delaunay(tri, u);
+    ASSERT_TRUE(flipped.delaunay);
+    EXPECT_GT(flipped.flips, 0) << genus;
+    expect_valid(tri);
+    EXPECT_EQ(ricci::euler_characteristic(tri), 2 - 2 * genus);
+    for (int e = 0; e < tri.edge_count(); ++e)
+      EXPECT_GE(ricci::delaunay_measure(tri, e, u), -1e-12);
+    Eigen::MatrixX3d angles;
+    ASSERT_TRUE(ricci::intrinsic_corner_angles(tri, u, angles));
+    const Eigen::VectorXd K = ricci::intrinsic_curvature(tri, angles);
+    EXPECT_NEAR(K.sum(), 2 * M_PI * (2 - 2 * genus), 1e-9) << genus;
+    // Every face's angles sum to pi.
+    EXPECT_LT((angles.rowwise().sum().array() - M_PI).abs().maxCoeff(), 1e-13);
+  }
+}
+
+}  // namespace
