@@ -34,6 +34,9 @@ FIT_OPTIONS = {
     "fill_boundaries": bool,
     "density": int,
     "cone_refinement": int,
+    "tolerance": float,
+    "refine_rounds": int,
+    "max_deviation": float,
 }
 COLUMNS = [
     "mesh", "genus", "faces", "status", "error", "error_type", "fit_rms_relative",

@@ -35,7 +35,8 @@ struct Spline {
 // The options msp fit reads, with its checks (its messages without the leading "--").
 spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness, double smoothing,
                                       const nb::object& singularity, bool fill_boundaries,
-                                      int density, int cone_refinement) {
+                                      int density, int cone_refinement, double tolerance,
+                                      int refine_rounds, double max_deviation) {
   spline::FitSurfaceOptions o;
   auto refuse = [](const std::string& message) { throw ricci::InvalidInputError(message); };
   if (domain_faces < 1) refuse("domain_faces must be positive");
@@ -54,15 +55,23 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness
   o.density = density;
   if (cone_refinement < 0 || cone_refinement > 4) refuse("cone_refinement must be in [0, 4]");
   o.cone_refinement.levels = cone_refinement;
+  if (!(tolerance >= 0.0 && tolerance < 1.0))
+    refuse("tolerance must be in [0, 1) (a fraction of the diagonal; 0: folds only)");
+  o.tolerance = tolerance;
+  if (refine_rounds < 0 || refine_rounds > 8) refuse("refine_rounds must be in [0, 8]");
+  o.refinement_rounds = refine_rounds;
+  if (!(max_deviation >= 0.0 && max_deviation <= 10.0))
+    refuse("max_deviation must be in [0, 10] (a fraction of the diagonal; 0: off)");
+  o.max_surface_deviation = max_deviation;
   return o;
 }
 
 Spline fit(nb::handle V, nb::handle F, int domain_faces, int degree, int fairness, double smoothing,
            const nb::object& singularity, bool fill_boundaries, int density, int cone_refinement,
-           const std::string& name) {
+           double tolerance, int refine_rounds, double max_deviation, const std::string& name) {
   const spline::FitSurfaceOptions options =
       fit_options(domain_faces, degree, fairness, smoothing, singularity, fill_boundaries, density,
-                  cone_refinement);
+                  cone_refinement, tolerance, refine_rounds, max_deviation);
   const ricci::PolygonSoup soup = soup_from_arrays(V, F, name);
   nlohmann::json report;
   Spline result;
@@ -392,17 +401,22 @@ void bind_spline(nb::module_& m) {
         "fairness"_a = 1, "smoothing"_a = spline::FitSurfaceOptions{}.smoothing,
         "singularity"_a = "auto", "fill_boundaries"_a = false, "density"_a = 0,
         "cone_refinement"_a = spline::FitSurfaceOptions{}.cone_refinement.levels,
+        "tolerance"_a = 0.0, "refine_rounds"_a = spline::FitSurfaceOptions{}.refinement_rounds,
+        "max_deviation"_a = spline::FitSurfaceOptions{}.max_surface_deviation,
         "name"_a = "(V, F) arrays",
         nb::sig("def fit(V: numpy.typing.ArrayLike, F: numpy.typing.ArrayLike, *, "
                 "domain_faces: int = 2000, degree: int = 3, fairness: int = 1, smoothing: float "
                 "= 0.0001, singularity: str | int = 'auto', fill_boundaries: bool = False, "
-                "density: int = 0, cone_refinement: int = 2, name: str = '(V, F) arrays') -> "
-                "Spline"),
+                "density: int = 0, cone_refinement: int = 2, tolerance: float = 0.0, "
+                "refine_rounds: int = 1, max_deviation: float = 0.05, "
+                "name: str = '(V, F) arrays') -> Spline"),
         "The whole scan-to-surface job of `msp fit` (spline::fit_surface): simplify to\n"
         "domain_faces, one-cone atlas, DMS spline of `degree` fitted inside the fairing\n"
         "constraints of order `fairness` (-1: none) with thin-plate weight `smoothing`, holes\n"
         "capped by G1 patches (boundaries too with fill_boundaries). Options as msp fit's\n"
-        "(singularity: \"auto\" or an interior vertex). Returns the Spline; its report is the\n"
+        "(singularity: \"auto\" or an interior vertex; tolerance, refine_rounds and\n"
+        "max_deviation as --tolerance, --refine-rounds, --max-deviation). Returns the Spline;\n"
+        "its report is the\n"
         "dict `msp fit --json` writes, `name` its \"mesh\".\n\n"
         "Raises InvalidInputError / TopologyError for bad arrays, meshes or options;\n"
         "SolverError when the flow does not converge.");
