@@ -25,7 +25,15 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
   // smoothing of earlier defaults (1e-5 everywhere): the defaults' smoother surface (sparse
   // faces at 1e-3) turns less next to the rim, and moving it there no longer helps (2.3 -> 2.6
   // degrees; msp fit keeps a moved surface only when its seam drops).
-  const auto& fit = testing::fitted_scan(msp_test::bundled_model("genus3.off"), 2000, 0, 1e-5);
+  // The scan's vertices and centroids only (no grid samples): the sparse data of the earlier
+  // defaults, on which the surface turns fast next to the rim.
+  ScanFitOptions options;
+  options.domain_faces = 2000;
+  options.atlas.cone_refinement.levels = 0;
+  options.fit.smoothing = options.fit.sparse_smoothing = 1e-5;
+  options.data_points_per_control_point = 0.0;
+  const ScanFitResult fit =
+      fit_scan(ricci::read_mesh(msp_test::bundled_model("genus3.off")), options);
   const auto& mesh = fit.atlas.problem.mesh;
   const auto rims = find_rims(*fit.spline.space, mesh);
   ASSERT_EQ(rims.size(), 1u);
