@@ -100,6 +100,7 @@ nlohmann::json flow_report_json(const std::string& path, const ricci::Mesh& mesh
   j["faces"] = mesh.n_faces();
   j["geometry"] = ricci::to_string(options.geometry);
   j["metric"] = ricci::to_string(result.metric.scheme);
+  j["intrinsic_flips"] = 0;  // msp flow sets both when its intrinsic Delaunay flow ran
   j["failed_attempts"] = result.failed_attempts;
   j["method"] = ricci::to_string(options.method);
   j["solver"] = ricci::to_string(result.solver);
