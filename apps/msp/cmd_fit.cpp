@@ -64,32 +64,27 @@ class Progress {
 spline::FitSurfaceOptions parse_options(const Args& args) {
   spline::FitSurfaceOptions o;
   o.domain_faces = args.get_int("domain-faces", o.domain_faces);
-  if (o.domain_faces < 1) throw UsageError("--domain-faces must be positive");
   o.degree = args.get_int("degree", o.degree);
-  if (o.degree < 1 || o.degree > spline::kMaxDmsDegree)
-    throw UsageError("--degree must be in [1, " + std::to_string(spline::kMaxDmsDegree) + "]");
   o.fairness = args.get_int("fairness", o.fairness);
-  if (o.fairness < -1 || o.fairness > o.degree - 1)
-    throw UsageError("--fairness must be -1 (none) or in [0, degree - 1]");
   o.smoothing = args.get_double("smoothing", o.smoothing);
-  if (!(o.smoothing >= 0.0 && o.smoothing < 1e6))
-    throw UsageError("--smoothing must be in [0, 1e6)");
   o.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
   o.fill_boundaries = args.has("fill-boundaries");
   o.density = args.get_int("density", 0);
-  if (o.density < 0 || o.density > 64) throw UsageError("--density must be in [1, 64]");
   o.cone_refinement.levels = args.get_int("cone-refinement", o.cone_refinement.levels);
-  if (o.cone_refinement.levels < 0 || o.cone_refinement.levels > 4)
-    throw UsageError("--cone-refinement must be in [0, 4]");
   o.refinement_rounds = args.get_int("refine-rounds", o.refinement_rounds);
-  if (o.refinement_rounds < 0 || o.refinement_rounds > 8)
-    throw UsageError("--refine-rounds must be in [0, 8]");
   o.tolerance = args.get_double("tolerance", o.tolerance);
-  if (!(o.tolerance >= 0.0 && o.tolerance < 1.0))
-    throw UsageError("--tolerance must be in [0, 1) (a fraction of the diagonal; 0: folds only)");
   o.max_surface_deviation = args.get_double("max-deviation", o.max_surface_deviation);
-  if (!(o.max_surface_deviation >= 0.0 && o.max_surface_deviation <= 10.0))
-    throw UsageError("--max-deviation must be in [0, 10] (a fraction of the diagonal; 0: off)");
+  try {
+    spline::check_options(o, [](const std::string& field) {
+      if (field == "refinement_rounds") return std::string("--refine-rounds");
+      if (field == "max_surface_deviation") return std::string("--max-deviation");
+      std::string flag = "--" + field;
+      std::replace(flag.begin(), flag.end(), '_', '-');
+      return flag;
+    });
+  } catch (const ricci::InvalidInputError& e) {
+    throw UsageError(e.what());
+  }
   return o;
 }
 

@@ -7,10 +7,9 @@
 #include <msp/report/ricci_reports.h>
 #include <nlohmann/json.hpp>
 #include <ricci/flow/flow.h>
-#include <ricci/intrinsic/conformal_flow.h>
+#include <ricci/intrinsic/routed_flow.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
-#include <ricci/metric/mesh_tables.h>
 
 #include "msp/cli.h"
 #include "msp/commands.h"
@@ -19,22 +18,6 @@
 namespace msp {
 
 namespace {
-
-ricci::Targets parse_target(const std::string& s, const ricci::Mesh& mesh, ricci::Geometry g) {
-  if (s == "uniform") return ricci::uniform_target(mesh, g);
-  if (s == "boundary") return ricci::boundary_target(mesh, ricci::BoundaryMode::spread_by_length);
-  if (s == "boundary-loop") return ricci::boundary_target(mesh, ricci::BoundaryMode::one_loop);
-  if (s.rfind("cone:", 0) == 0) {
-    try {
-      size_t used = 0;
-      const int v = std::stoi(s.substr(5), &used);
-      if (used == s.size() - 5) return ricci::single_cone_target(mesh, v);
-    } catch (const std::logic_error&) {
-    }
-    throw UsageError("--target cone:VERTEX needs a vertex index, got '" + s + "'");
-  }
-  throw UsageError("--target must be uniform, cone:VERTEX, boundary or boundary-loop, not '" + s + "'");
-}
 
 std::string lengths_text(const ricci::Mesh& mesh, const ricci::EdgeLengths& lengths) {
   std::ostringstream out;
@@ -88,13 +71,15 @@ const CommandSpec& flow_command() {
 
 int run_flow(int argc, char** argv) {
   const Args args(argc, argv, flow_command());
-  ricci::FlowOptions options;
+  ricci::RoutedFlowOptions routed;
+  ricci::FlowOptions& options = routed.flow;
   options.geometry = parse_geometry(args.get_or("geometry", "euclidean"));
   const bool intrinsic_only = args.get_or("metric", "") == "intrinsic-delaunay";
   options.scheme = intrinsic_only ? ricci::Scheme::inversive_distance
                                   : parse_scheme(args.get_or("metric", "inversive-distance"));
   // Without an explicit --metric, try the conformal metrics first and fall back (reported).
   options.fall_back_to_other_metrics = !args.has("metric") && !args.has("radii");
+  routed.route = intrinsic_only ? ricci::FlowRoute::intrinsic_delaunay : ricci::FlowRoute::automatic;
   options.radii = parse_radii(args.get_or("radii", "min"));
   options.solver = parse_solver(args.get_or("solver", "auto"));
   options.tolerance = args.get_double("tolerance", 1e-10);
@@ -105,7 +90,11 @@ int run_flow(int argc, char** argv) {
   options.method =
       method == "newton" ? ricci::FlowMethod::newton : ricci::FlowMethod::gradient_descent;
   if (args.has("max-iterations")) {
-    options.max_newton_iterations = options.max_gradient_iterations = args.get_int("max-iterations", 0);
+    options.max_newton_iterations = options.max_gradient_iterations =
+        routed.intrinsic_max_iterations = args.get_int("max-iterations", 0);
+  }
+  if (intrinsic_only && options.geometry != ricci::Geometry::euclidean) {
+    throw UsageError("--metric intrinsic-delaunay needs --geometry euclidean");
   }
   if (!args.has("quiet")) {
     options.progress = [](const ricci::FlowProgress& p) {
@@ -117,50 +106,29 @@ int run_flow(int argc, char** argv) {
   }
   const std::string path = args.positionals()[0];
   const ricci::Mesh mesh = ricci::read_mesh(path);
-  const ricci::Targets targets =
-      parse_target(args.get_or("target", "uniform"), mesh, options.geometry);
-  if (intrinsic_only && options.geometry != ricci::Geometry::euclidean) {
-    throw UsageError("--metric intrinsic-delaunay needs --geometry euclidean");
+  ricci::Targets targets;
+  try {
+    targets = ricci::parse_target(args.get_or("target", "uniform"), mesh, options.geometry);
+  } catch (const ricci::InfeasibleTargetError&) {
+    throw;  // a well-formed target the mesh cannot take: an error, not a usage error
+  } catch (const ricci::InvalidInputError& e) {
+    throw UsageError(std::string("--") + e.what());
   }
-  // The intrinsic flow runs alone when asked, and after the fixed-connectivity metrics when
-  // they all fail on a closed surface in E2 (reported as `metric`).
-  ricci::FlowResult result;
-  if (!intrinsic_only) result = ricci::flow(mesh, targets, options);
-  const bool closed_e2 = options.geometry == ricci::Geometry::euclidean &&
-                         ricci::build_mesh_tables(mesh).boundary_loops.empty();
-  std::string metric = intrinsic_only ? "intrinsic-delaunay" : ricci::to_string(result.metric.scheme);
-  int flips = 0;
-  ricci::IntrinsicFlowResult intrinsic;
-  if (intrinsic_only || (!result.converged() && options.fall_back_to_other_metrics && closed_e2)) {
-    ricci::IntrinsicFlowOptions settings;
-    settings.tolerance = options.tolerance;
-    settings.solver = options.solver;
-    settings.progress = options.progress;
-    if (args.has("max-iterations")) settings.max_iterations = options.max_newton_iterations;
-    std::vector<std::string> failures = result.failed_attempts;
-    if (!intrinsic_only) failures.push_back(result.message);
-    intrinsic = ricci::intrinsic_conformal_flow(mesh, targets, settings);
-    result = ricci::to_flow_result(intrinsic);
-    result.failed_attempts = failures;
-    metric = "intrinsic-delaunay";
-    flips = intrinsic.flips;
-  }
+  const ricci::RoutedFlowResult run = ricci::routed_flow(mesh, targets, routed);
+  const ricci::FlowResult& result = run.flow;
 
   if (auto out = args.get("lengths-out"); out && result.converged()) {
-    write_text_atomically(*out, metric == "intrinsic-delaunay"
-                                    ? lengths_text(intrinsic.triangulation, intrinsic.u)
+    write_text_atomically(*out, run.intrinsic
+                                    ? lengths_text(run.intrinsic->triangulation, run.intrinsic->u)
                                     : lengths_text(mesh, result.lengths));
   }
   if (args.has("json")) {
-    nlohmann::json j = flow_report_json(path, mesh, options, result);
-    j["metric"] = metric;  // the intrinsic flow, when it ran
-    j["intrinsic_flips"] = flips;
-    std::cout << j.dump() << "\n";
+    std::cout << flow_report_json(path, mesh, options, run).dump() << "\n";
   } else {
     std::cout << "status " << ricci::to_string(result.status) << "\niterations "
               << result.iterations << "\nmax_curvature_error " << result.max_error
               << "\nseconds " << result.timings.total << "\nvertices " << mesh.n_vertices()
-              << "\nfaces " << mesh.n_faces() << "\nmetric " << metric << "\n";
+              << "\nfaces " << mesh.n_faces() << "\nmetric " << run.metric << "\n";
   }
   if (!result.converged()) throw ricci::SolverError(result.message);
   return 0;

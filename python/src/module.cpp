@@ -11,6 +11,7 @@
 
 #include <msp/report/ricci_reports.h>
 #include <ricci/flow/targets.h>
+#include <ricci/intrinsic/routed_flow.h>
 #include <ricci/mesh/arrays.h>
 #include <ricci/mesh/build_mesh.h>
 #include <ricci/mesh/diagnose.h>
@@ -120,22 +121,6 @@ void apply_metric(ricci::FlowOptions& flow, const std::optional<std::string>& me
     flow.radii = parse_enum<R>(*radii, "radii", {R::mean, R::min, R::least_squares}, radii_name);
 }
 
-ricci::Targets parse_target(const std::string& s, const ricci::Mesh& mesh, ricci::Geometry g) {
-  if (s == "uniform") return ricci::uniform_target(mesh, g);
-  if (s == "boundary") return ricci::boundary_target(mesh, ricci::BoundaryMode::spread_by_length);
-  if (s == "boundary-loop") return ricci::boundary_target(mesh, ricci::BoundaryMode::one_loop);
-  if (s.rfind("cone:", 0) == 0) {
-    try {
-      size_t used = 0;
-      const int v = std::stoi(s.substr(5), &used);
-      if (used == s.size() - 5) return ricci::single_cone_target(mesh, v);
-    } catch (const std::logic_error&) {
-    }
-  }
-  throw ricci::InvalidInputError(
-      "target must be uniform, cone:VERTEX, boundary or boundary-loop, not '" + s + "'");
-}
-
 nb::tuple read_mesh(const std::string& path) {
   ricci::VertexFaceArrays arrays;
   {
@@ -166,27 +151,35 @@ nb::tuple flow(nb::handle V, nb::handle F, const std::string& geometry,
                const std::optional<std::string>& metric, const std::optional<std::string>& radii,
                const std::string& target, double tolerance, int max_iterations,
                const std::string& name) {
-  ricci::FlowOptions options;
+  ricci::RoutedFlowOptions routed;
+  ricci::FlowOptions& options = routed.flow;
   options.geometry = parse_geometry(geometry);
-  apply_metric(options, metric, radii);
+  if (metric && *metric == "intrinsic-delaunay") {
+    routed.route = ricci::FlowRoute::intrinsic_delaunay;
+  } else {
+    apply_metric(options, metric, radii);
+  }
   options.fall_back_to_other_metrics = !metric && !radii;
   options.tolerance = tolerance;
-  if (max_iterations > 0)
-    options.max_newton_iterations = options.max_gradient_iterations = max_iterations;
+  if (max_iterations > 0) {
+    options.max_newton_iterations = options.max_gradient_iterations =
+        routed.intrinsic_max_iterations = max_iterations;
+  }
   const ricci::MeshBuildResult built = build(V, F, name);
-  ricci::FlowResult result;
+  ricci::RoutedFlowResult run;
   {
     nb::gil_scoped_release release;
-    const ricci::Targets targets = parse_target(target, built.mesh, options.geometry);
-    result = ricci::flow(built.mesh, targets, options);
+    const ricci::Targets targets = ricci::parse_target(target, built.mesh, options.geometry);
+    run = ricci::routed_flow(built.mesh, targets, routed);
   }
+  const ricci::FlowResult& result = run.flow;
   if (!result.converged()) throw ricci::SolverError(result.message);
   // u by input vertex (NaN for vertices no face uses).
   Eigen::VectorXd u = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(nb::len(V)),
                                                 std::numeric_limits<double>::quiet_NaN());
   for (size_t v = 0; v < built.input_vertex.size(); ++v)
     u[built.input_vertex[v]] = result.u[static_cast<Eigen::Index>(v)];
-  nb::object report = to_python(msp::flow_report_json(name, built.mesh, options, result));
+  nb::object report = to_python(msp::flow_report_json(name, built.mesh, options, run));
   return nb::make_tuple(to_numpy(std::move(u)), report);
 }
 
@@ -271,8 +264,9 @@ NB_MODULE(_core, m) {
         "Discrete Ricci flow to a target curvature, as `msp flow --json`: returns (u, report),\n"
         "u the flow variables by vertex of V (NaN where no face uses the vertex) and the\n"
         "report dict. geometry: euclidean|hyperbolic|spherical; metric:\n"
-        "circle-packing|inversive-distance|combinatorial (None: inversive-distance, falling\n"
-        "back to the others); radii: mean|min|least-squares; target: uniform|cone:VERTEX|\n"
+        "circle-packing|inversive-distance|combinatorial|intrinsic-delaunay (None:\n"
+        "inversive-distance, falling back to the others and, on a closed surface in E2, to\n"
+        "intrinsic-delaunay); radii: mean|min|least-squares; target: uniform|cone:VERTEX|\n"
         "boundary|boundary-loop.\n\n"
         "Raises InvalidInputError / TopologyError for bad meshes or options,\n"
         "InfeasibleTargetError, SolverError when the flow does not converge.");

@@ -38,31 +38,22 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness
                                       int density, int cone_refinement, double tolerance,
                                       int refine_rounds, double max_deviation) {
   spline::FitSurfaceOptions o;
-  auto refuse = [](const std::string& message) { throw ricci::InvalidInputError(message); };
-  if (domain_faces < 1) refuse("domain_faces must be positive");
   o.domain_faces = domain_faces;
-  if (degree < 1 || degree > spline::kMaxDmsDegree)
-    refuse("degree must be in [1, " + std::to_string(spline::kMaxDmsDegree) + "]");
   o.degree = degree;
-  if (fairness < -1 || fairness > degree - 1)
-    refuse("fairness must be -1 (none) or in [0, degree - 1]");
   o.fairness = fairness;
-  if (!(smoothing >= 0.0 && smoothing < 1e6)) refuse("smoothing must be in [0, 1e6)");
   o.smoothing = smoothing;
   o.singular_vertex = parse_singularity(singularity);
   o.fill_boundaries = fill_boundaries;
-  if (density < 0 || density > 64) refuse("density must be in [1, 64] (0: chosen by size)");
   o.density = density;
-  if (cone_refinement < 0 || cone_refinement > 4) refuse("cone_refinement must be in [0, 4]");
   o.cone_refinement.levels = cone_refinement;
-  if (!(tolerance >= 0.0 && tolerance < 1.0))
-    refuse("tolerance must be in [0, 1) (a fraction of the diagonal; 0: folds only)");
   o.tolerance = tolerance;
-  if (refine_rounds < 0 || refine_rounds > 8) refuse("refine_rounds must be in [0, 8]");
   o.refinement_rounds = refine_rounds;
-  if (!(max_deviation >= 0.0 && max_deviation <= 10.0))
-    refuse("max_deviation must be in [0, 10] (a fraction of the diagonal; 0: off)");
   o.max_surface_deviation = max_deviation;
+  spline::check_options(o, [](const std::string& field) {
+    if (field == "refinement_rounds") return std::string("refine_rounds");
+    if (field == "max_surface_deviation") return std::string("max_deviation");
+    return field;
+  });
   return o;
 }
 

@@ -22,6 +22,8 @@ def test_flow_options_and_refusals():
     with pytest.raises(ms.InvalidInputError, match="geometry must be one of euclidean"):
         ms.flow(V, F, geometry="flat")
     with pytest.raises(ms.InvalidInputError, match="target must be uniform"):
+        ms.flow(V, F, target="cones")
+    with pytest.raises(ms.InvalidInputError, match="cone:VERTEX needs a vertex index"):
         ms.flow(V, F, target="cone:x")
     with pytest.raises(ms.InfeasibleTargetError):
         ms.flow(V, F, geometry="spherical")  # genus 2 has no spherical metric

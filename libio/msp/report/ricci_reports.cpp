@@ -88,7 +88,8 @@ nlohmann::ordered_json mesh_info_json(const std::string& path, const ricci::Mesh
 }
 nlohmann::json flow_report_json(const std::string& path, const ricci::Mesh& mesh,
                                 const ricci::FlowOptions& options,
-                                const ricci::FlowResult& result) {
+                                const ricci::RoutedFlowResult& routed) {
+  const ricci::FlowResult& result = routed.flow;
   nlohmann::json j;
   j["mesh"] = path;
   j["status"] = ricci::to_string(result.status);
@@ -99,8 +100,8 @@ nlohmann::json flow_report_json(const std::string& path, const ricci::Mesh& mesh
   j["vertices"] = mesh.n_vertices();
   j["faces"] = mesh.n_faces();
   j["geometry"] = ricci::to_string(options.geometry);
-  j["metric"] = ricci::to_string(result.metric.scheme);
-  j["intrinsic_flips"] = 0;  // msp flow sets both when its intrinsic Delaunay flow ran
+  j["metric"] = routed.metric;
+  j["intrinsic_flips"] = routed.flips();
   j["failed_attempts"] = result.failed_attempts;
   j["method"] = ricci::to_string(options.method);
   j["solver"] = ricci::to_string(result.solver);

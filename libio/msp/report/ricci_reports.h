@@ -5,6 +5,7 @@
 
 #include <ricci/flow/flow.h>
 #include <ricci/hyperbolic/uniformize.h>
+#include <ricci/intrinsic/routed_flow.h>
 #include <ricci/mesh/diagnose.h>
 #include <ricci/mesh/mesh.h>
 #include <ricci/pipeline/one_cone_atlas.h>
@@ -19,11 +20,12 @@ namespace msp {
                                                     const ricci::MeshDiagnosis& diagnosis);
 
 /// mesh, status, iterations, factorizations, max_curvature_error, seconds, vertices, faces,
-/// geometry, metric, failed_attempts, method, solver, error_history, timings; message when the
-/// flow did not converge.
+/// geometry, metric (the route that ran: a scheme or intrinsic-delaunay), intrinsic_flips,
+/// failed_attempts, method, solver, error_history, timings; message when the flow did not
+/// converge.
 [[nodiscard]] nlohmann::json flow_report_json(const std::string& path, const ricci::Mesh& mesh,
                                               const ricci::FlowOptions& options,
-                                              const ricci::FlowResult& result);
+                                              const ricci::RoutedFlowResult& routed);
 
 /// The fundamental polygon's boundary word, e.g. "a0 a1 a0^-1 a1^-1" (b: boundary loops).
 [[nodiscard]] std::string polygon_word_text(const ricci::FundamentalPolygon& polygon);

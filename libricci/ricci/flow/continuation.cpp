@@ -1,6 +1,7 @@
 #include "ricci/flow/continuation.h"
 
 #include <algorithm>
+#include <memory>
 #include <string>
 
 #include "ricci/metric/curvature.h"
@@ -27,10 +28,12 @@ FlowResult flow_by_continuation(const MeshTables& tables, const CirclePackingMet
   const int stages = std::max(1, continuation.stages);
   CirclePackingMetric metric = initial;
   FlowResult total;
+  FlowOptions shared = options;
+  if (!shared.factorization_cache) shared.factorization_cache = std::make_shared<FactorizationCache>();
   for (int stage = 1; stage <= stages; ++stage) {
     const double s = static_cast<double>(stage) / stages;
     Targets target{(1.0 - s) * start_curvature + s * targets.curvature};
-    FlowOptions stage_options = options;
+    FlowOptions stage_options = shared;
     if (stage < stages) stage_options.tolerance = std::max(options.tolerance, continuation.stage_tolerance);
     // flow() checks a target against the valence bound of its scheme (targets.h), a sufficient
     // condition for the final cone; the stages between a realised curvature and a checked target

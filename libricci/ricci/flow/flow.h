@@ -9,6 +9,7 @@
 //   if (!result.converged()) std::cerr << result.message;
 //   use(result.lengths);
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,9 @@ struct FlowOptions {
   /// (the last always satisfies Thurston's conditions for cones of valence ≥ 4 - 2K̄/π, but is
   /// not conformal to the mesh). The result records the metric that converged and the attempts.
   bool fall_back_to_other_metrics = false;
+  /// Optional: shares the symbolic analysis of Newton's factorisation with later flows on the
+  /// same mesh and unknowns (flow_by_continuation's stages make one when it is empty).
+  std::shared_ptr<FactorizationCache> factorization_cache;
   /// Optional progress report (never called from another thread).
   std::function<void(const FlowProgress&)> progress;
 };

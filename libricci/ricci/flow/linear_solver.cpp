@@ -1,9 +1,12 @@
 #include "ricci/flow/linear_solver.h"
 
+#include <algorithm>
+
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/stopwatch.h"
 
 namespace ricci {
 
@@ -102,6 +105,37 @@ Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs
       return impl_->cholmod_supernodal.solve(rhs);
     default: return impl_->cholmod_simplicial.solve(rhs);
   }
+}
+
+std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kind,
+                                                                const Sparse& lower,
+                                                                double& analysis_seconds) {
+  const LinearSolver resolved = resolve_linear_solver(kind, lower.rows());
+  const int columns = static_cast<int>(lower.outerSize());
+  const int* outer = lower.outerIndexPtr();
+  const int* inner = lower.innerIndexPtr();
+  const auto nonzeros = static_cast<size_t>(outer[columns]);
+  const bool same = factorization_ && factorization_->kind() == resolved &&
+                    lower.isCompressed() && outer_.size() == static_cast<size_t>(columns) + 1 &&
+                    inner_.size() == nonzeros && std::equal(outer_.begin(), outer_.end(), outer) &&
+                    std::equal(inner_.begin(), inner_.end(), inner);
+  if (same) {
+    ++reuses_;
+    return factorization_;
+  }
+  const Stopwatch clock;
+  factorization_ = std::make_shared<SymmetricFactorization>(resolved);
+  factorization_->analyze(lower);
+  analysis_seconds += clock.seconds();
+  ++analyses_;
+  if (lower.isCompressed()) {
+    outer_.assign(outer, outer + columns + 1);
+    inner_.assign(inner, inner + nonzeros);
+  } else {
+    outer_.clear();  // an uncompressed pattern is never matched: analyse each time
+    inner_.clear();
+  }
+  return factorization_;
 }
 
 }  // namespace ricci

@@ -3,6 +3,7 @@
 // symbolic factorisation) and only the numeric factorisation is redone per iteration.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -47,6 +48,26 @@ class SymmetricFactorization {
   struct Impl;
   LinearSolver kind_;
   std::unique_ptr<Impl> impl_;
+};
+
+/// A factorisation kept across solves whose matrices share one sparsity pattern (the stages of
+/// a continuation, retries of a flow on one mesh): the symbolic analysis (ordering, elimination
+/// tree, supernodes) runs once. One user at a time; not thread-safe.
+class FactorizationCache {
+ public:
+  /// A factorisation of `kind` (resolved by size) analysed for `lower`'s pattern: the cached
+  /// one when kind and pattern are the ones it was analysed for, otherwise a new analysis that
+  /// replaces the cached one. Adds the time of any analysis to `analysis_seconds`.
+  [[nodiscard]] std::shared_ptr<SymmetricFactorization> get(
+      LinearSolver kind, const Eigen::SparseMatrix<double>& lower, double& analysis_seconds);
+  /// Analyses done and analyses saved so far.
+  int analyses() const { return analyses_; }
+  int reuses() const { return reuses_; }
+
+ private:
+  std::shared_ptr<SymmetricFactorization> factorization_;
+  std::vector<int> outer_, inner_;
+  int analyses_ = 0, reuses_ = 0;
 };
 
 }  // namespace ricci

@@ -31,12 +31,12 @@ double max_abs_diagonal(const Eigen::SparseMatrix<double>& lower) {
 // fails too, a growing diagonal shift makes the system solvable (a damped Newton step).
 class NewtonSystem {
  public:
-  NewtonSystem(LinearSolver kind, const Eigen::SparseMatrix<double>& pattern, FlowTimings& timings)
-      : factorization_(std::make_unique<SymmetricFactorization>(resolve_linear_solver(kind, pattern.rows()))),
-        timings_(timings) {
-    const Stopwatch t0;
-    factorization_->analyze(pattern);
-    timings_.analysis += t0.seconds();
+  // The symbolic analysis comes from `cache` when it has one for this pattern.
+  NewtonSystem(LinearSolver kind, const Eigen::SparseMatrix<double>& pattern,
+               FactorizationCache* cache, FlowTimings& timings)
+      : timings_(timings) {
+    FactorizationCache own;
+    factorization_ = (cache ? *cache : own).get(kind, pattern, timings_.analysis);
   }
 
   LinearSolver kind() const { return factorization_->kind(); }
@@ -80,7 +80,7 @@ class NewtonSystem {
   bool solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
     if (try_solve(H, rhs, x)) return true;
     if (kind() != LinearSolver::eigen_ldlt) {
-      factorization_ = std::make_unique<SymmetricFactorization>(LinearSolver::eigen_ldlt);
+      factorization_ = std::make_shared<SymmetricFactorization>(LinearSolver::eigen_ldlt);
       const Stopwatch t0;
       factorization_->analyze(H);
       timings_.analysis += t0.seconds();
@@ -120,7 +120,7 @@ class NewtonSystem {
     return x.allFinite();
   }
 
-  std::unique_ptr<SymmetricFactorization> factorization_;
+  std::shared_ptr<SymmetricFactorization> factorization_;
   FlowTimings& timings_;
   bool factored_ = false;  // the factorisation holds a (possibly older) Hessian
   int refinements_ = 2;
@@ -244,7 +244,7 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   // E2 gauge: H·1 = 0 (scaling all radii keeps every angle), so pin vertex 0 and solve the
   // reduced system; its dropped equation holds because Σ(K̄ - K) = 0 by Gauss-Bonnet.
   HessianAssembler assembler(t, euclidean ? 0 : -1);
-  NewtonSystem system(o.solver, assembler.matrix(), result.timings);
+  NewtonSystem system(o.solver, assembler.matrix(), o.factorization_cache.get(), result.timings);
   const int n = assembler.num_unknowns();
 
   FlowState trial;

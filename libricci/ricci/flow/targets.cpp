@@ -3,6 +3,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "ricci/mesh/errors.h"
@@ -177,6 +178,25 @@ void check_targets(const MeshTables& t, const Targets& targets, Geometry geometr
           "inversive-distance");
     }
   }
+}
+
+Targets parse_target(const std::string& spec, const Mesh& mesh, Geometry geometry) {
+  if (spec == "uniform") return uniform_target(mesh, geometry);
+  if (spec == "boundary") return boundary_target(mesh, BoundaryMode::spread_by_length);
+  if (spec == "boundary-loop") return boundary_target(mesh, BoundaryMode::one_loop);
+  if (spec.rfind("cone:", 0) == 0) {
+    size_t used = 0;
+    int vertex = -1;
+    try {
+      vertex = std::stoi(spec.substr(5), &used);
+    } catch (const std::logic_error&) {
+      used = 0;
+    }
+    if (used > 0 && used == spec.size() - 5) return single_cone_target(mesh, vertex);
+    throw InvalidInputError("target cone:VERTEX needs a vertex index, got '" + spec + "'");
+  }
+  throw InvalidInputError("target must be uniform, cone:VERTEX, boundary or boundary-loop, not '" +
+                          spec + "'");
 }
 
 }  // namespace ricci

@@ -1,6 +1,7 @@
 #pragma once
 // Target curvatures for the Ricci flow (Ricci-flow paper §V; manifold-splines paper §4) and their
 // feasibility check.
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -47,6 +48,12 @@ enum class BoundaryMode {
 /// loop (`loop` indexes MeshTables::boundary_loops; -1 picks the longest loop).
 /// \throw InvalidInputError for a closed mesh or a loop out of range.
 [[nodiscard]] Targets boundary_target(const Mesh& mesh, BoundaryMode mode, int loop = -1);
+
+/// The target named by `spec`, as `msp flow --target` and the Python `flow` read it: "uniform"
+/// (uniform_target), "cone:VERTEX" (single_cone_target), "boundary" (boundary_target spread by
+/// length) or "boundary-loop" (on the longest loop). \throw InvalidInputError for any other
+/// spec, and as the named function throws.
+[[nodiscard]] Targets parse_target(const std::string& spec, const Mesh& mesh, Geometry geometry);
 
 /// Checks a target before any work: its size, finiteness, cone angles below 2π (π on the
 /// boundary), Gauss-Bonnet (Σ K̄ = 2πχ in E2, > 2πχ in H2, < 2πχ in S2, because the faces carry

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <queue>
 #include <sstream>
 #include <vector>
@@ -136,6 +137,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
   Stopwatch clock;
   double best = error;
   int since_best = 0;
+  FactorizationCache cache;  // flips change the pattern; steps without flips keep the analysis
   for (int iteration = 0; error > tolerance; ++iteration) {
     if (iteration >= max_iterations) {
       reason = "iteration budget spent";
@@ -148,12 +150,10 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     clock.restart();
     const Eigen::SparseMatrix<double> lower = reduced_laplacian(tri, eval.cotangents, pinned);
     result.timings.assembly += clock.seconds();
-    SymmetricFactorization factorization(result.solver);
+    const std::shared_ptr<SymmetricFactorization> factorization =
+        cache.get(result.solver, lower, result.timings.analysis);
     clock.restart();
-    factorization.analyze(lower);  // flips change the pattern
-    result.timings.analysis += clock.seconds();
-    clock.restart();
-    const bool factored = factorization.factorize(lower);
+    const bool factored = factorization->factorize(lower);
     result.timings.factorization += clock.seconds();
     ++result.factorizations;
     if (!factored) {
@@ -165,7 +165,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
       if (v != pinned) rhs[v < pinned ? v : v - 1] = -gradient[v];
     }
     clock.restart();
-    const Eigen::VectorXd reduced = factorization.solve(rhs);
+    const Eigen::VectorXd reduced = factorization->solve(rhs);
     result.timings.solve += clock.seconds();
     Eigen::VectorXd direction = Eigen::VectorXd::Zero(n);
     for (int v = 0; v < n; ++v) {

@@ -183,16 +183,6 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
 
 }  // namespace
 
-std::string to_string(FlowRoute route) {
-  switch (route) {
-    case FlowRoute::fixed_connectivity:
-      return "fixed-connectivity";
-    case FlowRoute::intrinsic_delaunay:
-      return "intrinsic-delaunay";
-    default: return "automatic";
-  }
-}
-
 OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options) {
   OneConeAtlasOptions route = options;
   route.collapse_short_edges = true;

@@ -8,6 +8,7 @@
 #include "ricci/atlas/atlas.h"
 #include "ricci/flow/flow.h"
 #include "ricci/intrinsic/conformal_flow.h"
+#include "ricci/intrinsic/routed_flow.h"
 #include "ricci/mesh/collapse_short_edges.h"
 #include "ricci/mesh/flat_flips.h"
 #include "ricci/mesh/mesh.h"
@@ -17,21 +18,6 @@
 #include "ricci/singularity/one_cone.h"
 
 namespace ricci {
-
-/// Which flow computes the one-cone metric.
-enum class FlowRoute {
-  /// The fixed-connectivity flows (flow.h); where they do not converge (or no candidate
-  /// singular vertex converges), the intrinsic Delaunay flow; closed surfaces of genus
-  /// intrinsic_from_genus or more take the intrinsic flow directly.
-  automatic,
-  fixed_connectivity,  ///< flow.h's circle-packing family only
-  /// intrinsic/conformal_flow.h only (closed surfaces: single cones and flat tori); the
-  /// singular vertex is the linear model's best when it is chosen automatically.
-  intrinsic_delaunay
-};
-
-/// "automatic", "fixed-connectivity", "intrinsic-delaunay".
-[[nodiscard]] std::string to_string(FlowRoute route);
 
 struct OneConeAtlasOptions {
   /// Input vertex index of the singularity, or -1 to choose it (least area distortion).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <queue>
 #include <string>
 #include <utility>
@@ -223,9 +224,12 @@ namespace {
 
 // Runs the flow with each metric of one_cone_metric_order until one converges; failed runs are
 // appended to `failures`.
-FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& options,
+FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& caller_options,
                        std::vector<std::string>& failures) {
   FlowResult result;
+  // Every run below is on problem.mesh: one symbolic analysis serves them all.
+  FlowOptions options = caller_options;
+  if (!options.factorization_cache) options.factorization_cache = std::make_shared<FactorizationCache>();
   if (problem.kind == OneConeKind::SingleCone) {
     // Thurston's angles from the mesh with tangent circles at the cone: the mesh-conformal
     // circle packing often has no solution at a 10pi cone (genus3_100k), tangency near the cone
@@ -314,12 +318,14 @@ FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector
   std::vector<std::string> failures;
   const MeshTables tables = build_mesh_tables(problem.mesh);
   const EdgeLengths lengths = mesh_edge_lengths(problem.mesh);
+  FlowOptions shared = options;  // one symbolic analysis for every rule's stages
+  if (!shared.factorization_cache) shared.factorization_cache = std::make_shared<FactorizationCache>();
   for (const ConeRingMetric& rule : rules) {
     try {
       const CirclePackingMetric initial = cone_ring_metric(tables, lengths, problem.cone, rule);
       // Mixing clamped and free weights in one face can break it before the flow starts: the
       // continuation's first curvature evaluation throws InvalidInputError then.
-      result = flow_by_continuation(tables, initial, problem.targets, options, continuation);
+      result = flow_by_continuation(tables, initial, problem.targets, shared, continuation);
       result.metric_name = to_string(rule);
       if (result.converged()) break;
       failures.push_back(to_string(rule) + ": " + result.message);

@@ -442,10 +442,30 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
 
 int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
 
+void check_options(const FitSurfaceOptions& o,
+                   const std::function<std::string(const std::string& field)>& name) {
+  auto require = [&](bool ok, const std::string& field, const std::string& range) {
+    if (!ok) throw ricci::InvalidInputError((name ? name(field) : field) + " must be " + range);
+  };
+  require(o.domain_faces >= 1, "domain_faces", "positive");
+  require(o.degree >= 1 && o.degree <= kMaxDmsDegree, "degree",
+          "in [1, " + std::to_string(kMaxDmsDegree) + "]");
+  require(o.fairness >= -1 && o.fairness <= o.degree - 1, "fairness",
+          "-1 (none) or in [0, degree - 1]");
+  require(o.smoothing >= 0.0 && o.smoothing < 1e6, "smoothing", "in [0, 1e6)");
+  require(o.density >= 0 && o.density <= 64, "density", "in [1, 64] (0: chosen by size)");
+  require(o.cone_refinement.levels >= 0 && o.cone_refinement.levels <= 4, "cone_refinement",
+          "in [0, 4]");
+  require(o.refinement_rounds >= 0 && o.refinement_rounds <= 8, "refinement_rounds",
+          "in [0, 8]");
+  require(o.tolerance >= 0.0 && o.tolerance < 1.0, "tolerance",
+          "in [0, 1) (a fraction of the diagonal; 0: folds only)");
+  require(o.max_surface_deviation >= 0.0 && o.max_surface_deviation <= 10.0,
+          "max_surface_deviation", "in [0, 10] (a fraction of the diagonal; 0: off)");
+}
+
 FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
-  if (options.refinement_rounds < 0 || !(options.tolerance >= 0.0)) {
-    throw ricci::InvalidInputError("fit_surface: refinement_rounds and tolerance must be >= 0");
-  }
+  check_options(options);
   FittedSurface out;
   StageClock clock(out, options);
   out.input = ricci::surface_topology(dense);

@@ -53,6 +53,15 @@ struct FitSurfaceOptions {
   std::function<void(const std::string& stage)> progress;
 };
 
+/// Checks the ranges of the options: domain_faces >= 1, degree in [1, kMaxDmsDegree], fairness
+/// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64], cone_refinement.levels
+/// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
+/// [0, 10]. `name` spells a field (given as "domain_faces", "cone_refinement", ...) the way the
+/// caller's user knows it, e.g. msp fit's "--domain-faces" (default: the field's own name).
+/// \throw ricci::InvalidInputError naming the first option out of range and its range.
+void check_options(const FitSurfaceOptions& options,
+                   const std::function<std::string(const std::string& field)>& name = {});
+
 /// One fit round of fit_surface (the first, then each refinement).
 struct RefinementRound {
   int domain_faces = 0, control_points = 0;

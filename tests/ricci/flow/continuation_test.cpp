@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 
 #include "ricci/flow/continuation.h"
+#include "ricci/flow/linear_solver.h"
 #include "ricci/mesh/io.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/metric/curvature.h"
@@ -41,6 +43,48 @@ TEST(Continuation, EndsAtTheDirectFlowsMetric) {
   const Eigen::VectorXd k =
       ricci::vertex_curvature(eight.t, walked.lengths, ricci::Geometry::euclidean);
   EXPECT_LT((k - problem.targets.curvature).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// The stages share one symbolic analysis (FlowOptions::factorization_cache), and a shared
+// analysis changes nothing: the plain flow with a cache that already holds it gives the same
+// metric bit for bit.
+TEST(Continuation, StagesShareOneSymbolicAnalysis) {
+  const EightCone eight;
+  ricci::FlowOptions options = ricci::one_cone_flow_options();
+  options.factorization_cache = std::make_shared<ricci::FactorizationCache>();
+  const ricci::FlowResult walked = ricci::flow_by_continuation(
+      eight.t, eight.initial, eight.problem.targets, options, ricci::ContinuationOptions{4});
+  ASSERT_TRUE(walked.converged()) << walked.message;
+  EXPECT_EQ(options.factorization_cache->analyses(), 1);
+  EXPECT_EQ(options.factorization_cache->reuses(), 3);
+  const ricci::FlowResult again = ricci::flow(eight.t, eight.initial, eight.problem.targets, options);
+  EXPECT_EQ(options.factorization_cache->analyses(), 1);
+  EXPECT_EQ(again.lengths, eight.direct.lengths);
+  EXPECT_EQ(again.timings.analysis, 0.0);
+}
+
+TEST(FactorizationCache, AnalysesAgainForAnotherPattern) {
+  ricci::FactorizationCache cache;
+  Eigen::SparseMatrix<double> a(3, 3), b(3, 3);
+  a.insert(0, 0) = 2;
+  a.insert(1, 1) = 2;
+  a.insert(2, 2) = 2;
+  a.insert(1, 0) = -1;
+  a.makeCompressed();
+  b = a;
+  b.insert(2, 1) = -1;
+  b.makeCompressed();
+  double seconds = 0;
+  const auto first = cache.get(ricci::LinearSolver::eigen_llt, a, seconds);
+  EXPECT_EQ(cache.get(ricci::LinearSolver::eigen_llt, a, seconds), first);
+  const auto other = cache.get(ricci::LinearSolver::eigen_llt, b, seconds);
+  EXPECT_NE(other, first);
+  EXPECT_NE(cache.get(ricci::LinearSolver::eigen_ldlt, b, seconds), other);
+  EXPECT_EQ(cache.analyses(), 3);
+  EXPECT_EQ(cache.reuses(), 1);
+  ASSERT_TRUE(other->factorize(b));
+  const Eigen::Vector3d x = other->solve(Eigen::Vector3d(1, 0, 1));
+  EXPECT_LT((b.selfadjointView<Eigen::Lower>() * x - Eigen::Vector3d(1, 0, 1)).norm(), 1e-14);
 }
 
 TEST(Continuation, OneStageIsThePlainFlow) {

@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <ricci/flow/flow.h>
+#include <ricci/flow/targets.h>
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
+#include <ricci/mesh/primitives.h>
 #include <ricci/metric/curvature.h>
 
 #include "ricci/test_meshes.h"
@@ -259,3 +263,26 @@ TEST(Flow, EverySolverGivesTheSameMetric) {
 
 }  // namespace
 }  // namespace ricci
+
+// parse_target: the specs of `msp flow --target` and the Python flow, and the refusals.
+TEST(ParseTarget, NamesTheTargetsAndRefusesOtherSpecs) {
+  const ricci::Mesh torus = ricci::make_torus(12, 8, 2.0, 0.7);
+  const auto uniform = ricci::parse_target("uniform", torus, ricci::Geometry::euclidean);
+  EXPECT_EQ(uniform.curvature, ricci::uniform_target(torus, ricci::Geometry::euclidean).curvature);
+  const ricci::Mesh disk = ricci::make_disk(4, 12);
+  EXPECT_EQ(ricci::parse_target("boundary-loop", disk, ricci::Geometry::euclidean).curvature,
+            ricci::boundary_target(disk, ricci::BoundaryMode::one_loop).curvature);
+  const ricci::Mesh sphere = ricci::make_icosphere(2);
+  const auto cone = ricci::parse_target("cone:7", sphere, ricci::Geometry::euclidean);
+  EXPECT_NEAR(cone.curvature[7], 4 * M_PI, 1e-12);
+  EXPECT_NEAR(cone.curvature.sum(), 4 * M_PI, 1e-12);
+  for (const char* bad : {"cone:", "cone:x", "cone:7x", "cones", ""}) {
+    EXPECT_THROW((void)ricci::parse_target(bad, sphere, ricci::Geometry::euclidean),
+                 ricci::InvalidInputError)
+        << bad;
+  }
+  EXPECT_THROW((void)ricci::parse_target("cone:100000", sphere, ricci::Geometry::euclidean),
+               ricci::InvalidInputError);
+  EXPECT_THROW((void)ricci::parse_target("uniform", sphere, ricci::Geometry::euclidean),
+               ricci::InfeasibleTargetError);  // a sphere has no flat metric
+}

@@ -1,0 +1,54 @@
+// spline::check_options: the ranges msp fit and the Python fit both enforce, in the caller's
+// spelling of the option.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "ricci/mesh/errors.h"
+#include "spline/surface/fit_surface.h"
+
+namespace spline {
+namespace {
+
+std::string refusal(const FitSurfaceOptions& o,
+                    const std::function<std::string(const std::string&)>& name = {}) {
+  try {
+    check_options(o, name);
+  } catch (const ricci::InvalidInputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CheckOptions, DefaultsPassAndEachRangeIsEnforced) {
+  EXPECT_EQ(refusal(FitSurfaceOptions{}), "");
+  auto with = [](auto change) {
+    FitSurfaceOptions o;
+    change(o);
+    return refusal(o);
+  };
+  EXPECT_EQ(with([](auto& o) { o.domain_faces = 0; }), "domain_faces must be positive");
+  EXPECT_NE(with([](auto& o) { o.degree = kMaxDmsDegree + 1; }), "");
+  EXPECT_NE(with([](auto& o) { o.fairness = o.degree; }), "");
+  EXPECT_EQ(with([](auto& o) { o.fairness = -1; }), "");
+  EXPECT_NE(with([](auto& o) { o.smoothing = -1e-3; }), "");
+  EXPECT_NE(with([](auto& o) { o.density = 65; }), "");
+  EXPECT_NE(with([](auto& o) { o.cone_refinement.levels = 5; }), "");
+  EXPECT_NE(with([](auto& o) { o.refinement_rounds = 9; }), "");
+  EXPECT_NE(with([](auto& o) { o.tolerance = 1.0; }), "");
+  EXPECT_NE(with([](auto& o) { o.max_surface_deviation = -0.1; }), "");
+  EXPECT_NE(with([](auto& o) { o.smoothing = std::nan(""); }), "");
+}
+
+TEST(CheckOptions, NamesTheOptionTheCallersWay) {
+  FitSurfaceOptions o;
+  o.refinement_rounds = -1;
+  EXPECT_EQ(refusal(o, [](const std::string& field) { return "--" + field; }),
+            "--refinement_rounds must be in [0, 8]");
+  EXPECT_THROW((void)fit_surface(ricci::Mesh{}, o), ricci::InvalidInputError);
+}
+
+}  // namespace
+}  // namespace spline
