@@ -78,6 +78,21 @@ TEST_F(MatchCli, PlateAgainstItsBendingIsTheIdentity) {
   EXPECT_LT(worst, 0.01);  // of a diagonal ~2.3
 }
 
+TEST_F(MatchCli, HyperbolicMethod) {
+  const ricci::Mesh flat = plate(), bent = rolled(flat);
+  const std::string a = file("flat.off", flat), b = file("bent.off", bent);
+  const auto r = msp_test::run_msp(
+      {"match", a, b, "-o", path("map.txt"), "--method", "hyperbolic", "--json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "hyperbolic");
+  EXPECT_EQ(j["domain"], "klein polygon");
+  EXPECT_EQ(j["flipped_faces"], 0);
+  EXPECT_EQ(j["flipped_faces_b"], 0);
+  EXPECT_LT(j["correspondence_error_percent"].get<double>(), 0.1);
+  EXPECT_TRUE(fs::exists(path("map.txt")));
+}
+
 TEST_F(MatchCli, BadInputOneLineNoMap) {
   const std::string disk = file("disk.off", ricci::make_planar_grid(6, 6, 1, 1));
   const std::string holes = file("holes.off", plate());
@@ -86,7 +101,7 @@ TEST_F(MatchCli, BadInputOneLineNoMap) {
       {"match", disk, holes, "-o", map},  // topologies differ
       {"match", holes, holes, "-o", map, "--feature-a", "99999", "--feature-b", "3"},
       {"match", disk, disk, "-o", map, "--feature-a", "0", "--feature-b", "0"},  // on boundary
-      {"match", holes, holes, "-o", map, "--method", "hyperbolic"},
+      {"match", disk, disk, "-o", map, "--method", "hyperbolic"},  // chi = 1
       {"match", holes, path("missing.off"), "-o", map},
   };
   for (const auto& args : cases) {

@@ -14,6 +14,7 @@
 #include <Eigen/SparseLU>
 
 #include "ricci/analysis/conformal_module.h"
+#include "ricci/analysis/match_internal.h"
 #include "ricci/analysis/module_internal.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
@@ -207,14 +208,7 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
     }
   }
   const FlowResult flat = flow(mesh, targets, options.flow);
-  if (!flat.converged() && !(flat.max_error < options.accepted_error)) {
-    throw SolverError(std::string("the Ricci flow of ") + name + " did not converge (" +
-                      to_string(flat.status) + ", max |K - target| " +
-                      std::to_string(flat.max_error) + ")");
-  }
-  domain.metric = to_string(flat.metric.scheme);
-  domain.flow_iterations = flat.iterations;
-  domain.flow_error = flat.max_error;
+  detail::record_match_flow(flat, options, name, domain);
   // Step 4: one ray from p to each loop, longest loop first, vertex-disjoint.
   std::vector<int> loop_of(n, -1);
   for (int k = 0; k < loops; ++k) {
@@ -337,60 +331,8 @@ Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& ext
     }
     start += extents[j];
   }
-  std::vector<int> unknown(n, -1);
-  int unknowns = 0;
-  for (int v = 0; v < n; ++v) {
-    if (!fixed[v]) unknown[v] = unknowns++;
-  }
-  if (unknowns == 0) return x;
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
-  const auto couple = [&](int i, int j, double w) {
-    if (fixed[i]) return;
-    entries.emplace_back(unknown[i], unknown[i], w);
-    if (fixed[j]) {
-      rhs.row(unknown[i]) += w * x.row(j);
-    } else {
-      entries.emplace_back(unknown[i], unknown[j], -w);
-    }
-  };
-  for (FaceHandle f : cut.faces()) {
-    const auto h = face_halfedges(cut, f);
-    int v[3];
-    double a[3];  // a[k]: the side from corner k - 1 to corner k
-    for (int k = 0; k < 3; ++k) {
-      v[k] = cut.to_vertex_handle(h[k]).idx();
-      a[k] = star.lengths[cut.edge_handle(h[k]).idx()];
-    }
-    for (int k = 0; k < 3; ++k) {
-      const double s = a[k], t = a[(k + 1) % 3], o = a[(k + 2) % 3];
-      const double c = std::clamp((s * s + t * t - o * o) / (2 * s * t), -1.0, 1.0);
-      const double half = std::tan(0.5 * std::acos(c));
-      couple(v[k], v[(k + 2) % 3], half / s);
-      couple(v[k], v[(k + 1) % 3], half / t);
-    }
-  }
-  Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
-  matrix.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(matrix);
-  if (lu.info() != Eigen::Success) {
-    throw SolverError("the harmonic map's sparse LU factorisation failed");
-  }
-  const Eigen::MatrixX2d solved = lu.solve(rhs);
-  for (int v = 0; v < n; ++v) {
-    if (!fixed[v]) x.row(v) = solved.row(unknown[v]);
-  }
+  detail::harmonic_fill(cut, star.lengths, fixed, x);
   return x;
-}
-
-void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
-  domain.faces.resize(static_cast<Eigen::Index>(sliced.mesh.n_faces()), 3);
-  for (FaceHandle f : sliced.mesh.faces()) {
-    int k = 0;
-    for (VertexHandle v : sliced.mesh.fv_range(f)) domain.faces(f.idx(), k++) = v.idx();
-  }
-  domain.to_original_vertex = sliced.to_original_vertex;
 }
 
 /// Four boundary vertices of a disk where the boundary turns most in 3D (pi minus the sum of the
@@ -582,13 +524,82 @@ double mean_distance(const Mesh& a, const std::vector<double>& distance, double 
 
 }  // namespace
 
+namespace detail {
+
+void record_match_flow(const FlowResult& flow, const MatchOptions& options, const char* name,
+                       ParameterDomain& domain) {
+  if (!flow.converged() && !(flow.max_error < options.accepted_error)) {
+    throw SolverError(std::string("the Ricci flow of ") + name + " did not converge (" +
+                      to_string(flow.status) + ", max |K - target| " +
+                      std::to_string(flow.max_error) + ")");
+  }
+  domain.metric = to_string(flow.metric.scheme);
+  domain.flow_iterations = flow.iterations;
+  domain.flow_error = flow.max_error;
+}
+
+void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths,
+                   const std::vector<char>& fixed, Eigen::MatrixX2d& x) {
+  const int n = static_cast<int>(cut.n_vertices());
+  std::vector<int> unknown(n, -1);
+  int unknowns = 0;
+  for (int v = 0; v < n; ++v) {
+    if (!fixed[v]) unknown[v] = unknowns++;
+  }
+  if (unknowns == 0) return;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+  const auto couple = [&](int i, int j, double w) {
+    if (fixed[i]) return;
+    entries.emplace_back(unknown[i], unknown[i], w);
+    if (fixed[j]) {
+      rhs.row(unknown[i]) += w * x.row(j);
+    } else {
+      entries.emplace_back(unknown[i], unknown[j], -w);
+    }
+  };
+  for (FaceHandle f : cut.faces()) {
+    const auto h = face_halfedges(cut, f);
+    int v[3];
+    double a[3];  // a[k]: the side from corner k - 1 to corner k
+    for (int k = 0; k < 3; ++k) {
+      v[k] = cut.to_vertex_handle(h[k]).idx();
+      a[k] = lengths[cut.edge_handle(h[k]).idx()];
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double s = a[k], t = a[(k + 1) % 3], o = a[(k + 2) % 3];
+      const double c = std::clamp((s * s + t * t - o * o) / (2 * s * t), -1.0, 1.0);
+      const double half = std::tan(0.5 * std::acos(c));
+      couple(v[k], v[(k + 2) % 3], half / s);
+      couple(v[k], v[(k + 1) % 3], half / t);
+    }
+  }
+  Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(matrix);
+  if (lu.info() != Eigen::Success) {
+    throw SolverError("the harmonic map's sparse LU factorisation failed");
+  }
+  const Eigen::MatrixX2d solved = lu.solve(rhs);
+  for (int v = 0; v < n; ++v) {
+    if (!fixed[v]) x.row(v) = solved.row(unknown[v]);
+  }
+}
+
+void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
+  domain.faces.resize(static_cast<Eigen::Index>(sliced.mesh.n_faces()), 3);
+  for (FaceHandle f : sliced.mesh.faces()) {
+    int k = 0;
+    for (VertexHandle v : sliced.mesh.fv_range(f)) domain.faces(f.idx(), k++) = v.idx();
+  }
+  domain.to_original_vertex = sliced.to_original_vertex;
+}
+
+}  // namespace detail
+
 MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& options) {
   const Stopwatch watch;
-  if (options.method == MatchMethod::hyperbolic) {
-    throw InvalidInputError(
-        "the hyperbolic matching method (Algorithm 9) is not implemented; "
-        "use the euclidean one");
-  }
   const SurfaceTopology ta = checked_topology(a, "A"), tb = checked_topology(b, "B");
   if (ta.genus != tb.genus || ta.boundary_loops != tb.boundary_loops) {
     throw InvalidInputError("A is " + topology_text(ta) + " and B " + topology_text(tb) +
@@ -604,7 +615,17 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
   const MeshTables tables_a = build_mesh_tables(a), tables_b = build_mesh_tables(b);
   MatchResult result;
   Stopwatch stage;
-  if (ta.boundary_loops == 1 && options.feature_a == -1) {
+  if (options.method == MatchMethod::hyperbolic) {
+    if (ta.boundary_loops < 3) {
+      throw InvalidInputError("the hyperbolic method needs a negative Euler characteristic " +
+                              std::string("(three or more boundary loops); the meshes are ") +
+                              topology_text(ta) + ": use the euclidean one");
+    }
+    if (options.feature_a != -1 || !options.corners_a.empty() || !options.corners_b.empty()) {
+      throw InvalidInputError("feature vertices and corners are for the euclidean method");
+    }
+    detail::klein_polygon_domains(a, tables_a, b, tables_b, options, result);
+  } else if (ta.boundary_loops == 1 && options.feature_a == -1) {
     result.domain = "rectangle";
     if (options.corners_a.empty() != options.corners_b.empty()) {
       throw InvalidInputError("give rectangle corners on both surfaces or on neither");
@@ -637,10 +658,10 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     std::vector<double> extents(fa.size());
     for (size_t j = 0; j < fa.size(); ++j) extents[j] = 0.5 * (fa[j] + fb[j]);
     result.a.positions = star_positions(star_a, extents);
-    fill_cut_domain(star_a.sliced, result.a);
+    detail::fill_cut_domain(star_a.sliced, result.a);
     result.a.seconds += stage.lap();
     result.b.positions = star_positions(star_b, extents);
-    fill_cut_domain(star_b.sliced, result.b);
+    detail::fill_cut_domain(star_b.sliced, result.b);
     result.b.seconds += stage.lap();
   }
   // Locate every copy of A's vertices in B's domain (phi is the identity there).

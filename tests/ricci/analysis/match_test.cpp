@@ -95,6 +95,35 @@ TEST(Match, PlateWithHolesRolledIsTheIdentity) {
   }
 }
 
+TEST(Match, HyperbolicPlateWithHolesRolledIsTheIdentity) {
+  MatchOptions options;
+  options.method = MatchMethod::hyperbolic;
+  for (const auto& holes : {kTwoHoles, kThreeHoles}) {
+    const Mesh flat = testing::circle_domain_mesh(holes, 0.05);
+    const Mesh bent = rolled(flat, 0.8);
+    const MatchResult r = match_surfaces(flat, bent, options);
+    EXPECT_EQ(r.domain, "klein polygon");
+    EXPECT_EQ(r.a.metric, "inversive-distance");
+    // Every loop is met by the cut tree: 2 n corners for n cuts, n + 1 loops.
+    EXPECT_EQ(r.a.loop_order.size(), 2 * holes.size());
+    EXPECT_EQ(r.a.loop_order, r.b.loop_order);
+    expect_identity(r, 1e-3);
+    EXPECT_EQ(r.snapped_vertices, 0);
+  }
+}
+
+TEST(Match, HyperbolicTwoTriangulationsOfOnePlate) {
+  const Mesh a = testing::circle_domain_mesh(kThreeHoles, 0.05, 1);
+  const Mesh b = testing::circle_domain_mesh(kThreeHoles, 0.04, 2);
+  MatchOptions options;
+  options.method = MatchMethod::hyperbolic;
+  const MatchResult r = match_surfaces(a, b, options);
+  EXPECT_EQ(r.flipped_faces, 0);
+  EXPECT_EQ(r.flipped_faces_b, 0);
+  // The same plane, no feature to choose: each point lands near itself.
+  EXPECT_LT(r.shape_error, 0.01);
+}
+
 TEST(Match, TwoTriangulationsOfOnePlate) {
   const Mesh a = testing::circle_domain_mesh(kTwoHoles, 0.05, 1);
   const Mesh b = testing::circle_domain_mesh(kTwoHoles, 0.04, 2);
@@ -123,7 +152,11 @@ TEST(Match, BadInput) {
   options.feature_a = options.feature_b = 0;  // (0, 0): a corner, on the boundary
   EXPECT_THROW((void)match_surfaces(disk, disk, options), InvalidInputError);
   options = {};
-  options.method = MatchMethod::hyperbolic;
+  options.method = MatchMethod::hyperbolic;  // needs three or more loops
+  EXPECT_THROW((void)match_surfaces(disk, disk, options), InvalidInputError);
+  const Mesh annulus = testing::circle_domain_mesh({{0.0, 0.0, 0.3}}, 0.1);
+  EXPECT_THROW((void)match_surfaces(annulus, annulus, options), InvalidInputError);
+  options.feature_a = options.feature_b = vertex_near(plate, 0.0, 0.5);
   EXPECT_THROW((void)match_surfaces(plate, plate, options), InvalidInputError);
   EXPECT_THROW((void)parse_match_method("spherical"), InvalidInputError);
 }
