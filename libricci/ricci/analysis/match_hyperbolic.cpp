@@ -192,7 +192,7 @@ KleinDisk klein_disk(const Mesh& mesh, const MeshTables& tables, const MatchOpti
 /// The point at hyperbolic distance t d(p, q) from p on the chord from p to q (Klein model).
 Eigen::Vector2d klein_geodesic_point(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
                                      double t) {
-  const auto lift = [](const Eigen::Vector2d& k) {
+  const auto lift = [](const Eigen::Vector2d& k) -> Eigen::Vector3d {
     return Eigen::Vector3d(1, k.x(), k.y()) / std::sqrt(std::max(1 - k.squaredNorm(), 1e-300));
   };
   const Eigen::Vector3d x = lift(p), y = lift(q);
@@ -212,14 +212,29 @@ Eigen::MatrixX2d polygon_positions(const KleinDisk& disk, const Eigen::MatrixX2d
   std::vector<char> fixed(n, 0);
   const int m = static_cast<int>(disk.walk.size());
   const int k = static_cast<int>(disk.corners.size());
+  // A face with three vertices on one side would be flat on a straight side: each side is
+  // bowed out by a parabola whose end tangents turn by at most 0.4 of the polygon's turn at
+  // either corner (the curve stays strictly convex) and at most 0.05 rad.
+  std::vector<double> turn(k);
+  for (int j = 0; j < k; ++j) {
+    const Eigen::Vector2d p = polygon.row((j + k - 1) % k), q = polygon.row(j),
+                          r = polygon.row((j + 1) % k);
+    turn[j] = std::atan2(cross2d(q - p, r - q), (q - p).dot(r - q));
+  }
   for (int j = 0; j < k; ++j) {
     const int from = disk.corners[j];
     const int to = j + 1 < k ? disk.corners[j + 1] : m;
     const double length = disk.arc[to] - disk.arc[from];
     const Eigen::Vector2d p = polygon.row(j).transpose(), q = polygon.row((j + 1) % k).transpose();
+    const Eigen::Vector2d outward = Eigen::Vector2d(q.y() - p.y(), p.x() - q.x());
+    const double tilt = std::min(0.05, 0.4 * std::min(turn[j], turn[(j + 1) % k]));
+    const double bow = std::tan(tilt) / 4;  // sagitta over the side's length
     for (int i = from; i < to; ++i) {
       const double t = length > 0 ? (disk.arc[i] - disk.arc[from]) / length : 0;
-      x.row(disk.walk[i]) = klein_geodesic_point(p, q, t).transpose();
+      const Eigen::Vector2d on_side = klein_geodesic_point(p, q, t);
+      // The bow by the Euclidean fraction along the side (a parabola over the chord).
+      const double e = std::clamp((on_side - p).dot(q - p) / (q - p).squaredNorm(), 0.0, 1.0);
+      x.row(disk.walk[i]) = (on_side + 4 * e * (1 - e) * bow * outward).transpose();
       fixed[disk.walk[i]] = 1;
     }
   }

@@ -108,7 +108,8 @@ TEST(Match, HyperbolicPlateWithHolesRolledIsTheIdentity) {
     EXPECT_EQ(r.a.loop_order.size(), 2 * holes.size());
     EXPECT_EQ(r.a.loop_order, r.b.loop_order);
     expect_identity(r, 1e-3);
-    EXPECT_EQ(r.snapped_vertices, 0);
+    // B's sides are bowed out: A's boundary vertices may fall just outside B's chords.
+    EXPECT_LT(r.snap_distance, 1e-5);  // the flows agree to their tolerance
   }
 }
 
