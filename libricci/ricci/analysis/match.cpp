@@ -76,47 +76,6 @@ void check_feature(const MeshTables& tables, int v, const char* name) {
   }
 }
 
-/// The interior vertex farthest from the boundary along edge paths (3D lengths), among those
-/// with at least one neighbour per boundary loop (a ray leaves through each) if there are any.
-int default_feature(const Mesh& mesh, const MeshTables& tables) {
-  const EdgeLengths lengths = mesh_edge_lengths(mesh);
-  std::vector<double> dist(tables.num_vertices(), kInfinity);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (const auto& loop : tables.boundary_loops) {
-    for (int v : loop) {
-      dist[v] = 0;
-      queue.push({0.0, v});
-    }
-  }
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[v]) continue;
-    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
-      const int w = mesh.to_vertex_handle(h).idx();
-      const double nd = d + lengths[mesh.edge_handle(h).idx()];
-      if (nd < dist[w]) {
-        dist[w] = nd;
-        queue.push({nd, w});
-      }
-    }
-  }
-  const int loops = static_cast<int>(tables.boundary_loops.size());
-  int best = -1;
-  bool best_enough = false;
-  for (int v = 0; v < tables.num_vertices(); ++v) {
-    if (tables.is_boundary_vertex[v]) continue;
-    const bool enough = tables.valence[v] >= loops;
-    if (best < 0 || (enough && !best_enough) || (enough == best_enough && dist[v] > dist[best])) {
-      best = v;
-      best_enough = enough;
-    }
-  }
-  if (best < 0) throw InvalidInputError("the mesh has no interior vertex");
-  return best;
-}
-
 /// Shortest edge path (under `lengths`) from interior vertex p to boundary loop `target`,
 /// through interior vertices not `used` by earlier paths, ending at its first vertex on the
 /// loop. Marks its vertices used. \throw TopologyError when the loop cannot be reached.
@@ -643,8 +602,10 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
       check_feature(tables_a, options.feature_a, "A");
       check_feature(tables_b, options.feature_b, "B");
     }
-    result.a.feature = options.feature_a != -1 ? options.feature_a : default_feature(a, tables_a);
-    result.b.feature = options.feature_b != -1 ? options.feature_b : default_feature(b, tables_b);
+    result.a.feature = options.feature_a != -1 ? options.feature_a : detail::farthest_interior_vertex(
+                               a, tables_a, static_cast<int>(tables_a.boundary_loops.size()));
+    result.b.feature = options.feature_b != -1 ? options.feature_b : detail::farthest_interior_vertex(
+                               b, tables_b, static_cast<int>(tables_b.boundary_loops.size()));
     const Star star_a = cone_star(a, tables_a, result.a.feature, options, "A", result.a);
     result.a.seconds = stage.lap();
     const Star star_b = cone_star(b, tables_b, result.b.feature, options, "B", result.b);
