@@ -1,5 +1,5 @@
-// Deformable surface matching (Algorithm 8): the rectangle of a disk, or the cone star of a
-// multiply connected domain carried harmonically onto a common convex polygon; the map located
+// Deformable surface matching (Algorithm 8): the rectangle or the unit disk of a disk, or the
+// cone star of a multiply connected domain carried harmonically onto a common convex polygon; the map located
 // by a grid over B's parameter domain; the shape error of eq. (13).
 #include "ricci/analysis/match.h"
 
@@ -140,31 +140,14 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
   const std::vector<int> order = detail::loops_by_length(mesh, tables);
   Targets targets;
   targets.curvature = Eigen::VectorXd::Zero(n);
-  if (loops >= 2) {
-    // A single vertex of valence ~6 cannot take -2π or less under the inversive-distance
-    // metric (the triangle inequality breaks): the cone is spread over p's interior rings.
-    std::vector<int> cone = {p};
-    for (VertexHandle v : ring_neighbourhood(mesh, mesh.vertex_handle(p), options.cone_rings)) {
-      if (!tables.is_boundary_vertex[v.idx()]) cone.push_back(v.idx());
-    }
-    for (int v : cone) {
-      targets.curvature[v] = 2 * M_PI * (2 - loops) / static_cast<double>(cone.size());
-    }
-  } else {
-    // A disk: p is a plain vertex; the boundary carries 2π spread by 3D length.
-    const std::vector<int>& loop = tables.boundary_loops[0];
-    std::vector<double> edge(loop.size());
-    double total = 0;
-    for (size_t i = 0; i < loop.size(); ++i) {
-      edge[i] = (mesh.point(mesh.vertex_handle(loop[i])) -
-                 mesh.point(mesh.vertex_handle(loop[(i + 1) % loop.size()])))
-                    .norm();
-      total += edge[i];
-    }
-    for (size_t i = 0; i < loop.size(); ++i) {
-      const double dual = 0.5 * (edge[i] + edge[(i + loop.size() - 1) % loop.size()]);
-      targets.curvature[loop[i]] = 2 * M_PI * dual / total;
-    }
+  // A single vertex of valence ~6 cannot take -2π or less under the inversive-distance
+  // metric (the triangle inequality breaks): the cone is spread over p's interior rings.
+  std::vector<int> cone = {p};
+  for (VertexHandle v : ring_neighbourhood(mesh, mesh.vertex_handle(p), options.cone_rings)) {
+    if (!tables.is_boundary_vertex[v.idx()]) cone.push_back(v.idx());
+  }
+  for (int v : cone) {
+    targets.curvature[v] = 2 * M_PI * (2 - loops) / static_cast<double>(cone.size());
   }
   const FlowResult flat = flow(mesh, targets, options.flow);
   detail::record_match_flow(flat, options, name, domain);
@@ -356,6 +339,32 @@ void rectangle_domain(const Mesh& mesh, const MeshTables& tables, const std::vec
   domain.faces = rectangle.domain.faces;
   domain.positions = rectangle.domain.positions;
   domain.positions.col(1) /= rectangle.values[0];
+  domain.to_original_vertex.resize(mesh.n_vertices());
+  for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) domain.to_original_vertex[v] = v;
+}
+
+/// The conformal map of a disk onto the unit disk, `centre` at 0 (ModuleKind::Disk).
+void unit_disk_domain(const Mesh& mesh, int centre, const MatchOptions& options, const char* name,
+                      ParameterDomain& domain) {
+  ModuleOptions module;
+  module.force_kind = true;
+  module.kind = ModuleKind::Disk;
+  module.centre = centre;
+  module.flow = options.flow;
+  module.accepted_error = options.accepted_error;
+  module.retry = false;                            // the map needs the mesh's own vertices
+  module.flow.fall_back_to_other_metrics = false;  // the disk map must be conformal
+  const ModuleResult disk = conformal_module(mesh, module);
+  if (!disk.converged) {
+    throw SolverError(std::string("the Ricci flow of ") + name +
+                      " to the unit disk did not converge: " + disk.message);
+  }
+  domain.feature = centre;
+  domain.flow_iterations = disk.flow_iterations;
+  domain.flow_error = disk.flow_error;
+  domain.metric = to_string(options.flow.scheme);
+  domain.faces = disk.domain.faces;
+  domain.positions = disk.domain.positions;
   domain.to_original_vertex.resize(mesh.n_vertices());
   for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) domain.to_original_vertex[v] = v;
 }
@@ -584,7 +593,18 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
       throw InvalidInputError("feature vertices and corners are for the euclidean method");
     }
     detail::klein_polygon_domains(a, tables_a, b, tables_b, options, result);
-  } else if (ta.boundary_loops == 1 && options.feature_a == -1) {
+  } else if (ta.boundary_loops == 1 && options.feature_a != -1) {
+    result.domain = "unit disk";
+    if (!options.corners_a.empty() || !options.corners_b.empty()) {
+      throw InvalidInputError("rectangle corners are for disks without feature vertices");
+    }
+    check_feature(tables_a, options.feature_a, "A");
+    check_feature(tables_b, options.feature_b, "B");
+    unit_disk_domain(a, options.feature_a, options, "A", result.a);
+    result.a.seconds = stage.lap();
+    unit_disk_domain(b, options.feature_b, options, "B", result.b);
+    result.b.seconds = stage.lap();
+  } else if (ta.boundary_loops == 1) {
     result.domain = "rectangle";
     if (options.corners_a.empty() != options.corners_b.empty()) {
       throw InvalidInputError("give rectangle corners on both surfaces or on neither");

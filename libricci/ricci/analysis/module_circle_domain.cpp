@@ -344,6 +344,7 @@ void disk_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions
   copy_faces(mesh, domain);
   domain.boundaries.push_back(loop);
   domain.boundary_loop.push_back(0);
+  domain.corners = {centre, one};
 }
 
 }  // namespace ricci::detail

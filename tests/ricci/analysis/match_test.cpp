@@ -72,14 +72,28 @@ TEST(Match, StripRolledOntoCylinderIsTheIdentity) {
   EXPECT_LT(self.shape_error, 1e-9);
 }
 
-TEST(Match, StripWithFeatureUsesTheConeStar) {
+TEST(Match, StripWithFeatureUsesTheUnitDisk) {
   const Mesh flat = make_planar_grid(60, 20, 3.0, 1.0);
   const Mesh bent = rolled(flat, 1.0);
   MatchOptions options;
   // Off the middle line: the shortest path to the boundary is unique.
   options.feature_a = options.feature_b = vertex_near(flat, 1.5, 0.3);
   const MatchResult r = match_surfaces(flat, bent, options);
-  EXPECT_EQ(r.domain, "cone star");
+  EXPECT_EQ(r.domain, "unit disk");
+  EXPECT_EQ(r.a.feature, options.feature_a);
+  expect_identity(r, 1e-3);
+}
+
+TEST(Match, DiskAgainstItsConformalImageIsTheIdentity) {
+  // The unit disk and its stereographic image on the sphere (conformal, not isometric): the
+  // disk maps with the same centre differ by nothing but discretisation.
+  const Mesh flat = testing::circle_domain_mesh({}, 0.05);
+  const Mesh cap = testing::mapped(
+      flat, [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 1.5); });
+  MatchOptions options;
+  options.feature_a = options.feature_b = vertex_near(flat, 0.2, 0.1);
+  const MatchResult r = match_surfaces(flat, cap, options);
+  EXPECT_EQ(r.domain, "unit disk");
   expect_identity(r, 1e-3);
 }
 
