@@ -33,10 +33,11 @@ struct LoopTree {
 
 /// Prim's tree over the loops (ranks by 3D length): from the loops joined so far (c0 first),
 /// the shortest edge path under `lengths` to the nearest other loop, through interior vertices
-/// no earlier cut uses and starting at a vertex no cut ends at.
+/// no earlier cut uses and starting at a vertex no cut ends at. With `chain`, cut k joins c_k
+/// to c_(k+1) instead, whatever is nearer: one tree for every surface.
 /// \throw TopologyError when a loop cannot be reached.
 LoopTree join_loops(const Mesh& mesh, const MeshTables& tables, const Eigen::VectorXd& lengths,
-                    const char* name) {
+                    bool chain, const char* name) {
   const int n = tables.num_vertices();
   const std::vector<int> order = loops_by_length(mesh, tables);
   const int loops = static_cast<int>(order.size());
@@ -54,8 +55,10 @@ LoopTree join_loops(const Mesh& mesh, const MeshTables& tables, const Eigen::Vec
     std::vector<double> dist(n, kInfinity);
     std::vector<HalfedgeHandle> parent(n);
     std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    const auto source = [&](int rank) { return chain ? rank == cut : joined[rank] != 0; };
+    const auto target = [&](int rank) { return chain ? rank == cut + 1 : !joined[rank]; };
     for (int v = 0; v < n; ++v) {
-      if (loop_of[v] >= 0 && joined[loop_of[v]] && !used[v]) {
+      if (loop_of[v] >= 0 && source(loop_of[v]) && !used[v]) {
         dist[v] = 0;
         queue.push({0.0, v});
       }
@@ -65,13 +68,13 @@ LoopTree join_loops(const Mesh& mesh, const MeshTables& tables, const Eigen::Vec
       const auto [d, v] = queue.top();
       queue.pop();
       if (d > dist[v]) continue;
-      if (loop_of[v] >= 0 && !joined[loop_of[v]]) {
+      if (loop_of[v] >= 0 && target(loop_of[v])) {
         end = v;
         break;
       }
       for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
         const int w = mesh.to_vertex_handle(h).idx();
-        if (used[w] || (loop_of[w] >= 0 && joined[loop_of[w]])) continue;
+        if (used[w] || (loop_of[w] >= 0 && !target(loop_of[w]))) continue;
         const double nd = d + lengths[mesh.edge_handle(h).idx()];
         if (nd < dist[w]) {
           dist[w] = nd;
@@ -112,16 +115,23 @@ struct KleinDisk {
   std::vector<std::array<int, 2>> joins;
 };
 
-/// Steps 1-3 of Algorithm 9 on one surface.
-KleinDisk klein_disk(const Mesh& mesh, const MeshTables& tables, const MatchOptions& options,
-                     const char* name, ParameterDomain& domain) {
+/// Step 1 of Algorithm 9: the hyperbolic metric with geodesic boundaries.
+FlowResult hyperbolic_metric(const Mesh& mesh, const MeshTables& tables,
+                             const MatchOptions& options, const char* name,
+                             ParameterDomain& domain) {
   FlowOptions flow_options = options.flow;
   flow_options.geometry = Geometry::hyperbolic;
   Targets targets;
   targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());  // geodesic boundaries
-  const FlowResult hyperbolic = flow(mesh, targets, flow_options);
+  FlowResult hyperbolic = flow(mesh, targets, flow_options);
   record_match_flow(hyperbolic, options, name, domain);
-  const LoopTree tree = join_loops(mesh, tables, hyperbolic.lengths, name);
+  return hyperbolic;
+}
+
+/// Steps 2-3 of Algorithm 9 on one surface: the cut, the layout, the polygon's corners.
+KleinDisk klein_disk(const Mesh& mesh, const MeshTables& tables, const FlowResult& hyperbolic,
+                     bool chain, const char* name, ParameterDomain& domain) {
+  const LoopTree tree = join_loops(mesh, tables, hyperbolic.lengths, chain, name);
   KleinDisk disk;
   disk.joins = tree.joins;
   disk.sliced = slice_along(mesh, tree.is_cut);
@@ -249,14 +259,26 @@ void klein_polygon_domains(const Mesh& a, const MeshTables& tables_a, const Mesh
                            MatchResult& result) {
   result.domain = "klein polygon";
   Stopwatch stage;
-  const KleinDisk disk_a = klein_disk(a, tables_a, options, "A", result.a);
+  const FlowResult metric_a = hyperbolic_metric(a, tables_a, options, "A", result.a);
+  KleinDisk disk_a = klein_disk(a, tables_a, metric_a, false, "A", result.a);
   result.a.seconds = stage.lap();
-  const KleinDisk disk_b = klein_disk(b, tables_b, options, "B", result.b);
+  const FlowResult metric_b = hyperbolic_metric(b, tables_b, options, "B", result.b);
+  KleinDisk disk_b = klein_disk(b, tables_b, metric_b, false, "B", result.b);
   result.b.seconds = stage.lap();
   if (disk_a.joins != disk_b.joins || disk_a.labels != disk_b.labels) {
+    // The nearest loops differ (the surfaces are not conformal): the chain c0-c1-...-cn by
+    // rank gives both surfaces the same polygon.
+    result.a.loop_order.clear();
+    result.b.loop_order.clear();
+    disk_a = klein_disk(a, tables_a, metric_a, true, "A", result.a);
+    result.a.seconds += stage.lap();
+    disk_b = klein_disk(b, tables_b, metric_b, true, "B", result.b);
+    result.b.seconds += stage.lap();
+  }
+  if (disk_a.labels != disk_b.labels) {
     throw InvalidInputError(
-        "the shortest cuts join the boundary loops differently on A and B (another tree of "
-        "loops); the hyperbolic method needs the same one");
+        "the cuts join the boundary loops differently on A and B; the hyperbolic method needs "
+        "the same tree of loops");
   }
   // The common polygon: B's corners, a right-angled hyperbolic polygon, convex in the Klein
   // model (its sides are B's geodesic boundary arcs and the chords between its cut ends).
