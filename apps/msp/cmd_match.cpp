@@ -170,13 +170,21 @@ int run_match(int argc, char** argv) {
   const int squares = args.get_int("checker-squares", 16);
   if (squares < 1 || squares > 256) throw UsageError("--checker-squares must be 1 to 256");
   const std::string path_a = args.positionals()[0], path_b = args.positionals()[1];
-  const ricci::Mesh a = ricci::read_mesh(path_a);
-  const ricci::Mesh b = ricci::read_mesh(path_b);
+  const ricci::ColouredMesh coloured_a = ricci::read_mesh_with_colours(path_a);
+  const ricci::ColouredMesh coloured_b = ricci::read_mesh_with_colours(path_b);
+  const ricci::Mesh& a = coloured_a.mesh;
+  const ricci::Mesh& b = coloured_b.mesh;
   const ricci::MatchResult result = ricci::match_surfaces(a, b, options);
+  // Eq. (14) when both files colour their vertices.
+  double texture = std::numeric_limits<double>::quiet_NaN();
+  if (coloured_a.colours.rows() > 0 && coloured_b.colours.rows() > 0) {
+    texture = ricci::texture_error(a, b, result, coloured_a.colours, coloured_b.colours);
+  }
   write_text_atomically(*args.get("output"),
                         ricci::surface_map_text(result, static_cast<int>(b.n_vertices()),
                                                 static_cast<int>(b.n_faces())));
-  const nlohmann::json report = match_json(path_a, path_b, options.method, result);
+  nlohmann::json report = match_json(path_a, path_b, options.method, result);
+  report["texture_error"] = number(texture);
   if (auto glb = args.get("glb")) {
     gltf::write_glb(match_scene(a, b, result, squares, report), *glb);
   }
@@ -184,6 +192,7 @@ int run_match(int argc, char** argv) {
     std::cout << report.dump() << "\n";
   } else {
     print_summary(options.method, result);
+    if (std::isfinite(texture)) std::cout << "texture_error " << texture << "\n";
   }
   return 0;
 }

@@ -712,6 +712,28 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
   return result;
 }
 
+double texture_error(const Mesh& a, const Mesh& b, const MatchResult& result,
+                     const Eigen::MatrixX3d& colours_a, const Eigen::MatrixX3d& colours_b) {
+  if (colours_a.rows() != static_cast<Eigen::Index>(a.n_vertices()) ||
+      colours_b.rows() != static_cast<Eigen::Index>(b.n_vertices()) ||
+      result.map.size() != a.n_vertices()) {
+    throw InvalidInputError("the texture error needs one colour per vertex of A and of B");
+  }
+  std::vector<double> difference(a.n_vertices()), brightness(b.n_vertices());
+  for (size_t v = 0; v < result.map.size(); ++v) {
+    const MapPoint& p = result.map[v];
+    Eigen::RowVector3d on_b = Eigen::RowVector3d::Zero();
+    for (int k = 0; k < 3; ++k) on_b += p.weights[k] * colours_b.row(p.vertices[k]);
+    difference[v] = (colours_a.row(static_cast<Eigen::Index>(v)) - on_b).norm();
+  }
+  for (size_t v = 0; v < brightness.size(); ++v) {
+    brightness[v] = colours_b.row(static_cast<Eigen::Index>(v)).norm();
+  }
+  const double mean_b = mean_distance(b, brightness, 1.0);
+  if (!(mean_b > 0)) throw InvalidInputError("B's colours are all black; d_t is undefined");
+  return mean_distance(a, difference, 1.0) / mean_b;
+}
+
 std::string surface_map_text(const MatchResult& result, int vertices_b, int faces_b) {
   std::ostringstream out;
   out << "msp-map 1 " << result.map.size() << " " << vertices_b << " " << faces_b << "\n";

@@ -143,6 +143,14 @@ struct MatchResult {
 [[nodiscard]] MatchResult match_surfaces(const Mesh& a, const Mesh& b,
                                          const MatchOptions& options = {});
 
+/// Texture error d_t of eq. (14): the area-weighted mean over A of |c_A(p) - c_B(phi(p))|
+/// over the area-weighted mean of |c_B| over B (colours linear over faces, |.| the RGB norm).
+/// \pre `result` maps A to B; colours by vertex (#V by 3), e.g. ColouredMesh::colours.
+/// \throw InvalidInputError when a colour matrix does not match its mesh, or B is all black.
+[[nodiscard]] double texture_error(const Mesh& a, const Mesh& b, const MatchResult& result,
+                                   const Eigen::MatrixX3d& colours_a,
+                                   const Eigen::MatrixX3d& colours_b);
+
 /// The map as text (docs/match-map.md): a header line "msp-map 1 <vertices of A> <vertices of
 /// B> <faces of B>", then one line per vertex of A: "face i j k wi wj wk".
 [[nodiscard]] std::string surface_map_text(const MatchResult& result, int vertices_b, int faces_b);

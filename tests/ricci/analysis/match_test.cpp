@@ -127,6 +127,35 @@ TEST(Match, HyperbolicPlateWithHolesRolledIsTheIdentity) {
   }
 }
 
+TEST(Match, TextureErrorOfEquation14) {
+  // Colours painted on the flat plate and carried by the vertex correspondence to its bending:
+  // the identity map sees no texture error; a red shift of 0.1 everywhere on B is 0.1 over
+  // B's mean colour norm.
+  const Mesh flat = testing::circle_domain_mesh(kTwoHoles, 0.05);
+  const Mesh bent = rolled(flat, 0.8);
+  Eigen::MatrixX3d colours(flat.n_vertices(), 3);
+  for (VertexHandle v : flat.vertices()) {
+    const auto p = flat.point(v);
+    colours.row(v.idx()) << 0.5 + 0.4 * p[0], 0.5 + 0.4 * p[1], 0.3;
+  }
+  const MatchResult r = match_surfaces(flat, bent);
+  EXPECT_LT(texture_error(flat, bent, r, colours, colours), 1e-3);
+  Eigen::MatrixX3d shifted = colours;
+  shifted.col(0).array() += 0.1;
+  const MatchResult self = match_surfaces(flat, flat);
+  double norm = 0, area = 0;  // B's area-weighted mean colour norm
+  for (FaceHandle f : flat.faces()) {
+    double sum = 0;
+    for (VertexHandle v : flat.fv_range(f)) sum += shifted.row(v.idx()).norm();
+    norm += flat.calc_face_area(f) * sum / 3;
+    area += flat.calc_face_area(f);
+  }
+  EXPECT_NEAR(texture_error(flat, flat, self, colours, shifted), 0.1 / (norm / area), 1e-9);
+  EXPECT_THROW((void)texture_error(flat, bent, r, colours.topRows(3), colours), InvalidInputError);
+  EXPECT_THROW((void)texture_error(flat, bent, r, colours, Eigen::MatrixX3d::Zero(colours.rows(), 3)),
+               InvalidInputError);
+}
+
 TEST(Match, HyperbolicTwoTriangulationsOfOnePlate) {
   const Mesh a = testing::circle_domain_mesh(kThreeHoles, 0.05, 1);
   const Mesh b = testing::circle_domain_mesh(kThreeHoles, 0.04, 2);
