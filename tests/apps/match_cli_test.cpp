@@ -81,8 +81,8 @@ TEST_F(MatchCli, PlateAgainstItsBendingIsTheIdentity) {
 TEST_F(MatchCli, HyperbolicMethod) {
   const ricci::Mesh flat = plate(), bent = rolled(flat);
   const std::string a = file("flat.off", flat), b = file("bent.off", bent);
-  const auto r = msp_test::run_msp(
-      {"match", a, b, "-o", path("map.txt"), "--method", "hyperbolic", "--json"});
+  const auto r =
+      msp_test::run_msp({"match", a, b, "-o", path("map.txt"), "--method", "hyperbolic", "--json"});
   ASSERT_EQ(r.exit_status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["method"], "hyperbolic");
@@ -103,8 +103,8 @@ TEST_F(MatchCli, TextureErrorFromVertexColours) {
     for (ricci::VertexHandle v : mesh.vertices()) {
       const auto p = mesh.point(v);
       const auto q = flat.point(v);
-      out << p[0] << " " << p[1] << " " << p[2] << " " << static_cast<int>(120 + 100 * q[0])
-          << " " << static_cast<int>(120 + 100 * q[1]) << " 60 255\n";
+      out << p[0] << " " << p[1] << " " << p[2] << " " << static_cast<int>(120 + 100 * q[0]) << " "
+          << static_cast<int>(120 + 100 * q[1]) << " 60 255\n";
     }
     for (ricci::FaceHandle f : mesh.faces()) {
       out << "3";
@@ -134,7 +134,7 @@ TEST_F(MatchCli, BadInputOneLineNoMap) {
       {"match", disk, holes, "-o", map},  // topologies differ
       {"match", holes, holes, "-o", map, "--feature-a", "99999", "--feature-b", "3"},
       {"match", disk, disk, "-o", map, "--feature-a", "0", "--feature-b", "0"},  // on boundary
-      {"match", disk, disk, "-o", map, "--method", "hyperbolic"},  // chi = 1
+      {"match", disk, disk, "-o", map, "--method", "hyperbolic"},                // chi = 1
       {"match", holes, path("missing.off"), "-o", map},
   };
   for (const auto& args : cases) {

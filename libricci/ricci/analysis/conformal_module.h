@@ -44,7 +44,14 @@
 namespace ricci {
 
 enum class ModuleKind {
-  Sphere, Annulus, Rectangle, FlatTorus, CircleDomain, Hyperbolic, Fuchsian, Disk
+  Sphere,
+  Annulus,
+  Rectangle,
+  FlatTorus,
+  CircleDomain,
+  Hyperbolic,
+  Fuchsian,
+  Disk
 };
 
 /// "sphere", "annulus", "rectangle", "flat-torus", "circle-domain", "hyperbolic", "fuchsian",
@@ -101,13 +108,13 @@ struct ModuleOptions {
 /// disk, rectangle of width 1, the flat torus's parallelogram with a = 1, the circle domain,
 /// the Poincaré disk).
 struct CanonicalDomain {
-  Eigen::MatrixX3i faces;             ///< #F by 3, into positions.
-  Eigen::MatrixX2d positions;         ///< By vertex of the sliced mesh.
+  Eigen::MatrixX3i faces;      ///< #F by 3, into positions.
+  Eigen::MatrixX2d positions;  ///< By vertex of the sliced mesh.
   /// Boundary polylines (indices into positions; closed for the annulus and the rectangle,
   /// one per boundary edge in the Poincaré disk) and the boundary loop each belongs to.
   std::vector<std::vector<int>> boundaries;
   std::vector<int> boundary_loop;
-  std::vector<int> corners;           ///< Rectangle corners (indices into positions).
+  std::vector<int> corners;  ///< Rectangle corners (indices into positions).
 };
 
 struct ModuleResult {

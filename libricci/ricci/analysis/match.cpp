@@ -1,6 +1,6 @@
 // Deformable surface matching (Algorithm 8): the rectangle or the unit disk of a disk, or the
-// cone star of a multiply connected domain carried harmonically onto a common convex polygon; the map located
-// by a grid over B's parameter domain; the shape error of eq. (13).
+// cone star of a multiply connected domain carried harmonically onto a common convex polygon; the
+// map located by a grid over B's parameter domain; the shape error of eq. (13).
 #include "ricci/analysis/match.h"
 
 #include <algorithm>
@@ -506,8 +506,8 @@ void record_match_flow(const FlowResult& flow, const MatchOptions& options, cons
   domain.flow_error = flow.max_error;
 }
 
-void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths,
-                   const std::vector<char>& fixed, Eigen::MatrixX2d& x) {
+void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths, const std::vector<char>& fixed,
+                   Eigen::MatrixX2d& x) {
   const int n = static_cast<int>(cut.n_vertices());
   std::vector<int> unknown(n, -1);
   int unknowns = 0;
@@ -622,10 +622,14 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
       check_feature(tables_a, options.feature_a, "A");
       check_feature(tables_b, options.feature_b, "B");
     }
-    result.a.feature = options.feature_a != -1 ? options.feature_a : detail::farthest_interior_vertex(
-                               a, tables_a, static_cast<int>(tables_a.boundary_loops.size()));
-    result.b.feature = options.feature_b != -1 ? options.feature_b : detail::farthest_interior_vertex(
-                               b, tables_b, static_cast<int>(tables_b.boundary_loops.size()));
+    result.a.feature = options.feature_a != -1
+                           ? options.feature_a
+                           : detail::farthest_interior_vertex(
+                                 a, tables_a, static_cast<int>(tables_a.boundary_loops.size()));
+    result.b.feature = options.feature_b != -1
+                           ? options.feature_b
+                           : detail::farthest_interior_vertex(
+                                 b, tables_b, static_cast<int>(tables_b.boundary_loops.size()));
     const Star star_a = cone_star(a, tables_a, result.a.feature, options, "A", result.a);
     result.a.seconds = stage.lap();
     const Star star_b = cone_star(b, tables_b, result.b.feature, options, "B", result.b);

@@ -110,7 +110,7 @@ struct ParameterDomain {
 };
 
 struct MatchResult {
-  std::string domain;  ///< "rectangle", "unit disk", "cone star" or "klein polygon".
+  std::string domain;         ///< "rectangle", "unit disk", "cone star" or "klein polygon".
   std::vector<MapPoint> map;  ///< By vertex of A.
   ParameterDomain a, b;
   /// Shape error d_g of eq. (13): the area-weighted mean of |r_A(p) - r_B(phi(p))| over A,

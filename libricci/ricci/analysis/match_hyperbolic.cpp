@@ -25,10 +25,10 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// The loops joined into a tree by shortest paths.
 struct LoopTree {
-  std::vector<char> is_cut;           ///< By mesh edge.
-  std::vector<int> cut_of_edge;       ///< By mesh edge: the cut through it, else -1.
+  std::vector<char> is_cut;               ///< By mesh edge.
+  std::vector<int> cut_of_edge;           ///< By mesh edge: the cut through it, else -1.
   std::vector<std::array<int, 2>> joins;  ///< By cut: the loop ranks it joins (reached, new).
-  std::vector<int> first_end;         ///< By cut: its end on the loop reached before it.
+  std::vector<int> first_end;             ///< By cut: its end on the loop reached before it.
 };
 
 /// Prim's tree over the loops (ranks by 3D length): from the loops joined so far (c0 first),
@@ -200,8 +200,7 @@ KleinDisk klein_disk(const Mesh& mesh, const MeshTables& tables, const FlowResul
 }
 
 /// The point at hyperbolic distance t d(p, q) from p on the chord from p to q (Klein model).
-Eigen::Vector2d klein_geodesic_point(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
-                                     double t) {
+Eigen::Vector2d klein_geodesic_point(const Eigen::Vector2d& p, const Eigen::Vector2d& q, double t) {
   const auto lift = [](const Eigen::Vector2d& k) -> Eigen::Vector3d {
     return Eigen::Vector3d(1, k.x(), k.y()) / std::sqrt(std::max(1 - k.squaredNorm(), 1e-300));
   };

@@ -20,8 +20,8 @@ void record_match_flow(const FlowResult& flow, const MatchOptions& options, cons
 /// rows of `x` not `fixed` become the weighted means of their neighbours. One-to-one when the
 /// fixed vertices are the boundary of a disk placed in order on a convex polygon.
 /// \throw SolverError when the sparse solve fails.
-void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths,
-                   const std::vector<char>& fixed, Eigen::MatrixX2d& x);
+void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths, const std::vector<char>& fixed,
+                   Eigen::MatrixX2d& x);
 
 /// domain.faces and domain.to_original_vertex from the sliced mesh.
 void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain);

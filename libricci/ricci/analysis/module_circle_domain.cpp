@@ -66,9 +66,10 @@ using Normalise = std::function<std::vector<Circle>(const EdgeLengths&, std::vec
 /// normalised domain stand. Fills the flow figures and the roundness of `result`; returns the
 /// last domain's circles (z its positions). `result.converged` false: stopped early.
 std::vector<Circle> round_boundaries(const Mesh& mesh, const MeshTables& tables,
-                                    const std::vector<int>& order, const std::vector<double>& total,
-                                    const ModuleOptions& options, const Normalise& normalised,
-                                    std::vector<Complex>& z, ModuleResult& result) {
+                                     const std::vector<int>& order,
+                                     const std::vector<double>& total, const ModuleOptions& options,
+                                     const Normalise& normalised, std::vector<Complex>& z,
+                                     ModuleResult& result) {
   const int vertices = tables.num_vertices();
   // Constant geodesic curvature on each loop: its total (2π on c0, -2π on each hole) spread by
   // the current metric's boundary lengths; repeated until the spread stops changing.
@@ -276,7 +277,6 @@ int farthest_interior_vertex(const Mesh& mesh, const MeshTables& tables, int min
   return best;
 }
 
-
 void disk_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
                  ModuleResult& result) {
   const int vertices = tables.num_vertices();
@@ -315,7 +315,8 @@ void disk_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions
   const Normalise normalised = [&](const EdgeLengths& lengths, std::vector<Complex>& z) {
     const LayoutE2Result layout = layout_e2(mesh, lengths);
     z.assign(vertices, 0);
-    for (int v = 0; v < vertices; ++v) z[v] = Complex(layout.positions(v, 0), layout.positions(v, 1));
+    for (int v = 0; v < vertices; ++v)
+      z[v] = Complex(layout.positions(v, 0), layout.positions(v, 1));
     std::vector<Complex> points;
     for (int v : loop) points.push_back(z[v]);
     const Circle outer = fit_circle(points);

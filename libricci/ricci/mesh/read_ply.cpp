@@ -387,8 +387,8 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
       if (is_vertex) {
         soup.positions.emplace_back(values[px], values[py], values[pz]);
         if (pr >= 0) {
-          soup.colours.emplace_back(colour_scale * Eigen::Vector3d(values[pr], values[pg],
-                                                                   values[pb]));
+          soup.colours.emplace_back(colour_scale *
+                                    Eigen::Vector3d(values[pr], values[pg], values[pb]));
         }
         soup.vertex_lines.push_back(static_cast<int>(reader.record_line()));
       } else if (is_face) {

@@ -1,7 +1,7 @@
 // The conformal map of a disk onto the unit disk (ModuleKind::Disk): the planar unit disk comes
 // back as the disk automorphism its normalisation asks for (its boundary, sampled evenly, is
-// already round: the metric is the fixed point); a conformal image of it (stereographic, on the sphere) gives the same map; bad
-// centres and topologies are refused.
+// already round: the metric is the fixed point); a conformal image of it (stereographic, on the
+// sphere) gives the same map; bad centres and topologies are refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -65,12 +65,13 @@ TEST(DiskMap, ConformalImageGivesTheSameMap) {
   ModuleOptions options = disk_options();
   const ModuleResult flat = conformal_module(disk, options);
   options.centre = flat.corners[0];
-  const Mesh cap = testing::mapped(
-      disk, [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 1.5); });
+  const Mesh cap =
+      testing::mapped(disk, [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 1.5); });
   const ModuleResult lifted = conformal_module(cap, options);
   ASSERT_TRUE(flat.converged && lifted.converged);
   EXPECT_EQ(lifted.corners, flat.corners);
-  const double worst = (lifted.domain.positions - flat.domain.positions).rowwise().norm().maxCoeff();
+  const double worst =
+      (lifted.domain.positions - flat.domain.positions).rowwise().norm().maxCoeff();
   EXPECT_LT(worst, 1e-3) << worst;
 }
 

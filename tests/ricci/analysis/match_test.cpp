@@ -88,8 +88,8 @@ TEST(Match, DiskAgainstItsConformalImageIsTheIdentity) {
   // The unit disk and its stereographic image on the sphere (conformal, not isometric): the
   // disk maps with the same centre differ by nothing but discretisation.
   const Mesh flat = testing::circle_domain_mesh({}, 0.05);
-  const Mesh cap = testing::mapped(
-      flat, [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 1.5); });
+  const Mesh cap =
+      testing::mapped(flat, [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 1.5); });
   MatchOptions options;
   options.feature_a = options.feature_b = vertex_near(flat, 0.2, 0.1);
   const MatchResult r = match_surfaces(flat, cap, options);
@@ -152,8 +152,9 @@ TEST(Match, TextureErrorOfEquation14) {
   }
   EXPECT_NEAR(texture_error(flat, flat, self, colours, shifted), 0.1 / (norm / area), 1e-9);
   EXPECT_THROW((void)texture_error(flat, bent, r, colours.topRows(3), colours), InvalidInputError);
-  EXPECT_THROW((void)texture_error(flat, bent, r, colours, Eigen::MatrixX3d::Zero(colours.rows(), 3)),
-               InvalidInputError);
+  EXPECT_THROW(
+      (void)texture_error(flat, bent, r, colours, Eigen::MatrixX3d::Zero(colours.rows(), 3)),
+      InvalidInputError);
 }
 
 TEST(Match, HyperbolicTwoTriangulationsOfOnePlate) {
