@@ -103,7 +103,12 @@ int run_match_benchmark(int argc, char** argv) {
   std::printf("%-12s %6s %2s %-13s %7s %7s %5s %6s  %7s %7s %5s %6s %6s | %s\n", "mesh", "faces",
               "b", "module", "s", "x", "flows", "chol", "match s", "x", "flips", "d_g", "corr",
               "the same, hyperbolic");
-  for (const Case& c : cases) row(models, c);
+  // Further arguments keep only the cases of those names (e.g. holes-100k).
+  for (const Case& c : cases) {
+    bool wanted = argc <= 1;
+    for (int i = 1; i < argc; ++i) wanted = wanted || std::string(argv[i]) == c.name;
+    if (wanted) row(models, c);
+  }
   return 0;
 }
 
