@@ -55,7 +55,7 @@ const Benchmark kBenchmarks[] = {
     {"uniformize", msp::bench::run_uniformize_benchmark,
      "issue 7: uniformization (flow, cut, layout, Fuchsian group) at the Ricci-flow paper's Table I sizes"},
     {"match", msp::bench::run_match_benchmark,
-     "issue 17: msp module and msp match at ~20k and ~100k faces, circle-domain iterations"},
+     "issue 17: msp module and msp match at ~20k and ~100k faces [MODELS [CASE...]]"},
     {"check-glb", msp::bench::run_check_glb,
      "OUT.glb SCAN [--json]: the written surface against the scan, both ways (rms, max, coverage, folds)"},
 };

@@ -1,4 +1,4 @@
-// msp match A B -o MAP: deformable surface matching by the Ricci flow (issue 17, Algorithm 8):
+// msp match A B -o MAP: deformable surface matching by the Ricci flow (issue 17, Algorithms 8, 9):
 // ricci::match_surfaces, the map written as text (docs/match-map.md), the shape error of
 // eq. (13), the flipped faces and the time printed; --glb draws the match as one checkerboard
 // carried from A to B.
@@ -27,7 +27,7 @@ namespace {
 nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
 
 nlohmann::json match_json(const std::string& path_a, const std::string& path_b,
-                          const ricci::MatchResult& r) {
+                          ricci::MatchMethod method, const ricci::MatchResult& r) {
   const auto side = [](const ricci::ParameterDomain& d) {
     nlohmann::json j;
     j["feature"] = d.feature;
@@ -43,7 +43,7 @@ nlohmann::json match_json(const std::string& path_a, const std::string& path_b,
   j["a"]["mesh"] = path_a;
   j["b"] = side(r.b);
   j["b"]["mesh"] = path_b;
-  j["method"] = "euclidean";
+  j["method"] = ricci::to_string(method);
   j["domain"] = r.domain;
   j["shape_error_percent"] = 100 * r.shape_error;
   j["correspondence_error_percent"] = number(100 * r.correspondence_error);
@@ -55,10 +55,11 @@ nlohmann::json match_json(const std::string& path_a, const std::string& path_b,
   return j;
 }
 
-void print_summary(const ricci::MatchResult& r) {
-  std::cout << "method euclidean\ndomain " << r.domain << "\n";
-  if (r.a.feature >= 0) {
-    std::cout << "features " << r.a.feature << " " << r.b.feature << "\nloop_order";
+void print_summary(ricci::MatchMethod method, const ricci::MatchResult& r) {
+  std::cout << "method " << ricci::to_string(method) << "\ndomain " << r.domain << "\n";
+  if (r.a.feature >= 0) std::cout << "features " << r.a.feature << " " << r.b.feature << "\n";
+  if (!r.a.loop_order.empty()) {
+    std::cout << "loop_order";
     for (int k : r.a.loop_order) std::cout << " c" << k;
     std::cout << "\n";
   }
@@ -141,7 +142,7 @@ const CommandSpec& match_command() {
        {"feature-b", "W", "interior vertex of B matched to --feature-a"},
        {"corners-a", "a,b,c,d", "a disk's rectangle corners on A (default: where it turns most)"},
        {"corners-b", "a,b,c,d", "the corners of B that match --corners-a, in the same order"},
-       {"method", "euclidean|hyperbolic", "Algorithm 8 (euclidean, default) or 9 (refused)"},
+       {"method", "euclidean|hyperbolic", "Algorithm 8 (default) or 9 (3+ boundary loops)"},
        {"glb", "OUT.glb", "draw the match: A and B with one checkerboard carried from A to B"},
        {"checker-squares", "N", "checkerboard squares along each side, 1 to 256 (16)"},
        json_option(),
@@ -169,20 +170,29 @@ int run_match(int argc, char** argv) {
   const int squares = args.get_int("checker-squares", 16);
   if (squares < 1 || squares > 256) throw UsageError("--checker-squares must be 1 to 256");
   const std::string path_a = args.positionals()[0], path_b = args.positionals()[1];
-  const ricci::Mesh a = ricci::read_mesh(path_a);
-  const ricci::Mesh b = ricci::read_mesh(path_b);
+  const ricci::ColouredMesh coloured_a = ricci::read_mesh_with_colours(path_a);
+  const ricci::ColouredMesh coloured_b = ricci::read_mesh_with_colours(path_b);
+  const ricci::Mesh& a = coloured_a.mesh;
+  const ricci::Mesh& b = coloured_b.mesh;
   const ricci::MatchResult result = ricci::match_surfaces(a, b, options);
+  // Eq. (14) when both files colour their vertices.
+  double texture = std::numeric_limits<double>::quiet_NaN();
+  if (coloured_a.colours.rows() > 0 && coloured_b.colours.rows() > 0) {
+    texture = ricci::texture_error(a, b, result, coloured_a.colours, coloured_b.colours);
+  }
   write_text_atomically(*args.get("output"),
                         ricci::surface_map_text(result, static_cast<int>(b.n_vertices()),
                                                 static_cast<int>(b.n_faces())));
-  const nlohmann::json report = match_json(path_a, path_b, result);
+  nlohmann::json report = match_json(path_a, path_b, options.method, result);
+  report["texture_error"] = number(texture);
   if (auto glb = args.get("glb")) {
     gltf::write_glb(match_scene(a, b, result, squares, report), *glb);
   }
   if (args.has("json")) {
     std::cout << report.dump() << "\n";
   } else {
-    print_summary(result);
+    print_summary(options.method, result);
+    if (std::isfinite(texture)) std::cout << "texture_error " << texture << "\n";
   }
   return 0;
 }

@@ -24,10 +24,10 @@ void print_summary(const ricci::Mesh& mesh, const ricci::ModuleResult& r) {
   }
   if (!r.invariant) std::cout << "invariant no (depends on the cut graph's basis)\n";
   if (r.kind == ricci::ModuleKind::Annulus || r.kind == ricci::ModuleKind::Rectangle ||
-      r.kind == ricci::ModuleKind::CircleDomain) {
+      r.kind == ricci::ModuleKind::CircleDomain || r.kind == ricci::ModuleKind::Disk) {
     std::cout << "roundness " << r.roundness << "\n";
   }
-  if (r.kind == ricci::ModuleKind::CircleDomain) {
+  if (r.kind == ricci::ModuleKind::CircleDomain || r.kind == ricci::ModuleKind::Disk) {
     std::cout << "circle_iterations " << r.circle_iterations << "\n";
   }
   if (r.preparation != "as given") {
@@ -47,13 +47,14 @@ void print_summary(const ricci::Mesh& mesh, const ricci::ModuleResult& r) {
 const CommandSpec& module_command() {
   static const CommandSpec spec{
       "module",
-      "conformal module: annulus, rectangle, flat torus, hyperbolic",
+      "conformal module: annulus, rectangle, disk, flat torus, hyperbolic",
       {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
       {json_option(),
        {"output", "domain.svg", "draw the canonical domain as SVG"},
        {"corners", "a,b,c,d", "four boundary vertices: the module of the rectangle they make"},
-       {"kind", "auto|annulus|rectangle|flat-torus|circle-domain|hyperbolic|fuchsian",
+       {"kind", "auto|annulus|rectangle|disk|flat-torus|circle-domain|hyperbolic|fuchsian",
         "the module to compute (auto: chosen from the topology)"},
+       {"centre", "V", "--kind disk: the interior vertex sent to 0 (default: the deepest)"},
        tolerance_option("1e-11"),
        solver_option(),
        metric_option("circle-packing, no fall-back"),

@@ -38,6 +38,7 @@ ricci::ModuleOptions parse_module_options(const Args& args, bool shape) {
       throw UsageError(e.what());
     }
     if (auto corners = args.get("corners")) options.corners = parse_corners(*corners, "corners");
+    options.centre = args.get_int("centre", -1);
   }
   options.flow.tolerance = args.get_double("tolerance", options.flow.tolerance);
   if (!(options.flow.tolerance > 0)) throw UsageError("--tolerance must be positive");

@@ -15,8 +15,8 @@ namespace msp {
 /// Four vertex indices "a,b,c,d" given to --`option`. \throw UsageError otherwise.
 [[nodiscard]] std::vector<int> parse_corners(const std::string& text, const std::string& option);
 
-/// --tolerance, --solver, --metric, --radii, and with `shape` (msp module, not msp index) --kind
-/// and --corners a,b,c,d.
+/// --tolerance, --solver, --metric, --radii, and with `shape` (msp module, not msp index) --kind,
+/// --corners a,b,c,d and --centre V.
 /// \throw UsageError for malformed values.
 [[nodiscard]] ricci::ModuleOptions parse_module_options(const Args& args, bool shape);
 

@@ -25,6 +25,9 @@ std::string what_is_drawn(ricci::ModuleKind kind) {
              "circle, c1 centred at 0, c2 on the positive real axis";
     case ricci::ModuleKind::Fuchsian:
       return "fundamental domain in the Poincare disk";
+    case ricci::ModuleKind::Disk:
+      return "flat metric with a round boundary: the conformal map onto the unit disk, the centre "
+             "vertex at 0 (dotted) and the boundary vertex nearest it at 1";
     case ricci::ModuleKind::Hyperbolic:
       return "hyperbolic metric with geodesic boundaries (coloured by loop), cut to a disk, in the "
              "Poincare disk";

@@ -78,6 +78,54 @@ TEST_F(MatchCli, PlateAgainstItsBendingIsTheIdentity) {
   EXPECT_LT(worst, 0.01);  // of a diagonal ~2.3
 }
 
+TEST_F(MatchCli, HyperbolicMethod) {
+  const ricci::Mesh flat = plate(), bent = rolled(flat);
+  const std::string a = file("flat.off", flat), b = file("bent.off", bent);
+  const auto r =
+      msp_test::run_msp({"match", a, b, "-o", path("map.txt"), "--method", "hyperbolic", "--json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "hyperbolic");
+  EXPECT_EQ(j["domain"], "klein polygon");
+  EXPECT_EQ(j["flipped_faces"], 0);
+  EXPECT_EQ(j["flipped_faces_b"], 0);
+  EXPECT_LT(j["correspondence_error_percent"].get<double>(), 0.1);
+  EXPECT_TRUE(fs::exists(path("map.txt")));
+}
+
+TEST_F(MatchCli, TextureErrorFromVertexColours) {
+  const ricci::Mesh flat = plate(), bent = rolled(flat);
+  // The same colours on both (COFF, 0-255): the map is the identity, so d_t is ~0.
+  const auto coloured = [&](const std::string& name, const ricci::Mesh& mesh) {
+    const std::string at = path(name);
+    std::ofstream out(at);
+    out << "COFF\n" << mesh.n_vertices() << " " << mesh.n_faces() << " 0\n";
+    for (ricci::VertexHandle v : mesh.vertices()) {
+      const auto p = mesh.point(v);
+      const auto q = flat.point(v);
+      out << p[0] << " " << p[1] << " " << p[2] << " " << static_cast<int>(120 + 100 * q[0]) << " "
+          << static_cast<int>(120 + 100 * q[1]) << " 60 255\n";
+    }
+    for (ricci::FaceHandle f : mesh.faces()) {
+      out << "3";
+      for (ricci::VertexHandle v : mesh.fv_range(f)) out << " " << v.idx();
+      out << "\n";
+    }
+    return at;
+  };
+  const std::string a = coloured("flat.off", flat), b = coloured("bent.off", bent);
+  const auto r = msp_test::run_msp({"match", a, b, "-o", path("map.txt"), "--json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["texture_error"].is_number()) << r.out;
+  EXPECT_LT(j["texture_error"].get<double>(), 1e-2);
+  // Without colours the key is null.
+  const auto plain = msp_test::run_msp(
+      {"match", file("p.off", flat), file("q.off", bent), "-o", path("m.txt"), "--json"});
+  ASSERT_EQ(plain.exit_status, 0) << plain.err;
+  EXPECT_TRUE(nlohmann::json::parse(plain.out)["texture_error"].is_null());
+}
+
 TEST_F(MatchCli, BadInputOneLineNoMap) {
   const std::string disk = file("disk.off", ricci::make_planar_grid(6, 6, 1, 1));
   const std::string holes = file("holes.off", plate());
@@ -86,7 +134,7 @@ TEST_F(MatchCli, BadInputOneLineNoMap) {
       {"match", disk, holes, "-o", map},  // topologies differ
       {"match", holes, holes, "-o", map, "--feature-a", "99999", "--feature-b", "3"},
       {"match", disk, disk, "-o", map, "--feature-a", "0", "--feature-b", "0"},  // on boundary
-      {"match", holes, holes, "-o", map, "--method", "hyperbolic"},
+      {"match", disk, disk, "-o", map, "--method", "hyperbolic"},                // chi = 1
       {"match", holes, path("missing.off"), "-o", map},
   };
   for (const auto& args : cases) {

@@ -69,6 +69,24 @@ TEST_F(ModuleCli, RectangleWithCorners) {
   EXPECT_NEAR(std::stod(r.out.substr(at + 13)), 0.5, 1e-6);
 }
 
+TEST_F(ModuleCli, DiskMapAndPicture) {
+  const std::string mesh = file("disk.off", ricci::testing::circle_domain_mesh({}, 0.1));
+  const std::string svg = (folder_ / "disk.svg").string();
+  const auto r = msp_test::run_msp({"module", mesh, "--kind", "disk", "--json", "-o", svg});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["kind"], "disk");
+  EXPECT_TRUE(j["vector"].empty());
+  EXPECT_LT(j["roundness"].get<double>(), 1e-6);
+  ASSERT_EQ(j["corners"].size(), 2u);  // the centre and the boundary vertex at 1
+  EXPECT_TRUE(fs::exists(svg));
+  const int centre = j["corners"][0].get<int>() == 0 ? 1 : j["corners"][0].get<int>();
+  const auto given = msp_test::run_msp(
+      {"module", mesh, "--kind", "disk", "--centre", std::to_string(centre), "--json"});
+  ASSERT_EQ(given.exit_status, 0) << given.err;
+  EXPECT_EQ(nlohmann::json::parse(given.out)["corners"][0], centre);
+}
+
 TEST_F(ModuleCli, IndexGroupsAndOrders) {
   const std::string a = file("a.off", ricci::testing::log_polar_annulus(8, 40, 0.3, 1));
   const std::string b = file("b.off", ricci::testing::log_polar_annulus(8, 40, 0.5, 1));
@@ -92,6 +110,31 @@ TEST_F(ModuleCli, IndexGroupsAndOrders) {
   EXPECT_NE(text.out.find("nearest to [0]: [1]"), std::string::npos) << text.out;
 }
 
+TEST_F(ModuleCli, IndexReportsAFailureAndGoesOn) {
+  const std::string a = file("a.off", ricci::testing::log_polar_annulus(8, 40, 0.3, 1));
+  const std::string b = file("b.off", ricci::testing::log_polar_annulus(8, 40, 0.5, 1));
+  const std::string missing = (folder_ / "missing.off").string();
+  const auto r = msp_test::run_msp({"index", a, missing, b, "--json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_NE(r.err.find("failed"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["meshes"].size(), 3u);
+  EXPECT_TRUE(j["meshes"][1].contains("failed"));
+  EXPECT_EQ(j["failed"], nlohmann::json({1}));
+  ASSERT_EQ(j["groups"].size(), 1u);
+  // Members and neighbours keep the input positions.
+  EXPECT_EQ(j["groups"][0]["members"], nlohmann::json({0, 2}));
+  EXPECT_EQ(j["groups"][0]["nearest"][0], nlohmann::json({2}));
+  const auto text = msp_test::run_msp({"index", missing, a, b});
+  ASSERT_EQ(text.exit_status, 0) << text.err;
+  EXPECT_NE(text.out.find("[0] " + missing + ": failed"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("nearest to [1]: [2]"), std::string::npos) << text.out;
+  // Nothing to index: one line, non-zero.
+  const auto none = msp_test::run_msp({"index", missing});
+  EXPECT_NE(none.exit_status, 0);
+  EXPECT_TRUE(none.out.empty());
+}
+
 TEST_F(ModuleCli, BadInputOneLineNoFile) {
   const std::string sphere = file("sphere.off", ricci::testing::sphere(2));
   const std::string grid = file("grid.off", ricci::make_planar_grid(4, 4, 1, 1));
@@ -102,6 +145,9 @@ TEST_F(ModuleCli, BadInputOneLineNoFile) {
       {"module", grid, "--corners", "0,4,24", "-o", svg},
       {"module", grid, "--corners", "0,4,24,999", "-o", svg},
       {"module", grid, "--kind", "doughnut"},
+      {"module", grid, "--centre", "7"},                       // the rectangle has no centre
+      {"module", grid, "--kind", "disk", "--centre", "0"},     // on the boundary
+      {"module", sphere, "--kind", "disk"},
       {"module", sphere, "-o", svg},  // a sphere has no canonical domain to draw
       {"module", (folder_ / "missing.off").string()},
       {"index"},

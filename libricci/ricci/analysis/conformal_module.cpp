@@ -29,6 +29,7 @@ std::string to_string(ModuleKind kind) {
     case ModuleKind::FlatTorus: return "flat-torus";
     case ModuleKind::CircleDomain: return "circle-domain";
     case ModuleKind::Hyperbolic: return "hyperbolic";
+    case ModuleKind::Disk: return "disk";
     default: return "fuchsian";
   }
 }
@@ -37,7 +38,7 @@ bool parse_module_kind(const std::string& name, ModuleKind& kind) {
   if (name == "auto") return false;
   for (ModuleKind k : {ModuleKind::Sphere, ModuleKind::Annulus, ModuleKind::Rectangle,
                        ModuleKind::FlatTorus, ModuleKind::CircleDomain, ModuleKind::Hyperbolic,
-                       ModuleKind::Fuchsian}) {
+                       ModuleKind::Fuchsian, ModuleKind::Disk}) {
     if (name == to_string(k)) {
       kind = k;
       return true;
@@ -210,13 +211,16 @@ void check_kind(ModuleKind kind, const SurfaceTopology& t) {
       need = "a genus-0 surface with three or more boundary loops";
       break;
     case ModuleKind::Fuchsian: need = "a closed surface of genus 2 or more"; break;
+    case ModuleKind::Disk: need = "a genus-0 surface with one boundary loop"; break;
     case ModuleKind::Hyperbolic:
       need = "an open surface of negative Euler characteristic (genus 0 with three or more "
              "boundary loops, or genus 1 or more with boundary)";
       break;
   }
   const bool hyperbolic_fits = t.boundary_loops > 0 && 2 - 2 * t.genus - t.boundary_loops < 0;
-  if (kind != natural_kind(t) && !(kind == ModuleKind::Hyperbolic && hyperbolic_fits)) {
+  const bool disk_fits = t.genus == 0 && t.boundary_loops == 1;
+  if (kind != natural_kind(t) && !(kind == ModuleKind::Hyperbolic && hyperbolic_fits) &&
+      !(kind == ModuleKind::Disk && disk_fits)) {
     throw InvalidInputError("the " + to_string(kind) + " module needs " + need + "; the mesh is " +
                             topology_text(t));
   }
@@ -242,6 +246,7 @@ void module_on(const Mesh& mesh, const ModuleOptions& options, ModuleResult& res
       detail::circle_domain_module(mesh, tables, options, result);
       break;
     case ModuleKind::Hyperbolic: detail::hyperbolic_module(mesh, tables, options, result); break;
+    case ModuleKind::Disk: detail::disk_module(mesh, tables, options, result); break;
   }
 }
 
@@ -262,6 +267,10 @@ ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
   if (options.force_kind) {
     check_kind(options.kind, topology);
     blank.kind = options.kind;
+  }
+  if (blank.kind != ModuleKind::Disk && options.centre != -1) {
+    throw InvalidInputError("a centre vertex is for the disk map; the module asked for is the " +
+                            to_string(blank.kind));
   }
   if (blank.kind != ModuleKind::Rectangle && !options.corners.empty()) {
     throw InvalidInputError("corners are for the rectangle module of a disk; the mesh is " +

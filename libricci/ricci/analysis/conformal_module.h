@@ -25,6 +25,11 @@
 //               Fuchsian generators a1 b1 ... of uniformize(). They are conformal invariants of
 //               the marked surface only: another cut graph (basis) gives other numbers, so the
 //               distance between such vectors is not a conformal invariant (`invariant` false).
+//   disk        genus 0, one boundary, asked for: the conformal map onto the unit disk (flat
+//               metric whose boundary has constant geodesic curvature, by the circle domain's
+//               fixed point), the centre vertex at 0 and the boundary vertex nearest to it
+//               (edge paths, 3D lengths) at 1. Every disk is conformal to the unit disk: no
+//               values; the map is the answer (domain, roundness).
 // A closed genus-0 surface has no module (every one is conformal to the sphere): kind Sphere,
 // no values.
 #include <string>
@@ -38,9 +43,19 @@
 
 namespace ricci {
 
-enum class ModuleKind { Sphere, Annulus, Rectangle, FlatTorus, CircleDomain, Hyperbolic, Fuchsian };
+enum class ModuleKind {
+  Sphere,
+  Annulus,
+  Rectangle,
+  FlatTorus,
+  CircleDomain,
+  Hyperbolic,
+  Fuchsian,
+  Disk
+};
 
-/// "sphere", "annulus", "rectangle", "flat-torus", "circle-domain", "hyperbolic", "fuchsian".
+/// "sphere", "annulus", "rectangle", "flat-torus", "circle-domain", "hyperbolic", "fuchsian",
+/// "disk".
 std::string to_string(ModuleKind kind);
 /// The inverse of to_string, plus "auto" (returns false for it).
 /// \throw InvalidInputError for an unknown name.
@@ -84,19 +99,22 @@ struct ModuleOptions {
   /// given, so corners 0-1 and 2-3 span the width. Empty = four vertices a quarter of the
   /// boundary's 3D length apart, from the lowest-index boundary vertex.
   std::vector<int> corners;
+  /// Disk: the interior vertex sent to 0; -1 = the interior vertex farthest from the boundary
+  /// along edge paths (3D lengths).
+  int centre = -1;
 };
 
 /// The canonical domain for pictures: the mesh sliced open and laid out (annulus in the unit
 /// disk, rectangle of width 1, the flat torus's parallelogram with a = 1, the circle domain,
 /// the Poincaré disk).
 struct CanonicalDomain {
-  Eigen::MatrixX3i faces;             ///< #F by 3, into positions.
-  Eigen::MatrixX2d positions;         ///< By vertex of the sliced mesh.
+  Eigen::MatrixX3i faces;      ///< #F by 3, into positions.
+  Eigen::MatrixX2d positions;  ///< By vertex of the sliced mesh.
   /// Boundary polylines (indices into positions; closed for the annulus and the rectangle,
   /// one per boundary edge in the Poincaré disk) and the boundary loop each belongs to.
   std::vector<std::vector<int>> boundaries;
   std::vector<int> boundary_loop;
-  std::vector<int> corners;           ///< Rectangle corners (indices into positions).
+  std::vector<int> corners;  ///< Rectangle corners (indices into positions).
 };
 
 struct ModuleResult {
@@ -119,7 +137,8 @@ struct ModuleResult {
   /// kept) or "remeshed" (new vertices; `corners` and `domain` refer to them).
   std::string preparation = "as given";
   int faces_used = 0;  ///< Faces of that mesh.
-  /// The mesh vertices of the rectangle's corners (or of the annulus's cut path ends).
+  /// The mesh vertices of the rectangle's corners (or of the annulus's cut path ends; the
+  /// disk's centre and the boundary vertex at 1).
   std::vector<int> corners;
   CanonicalDomain domain;
   /// The flow: converged or not (not converged: the values are a best effort), iterations,
@@ -134,8 +153,9 @@ struct ModuleResult {
 
 /// The conformal module of a mesh (see the file comment).
 /// \pre a connected oriented triangle 2-manifold without degenerate faces.
-/// \throw InvalidInputError when the asked kind does not fit the topology, or for bad corners
-///        (not four, out of range, not on the boundary, repeated); TopologyError for a
+/// \throw InvalidInputError when the asked kind does not fit the topology, for bad corners
+///        (not four, out of range, not on the boundary, repeated), or a centre vertex not asked
+///        for the disk, out of range or on the boundary; TopologyError for a
 ///        non-manifold or disconnected mesh.
 [[nodiscard]] ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options = {});
 

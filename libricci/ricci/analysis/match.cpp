@@ -1,6 +1,6 @@
-// Deformable surface matching (Algorithm 8): the rectangle of a disk, or the cone star of a
-// multiply connected domain carried harmonically onto a common convex polygon; the map located
-// by a grid over B's parameter domain; the shape error of eq. (13).
+// Deformable surface matching (Algorithm 8): the rectangle or the unit disk of a disk, or the
+// cone star of a multiply connected domain carried harmonically onto a common convex polygon; the
+// map located by a grid over B's parameter domain; the shape error of eq. (13).
 #include "ricci/analysis/match.h"
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include <Eigen/SparseLU>
 
 #include "ricci/analysis/conformal_module.h"
+#include "ricci/analysis/match_internal.h"
 #include "ricci/analysis/module_internal.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
@@ -73,47 +74,6 @@ void check_feature(const MeshTables& tables, int v, const char* name) {
                             " neighbours, fewer than the " + std::to_string(loops) +
                             " boundary loops its cuts must reach");
   }
-}
-
-/// The interior vertex farthest from the boundary along edge paths (3D lengths), among those
-/// with at least one neighbour per boundary loop (a ray leaves through each) if there are any.
-int default_feature(const Mesh& mesh, const MeshTables& tables) {
-  const EdgeLengths lengths = mesh_edge_lengths(mesh);
-  std::vector<double> dist(tables.num_vertices(), kInfinity);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (const auto& loop : tables.boundary_loops) {
-    for (int v : loop) {
-      dist[v] = 0;
-      queue.push({0.0, v});
-    }
-  }
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[v]) continue;
-    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
-      const int w = mesh.to_vertex_handle(h).idx();
-      const double nd = d + lengths[mesh.edge_handle(h).idx()];
-      if (nd < dist[w]) {
-        dist[w] = nd;
-        queue.push({nd, w});
-      }
-    }
-  }
-  const int loops = static_cast<int>(tables.boundary_loops.size());
-  int best = -1;
-  bool best_enough = false;
-  for (int v = 0; v < tables.num_vertices(); ++v) {
-    if (tables.is_boundary_vertex[v]) continue;
-    const bool enough = tables.valence[v] >= loops;
-    if (best < 0 || (enough && !best_enough) || (enough == best_enough && dist[v] > dist[best])) {
-      best = v;
-      best_enough = enough;
-    }
-  }
-  if (best < 0) throw InvalidInputError("the mesh has no interior vertex");
-  return best;
 }
 
 /// Shortest edge path (under `lengths`) from interior vertex p to boundary loop `target`,
@@ -180,41 +140,17 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
   const std::vector<int> order = detail::loops_by_length(mesh, tables);
   Targets targets;
   targets.curvature = Eigen::VectorXd::Zero(n);
-  if (loops >= 2) {
-    // A single vertex of valence ~6 cannot take -2π or less under the inversive-distance
-    // metric (the triangle inequality breaks): the cone is spread over p's interior rings.
-    std::vector<int> cone = {p};
-    for (VertexHandle v : ring_neighbourhood(mesh, mesh.vertex_handle(p), options.cone_rings)) {
-      if (!tables.is_boundary_vertex[v.idx()]) cone.push_back(v.idx());
-    }
-    for (int v : cone) {
-      targets.curvature[v] = 2 * M_PI * (2 - loops) / static_cast<double>(cone.size());
-    }
-  } else {
-    // A disk: p is a plain vertex; the boundary carries 2π spread by 3D length.
-    const std::vector<int>& loop = tables.boundary_loops[0];
-    std::vector<double> edge(loop.size());
-    double total = 0;
-    for (size_t i = 0; i < loop.size(); ++i) {
-      edge[i] = (mesh.point(mesh.vertex_handle(loop[i])) -
-                 mesh.point(mesh.vertex_handle(loop[(i + 1) % loop.size()])))
-                    .norm();
-      total += edge[i];
-    }
-    for (size_t i = 0; i < loop.size(); ++i) {
-      const double dual = 0.5 * (edge[i] + edge[(i + loop.size() - 1) % loop.size()]);
-      targets.curvature[loop[i]] = 2 * M_PI * dual / total;
-    }
+  // A single vertex of valence ~6 cannot take -2π or less under the inversive-distance
+  // metric (the triangle inequality breaks): the cone is spread over p's interior rings.
+  std::vector<int> cone = {p};
+  for (VertexHandle v : ring_neighbourhood(mesh, mesh.vertex_handle(p), options.cone_rings)) {
+    if (!tables.is_boundary_vertex[v.idx()]) cone.push_back(v.idx());
+  }
+  for (int v : cone) {
+    targets.curvature[v] = 2 * M_PI * (2 - loops) / static_cast<double>(cone.size());
   }
   const FlowResult flat = flow(mesh, targets, options.flow);
-  if (!flat.converged() && !(flat.max_error < options.accepted_error)) {
-    throw SolverError(std::string("the Ricci flow of ") + name + " did not converge (" +
-                      to_string(flat.status) + ", max |K - target| " +
-                      std::to_string(flat.max_error) + ")");
-  }
-  domain.metric = to_string(flat.metric.scheme);
-  domain.flow_iterations = flat.iterations;
-  domain.flow_error = flat.max_error;
+  detail::record_match_flow(flat, options, name, domain);
   // Step 4: one ray from p to each loop, longest loop first, vertex-disjoint.
   std::vector<int> loop_of(n, -1);
   for (int k = 0; k < loops; ++k) {
@@ -337,60 +273,8 @@ Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& ext
     }
     start += extents[j];
   }
-  std::vector<int> unknown(n, -1);
-  int unknowns = 0;
-  for (int v = 0; v < n; ++v) {
-    if (!fixed[v]) unknown[v] = unknowns++;
-  }
-  if (unknowns == 0) return x;
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
-  const auto couple = [&](int i, int j, double w) {
-    if (fixed[i]) return;
-    entries.emplace_back(unknown[i], unknown[i], w);
-    if (fixed[j]) {
-      rhs.row(unknown[i]) += w * x.row(j);
-    } else {
-      entries.emplace_back(unknown[i], unknown[j], -w);
-    }
-  };
-  for (FaceHandle f : cut.faces()) {
-    const auto h = face_halfedges(cut, f);
-    int v[3];
-    double a[3];  // a[k]: the side from corner k - 1 to corner k
-    for (int k = 0; k < 3; ++k) {
-      v[k] = cut.to_vertex_handle(h[k]).idx();
-      a[k] = star.lengths[cut.edge_handle(h[k]).idx()];
-    }
-    for (int k = 0; k < 3; ++k) {
-      const double s = a[k], t = a[(k + 1) % 3], o = a[(k + 2) % 3];
-      const double c = std::clamp((s * s + t * t - o * o) / (2 * s * t), -1.0, 1.0);
-      const double half = std::tan(0.5 * std::acos(c));
-      couple(v[k], v[(k + 2) % 3], half / s);
-      couple(v[k], v[(k + 1) % 3], half / t);
-    }
-  }
-  Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
-  matrix.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(matrix);
-  if (lu.info() != Eigen::Success) {
-    throw SolverError("the harmonic map's sparse LU factorisation failed");
-  }
-  const Eigen::MatrixX2d solved = lu.solve(rhs);
-  for (int v = 0; v < n; ++v) {
-    if (!fixed[v]) x.row(v) = solved.row(unknown[v]);
-  }
+  detail::harmonic_fill(cut, star.lengths, fixed, x);
   return x;
-}
-
-void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
-  domain.faces.resize(static_cast<Eigen::Index>(sliced.mesh.n_faces()), 3);
-  for (FaceHandle f : sliced.mesh.faces()) {
-    int k = 0;
-    for (VertexHandle v : sliced.mesh.fv_range(f)) domain.faces(f.idx(), k++) = v.idx();
-  }
-  domain.to_original_vertex = sliced.to_original_vertex;
 }
 
 /// Four boundary vertices of a disk where the boundary turns most in 3D (pi minus the sum of the
@@ -455,6 +339,32 @@ void rectangle_domain(const Mesh& mesh, const MeshTables& tables, const std::vec
   domain.faces = rectangle.domain.faces;
   domain.positions = rectangle.domain.positions;
   domain.positions.col(1) /= rectangle.values[0];
+  domain.to_original_vertex.resize(mesh.n_vertices());
+  for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) domain.to_original_vertex[v] = v;
+}
+
+/// The conformal map of a disk onto the unit disk, `centre` at 0 (ModuleKind::Disk).
+void unit_disk_domain(const Mesh& mesh, int centre, const MatchOptions& options, const char* name,
+                      ParameterDomain& domain) {
+  ModuleOptions module;
+  module.force_kind = true;
+  module.kind = ModuleKind::Disk;
+  module.centre = centre;
+  module.flow = options.flow;
+  module.accepted_error = options.accepted_error;
+  module.retry = false;                            // the map needs the mesh's own vertices
+  module.flow.fall_back_to_other_metrics = false;  // the disk map must be conformal
+  const ModuleResult disk = conformal_module(mesh, module);
+  if (!disk.converged) {
+    throw SolverError(std::string("the Ricci flow of ") + name +
+                      " to the unit disk did not converge: " + disk.message);
+  }
+  domain.feature = centre;
+  domain.flow_iterations = disk.flow_iterations;
+  domain.flow_error = disk.flow_error;
+  domain.metric = to_string(options.flow.scheme);
+  domain.faces = disk.domain.faces;
+  domain.positions = disk.domain.positions;
   domain.to_original_vertex.resize(mesh.n_vertices());
   for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) domain.to_original_vertex[v] = v;
 }
@@ -582,13 +492,82 @@ double mean_distance(const Mesh& a, const std::vector<double>& distance, double 
 
 }  // namespace
 
+namespace detail {
+
+void record_match_flow(const FlowResult& flow, const MatchOptions& options, const char* name,
+                       ParameterDomain& domain) {
+  if (!flow.converged() && !(flow.max_error < options.accepted_error)) {
+    throw SolverError(std::string("the Ricci flow of ") + name + " did not converge (" +
+                      to_string(flow.status) + ", max |K - target| " +
+                      std::to_string(flow.max_error) + ")");
+  }
+  domain.metric = to_string(flow.metric.scheme);
+  domain.flow_iterations = flow.iterations;
+  domain.flow_error = flow.max_error;
+}
+
+void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths, const std::vector<char>& fixed,
+                   Eigen::MatrixX2d& x) {
+  const int n = static_cast<int>(cut.n_vertices());
+  std::vector<int> unknown(n, -1);
+  int unknowns = 0;
+  for (int v = 0; v < n; ++v) {
+    if (!fixed[v]) unknown[v] = unknowns++;
+  }
+  if (unknowns == 0) return;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+  const auto couple = [&](int i, int j, double w) {
+    if (fixed[i]) return;
+    entries.emplace_back(unknown[i], unknown[i], w);
+    if (fixed[j]) {
+      rhs.row(unknown[i]) += w * x.row(j);
+    } else {
+      entries.emplace_back(unknown[i], unknown[j], -w);
+    }
+  };
+  for (FaceHandle f : cut.faces()) {
+    const auto h = face_halfedges(cut, f);
+    int v[3];
+    double a[3];  // a[k]: the side from corner k - 1 to corner k
+    for (int k = 0; k < 3; ++k) {
+      v[k] = cut.to_vertex_handle(h[k]).idx();
+      a[k] = lengths[cut.edge_handle(h[k]).idx()];
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double s = a[k], t = a[(k + 1) % 3], o = a[(k + 2) % 3];
+      const double c = std::clamp((s * s + t * t - o * o) / (2 * s * t), -1.0, 1.0);
+      const double half = std::tan(0.5 * std::acos(c));
+      couple(v[k], v[(k + 2) % 3], half / s);
+      couple(v[k], v[(k + 1) % 3], half / t);
+    }
+  }
+  Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
+  matrix.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(matrix);
+  if (lu.info() != Eigen::Success) {
+    throw SolverError("the harmonic map's sparse LU factorisation failed");
+  }
+  const Eigen::MatrixX2d solved = lu.solve(rhs);
+  for (int v = 0; v < n; ++v) {
+    if (!fixed[v]) x.row(v) = solved.row(unknown[v]);
+  }
+}
+
+void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
+  domain.faces.resize(static_cast<Eigen::Index>(sliced.mesh.n_faces()), 3);
+  for (FaceHandle f : sliced.mesh.faces()) {
+    int k = 0;
+    for (VertexHandle v : sliced.mesh.fv_range(f)) domain.faces(f.idx(), k++) = v.idx();
+  }
+  domain.to_original_vertex = sliced.to_original_vertex;
+}
+
+}  // namespace detail
+
 MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& options) {
   const Stopwatch watch;
-  if (options.method == MatchMethod::hyperbolic) {
-    throw InvalidInputError(
-        "the hyperbolic matching method (Algorithm 9) is not implemented; "
-        "use the euclidean one");
-  }
   const SurfaceTopology ta = checked_topology(a, "A"), tb = checked_topology(b, "B");
   if (ta.genus != tb.genus || ta.boundary_loops != tb.boundary_loops) {
     throw InvalidInputError("A is " + topology_text(ta) + " and B " + topology_text(tb) +
@@ -604,7 +583,28 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
   const MeshTables tables_a = build_mesh_tables(a), tables_b = build_mesh_tables(b);
   MatchResult result;
   Stopwatch stage;
-  if (ta.boundary_loops == 1 && options.feature_a == -1) {
+  if (options.method == MatchMethod::hyperbolic) {
+    if (ta.boundary_loops < 3) {
+      throw InvalidInputError("the hyperbolic method needs a negative Euler characteristic " +
+                              std::string("(three or more boundary loops); the meshes are ") +
+                              topology_text(ta) + ": use the euclidean one");
+    }
+    if (options.feature_a != -1 || !options.corners_a.empty() || !options.corners_b.empty()) {
+      throw InvalidInputError("feature vertices and corners are for the euclidean method");
+    }
+    detail::klein_polygon_domains(a, tables_a, b, tables_b, options, result);
+  } else if (ta.boundary_loops == 1 && options.feature_a != -1) {
+    result.domain = "unit disk";
+    if (!options.corners_a.empty() || !options.corners_b.empty()) {
+      throw InvalidInputError("rectangle corners are for disks without feature vertices");
+    }
+    check_feature(tables_a, options.feature_a, "A");
+    check_feature(tables_b, options.feature_b, "B");
+    unit_disk_domain(a, options.feature_a, options, "A", result.a);
+    result.a.seconds = stage.lap();
+    unit_disk_domain(b, options.feature_b, options, "B", result.b);
+    result.b.seconds = stage.lap();
+  } else if (ta.boundary_loops == 1) {
     result.domain = "rectangle";
     if (options.corners_a.empty() != options.corners_b.empty()) {
       throw InvalidInputError("give rectangle corners on both surfaces or on neither");
@@ -622,8 +622,14 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
       check_feature(tables_a, options.feature_a, "A");
       check_feature(tables_b, options.feature_b, "B");
     }
-    result.a.feature = options.feature_a != -1 ? options.feature_a : default_feature(a, tables_a);
-    result.b.feature = options.feature_b != -1 ? options.feature_b : default_feature(b, tables_b);
+    result.a.feature = options.feature_a != -1
+                           ? options.feature_a
+                           : detail::farthest_interior_vertex(
+                                 a, tables_a, static_cast<int>(tables_a.boundary_loops.size()));
+    result.b.feature = options.feature_b != -1
+                           ? options.feature_b
+                           : detail::farthest_interior_vertex(
+                                 b, tables_b, static_cast<int>(tables_b.boundary_loops.size()));
     const Star star_a = cone_star(a, tables_a, result.a.feature, options, "A", result.a);
     result.a.seconds = stage.lap();
     const Star star_b = cone_star(b, tables_b, result.b.feature, options, "B", result.b);
@@ -637,10 +643,10 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     std::vector<double> extents(fa.size());
     for (size_t j = 0; j < fa.size(); ++j) extents[j] = 0.5 * (fa[j] + fb[j]);
     result.a.positions = star_positions(star_a, extents);
-    fill_cut_domain(star_a.sliced, result.a);
+    detail::fill_cut_domain(star_a.sliced, result.a);
     result.a.seconds += stage.lap();
     result.b.positions = star_positions(star_b, extents);
-    fill_cut_domain(star_b.sliced, result.b);
+    detail::fill_cut_domain(star_b.sliced, result.b);
     result.b.seconds += stage.lap();
   }
   // Locate every copy of A's vertices in B's domain (phi is the identity there).
@@ -708,6 +714,28 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
       same ? mean_distance(a, correspondence, diag) : std::numeric_limits<double>::quiet_NaN();
   result.seconds = watch.seconds();
   return result;
+}
+
+double texture_error(const Mesh& a, const Mesh& b, const MatchResult& result,
+                     const Eigen::MatrixX3d& colours_a, const Eigen::MatrixX3d& colours_b) {
+  if (colours_a.rows() != static_cast<Eigen::Index>(a.n_vertices()) ||
+      colours_b.rows() != static_cast<Eigen::Index>(b.n_vertices()) ||
+      result.map.size() != a.n_vertices()) {
+    throw InvalidInputError("the texture error needs one colour per vertex of A and of B");
+  }
+  std::vector<double> difference(a.n_vertices()), brightness(b.n_vertices());
+  for (size_t v = 0; v < result.map.size(); ++v) {
+    const MapPoint& p = result.map[v];
+    Eigen::RowVector3d on_b = Eigen::RowVector3d::Zero();
+    for (int k = 0; k < 3; ++k) on_b += p.weights[k] * colours_b.row(p.vertices[k]);
+    difference[v] = (colours_a.row(static_cast<Eigen::Index>(v)) - on_b).norm();
+  }
+  for (size_t v = 0; v < brightness.size(); ++v) {
+    brightness[v] = colours_b.row(static_cast<Eigen::Index>(v)).norm();
+  }
+  const double mean_b = mean_distance(b, brightness, 1.0);
+  if (!(mean_b > 0)) throw InvalidInputError("B's colours are all black; d_t is undefined");
+  return mean_distance(a, difference, 1.0) / mean_b;
 }
 
 std::string surface_map_text(const MatchResult& result, int vertices_b, int faces_b) {

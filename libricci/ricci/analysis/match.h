@@ -1,26 +1,40 @@
 #pragma once
 // Deformable surface matching through canonical domains (ricci-flow-3d-shape-analysis §5.2,
-// Algorithm 8): each surface is carried by the Ricci flow to a planar parameter domain, the two
-// domains are made to coincide on a common convex polygon, and the map A -> B is
+// Algorithms 8 and 9): each surface is carried by the Ricci flow to a planar parameter domain,
+// the two domains are made to coincide on a common convex domain, and the map A -> B is
 // tau_B^-1 o phi o tau_A, written as barycentric coordinates of each vertex of A in a face of B.
+// The euclidean method (Algorithm 8):
 //   rectangle   genus 0, one boundary, no feature vertices: both surfaces conformally onto
 //               rectangles (Ricci flow, geodesic curvature pi/2 at four corners: given, or
 //               where the boundary turns most), each scaled to the unit square; phi is the
 //               affine map between the rectangles.
-//   cone star   genus 0, n + 1 >= 2 boundaries (or one boundary with a feature vertex): the
-//               flat metric with geodesic boundaries and the whole curvature 2 pi chi at a cone
-//               on the feature vertex p (Algorithm 8, steps 1-3; with one boundary, p is a
-//               plain vertex and the boundary carries 2 pi), cut along vertex-disjoint shortest
-//               paths (flat metric) from p to each boundary (step 4), which leaves one disk
-//               whose boundary is 3 (n + 1) arcs: out along a cut, around a boundary loop, back
-//               along the cut. Both disks are carried onto the same convex polygon inscribed in
-//               the unit circle, each arc spanning the mean of its two relative flat lengths
-//               and parametrised by flat arc length, by the harmonic map with mean-value
-//               weights of the flat metric (one-to-one onto a convex polygon: Rado, Floater);
-//               phi is the identity of that polygon (steps 6-8 with one convex piece per
-//               surface instead of the paper's pieces bounded by geodesic loops, step 5).
+//   unit disk   genus 0, one boundary, feature vertices given: both surfaces conformally onto
+//               the unit disk (ModuleKind::Disk), the feature at 0 and the boundary vertex
+//               nearest it (edge paths, 3D lengths) at 1; phi is the identity of the disk.
+//   cone star   genus 0, n + 1 >= 2 boundaries: the flat metric with geodesic boundaries and
+//               the whole curvature 2 pi chi at a cone on the feature vertex p (steps 1-3), cut
+//               along vertex-disjoint shortest paths (flat metric) from p to each boundary
+//               (step 4), which leaves one disk whose boundary is 3 (n + 1) arcs: out along a
+//               cut, around a boundary loop, back along the cut. Both disks are carried onto the
+//               same convex polygon inscribed in the unit circle, each arc spanning the mean of
+//               its two relative flat lengths and parametrised by flat arc length, by the
+//               harmonic map with mean-value weights of the flat metric (one-to-one onto a
+//               convex polygon: Rado, Floater); phi is the identity of that polygon (steps 6-8
+//               with one convex piece per surface instead of the paper's pieces bounded by
+//               geodesic loops, step 5).
+// The hyperbolic method (Algorithm 9):
+//   klein       genus 0, n + 1 >= 3 boundaries: the hyperbolic metric with geodesic boundaries;
+//   polygon     the loops joined into a tree by n shortest paths (Prim's order from c0,
+//               vertex-disjoint), which leaves one disk: a right-angled hyperbolic polygon of
+//               4n sides (the paper cuts pants into right-angled hexagons instead), laid out in
+//               the Poincaré disk and carried to the Klein model, where its sides are chords and
+//               it is convex. A and B are mapped onto B's polygon (its sides bowed out by a
+//               parabola so that no face lies flat on a side): the boundary by hyperbolic arc
+//               length along each side, the interior by the mean-value harmonic map of each
+//               surface's own Klein layout (which it reproduces when the sides are straight).
 // Boundary loops correspond by 3D length (c0 the longest, as for the circle-domain module);
-// the cuts must leave the feature vertex in the same cyclic order of loops on both surfaces.
+// the cuts must leave the feature vertex in the same cyclic order of loops (cone star), or join
+// the same loops in the same order (klein polygon), on both surfaces.
 #include <array>
 #include <string>
 #include <vector>
@@ -40,12 +54,12 @@ std::string to_string(MatchMethod method);
 [[nodiscard]] MatchMethod parse_match_method(const std::string& name);
 
 struct MatchOptions {
-  /// euclidean (Algorithm 8). hyperbolic (Algorithm 9) is refused: not implemented.
+  /// euclidean (Algorithm 8) or hyperbolic (Algorithm 9, three or more boundary loops).
   MatchMethod method = MatchMethod::euclidean;
-  /// Interior vertices of A and B that correspond (the cone of the cone star); both -1 = the
-  /// interior vertex farthest (3D edge paths) from the boundary of each surface among those
-  /// with a neighbour per boundary loop. A disk with
-  /// both -1 is matched through the rectangle.
+  /// Interior vertices of A and B that correspond (the cone of the cone star, the centre of
+  /// the unit disk); both -1 = the interior vertex farthest (3D edge paths) from the boundary
+  /// of each surface among those with a neighbour per boundary loop. A disk with both -1 is
+  /// matched through the rectangle. Not for the hyperbolic method.
   int feature_a = -1;
   int feature_b = -1;
   /// Flow settings; a flow that stops short of the tolerance but below accepted_error (max
@@ -84,9 +98,11 @@ struct ParameterDomain {
   Eigen::MatrixX3i faces;               ///< By face of the mesh (same index), into positions.
   Eigen::MatrixX2d positions;           ///< By cut vertex, in the unit square or unit disk.
   std::vector<int> to_original_vertex;  ///< By cut vertex: the mesh vertex.
-  int feature = -1;                     ///< The cone vertex (cone star), else -1.
+  int feature = -1;                     ///< The cone vertex or disk centre, else -1.
   std::vector<int> corners;             ///< Rectangle: the corner vertices, ccw from corner 0.
-  std::vector<int> loop_order;          ///< Cone star: loops (by 3D length rank) around p, ccw.
+  /// Cone star: loops (by 3D length rank) around p, ccw. Klein polygon: the loop of each
+  /// boundary side, ccw.
+  std::vector<int> loop_order;
   std::string metric;  ///< The metric of the flow that converged (FlowResult::metric.scheme).
   int flow_iterations = 0;
   double flow_error = 0;  ///< max |K - K̄| of the flow.
@@ -94,7 +110,7 @@ struct ParameterDomain {
 };
 
 struct MatchResult {
-  std::string domain;         ///< "rectangle" or "cone star".
+  std::string domain;         ///< "rectangle", "unit disk", "cone star" or "klein polygon".
   std::vector<MapPoint> map;  ///< By vertex of A.
   ParameterDomain a, b;
   /// Shape error d_g of eq. (13): the area-weighted mean of |r_A(p) - r_B(phi(p))| over A,
@@ -117,15 +133,23 @@ struct MatchResult {
 
 /// Matches A to B (see the file comment).
 /// \pre connected oriented triangle 2-manifolds without degenerate faces.
-/// \throw InvalidInputError for the hyperbolic method, different topologies, closed surfaces,
-///        genus above 0, a feature vertex out of range, on the boundary or with fewer
-///        neighbours than boundary loops, only one feature
-///        or corner set given, bad corners (see conformal_module), or cuts leaving the features
-///        in a different order of loops; TopologyError for a non-manifold or disconnected
-///        mesh, or when no vertex-disjoint shortest paths join the feature to every loop;
-///        SolverError when a flow does not converge.
+/// \throw InvalidInputError for different topologies, closed surfaces, genus above 0, the
+///        hyperbolic method with fewer than three loops or with features or corners, a feature
+///        vertex out of range, on the boundary or with fewer neighbours than boundary loops,
+///        only one feature or corner set given, bad corners (see conformal_module), or cuts
+///        that differ between A and B (see the file comment); TopologyError for a non-manifold
+///        or disconnected mesh, or when no vertex-disjoint shortest paths make the cuts;
+///        SolverError when a flow does not converge (or B's Klein polygon is not convex).
 [[nodiscard]] MatchResult match_surfaces(const Mesh& a, const Mesh& b,
                                          const MatchOptions& options = {});
+
+/// Texture error d_t of eq. (14): the area-weighted mean over A of |c_A(p) - c_B(phi(p))|
+/// over the area-weighted mean of |c_B| over B (colours linear over faces, |.| the RGB norm).
+/// \pre `result` maps A to B; colours by vertex (#V by 3), e.g. ColouredMesh::colours.
+/// \throw InvalidInputError when a colour matrix does not match its mesh, or B is all black.
+[[nodiscard]] double texture_error(const Mesh& a, const Mesh& b, const MatchResult& result,
+                                   const Eigen::MatrixX3d& colours_a,
+                                   const Eigen::MatrixX3d& colours_b);
 
 /// The map as text (docs/match-map.md): a header line "msp-map 1 <vertices of A> <vertices of
 /// B> <faces of B>", then one line per vertex of A: "face i j k wi wj wk".

@@ -8,12 +8,15 @@
 // tried first and drifted away from the answer over the sweeps.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
+#include <queue>
 
 #include <Eigen/Dense>
 
 #include "ricci/analysis/module_internal.h"
 #include "ricci/layout/layout_e2.h"
+#include "ricci/mesh/errors.h"
 #include "ricci/topology/cut_graph.h"
 
 namespace ricci::detail {
@@ -54,33 +57,22 @@ Circle fit_circle(const std::vector<Complex>& points) {
   return {centre + mean, std::sqrt(std::max(0.0, std::norm(centre) - x[2]))};
 }
 
-}  // namespace
+/// Lays the flat metric `lengths` out and normalises it: z by mesh vertex, and the circles (or
+/// points, radius 0) whose standing ends the iteration; the first order.size() are the loops'.
+using Normalise = std::function<std::vector<Circle>(const EdgeLengths&, std::vector<Complex>&)>;
 
-std::vector<int> loops_by_length(const Mesh& mesh, const MeshTables& tables) {
-  std::vector<double> length(tables.boundary_loops.size(), 0.0);
-  for (size_t k = 0; k < length.size(); ++k) {
-    const std::vector<int>& loop = tables.boundary_loops[k];
-    for (size_t i = 0; i < loop.size(); ++i) {
-      length[k] += (mesh.point(mesh.vertex_handle(loop[i])) -
-                    mesh.point(mesh.vertex_handle(loop[(i + 1) % loop.size()])))
-                       .norm();
-    }
-  }
-  std::vector<int> order(length.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return length[a] > length[b]; });
-  return order;
-}
-
-void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
-                          ModuleResult& result) {
-  const std::vector<int> order = loops_by_length(mesh, tables);
-  const int holes = static_cast<int>(order.size()) - 1;
+/// The fixed point of the boundary targets: each loop's geodesic curvature `total[k]` spread by
+/// the current metric's boundary lengths, half a step at a time, until the targets or the
+/// normalised domain stand. Fills the flow figures and the roundness of `result`; returns the
+/// last domain's circles (z its positions). `result.converged` false: stopped early.
+std::vector<Circle> round_boundaries(const Mesh& mesh, const MeshTables& tables,
+                                     const std::vector<int>& order,
+                                     const std::vector<double>& total, const ModuleOptions& options,
+                                     const Normalise& normalised, std::vector<Complex>& z,
+                                     ModuleResult& result) {
   const int vertices = tables.num_vertices();
   // Constant geodesic curvature on each loop: its total (2π on c0, -2π on each hole) spread by
   // the current metric's boundary lengths; repeated until the spread stops changing.
-  std::vector<double> total(order.size(), -2 * M_PI);
-  total[order[0]] = 2 * M_PI;
   const auto targets_for = [&](const EdgeLengths& lengths) {
     Targets targets;
     targets.curvature = Eigen::VectorXd::Zero(vertices);
@@ -101,38 +93,6 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const Modu
     }
     return targets;
   };
-  // Lay the flat surface out, cut along tree paths from c0 to the holes: the holonomy around
-  // each round hole is trivial, so the copies of a cut vertex coincide. Then c0 onto the unit
-  // circle, the disk automorphism that makes c1 concentric with it, c2's centre onto the
-  // positive real axis.
-  const int root = tables.boundary_loops[order[0]][0];
-  const auto normalised = [&](const EdgeLengths& lengths, std::vector<Complex>& z) {
-    const CutGraph cut = compute_cut_graph(mesh, mesh.vertex_handle(root), lengths);
-    const SlicedMesh sliced = slice_along(mesh, cut.is_cut_edge);
-    check_disk(sliced, "circle-domain slice");
-    const LayoutE2Result layout = layout_e2(sliced.mesh, sliced_edge_lengths(sliced, lengths));
-    z.assign(vertices, 0);
-    for (int s = 0; s < static_cast<int>(sliced.mesh.n_vertices()); ++s) {
-      z[sliced.to_original_vertex[s]] = Complex(layout.positions(s, 0), layout.positions(s, 1));
-    }
-    const auto circle_of = [&](int k) {
-      std::vector<Complex> points;
-      for (int v : tables.boundary_loops[k]) points.push_back(z[v]);
-      return fit_circle(points);
-    };
-    const Circle outer = circle_of(order[0]);
-    for (Complex& q : z) q = (q - outer.centre) / outer.radius;
-    const Complex p = concentric_point(circle_of(order[1]));
-    for (Complex& q : z) q = (q - p) / (1.0 - std::conj(p) * q);
-    std::vector<Circle> circles;
-    for (int k : order) circles.push_back(circle_of(k));
-    const Complex turn = std::abs(circles[2].centre) > 0
-                             ? std::conj(circles[2].centre) / std::abs(circles[2].centre)
-                             : Complex(1);
-    for (Complex& q : z) q *= turn;
-    for (Circle& c : circles) c.centre *= turn;
-    return circles;
-  };
   const MeshTables& t = tables;
   Targets targets = targets_for(mesh_edge_lengths(mesh));
   FlowResult current = flow(mesh, targets, options.flow);
@@ -141,12 +101,11 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const Modu
   double damping = 0.5;
   std::vector<Circle> previous;  // the domain of the flow before
   bool standing = false;         // the loop ended on a standing module: previous is current's
-  std::vector<Complex> z;
   for (int sweep = 1; sweep <= options.max_circle_iterations; ++sweep) {
     record_flow(current, options, result);
     result.flow_iterations = iterations;
     result.circle_iterations = sweep;
-    if (!result.converged) return;
+    if (!result.converged) return {};
     const Targets next = targets_for(current.lengths);
     const double change = (next.curvature - targets.curvature).cwiseAbs().maxCoeff();
     // The circle domains form a family (Möbius maps of the disk) along which the targets may
@@ -179,13 +138,77 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const Modu
   // The last flow's domain, unless the loop just laid it out.
   const std::vector<Circle> circles = standing ? previous : normalised(current.lengths, z);
   result.roundness = 0;
-  for (size_t k = 0; k < circles.size(); ++k) {
+  for (size_t k = 0; k < order.size(); ++k) {
     for (int v : tables.boundary_loops[order[k]]) {
       result.roundness = std::max(
           result.roundness,
           std::abs(std::abs(z[v] - circles[k].centre) - circles[k].radius) / circles[k].radius);
     }
   }
+  return circles;
+}
+
+}  // namespace
+
+std::vector<int> loops_by_length(const Mesh& mesh, const MeshTables& tables) {
+  std::vector<double> length(tables.boundary_loops.size(), 0.0);
+  for (size_t k = 0; k < length.size(); ++k) {
+    const std::vector<int>& loop = tables.boundary_loops[k];
+    for (size_t i = 0; i < loop.size(); ++i) {
+      length[k] += (mesh.point(mesh.vertex_handle(loop[i])) -
+                    mesh.point(mesh.vertex_handle(loop[(i + 1) % loop.size()])))
+                       .norm();
+    }
+  }
+  std::vector<int> order(length.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return length[a] > length[b]; });
+  return order;
+}
+
+void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
+                          ModuleResult& result) {
+  const std::vector<int> order = loops_by_length(mesh, tables);
+  const int holes = static_cast<int>(order.size()) - 1;
+  const int vertices = tables.num_vertices();
+  // Lay the flat surface out, cut along tree paths from c0 to the holes: the holonomy around
+  // each round hole is trivial, so the copies of a cut vertex coincide. Then c0 onto the unit
+  // circle, the disk automorphism that makes c1 concentric with it, c2's centre onto the
+  // positive real axis.
+  const int root = tables.boundary_loops[order[0]][0];
+  const Normalise normalised = [&](const EdgeLengths& lengths, std::vector<Complex>& z) {
+    const CutGraph cut = compute_cut_graph(mesh, mesh.vertex_handle(root), lengths);
+    const SlicedMesh sliced = slice_along(mesh, cut.is_cut_edge);
+    check_disk(sliced, "circle-domain slice");
+    const LayoutE2Result layout = layout_e2(sliced.mesh, sliced_edge_lengths(sliced, lengths));
+    z.assign(vertices, 0);
+    for (int s = 0; s < static_cast<int>(sliced.mesh.n_vertices()); ++s) {
+      z[sliced.to_original_vertex[s]] = Complex(layout.positions(s, 0), layout.positions(s, 1));
+    }
+    const auto circle_of = [&](int k) {
+      std::vector<Complex> points;
+      for (int v : tables.boundary_loops[k]) points.push_back(z[v]);
+      return fit_circle(points);
+    };
+    const Circle outer = circle_of(order[0]);
+    for (Complex& q : z) q = (q - outer.centre) / outer.radius;
+    const Complex p = concentric_point(circle_of(order[1]));
+    for (Complex& q : z) q = (q - p) / (1.0 - std::conj(p) * q);
+    std::vector<Circle> circles;
+    for (int k : order) circles.push_back(circle_of(k));
+    const Complex turn = std::abs(circles[2].centre) > 0
+                             ? std::conj(circles[2].centre) / std::abs(circles[2].centre)
+                             : Complex(1);
+    for (Complex& q : z) q *= turn;
+    for (Circle& c : circles) c.centre *= turn;
+    return circles;
+  };
+  std::vector<double> total(order.size(), -2 * M_PI);
+  total[order[0]] = 2 * M_PI;
+  std::vector<Complex> z;
+  const std::vector<Circle> circles =
+      round_boundaries(mesh, tables, order, total, options, normalised, z, result);
+  if (!result.converged) return;
   if (result.roundness > options.max_roundness) {
     result.converged = false;
     result.message = "the circle-domain iteration did not converge: a boundary vertex is " +
@@ -214,6 +237,115 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const Modu
     domain.boundaries.push_back(tables.boundary_loops[order[k]]);
     domain.boundary_loop.push_back(k);
   }
+}
+
+int farthest_interior_vertex(const Mesh& mesh, const MeshTables& tables, int min_valence) {
+  const EdgeLengths lengths = mesh_edge_lengths(mesh);
+  std::vector<double> dist(tables.num_vertices(), INFINITY);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (const auto& loop : tables.boundary_loops) {
+    for (int v : loop) {
+      dist[v] = 0;
+      queue.push({0.0, v});
+    }
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[v]) continue;
+    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
+      const int w = mesh.to_vertex_handle(h).idx();
+      const double nd = d + lengths[mesh.edge_handle(h).idx()];
+      if (nd < dist[w]) {
+        dist[w] = nd;
+        queue.push({nd, w});
+      }
+    }
+  }
+  int best = -1;
+  bool best_enough = false;
+  for (int v = 0; v < tables.num_vertices(); ++v) {
+    if (tables.is_boundary_vertex[v]) continue;
+    const bool enough = tables.valence[v] >= min_valence;
+    if (best < 0 || (enough && !best_enough) || (enough == best_enough && dist[v] > dist[best])) {
+      best = v;
+      best_enough = enough;
+    }
+  }
+  if (best < 0) throw InvalidInputError("the mesh has no interior vertex");
+  return best;
+}
+
+void disk_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
+                 ModuleResult& result) {
+  const int vertices = tables.num_vertices();
+  int centre = options.centre;
+  if (centre == -1) centre = farthest_interior_vertex(mesh, tables, 0);
+  if (centre < 0 || centre >= vertices || tables.is_boundary_vertex[centre]) {
+    throw InvalidInputError("the disk's centre vertex " + std::to_string(centre) +
+                            " is out of range or on the boundary");
+  }
+  // The boundary vertex nearest the centre along edge paths goes to 1.
+  const EdgeLengths lengths3d = mesh_edge_lengths(mesh);
+  std::vector<double> dist(vertices, INFINITY);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  dist[centre] = 0;
+  queue.push({0.0, centre});
+  int one = -1;
+  while (!queue.empty() && one < 0) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[v]) continue;
+    if (tables.is_boundary_vertex[v]) one = v;
+    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
+      const int w = mesh.to_vertex_handle(h).idx();
+      const double nd = d + lengths3d[mesh.edge_handle(h).idx()];
+      if (nd < dist[w]) {
+        dist[w] = nd;
+        queue.push({nd, w});
+      }
+    }
+  }
+  const std::vector<int>& loop = tables.boundary_loops[0];
+  // Laid out (a disk needs no cut), the boundary's circle onto the unit circle, the disk
+  // automorphism that sends the centre to 0, the rotation that sends `one` to 1. The boundary
+  // vertices' positions are what must stand.
+  const Normalise normalised = [&](const EdgeLengths& lengths, std::vector<Complex>& z) {
+    const LayoutE2Result layout = layout_e2(mesh, lengths);
+    z.assign(vertices, 0);
+    for (int v = 0; v < vertices; ++v)
+      z[v] = Complex(layout.positions(v, 0), layout.positions(v, 1));
+    std::vector<Complex> points;
+    for (int v : loop) points.push_back(z[v]);
+    const Circle outer = fit_circle(points);
+    for (Complex& q : z) q = (q - outer.centre) / outer.radius;
+    const Complex p = z[centre];
+    for (Complex& q : z) q = (q - p) / (1.0 - std::conj(p) * q);
+    const Complex turn = std::abs(z[one]) > 0 ? std::conj(z[one]) / std::abs(z[one]) : Complex(1);
+    for (Complex& q : z) q *= turn;
+    std::vector<Circle> circles = {{Complex(0), 1.0}};
+    for (int v : loop) circles.push_back({z[v], 0.0});
+    return circles;
+  };
+  std::vector<Complex> z;
+  (void)round_boundaries(mesh, tables, {0}, {2 * M_PI}, options, normalised, z, result);
+  if (!result.converged) return;
+  if (result.roundness > options.max_roundness) {
+    result.converged = false;
+    result.message = "the disk iteration did not converge: a boundary vertex is " +
+                     std::to_string(result.roundness) + " off the unit circle after " +
+                     std::to_string(result.circle_iterations) + " flows";
+  }
+  result.corners = {centre, one};
+  CanonicalDomain& domain = result.domain;
+  domain.positions.resize(vertices, 2);
+  for (int v = 0; v < vertices; ++v) domain.positions.row(v) << z[v].real(), z[v].imag();
+  copy_faces(mesh, domain);
+  domain.boundaries.push_back(loop);
+  domain.boundary_loop.push_back(0);
+  domain.corners = {centre, one};
 }
 
 }  // namespace ricci::detail

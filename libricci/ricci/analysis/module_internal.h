@@ -42,6 +42,16 @@ void annulus_module(const Mesh& mesh, const MeshTables& tables, const ModuleOpti
 void circle_domain_module(const Mesh& mesh, const MeshTables& tables,
                           const ModuleOptions& options, ModuleResult& result);
 
+/// Genus 0, one boundary: the conformal map onto the unit disk (see module_circle_domain.cpp).
+/// \throw InvalidInputError for a bad options.centre.
+void disk_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
+                 ModuleResult& result);
+
+/// The interior vertex farthest from the boundary along edge paths (3D lengths), preferring
+/// those with at least `min_valence` neighbours. \throw InvalidInputError when there is none.
+[[nodiscard]] int farthest_interior_vertex(const Mesh& mesh, const MeshTables& tables,
+                                           int min_valence);
+
 /// Closed genus 1 (flat torus) and genus >= 2 (Fuchsian) through uniformize().
 void uniformized_module(const Mesh& mesh, const ModuleOptions& options, ModuleResult& result);
 

@@ -60,6 +60,21 @@ std::string format_mesh(const Mesh& mesh, MeshFormat format) {
 
 Mesh read_mesh(const std::string& path) { return build_mesh(read_soup(path)); }
 
+ColouredMesh read_mesh_with_colours(const std::string& path) {
+  const PolygonSoup soup = read_soup(path);
+  MeshBuildResult built = build_mesh_with_report(soup);
+  ColouredMesh out;
+  out.mesh = std::move(built.mesh);
+  if (soup.colours.size() == soup.positions.size() && !soup.colours.empty()) {
+    out.colours.resize(static_cast<Eigen::Index>(built.input_vertex.size()), 3);
+    for (size_t v = 0; v < built.input_vertex.size(); ++v) {
+      out.colours.row(static_cast<Eigen::Index>(v)) =
+          soup.colours[static_cast<size_t>(built.input_vertex[v])].transpose();
+    }
+  }
+  return out;
+}
+
 void write_mesh(const Mesh& mesh, const std::string& path) {
   const MeshFormat format = format_from_extension(path);
   if (format == MeshFormat::stl)

@@ -15,6 +15,18 @@ namespace ricci {
 ///        degenerate faces. Messages start with the file name.
 [[nodiscard]] Mesh read_mesh(const std::string& path);
 
+/// A mesh and the colours its file gives its vertices.
+struct ColouredMesh {
+  Mesh mesh;
+  /// #V by 3: RGB in [0, 1] by mesh vertex; 0 rows when the file has no vertex colours (OFF
+  /// keywords with a C: "r g b [a]" after the coordinates and the normal, 0-255 or 0-1; PLY
+  /// red, green, blue: integer types over 255).
+  Eigen::MatrixX3d colours;
+};
+
+/// read_mesh() keeping the vertex colours (see ColouredMesh). \throw as read_mesh().
+[[nodiscard]] ColouredMesh read_mesh_with_colours(const std::string& path);
+
 /// Writes OBJ, OFF or PLY (ascii), chosen by the extension, with every coordinate in the
 /// shortest decimal form that reads back to the same double. The file appears atomically
 /// (written to a temporary next to it, then renamed). \throw IOError.

@@ -37,8 +37,10 @@ void check_header(std::string_view keyword, const std::string& name) {
     fail(name, 1, "unsupported OFF variant " + quote_token(keyword) + " (only 3-D is read)");
 }
 
-void read_vertices(LineCursor& cursor, long long count, const std::string& name,
-                   PolygonSoup& soup) {
+/// The vertex lines; with `colours`, the r g b after the coordinates (and the normal, with
+/// `normals`) are kept, scaled to [0, 1] when any exceeds 1 (0-255 integers).
+void read_vertices(LineCursor& cursor, long long count, const std::string& name, bool normals,
+                   bool colours, PolygonSoup& soup) {
   std::string_view text, token;
   soup.positions.resize(static_cast<size_t>(count));
   soup.vertex_lines.resize(static_cast<size_t>(count));
@@ -57,6 +59,24 @@ void read_vertices(LineCursor& cursor, long long count, const std::string& name,
         fail(name, cursor.line_number(),
              "vertex " + std::to_string(v) + ": expected a number, found " + quote_token(token));
     }
+    if (!colours) continue;
+    for (int k = 0; k < 3 && normals; ++k) next_token(text, token);
+    Eigen::Vector3d c;
+    bool has_colour = true;
+    for (int k = 0; k < 3 && has_colour; ++k) {
+      has_colour = next_token(text, token) && parse_double(token, c[k]);
+    }
+    if (has_colour) {
+      soup.colours.push_back(c);
+    } else {
+      colours = false;  // a vertex without a colour: the file has none to trust
+      soup.colours.clear();
+    }
+  }
+  double largest = 0;
+  for (const Eigen::Vector3d& c : soup.colours) largest = std::max(largest, c.maxCoeff());
+  if (largest > 1) {
+    for (Eigen::Vector3d& c : soup.colours) c /= 255.0;
   }
 }
 
@@ -98,6 +118,7 @@ PolygonSoup parse_off(std::string_view data, const std::string& name) {
   if (!next_content_line(cursor, text)) fail(name, 0, "file holds no data (comments only)");
   next_token(text, token);
   check_header(token, name);
+  const std::string_view keyword = token;
   if (next_token(text, token)) {
     if (token == "BINARY") fail(name, cursor.line_number(), "binary OFF is not supported");
     text = std::string_view(token.data(), text.data() + text.size() - token.data());
@@ -116,7 +137,9 @@ PolygonSoup parse_off(std::string_view data, const std::string& name) {
              std::to_string(data.size()) + " bytes");
 
   PolygonSoup soup;
-  read_vertices(cursor, vertex_count, name, soup);
+  const std::string_view prefix = keyword.substr(0, keyword.size() - 3);
+  read_vertices(cursor, vertex_count, name, prefix.find('N') != std::string_view::npos,
+                prefix.find('C') != std::string_view::npos, soup);
   soup.faces.resize(static_cast<size_t>(face_count));
   soup.face_lines.resize(static_cast<size_t>(face_count));
   for (long long f = 0; f < face_count; ++f) {

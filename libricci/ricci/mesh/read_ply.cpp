@@ -355,6 +355,8 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
     const bool is_face = element.name == "face";
     const bool is_strips = element.name == "tristrips";
     int px = -1, py = -1, pz = -1, plist = -1;
+    int pr = -1, pg = -1, pb = -1;  // colours, kept when all three are there
+    double colour_scale = 1;
     if (is_vertex) {
       px = find_property(element, "x", false);
       py = find_property(element, "y", false);
@@ -363,6 +365,15 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
         fail(name, element.header_line, "element 'vertex' lacks an x, y or z property");
       soup.positions.reserve(static_cast<size_t>(element.count));
       has_vertices = true;
+      pr = find_property(element, "red", false);
+      pg = find_property(element, "green", false);
+      pb = find_property(element, "blue", false);
+      if (pr >= 0 && pg >= 0 && pb >= 0) {
+        const PlyType t = element.properties[pr].type;
+        colour_scale = t == PlyType::float32 || t == PlyType::float64 ? 1.0 : 1.0 / 255;
+      } else {
+        pr = -1;
+      }
     } else if (is_face || is_strips) {
       plist = face_list_property(element, name);
       if (is_face) soup.faces.reserve(static_cast<size_t>(element.count));
@@ -375,6 +386,10 @@ PolygonSoup parse_ply(std::string_view data, const std::string& name) {
       reader.read_record(record, values, lists);
       if (is_vertex) {
         soup.positions.emplace_back(values[px], values[py], values[pz]);
+        if (pr >= 0) {
+          soup.colours.emplace_back(colour_scale *
+                                    Eigen::Vector3d(values[pr], values[pg], values[pb]));
+        }
         soup.vertex_lines.push_back(static_cast<int>(reader.record_line()));
       } else if (is_face) {
         std::vector<int> face(lists[plist].size());

@@ -18,6 +18,9 @@ struct PolygonSoup {
   std::vector<int> face_lines;
   /// Source line (1-based) of each vertex, or empty when the format has no lines.
   std::vector<int> vertex_lines;
+  /// RGB of each vertex in [0, 1] (OFF with a C in its keyword, PLY red/green/blue), or empty
+  /// when the file has none or some vertex lacks one.
+  std::vector<Eigen::Vector3d> colours;
   /// Name of the file the soup came from ("" when built in memory); used in messages.
   std::string source;
 

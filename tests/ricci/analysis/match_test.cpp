@@ -72,14 +72,28 @@ TEST(Match, StripRolledOntoCylinderIsTheIdentity) {
   EXPECT_LT(self.shape_error, 1e-9);
 }
 
-TEST(Match, StripWithFeatureUsesTheConeStar) {
+TEST(Match, StripWithFeatureUsesTheUnitDisk) {
   const Mesh flat = make_planar_grid(60, 20, 3.0, 1.0);
   const Mesh bent = rolled(flat, 1.0);
   MatchOptions options;
   // Off the middle line: the shortest path to the boundary is unique.
   options.feature_a = options.feature_b = vertex_near(flat, 1.5, 0.3);
   const MatchResult r = match_surfaces(flat, bent, options);
-  EXPECT_EQ(r.domain, "cone star");
+  EXPECT_EQ(r.domain, "unit disk");
+  EXPECT_EQ(r.a.feature, options.feature_a);
+  expect_identity(r, 1e-3);
+}
+
+TEST(Match, DiskAgainstItsConformalImageIsTheIdentity) {
+  // The unit disk and its stereographic image on the sphere (conformal, not isometric): the
+  // disk maps with the same centre differ by nothing but discretisation.
+  const Mesh flat = testing::circle_domain_mesh({}, 0.05);
+  const Mesh cap =
+      testing::mapped(flat, [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 1.5); });
+  MatchOptions options;
+  options.feature_a = options.feature_b = vertex_near(flat, 0.2, 0.1);
+  const MatchResult r = match_surfaces(flat, cap, options);
+  EXPECT_EQ(r.domain, "unit disk");
   expect_identity(r, 1e-3);
 }
 
@@ -93,6 +107,66 @@ TEST(Match, PlateWithHolesRolledIsTheIdentity) {
     EXPECT_EQ(r.a.loop_order, r.b.loop_order);
     expect_identity(r, 1e-3);
   }
+}
+
+TEST(Match, HyperbolicPlateWithHolesRolledIsTheIdentity) {
+  MatchOptions options;
+  options.method = MatchMethod::hyperbolic;
+  for (const auto& holes : {kTwoHoles, kThreeHoles}) {
+    const Mesh flat = testing::circle_domain_mesh(holes, 0.05);
+    const Mesh bent = rolled(flat, 0.8);
+    const MatchResult r = match_surfaces(flat, bent, options);
+    EXPECT_EQ(r.domain, "klein polygon");
+    EXPECT_EQ(r.a.metric, "inversive-distance");
+    // Every loop is met by the cut tree: 2 n corners for n cuts, n + 1 loops.
+    EXPECT_EQ(r.a.loop_order.size(), 2 * holes.size());
+    EXPECT_EQ(r.a.loop_order, r.b.loop_order);
+    expect_identity(r, 1e-3);
+    // B's sides are bowed out: A's boundary vertices may fall just outside B's chords.
+    EXPECT_LT(r.snap_distance, 1e-5);  // the flows agree to their tolerance
+  }
+}
+
+TEST(Match, TextureErrorOfEquation14) {
+  // Colours painted on the flat plate and carried by the vertex correspondence to its bending:
+  // the identity map sees no texture error; a red shift of 0.1 everywhere on B is 0.1 over
+  // B's mean colour norm.
+  const Mesh flat = testing::circle_domain_mesh(kTwoHoles, 0.05);
+  const Mesh bent = rolled(flat, 0.8);
+  Eigen::MatrixX3d colours(flat.n_vertices(), 3);
+  for (VertexHandle v : flat.vertices()) {
+    const auto p = flat.point(v);
+    colours.row(v.idx()) << 0.5 + 0.4 * p[0], 0.5 + 0.4 * p[1], 0.3;
+  }
+  const MatchResult r = match_surfaces(flat, bent);
+  EXPECT_LT(texture_error(flat, bent, r, colours, colours), 1e-3);
+  Eigen::MatrixX3d shifted = colours;
+  shifted.col(0).array() += 0.1;
+  const MatchResult self = match_surfaces(flat, flat);
+  double norm = 0, area = 0;  // B's area-weighted mean colour norm
+  for (FaceHandle f : flat.faces()) {
+    double sum = 0;
+    for (VertexHandle v : flat.fv_range(f)) sum += shifted.row(v.idx()).norm();
+    norm += flat.calc_face_area(f) * sum / 3;
+    area += flat.calc_face_area(f);
+  }
+  EXPECT_NEAR(texture_error(flat, flat, self, colours, shifted), 0.1 / (norm / area), 1e-9);
+  EXPECT_THROW((void)texture_error(flat, bent, r, colours.topRows(3), colours), InvalidInputError);
+  EXPECT_THROW(
+      (void)texture_error(flat, bent, r, colours, Eigen::MatrixX3d::Zero(colours.rows(), 3)),
+      InvalidInputError);
+}
+
+TEST(Match, HyperbolicTwoTriangulationsOfOnePlate) {
+  const Mesh a = testing::circle_domain_mesh(kThreeHoles, 0.05, 1);
+  const Mesh b = testing::circle_domain_mesh(kThreeHoles, 0.04, 2);
+  MatchOptions options;
+  options.method = MatchMethod::hyperbolic;
+  const MatchResult r = match_surfaces(a, b, options);
+  EXPECT_EQ(r.flipped_faces, 0);
+  EXPECT_EQ(r.flipped_faces_b, 0);
+  // The same plane, no feature to choose: each point lands near itself.
+  EXPECT_LT(r.shape_error, 0.01);
 }
 
 TEST(Match, TwoTriangulationsOfOnePlate) {
@@ -123,7 +197,11 @@ TEST(Match, BadInput) {
   options.feature_a = options.feature_b = 0;  // (0, 0): a corner, on the boundary
   EXPECT_THROW((void)match_surfaces(disk, disk, options), InvalidInputError);
   options = {};
-  options.method = MatchMethod::hyperbolic;
+  options.method = MatchMethod::hyperbolic;  // needs three or more loops
+  EXPECT_THROW((void)match_surfaces(disk, disk, options), InvalidInputError);
+  const Mesh annulus = testing::circle_domain_mesh({{0.0, 0.0, 0.3}}, 0.1);
+  EXPECT_THROW((void)match_surfaces(annulus, annulus, options), InvalidInputError);
+  options.feature_a = options.feature_b = vertex_near(plate, 0.0, 0.5);
   EXPECT_THROW((void)match_surfaces(plate, plate, options), InvalidInputError);
   EXPECT_THROW((void)parse_match_method("spherical"), InvalidInputError);
 }
