@@ -15,6 +15,7 @@
 #include "ricci/util/cross2d.h"
 #include "ricci/util/stopwatch.h"
 #include "spline/basis/multi_index.h"
+#include "spline/fit/boundary_curve.h"
 #include "spline/fair/constrained_solve.h"
 #include "spline/fit/normal_equations.h"
 #include "spline/tessellate/parallel_for.h"
@@ -61,6 +62,13 @@ bool lacks_partition_of_unity(const ManifoldSplineSpace& space, const std::vecto
   const int ring = rings[static_cast<std::size_t>(space.domain_index(p.face))];
   if (ring < 0 || ring > 1) return false;
   return !is_partition_of_unity(space.evaluate_basis(p, -1, {}, BasisDerivatives::none));
+}
+
+// By face: 1 on the surface, 0 on the collar's ghost faces.
+std::vector<char> surface_faces(const std::vector<char>& collar_faces) {
+  std::vector<char> surface(collar_faces.size());
+  for (std::size_t f = 0; f < collar_faces.size(); ++f) surface[f] = collar_faces[f] == 0;
+  return surface;
 }
 
 bool has_boundary(const ricci::Mesh& mesh) {
@@ -617,13 +625,12 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   const DataPoints points = data_points(
       dense, static_cast<Eigen::Index>(options.data_points_per_control_point *
                                        static_cast<double>(space->function_count())));
-  const Eigen::MatrixX3d& data = points.positions;
   // Oriented: a point on one side of a thin part is placed on that side of the domain.
   const auto closest =
       options.oriented_parameters
-          ? ricci::closest_points(mesh, data, points.normals,
+          ? ricci::closest_points(mesh, points.positions, points.normals,
                                   kOrientedSearchEdges * mean_edge_length(mesh))
-          : ricci::closest_points(mesh, data);
+          : ricci::closest_points(mesh, points.positions);
   std::vector<DomainPoint> parameters(closest.size());
   const std::vector<int> rings = domain_rim_rings(*space);
   for (std::size_t k = 0; k < closest.size(); ++k) {
@@ -632,6 +639,22 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     parameters[k] = covered ? p : DomainPoint{-1, Eigen::Vector3d::Zero()};
     if (!covered) ++result.uncovered_points;
   }
+  // With a collar, the surface's boundary (the collar's inner edges) is fitted to the scan's
+  // boundary curve, and the scan's boundary vertices keep their parameters on it.
+  const BoundaryCurvePoints boundary =
+      collared ? boundary_curve_points(mesh, surface_faces(result.collar_faces), dense,
+                                       options.boundary_curve)
+               : BoundaryCurvePoints{};
+  const auto scan_points = static_cast<Eigen::Index>(parameters.size());
+  const auto pin_boundary = [&](std::vector<DomainPoint>& p) {
+    for (std::size_t i = 0; i < boundary.scan_vertices.size(); ++i)
+      p[static_cast<std::size_t>(boundary.scan_vertices[i])] = boundary.scan_vertex_parameters[i];
+    std::copy(boundary.parameters.begin(), boundary.parameters.end(), p.begin() + scan_points);
+  };
+  parameters.resize(parameters.size() + boundary.parameters.size());
+  pin_boundary(parameters);
+  Eigen::MatrixX3d data(scan_points + boundary.points.rows(), 3);
+  data << points.positions, boundary.points;
   result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
   result.timings.parameters = t.seconds();
 
@@ -650,6 +673,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     parameters = correct_parameters(result.spline, parameters, data,
                                     options.correction_iterations, fit_options.threads)
                      .parameters;
+    pin_boundary(parameters);
     result.fit = fit_with_setup(*space, setup, parameters, data, initial,
                                 result.fit.control_points, fit_options);
     result.spline.control_points = result.fit.control_points;
