@@ -114,6 +114,7 @@ BoundaryCurvePoints boundary_curve_points(const ricci::Mesh& domain,
     parameters.push_back(p);
     targets.push_back(x);
   }
+  out.samples = static_cast<int>(parameters.size());
   const auto copies = static_cast<std::size_t>(options.weight);
   out.parameters.reserve(copies * parameters.size());
   out.points.resize(static_cast<Eigen::Index>(copies * parameters.size()), 3);
@@ -122,6 +123,28 @@ BoundaryCurvePoints boundary_curve_points(const ricci::Mesh& domain,
     for (std::size_t i = 0; i < parameters.size(); ++i) {
       out.parameters.push_back(parameters[i]);
       out.points.row(row++) = targets[i].transpose();
+    }
+  }
+  return out;
+}
+
+BoundaryCurvePoints missed_boundary_points(const ManifoldSpline& spline,
+                                           const BoundaryCurvePoints& boundary, double distance,
+                                           int copies) {
+  BoundaryCurvePoints out;
+  std::vector<Eigen::Index> missed;
+  for (Eigen::Index i = 0; i < boundary.samples; ++i) {
+    const auto& p = boundary.parameters[static_cast<std::size_t>(i)];
+    if ((spline.evaluate(p).position - boundary.points.row(i).transpose()).norm() > distance)
+      missed.push_back(i);
+  }
+  out.samples = static_cast<int>(missed.size());
+  out.points.resize(static_cast<Eigen::Index>(missed.size()) * std::max(copies, 0), 3);
+  Eigen::Index row = 0;
+  for (int c = 0; c < copies; ++c) {
+    for (Eigen::Index i : missed) {
+      out.parameters.push_back(boundary.parameters[static_cast<std::size_t>(i)]);
+      out.points.row(row++) = boundary.points.row(i);
     }
   }
   return out;

@@ -18,6 +18,14 @@ struct BoundaryCurveOptions {
   /// Each boundary point enters the fit this many times (its weight against an ordinary point);
   /// 0: no boundary points. Heavier weights follow a scan's jagged boundary into folds.
   int weight = 2;
+  /// Rounds of refits after the fit: each multiplies the weight of the samples the spline still
+  /// misses by more than `tolerance` (a fraction of the scan's bounding-box diagonal) by
+  /// `reweight_factor`. A smooth boundary the spline rounds off (a polygonal hole's corners) is
+  /// pulled in; a jagged scan boundary, which the spline cannot follow without folding, keeps
+  /// the light weight where it is met.
+  int reweight_rounds = 3;
+  double tolerance = 0.004;
+  int reweight_factor = 4;
 };
 
 struct BoundaryCurvePoints {
@@ -26,6 +34,7 @@ struct BoundaryCurvePoints {
   /// vertices at their parameters, each repeated `weight` times.
   std::vector<DomainPoint> parameters;
   Eigen::MatrixX3d points;
+  int samples = 0;  ///< distinct points (the first `samples` rows; the others repeat them)
   /// The scan's boundary vertices (indices of `dense`) and their parameters: the nearest point of
   /// the domain's boundary edges.
   std::vector<int> scan_vertices;
@@ -42,5 +51,11 @@ struct BoundaryCurvePoints {
                                                         const std::vector<char>& surface_faces,
                                                         const ricci::Mesh& dense,
                                                         const BoundaryCurveOptions& options = {});
+
+/// The samples (of `boundary`'s first `samples` rows) where `spline` lies farther than
+/// `distance` from the target, repeated `copies` times each, to be added to the fit.
+[[nodiscard]] BoundaryCurvePoints missed_boundary_points(const ManifoldSpline& spline,
+                                                         const BoundaryCurvePoints& boundary,
+                                                         double distance, int copies);
 
 }  // namespace spline

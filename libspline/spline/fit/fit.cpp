@@ -565,6 +565,41 @@ double mean_edge_length(const ricci::Mesh& mesh) {
   return mesh.n_edges() > 0 ? sum / static_cast<double>(mesh.n_edges()) : 0.0;
 }
 
+double diagonal_of(const ricci::Mesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (auto v : mesh.vertices()) {
+    lo = lo.cwiseMin(ricci::to_eigen(mesh.point(v)));
+    hi = hi.cwiseMax(ricci::to_eigen(mesh.point(v)));
+  }
+  return mesh.n_vertices() > 0 ? (hi - lo).norm() : 0.0;
+}
+
+// The boundary samples the fit misses by more than the tolerance weigh reweight_factor times
+// more (appended copies), and the spline is fitted again; up to reweight_rounds times.
+void refit_missed_boundary(const ManifoldSplineSpace& space, const FitSetup& setup,
+                           const BoundaryCurvePoints& boundary, const ricci::Mesh& dense,
+                           const BoundaryCurveOptions& options, const Eigen::MatrixX3d& initial,
+                           const FitOptions& fit_options, std::vector<DomainPoint>& parameters,
+                           Eigen::MatrixX3d& data, ScanFitResult& result) {
+  if (boundary.samples == 0) return;
+  const double distance = options.tolerance * diagonal_of(dense);
+  int weight = options.weight;
+  for (int round = 0; round < options.reweight_rounds; ++round) {
+    const BoundaryCurvePoints missed = missed_boundary_points(
+        result.spline, boundary, distance, (options.reweight_factor - 1) * weight);
+    weight *= options.reweight_factor;
+    if (missed.samples == 0) break;
+    parameters.insert(parameters.end(), missed.parameters.begin(), missed.parameters.end());
+    Eigen::MatrixX3d grown(data.rows() + missed.points.rows(), 3);
+    grown << data, missed.points;
+    data = std::move(grown);
+    result.fit = fit_with_setup(space, setup, parameters, data, initial,
+                                result.fit.control_points, fit_options);
+    result.spline.control_points = result.fit.control_points;
+    ++result.boundary_refits;
+  }
+}
+
 }  // namespace
 
 ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) {
@@ -683,6 +718,8 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
     result.timings.correction = t.seconds();
   }
+  refit_missed_boundary(*space, setup, boundary, dense, options.boundary_curve, initial,
+                        fit_options, parameters, data, result);
   if (fit_options.constraint_r >= 0 && fit_options.constraint_r == options.fair_r) {
     // Fitted inside the constraint set: eq. 14's projection would return the same points.
     result.fairing.control_points = result.fit.control_points;

@@ -208,6 +208,7 @@ struct ScanFitResult {
   FairResult fairing;
   ScanFitTimings timings;
   int corrections = 0;  ///< parameter-correction rounds run
+  int boundary_refits = 0;  ///< refits after raising missed boundary samples' weight
   /// By face of the domain mesh (atlas.problem.mesh): nonzero on the ghost faces of the
   /// boundary collar (ScanFitOptions::collar), which are fitted but are not the surface; empty
   /// when no collar was added (closed surfaces, collar.rings = 0, or refused).
