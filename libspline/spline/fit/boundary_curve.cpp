@@ -84,6 +84,9 @@ BoundaryCurvePoints boundary_curve_points(const ricci::Mesh& domain,
     rim_segments[i] = {static_cast<int>(r), static_cast<int>(r + 1)};
   }
   const ricci::SegmentSoupDistance scan_curve(dense_points, dense_edges);
+  const double max_gap =
+      options.max_gap *
+      (dense_points.colwise().maxCoeff() - dense_points.colwise().minCoeff()).norm();
   const ricci::SegmentSoupDistance domain_curve(rim_points, rim_segments);
 
   std::vector<DomainPoint> parameters;
@@ -95,14 +98,17 @@ BoundaryCurvePoints boundary_curve_points(const ricci::Mesh& domain,
       const double t = static_cast<double>(k) / s;
       const Eigen::Vector3d x =
           ((1.0 - t) * rim_points.row(r) + t * rim_points.row(r + 1)).transpose();
+      const ricci::SoupHit hit = scan_curve.closest(x);
+      if (hit.distance > max_gap) continue;
       parameters.push_back(on_edge(rim[i], t));
-      targets.push_back(scan_curve.closest(x).point);
+      targets.push_back(hit.point);
     }
   }
   for (auto v : dense.vertices()) {
     if (!dense.is_boundary(v)) continue;
     const Eigen::Vector3d x = dense_points.row(v.idx()).transpose();
     const ricci::SoupHit hit = domain_curve.closest(x);
+    if (hit.distance > max_gap) continue;
     const auto r = static_cast<Eigen::Index>(2 * hit.primitive);
     const Eigen::Vector3d a = rim_points.row(r).transpose(), b = rim_points.row(r + 1).transpose();
     const double length2 = (b - a).squaredNorm();

@@ -18,6 +18,10 @@ struct BoundaryCurveOptions {
   /// Each boundary point enters the fit this many times (its weight against an ordinary point);
   /// 0: no boundary points. Heavier weights follow a scan's jagged boundary into folds.
   int weight = 2;
+  /// Where the domain's boundary stays farther than this from the scan's (a fraction of the
+  /// scan's bounding-box diagonal; follow_boundary could not move it there), no point is added:
+  /// pulled that far across the domain, the spline folds (mech-holes-shark.off).
+  double max_gap = 0.005;
   /// Rounds of refits after the fit: each multiplies the weight of the samples the spline still
   /// misses by more than `tolerance` (a fraction of the scan's bounding-box diagonal) by
   /// `reweight_factor`. A smooth boundary the spline rounds off (a polygonal hole's corners) is
