@@ -78,6 +78,7 @@ nlohmann::json boundary_json(const spline::FittedSurface& fitted, double diag) {
           {"hausdorff_point", point_json(d.boundary_hausdorff_point)},
           {"collar_faces", ghosts},
           {"collar_refused", fitted.collar_refused},
+          {"boundary_curve_dropped", fitted.boundary_curve_dropped},
           {"follow_splits", f.splits},
           {"follow_distance_before_relative", f.distance_before},
           {"follow_distance_after_relative", f.distance_after}};

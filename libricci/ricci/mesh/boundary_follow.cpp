@@ -54,23 +54,59 @@ Eigen::Vector3d face_normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
   return (b - a).cross(c - a);
 }
 
+// Each face's normal before any move or split (a split face's halves inherit it): every change
+// is checked against it, not against the faces' current normals, so that changes each within
+// the bound cannot add up to a flipped face (mech-holes-shark.off: needles at the boundary whose
+// two faces pointed opposite ways).
+class ReferenceNormals {
+ public:
+  explicit ReferenceNormals(const Mesh& mesh) {
+    for (auto f : mesh.faces()) normals_.push_back(current(mesh, f));
+  }
+  static Eigen::Vector3d current(const Mesh& mesh, FaceHandle f) {
+    std::array<Eigen::Vector3d, 3> p;
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) p[static_cast<std::size_t>(k++)] = to_eigen(mesh.point(v));
+    return face_normal(p[0], p[1], p[2]).normalized();
+  }
+  const Eigen::Vector3d& operator[](FaceHandle f) const {
+    return normals_[static_cast<std::size_t>(f.idx())];
+  }
+  // Faces added since (a split's new half) take the normal of `parent`.
+  void inherit(const Mesh& mesh, FaceHandle parent) {
+    while (normals_.size() < mesh.n_faces()) normals_.push_back((*this)[parent]);
+  }
+
+ private:
+  std::vector<Eigen::Vector3d> normals_;
+};
+
+// True when the triangle (a, b, c) faces within ~78 degrees of `reference` (unit).
+bool faces_like(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                const Eigen::Vector3d& reference) {
+  const Eigen::Vector3d n = face_normal(a, b, c);
+  return n.dot(reference) > 0.2 * n.norm();
+}
+
 // Splits boundary edge e at `target`, pulled back towards the midpoint until both new triangles
-// face like the old one. Returns false (mesh unchanged) when no such point is found.
-bool split_towards(Mesh& mesh, EdgeHandle e, const Eigen::Vector3d& target) {
+// face like the split face did at first. Returns false (mesh unchanged) when no such point is
+// found.
+bool split_towards(Mesh& mesh, EdgeHandle e, const Eigen::Vector3d& target,
+                   ReferenceNormals& reference) {
   auto h = mesh.halfedge_handle(e, 0);
   if (mesh.is_boundary(h)) h = mesh.opposite_halfedge_handle(h);
+  const FaceHandle face = mesh.face_handle(h);
   const Eigen::Vector3d a = to_eigen(mesh.point(mesh.from_vertex_handle(h)));
   const Eigen::Vector3d b = to_eigen(mesh.point(mesh.to_vertex_handle(h)));
   const Eigen::Vector3d c =
       to_eigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))));
-  const Eigen::Vector3d n = face_normal(a, b, c).normalized();
+  const Eigen::Vector3d& n = reference[face];
   const Eigen::Vector3d mid = 0.5 * (a + b);
   for (double t = 1.0; t > 0.05; t *= 0.5) {
     const Eigen::Vector3d p = mid + t * (target - mid);
-    const Eigen::Vector3d n1 = face_normal(a, p, c), n2 = face_normal(p, b, c);
-    // Both halves at least a tenth of a right angle from flat against the old face's side.
-    if (n1.dot(n) > 0.2 * n1.norm() && n2.dot(n) > 0.2 * n2.norm()) {
+    if (faces_like(a, p, c, n) && faces_like(p, b, c, n)) {
       mesh.split(e, mesh.add_vertex(to_openmesh(p)));
+      reference.inherit(mesh, face);
       return true;
     }
   }
@@ -78,8 +114,9 @@ bool split_towards(Mesh& mesh, EdgeHandle e, const Eigen::Vector3d& target) {
 }
 
 // Moves boundary vertex v towards `target`, pulled back as far as needed for every face around
-// it to keep its orientation (normals within ~78 degrees of the old ones). Returns whether v moved.
-bool move_towards(Mesh& mesh, VertexHandle v, const Eigen::Vector3d& target) {
+// it to face like it did at first. Returns whether v moved.
+bool move_towards(Mesh& mesh, VertexHandle v, const Eigen::Vector3d& target,
+                  const ReferenceNormals& reference) {
   const Eigen::Vector3d start = to_eigen(mesh.point(v));
   std::vector<std::array<Eigen::Vector3d, 2>> others;  // the two other corners, in order
   std::vector<Eigen::Vector3d> normals;
@@ -89,15 +126,13 @@ bool move_towards(Mesh& mesh, VertexHandle v, const Eigen::Vector3d& target) {
     const Eigen::Vector3d c =
         to_eigen(mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))));
     others.push_back({b, c});
-    normals.push_back(face_normal(start, b, c).normalized());
+    normals.push_back(reference[mesh.face_handle(h)]);
   }
   for (double t = 1.0; t > 0.05; t *= 0.5) {
     const Eigen::Vector3d p = start + t * (target - start);
     bool ok = true;
-    for (std::size_t i = 0; i < others.size() && ok; ++i) {
-      const Eigen::Vector3d n = face_normal(p, others[i][0], others[i][1]);
-      ok = n.dot(normals[i]) > 0.2 * n.norm();
-    }
+    for (std::size_t i = 0; i < others.size() && ok; ++i)
+      ok = faces_like(p, others[i][0], others[i][1], normals[i]);
     if (ok) {
       mesh.set_point(v, to_openmesh(p));
       return true;
@@ -120,6 +155,7 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
       (target.points.colwise().maxCoeff() - target.points.colwise().minCoeff()).norm();
   const double tolerance = options.tolerance * diagonal;
   const SegmentSoupDistance target_tree(target.points, target.edges);
+  ReferenceNormals reference(coarse);
   // Dense boundary vertices (the curve's samples) used as split targets.
   std::vector<int> dense_vertices;
   for (const auto& e : target.edges) dense_vertices.push_back(e[0]);
@@ -131,7 +167,7 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
     for (auto v : coarse.vertices()) {
       if (!coarse.is_boundary(v)) continue;
       const SoupHit hit = target_tree.closest(to_eigen(coarse.point(v)));
-      if (hit.distance > 0.25 * tolerance) move_towards(coarse, v, hit.point);
+      if (hit.distance > 0.25 * tolerance) move_towards(coarse, v, hit.point, reference);
     }
     const Curve curve = boundary_curve(coarse);
     const SegmentSoupDistance tree(curve.points, curve.edges);
@@ -150,8 +186,8 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
     // ... or the midpoint's own distance to the dense boundary.
     for (std::size_t e = 0; e < curve.edges.size(); ++e) {
       const Eigen::Vector3d mid =
-          0.5 * (curve.points.row(curve.edges[e][0]) + curve.points.row(curve.edges[e][1]))
-                    .transpose();
+          0.5 *
+          (curve.points.row(curve.edges[e][0]) + curve.points.row(curve.edges[e][1])).transpose();
       const SoupHit hit = target_tree.closest(mid);
       if (hit.distance > worst[e]) {
         worst[e] = hit.distance;
@@ -160,7 +196,8 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
     }
     int splits = 0;
     for (std::size_t e = 0; e < curve.edges.size(); ++e) {
-      if (worst[e] > tolerance) splits += split_towards(coarse, curve.handles[e], worst_point[e]);
+      if (worst[e] > tolerance)
+        splits += split_towards(coarse, curve.handles[e], worst_point[e], reference);
     }
     if (splits == 0) break;
     result.splits += splits;

@@ -15,6 +15,7 @@
 #include "ricci/util/cross2d.h"
 #include "ricci/util/stopwatch.h"
 #include "spline/basis/multi_index.h"
+#include "spline/fit/boundary_curve.h"
 #include "spline/fair/constrained_solve.h"
 #include "spline/fit/normal_equations.h"
 #include "spline/tessellate/parallel_for.h"
@@ -61,6 +62,13 @@ bool lacks_partition_of_unity(const ManifoldSplineSpace& space, const std::vecto
   const int ring = rings[static_cast<std::size_t>(space.domain_index(p.face))];
   if (ring < 0 || ring > 1) return false;
   return !is_partition_of_unity(space.evaluate_basis(p, -1, {}, BasisDerivatives::none));
+}
+
+// By face: 1 on the surface, 0 on the collar's ghost faces.
+std::vector<char> surface_faces(const std::vector<char>& collar_faces) {
+  std::vector<char> surface(collar_faces.size());
+  for (std::size_t f = 0; f < collar_faces.size(); ++f) surface[f] = collar_faces[f] == 0;
+  return surface;
 }
 
 bool has_boundary(const ricci::Mesh& mesh) {
@@ -557,6 +565,41 @@ double mean_edge_length(const ricci::Mesh& mesh) {
   return mesh.n_edges() > 0 ? sum / static_cast<double>(mesh.n_edges()) : 0.0;
 }
 
+double diagonal_of(const ricci::Mesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (auto v : mesh.vertices()) {
+    lo = lo.cwiseMin(ricci::to_eigen(mesh.point(v)));
+    hi = hi.cwiseMax(ricci::to_eigen(mesh.point(v)));
+  }
+  return mesh.n_vertices() > 0 ? (hi - lo).norm() : 0.0;
+}
+
+// The boundary samples the fit misses by more than the tolerance weigh reweight_factor times
+// more (appended copies), and the spline is fitted again; up to reweight_rounds times.
+void refit_missed_boundary(const ManifoldSplineSpace& space, const FitSetup& setup,
+                           const BoundaryCurvePoints& boundary, const ricci::Mesh& dense,
+                           const BoundaryCurveOptions& options, const Eigen::MatrixX3d& initial,
+                           const FitOptions& fit_options, std::vector<DomainPoint>& parameters,
+                           Eigen::MatrixX3d& data, ScanFitResult& result) {
+  if (boundary.samples == 0) return;
+  const double distance = options.tolerance * diagonal_of(dense);
+  int weight = options.weight;
+  for (int round = 0; round < options.reweight_rounds; ++round) {
+    const BoundaryCurvePoints missed = missed_boundary_points(
+        result.spline, boundary, distance, (options.reweight_factor - 1) * weight);
+    weight *= options.reweight_factor;
+    if (missed.samples == 0) break;
+    parameters.insert(parameters.end(), missed.parameters.begin(), missed.parameters.end());
+    Eigen::MatrixX3d grown(data.rows() + missed.points.rows(), 3);
+    grown << data, missed.points;
+    data = std::move(grown);
+    result.fit = fit_with_setup(space, setup, parameters, data, initial,
+                                result.fit.control_points, fit_options);
+    result.spline.control_points = result.fit.control_points;
+    ++result.boundary_refits;
+  }
+}
+
 }  // namespace
 
 ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) {
@@ -617,13 +660,12 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   const DataPoints points = data_points(
       dense, static_cast<Eigen::Index>(options.data_points_per_control_point *
                                        static_cast<double>(space->function_count())));
-  const Eigen::MatrixX3d& data = points.positions;
   // Oriented: a point on one side of a thin part is placed on that side of the domain.
   const auto closest =
       options.oriented_parameters
-          ? ricci::closest_points(mesh, data, points.normals,
+          ? ricci::closest_points(mesh, points.positions, points.normals,
                                   kOrientedSearchEdges * mean_edge_length(mesh))
-          : ricci::closest_points(mesh, data);
+          : ricci::closest_points(mesh, points.positions);
   std::vector<DomainPoint> parameters(closest.size());
   const std::vector<int> rings = domain_rim_rings(*space);
   for (std::size_t k = 0; k < closest.size(); ++k) {
@@ -632,6 +674,22 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     parameters[k] = covered ? p : DomainPoint{-1, Eigen::Vector3d::Zero()};
     if (!covered) ++result.uncovered_points;
   }
+  // With a collar, the surface's boundary (the collar's inner edges) is fitted to the scan's
+  // boundary curve, and the scan's boundary vertices keep their parameters on it.
+  const BoundaryCurvePoints boundary =
+      collared ? boundary_curve_points(mesh, surface_faces(result.collar_faces), dense,
+                                       options.boundary_curve)
+               : BoundaryCurvePoints{};
+  const auto scan_points = static_cast<Eigen::Index>(parameters.size());
+  const auto pin_boundary = [&](std::vector<DomainPoint>& p) {
+    for (std::size_t i = 0; i < boundary.scan_vertices.size(); ++i)
+      p[static_cast<std::size_t>(boundary.scan_vertices[i])] = boundary.scan_vertex_parameters[i];
+    std::copy(boundary.parameters.begin(), boundary.parameters.end(), p.begin() + scan_points);
+  };
+  parameters.resize(parameters.size() + boundary.parameters.size());
+  pin_boundary(parameters);
+  Eigen::MatrixX3d data(scan_points + boundary.points.rows(), 3);
+  data << points.positions, boundary.points;
   result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
   result.timings.parameters = t.seconds();
 
@@ -650,6 +708,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     parameters = correct_parameters(result.spline, parameters, data,
                                     options.correction_iterations, fit_options.threads)
                      .parameters;
+    pin_boundary(parameters);
     result.fit = fit_with_setup(*space, setup, parameters, data, initial,
                                 result.fit.control_points, fit_options);
     result.spline.control_points = result.fit.control_points;
@@ -659,6 +718,8 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     result.vertex_parameters.assign(parameters.begin(), parameters.begin() + nv);
     result.timings.correction = t.seconds();
   }
+  refit_missed_boundary(*space, setup, boundary, dense, options.boundary_curve, initial,
+                        fit_options, parameters, data, result);
   if (fit_options.constraint_r >= 0 && fit_options.constraint_r == options.fair_r) {
     // Fitted inside the constraint set: eq. 14's projection would return the same points.
     result.fairing.control_points = result.fit.control_points;

@@ -15,6 +15,7 @@
 #include "ricci/mesh/collar.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "spline/fair/fair.h"
+#include "spline/fit/boundary_curve.h"
 #include "spline/manifold/manifold_space.h"
 
 namespace spline {
@@ -165,6 +166,9 @@ struct ScanFitOptions {
   /// scan's within boundary_follow.tolerance of the diagonal (ricci/mesh/boundary_follow.h), so
   /// the surface's boundary reaches the scan's. max_rounds = 0: off.
   ricci::BoundaryFollowOptions boundary_follow;
+  /// Open surfaces with a collar: the surface's boundary fitted to the scan's boundary curve
+  /// (spline/fit/boundary_curve.h); weight 0: off.
+  BoundaryCurveOptions boundary_curve;
   /// An input of at most domain_faces faces (a coarse CAD mesh, often with slivers) is
   /// isotropically remeshed to domain_faces for the domain, like a simplified scan; false: the
   /// input itself is the domain.
@@ -204,6 +208,7 @@ struct ScanFitResult {
   FairResult fairing;
   ScanFitTimings timings;
   int corrections = 0;  ///< parameter-correction rounds run
+  int boundary_refits = 0;  ///< refits after raising missed boundary samples' weight
   /// By face of the domain mesh (atlas.problem.mesh): nonzero on the ghost faces of the
   /// boundary collar (ScanFitOptions::collar), which are fitted but are not the surface; empty
   /// when no collar was added (closed surfaces, collar.rings = 0, or refused).

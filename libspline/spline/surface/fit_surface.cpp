@@ -438,6 +438,33 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
   return next.projection_rms < out.projection_rms;
 }
 
+// An open surface that folds is fitted once more on the same domain without the boundary curve
+// (ScanFitOptions::boundary_curve): on a scan whose boundary zigzags where the domain's boundary
+// could not follow it, pulling the spline onto it folds the band next to the boundary
+// (mech-holes-shark.off: 0 folds without, 108 with). The round that folds less is kept.
+void refit_folded_boundary(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                           ScanFitOptions scan, Round& best, StageClock& clock,
+                           FittedSurface& out) {
+  if (out.input.boundary_loops == 0 || out.surface_dihedral.over_90_deg == 0 ||
+      scan.boundary_curve.weight == 0 || !out.collar_refused.empty())
+    return;
+  clock.begin("boundary refit");
+  scan.domain = best.domain;
+  scan.boundary_follow.max_rounds = 0;  // the domain keeps its followed boundary
+  scan.boundary_curve.weight = 0;
+  FittedSurface next;
+  next.input = out.input;
+  next.bbox_diagonal = out.bbox_diagonal;
+  Round candidate = fit_round(dense, scan, options, out.tessellation.density, clock, next);
+  if (next.surface_dihedral.over_90_deg >= out.surface_dihedral.over_90_deg) return;
+  next.seconds = std::move(out.seconds);
+  next.cpu_seconds = std::move(out.cpu_seconds);
+  next.refinement = std::move(out.refinement);
+  next.boundary_curve_dropped = true;
+  out = std::move(next);
+  best = std::move(candidate);
+}
+
 }  // namespace
 
 int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
@@ -504,6 +531,7 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
     best = std::move(candidate);
   }
 
+  refit_folded_boundary(dense, options, scan, best, clock, out);
   clock.begin("measure");
   measure_delivered(dense, options, out);
   clock.finish();

@@ -87,6 +87,9 @@ struct FittedSurface {
   std::vector<char> collar_faces;
   std::string collar_refused;
   ricci::BoundaryFollowResult boundary_follow;
+  /// The surface fitted with its boundary pulled onto the scan's (ScanFitOptions::boundary_curve)
+  /// folded, and the fit without that pull, on the same domain, folded less and was kept.
+  bool boundary_curve_dropped = false;
   /// tessellate_surface(surface) at the chosen density: spline and patches, welded.
   Tessellation tessellation;
   WatertightReport topology;  ///< Of the tessellation (position indices).

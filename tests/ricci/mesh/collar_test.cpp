@@ -2,6 +2,7 @@
 // the original faces, lie in the tangent plane, and leave closed meshes alone.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -9,7 +10,10 @@
 #include "ricci/mesh/boundary_follow.h"
 #include "ricci/mesh/collar.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/io.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/mesh/simplify.h"
+#include "test_paths.h"
 
 namespace ricci {
 namespace {
@@ -105,6 +109,45 @@ TEST(FollowBoundary, ACoarseCircleFollowsAFineOneWithinTheTolerance) {
   EXPECT_EQ(follow_boundary(sphere, fine).splits, 0);
   EXPECT_THROW((void)follow_boundary(coarse, fine, BoundaryFollowOptions{0.0, 3}),
                InvalidInputError);
+}
+
+}  // namespace
+}  // namespace ricci
+
+// follow_boundary checks every move and split against the faces' normals before it began, so
+// that steps each within the bound cannot add up to a face turned over: on mech-holes-shark.off
+// (a coarse scan whose boundary zigzags across a crease) checks against the current normals
+// left needles along the boundary, pairs of faces pointing opposite ways.
+namespace ricci {
+namespace {
+
+int edges_over_120_deg(const Mesh& mesh) {
+  int count = 0;
+  for (auto e : mesh.edges()) {
+    if (mesh.is_boundary(e)) continue;
+    const auto h = mesh.halfedge_handle(e, 0);
+    const auto normal = [&](HalfedgeHandle g) {
+      std::array<Eigen::Vector3d, 3> p;
+      int k = 0;
+      for (auto v : mesh.fv_range(mesh.face_handle(g)))
+        p[static_cast<std::size_t>(k++)] = to_eigen(mesh.point(v));
+      return Eigen::Vector3d((p[1] - p[0]).cross(p[2] - p[0]).normalized());
+    };
+    count += normal(h).dot(normal(mesh.opposite_halfedge_handle(h))) < -0.5;
+  }
+  return count;
+}
+
+TEST(FollowBoundary, NoFaceTurnsOverOnAZigzagBoundary) {
+  const Mesh dense = read_mesh(msp_test::test_mesh("open/mech-holes-shark.off.gz"));
+  SimplifyOptions simplify;
+  simplify.target_faces = 2000;
+  Mesh coarse = simplify_mesh(dense, simplify).mesh;
+  ASSERT_EQ(edges_over_120_deg(coarse), 0);
+  const BoundaryFollowResult r = follow_boundary(coarse, dense);
+  EXPECT_GT(r.splits, 100);
+  EXPECT_LT(r.distance_after, 0.5 * r.distance_before);
+  EXPECT_EQ(edges_over_120_deg(coarse), 0);
 }
 
 }  // namespace
