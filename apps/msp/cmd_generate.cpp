@@ -1,4 +1,4 @@
-// msp generate: meshes one of the project's test surfaces (closed genus 0-3, or opened by cutting
+// msp generate: meshes one of the project's test surfaces (closed genus 0-10, or opened by cutting
 // end caps) at a chosen size and writes it as OFF, OBJ or PLY.
 #include <iomanip>
 #include <iostream>
@@ -28,8 +28,9 @@ ricci::GenerateOptions parse_options(const Args& args) {
   const int seed = args.get_int("seed", static_cast<int>(o.seed));
   if (seed < 0) throw UsageError("option --seed must be >= 0, got " + std::to_string(seed));
   o.seed = static_cast<std::uint32_t>(seed);
-  if (o.genus < 0 || o.genus > 3) {
-    throw UsageError("option --genus must be 0, 1, 2 or 3, got " + std::to_string(o.genus));
+  if (o.genus < 0 || o.genus > ricci::kMaxGeneratedGenus) {
+    throw UsageError("option --genus must be 0 to " + std::to_string(ricci::kMaxGeneratedGenus) +
+                     ", got " + std::to_string(o.genus));
   }
   if (o.holes < 0 || o.holes > 2) {
     throw UsageError("option --holes must be 0, 1 or 2, got " + std::to_string(o.holes));
@@ -47,7 +48,7 @@ const CommandSpec& generate_command() {
       "generate",
       "mesh a closed or open test surface of a given genus (CGAL)",
       {},
-      {{"genus", "G", "genus of the surface: 0, 1, 2 or 3", true},
+      {{"genus", "G", "genus of the surface: 0 to 10", true},
        {"holes", "H", "boundary loops cut at the ends: 0, 1 or 2 (0)"},
        {"hole-depth", "D", "how deep the end caps are cut, relative to the size (0.25)"},
        {"faces", "N", "wanted face count, at least 200; the result lands within ~15% (3000)"},

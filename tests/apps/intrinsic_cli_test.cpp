@@ -50,6 +50,8 @@ TEST_F(IntrinsicCli, AtlasOnTheFlippedTriangulation) {
   EXPECT_EQ(j["metric"], "intrinsic-delaunay");  // genus 4: the automatic route's choice
   EXPECT_EQ(j["genus"], 4);
   EXPECT_EQ(j["flipped_faces"], 0);
+  EXPECT_GE(j["removed_edges"].get<int>(), 0);  // the intrinsic flow ran and converged
+  EXPECT_LE(j["removed_edges"].get<int>(), j["intrinsic_flips"].get<int>());
   EXPECT_LT(j["transition_residual"].get<double>(), 1e-9);
   EXPECT_NEAR(j["singularities"][0]["cone_angle"].get<double>(), 14 * M_PI, 1e-8);
 }

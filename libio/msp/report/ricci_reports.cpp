@@ -148,6 +148,7 @@ nlohmann::json atlas_report_json(const std::string& path, const ricci::Mesh& mes
           {"newton_iterations", r.flow.iterations},
           {"metric", r.intrinsic ? "intrinsic-delaunay" : ricci::to_string(r.flow.metric.scheme)},
           {"intrinsic_flips", r.intrinsic_flips},
+          {"removed_edges", r.removed_edges},
           {"failed_metrics", r.flow.failed_attempts},
           {"metric_route", r.flow.metric_name},
           {"quasi_conformal_area_mean", r.distortion.quasi_conformal_area_mean},

@@ -1,5 +1,5 @@
 #pragma once
-// Generator of the project's own test surfaces: smooth implicit surfaces of genus 0 to 3, meshed
+// Generator of the project's own test surfaces: smooth implicit surfaces of genus 0 to 10, meshed
 // with CGAL (Mesh_3 surface facets, then isotropic remeshing to a target size), optionally
 // opened by cutting end caps off with planes. The body lives in generate_cgal.cpp so CGAL stays
 // out of every other translation unit.
@@ -10,12 +10,15 @@
 
 namespace ricci {
 
-/// What to generate. The shapes, all inside the ball of radius ~4 around the origin:
+/// Largest genus generate_surface makes (a row of 10 fused tori, ~22 units long).
+constexpr int kMaxGeneratedGenus = 10;
+
+/// What to generate. The shapes, centred at the origin:
 /// - genus 0: a smooth blob, the smooth union of three spheres along the x axis;
 /// - genus g >= 1: g tori (R = 1, r = 0.35) centred on the x axis 2R apart, so neighbours touch
 ///   tangentially, joined by a smooth minimum into one smooth genus-g surface.
 struct GenerateOptions {
-  int genus = 1;               ///< 0, 1, 2 or 3.
+  int genus = 1;               ///< 0 to kMaxGeneratedGenus.
   int holes = 0;               ///< Boundary loops: 0 closed, 1 or 2 (caps cut at the x ends).
   /// Depth of each cut (length units) from the surface's extreme x. The tori's tubes are 0.7
   /// thick, so a depth >= 0.7 cuts a ring open and changes the genus (generate_surface throws);

@@ -244,7 +244,10 @@ Mesh to_ricci(const SurfaceMesh& mesh) {
 
 void validate(const GenerateOptions& o) {
   auto fail = [](const std::string& what) { throw InvalidInputError("generate_surface: " + what); };
-  if (o.genus < 0 || o.genus > 3) fail("genus must be 0, 1, 2 or 3, got " + std::to_string(o.genus));
+  if (o.genus < 0 || o.genus > kMaxGeneratedGenus) {
+    fail("genus must be 0 to " + std::to_string(kMaxGeneratedGenus) + ", got " +
+         std::to_string(o.genus));
+  }
   if (o.holes < 0 || o.holes > 2) fail("holes must be 0, 1 or 2, got " + std::to_string(o.holes));
   if (!(o.hole_depth > 0)) fail("hole_depth must be positive");
   if (o.target_faces < 200 || o.target_faces > 2000000) {

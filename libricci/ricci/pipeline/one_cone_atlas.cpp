@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
@@ -160,6 +161,8 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     flow.message = "the intrinsic Delaunay triangulation has a loop or a double edge "
                    "(not supported by the atlas)";
   } else if (near) {
+    result.removed_edges =
+        static_cast<int>(removed_edges(result.problem.mesh, r.triangulation).size());
     IntrinsicMesh domain = to_mesh(r.triangulation, r.u, to_arrays(result.problem.mesh).V);
     if (!r.converged()) {
       const PolishE2Result polish =

@@ -83,6 +83,10 @@ struct OneConeAtlasResult {
   /// other faces and edges) and flow.lengths its lengths; flow.metric is empty.
   bool intrinsic = false;
   int intrinsic_flips = 0;  ///< Ptolemy flips the intrinsic flow made (0 when it did not run)
+  /// Edges of the mesh the intrinsic flow's final triangulation does not have
+  /// (intrinsic/flip_free.h; 0: the mesh is its own Delaunay triangulation for the metric; -1:
+  /// the intrinsic flow did not run or did not get near the target).
+  int removed_edges = -1;
   /// (With `intrinsic`, `distortion` compares the metric with the flipped faces' 3D triangles,
   /// and is left empty when one of those is degenerate.)
   /// Long-double polish of the flow's lengths before the layout (error_before/after: max

@@ -68,8 +68,9 @@ int cone_rim(const std::vector<Rim>& rims) {
 // layers (within FindRimsOptions' caps), keeping the smallest seam (block.off at 2000 faces:
 // 169 degrees, one more layer 2.4).
 ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in_domain,
-                       const std::vector<char>& collar_faces, const RimMergeOptions& merge,
+                       const CapHolesOptions& options, const RimMergeOptions& merge,
                        const FillOptions& cone_options) {
+  const std::vector<char>& collar_faces = options.collar_faces;
   const auto& space = *surface.spline.space;
   const std::vector<double> scale = chart_scale_by_face(space, surface.domain);
   const auto normal_step = [&surface](int face) {
@@ -78,6 +79,8 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
   const auto find = [&](int extra_layers) {
     FindRimsOptions rim_options;
     rim_options.extra_cone_layers = extra_layers;
+    rim_options.max_cone_layers = options.cone_hole.max_layers;
+    rim_options.max_cone_cover_fraction = options.cone_hole.max_cover_fraction;
     rim_options.boundary_faces = collar_faces;
     return find_rims(surface.domain, in_domain, space.atlas().in_domain, rim_options, merge,
                      scale, normal_step);
@@ -118,6 +121,15 @@ FillOptions fill_options_for(bool input_boundary) {
 
 }  // namespace
 
+ConeHoleLimits cone_hole_limits(int genus) {
+  ConeHoleLimits limits;
+  if (genus >= 4) {
+    limits.max_layers = 8;
+    limits.max_cover_fraction = 0.25;
+  }
+  return limits;
+}
+
 CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options) {
   const auto& space = *surface.spline.space;
   const int faces = static_cast<int>(surface.domain.n_faces());
@@ -136,7 +148,7 @@ CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options)
   // input loop keeps its own rim, so the surface keeps the input's boundary loops.
   RimMergeOptions merge;
   merge.boundary_loops = options.fill_boundaries || !options.open_input;
-  ChosenRims chosen = choose_rims(surface, in_domain, collar, merge, fill_options_for(false));
+  ChosenRims chosen = choose_rims(surface, in_domain, options, merge, fill_options_for(false));
   CapHolesReport report;
   surface.fills.clear();
   surface.open_rims.clear();

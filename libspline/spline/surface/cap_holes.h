@@ -5,9 +5,23 @@
 #include <string>
 #include <vector>
 
+#include "spline/fill/hole_fill.h"
 #include "spline/surface/spline_surface.h"
 
 namespace spline {
+
+/// How far the cone hole may grow past badly conditioned or folded faces
+/// (FindRimsOptions::max_cone_layers, max_cone_cover_fraction).
+struct ConeHoleLimits {
+  int max_layers = FindRimsOptions{}.max_cone_layers;
+  double max_cover_fraction = FindRimsOptions{}.max_cone_cover_fraction;
+};
+
+/// The limits for the one-cone surface of this genus: FindRimsOptions' up to genus 3; from
+/// genus 4 (a cone of 2 pi (2g - 1) >= 14 pi, around which the flat metric scales like
+/// rho^(2g - 2)) 8 layers and a quarter of the domain, since the rings where neighbouring
+/// charts differ in scale by more than max_cone_rim_scale_ratio reach farther.
+[[nodiscard]] ConeHoleLimits cone_hole_limits(int genus);
 
 struct CapHolesOptions {
   /// The input had boundary loops of its own (then the domain's boundary rims are those loops;
@@ -18,6 +32,8 @@ struct CapHolesOptions {
   /// (ScanFitResult::collar_faces), fitted but beyond the surface's boundary: skipped, and the
   /// rims along it are boundary rims. Empty: no collar.
   std::vector<char> collar_faces;
+  /// Growth limits of the cone hole (fit_surface: cone_hole_limits of the input's genus).
+  ConeHoleLimits cone_hole;
 };
 
 struct CapHolesReport {

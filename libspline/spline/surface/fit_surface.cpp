@@ -315,6 +315,7 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
   cap.open_input = out.input.boundary_loops > 0;
   cap.fill_boundaries = options.fill_boundaries;
   cap.collar_faces = out.collar_faces;
+  cap.cone_hole = cone_hole_limits(out.input.genus);
   CapHolesReport capped = cap_holes(out.surface, cap);
   out.fill_failures = std::move(capped.failures);
   out.boundary_rims = capped.boundary_rims;

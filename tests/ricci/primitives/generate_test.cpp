@@ -82,11 +82,21 @@ TEST(Generate, ClosedBlobIsDeterministicForASeed) {
   for (auto v : a.vertices()) EXPECT_EQ(a.point(v), b.point(v));
 }
 
+// Beyond genus 3 (the intrinsic flow's surfaces): a row of tori fused into one genus-g surface.
+TEST(Generate, ClosedGenus4And10) {
+  for (int genus : {4, kMaxGeneratedGenus}) {
+    GenerateOptions o;
+    o.genus = genus;
+    o.target_faces = 4000;
+    expect_generated(o);
+  }
+}
+
 TEST(Generate, RejectsBadOptions) {
   GenerateOptions o;
   o.genus = -1;
   EXPECT_THROW((void)generate_surface(o), InvalidInputError);
-  o.genus = 4;
+  o.genus = kMaxGeneratedGenus + 1;
   EXPECT_THROW((void)generate_surface(o), InvalidInputError);
   o = {};
   o.holes = 3;
