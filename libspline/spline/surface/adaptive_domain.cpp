@@ -117,13 +117,12 @@ double mean_edge_length(const ricci::Mesh& mesh) {
 
 AdaptiveDomain adaptive_domain(const ricci::Mesh& dense, const AdaptiveDomainOptions& options) {
   check(options);
+  // The remeshing lands above its target where parts are thin (camel: 1.4 times, less for a
+  // coarser base): the total is aimed at what the uniform domain of target_faces has.
+  const int target = static_cast<int>(uniform_base(dense, options.target_faces).n_faces());
   const int base = static_cast<int>(std::lround(options.base_share * options.target_faces));
   ricci::Mesh base_mesh = uniform_base(dense, base);
-  // The remeshing lands above its target where parts are thin (camel: 1.4 times): the total is
-  // aimed at what a uniform domain of target_faces would have, the base's ratio times it.
-  const double ratio =
-      std::max(1.0, static_cast<double>(base_mesh.n_faces()) / std::max(base, 4));
-  const int target = static_cast<int>(std::lround(ratio * options.target_faces));
+  const double ratio = static_cast<double>(base_mesh.n_faces()) / std::max(base, 4);
   AdaptiveDomain out = split_to(dense, std::move(base_mesh), target, options);
   const int faces = static_cast<int>(out.mesh.n_faces());
   if (faces < kRebuildBelow * target && base < options.target_faces) {

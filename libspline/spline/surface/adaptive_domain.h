@@ -10,7 +10,9 @@
 namespace spline {
 
 struct AdaptiveDomainOptions {
-  int target_faces = 2000;  ///< Faces wanted in the result (reached within ~10%).
+  /// The total is aimed at the face count of the uniform domain (ricci::simplify_mesh) of this
+  /// target, which the remeshing overshoots on thin parts (reached within ~10%).
+  int target_faces = 2000;
   /// Share of target_faces given to the uniform base mesh; the rest goes to the splits.
   double base_share = 0.6;
   /// A face is split where its normal and a neighbour's differ by more than this (degrees).
@@ -30,8 +32,8 @@ struct AdaptiveDomain {
 /// The adaptive domain of `dense`: ricci::simplify_mesh to base_share * target_faces faces,
 /// then up to max_levels rounds splitting the faces whose sizing score (normal turn over
 /// max_turn_deg, min_thickness_edges * edge length over thickness) exceeds 1, highest first,
-/// while the face count stays below the target; when few faces need splitting the base is
-/// rebuilt larger once, so the total comes near target_faces. Same topology as `dense`.
+/// while the total stays below the uniform domain's; when few faces need splitting the base is
+/// rebuilt larger once, so the total comes near it. Same topology as `dense`.
 /// \pre `dense` a closed or open 2-manifold triangle mesh.
 /// \throw ricci::InvalidInputError for target_faces < 4, base_share outside (0, 1],
 ///        max_turn_deg <= 0, min_thickness_edges < 0 or max_levels < 0; as ricci::simplify_mesh.
