@@ -86,7 +86,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
     throw UsageError("--refine-rounds must be in [0, 8]");
   o.fold_rounds = args.get_int("fold-rounds", o.fold_rounds);
   if (o.fold_rounds < 0 || o.fold_rounds > 8) throw UsageError("--fold-rounds must be in [0, 8]");
-  o.adaptive_domain = !args.has("uniform-domain");
+  o.adaptive_domain = args.has("adaptive-domain");
   o.tolerance = args.get_double("tolerance", o.tolerance);
   if (!(o.tolerance >= 0.0 && o.tolerance < 1.0))
     throw UsageError("--tolerance must be in [0, 1) (a fraction of the diagonal; 0: folds only)");
@@ -156,7 +156,7 @@ const CommandSpec& fit_command() {
         "refine the domain where the input is farther than F diagonals from the surface (0)"},
        {"refine-rounds", "N", "domain refinements where the surface folds or misses (1)"},
        {"fold-rounds", "N", "refits with stronger fairing around folds left (2)"},
-       {"uniform-domain", "", "one edge length for the domain (default: adaptive on closed scans)"},
+       {"adaptive-domain", "", "closed scans: a domain denser where the surface turns or is thin"},
        {"max-deviation", "F",
         "fail when the surface strays farther than F diagonals from the input; 0: off (0.05)"},
        {"obj", "OUT.obj", "also write the tessellation as OBJ"},

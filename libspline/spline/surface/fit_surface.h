@@ -29,9 +29,9 @@ struct FitSurfaceOptions {
   /// Weight of the fit's thin-plate energy (FitOptions::smoothing, dimensionless).
   double smoothing = FitOptions{}.smoothing;
   /// Closed inputs: the domain's density follows the shape (adaptive_domain: splits where the
-  /// surface turns sharply or a part is thin), domain_faces its target; false, or open
-  /// inputs: one edge length (fit_scan's simplification).
-  bool adaptive_domain = true;
+  /// surface turns sharply or a part is thin), domain_faces its target; false (default), or
+  /// open inputs: one edge length (fit_scan's simplification).
+  bool adaptive_domain = false;
   /// The adaptive domain's sizing (its target_faces is replaced by domain_faces).
   AdaptiveDomainOptions sizing;
   /// Input-mesh vertex of the extraordinary point (an interior vertex), -1 to choose it by
