@@ -149,7 +149,7 @@ ScanFitOptions scan_options(const FitSurfaceOptions& options) {
 // Fold rounds: the faces within this many rings of a fold get the raised smoothing, which grows
 // by this factor each round.
 constexpr int kFoldRings = 2;
-constexpr double kFoldSmoothingStep = 10.0;
+constexpr double kFoldSmoothingStep = 3.0;
 
 // Gauss-Newton steps of the projection: the distance is stationary in the parameter, so its
 // error is second order in the step left (cup.off: 6 -> 2 steps moves the RMS by 0.07% of

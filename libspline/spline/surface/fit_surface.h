@@ -54,9 +54,9 @@ struct FitSurfaceOptions {
   double tolerance = 0.0;
   /// Fold rounds, after the refinement: while the surface folds, the domain faces within two
   /// rings of the folds are fitted again with at least fold_smoothing (FitOptions::smoothing's
-  /// unit; ten times more each further round) on the same domain and cone; a round is kept
+  /// unit; three times more each further round) on the same domain and cone; a round is kept
   /// when it folds less (a sharp crease is rounded, not folded). 0: none.
-  int fold_rounds = 2;
+  int fold_rounds = 4;
   double fold_smoothing = 1e-2;
   /// Measures of the delivered surface against the input (coverage tolerance, threads).
   ScanDistanceOptions measure;
