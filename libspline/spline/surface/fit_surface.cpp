@@ -456,10 +456,10 @@ int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
 
 FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
   if (options.refinement_rounds < 0 || !(options.tolerance >= 0.0) || options.fold_rounds < 0 ||
-      !(options.fold_smoothing > 0.0)) {
+      !(options.fold_smoothing > 0.0) || !(options.fold_rms_growth >= 1.0)) {
     throw ricci::InvalidInputError(
         "fit_surface: refinement_rounds, tolerance and fold_rounds must be >= 0, fold_smoothing "
-        "> 0");
+        "> 0 and fold_rms_growth >= 1");
   }
   FittedSurface out;
   StageClock clock(out, options);
@@ -513,6 +513,7 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
   // domain and cone, so the domain's face indices stay), a round kept when it folds less.
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
+  const double rms_limit = options.fold_rms_growth * out.projection_rms;
   for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
        ++round, level *= kFoldSmoothingStep) {
     clock.begin("refine");
@@ -529,6 +530,7 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
     next.bbox_diagonal = out.bbox_diagonal;
     Round candidate = fit_round(dense, scan, options, out.tessellation.density, clock, next);
     out.refinement.push_back(round_summary(next, candidate, options));
+    if (next.projection_rms > rms_limit) break;  // more smoothing would only raise it
     if (!better(next, candidate, out, best, options)) continue;
     next.seconds = std::move(out.seconds);
     next.cpu_seconds = std::move(out.cpu_seconds);

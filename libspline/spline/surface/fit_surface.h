@@ -58,6 +58,9 @@ struct FitSurfaceOptions {
   /// when it folds less (a sharp crease is rounded, not folded). 0: none.
   int fold_rounds = 4;
   double fold_smoothing = 1e-2;
+  /// The fold rounds stop at the first whose RMS (projection) exceeds this factor times the
+  /// RMS before them: folds are traded for error only this far (>= 1).
+  double fold_rms_growth = 1.25;
   /// Measures of the delivered surface against the input (coverage tolerance, threads).
   ScanDistanceOptions measure;
   /// Denser domain around the cone (levels 0: off; ricci/singularity/one_cone.h).
@@ -148,7 +151,8 @@ struct FittedSurface {
 /// then "refine" and the same again per refinement round, and the last "measure".
 /// \pre `dense` is a connected oriented 2-manifold triangle mesh.
 /// \throw ricci::InvalidInputError for a singular vertex out of range or on the boundary, a
-///        negative refinement_rounds, tolerance or fold_rounds, fold_smoothing <= 0, or fewer domain faces (asked for, or in the mesh) than minimum_domain_faces;
+///        negative refinement_rounds, tolerance or fold_rounds, fold_smoothing <= 0,
+///        fold_rms_growth < 1, or fewer domain faces (asked for, or in the mesh) than minimum_domain_faces;
 ///        ricci::SolverError when the surface strays farther than max_surface_deviation from the
 ///        input; as fit_scan otherwise.
 [[nodiscard]] FittedSurface fit_surface(const ricci::Mesh& dense,
