@@ -147,12 +147,14 @@ struct FittedSurface {
 /// Fits the surface to `dense` (its vertices and face centroids) and caps its holes: the cone
 /// hole always (grown, and retried on a bigger hole where its patch flips), excluded-face holes
 /// always, boundary loops with fill_boundaries (a closed genus-0 input's puncture always).
-/// Stages: "domain" (the adaptive domain), "singularity" (with a given vertex), fit_scan's, "fill", "tessellate", "measure",
-/// then "refine" and the same again per refinement round, and the last "measure".
+/// Stages: "domain" (the adaptive domain), "singularity" (with a given vertex), fit_scan's,
+/// "fill", "tessellate", "measure", then "refine" and the same again per refinement or fold
+/// round, and the last "measure".
 /// \pre `dense` is a connected oriented 2-manifold triangle mesh.
 /// \throw ricci::InvalidInputError for a singular vertex out of range or on the boundary, a
 ///        negative refinement_rounds, tolerance or fold_rounds, fold_smoothing <= 0,
-///        fold_rms_growth < 1, or fewer domain faces (asked for, or in the mesh) than minimum_domain_faces;
+///        fold_rms_growth < 1, or fewer domain faces (asked for, or in the mesh) than
+///        minimum_domain_faces;
 ///        ricci::SolverError when the surface strays farther than max_surface_deviation from the
 ///        input; as fit_scan otherwise.
 [[nodiscard]] FittedSurface fit_surface(const ricci::Mesh& dense,
