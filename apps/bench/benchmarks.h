@@ -46,5 +46,7 @@ int run_bezier_benchmark(int argc, char** argv);      // bench_surface.cpp
 int run_spline_file_benchmark(int argc, char** argv);  // bench_spline_file.cpp
 /// Issue 17: conformal module and surface matching at ~20k and ~100k faces.
 int run_match_benchmark(int argc, char** argv);  // bench_match.cpp
+/// Issue 15: control points the adaptive and the uniform domain need for a fit RMS goal.
+int run_adaptive_benchmark(int argc, char** argv);  // bench_adaptive.cpp
 
 }  // namespace msp::bench

@@ -72,6 +72,8 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   o.density = args.get_int("density", 0);
   o.cone_refinement.levels = args.get_int("cone-refinement", o.cone_refinement.levels);
   o.refinement_rounds = args.get_int("refine-rounds", o.refinement_rounds);
+  o.fold_rounds = args.get_int("fold-rounds", o.fold_rounds);
+  o.adaptive_domain = args.has("adaptive-domain");
   o.tolerance = args.get_double("tolerance", o.tolerance);
   o.max_surface_deviation = args.get_double("max-deviation", o.max_surface_deviation);
   try {
@@ -147,6 +149,8 @@ const CommandSpec& fit_command() {
        {"tolerance", "F",
         "refine the domain where the input is farther than F diagonals from the surface (0)"},
        {"refine-rounds", "N", "domain refinements where the surface folds or misses (1)"},
+       {"fold-rounds", "N", "refits with stronger fairing around folds left (4)"},
+       {"adaptive-domain", "", "closed scans: a domain denser where the surface turns or is thin"},
        {"max-deviation", "F",
         "fail when the surface strays farther than F diagonals from the input; 0: off (0.05)"},
        {"obj", "OUT.obj", "also write the tessellation as OBJ"},

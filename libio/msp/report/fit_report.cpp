@@ -135,7 +135,12 @@ nlohmann::json refinement_json(const spline::FittedSurface& fitted,
                       {"vertices_over_tolerance", r.vertices_over_tolerance}});
   }
   return {{"max_rounds", options.refinement_rounds},
+          {"fold_rounds", options.fold_rounds},
           {"tolerance_relative", options.tolerance},
+          {"adaptive_domain",
+           {{"on", fitted.domain_base_faces > 0},
+            {"base_faces", fitted.domain_base_faces},
+            {"split_faces", fitted.domain_split_faces}}},
           {"rounds", rounds}};
 }
 

@@ -142,12 +142,22 @@ namespace {
 std::vector<double> smoothing_by_face(const ManifoldSplineSpace& space, const FitOptions& options,
                                       const std::vector<int>& points_by_face) {
   const std::vector<int> rings = domain_rim_rings(space);
+  if (!options.face_smoothing.empty() &&
+      static_cast<int>(options.face_smoothing.size()) != space.face_count()) {
+    throw ricci::InvalidInputError("fit: face_smoothing has " +
+                                   std::to_string(options.face_smoothing.size()) +
+                                   " entries for " + std::to_string(space.face_count()) + " faces");
+  }
   std::vector<double> smoothing(points_by_face.size(), options.smoothing);
   for (std::size_t d = 0; d < smoothing.size(); ++d) {
     if (rings[d] >= 0 && rings[d] < options.rim_rings)
       smoothing[d] = std::max(smoothing[d], options.rim_smoothing);
     if (points_by_face[d] < space.functions_per_face())
       smoothing[d] = std::max(smoothing[d], options.sparse_smoothing);
+    if (!options.face_smoothing.empty()) {
+      const auto face = static_cast<std::size_t>(space.domain_faces()[d]);
+      smoothing[d] = std::max(smoothing[d], options.face_smoothing[face]);
+    }
   }
   return smoothing;
 }

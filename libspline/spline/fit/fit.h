@@ -51,6 +51,9 @@ struct FitOptions {
   /// this smoothing: the points cannot determine them, and with lambda alone the surface folds
   /// there.
   double sparse_smoothing = 1e-3;
+  /// Optional, by face of the space's mesh: the smoothing each face uses at least (locally
+  /// stronger fairing where a surface folded, fit_surface's fold rounds); empty: none.
+  std::vector<double> face_smoothing;
   /// Keeps the normal matrix SPD where no point reaches a function (dimensionless, tiny).
   double anchor = 1e-8;
   /// >= 0: fit subject to the fairing constraints of this r (fair.h, eq. 14's constraints): the

@@ -14,6 +14,7 @@
 #include "ricci/mesh/primitives.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "spline/fit/fit.h"
+#include "spline/surface/adaptive_domain.h"
 #include "spline/surface/spline_surface.h"
 #include "spline/tessellate/dihedral.h"
 #include "spline/tessellate/scan_distance.h"
@@ -27,6 +28,12 @@ struct FitSurfaceOptions {
   int fairness = 1;         ///< r of the fairing constraints the fit obeys (-1: none).
   /// Weight of the fit's thin-plate energy (FitOptions::smoothing, dimensionless).
   double smoothing = FitOptions{}.smoothing;
+  /// Closed inputs: the domain's density follows the shape (adaptive_domain: splits where the
+  /// surface turns sharply or a part is thin), domain_faces its target; false (default), or
+  /// open inputs: one edge length (fit_scan's simplification).
+  bool adaptive_domain = false;
+  /// The adaptive domain's sizing (its target_faces is replaced by domain_faces).
+  AdaptiveDomainOptions sizing;
   /// Input-mesh vertex of the extraordinary point (an interior vertex), -1 to choose it by
   /// least area distortion. Ignored, but still checked, where there is no cone (open, tori).
   int singular_vertex = -1;
@@ -45,6 +52,16 @@ struct FitSurfaceOptions {
   int refinement_rounds = 1;
   /// Error goal as a fraction of the input's bounding-box diagonal (0: folds only).
   double tolerance = 0.0;
+  /// Fold rounds (closed inputs), after the refinement: while the surface folds, the domain
+  /// faces within two rings of the folds are fitted again with at least fold_smoothing
+  /// (FitOptions::smoothing's unit; three times more each further round) on the same domain
+  /// and cone; a round is kept when it folds less (a sharp crease is rounded, not folded).
+  /// 0: none.
+  int fold_rounds = 4;
+  double fold_smoothing = 1e-2;
+  /// The fold rounds stop at the first whose RMS (projection) exceeds this factor times the
+  /// RMS before them: folds are traded for error only this far (>= 1).
+  double fold_rms_growth = 1.25;
   /// Measures of the delivered surface against the input (coverage tolerance, threads).
   ScanDistanceOptions measure;
   /// Denser domain around the cone (levels 0: off; ricci/singularity/one_cone.h).
@@ -56,7 +73,7 @@ struct FitSurfaceOptions {
 /// Checks the ranges of the options: domain_faces >= 1, degree in [1, kMaxDmsDegree], fairness
 /// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64], cone_refinement.levels
 /// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
-/// [0, 10]. `name` spells a field (given as "domain_faces", "cone_refinement", ...) the way the
+/// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1. `name` spells a field (given as "domain_faces", "cone_refinement", ...) the way the
 /// caller's user knows it, e.g. msp fit's "--domain-faces" (default: the field's own name).
 /// \throw ricci::InvalidInputError naming the first option out of range and its range.
 void check_options(const FitSurfaceOptions& options,
@@ -81,6 +98,9 @@ struct FittedSurface {
   /// The one-cone atlas the spline is built on (cut loops, charts, flow, cone refinement);
   /// atlas.problem.mesh equals surface.domain.
   ricci::OneConeAtlasResult atlas;
+  /// The adaptive domain (0 and empty without): faces of its uniform base, faces split by level.
+  int domain_base_faces = 0;
+  std::vector<int> domain_split_faces;
   double fit_constraint_residual = 0.0;  ///< Largest |C c| of the constrained fit.
   /// Open inputs: by domain face, the ghost faces of the boundary collar (ScanFitResult); why
   /// the collar was dropped, if it was; what follow_boundary did to the domain's boundary.
@@ -140,11 +160,13 @@ struct FittedSurface {
 /// Fits the surface to `dense` (its vertices and face centroids) and caps its holes: the cone
 /// hole always (grown, and retried on a bigger hole where its patch flips), excluded-face holes
 /// always, boundary loops with fill_boundaries (a closed genus-0 input's puncture always).
-/// Stages: "singularity" (with a given vertex), fit_scan's, "fill", "tessellate", "measure",
-/// then "refine" and the same again per refinement round, and the last "measure".
+/// Stages: "domain" (the adaptive domain), "singularity" (with a given vertex), fit_scan's,
+/// "fill", "tessellate", "measure", then "refine" and the same again per refinement or fold
+/// round, and the last "measure".
 /// \pre `dense` is a connected oriented 2-manifold triangle mesh.
-/// \throw ricci::InvalidInputError for a singular vertex out of range or on the boundary, a
-///        negative refinement_rounds or tolerance, or fewer domain faces (asked for, or in the mesh) than minimum_domain_faces;
+/// \throw ricci::InvalidInputError for options out of range (check_options), a singular vertex
+///        out of range or on the boundary, or fewer domain faces (asked for, or in the mesh)
+///        than minimum_domain_faces;
 ///        ricci::SolverError when the surface strays farther than max_surface_deviation from the
 ///        input; as fit_scan otherwise.
 [[nodiscard]] FittedSurface fit_surface(const ricci::Mesh& dense,

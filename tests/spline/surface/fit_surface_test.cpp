@@ -256,9 +256,7 @@ struct ThinCase {
   ricci::Mesh mesh;
 };
 
-// A sphere squashed into a plate `thickness` thick (its rim is the thin part). The flat plate
-// itself still folds at its rim (3 edges at 0.25 thick, docs/design-notes.md): only its bent
-// copy, the fin, is a case here.
+// A sphere squashed into a plate `thickness` thick (its rim is the thin part).
 ricci::Mesh plate(double thickness) {
   ricci::Mesh m = ricci::make_icosphere(5);
   for (auto v : m.vertices()) {
@@ -275,6 +273,22 @@ ricci::Mesh fin(double thickness) {
     auto p = m.point(v);
     const double angle = 0.8 * p[0], radius = 1.5 + p[2];
     m.set_point(v, ricci::Mesh::Point(radius * std::sin(angle), p[1], radius * std::cos(angle)));
+  }
+  return m;
+}
+
+// A genus-1 body with a thin handle: a torus whose tube is 0.7 thick on one side and 0.1 on
+// the other, narrowing smoothly.
+ricci::Mesh thin_handle() {
+  constexpr double kTube = 0.06;  // of make_torus below
+  ricci::Mesh m = ricci::make_torus(160, 24, 1.0, kTube);
+  for (auto v : m.vertices()) {
+    auto p = m.point(v);
+    const double angle = std::atan2(p[1], p[0]);
+    const ricci::Mesh::Point centre(std::cos(angle), std::sin(angle), 0.0);
+    const double c = 0.5 * (1.0 + std::cos(angle));
+    const double tube = 0.05 + 0.3 * c * c;
+    m.set_point(v, centre + (tube / kTube) * (p - centre));
   }
   return m;
 }
@@ -298,7 +312,9 @@ ThinCase thin_case(int k) {
     // About three domain edges thick (2000 faces over the plate's area 2 pi: edges ~0.085).
     case 0: return {"fin 0.25 thick", fin(0.25)};
     case 1: return {"torus with a thin tube", ricci::make_torus(160, 24, 1.0, 0.06)};
-    default: return {"wavy annulus", wavy_annulus()};
+    case 2: return {"wavy annulus", wavy_annulus()};
+    case 3: return {"plate 0.25 thick", plate(0.25)};
+    default: return {"genus-1 body with a thin handle", thin_handle()};
   }
 }
 
@@ -319,7 +335,7 @@ TEST_P(FitSurfaceThinParts, NoFoldAndNearTheInputBothWays) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Shapes, FitSurfaceThinParts, ::testing::Values(0, 1, 2));
+INSTANTIATE_TEST_SUITE_P(Shapes, FitSurfaceThinParts, ::testing::Values(0, 1, 2, 3, 4));
 
 }  // namespace
 }  // namespace spline

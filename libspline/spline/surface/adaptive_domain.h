@@ -1,0 +1,51 @@
+#pragma once
+// The spline's domain mesh with a density that follows what the spline must resolve: a uniform
+// simplification of the scan, then red-green 1-to-4 splits where the surface turns sharply
+// across a domain edge or a part is thin for the local edge length (thin rims, legs, ears,
+// handles), new vertices placed on the scan, the total aimed at a face count.
+#include <vector>
+
+#include "ricci/mesh/mesh.h"
+
+namespace spline {
+
+struct AdaptiveDomainOptions {
+  /// The total is aimed at the face count of the uniform domain (ricci::simplify_mesh) of this
+  /// target, which the remeshing overshoots on thin parts (reached within ~10%).
+  int target_faces = 2000;
+  /// Share of target_faces given to the uniform base mesh; the rest goes to the splits.
+  double base_share = 0.6;
+  /// A face is split where its normal and a neighbour's differ by more than this (degrees).
+  double max_turn_deg = 20.0;
+  /// ... or where the part is thinner (ricci::face_thickness) than this many of the face's
+  /// mean edge lengths.
+  double min_thickness_edges = 3.0;
+  int max_levels = 2;  ///< Split rounds (each may split a face created by the one before).
+};
+
+struct AdaptiveDomain {
+  ricci::Mesh mesh;
+  int base_faces = 0;            ///< Faces of the uniform base mesh the splits started from.
+  std::vector<int> split_faces;  ///< Faces flagged for splitting, by level.
+};
+
+/// The adaptive domain of `dense`: ricci::simplify_mesh to base_share * target_faces faces,
+/// then up to max_levels rounds splitting the faces whose sizing score (normal turn over
+/// max_turn_deg, min_thickness_edges * edge length over thickness) exceeds 1, highest first,
+/// while the total stays below the uniform domain's; when few faces need splitting the base is
+/// rebuilt larger once, so the total comes near it. Same topology as `dense`.
+/// \pre `dense` a closed or open 2-manifold triangle mesh.
+/// \throw ricci::InvalidInputError for target_faces < 4, base_share outside (0, 1],
+///        max_turn_deg <= 0, min_thickness_edges < 0 or max_levels < 0; as ricci::simplify_mesh.
+[[nodiscard]] AdaptiveDomain adaptive_domain(const ricci::Mesh& dense,
+                                             const AdaptiveDomainOptions& options = {});
+
+/// `domain` with the faces flagged in `refine` (by face index) split 1-to-4 and their
+/// neighbours closed red-green (ricci::subdivide_midpoint_locally); each new interior vertex
+/// moved to the closest point of `dense` on a face facing the same way (within two edge
+/// lengths), so the finer domain follows the scan. Boundary midpoints stay on their edges.
+/// \throw ricci::InvalidInputError if `refine` has the wrong size.
+[[nodiscard]] ricci::Mesh split_domain_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
+                                             const std::vector<char>& refine);
+
+}  // namespace spline

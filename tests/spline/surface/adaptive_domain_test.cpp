@@ -1,0 +1,88 @@
+// adaptive_domain: a domain denser where the surface turns sharply or is thin, of about the
+// size a uniform domain of the same target has, with the input's topology.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
+#include "ricci/mesh/simplify.h"
+#include "spline/surface/adaptive_domain.h"
+
+namespace spline {
+namespace {
+
+// A sphere squashed into a plate `thickness` thick: flat faces, a sharp thin rim.
+ricci::Mesh squashed_sphere(double thickness) {
+  ricci::Mesh m = ricci::make_icosphere(5);
+  for (auto v : m.vertices()) {
+    auto p = m.point(v);
+    m.set_point(v, ricci::Mesh::Point(p[0], p[1], 0.5 * thickness * p[2]));
+  }
+  return m;
+}
+
+// Mean edge length of the faces whose centroid lies within [r0, r1) of the plate's axis.
+double mean_edge_between(const ricci::Mesh& m, double r0, double r1) {
+  double sum = 0.0;
+  int count = 0;
+  for (auto f : m.faces()) {
+    const auto c = m.calc_face_centroid(f);
+    const double r = std::hypot(c[0], c[1]);
+    if (r < r0 || r >= r1) continue;
+    for (auto h : m.fh_range(f)) {
+      sum += m.calc_edge_length(h);
+      ++count;
+    }
+  }
+  return count > 0 ? sum / count : 0.0;
+}
+
+TEST(AdaptiveDomain, DenserAtAThinRimAboutTheUniformSizeSameTopology) {
+  const ricci::Mesh plate = squashed_sphere(0.25);
+  AdaptiveDomainOptions options;
+  options.target_faces = 1000;
+  const AdaptiveDomain adaptive = adaptive_domain(plate, options);
+  ricci::SimplifyOptions simplify;
+  simplify.target_faces = options.target_faces;
+  const ricci::Mesh uniform = ricci::simplify_mesh(plate, simplify).mesh;
+
+  const auto before = ricci::surface_topology(plate),
+             after = ricci::surface_topology(adaptive.mesh);
+  EXPECT_EQ(after.euler_characteristic, before.euler_characteristic);
+  EXPECT_EQ(after.boundary_loops, 0);
+  ASSERT_FALSE(adaptive.split_faces.empty());
+  EXPECT_GT(adaptive.split_faces[0], 0);
+  const double faces = static_cast<double>(adaptive.mesh.n_faces());
+  EXPECT_GT(faces, 0.85 * static_cast<double>(uniform.n_faces()));
+  EXPECT_LT(faces, 1.15 * static_cast<double>(uniform.n_faces()));
+  // The rim (turning 180 degrees within 0.25) gets shorter edges than the flat middle; the
+  // uniform domain has one edge length everywhere.
+  const double rim = mean_edge_between(adaptive.mesh, 0.9, 2.0);
+  const double middle = mean_edge_between(adaptive.mesh, 0.0, 0.6);
+  EXPECT_LT(rim, middle / 1.5) << "rim " << rim << ", middle " << middle;
+  EXPECT_GT(mean_edge_between(uniform, 0.9, 2.0), mean_edge_between(uniform, 0.0, 0.6) / 1.5);
+  // New vertices lie on the input (the plate's surface |p_z| = 0.125 sqrt(1 - r^2)).
+  for (auto v : adaptive.mesh.vertices()) {
+    const auto p = adaptive.mesh.point(v);
+    const double r2 = p[0] * p[0] + p[1] * p[1];
+    if (r2 > 0.9) continue;  // the rim: steep in z
+    EXPECT_LT(std::abs(std::abs(p[2]) - 0.125 * std::sqrt(1.0 - r2)), 0.02) << v.idx();
+  }
+}
+
+TEST(AdaptiveDomain, BadOptionsThrow) {
+  const ricci::Mesh sphere = ricci::make_icosphere(3);
+  AdaptiveDomainOptions o;
+  o.base_share = 0.0;
+  EXPECT_THROW((void)adaptive_domain(sphere, o), ricci::InvalidInputError);
+  o = {};
+  o.max_turn_deg = 0.0;
+  EXPECT_THROW((void)adaptive_domain(sphere, o), ricci::InvalidInputError);
+  o = {};
+  o.target_faces = 3;
+  EXPECT_THROW((void)adaptive_domain(sphere, o), ricci::InvalidInputError);
+}
+
+}  // namespace
+}  // namespace spline
