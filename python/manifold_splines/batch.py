@@ -37,6 +37,8 @@ FIT_OPTIONS = {
     "tolerance": float,
     "refine_rounds": int,
     "max_deviation": float,
+    "fold_rounds": int,
+    "adaptive_domain": bool,
 }
 COLUMNS = [
     "mesh", "genus", "faces", "status", "error", "error_type", "fit_rms_relative",
