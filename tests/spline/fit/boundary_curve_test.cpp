@@ -42,6 +42,10 @@ TEST(BoundaryCurve, SamplesTheDomainsBoundaryOntoTheScansBoundary) {
   BoundaryCurveOptions options;
   options.samples_per_edge = 4;
   options.weight = 3;
+  // The coarse chords' midpoints are 0.7% of the diagonal inside the fine boundary: past the
+  // default max_gap, so only the scan's boundary vertices are kept...
+  EXPECT_EQ(boundary_curve_points(coarse, {}, fine, options).parameters.size(), 3u * 96u);
+  options.max_gap = 1.0;  // ... and with a wider gap the edge samples too.
   const BoundaryCurvePoints b = boundary_curve_points(coarse, {}, fine, options);
   const std::size_t per_copy = 16 * 4 + 96;
   ASSERT_EQ(b.parameters.size(), 3 * per_copy);
@@ -87,6 +91,7 @@ TEST(BoundaryCurve, SurfaceFlagsSetTheBoundaryAndBadOptionsThrow) {
   ASSERT_GT(inner, 0);
   BoundaryCurveOptions options;
   options.weight = 1;
+  options.max_gap = 1.0;  // the inner ring is far inside the fine disk's boundary
   const BoundaryCurvePoints b = boundary_curve_points(coarse, surface, fine, options);
   ASSERT_FALSE(b.parameters.empty());
   for (const DomainPoint& p : b.parameters) {
