@@ -348,6 +348,26 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
   return round;
 }
 
+// A fit round after the first one, on scan.domain, into a surface of the same input.
+std::pair<FittedSurface, Round> next_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
+                                           const FitSurfaceOptions& options, StageClock& clock,
+                                           const FittedSurface& out) {
+  FittedSurface next;
+  next.input = out.input;
+  next.bbox_diagonal = out.bbox_diagonal;
+  Round round = fit_round(dense, scan, options, out.tessellation.density, clock, next);
+  return {std::move(next), std::move(round)};
+}
+
+// Delivers `next` (and its round) instead of `out`, keeping out's stage times and history.
+void adopt_round(std::pair<FittedSurface, Round>&& next, FittedSurface& out, Round& best) {
+  next.first.seconds = std::move(out.seconds);
+  next.first.cpu_seconds = std::move(out.cpu_seconds);
+  next.first.refinement = std::move(out.refinement);
+  out = std::move(next.first);
+  best = std::move(next.second);
+}
+
 int vertices_over(const std::vector<double>& distance, double limit) {
   int count = 0;
   for (double d : distance) count += d > limit;
@@ -465,17 +485,10 @@ void refit_folded_boundary(const ricci::Mesh& dense, const FitSurfaceOptions& op
   scan.domain = best.domain;
   scan.boundary_follow.max_rounds = 0;  // the domain keeps its followed boundary
   scan.boundary_curve.weight = 0;
-  FittedSurface next;
-  next.input = out.input;
-  next.bbox_diagonal = out.bbox_diagonal;
-  Round candidate = fit_round(dense, scan, options, out.tessellation.density, clock, next);
-  if (next.surface_dihedral.over_90_deg >= out.surface_dihedral.over_90_deg) return;
-  next.seconds = std::move(out.seconds);
-  next.cpu_seconds = std::move(out.cpu_seconds);
-  next.refinement = std::move(out.refinement);
-  next.boundary_curve_dropped = true;
-  out = std::move(next);
-  best = std::move(candidate);
+  auto next = next_round(dense, scan, options, clock, out);
+  if (next.first.surface_dihedral.over_90_deg >= out.surface_dihedral.over_90_deg) return;
+  next.first.boundary_curve_dropped = true;
+  adopt_round(std::move(next), out, best);
 }
 
 }  // namespace
@@ -544,17 +557,10 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
     scan.domain = refine_domain(best.domain, dense, where);
     scan.boundary_follow.max_rounds = 0;  // the refined domain keeps the followed boundary
     if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
-    FittedSurface next;
-    next.input = out.input;
-    next.bbox_diagonal = out.bbox_diagonal;
-    Round candidate = fit_round(dense, scan, options, out.tessellation.density, clock, next);
-    out.refinement.push_back(round_summary(next, candidate, options));
-    if (!better(next, candidate, out, best, options)) break;
-    next.seconds = std::move(out.seconds);
-    next.cpu_seconds = std::move(out.cpu_seconds);
-    next.refinement = std::move(out.refinement);
-    out = std::move(next);
-    best = std::move(candidate);
+    auto next = next_round(dense, scan, options, clock, out);
+    out.refinement.push_back(round_summary(next.first, next.second, options));
+    if (!better(next.first, next.second, out, best, options)) break;
+    adopt_round(std::move(next), out, best);
   }
 
   // Fold rounds: the faces around the folds left fit again with stronger fairing (the same
@@ -576,18 +582,11 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
     scan.boundary_follow.max_rounds = 0;
     scan.fit.face_smoothing = face_smoothing;
     if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
-    FittedSurface next;
-    next.input = out.input;
-    next.bbox_diagonal = out.bbox_diagonal;
-    Round candidate = fit_round(dense, scan, options, out.tessellation.density, clock, next);
-    out.refinement.push_back(round_summary(next, candidate, options));
-    if (next.projection_rms > rms_limit) break;  // more smoothing would only raise it
-    if (!better(next, candidate, out, best, options)) continue;
-    next.seconds = std::move(out.seconds);
-    next.cpu_seconds = std::move(out.cpu_seconds);
-    next.refinement = std::move(out.refinement);
-    out = std::move(next);
-    best = std::move(candidate);
+    auto next = next_round(dense, scan, options, clock, out);
+    out.refinement.push_back(round_summary(next.first, next.second, options));
+    if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
+    if (!better(next.first, next.second, out, best, options)) continue;
+    adopt_round(std::move(next), out, best);
   }
 
   refit_folded_boundary(dense, options, scan, best, clock, out);
