@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "ricci/mesh/errors.h"
-#include "ricci/metric/mesh_tables.h"
+#include "ricci/mesh/primitives.h"
 
 namespace ricci {
 
@@ -20,9 +20,12 @@ std::string to_string(FlowRoute route) {
 
 RoutedFlowResult routed_flow(const Mesh& mesh, const Targets& targets,
                              const RoutedFlowOptions& options) {
-  const bool closed_e2 = options.flow.geometry == Geometry::euclidean &&
-                         build_mesh_tables(mesh).boundary_loops.empty();
-  if (options.route == FlowRoute::intrinsic_delaunay && !closed_e2) {
+  // Only an O(edges) walk of the boundary, and only when a route needs to know.
+  const auto closed_e2 = [&] {
+    return options.flow.geometry == Geometry::euclidean &&
+           surface_topology(mesh).boundary_loops == 0;
+  };
+  if (options.route == FlowRoute::intrinsic_delaunay && !closed_e2()) {
     throw InvalidInputError(
         "the intrinsic-delaunay metric needs a closed surface and the euclidean geometry");
   }
@@ -30,9 +33,9 @@ RoutedFlowResult routed_flow(const Mesh& mesh, const Targets& targets,
   if (options.route != FlowRoute::intrinsic_delaunay) {
     out.flow = flow(mesh, targets, options.flow);
     out.metric = to_string(out.flow.metric.scheme);
-    const bool fall_back = options.route == FlowRoute::automatic &&
-                           options.flow.fall_back_to_other_metrics && closed_e2;
-    if (out.flow.converged() || !fall_back) return out;
+    if (out.flow.converged() || options.route != FlowRoute::automatic ||
+        !options.flow.fall_back_to_other_metrics || !closed_e2())
+      return out;
   }
   IntrinsicFlowOptions settings;
   settings.tolerance = options.flow.tolerance;
