@@ -53,6 +53,20 @@ TEST_F(ReadColours, OffWithColours) {
   EXPECT_EQ(ricci::read_mesh_with_colours(plain).colours.rows(), 0);
 }
 
+// A COFF whose vertex line lacks its colour (or has a word there) still reads as a mesh, with no
+// colours: one missing colour makes the file's colours untrustworthy, not the geometry.
+TEST_F(ReadColours, CoffWithAMissingColourHasNone) {
+  for (const char* third : {"9 9 9\n", "9 9 9 red green blue 255\n"}) {
+    const std::string coff = file("d.off", std::string("COFF\n5 2 0\n0 0 0 255 0 0 255\n"
+                                                       "1 0 0 0 255 0 255\n") +
+                                               third + "0 1 0 0 0 255 255\n1 1 0 1 2 3 255\n" +
+                                               kFaces);
+    const ricci::ColouredMesh m = ricci::read_mesh_with_colours(coff);
+    EXPECT_EQ(m.mesh.n_vertices(), 4u) << third;
+    EXPECT_EQ(m.colours.rows(), 0) << third;
+  }
+}
+
 TEST_F(ReadColours, PlyWithColours) {
   const std::string ply =
       file("a.ply", std::string("ply\nformat ascii 1.0\nelement vertex 5\n"
