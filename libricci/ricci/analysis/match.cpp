@@ -469,6 +469,24 @@ class Locator {
   std::vector<std::vector<int>> bins_;
 };
 
+/// How many faces use each side (vertex pair, smaller index first): 1 on the boundary.
+std::map<std::pair<int, int>, int> side_uses(const Eigen::MatrixX3i& faces) {
+  std::map<std::pair<int, int>, int> sides;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+      ++sides[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  return sides;
+}
+
+/// Whether the side from a to b is on the boundary.
+bool on_rim(const std::map<std::pair<int, int>, int>& sides, int a, int b) {
+  const auto it = sides.find({std::min(a, b), std::max(a, b)});
+  return it != sides.end() && it->second == 1;
+}
+
 /// The boundary of a planar triangulation that is star-shaped about `centre` (a convex
 /// domain), as a radial function: the boundary vertices by angle about the centre.
 class RadialBoundary {
@@ -476,14 +494,7 @@ class RadialBoundary {
   RadialBoundary(const Eigen::MatrixX2d& positions, const Eigen::MatrixX3i& faces,
                  const Eigen::Vector2d& centre)
       : centre_(centre) {
-    std::map<std::pair<int, int>, int> sides;
-    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-      for (int k = 0; k < 3; ++k) {
-        const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-        ++sides[{std::min(a, b), std::max(a, b)}];
-      }
-    }
-    for (const auto& [side, count] : sides) {
+    for (const auto& [side, count] : side_uses(faces)) {
       if (count != 1) continue;
       for (int v : {side.first, side.second}) {
         const Eigen::Vector2d d = positions.row(v).transpose() - centre;
@@ -521,16 +532,9 @@ class RadialBoundary {
 /// rho_B / rho_A times a rotation plus a shear along the rays), where the nearest point of B
 /// would fold A's faces between the two boundaries' chords onto B's sides.
 Eigen::MatrixX2d radial_onto(const ParameterDomain& a, const ParameterDomain& b) {
-  std::map<std::pair<int, int>, int> sides;
-  for (Eigen::Index f = 0; f < b.faces.rows(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int x = b.faces(f, k), y = b.faces(f, (k + 1) % 3);
-      ++sides[{std::min(x, y), std::max(x, y)}];
-    }
-  }
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
   int count = 0;
-  for (const auto& [side, uses] : sides) {
+  for (const auto& [side, uses] : side_uses(b.faces)) {
     if (uses != 1) continue;
     centre += b.positions.row(side.first).transpose() + b.positions.row(side.second).transpose();
     count += 2;
@@ -544,7 +548,12 @@ Eigen::MatrixX2d radial_onto(const ParameterDomain& a, const ParameterDomain& b)
     if (!(r > 0)) continue;
     const Eigen::Vector2d u = d / r;
     const double ra = rim_a.radius(u), rb = rim_b.radius(u);
-    if (ra > 0 && rb > 0) moved.row(s) = (centre + d * (rb / ra)).transpose();
+    // Only near the boundary (weight (r / rho_A)^16): inside, where faces may be tiny and far
+    // from the rim, the identity, which no shear can fold.
+    if (ra > 0 && rb > 0) {
+      const double weight = std::pow(std::min(r / ra, 1.0), 16);
+      moved.row(s) = (centre + d * (1 + weight * (rb / ra - 1))).transpose();
+    }
   }
   return moved;
 }
@@ -767,9 +776,23 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
       point.vertices[k] = result.b.to_original_vertex[result.b.faces(hit.face, k)];
     }
   }
+  // A face of A with two sides on its boundary whose image lies flat on one side of B's is a
+  // flattened ear, not a reversal: no map by vertices avoids it (see MatchResult).
+  const std::map<std::pair<int, int>, int> sides_a = side_uses(result.a.faces);
   for (Eigen::Index f = 0; f < result.a.faces.rows(); ++f) {
     const auto& F = result.a.faces;
-    if (signed_area(image.row(F(f, 0)), image.row(F(f, 1)), image.row(F(f, 2))) <= 0) {
+    const Eigen::Vector2d p[3] = {image.row(F(f, 0)), image.row(F(f, 1)), image.row(F(f, 2))};
+    const double area = signed_area(p[0], p[1], p[2]);
+    if (area > 0) continue;
+    int rim = 0;
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      rim += on_rim(sides_a, F(f, k), F(f, (k + 1) % 3)) ? 1 : 0;
+      longest = std::max(longest, (p[(k + 1) % 3] - p[k]).squaredNorm());
+    }
+    if (rim == 2 && std::abs(area) <= 1e-12 * longest) {
+      ++result.flattened_ears;
+    } else {
       ++result.flipped_faces;
     }
   }
