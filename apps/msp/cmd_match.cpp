@@ -72,8 +72,7 @@ void print_summary(ricci::MatchMethod method, const ricci::MatchResult& r) {
             << "\nflattened_ears " << r.flattened_ears << "\nsnapped_vertices "
             << r.snapped_vertices << "\nmetrics " << r.a.metric << " " << r.b.metric
             << "\nflow_iterations " << r.a.flow_iterations << " " << r.b.flow_iterations
-            << "\nseconds " << r.seconds << " (A " << r.a.seconds << ", B " << r.b.seconds
-            << ")\n";
+            << "\nseconds " << r.seconds << " (A " << r.a.seconds << ", B " << r.b.seconds << ")\n";
 }
 
 /// One textured glTF mesh of a parameter domain: the cut mesh in 3D, uv = the common domain.
