@@ -13,6 +13,7 @@
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
+#include "ricci/mesh/small_holes.h"
 #include "spline/surface/adaptive_domain.h"
 #include "spline/surface/cap_holes.h"
 #include "spline/surface/tessellate_surface.h"
@@ -234,9 +235,10 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
 }
 
 // The delivered surface (as a file holds it) against the whole input, both ways; the guard
-// against points of the surface far from the input.
+// against points of the surface far from the input. The boundary loops capped as small holes
+// (capped_vertex, by input vertex) are left out of the boundary comparison.
 void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& options,
-                       FittedSurface& out) {
+                       const std::vector<char>& capped_vertex, FittedSurface& out) {
   const ricci::VertexFaceArrays input = ricci::to_arrays(dense);
   std::vector<std::array<int, 3>> input_triangles(static_cast<std::size_t>(input.F.rows()));
   for (Eigen::Index f = 0; f < input.F.rows(); ++f)
@@ -245,6 +247,7 @@ void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& option
   // Patches capping the input's own boundary loops cover what the scan does not have: they are
   // left out of the surface-to-scan direction (and counted there).
   ScanDistanceOptions measure = options.measure;
+  if (out.capped_holes > 0) measure.unmeasured_scan_boundary = capped_vertex;
   const auto& fills = out.surface.fills;
   const auto& face = out.tessellation.triangle_face;
   measure.unmeasured_surface_triangles.assign(face.size(), 0);
@@ -518,12 +521,18 @@ void check_options(const FitSurfaceOptions& o,
   require(o.fold_rounds >= 0 && o.fold_rounds <= 8, "fold_rounds", "in [0, 8]");
   require(o.fold_smoothing > 0.0 && o.fold_smoothing < 1e6, "fold_smoothing", "in (0, 1e6)");
   require(o.fold_rms_growth >= 1.0, "fold_rms_growth", ">= 1");
+  require(o.small_hole_diameter >= 0.0 && o.small_hole_diameter < 1.0, "small_hole_diameter",
+          "in [0, 1) (a fraction of the diagonal; 0: no hole capped)");
 }
 
-FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
+FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& options) {
   check_options(options);
   FittedSurface out;
   StageClock clock(out, options);
+  // The fit sees the input with its small holes capped (same vertex indices); the delivered
+  // surface is measured against the input as given.
+  ricci::SmallHoleCaps holes = ricci::cap_small_holes(input, {options.small_hole_diameter});
+  const ricci::Mesh& dense = holes.capped_loops > 0 ? holes.mesh : input;
   out.input = ricci::surface_topology(dense);
   out.bbox_diagonal = input_diagonal(dense);
   check_domain_size(dense, out.input, options);
@@ -592,7 +601,9 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
   refit_folded_boundary(dense, options, scan, best, clock, out);
 
   clock.begin("measure");
-  measure_delivered(dense, options, out);
+  out.capped_holes = holes.capped_loops;  // on the round delivered
+  out.capped_hole_diameter = holes.largest_diameter;
+  measure_delivered(input, options, holes.capped_vertex, out);
   clock.finish();
   return out;
 }
