@@ -151,6 +151,8 @@ ScanFitOptions scan_options(const FitSurfaceOptions& options) {
 // by this factor each round.
 constexpr int kFoldRings = 2;
 constexpr double kFoldSmoothingStep = 3.0;
+// ... except on open inputs within this many rings of the boundary (the collar included).
+constexpr int kBoundaryBandRings = 2;
 
 // Gauss-Newton steps of the projection: the distance is stationary in the parameter, so its
 // error is second order in the step left (cup.off: 6 -> 2 steps moves the RMS by 0.07% of
@@ -431,6 +433,19 @@ std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
   return points;
 }
 
+// `faces` (flags by face of `domain`) grown by `rings` rings of edge neighbours.
+std::vector<char> grown_by_rings(const ricci::Mesh& domain, std::vector<char> faces, int rings) {
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> grown = faces;
+    for (auto f : domain.faces()) {
+      if (!faces[static_cast<std::size_t>(f.idx())]) continue;
+      for (auto g : domain.ff_range(f)) grown[static_cast<std::size_t>(g.idx())] = 1;
+    }
+    faces = std::move(grown);
+  }
+  return faces;
+}
+
 // Faces of the surface's domain (mesh indices) holding an edge of the tessellation that folds,
 // grown by `rings` rings of edge neighbours.
 std::vector<char> faces_near_folds(const FittedSurface& out, int rings) {
@@ -448,15 +463,24 @@ std::vector<char> faces_near_folds(const FittedSurface& out, int rings) {
       if (folds.count(std::min(a, b) * n + std::max(a, b))) near[face] = 1;
     }
   }
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> grown = near;
-    for (auto f : domain.faces()) {
-      if (!near[f.idx()]) continue;
-      for (auto g : domain.ff_range(f)) grown[g.idx()] = 1;
+  return grown_by_rings(domain, std::move(near), rings);
+}
+
+// Domain faces of an open surface within `rings` rings of the input's boundary: the collar's
+// ghost faces and those next to them (without a collar: the faces at the domain's boundary).
+std::vector<char> faces_near_boundary(const FittedSurface& out, int rings) {
+  const ricci::Mesh& domain = out.surface.domain;
+  std::vector<char> near(domain.n_faces(), 0);
+  const bool collar = out.collar_faces.size() == near.size();
+  for (auto f : domain.faces()) {
+    char& flag = near[static_cast<std::size_t>(f.idx())];
+    if (collar) {
+      flag = out.collar_faces[static_cast<std::size_t>(f.idx())] != 0;
+    } else {
+      for (auto v : domain.fv_range(f)) flag |= static_cast<char>(domain.is_boundary(v));
     }
-    near = std::move(grown);
   }
-  return near;
+  return grown_by_rings(domain, std::move(near), rings);
 }
 
 // A refined round is kept when it folds less, or as little with fewer vertices over the
@@ -577,16 +601,19 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
   const double rms_limit = options.fold_rms_growth * out.projection_rms;
-  // Closed inputs only: on open ones the smoothing moved the boundary (ChineseDragon-10kv:
-  // boundary distance 0.92% -> 1.39% of the diagonal).
-  const int fold_rounds = out.input.boundary_loops == 0 ? options.fold_rounds : 0;
-  for (int round = 1; round <= fold_rounds && out.surface_dihedral.over_90_deg > 0;
+  // Open inputs: not in the band along the boundary, where the smoothing moved the boundary
+  // (ChineseDragon-10kv: boundary distance 0.92% -> 1.39% of the diagonal).
+  const std::vector<char> band = out.input.boundary_loops > 0
+                                     ? faces_near_boundary(out, kBoundaryBandRings)
+                                     : std::vector<char>{};
+  for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
        ++round, level *= kFoldSmoothingStep) {
     clock.begin("refine");
     const std::vector<char> near = faces_near_folds(out, kFoldRings);
     face_smoothing.resize(near.size(), 0.0);
     for (std::size_t f = 0; f < near.size(); ++f)
-      if (near[f]) face_smoothing[f] = std::max(face_smoothing[f], level);
+      if (near[f] && (band.empty() || !band[f]))
+        face_smoothing[f] = std::max(face_smoothing[f], level);
     scan.domain = best.domain;
     scan.boundary_follow.max_rounds = 0;
     scan.fit.face_smoothing = face_smoothing;

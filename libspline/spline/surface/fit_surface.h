@@ -55,11 +55,11 @@ struct FitSurfaceOptions {
   int refinement_rounds = 1;
   /// Error goal as a fraction of the input's bounding-box diagonal (0: folds only).
   double tolerance = 0.0;
-  /// Fold rounds (closed inputs), after the refinement: while the surface folds, the domain
-  /// faces within two rings of the folds are fitted again with at least fold_smoothing
-  /// (FitOptions::smoothing's unit; three times more each further round) on the same domain
-  /// and cone; a round is kept when it folds less (a sharp crease is rounded, not folded).
-  /// 0: none.
+  /// Fold rounds, after the refinement: while the surface folds, the domain faces within two
+  /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with
+  /// at least fold_smoothing (FitOptions::smoothing's unit; three times more each further
+  /// round) on the same domain and cone; a round is kept when it folds less (a sharp crease is
+  /// rounded, not folded). 0: none.
   int fold_rounds = 4;
   double fold_smoothing = 1e-2;
   /// The fold rounds stop at the first whose RMS (projection) exceeds this factor times the
