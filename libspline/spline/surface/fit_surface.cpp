@@ -364,8 +364,10 @@ std::pair<FittedSurface, Round> next_round(const ricci::Mesh& dense, const ScanF
   return {std::move(next), std::move(round)};
 }
 
-// Delivers `next` (and its round) instead of `out`, keeping out's stage times and history.
+// Delivers `next` (and its round) instead of `out`, keeping out's stage times and history and
+// what follow_boundary did (the later rounds reuse the first round's followed domain).
 void adopt_round(std::pair<FittedSurface, Round>&& next, FittedSurface& out, Round& best) {
+  next.first.boundary_follow = out.boundary_follow;
   next.first.seconds = std::move(out.seconds);
   next.first.cpu_seconds = std::move(out.cpu_seconds);
   next.first.refinement = std::move(out.refinement);
