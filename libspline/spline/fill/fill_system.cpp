@@ -213,8 +213,7 @@ std::vector<Eigen::Vector2d> layout_by_development(
   }
   if (!(polygon_area(polygon) > 0.0) || !is_simple(polygon)) return {};
   Eigen::Vector2d center;
-  if (!star_center(polygon, center)) return {};
-  fill.center = center;
+  fill.center = star_center(polygon, center) ? center : polygon_mean(polygon);
   return polygon;
 }
 

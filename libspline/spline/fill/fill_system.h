@@ -79,8 +79,9 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
 /// surface's, and a linear map keeping the orientation keeps an angle convex or reflex; along an
 /// edge it rotates as the rim's tangent does. A convex D (layout_on_circle) folds the patch at
 /// the reflex corners of a scalloped rim.
-/// Sets what layout_on_circle sets (center: a point D is star-shaped from). Returns D's
-/// boundary counter-clockwise, or an empty vector when it is not simple or not star-shaped.
+/// Sets what layout_on_circle sets (center: a point D is star-shaped from, else the mean of
+/// D's boundary points). Returns D's boundary counter-clockwise, or an empty vector when it is
+/// not simple.
 [[nodiscard]] std::vector<Eigen::Vector2d> layout_by_development(
     const std::vector<std::vector<RimSample>>& samples, HoleFill& fill);
 

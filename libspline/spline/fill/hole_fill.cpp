@@ -20,6 +20,7 @@ namespace {
 using fill_detail::add_thin_plate_rows;
 using fill_detail::identity_control_points;
 using fill_detail::patch_space;
+using fill_detail::polygon_mean;
 using fill_detail::System;
 using fill_detail::rim_name;
 using fill_detail::RimSample;
@@ -218,10 +219,8 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
                                    " is not a simple polygon in its plane; it cannot be filled "
                                    "by a planar patch");
   }
-  if (!fill_detail::star_center(polygon, fill.center)) {
-    throw ricci::InvalidInputError("fill_rim: the " + rim_name(rim) +
-                                   " is not star-shaped in its plane (no tessellation centre)");
-  }
+  // A D that is not star-shaped is tessellated by triangulate_region (tessellate_fill).
+  if (!fill_detail::star_center(polygon, fill.center)) fill.center = polygon_mean(polygon);
 
   const double perimeter = fill_detail::polygon_perimeter(polygon);
   const int boundary_vertices =

@@ -7,7 +7,7 @@
 // by FindRimsOptions. fill_rim fills a rim with a planar DMS spline patch P that meets the
 // surface with G1 continuity: a height field P(u) = origin + u_x e1 + u_y e2 + h(u) n over a
 // plane (FillMethod::height_field; needs every rim normal within ~87 degrees of n and a simple,
-// star-shaped projected rim), or a parametric patch over the rim developed into the plane
+// projected rim), or a parametric patch over the rim developed into the plane
 // (FillMethod::parametric). Both are one sparse least-squares problem: positions and tangent
 // planes at samples of every rim edge plus a thin-plate energy. Only the positions-only fallback
 // is not G1 (HoleFill::g1 false). The construction of both patches and the measurements behind
@@ -203,7 +203,8 @@ struct HoleFill {
   /// boundary runs clockwise around D in rim order (viewed from `normal`).
   std::vector<std::vector<Eigen::Vector2d>> boundary_points, boundary_tangents;
   std::vector<Eigen::Vector2d> corners;              ///< corners[j] = parameter(j, 0)
-  Eigen::Vector2d center = Eigen::Vector2d::Zero();  ///< D is star-shaped from this point
+  /// A point D is star-shaped from, when it is (the mean of D's boundary points otherwise).
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
   double diagonal = 1.0;  ///< bounding-box diagonal of the domain mesh: unit of the gaps
   /// False for the positions-only fallback (FillOptions::fallback); then `normal`/`axes` are
   /// informative only (P is not a height field) and fallback_reason holds the height-field
@@ -230,7 +231,7 @@ struct HoleFill {
 /// \pre `domain_mesh` is the spline space's mesh; `rim` came from find_rims on them.
 /// \throw ricci::InvalidInputError on bad options, a rim of fewer than 3 edges, or a rim that
 ///        is no height field over any tried plane (a normal too steep, a projection that is
-///        not simple or not star-shaped; the message names the rim and the reason);
+///        not simple; the message names the rim and the reason);
 ///        ricci::SolverError when the least-squares system cannot be solved.
 [[nodiscard]] HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh,
                                 const Rim& rim, const FillOptions& options = {});
@@ -250,7 +251,8 @@ struct SeamReport {
 [[nodiscard]] SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill,
                                       int samples_per_edge = 100);
 
-/// The patch triangulated at density d (d segments per rim edge).
+/// The patch triangulated at density d (d segments per rim edge): nested copies of D's boundary
+/// shrunk towards `center`, or, where D is not star-shaped from it, ricci::triangulate_region.
 /// Vertex indices: i >= 0 is the interior vertex i (rows of positions/normals/parameters);
 /// i < 0 is rim sample -(1 + (j * d + s)) for rim edge j, sample s in 0..d-1 (sample (j, d) is
 /// (j + 1, 0)). The rim samples are not in `positions`: the caller welds them to the surface's
@@ -263,7 +265,7 @@ struct PatchTessellation {
   Eigen::MatrixX3i triangles;
 };
 
-/// \throw ricci::InvalidInputError when d < 1.
+/// \throw ricci::InvalidInputError when d < 1 or D's boundary at density d is not simple.
 [[nodiscard]] PatchTessellation tessellate_fill(const HoleFill& fill, int d);
 
 }  // namespace spline

@@ -146,9 +146,6 @@ bool is_simple(const std::vector<Eigen::Vector2d>& polygon) {
   return true;
 }
 
-namespace {
-// Smallest sin of the angle each edge subtends from c (negative: c does not see it
-// counter-clockwise).
 double star_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& c) {
   double worst = INFINITY;
   for (std::size_t i = 0; i < polygon.size(); ++i) {
@@ -157,7 +154,6 @@ double star_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vec
   }
   return worst;
 }
-}  // namespace
 
 bool star_center(const std::vector<Eigen::Vector2d>& polygon, Eigen::Vector2d& center) {
   std::vector<Eigen::Vector2d> candidates;
@@ -191,6 +187,12 @@ bool star_center(const std::vector<Eigen::Vector2d>& polygon, Eigen::Vector2d& c
     }
   }
   return found;
+}
+
+Eigen::Vector2d polygon_mean(const std::vector<Eigen::Vector2d>& polygon) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (const auto& p : polygon) sum += p;
+  return sum / static_cast<double>(std::max<std::size_t>(polygon.size(), 1));
 }
 
 double polygon_perimeter(const std::vector<Eigen::Vector2d>& polygon) {

@@ -10,6 +10,8 @@
 namespace spline::fill_detail {
 
 [[nodiscard]] double polygon_perimeter(const std::vector<Eigen::Vector2d>& polygon);
+/// The mean of the polygon's points.
+[[nodiscard]] Eigen::Vector2d polygon_mean(const std::vector<Eigen::Vector2d>& polygon);
 /// Signed area (positive counter-clockwise).
 [[nodiscard]] double polygon_area(const std::vector<Eigen::Vector2d>& polygon);
 
@@ -36,6 +38,11 @@ namespace spline::fill_detail {
 
 /// True when the closed polygon has no two non-adjacent edges meeting.
 [[nodiscard]] bool is_simple(const std::vector<Eigen::Vector2d>& polygon);
+
+/// Smallest sine of the angle each edge of the closed polygon subtends from c: positive iff the
+/// counter-clockwise polygon is star-shaped from c.
+[[nodiscard]] double star_margin(const std::vector<Eigen::Vector2d>& polygon,
+                                 const Eigen::Vector2d& c);
 
 /// A point from which the closed counter-clockwise polygon is star-shaped (every edge seen
 /// counter-clockwise), tried among the area centroid, the vertex mean and a grid of points of its

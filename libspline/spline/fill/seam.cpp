@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/triangulate_region.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/patch_domain.h"
 
@@ -85,8 +86,17 @@ PatchTessellation tessellate_fill(const HoleFill& fill, int d) {
   const double spacing = perimeter / boundary;
   const double apothem = 2.0 * fill_detail::polygon_area(shape) / perimeter;
   const double step = 0.5 * std::sqrt(3.0) * spacing / apothem;
-  const PlanarTriangulation t = fill_detail::nested_rings(
-      outer, shape, fill.center, fill_detail::ring_scales(1.0 - step, step), spacing);
+  // D not star-shaped from its centre (a rim with deep bays, seen around large cones): the
+  // constrained Delaunay triangulation of its boundary and an inner lattice instead.
+  PlanarTriangulation t;
+  if (fill_detail::star_margin(shape, fill.center) > 0.0) {
+    t = fill_detail::nested_rings(outer, shape, fill.center,
+                                  fill_detail::ring_scales(1.0 - step, step), spacing);
+  } else {
+    ricci::RegionTriangulation cdt = ricci::triangulate_region(outer, spacing);
+    t.positions = std::move(cdt.positions);
+    t.triangles = std::move(cdt.triangles);
+  }
 
   PatchTessellation out;
   const int interior = static_cast<int>(t.positions.size()) - boundary;

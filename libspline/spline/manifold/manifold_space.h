@@ -11,7 +11,8 @@
 // chart that holds a point's neighbourhood sees the same basis functions there.
 //
 // Functions. Domain face I (atlas.in_domain[I] != 0, a neighbourhood chart, counter-clockwise in
-// every chart holding it; the rare others are left out like the hole, see excluded_faces()) carries
+// every chart holding it, and not vanishingly small there, as faces next to a cone of genus 9
+// are; the rare others are left out like the hole, see excluded_faces()) carries
 // (n + 1)(n + 2)/2 functions, beta in multi_indices(n) order relative to I's corners (corner k =
 // to_vertex of the k-th halfedge of face_halfedges(mesh, I), the atlas' corner order): global index
 // domain_index(I) * functions_per_face() + beta. Faces of the cone's one-ring carry none.
@@ -92,7 +93,8 @@ class ManifoldSplineSpace {
   [[nodiscard]] const ricci::AffineAtlas& atlas() const { return atlas_; }
   [[nodiscard]] const KnotCloud& home_cloud(int vertex) const { return home_clouds_[vertex]; }
   [[nodiscard]] int home_chart(int vertex) const { return home_chart_[vertex]; }
-  /// Atlas domain faces left out: no neighbourhood chart, or flipped/degenerate in a chart.
+  /// Atlas domain faces left out: no neighbourhood chart, flipped or degenerate in a chart, or
+  /// a chart inradius below 1e-8 of the median face's (next to a cone of high genus).
   [[nodiscard]] int excluded_faces() const { return excluded_faces_; }
 
   /// True when `chart` holds every domain face sharing a vertex with `face` glued around it.
