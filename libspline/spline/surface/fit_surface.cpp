@@ -207,6 +207,8 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
                                        const std::vector<PatchTessellation>& patches,
                                        FittedSurface& out) {
   const SplineSurface& surface = out.surface;
+  out.fit_points_on_fills = out.projection_points = 0;
+  out.projection_max = 0.0;
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
   std::vector<char> on_fill(distance.size(), 0);
@@ -302,30 +304,28 @@ void take_scan(ScanFitResult&& scan, FittedSurface& out) {
   out.boundary_follow = scan.boundary_follow;
 }
 
-// What one fit round leaves for the refinement: the domain it was built on and the distance of
-// every input vertex to the surface (-1: not measured).
+// What one fit round leaves for the refinement: the domain it was built on, the parameters of
+// the input's vertices and the distance of every input vertex to the surface (-1: not measured).
 struct Round {
   ricci::Mesh domain;
+  std::vector<DomainPoint> parameters;
   std::vector<double> vertex_distance;
 };
 
-// One whole fit: fit_scan, the patches, the tessellation (at `density`, 0: by domain size) and
-// the measures of the surface itself; the delivered-surface measures come once, at the end.
-Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
-                const FitSurfaceOptions& options, int density, StageClock& clock,
-                FittedSurface& out) {
-  ScanFitResult fitted = fit_scan(dense, scan);
-  const std::vector<DomainPoint> parameters = std::move(fitted.vertex_parameters);
-  Round round;
-  round.domain = std::move(fitted.domain);
-  take_scan(std::move(fitted), out);
-
-  clock.begin("fill");
+// The holes of out.surface (its spline as fit_scan left it) found and, with `patches`, capped;
+// the tessellation (at `density`, 0: by domain size) and the measures of the surface itself.
+// Without patches the rims stay open and the vertices over them are left out of the projection:
+// rounds judged that way compare with each other, and only the delivered one is capped.
+void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, int density,
+                  bool patches, bool project, StageClock& clock, Round& round,
+                  FittedSurface& out) {
+  clock.begin(patches ? "fill" : "rims");
   CapHolesOptions cap;
   cap.open_input = out.input.boundary_loops > 0;
   cap.fill_boundaries = options.fill_boundaries;
   cap.collar_faces = out.collar_faces;
   cap.cone_hole = cone_hole_limits(out.input.genus);
+  cap.make_patches = patches;
   CapHolesReport capped = cap_holes(out.surface, cap);
   out.fill_failures = std::move(capped.failures);
   out.boundary_rims = capped.boundary_rims;
@@ -339,13 +339,43 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
                  : options.density > 0      ? options.density
                                             : default_density(
                                              out.surface.spline.space->domain_face_count());
-  std::vector<PatchTessellation> patches;
-  out.tessellation = tessellate_surface(out.surface, tess, patches);
+  std::vector<PatchTessellation> tessellated_patches;
+  out.tessellation = tessellate_surface(out.surface, tess, tessellated_patches);
 
   clock.begin("measure");
   measure_surface(out);
-  round.vertex_distance = measure_projection(dense, parameters, patches, out);
+  if (project)
+    round.vertex_distance = measure_projection(dense, round.parameters, tessellated_patches, out);
+}
+
+// One whole fit: fit_scan, then finish_round without patches (fit_surface caps the delivered
+// round once, deliver_round); `project`: with the projection's measures.
+Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
+                const FitSurfaceOptions& options, int density, bool project, StageClock& clock,
+                FittedSurface& out) {
+  ScanFitResult fitted = fit_scan(dense, scan);
+  Round round;
+  round.parameters = std::move(fitted.vertex_parameters);
+  round.domain = std::move(fitted.domain);
+  take_scan(std::move(fitted), out);
+  finish_round(dense, options, density, false, project, clock, round, out);
   return round;
+}
+
+// The projection's measures of a round fitted without them (fit_round's `project`).
+void project_round(const ricci::Mesh& dense, StageClock& clock, Round& round,
+                   FittedSurface& out) {
+  clock.begin("measure");
+  round.vertex_distance = measure_projection(dense, round.parameters, {}, out);
+}
+
+// The delivered round capped: its holes filled (the spline moved to meet the patches),
+// tessellated and measured again.
+void deliver_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, Round& best,
+                   StageClock& clock, FittedSurface& out) {
+  out.surface.fills.clear();
+  out.surface.open_rims.clear();
+  finish_round(dense, options, out.tessellation.density, true, true, clock, best, out);
 }
 
 // A fit round after the first one, on scan.domain, into a surface of the same input.
@@ -355,7 +385,7 @@ std::pair<FittedSurface, Round> next_round(const ricci::Mesh& dense, const ScanF
   FittedSurface next;
   next.input = out.input;
   next.bbox_diagonal = out.bbox_diagonal;
-  Round round = fit_round(dense, scan, options, out.tessellation.density, clock, next);
+  Round round = fit_round(dense, scan, options, out.tessellation.density, true, clock, next);
   return {std::move(next), std::move(round)};
 }
 
@@ -545,8 +575,15 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
     if (needs_singularity(out.input)) scan.atlas.singular_vertex = vertex;
   }
   scan.progress = [&clock](const std::string& stage) { clock.begin(stage); };
-  Round best = fit_round(dense, scan, options, 0, clock, out);
-  out.refinement.push_back(round_summary(out, best, options));
+  Round best = fit_round(dense, scan, options, 0, false, clock, out);
+  // A first round without folds and without a tolerance is the only one (nothing to refine):
+  // it is measured once, capped; any other round is measured before the caps, as its
+  // successors are.
+  const bool single_round = out.surface_dihedral.over_90_deg == 0 && options.tolerance == 0.0;
+  if (!single_round) {
+    project_round(dense, clock, best, out);
+    out.refinement.push_back(round_summary(out, best, options));
+  }
 
   // Refinement: the domain split where the surface folds or misses the input by more than the
   // tolerance, the same cone kept, and the whole fit run again; the best round is delivered.
@@ -590,6 +627,8 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
   }
 
   refit_folded_boundary(dense, options, scan, best, clock, out);
+  deliver_round(dense, options, best, clock, out);
+  if (single_round) out.refinement.push_back(round_summary(out, best, options));
 
   clock.begin("measure");
   measure_delivered(dense, options, out);

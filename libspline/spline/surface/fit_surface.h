@@ -79,7 +79,8 @@ struct FitSurfaceOptions {
 void check_options(const FitSurfaceOptions& options,
                    const std::function<std::string(const std::string& field)>& name = {});
 
-/// One fit round of fit_surface (the first, then each refinement).
+/// One fit round of fit_surface (the first, then each refinement or fold round), measured
+/// before the holes are capped (the patches and the vertices over them are not in it).
 struct RefinementRound {
   int domain_faces = 0, control_points = 0;
   int folds = 0;  ///< Tessellation edges over 90 degrees.
@@ -160,9 +161,11 @@ struct FittedSurface {
 /// Fits the surface to `dense` (its vertices and face centroids) and caps its holes: the cone
 /// hole always (grown, and retried on a bigger hole where its patch flips), excluded-face holes
 /// always, boundary loops with fill_boundaries (a closed genus-0 input's puncture always).
-/// Stages: "domain" (the adaptive domain), "singularity" (with a given vertex), fit_scan's,
-/// "fill", "tessellate", "measure", then "refine" and the same again per refinement or fold
-/// round, and the last "measure".
+/// Every round (the first, each refinement or fold round) is judged with its holes found but
+/// not capped; the delivered round alone is capped. Stages: "domain" (the adaptive domain),
+/// "singularity" (with a given vertex), fit_scan's, "rims", "tessellate", "measure", then
+/// "refine" and the same again per refinement or fold round, then "fill", "tessellate" and
+/// "measure" of the delivered round (a stage run again adds to its first entry).
 /// \pre `dense` is a connected oriented 2-manifold triangle mesh.
 /// \throw ricci::InvalidInputError for options out of range (check_options), a singular vertex
 ///        out of range or on the boundary, or fewer domain faces (asked for, or in the mesh)
