@@ -310,6 +310,9 @@ struct Round {
   ricci::Mesh domain;
   std::vector<DomainPoint> parameters;
   std::vector<double> vertex_distance;
+  Eigen::MatrixX3d data_points;  // fit_scan's, for a refit on the same space
+  std::vector<DomainPoint> data_parameters;
+  FitOptions fit;
 };
 
 // The holes of out.surface (its spline as fit_scan left it) found and, with `patches`, capped;
@@ -357,6 +360,9 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
   Round round;
   round.parameters = std::move(fitted.vertex_parameters);
   round.domain = std::move(fitted.domain);
+  round.data_points = std::move(fitted.data_points);
+  round.data_parameters = std::move(fitted.data_parameters);
+  round.fit = std::move(fitted.fit_options);
   take_scan(std::move(fitted), out);
   finish_round(dense, options, density, false, project, clock, round, out);
   return round;
@@ -386,6 +392,41 @@ std::pair<FittedSurface, Round> next_round(const ricci::Mesh& dense, const ScanF
   next.input = out.input;
   next.bbox_diagonal = out.bbox_diagonal;
   Round round = fit_round(dense, scan, options, out.tessellation.density, true, clock, next);
+  return {std::move(next), std::move(round)};
+}
+
+// A fold round: out's spline fitted again on its own space (the same domain, atlas and
+// corrected parameters as `best`), each face smoothed at least face_smoothing[f]; measured as
+// fit_round measures. No atlas, parameters or correction are computed again.
+std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
+                                            const FitSurfaceOptions& options,
+                                            const std::vector<double>& face_smoothing,
+                                            const Round& best, StageClock& clock,
+                                            const FittedSurface& out) {
+  clock.begin("fit");
+  FittedSurface next;
+  next.input = out.input;
+  next.bbox_diagonal = out.bbox_diagonal;
+  next.atlas = out.atlas;
+  next.surface.domain = out.surface.domain;
+  next.surface.singular_vertex = out.surface.singular_vertex;
+  next.collar_faces = out.collar_faces;
+  const auto& space = out.surface.spline.space;
+  FitOptions fit = best.fit;
+  fit.face_smoothing = face_smoothing;
+  const FitResult refit =
+      fit_control_points(*space, best.data_parameters, best.data_points,
+                         piecewise_linear_control_points(*space, next.surface.domain), fit);
+  next.surface.spline.space = space;
+  next.surface.spline.control_points = refit.control_points;
+  next.fit_constraint_residual = refit.max_constraint_residual;
+  Round round;
+  round.domain = best.domain;
+  round.parameters = best.parameters;
+  round.data_points = best.data_points;
+  round.data_parameters = best.data_parameters;
+  round.fit = best.fit;
+  finish_round(dense, options, out.tessellation.density, false, true, clock, round, next);
   return {std::move(next), std::move(round)};
 }
 
@@ -601,7 +642,7 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
   }
 
   // Fold rounds: the faces around the folds left fit again with stronger fairing (the same
-  // domain and cone, so the domain's face indices stay), a round kept when it folds less.
+  // space, so the domain's face indices stay), a round kept when it folds less.
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
   const double rms_limit = options.fold_rms_growth * out.projection_rms;
@@ -615,11 +656,7 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
     face_smoothing.resize(near.size(), 0.0);
     for (std::size_t f = 0; f < near.size(); ++f)
       if (near[f]) face_smoothing[f] = std::max(face_smoothing[f], level);
-    scan.domain = best.domain;
-    scan.boundary_follow.max_rounds = 0;
-    scan.fit.face_smoothing = face_smoothing;
-    if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
-    auto next = next_round(dense, scan, options, clock, out);
+    auto next = refit_round(dense, options, face_smoothing, best, clock, out);
     out.refinement.push_back(round_summary(next.first, next.second, options));
     if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
     if (!better(next.first, next.second, out, best, options)) continue;
