@@ -395,9 +395,39 @@ std::pair<FittedSurface, Round> next_round(const ricci::Mesh& dense, const ScanF
   return {std::move(next), std::move(round)};
 }
 
+// The data points whose parameter lies on a face with a smoothing floor moved to their closest
+// points on `spline` (correct_parameters, ScanFitOptions' correction steps). Returns whether
+// any point was on such a face.
+bool correct_smoothed_parameters(const ManifoldSpline& spline,
+                                 const std::vector<double>& face_smoothing, Round& round) {
+  std::vector<std::size_t> which;
+  for (std::size_t k = 0; k < round.data_parameters.size(); ++k) {
+    const int face = round.data_parameters[k].face;
+    if (face >= 0 && static_cast<std::size_t>(face) < face_smoothing.size() &&
+        face_smoothing[static_cast<std::size_t>(face)] > 0.0)
+      which.push_back(k);
+  }
+  if (which.empty()) return false;
+  std::vector<DomainPoint> parameters(which.size());
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(which.size()), 3);
+  for (std::size_t i = 0; i < which.size(); ++i) {
+    parameters[i] = round.data_parameters[which[i]];
+    points.row(static_cast<Eigen::Index>(i)) =
+        round.data_points.row(static_cast<Eigen::Index>(which[i]));
+  }
+  const ScanFitOptions scan_defaults;
+  const CorrectedParameters corrected =
+      correct_parameters(spline, parameters, points, scan_defaults.correction_iterations,
+                         round.fit.threads);
+  for (std::size_t i = 0; i < which.size(); ++i)
+    round.data_parameters[which[i]] = corrected.parameters[i];
+  return true;
+}
+
 // A fold round: out's spline fitted again on its own space (the same domain, atlas and
-// corrected parameters as `best`), each face smoothed at least face_smoothing[f]; measured as
-// fit_round measures. No atlas, parameters or correction are computed again.
+// parameters as `best`), each face smoothed at least face_smoothing[f], the parameters on those
+// faces corrected and the fit run again; measured as fit_round measures. No atlas, space or
+// parameters of the whole scan are computed again.
 std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
                                             const FitSurfaceOptions& options,
                                             const std::vector<double>& face_smoothing,
@@ -414,18 +444,26 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   const auto& space = out.surface.spline.space;
   FitOptions fit = best.fit;
   fit.face_smoothing = face_smoothing;
-  const FitResult refit =
-      fit_control_points(*space, best.data_parameters, best.data_points,
-                         piecewise_linear_control_points(*space, next.surface.domain), fit);
-  next.surface.spline.space = space;
-  next.surface.spline.control_points = refit.control_points;
-  next.fit_constraint_residual = refit.max_constraint_residual;
+  const Eigen::MatrixX3d initial = piecewise_linear_control_points(*space, next.surface.domain);
   Round round;
   round.domain = best.domain;
-  round.parameters = best.parameters;
   round.data_points = best.data_points;
   round.data_parameters = best.data_parameters;
   round.fit = best.fit;
+  FitResult refit = fit_control_points(*space, round.data_parameters, round.data_points,
+                                       initial, fit);
+  next.surface.spline.space = space;
+  next.surface.spline.control_points = refit.control_points;
+  // The parameter correction (as fit_scan's) of the points on the faces smoothed more, where
+  // the surface moved, then the fit again: without it the foot points' error adds to the RMS.
+  if (correct_smoothed_parameters(next.surface.spline, face_smoothing, round)) {
+    refit = fit_control_points(*space, round.data_parameters, round.data_points, initial, fit);
+    next.surface.spline.control_points = refit.control_points;
+  }
+  next.fit_constraint_residual = refit.max_constraint_residual;
+  round.parameters.assign(round.data_parameters.begin(),
+                          round.data_parameters.begin() +
+                              static_cast<std::ptrdiff_t>(best.parameters.size()));
   finish_round(dense, options, out.tessellation.density, false, true, clock, round, next);
   return {std::move(next), std::move(round)};
 }
@@ -589,6 +627,8 @@ void check_options(const FitSurfaceOptions& o,
   require(o.fold_rounds >= 0 && o.fold_rounds <= 8, "fold_rounds", "in [0, 8]");
   require(o.fold_smoothing > 0.0 && o.fold_smoothing < 1e6, "fold_smoothing", "in (0, 1e6)");
   require(o.fold_rms_growth >= 1.0, "fold_rms_growth", ">= 1");
+  require(o.fold_rms_goal >= 0.0 && o.fold_rms_goal < 1.0, "fold_rms_goal",
+          "in [0, 1) (a fraction of the diagonal)");
 }
 
 FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
@@ -645,7 +685,8 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
   // space, so the domain's face indices stay), a round kept when it folds less.
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
-  const double rms_limit = options.fold_rms_growth * out.projection_rms;
+  const double rms_limit = std::max(options.fold_rms_growth * out.projection_rms,
+                                    options.fold_rms_goal * out.bbox_diagonal);
   // Closed inputs only: on open ones the smoothing moved the boundary (ChineseDragon-10kv:
   // boundary distance 0.92% -> 1.39% of the diagonal).
   const int fold_rounds = out.input.boundary_loops == 0 ? options.fold_rounds : 0;

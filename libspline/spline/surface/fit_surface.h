@@ -59,9 +59,12 @@ struct FitSurfaceOptions {
   /// 0: none.
   int fold_rounds = 4;
   double fold_smoothing = 1e-2;
-  /// The fold rounds stop at the first whose RMS (projection) exceeds this factor times the
-  /// RMS before them: folds are traded for error only this far (>= 1).
+  /// The fold rounds stop at the first whose RMS (projection) exceeds both this factor times
+  /// the RMS before them (>= 1) and fold_rms_goal: folds are traded for error only this far.
   double fold_rms_growth = 1.25;
+  /// RMS (projection, fraction of the input's bounding-box diagonal) the fold rounds may
+  /// always reach, below the 0.2% asked of smooth scans; 0: the growth factor alone.
+  double fold_rms_goal = 0.0019;
   /// Measures of the delivered surface against the input (coverage tolerance, threads).
   ScanDistanceOptions measure;
   /// Denser domain around the cone (levels 0: off; ricci/singularity/one_cone.h).
@@ -73,7 +76,7 @@ struct FitSurfaceOptions {
 /// Checks the ranges of the options: domain_faces >= 1, degree in [1, kMaxDmsDegree], fairness
 /// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64], cone_refinement.levels
 /// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
-/// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1. `name` spells a field (given as "domain_faces", "cone_refinement", ...) the way the
+/// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1, fold_rms_goal in [0, 1). `name` spells a field (given as "domain_faces", "cone_refinement", ...) the way the
 /// caller's user knows it, e.g. msp fit's "--domain-faces" (default: the field's own name).
 /// \throw ricci::InvalidInputError naming the first option out of range and its range.
 void check_options(const FitSurfaceOptions& options,
