@@ -276,8 +276,14 @@ void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& option
 }
 
 // Topology and smoothness of the tessellation and the spline's own seams.
-void measure_surface(FittedSurface& out) {
+// `folds_only`: the dihedral angles alone (a round judged before its holes are capped, whose
+// topology and seams are measured again once it is delivered).
+void measure_surface(FittedSurface& out, bool folds_only) {
   const Tessellation& t = out.tessellation;
+  if (folds_only) {
+    out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
+    return;
+  }
   out.topology = check_watertight(t.triangles, t.positions);
   // The rims left open on purpose: each is one boundary loop of the result (nearby input loops
   // merged into one rim count once).
@@ -346,7 +352,7 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   out.tessellation = tessellate_surface(out.surface, tess, tessellated_patches);
 
   clock.begin("measure");
-  measure_surface(out);
+  measure_surface(out, !patches);
   if (project)
     round.vertex_distance = measure_projection(dense, round.parameters, tessellated_patches, out);
 }
