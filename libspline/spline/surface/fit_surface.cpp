@@ -447,6 +447,8 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   next.surface.domain = out.surface.domain;
   next.surface.singular_vertex = out.surface.singular_vertex;
   next.collar_faces = out.collar_faces;
+  next.collar_refused = out.collar_refused;
+  next.boundary_follow = out.boundary_follow;
   const auto& space = out.surface.spline.space;
   FitOptions fit = best.fit;
   fit.face_smoothing = face_smoothing;
