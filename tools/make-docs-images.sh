@@ -40,4 +40,30 @@ awk 'NR == 2 {n = $1} NR > 2 && NR <= n + 2 {
 node "$root/tools/validate.mjs" "$work/match_head.glb"
 node "$root/tools/render.mjs" "$work/match_head.glb" "$out/match_head.png" --width 1000 --height 500 \
   --azimuth 0 --elevation 0
+# msp module: the circle domain of the lion (the intrinsic Delaunay route); PNGs under 200 KB.
+"$msp" module "$models/open/lion.off" --quiet -o "$work/module_lion.svg" >/dev/null
+sed -i "s|$models/||" "$work/module_lion.svg"
+node "$root/tools/render.mjs" "$work/module_lion.svg" "$out/module_lion_circle_domain.png" \
+  --width 520
+
+# msp index: the circle domains of the open scans with four boundary loops, side by side.
+{
+  echo '<svg xmlns="http://www.w3.org/2000/svg" width="3000" height="1100" viewBox="0 0 3000 1100">'
+  i=0
+  for name in eight_open intersection_quads mech-holes-shark; do
+    "$msp" module "$models/open/$name.off" --quiet -o "$work/index_$name.svg" >/dev/null
+    sed -i "s|$models/||" "$work/index_$name.svg"
+    # Each picture nested at its offset: its <svg> tag replaced, the XML declaration dropped.
+    awk -v x=$((i * 1000)) 'FNR == 1 && /^<\?xml/ {next}
+      /^<svg / && !done {
+        sub(/<svg [^>]*>/, "<svg x=\"" x "\" y=\"0\" width=\"1000\" height=\"1100\" " \
+            "viewBox=\"0 0 1000 1100\">")
+        done = 1
+      }
+      {print}' "$work/index_$name.svg"
+    i=$((i + 1))
+  done
+  echo '</svg>'
+} >"$work/index_four_loops.svg"
+node "$root/tools/render.mjs" "$work/index_four_loops.svg" "$out/index_four_loops.png" --width 900
 ls -l "$out"

@@ -68,9 +68,9 @@ void row(const std::string& models, const Case& c) {
       options.method = method;
       const ricci::MatchResult m = ricci::match_surfaces(a, b, options);
       char buffer[160];
-      std::snprintf(buffer, sizeof buffer, "%7.2f %6.0fx %5d %6.2f %6.2f", m.seconds,
-                    m.seconds / chol, m.flipped_faces + m.flipped_faces_b, 100 * m.shape_error,
-                    100 * m.correspondence_error);
+      std::snprintf(buffer, sizeof buffer, "%7.2f %6.0fx %5d %4d %6.2f %6.2f", m.seconds,
+                    m.seconds / chol, m.flipped_faces + m.flipped_faces_b, m.flattened_ears,
+                    100 * m.shape_error, 100 * m.correspondence_error);
       return buffer;
     } catch (const std::exception& e) {
       return std::string("failed: ") + e.what();
@@ -99,10 +99,11 @@ int run_match_benchmark(int argc, char** argv) {
   std::printf(
       "wall seconds of ricci::conformal_module (no retry) and ricci::match_surfaces (A against A "
       "stretched and bent), euclidean | hyperbolic;\nflows = circle-domain flows; chol = one "
-      "CHOLMOD solve; x = ratio to it; d_g and corr in %% of the diagonal\n");
-  std::printf("%-12s %6s %2s %-13s %7s %7s %5s %6s  %7s %7s %5s %6s %6s | %s\n", "mesh", "faces",
-              "b", "module", "s", "x", "flows", "chol", "match s", "x", "flips", "d_g", "corr",
-              "the same, hyperbolic");
+      "CHOLMOD solve; x = ratio to it; flips = reversed faces of A and B; ears = flattened ears; "
+      "d_g and corr in %% of the diagonal\n");
+  std::printf("%-12s %6s %2s %-13s %7s %7s %5s %6s  %7s %7s %5s %4s %6s %6s | %s\n", "mesh",
+              "faces", "b", "module", "s", "x", "flows", "chol", "match s", "x", "flips", "ears",
+              "d_g", "corr", "the same, hyperbolic");
   // Further arguments keep only the cases of those names (e.g. holes-100k).
   for (const Case& c : cases) {
     bool wanted = argc <= 1;

@@ -287,7 +287,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["collapses"] = r.short_edges.collapses;
     j["non_delaunay_left"] = r.flat_flips.non_delaunay_left;
     j["flips_seconds"] = t.flips;
-    j["metric"] = ricci::to_string(r.flow.metric.scheme);
+    j["metric"] = r.intrinsic ? "intrinsic-delaunay" : ricci::to_string(r.flow.metric.scheme);
     j["failed_metrics"] = r.flow.failed_attempts.size();
     j["choice"] = t.choice;
     j["valence"] = t.valence;
@@ -322,6 +322,8 @@ int run_one_cone_case(int argc, char** argv) {
     j["qc_max"] = r.distortion.quasi_conformal_max;
     j["qc_p50"] = r.distortion.quasi_conformal_p50;
     j["qc_area_mean"] = r.distortion.quasi_conformal_area_mean;
+    j["qc_faces"] = r.distortion.faces;
+    j["qc_skipped"] = r.distortion.skipped_faces;
   } catch (const std::exception& e) {
     j["status"] = std::string("failed: ") + e.what();
   }
@@ -413,6 +415,9 @@ int run_one_cone_benchmark(int argc, char** argv) {
               << std::setprecision(1) << std::setw(10) << j["qc_max"].get<double>() << std::setprecision(0)
               << std::setw(7) << j["peak_mb"].get<double>() << "  " << j["metric"].get<std::string>()
               << (j["failed_metrics"].get<int>() ? " (after " + std::to_string(j["failed_metrics"].get<int>()) + " failed)" : "")
+              << (j["qc_skipped"].get<int>() ? "; QC leaves out " + std::to_string(j["qc_skipped"].get<int>()) +
+                                                   " faces flat in 3D"
+                                             : "")
               << std::endl;
   }
   return 0;

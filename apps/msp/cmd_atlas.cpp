@@ -64,8 +64,8 @@ const CommandSpec& atlas_command() {
       "one-cone flat metric, cut graph, layout and affine atlas",
       {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
       {singularity_option(),
-       metric_option("chosen per surface, falling back to the others and then to "
-                     "intrinsic-delaunay if they fail",
+       metric_option("chosen per surface: the most conformal that converges (the "
+                     "inversive-distance route, intrinsic-delaunay, the circle packings)",
                      true),
        radii_option(),
        tolerance_option("1e-10"),

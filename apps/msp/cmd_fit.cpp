@@ -69,6 +69,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   o.smoothing = args.get_double("smoothing", o.smoothing);
   o.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
   o.fill_boundaries = args.has("fill-boundaries");
+  o.small_hole_diameter = args.get_double("small-holes", o.small_hole_diameter);
   o.density = args.get_int("density", 0);
   o.cone_refinement.levels = args.get_int("cone-refinement", o.cone_refinement.levels);
   o.refinement_rounds = args.get_int("refine-rounds", o.refinement_rounds);
@@ -80,6 +81,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
     spline::check_options(o, [](const std::string& field) {
       if (field == "refinement_rounds") return std::string("--refine-rounds");
       if (field == "max_surface_deviation") return std::string("--max-deviation");
+      if (field == "small_hole_diameter") return std::string("--small-holes");
       std::string flag = "--" + field;
       std::replace(flag.begin(), flag.end(), '_', '-');
       return flag;
@@ -142,6 +144,7 @@ const CommandSpec& fit_command() {
        {"fairness", "r", "fit inside the fairing constraints of order r; -1: none (1)"},
        singularity_option(),
        {"fill-boundaries", "", "also cap the input's boundary loops with G1 patches"},
+       {"small-holes", "F", "cap boundary loops narrower than F diagonals before the fit (0.002)"},
        {"json", "REPORT", "write the JSON report to the file REPORT"},
        {"density", "d", "tessellation samples per domain edge (chosen by domain size)"},
        {"cone-refinement", "LEVELS", "1-to-4 splits of the domain around the cone, 0 to 4 (2)"},

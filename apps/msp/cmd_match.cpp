@@ -49,6 +49,7 @@ nlohmann::json match_json(const std::string& path_a, const std::string& path_b,
   j["correspondence_error_percent"] = number(100 * r.correspondence_error);
   j["flipped_faces"] = r.flipped_faces;
   j["flipped_faces_b"] = r.flipped_faces_b;
+  j["flattened_ears"] = r.flattened_ears;
   j["snapped_vertices"] = r.snapped_vertices;
   j["snap_distance"] = r.snap_distance;
   j["seconds"] = r.seconds;
@@ -68,10 +69,10 @@ void print_summary(ricci::MatchMethod method, const ricci::MatchResult& r) {
     std::cout << "correspondence_error_percent " << 100 * r.correspondence_error << "\n";
   }
   std::cout << "flipped_faces " << r.flipped_faces << "\nflipped_faces_b " << r.flipped_faces_b
-            << "\nsnapped_vertices " << r.snapped_vertices << "\nmetrics " << r.a.metric << " "
-            << r.b.metric << "\nflow_iterations " << r.a.flow_iterations << " "
-            << r.b.flow_iterations << "\nseconds " << r.seconds << " (A " << r.a.seconds << ", B "
-            << r.b.seconds << ")\n";
+            << "\nflattened_ears " << r.flattened_ears << "\nsnapped_vertices "
+            << r.snapped_vertices << "\nmetrics " << r.a.metric << " " << r.b.metric
+            << "\nflow_iterations " << r.a.flow_iterations << " " << r.b.flow_iterations
+            << "\nseconds " << r.seconds << " (A " << r.a.seconds << ", B " << r.b.seconds << ")\n";
 }
 
 /// One textured glTF mesh of a parameter domain: the cut mesh in 3D, uv = the common domain.

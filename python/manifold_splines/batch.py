@@ -39,6 +39,7 @@ FIT_OPTIONS = {
     "max_deviation": float,
     "fold_rounds": int,
     "adaptive_domain": bool,
+    "small_holes": float,
 }
 COLUMNS = [
     "mesh", "genus", "faces", "status", "error", "error_type", "fit_rms_relative",

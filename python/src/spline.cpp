@@ -37,7 +37,7 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness
                                       const nb::object& singularity, bool fill_boundaries,
                                       int density, int cone_refinement, double tolerance,
                                       int refine_rounds, double max_deviation, int fold_rounds,
-                                      bool adaptive_domain) {
+                                      bool adaptive_domain, double small_holes) {
   spline::FitSurfaceOptions o;
   o.domain_faces = domain_faces;
   o.degree = degree;
@@ -52,9 +52,11 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness
   o.max_surface_deviation = max_deviation;
   o.fold_rounds = fold_rounds;
   o.adaptive_domain = adaptive_domain;
+  o.small_hole_diameter = small_holes;
   spline::check_options(o, [](const std::string& field) {
     if (field == "refinement_rounds") return std::string("refine_rounds");
     if (field == "max_surface_deviation") return std::string("max_deviation");
+    if (field == "small_hole_diameter") return std::string("small_holes");
     return field;
   });
   return o;
@@ -63,11 +65,11 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness
 Spline fit(nb::handle V, nb::handle F, int domain_faces, int degree, int fairness, double smoothing,
            const nb::object& singularity, bool fill_boundaries, int density, int cone_refinement,
            double tolerance, int refine_rounds, double max_deviation, int fold_rounds,
-           bool adaptive_domain, const std::string& name) {
+           bool adaptive_domain, double small_holes, const std::string& name) {
   const spline::FitSurfaceOptions options =
       fit_options(domain_faces, degree, fairness, smoothing, singularity, fill_boundaries, density,
                   cone_refinement, tolerance, refine_rounds, max_deviation, fold_rounds,
-                  adaptive_domain);
+                  adaptive_domain, small_holes);
   const ricci::PolygonSoup soup = soup_from_arrays(V, F, name);
   nlohmann::json report;
   Spline result;
@@ -400,20 +402,23 @@ void bind_spline(nb::module_& m) {
         "tolerance"_a = 0.0, "refine_rounds"_a = spline::FitSurfaceOptions{}.refinement_rounds,
         "max_deviation"_a = spline::FitSurfaceOptions{}.max_surface_deviation,
         "fold_rounds"_a = spline::FitSurfaceOptions{}.fold_rounds, "adaptive_domain"_a = false,
+        "small_holes"_a = spline::FitSurfaceOptions{}.small_hole_diameter,
         "name"_a = "(V, F) arrays",
         nb::sig("def fit(V: numpy.typing.ArrayLike, F: numpy.typing.ArrayLike, *, "
                 "domain_faces: int = 2000, degree: int = 3, fairness: int = 1, smoothing: float "
                 "= 0.0001, singularity: str | int = 'auto', fill_boundaries: bool = False, "
                 "density: int = 0, cone_refinement: int = 2, tolerance: float = 0.0, "
                 "refine_rounds: int = 1, max_deviation: float = 0.05, fold_rounds: int = 4, "
-                "adaptive_domain: bool = False, name: str = '(V, F) arrays') -> Spline"),
+                "adaptive_domain: bool = False, small_holes: float = 0.002, "
+                "name: str = '(V, F) arrays') -> Spline"),
         "The whole scan-to-surface job of `msp fit` (spline::fit_surface): simplify to\n"
         "domain_faces, one-cone atlas, DMS spline of `degree` fitted inside the fairing\n"
         "constraints of order `fairness` (-1: none) with thin-plate weight `smoothing`, holes\n"
         "capped by G1 patches (boundaries too with fill_boundaries). Options as msp fit's\n"
         "(singularity: \"auto\" or an interior vertex; tolerance, refine_rounds,\n"
-        "max_deviation, fold_rounds and adaptive_domain as --tolerance, --refine-rounds,\n"
-        "--max-deviation, --fold-rounds, --adaptive-domain). Returns the Spline;\n"
+        "max_deviation, fold_rounds, adaptive_domain and small_holes as --tolerance,\n"
+        "--refine-rounds, --max-deviation, --fold-rounds, --adaptive-domain, --small-holes).\n"
+        "Returns the Spline;\n"
         "its report is the\n"
         "dict `msp fit --json` writes, `name` its \"mesh\".\n\n"
         "Raises InvalidInputError / TopologyError for bad arrays, meshes or options;\n"

@@ -161,6 +161,8 @@ def test_bad_options_and_files(genus2, tmp_path):
         ms.fit(V, F, degree=0)
     with pytest.raises(ms.InvalidInputError, match="fairness must be"):
         ms.fit(V, F, fairness=5)
+    with pytest.raises(ms.InvalidInputError, match=r"small_holes must be in \[0, 1\)"):
+        ms.fit(V, F, small_holes=-0.1)
     with pytest.raises(TypeError):
         ms.fit(V, F, colour="red")
     bad = tmp_path / "bad.msp"

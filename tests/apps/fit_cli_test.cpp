@@ -384,6 +384,10 @@ TEST(FitCli, SurfaceFarFromTheScanFailsTheRun) {
                  {{model("genus1.off"), "-o", "{OUT}/x.glb", "--max-deviation", "-1"},
                   "--max-deviation",
                   2});
+  expect_refused("small-holes-arg",
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--small-holes", "-0.1"},
+                  "--small-holes must be in [0, 1)",
+                  2});
 }
 
 TEST(FitCli, RefusesUnreadableFiles) {

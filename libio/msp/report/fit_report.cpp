@@ -64,13 +64,17 @@ nlohmann::json point_json(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z(
 // Relative to the input's diagonal; a negative figure (nothing to measure) stays -1.
 double relative(double x, double diag) { return x < 0.0 ? -1.0 : x / diag; }
 
-// The boundary of the output against the input's (Hausdorff both ways), the ghost collar and
-// how the domain's boundary was made to follow the scan's.
+// The boundary of the output against the input's (Hausdorff both ways; the small holes capped
+// before the fit left out and counted), the ghost collar and how the domain's boundary was made
+// to follow the scan's.
 nlohmann::json boundary_json(const spline::FittedSurface& fitted, double diag) {
   const auto& f = fitted.boundary_follow;
   const auto& d = fitted.delivered;
   const auto ghosts = std::count(fitted.collar_faces.begin(), fitted.collar_faces.end(), 1);
   return {{"input_boundary_edges", d.scan_boundary_edges},
+          {"input_boundary_edges_left_out", d.scan_boundary_edges_left_out},
+          {"capped_holes", fitted.capped_holes},
+          {"capped_hole_diameter_relative", fitted.capped_hole_diameter},
           {"surface_boundary_edges", d.surface_boundary_edges},
           {"hausdorff_relative", relative(d.boundary_hausdorff, diag)},
           {"surface_to_input_relative", relative(d.surface_boundary_to_scan_boundary, diag)},

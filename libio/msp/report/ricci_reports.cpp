@@ -176,6 +176,8 @@ nlohmann::json atlas_report_json(const std::string& path, const ricci::Mesh& mes
           {"angle_ratio_p95", r.distortion.angle_ratio_p95},
           {"quasi_conformal_mean", r.distortion.quasi_conformal_mean},
           {"quasi_conformal_max", r.distortion.quasi_conformal_max},
+          {"distortion_faces", r.distortion.faces},
+          {"distortion_skipped_faces", r.distortion.skipped_faces},
           {"seconds", t.total},
           {"stage_seconds",
            {{"choice", t.choice},

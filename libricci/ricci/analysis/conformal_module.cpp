@@ -17,6 +17,7 @@
 #include "ricci/mesh/primitives.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/metric/mesh_tables.h"
+#include "ricci/topology/double_cover.h"
 #include "ricci/topology/slice.h"
 
 namespace ricci {
@@ -277,10 +278,32 @@ ModuleResult conformal_module(const Mesh& mesh, const ModuleOptions& options) {
                             topology_text(topology));
   }
   ModuleResult result = blank;
-  module_on(mesh, options, result);
+  const bool intrinsic_first =
+      options.intrinsic_circle_domain && blank.kind == ModuleKind::CircleDomain;
+  if (!intrinsic_first) module_on(mesh, options, result);
   // Another triangulation helps a flow that broke triangles, not a circle domain that stays
   // out of round.
   const bool retry = options.retry && result.circle_iterations < options.max_circle_iterations;
+  if (intrinsic_first || (!result.converged && retry && result.kind == ModuleKind::CircleDomain)) {
+    // The same surface and vertices (interior edges between two boundary vertices split), its
+    // flat metric by the flow with intrinsic Delaunay flips.
+    const Mesh split = double_cover(mesh).original;
+    const MeshTables tables = build_mesh_tables(split);
+    result = blank;
+    result.preparation = "intrinsic Delaunay";
+    result.faces_used = static_cast<int>(split.n_faces());
+    try {
+      const auto metric = detail::intrinsic_flat_metric(split, tables, options.flow);
+      detail::circle_domain_module(split, tables, options, result, metric.get());
+    } catch (const SolverError& error) {
+      result.converged = false;
+      result.message = error.what();
+    }
+    if (intrinsic_first) {
+      result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      return result;
+    }
+  }
   if (!result.converged && retry) {
     Mesh flipped = mesh;
     if (flip_flat_edges_to_delaunay(flipped).flips > 0) {

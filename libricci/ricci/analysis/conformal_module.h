@@ -89,11 +89,18 @@ struct ModuleOptions {
   bool force_kind = false;
   ModuleKind kind = ModuleKind::Annulus;
   /// When the flow does not converge on the mesh as given (slivers put the inversive-distance
-  /// metric against the triangle inequality): again after Delaunay flips of the edges between
+  /// metric against the triangle inequality): the circle domain by the intrinsic flow (see
+  /// intrinsic_circle_domain), then again after Delaunay flips of the edges between
   /// coplanar faces (the surface unchanged), then, without given corners, on the mesh
   /// isotropically remeshed at the same face count (another triangulation of nearly the same
   /// surface). ModuleResult::preparation says which mesh the module is of.
   bool retry = true;
+  /// Circle domain: the flat metric by the conformal flow with intrinsic Delaunay flips on the
+  /// double cover (any conformal factor, where the fixed-connectivity flow breaks triangles),
+  /// on the mesh with its interior edges between boundary vertices split; the domain is drawn
+  /// through the flipped triangulation. false: only when the fixed-connectivity flow fails
+  /// (with retry), before the other retries; preparation "intrinsic Delaunay" says so.
+  bool intrinsic_circle_domain = false;
   /// Rectangle: four distinct boundary vertices (vertex indices). They are taken in the
   /// boundary's order with the surface on the left (counter-clockwise) from the first one
   /// given, so corners 0-1 and 2-3 span the width. Empty = four vertices a quarter of the
@@ -133,8 +140,10 @@ struct ModuleResult {
   /// its side's line, over the width; circle domain, the largest |distance to the centre -
   /// radius| / radius of a boundary vertex; 0 for the others.
   double roundness = 0;
-  /// The mesh the module was computed on: "as given", "flat edges flipped" (vertex indices
-  /// kept) or "remeshed" (new vertices; `corners` and `domain` refer to them).
+  /// The mesh the module was computed on: "as given", "intrinsic Delaunay" (the mesh's
+  /// vertices, new ones appended where an interior edge joined two boundary vertices; `domain`
+  /// is the flipped triangulation with a vertex where it crosses a loop), "flat edges flipped"
+  /// (vertex indices kept) or "remeshed" (new vertices; `corners` and `domain` refer to them).
   std::string preparation = "as given";
   int faces_used = 0;  ///< Faces of that mesh.
   /// The mesh vertices of the rectangle's corners (or of the annulus's cut path ends; the

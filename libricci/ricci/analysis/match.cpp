@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <queue>
 #include <sstream>
 
@@ -468,6 +469,95 @@ class Locator {
   std::vector<std::vector<int>> bins_;
 };
 
+/// How many faces use each side (vertex pair, smaller index first): 1 on the boundary.
+std::map<std::pair<int, int>, int> side_uses(const Eigen::MatrixX3i& faces) {
+  std::map<std::pair<int, int>, int> sides;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+      ++sides[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  return sides;
+}
+
+/// Whether the side from a to b is on the boundary.
+bool on_rim(const std::map<std::pair<int, int>, int>& sides, int a, int b) {
+  const auto it = sides.find({std::min(a, b), std::max(a, b)});
+  return it != sides.end() && it->second == 1;
+}
+
+/// The boundary of a planar triangulation that is star-shaped about `centre` (a convex
+/// domain), as a radial function: the boundary vertices by angle about the centre.
+class RadialBoundary {
+ public:
+  RadialBoundary(const Eigen::MatrixX2d& positions, const Eigen::MatrixX3i& faces,
+                 const Eigen::Vector2d& centre)
+      : centre_(centre) {
+    for (const auto& [side, count] : side_uses(faces)) {
+      if (count != 1) continue;
+      for (int v : {side.first, side.second}) {
+        const Eigen::Vector2d d = positions.row(v).transpose() - centre;
+        points_.push_back({std::atan2(d.y(), d.x()), d});
+      }
+    }
+    std::sort(points_.begin(), points_.end(),
+              [](const Point& x, const Point& y) { return x.angle < y.angle; });
+  }
+
+  /// Distance from the centre to the boundary along direction `u` (unit).
+  [[nodiscard]] double radius(const Eigen::Vector2d& u) const {
+    const double angle = std::atan2(u.y(), u.x());
+    const auto after = std::lower_bound(points_.begin(), points_.end(), angle,
+                                        [](const Point& x, double a) { return x.angle < a; });
+    const Eigen::Vector2d q = after == points_.end() ? points_.front().d : after->d;
+    const Eigen::Vector2d p = after == points_.begin() ? points_.back().d : (after - 1)->d;
+    const double denominator = cross2d(u, q - p);
+    return std::abs(denominator) > 0 ? cross2d(p, q - p) / denominator : p.norm();
+  }
+
+  [[nodiscard]] const Eigen::Vector2d& centre() const { return centre_; }
+
+ private:
+  struct Point {
+    double angle;
+    Eigen::Vector2d d;
+  };
+  Eigen::Vector2d centre_;
+  std::vector<Point> points_;
+};
+
+/// A's domain carried onto B's (both convex about B's boundary centroid) by the radial map
+/// x -> c + (x - c) rho_B / rho_A: one-to-one and orientation-preserving (its Jacobian is
+/// rho_B / rho_A times a rotation plus a shear along the rays), where the nearest point of B
+/// would fold A's faces between the two boundaries' chords onto B's sides.
+Eigen::MatrixX2d radial_onto(const ParameterDomain& a, const ParameterDomain& b) {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  int count = 0;
+  for (const auto& [side, uses] : side_uses(b.faces)) {
+    if (uses != 1) continue;
+    centre += b.positions.row(side.first).transpose() + b.positions.row(side.second).transpose();
+    count += 2;
+  }
+  centre /= std::max(count, 1);
+  const RadialBoundary rim_a(a.positions, a.faces, centre), rim_b(b.positions, b.faces, centre);
+  Eigen::MatrixX2d moved = a.positions;
+  for (Eigen::Index s = 0; s < moved.rows(); ++s) {
+    const Eigen::Vector2d d = a.positions.row(s).transpose() - centre;
+    const double r = d.norm();
+    if (!(r > 0)) continue;
+    const Eigen::Vector2d u = d / r;
+    const double ra = rim_a.radius(u), rb = rim_b.radius(u);
+    // Only near the boundary (weight (r / rho_A)^16): inside, where faces may be tiny and far
+    // from the rim, the identity, which no shear can fold.
+    if (ra > 0 && rb > 0) {
+      const double weight = std::pow(std::min(r / ra, 1.0), 16);
+      moved.row(s) = (centre + d * (1 + weight * (rb / ra - 1))).transpose();
+    }
+  }
+  return moved;
+}
+
 double diagonal(const Mesh& mesh) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInfinity), hi = -lo;
   for (VertexHandle v : mesh.vertices()) {
@@ -641,7 +731,11 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     }
     const std::vector<double> fa = arc_fractions(star_a), fb = arc_fractions(star_b);
     std::vector<double> extents(fa.size());
-    for (size_t j = 0; j < fa.size(); ++j) extents[j] = 0.5 * (fa[j] + fb[j]);
+    // Half of the turn by the arcs' mean flat lengths, half evenly: a small hole's arcs keep
+    // room enough that the harmonic map does not crowd its faces below the rounding.
+    for (size_t j = 0; j < fa.size(); ++j) {
+      extents[j] = 0.25 * (fa[j] + fb[j]) + 0.5 / static_cast<double>(fa.size());
+    }
     result.a.positions = star_positions(star_a, extents);
     detail::fill_cut_domain(star_a.sliced, result.a);
     result.a.seconds += stage.lap();
@@ -651,11 +745,12 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
   }
   // Locate every copy of A's vertices in B's domain (phi is the identity there).
   const Locator locator(result.b.positions, result.b.faces);
+  const Eigen::MatrixX2d on_domain_b = radial_onto(result.a, result.b);
   const Eigen::Index copies = result.a.positions.rows();
   Eigen::MatrixX2d image(copies, 2);
   std::vector<Locator::Hit> hits(static_cast<size_t>(copies));
   for (Eigen::Index s = 0; s < copies; ++s) {
-    const Locator::Hit hit = locator.locate(result.a.positions.row(s).transpose());
+    const Locator::Hit hit = locator.locate(on_domain_b.row(s).transpose());
     hits[static_cast<size_t>(s)] = hit;
     image.row(s).setZero();
     for (int k = 0; k < 3; ++k) {
@@ -681,9 +776,23 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
       point.vertices[k] = result.b.to_original_vertex[result.b.faces(hit.face, k)];
     }
   }
+  // A face of A with two sides on its boundary whose image lies flat on one side of B's is a
+  // flattened ear, not a reversal: no map by vertices avoids it (see MatchResult).
+  const std::map<std::pair<int, int>, int> sides_a = side_uses(result.a.faces);
   for (Eigen::Index f = 0; f < result.a.faces.rows(); ++f) {
     const auto& F = result.a.faces;
-    if (signed_area(image.row(F(f, 0)), image.row(F(f, 1)), image.row(F(f, 2))) <= 0) {
+    const Eigen::Vector2d p[3] = {image.row(F(f, 0)), image.row(F(f, 1)), image.row(F(f, 2))};
+    const double area = signed_area(p[0], p[1], p[2]);
+    if (area > 0) continue;
+    int rim = 0;
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      rim += on_rim(sides_a, F(f, k), F(f, (k + 1) % 3)) ? 1 : 0;
+      longest = std::max(longest, (p[(k + 1) % 3] - p[k]).squaredNorm());
+    }
+    if (rim == 2 && std::abs(area) <= 1e-12 * longest) {
+      ++result.flattened_ears;
+    } else {
       ++result.flipped_faces;
     }
   }

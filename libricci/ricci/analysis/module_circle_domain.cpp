@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <numeric>
 #include <queue>
 
@@ -57,35 +58,29 @@ Circle fit_circle(const std::vector<Complex>& points) {
   return {centre + mean, std::sqrt(std::max(0.0, std::norm(centre) - x[2]))};
 }
 
-/// Lays the flat metric `lengths` out and normalises it: z by mesh vertex, and the circles (or
+/// Lays the current flat metric out and normalises it: z by mesh vertex, and the circles (or
 /// points, radius 0) whose standing ends the iteration; the first order.size() are the loops'.
-using Normalise = std::function<std::vector<Circle>(const EdgeLengths&, std::vector<Complex>&)>;
+using Normalise = std::function<std::vector<Circle>(std::vector<Complex>&)>;
 
 /// The fixed point of the boundary targets: each loop's geodesic curvature `total[k]` spread by
 /// the current metric's boundary lengths, half a step at a time, until the targets or the
 /// normalised domain stand. Fills the flow figures and the roundness of `result`; returns the
 /// last domain's circles (z its positions). `result.converged` false: stopped early.
-std::vector<Circle> round_boundaries(const Mesh& mesh, const MeshTables& tables,
-                                     const std::vector<int>& order,
+std::vector<Circle> round_boundaries(const MeshTables& tables, const std::vector<int>& order,
                                      const std::vector<double>& total, const ModuleOptions& options,
-                                     const Normalise& normalised, std::vector<Complex>& z,
-                                     ModuleResult& result) {
+                                     FlatMetric& metric, const Normalise& normalised,
+                                     std::vector<Complex>& z, ModuleResult& result) {
   const int vertices = tables.num_vertices();
   // Constant geodesic curvature on each loop: its total (2π on c0, -2π on each hole) spread by
   // the current metric's boundary lengths; repeated until the spread stops changing.
-  const auto targets_for = [&](const EdgeLengths& lengths) {
+  const auto targets_for = [&]() {
     Targets targets;
     targets.curvature = Eigen::VectorXd::Zero(vertices);
     for (size_t k = 0; k < tables.boundary_loops.size(); ++k) {
       const std::vector<int>& loop = tables.boundary_loops[k];
-      std::vector<double> edge(loop.size());
+      const std::vector<double> edge = metric.loop_lengths(loop);
       double length = 0;
-      for (size_t i = 0; i < loop.size(); ++i) {
-        const VertexHandle next = mesh.vertex_handle(loop[(i + 1) % loop.size()]);
-        const HalfedgeHandle h = mesh.find_halfedge(mesh.vertex_handle(loop[i]), next);
-        edge[i] = lengths[mesh.edge_handle(h).idx()];
-        length += edge[i];
-      }
+      for (double l : edge) length += l;
       for (size_t i = 0; i < loop.size(); ++i) {
         const double dual = 0.5 * (edge[i] + edge[(i + loop.size() - 1) % loop.size()]);
         targets.curvature[loop[i]] = total[k] * dual / length;
@@ -93,9 +88,8 @@ std::vector<Circle> round_boundaries(const Mesh& mesh, const MeshTables& tables,
     }
     return targets;
   };
-  const MeshTables& t = tables;
-  Targets targets = targets_for(mesh_edge_lengths(mesh));
-  FlowResult current = flow(mesh, targets, options.flow);
+  Targets targets = targets_for();
+  FlowResult current = metric.solve(targets);
   int iterations = current.iterations;
   double last_change = INFINITY;
   double damping = 0.5;
@@ -106,7 +100,7 @@ std::vector<Circle> round_boundaries(const Mesh& mesh, const MeshTables& tables,
     result.flow_iterations = iterations;
     result.circle_iterations = sweep;
     if (!result.converged) return {};
-    const Targets next = targets_for(current.lengths);
+    const Targets next = targets_for();
     const double change = (next.curvature - targets.curvature).cwiseAbs().maxCoeff();
     // The circle domains form a family (Möbius maps of the disk) along which the targets may
     // keep sliding at a constant rate once the shape is round: stop when a small change stalls.
@@ -114,7 +108,7 @@ std::vector<Circle> round_boundaries(const Mesh& mesh, const MeshTables& tables,
     if (change < options.circle_tolerance || sliding) break;
     // The module is Möbius-normalised, so the sliding does not move it: stop when it stands.
     if (change < 1e-3) {
-      std::vector<Circle> now = normalised(current.lengths, z);
+      std::vector<Circle> now = normalised(z);
       double moved = previous.empty() ? INFINITY : 0.0;
       for (size_t k = 0; k < now.size() && !previous.empty(); ++k) {
         moved = std::max({moved, std::abs(now[k].centre - previous[k].centre),
@@ -132,11 +126,11 @@ std::vector<Circle> round_boundaries(const Mesh& mesh, const MeshTables& tables,
     if (change > 1e-3 && change > 0.9 * last_change) damping = std::max(damping / 2, 1.0 / 16);
     last_change = change;
     targets.curvature += damping * (next.curvature - targets.curvature);
-    current = flow(t, current.metric, targets, options.flow);
+    current = metric.solve(targets);
     iterations += current.iterations;
   }
   // The last flow's domain, unless the loop just laid it out.
-  const std::vector<Circle> circles = standing ? previous : normalised(current.lengths, z);
+  const std::vector<Circle> circles = standing ? previous : normalised(z);
   result.roundness = 0;
   for (size_t k = 0; k < order.size(); ++k) {
     for (int v : tables.boundary_loops[order[k]]) {
@@ -166,25 +160,95 @@ std::vector<int> loops_by_length(const Mesh& mesh, const MeshTables& tables) {
   return order;
 }
 
-void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
-                          ModuleResult& result) {
-  const std::vector<int> order = loops_by_length(mesh, tables);
-  const int holes = static_cast<int>(order.size()) - 1;
-  const int vertices = tables.num_vertices();
-  // Lay the flat surface out, cut along tree paths from c0 to the holes: the holonomy around
-  // each round hole is trivial, so the copies of a cut vertex coincide. Then c0 onto the unit
-  // circle, the disk automorphism that makes c1 concentric with it, c2's centre onto the
-  // positive real axis.
-  const int root = tables.boundary_loops[order[0]][0];
-  const Normalise normalised = [&](const EdgeLengths& lengths, std::vector<Complex>& z) {
-    const CutGraph cut = compute_cut_graph(mesh, mesh.vertex_handle(root), lengths);
-    const SlicedMesh sliced = slice_along(mesh, cut.is_cut_edge);
+namespace {
+
+class FixedFlatMetric : public FlatMetric {
+ public:
+  FixedFlatMetric(const Mesh& mesh, const MeshTables& tables, const FlowOptions& options,
+                  int cut_root)
+      : mesh_(mesh), tables_(tables), options_(options), cut_root_(cut_root) {}
+
+  FlowResult solve(const Targets& targets) override {
+    current_ = started_ ? flow(tables_, current_.metric, targets, options_)
+                        : flow(mesh_, targets, options_);
+    started_ = true;
+    return current_;
+  }
+
+  std::vector<double> loop_lengths(const std::vector<int>& loop) const override {
+    const EdgeLengths& lengths = started_ ? current_.lengths : mesh_lengths();
+    std::vector<double> edge(loop.size());
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const VertexHandle next = mesh_.vertex_handle(loop[(i + 1) % loop.size()]);
+      const HalfedgeHandle h = mesh_.find_halfedge(mesh_.vertex_handle(loop[i]), next);
+      edge[i] = lengths[mesh_.edge_handle(h).idx()];
+    }
+    return edge;
+  }
+
+  // Cut along tree paths from the root's loop to the others: the holonomy around each round
+  // hole is trivial, so the copies of a cut vertex coincide.
+  void layout(std::vector<Complex>& z) const override {
+    const EdgeLengths& lengths = current_.lengths;
+    z.assign(tables_.num_vertices(), 0);
+    if (cut_root_ < 0) {
+      const LayoutE2Result layout = layout_e2(mesh_, lengths);
+      for (int v = 0; v < tables_.num_vertices(); ++v) {
+        z[v] = Complex(layout.positions(v, 0), layout.positions(v, 1));
+      }
+      return;
+    }
+    const CutGraph cut = compute_cut_graph(mesh_, mesh_.vertex_handle(cut_root_), lengths);
+    const SlicedMesh sliced = slice_along(mesh_, cut.is_cut_edge);
     check_disk(sliced, "circle-domain slice");
     const LayoutE2Result layout = layout_e2(sliced.mesh, sliced_edge_lengths(sliced, lengths));
-    z.assign(vertices, 0);
     for (int s = 0; s < static_cast<int>(sliced.mesh.n_vertices()); ++s) {
       z[sliced.to_original_vertex[s]] = Complex(layout.positions(s, 0), layout.positions(s, 1));
     }
+  }
+
+  Eigen::MatrixX3i faces() const override {
+    CanonicalDomain domain;
+    copy_faces(mesh_, domain);
+    return domain.faces;
+  }
+
+ private:
+  const EdgeLengths& mesh_lengths() const {
+    if (initial_.size() == 0) initial_ = mesh_edge_lengths(mesh_);
+    return initial_;
+  }
+
+  const Mesh& mesh_;
+  const MeshTables& tables_;
+  FlowOptions options_;
+  int cut_root_;
+  bool started_ = false;
+  FlowResult current_;
+  mutable EdgeLengths initial_;
+};
+
+}  // namespace
+
+std::unique_ptr<FlatMetric> fixed_flat_metric(const Mesh& mesh, const MeshTables& tables,
+                                              const FlowOptions& options, int cut_root) {
+  return std::make_unique<FixedFlatMetric>(mesh, tables, options, cut_root);
+}
+
+void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
+                          ModuleResult& result, FlatMetric* metric) {
+  const std::vector<int> order = loops_by_length(mesh, tables);
+  const int holes = static_cast<int>(order.size()) - 1;
+  // Lay the flat surface out, then c0 onto the unit circle, the disk automorphism that makes c1
+  // concentric with it, c2's centre onto the positive real axis.
+  const int root = tables.boundary_loops[order[0]][0];
+  std::unique_ptr<FlatMetric> fixed;
+  if (metric == nullptr) {
+    fixed = fixed_flat_metric(mesh, tables, options.flow, root);
+    metric = fixed.get();
+  }
+  const Normalise normalised = [&](std::vector<Complex>& z) {
+    metric->layout(z);
     const auto circle_of = [&](int k) {
       std::vector<Complex> points;
       for (int v : tables.boundary_loops[k]) points.push_back(z[v]);
@@ -207,7 +271,7 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const Modu
   total[order[0]] = 2 * M_PI;
   std::vector<Complex> z;
   const std::vector<Circle> circles =
-      round_boundaries(mesh, tables, order, total, options, normalised, z, result);
+      round_boundaries(tables, order, total, options, *metric, normalised, z, result);
   if (!result.converged) return;
   if (result.roundness > options.max_roundness) {
     result.converged = false;
@@ -230,9 +294,11 @@ void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const Modu
     result.names.push_back("r" + index);
   }
   CanonicalDomain& domain = result.domain;
-  domain.positions.resize(vertices, 2);
-  for (int v = 0; v < vertices; ++v) domain.positions.row(v) << z[v].real(), z[v].imag();
-  copy_faces(mesh, domain);
+  domain.positions.resize(static_cast<Eigen::Index>(z.size()), 2);
+  for (size_t v = 0; v < z.size(); ++v) {
+    domain.positions.row(static_cast<Eigen::Index>(v)) << z[v].real(), z[v].imag();
+  }
+  domain.faces = metric->faces();
   for (int k = 0; k <= holes; ++k) {
     domain.boundaries.push_back(tables.boundary_loops[order[k]]);
     domain.boundary_loop.push_back(k);
@@ -312,11 +378,9 @@ void disk_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions
   // Laid out (a disk needs no cut), the boundary's circle onto the unit circle, the disk
   // automorphism that sends the centre to 0, the rotation that sends `one` to 1. The boundary
   // vertices' positions are what must stand.
-  const Normalise normalised = [&](const EdgeLengths& lengths, std::vector<Complex>& z) {
-    const LayoutE2Result layout = layout_e2(mesh, lengths);
-    z.assign(vertices, 0);
-    for (int v = 0; v < vertices; ++v)
-      z[v] = Complex(layout.positions(v, 0), layout.positions(v, 1));
+  const std::unique_ptr<FlatMetric> metric = fixed_flat_metric(mesh, tables, options.flow, -1);
+  const Normalise normalised = [&](std::vector<Complex>& z) {
+    metric->layout(z);
     std::vector<Complex> points;
     for (int v : loop) points.push_back(z[v]);
     const Circle outer = fit_circle(points);
@@ -330,7 +394,7 @@ void disk_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions
     return circles;
   };
   std::vector<Complex> z;
-  (void)round_boundaries(mesh, tables, {0}, {2 * M_PI}, options, normalised, z, result);
+  (void)round_boundaries(tables, {0}, {2 * M_PI}, options, *metric, normalised, z, result);
   if (!result.converged) return;
   if (result.roundness > options.max_roundness) {
     result.converged = false;

@@ -1,5 +1,8 @@
 #pragma once
 // Pieces of conformal_module shared between its source files (not a public header).
+#include <memory>
+#include <vector>
+
 #include "ricci/analysis/conformal_module.h"
 #include "ricci/flow/flow.h"
 #include "ricci/metric/mesh_tables.h"
@@ -19,8 +22,8 @@ struct AnnulusMap {
   FlowResult flow;  ///< When it failed (not converged nor stalled), nothing else is filled.
   std::vector<HalfedgeHandle> path;  ///< The cut, from loop 0 to loop 1 of the tables.
   SlicedMesh sliced;
-  Eigen::VectorXcd w;  ///< By sliced vertex: log z (the outer loop at Re w = 0 on average).
-  Eigen::VectorXcd z;  ///< By mesh vertex: exp(w) of any copy.
+  Eigen::VectorXcd w;        ///< By sliced vertex: log z (the outer loop at Re w = 0 on average).
+  Eigen::VectorXcd z;        ///< By mesh vertex: exp(w) of any copy.
   std::vector<int> copy_of;  ///< By mesh vertex: one sliced copy.
   double module = 0;         ///< (1/2π) log(1/r).
   double roundness = 0;      ///< Max deviation of a boundary vertex's log|z| from its loop's.
@@ -38,9 +41,42 @@ struct AnnulusMap {
 void annulus_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
                     ModuleResult& result);
 
-/// Genus 0, three or more boundaries: the circle domain (see module_circle_domain.cpp).
-void circle_domain_module(const Mesh& mesh, const MeshTables& tables,
-                          const ModuleOptions& options, ModuleResult& result);
+/// The flat metric the circle-domain iteration updates (module_circle_domain.cpp): flowed to new
+/// curvature targets from the last solution, measured along the boundary, laid out.
+class FlatMetric {
+ public:
+  virtual ~FlatMetric() = default;
+  /// Flows to `targets` (by vertex of the tables) from the current metric, which it replaces;
+  /// returns the run's figures (status, iterations, error, message).
+  virtual FlowResult solve(const Targets& targets) = 0;
+  /// Lengths of the boundary edges loop[i] -> loop[i + 1] (cyclically) in the current metric.
+  [[nodiscard]] virtual std::vector<double> loop_lengths(const std::vector<int>& loop) const = 0;
+  /// The current metric laid out: z by vertex of the drawn triangulation, whose first vertices
+  /// are the tables' (the copies of a cut vertex may differ before the boundaries are round).
+  virtual void layout(std::vector<Complex>& z) const = 0;
+  /// The drawn triangulation's faces (indices into layout's z).
+  [[nodiscard]] virtual Eigen::MatrixX3i faces() const = 0;
+};
+
+/// ricci::flow on the mesh's own connectivity (options.flow), warm-started from the last
+/// metric. layout() cuts along tree paths from `cut_root` to the other loops (-1: no cut).
+[[nodiscard]] std::unique_ptr<FlatMetric> fixed_flat_metric(const Mesh& mesh,
+                                                            const MeshTables& tables,
+                                                            const FlowOptions& options,
+                                                            int cut_root);
+
+/// The conformal flow with intrinsic Delaunay flips (intrinsic/conformal_flow.h) on the double
+/// cover of `mesh`, each boundary vertex's target doubled; the metric of the half the mesh
+/// covers, laid out through the flipped triangulation (module_intrinsic.cpp).
+/// \pre the mesh has no interior edge between two boundary vertices (DoubleCover::original).
+[[nodiscard]] std::unique_ptr<FlatMetric> intrinsic_flat_metric(const Mesh& mesh,
+                                                                const MeshTables& tables,
+                                                                const FlowOptions& options);
+
+/// Genus 0, three or more boundaries: the circle domain (see module_circle_domain.cpp) of the
+/// flat metric `metric` (nullptr: fixed_flat_metric of the mesh).
+void circle_domain_module(const Mesh& mesh, const MeshTables& tables, const ModuleOptions& options,
+                          ModuleResult& result, FlatMetric* metric = nullptr);
 
 /// Genus 0, one boundary: the conformal map onto the unit disk (see module_circle_domain.cpp).
 /// \throw InvalidInputError for a bad options.centre.

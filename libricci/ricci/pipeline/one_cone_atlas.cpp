@@ -3,6 +3,7 @@
 #include "ricci/metric/polish_e2.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/arrays.h"
@@ -132,6 +133,9 @@ void polish_lengths(const OneConeAtlasOptions& options, OneConeAtlasResult& resu
   }
 }
 
+// polish_threshold at infinity switches the polish off.
+constexpr double kNeverPolish = std::numeric_limits<double>::infinity();
+
 bool intrinsic_applies(const OneConeProblem& problem) {
   return problem.kind == OneConeKind::SingleCone || problem.kind == OneConeKind::FlatTorus;
 }
@@ -164,17 +168,24 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     result.removed_edges =
         static_cast<int>(removed_edges(result.problem.mesh, r.triangulation).size());
     IntrinsicMesh domain = to_mesh(r.triangulation, r.u, to_arrays(result.problem.mesh).V);
-    if (!r.converged()) {
-      const PolishE2Result polish =
+    // As after the fixed-connectivity flows (polish_lengths): the layout multiplies the
+    // leftover defect by the distances it spans, so it goes in long double first, whatever its
+    // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
+    // 1.4e-13 gave 1e-9 relative error on its shortest edge).
+    if (!r.converged() || options.polish_threshold < kNeverPolish) {
+      result.polish =
           polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature);
-      if (polish.error_after <= settings.tolerance) {
-        domain.lengths = polish.lengths;
+      result.polished = true;
+      if (result.polish.error_after <= settings.tolerance) {
+        domain.lengths = result.polish.lengths;
         flow.status = FlowStatus::converged;
         flow.message.clear();
-        flow.max_error = polish.error_after;
+        flow.max_error = result.polish.error_after;
       }
     }
     if (flow.status == FlowStatus::converged) {
+      flow.metric_name = "intrinsic Delaunay flow (vertex scaling, " + std::to_string(r.flips) +
+                         " flips)";
       result.problem.mesh = std::move(domain.mesh);
       flow.lengths = std::move(domain.lengths);
       result.intrinsic = true;
@@ -226,6 +237,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       (options.route == FlowRoute::automatic && needs_singular_vertex(mesh) &&
        surface_topology(mesh).genus >= options.intrinsic_from_genus);
   bool fixed_failed = false;  // no candidate vertex converged with the fixed-connectivity flows
+  bool intrinsic_tried = false;
   if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
     report("choosing the singular vertex");
     Stopwatch t;
@@ -273,12 +285,34 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       result = std::move(attempt);
       result.flow.metric_name = "inversive-distance route (" + result.flow.metric_name + ")";
     } else {
-      prepare_and_solve(mesh, options, result, report, true);
-      Stopwatch polish;
-      polish_lengths(options, result);
-      result.timings.polish = polish.seconds();
-      const auto& failures = attempt.flow.failed_attempts;
-      result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(), failures.end());
+      std::vector<std::string> failures = attempt.flow.failed_attempts;
+      double failed_flow_seconds = attempt.timings.flow;
+      if (options.route == FlowRoute::automatic && options.intrinsic_before_fixed) {
+        // Next in conformality: the intrinsic flow (vertex scaling), before the circle packings.
+        OneConeAtlasResult second = result;
+        prepare_problem(mesh, options, second, report);
+        if (intrinsic_applies(second.problem)) {
+          second.flow.failed_attempts = failures;
+          solve_intrinsic(options, second, report);
+          intrinsic_tried = true;
+          if (second.flow.converged()) {
+            result = std::move(second);
+          } else {
+            failures = second.flow.failed_attempts;
+            failures.push_back(second.flow.message);
+            failed_flow_seconds += second.timings.flow;
+          }
+        }
+      }
+      if (!result.flow.converged()) {
+        prepare_and_solve(mesh, options, result, report, true);
+        Stopwatch polish_fixed;
+        polish_lengths(options, result);
+        result.timings.polish = polish_fixed.seconds();
+        result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(),
+                                           failures.end());
+      }
+      result.timings.flow += failed_flow_seconds;
     }
   } else {
     prepare_and_solve(mesh, options, result, report, true);
@@ -289,7 +323,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     result.timings.polish = polish.seconds();
   }
   if (!result.flow.converged() && options.route == FlowRoute::automatic && !fixed_failed &&
-      intrinsic_applies(result.problem)) {
+      !intrinsic_tried && intrinsic_applies(result.problem)) {
     solve_intrinsic(options, result, report);
   }
   if (!result.flow.converged()) throw SolverError(result.flow.message);
@@ -301,13 +335,11 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
 
   report("distortion");
   t.restart();
-  try {
-    result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths);
-  } catch (const InvalidInputError&) {
-    // The flipped triangulation's faces are not the input's: one may be flat in 3D (three
-    // vertices on a line), where the distortion is undefined. The report stays empty (0 faces).
-    if (!result.intrinsic) throw;
-  }
+  // The flipped triangulation's faces are not the input's: one may be flat in 3D (three
+  // vertices on a line), where the distortion is undefined; those are counted and left out.
+  DistortionOptions measure;
+  measure.skip_degenerate = result.intrinsic;
+  result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths, measure);
   result.timings.distortion = t.seconds();
   result.timings.total = start.seconds();
   return result;

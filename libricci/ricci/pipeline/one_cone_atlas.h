@@ -62,6 +62,12 @@ struct OneConeAtlasOptions {
   /// keep_metric; the route's failures are listed first in flow.failed_attempts and
   /// flow.metric_name names the winner.
   bool inversive_distance_route = true;
+  /// With route automatic, when the inversive-distance route fails: the intrinsic Delaunay flow
+  /// (vertex scaling, the discrete conformal metric: QC near 1) is tried before the circle
+  /// packings of solve_one_cone_flow (area-weighted QC ~1.7 under the 10 pi cone of genus 3),
+  /// which run only if it fails too. The atlas is then on the flipped triangulation
+  /// (OneConeAtlasResult::intrinsic).
+  bool intrinsic_before_fixed = true;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;
 };
@@ -87,8 +93,8 @@ struct OneConeAtlasResult {
   /// (intrinsic/flip_free.h; 0: the mesh is its own Delaunay triangulation for the metric; -1:
   /// the intrinsic flow did not run or did not get near the target).
   int removed_edges = -1;
-  /// (With `intrinsic`, `distortion` compares the metric with the flipped faces' 3D triangles,
-  /// and is left empty when one of those is degenerate.)
+  /// (With `intrinsic`, `distortion` compares the metric with the flipped faces' 3D triangles
+  /// (chords of the surface), leaving out and counting those that are degenerate.)
   /// Long-double polish of the flow's lengths before the layout (error_before/after: max
   /// |K - K̄| evaluated in long double). When skipped (polish_threshold), error_before and
   /// error_after hold the flow's double-precision defect and iterations is 0.

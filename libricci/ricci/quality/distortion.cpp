@@ -85,10 +85,15 @@ DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& len
   const Eigen::VectorXd original = embedded_lengths(mesh);
   std::vector<double> log_surface, log_flat, ratios, qc;
   double area_weighted_qc = 0, total_area = 0;
+  int skipped = 0;
   for (auto f : mesh.faces()) {
     if (!options.excluded_faces.empty() && options.excluded_faces[f.idx()]) continue;
     Lengths3 a = face_lengths(mesh, original, f), b = face_lengths(mesh, lengths, f);
     if (!valid_triangle(a) || !valid_triangle(b)) {
+      if (options.skip_degenerate) {
+        ++skipped;
+        continue;
+      }
       throw InvalidInputError("distortion: face " + std::to_string(f.idx()) + " is degenerate");
     }
     log_surface.push_back(std::log(heron_area(a)));
@@ -104,6 +109,7 @@ DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& len
   }
   DistortionReport report;
   report.faces = static_cast<int>(log_surface.size());
+  report.skipped_faces = skipped;
   if (report.faces == 0) return report;
   // Normalise both total areas to 1 in log space: log(A / sum A) = log A - log sum A.
   auto log_total = [](const std::vector<double>& logs) {

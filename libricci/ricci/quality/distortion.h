@@ -14,6 +14,10 @@ struct DistortionOptions {
   /// Faces to leave out (e.g. the cone's one-ring, outside the spline domain); indexed by face
   /// index, empty = use every face.
   std::vector<bool> excluded_faces;
+  /// Leave out (and count in DistortionReport::skipped_faces) the faces whose 3D triangle is
+  /// degenerate instead of throwing: an intrinsic triangulation's faces span chords of the
+  /// surface, three of whose vertices may lie on a line.
+  bool skip_degenerate = false;
 };
 
 struct DistortionReport {
@@ -29,11 +33,12 @@ struct DistortionReport {
   /// Its median and 95th percentile (the mean is dominated by a few slivers on scanned meshes).
   double quasi_conformal_p50 = 1.0, quasi_conformal_p95 = 1.0;
   int faces = 0;  ///< Faces measured.
+  int skipped_faces = 0;  ///< Degenerate faces left out (DistortionOptions::skip_degenerate).
 };
 
 /// Compares the metric `lengths` (by edge index, Euclidean background) with the mesh's 3D one.
 /// \pre lengths.size() == mesh.n_edges() and every face satisfies the triangle inequality in both.
-/// \throw InvalidInputError on size mismatch or a degenerate face.
+/// \throw InvalidInputError on size mismatch or a degenerate face (unless skip_degenerate).
 [[nodiscard]] DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& lengths,
                                                   const DistortionOptions& options = {});
 

@@ -522,10 +522,13 @@ struct DataPoints {
 
 // The input's vertices (first, in index order; area-weighted normals), its face centroids,
 // then, while fewer than `wanted`, the interior points of a barycentric grid of level m on
-// every face ((m - 1)(m - 2) / 2 of them, the centroid not twice).
-DataPoints data_points(const ricci::Mesh& dense, Eigen::Index wanted) {
+// every face ((m - 1)(m - 2) / 2 of them, the centroid not twice). When the vertices alone
+// are at least `enough`, they are all: a dense scan's centroids would triple the points to
+// project, fit and correct for no better fit.
+DataPoints data_points(const ricci::Mesh& dense, Eigen::Index wanted, Eigen::Index enough) {
   const Eigen::Index nv = static_cast<Eigen::Index>(dense.n_vertices());
-  const Eigen::Index nf = static_cast<Eigen::Index>(dense.n_faces());
+  const bool with_faces = nv < enough;
+  const Eigen::Index nf = with_faces ? static_cast<Eigen::Index>(dense.n_faces()) : 0;
   const auto per_face = [](int m) {
     return static_cast<Eigen::Index>((m - 1) * (m - 2) / 2 - (m % 3 == 0 ? 1 : 0));
   };
@@ -554,6 +557,7 @@ DataPoints data_points(const ricci::Mesh& dense, Eigen::Index wanted) {
     const Eigen::Vector3d area_normal =
         (corners.col(1) - corners.col(0)).cross(corners.col(2) - corners.col(0));
     for (int id : ids) data.normals.row(id) += area_normal.transpose();
+    if (!with_faces) continue;
     const Eigen::Vector3d n = area_normal.normalized();
     data.positions.row(nv + f.idx()) = corners.rowwise().mean().transpose();
     data.normals.row(nv + f.idx()) = n.transpose();
@@ -667,9 +671,12 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   // basis is no partition of unity: a punctured sphere's removed star lands there, and fitted
   // it dragged the rim, bunny: rim faces' RMS 4%) are left to the fill patches.
   const Eigen::Index nv = static_cast<Eigen::Index>(dense.n_vertices());
-  const DataPoints points = data_points(
-      dense, static_cast<Eigen::Index>(options.data_points_per_control_point *
-                                       static_cast<double>(space->function_count())));
+  const auto per_control_point = [&](double ratio) {
+    return static_cast<Eigen::Index>(ratio * static_cast<double>(space->function_count()));
+  };
+  const DataPoints points =
+      data_points(dense, per_control_point(options.data_points_per_control_point),
+                  per_control_point(options.vertices_only_per_control_point));
   // Oriented: a point on one side of a thin part is placed on that side of the domain.
   const auto closest =
       options.oriented_parameters
@@ -691,6 +698,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
                                        options.boundary_curve)
                : BoundaryCurvePoints{};
   const auto scan_points = static_cast<Eigen::Index>(parameters.size());
+  result.scan_data_points = static_cast<int>(scan_points);
   const auto pin_boundary = [&](std::vector<DomainPoint>& p) {
     for (std::size_t i = 0; i < boundary.scan_vertices.size(); ++i)
       p[static_cast<std::size_t>(boundary.scan_vertices[i])] = boundary.scan_vertex_parameters[i];

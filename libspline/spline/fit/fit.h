@@ -180,6 +180,11 @@ struct ScanFitOptions {
   /// each input face until there are at least this many per control point (a coarse input
   /// gives too few points for the spline's control points otherwise).
   double data_points_per_control_point = 1.0;
+  /// Dense inputs: when the input's vertices alone are at least this many per control point,
+  /// they are the only data points (no face centroids), which divides the cost of the
+  /// parameters, the fit and the corrections by about 3 on a 1M-face scan. The measures of the
+  /// delivered surface still take every input vertex.
+  double vertices_only_per_control_point = 16.0;
   /// Each data point's parameter is the closest point of the domain on a face facing the same
   /// way as the input there (ricci::closest_points with normals), not merely the closest point
   /// (on thin parts the closest point can lie on the other side). Off by default: on the
@@ -207,6 +212,9 @@ struct ScanFitResult {
   /// points are neither fitted nor measured.
   std::vector<DomainPoint> vertex_parameters;
   int uncovered_points = 0;  ///< vertices and face centroids of the input left out that way
+  /// Data points taken from the input: its vertices, then its face centroids and grid points
+  /// unless the vertices alone were enough (ScanFitOptions::vertices_only_per_control_point).
+  int scan_data_points = 0;
   FitResult fit;
   FairResult fairing;
   ScanFitTimings timings;

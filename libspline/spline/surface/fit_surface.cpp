@@ -13,6 +13,7 @@
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
+#include "ricci/mesh/small_holes.h"
 #include "spline/surface/adaptive_domain.h"
 #include "spline/surface/cap_holes.h"
 #include "spline/surface/tessellate_surface.h"
@@ -150,6 +151,8 @@ ScanFitOptions scan_options(const FitSurfaceOptions& options) {
 // by this factor each round.
 constexpr int kFoldRings = 2;
 constexpr double kFoldSmoothingStep = 3.0;
+// ... except on open inputs within this many rings of the boundary (the collar included).
+constexpr int kBoundaryBandRings = 2;
 
 // Gauss-Newton steps of the projection: the distance is stationary in the parameter, so its
 // error is second order in the step left (cup.off: 6 -> 2 steps moves the RMS by 0.07% of
@@ -236,9 +239,10 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
 }
 
 // The delivered surface (as a file holds it) against the whole input, both ways; the guard
-// against points of the surface far from the input.
+// against points of the surface far from the input. The boundary loops capped as small holes
+// (capped_vertex, by input vertex) are left out of the boundary comparison.
 void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& options,
-                       FittedSurface& out) {
+                       const std::vector<char>& capped_vertex, FittedSurface& out) {
   const ricci::VertexFaceArrays input = ricci::to_arrays(dense);
   std::vector<std::array<int, 3>> input_triangles(static_cast<std::size_t>(input.F.rows()));
   for (Eigen::Index f = 0; f < input.F.rows(); ++f)
@@ -247,6 +251,7 @@ void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& option
   // Patches capping the input's own boundary loops cover what the scan does not have: they are
   // left out of the surface-to-scan direction (and counted there).
   ScanDistanceOptions measure = options.measure;
+  if (out.capped_holes > 0) measure.unmeasured_scan_boundary = capped_vertex;
   const auto& fills = out.surface.fills;
   const auto& face = out.tessellation.triangle_face;
   measure.unmeasured_surface_triangles.assign(face.size(), 0);
@@ -476,8 +481,10 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   return {std::move(next), std::move(round)};
 }
 
-// Delivers `next` (and its round) instead of `out`, keeping out's stage times and history.
+// Delivers `next` (and its round) instead of `out`, keeping out's stage times and history and
+// what follow_boundary did (the later rounds reuse the first round's followed domain).
 void adopt_round(std::pair<FittedSurface, Round>&& next, FittedSurface& out, Round& best) {
+  next.first.boundary_follow = out.boundary_follow;
   next.first.seconds = std::move(out.seconds);
   next.first.cpu_seconds = std::move(out.cpu_seconds);
   next.first.refinement = std::move(out.refinement);
@@ -545,6 +552,19 @@ std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
   return points;
 }
 
+// `faces` (flags by face of `domain`) grown by `rings` rings of edge neighbours.
+std::vector<char> grown_by_rings(const ricci::Mesh& domain, std::vector<char> faces, int rings) {
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> grown = faces;
+    for (auto f : domain.faces()) {
+      if (!faces[static_cast<std::size_t>(f.idx())]) continue;
+      for (auto g : domain.ff_range(f)) grown[static_cast<std::size_t>(g.idx())] = 1;
+    }
+    faces = std::move(grown);
+  }
+  return faces;
+}
+
 // Faces of the surface's domain (mesh indices) holding an edge of the tessellation that folds,
 // grown by `rings` rings of edge neighbours.
 std::vector<char> faces_near_folds(const FittedSurface& out, int rings) {
@@ -562,15 +582,24 @@ std::vector<char> faces_near_folds(const FittedSurface& out, int rings) {
       if (folds.count(std::min(a, b) * n + std::max(a, b))) near[face] = 1;
     }
   }
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> grown = near;
-    for (auto f : domain.faces()) {
-      if (!near[f.idx()]) continue;
-      for (auto g : domain.ff_range(f)) grown[g.idx()] = 1;
+  return grown_by_rings(domain, std::move(near), rings);
+}
+
+// Domain faces of an open surface within `rings` rings of the input's boundary: the collar's
+// ghost faces and those next to them (without a collar: the faces at the domain's boundary).
+std::vector<char> faces_near_boundary(const FittedSurface& out, int rings) {
+  const ricci::Mesh& domain = out.surface.domain;
+  std::vector<char> near(domain.n_faces(), 0);
+  const bool collar = out.collar_faces.size() == near.size();
+  for (auto f : domain.faces()) {
+    char& flag = near[static_cast<std::size_t>(f.idx())];
+    if (collar) {
+      flag = out.collar_faces[static_cast<std::size_t>(f.idx())] != 0;
+    } else {
+      for (auto v : domain.fv_range(f)) flag |= static_cast<char>(domain.is_boundary(v));
     }
-    near = std::move(grown);
   }
-  return near;
+  return grown_by_rings(domain, std::move(near), rings);
 }
 
 // A refined round is kept when it folds less, or as little with fewer vertices over the
@@ -635,14 +664,20 @@ void check_options(const FitSurfaceOptions& o,
   require(o.fold_rounds >= 0 && o.fold_rounds <= 8, "fold_rounds", "in [0, 8]");
   require(o.fold_smoothing > 0.0 && o.fold_smoothing < 1e6, "fold_smoothing", "in (0, 1e6)");
   require(o.fold_rms_growth >= 1.0, "fold_rms_growth", ">= 1");
+  require(o.small_hole_diameter >= 0.0 && o.small_hole_diameter < 1.0, "small_hole_diameter",
+          "in [0, 1) (a fraction of the diagonal; 0: no hole capped)");
   require(o.fold_rms_goal >= 0.0 && o.fold_rms_goal < 1.0, "fold_rms_goal",
           "in [0, 1) (a fraction of the diagonal)");
 }
 
-FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& options) {
+FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& options) {
   check_options(options);
   FittedSurface out;
   StageClock clock(out, options);
+  // The fit sees the input with its small holes capped (same vertex indices); the delivered
+  // surface is measured against the input as given.
+  ricci::SmallHoleCaps holes = ricci::cap_small_holes(input, {options.small_hole_diameter});
+  const ricci::Mesh& dense = holes.capped_loops > 0 ? holes.mesh : input;
   out.input = ricci::surface_topology(dense);
   out.bbox_diagonal = input_diagonal(dense);
   check_domain_size(dense, out.input, options);
@@ -693,19 +728,34 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
   // space, so the domain's face indices stay), a round kept when it folds less.
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
-  const double rms_limit = std::max(options.fold_rms_growth * out.projection_rms,
-                                    options.fold_rms_goal * out.bbox_diagonal);
-  // Closed inputs only: on open ones the smoothing moved the boundary (ChineseDragon-10kv:
-  // boundary distance 0.92% -> 1.39% of the diagonal).
-  const int fold_rounds = out.input.boundary_loops == 0 ? options.fold_rounds : 0;
-  for (int round = 1; round <= fold_rounds && out.surface_dihedral.over_90_deg > 0;
+  // The goal and the refit on the same space were measured on closed inputs; open ones fit
+  // the whole scan again each round (h/rim's boundary measurements).
+  const bool closed = out.input.boundary_loops == 0;
+  const double rms_limit =
+      std::max(options.fold_rms_growth * out.projection_rms,
+               closed ? options.fold_rms_goal * out.bbox_diagonal : 0.0);
+  // Open inputs: not in the band along the boundary, where the smoothing moved the boundary
+  // (ChineseDragon-10kv: boundary distance 0.92% -> 1.39% of the diagonal).
+  const std::vector<char> band = out.input.boundary_loops > 0
+                                     ? faces_near_boundary(out, kBoundaryBandRings)
+                                     : std::vector<char>{};
+  for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
        ++round, level *= kFoldSmoothingStep) {
     clock.begin("refine");
     const std::vector<char> near = faces_near_folds(out, kFoldRings);
     face_smoothing.resize(near.size(), 0.0);
     for (std::size_t f = 0; f < near.size(); ++f)
-      if (near[f]) face_smoothing[f] = std::max(face_smoothing[f], level);
-    auto next = refit_round(dense, options, face_smoothing, best, clock, out);
+      if (near[f] && (band.empty() || !band[f]))
+        face_smoothing[f] = std::max(face_smoothing[f], level);
+    std::pair<FittedSurface, Round> next;
+    if (closed) {
+      next = refit_round(dense, options, face_smoothing, best, clock, out);
+    } else {
+      scan.domain = best.domain;
+      scan.boundary_follow.max_rounds = 0;
+      scan.fit.face_smoothing = face_smoothing;
+      next = next_round(dense, scan, options, clock, out);
+    }
     out.refinement.push_back(round_summary(next.first, next.second, options));
     if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
     if (!better(next.first, next.second, out, best, options)) continue;
@@ -717,7 +767,9 @@ FittedSurface fit_surface(const ricci::Mesh& dense, const FitSurfaceOptions& opt
   if (single_round) out.refinement.push_back(round_summary(out, best, options));
 
   clock.begin("measure");
-  measure_delivered(dense, options, out);
+  out.capped_holes = holes.capped_loops;  // on the round delivered
+  out.capped_hole_diameter = holes.largest_diameter;
+  measure_delivered(input, options, holes.capped_vertex, out);
   clock.finish();
   return out;
 }

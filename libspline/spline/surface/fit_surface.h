@@ -38,6 +38,9 @@ struct FitSurfaceOptions {
   /// least area distortion. Ignored, but still checked, where there is no cone (open, tori).
   int singular_vertex = -1;
   bool fill_boundaries = false;  ///< Also cap the input's own boundary loops.
+  /// Boundary loops of the input narrower than this fraction of its bounding-box diagonal (a
+  /// scan's missing triangle) are capped before the fit (ricci::cap_small_holes); 0: none.
+  double small_hole_diameter = 0.002;
   /// Tessellation samples per domain edge - 1; 0: chosen by domain size (default_density).
   int density = 0;
   /// The run fails (ricci::SolverError, nothing delivered) when a point of the tessellated
@@ -52,18 +55,18 @@ struct FitSurfaceOptions {
   int refinement_rounds = 1;
   /// Error goal as a fraction of the input's bounding-box diagonal (0: folds only).
   double tolerance = 0.0;
-  /// Fold rounds (closed inputs), after the refinement: while the surface folds, the domain
-  /// faces within two rings of the folds are fitted again with at least fold_smoothing
-  /// (FitOptions::smoothing's unit; three times more each further round) on the same domain
-  /// and cone; a round is kept when it folds less (a sharp crease is rounded, not folded).
-  /// 0: none.
+  /// Fold rounds, after the refinement: while the surface folds, the domain faces within two
+  /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with
+  /// at least fold_smoothing (FitOptions::smoothing's unit; three times more each further
+  /// round) on the same domain and cone; a round is kept when it folds less (a sharp crease is
+  /// rounded, not folded). 0: none.
   int fold_rounds = 4;
   double fold_smoothing = 1e-2;
   /// The fold rounds stop at the first whose RMS (projection) exceeds both this factor times
   /// the RMS before them (>= 1) and fold_rms_goal: folds are traded for error only this far.
   double fold_rms_growth = 1.25;
-  /// RMS (projection, fraction of the input's bounding-box diagonal) the fold rounds may
-  /// always reach, below the 0.2% asked of smooth scans; 0: the growth factor alone.
+  /// Closed inputs: RMS (projection, fraction of the input's bounding-box diagonal) the fold
+  /// rounds may always reach, below the 0.2% asked of smooth scans; 0: the growth factor alone.
   double fold_rms_goal = 0.0019;
   /// Measures of the delivered surface against the input (coverage tolerance, threads).
   ScanDistanceOptions measure;
@@ -76,8 +79,10 @@ struct FitSurfaceOptions {
 /// Checks the ranges of the options: domain_faces >= 1, degree in [1, kMaxDmsDegree], fairness
 /// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64], cone_refinement.levels
 /// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
-/// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1, fold_rms_goal in [0, 1). `name` spells a field (given as "domain_faces", "cone_refinement", ...) the way the
-/// caller's user knows it, e.g. msp fit's "--domain-faces" (default: the field's own name).
+/// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1,
+/// fold_rms_goal in [0, 1), small_hole_diameter in [0, 1). `name` spells a field (given as
+/// "domain_faces", "cone_refinement", ...) the way the caller's user knows it, e.g. msp fit's
+/// "--domain-faces" (default: the field's own name).
 /// \throw ricci::InvalidInputError naming the first option out of range and its range.
 void check_options(const FitSurfaceOptions& options,
                    const std::function<std::string(const std::string& field)>& name = {});
@@ -98,7 +103,11 @@ struct FittedSurface {
   /// The delivered surface: domain mesh, spline (moved to meet the patches), the patches,
   /// the rims left open and the faces the patches cover.
   SplineSurface surface;
-  ricci::SurfaceTopology input;  ///< Of the input mesh.
+  ricci::SurfaceTopology input;  ///< Of the input mesh with its small holes capped.
+  /// The input's boundary loops capped as small holes and the largest one's diameter (fraction
+  /// of the diagonal); they are left out of delivered's boundary comparison.
+  int capped_holes = 0;
+  double capped_hole_diameter = 0.0;
   /// The one-cone atlas the spline is built on (cut loops, charts, flow, cone refinement);
   /// atlas.problem.mesh equals surface.domain.
   ricci::OneConeAtlasResult atlas;
@@ -161,7 +170,8 @@ struct FittedSurface {
 /// the cone's star, the cut graph's 2g loops and a vertex chart around each.
 [[nodiscard]] int minimum_domain_faces(int genus);
 
-/// Fits the surface to `dense` (its vertices and face centroids) and caps its holes: the cone
+/// Fits the surface to `dense` (its vertices and face centroids; its small holes capped first)
+/// and caps the surface's holes: the cone
 /// hole always (grown, and retried on a bigger hole where its patch flips), excluded-face holes
 /// always, boundary loops with fill_boundaries (a closed genus-0 input's puncture always).
 /// Every round (the first, each refinement or fold round) is judged with its holes found but

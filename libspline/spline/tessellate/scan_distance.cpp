@@ -141,6 +141,13 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
                                    std::to_string(unmeasured.size()) + " flags for " +
                                    std::to_string(surface_triangles.size()) + " triangles");
   }
+  const std::vector<char>& unmeasured_rim = options.unmeasured_scan_boundary;
+  if (!unmeasured_rim.empty() &&
+      static_cast<Eigen::Index>(unmeasured_rim.size()) != scan_positions.rows()) {
+    throw ricci::InvalidInputError("unmeasured_scan_boundary has " +
+                                   std::to_string(unmeasured_rim.size()) + " flags for " +
+                                   std::to_string(scan_positions.rows()) + " scan vertices");
+  }
   ScanDistanceReport report;
   report.bbox_diagonal =
       (scan_positions.colwise().maxCoeff() - scan_positions.colwise().minCoeff()).norm();
@@ -195,7 +202,16 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
 
   // Boundaries.
   const auto surface_rim = soup_boundary_edges(surface_triangles);
-  const auto scan_rim = soup_boundary_edges(scan_triangles);
+  auto scan_rim = soup_boundary_edges(scan_triangles);
+  if (!unmeasured_rim.empty()) {
+    const auto left_out = [&unmeasured_rim](const std::array<int, 2>& e) {
+      return unmeasured_rim[static_cast<std::size_t>(e[0])] &&
+             unmeasured_rim[static_cast<std::size_t>(e[1])];
+    };
+    const auto kept = std::remove_if(scan_rim.begin(), scan_rim.end(), left_out);
+    report.scan_boundary_edges_left_out = static_cast<int>(scan_rim.end() - kept);
+    scan_rim.erase(kept, scan_rim.end());
+  }
   report.surface_boundary_edges = static_cast<int>(surface_rim.size());
   report.scan_boundary_edges = static_cast<int>(scan_rim.size());
   if (!surface_rim.empty() && !scan_rim.empty()) {

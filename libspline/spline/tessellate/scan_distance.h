@@ -17,6 +17,9 @@ struct ScanDistanceOptions {
   /// By surface triangle, nonzero: left out of the surface-to-scan direction (a patch that caps
   /// a hole of the scan has no scan to be near). Empty: every triangle measured.
   std::vector<char> unmeasured_surface_triangles;
+  /// By scan vertex, nonzero: a scan boundary edge with both ends flagged is left out of the
+  /// boundary comparison (a small hole the surface caps on purpose). Empty: every edge compared.
+  std::vector<char> unmeasured_scan_boundary;
 };
 
 /// Distances are absolute (the scan's units); divide by bbox_diagonal for fractions.
@@ -42,6 +45,7 @@ struct ScanDistanceReport {
   /// other's edges) and their maximum, the Hausdorff distance. -1 when either side has no
   /// boundary (a closed surface and a closed scan: nothing to compare).
   int scan_boundary_edges = 0, surface_boundary_edges = 0;
+  int scan_boundary_edges_left_out = 0;  ///< By unmeasured_scan_boundary (not in the count above).
   double surface_boundary_to_scan_boundary = -1.0, scan_boundary_to_surface_boundary = -1.0;
   double boundary_hausdorff = -1.0;
   /// The boundary sample (of either side) at the Hausdorff distance from the other boundary.
@@ -50,7 +54,8 @@ struct ScanDistanceReport {
 
 /// Measures `surface` (positions, triangles by position index) against the scan (the same).
 /// \throw ricci::InvalidInputError for indices out of range, non-finite positions, an empty
-///        surface or scan, every surface triangle unmeasured, unmeasured flags of another size,
+///        surface or scan, every surface triangle unmeasured, unmeasured flags of another size
+///        (either kind),
 ///        or a coverage tolerance that is not positive.
 [[nodiscard]] ScanDistanceReport measure_against_scan(
     const Eigen::MatrixX3d& surface_positions,

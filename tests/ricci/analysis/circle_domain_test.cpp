@@ -30,14 +30,16 @@ const std::vector<TestCircle> kFiveHoles = {
     {0, 0, 0.22}, {0.55, 0, 0.14}, {-0.4, 0.5, 0.12}, {-0.45, -0.45, 0.1}, {0.2, -0.7, 0.08}};
 
 /// The module of `mesh` (a conformal image of the domain with `holes`) is the domain's.
-void expect_circle_domain(const Mesh& mesh, const std::vector<TestCircle>& holes,
-                          double tolerance) {
+void expect_circle_domain(const Mesh& mesh, const std::vector<TestCircle>& holes, double tolerance,
+                          const ModuleOptions& options = {}) {
   const SurfaceTopology topology = surface_topology(mesh);
   ASSERT_TRUE(topology.manifold);
   ASSERT_EQ(topology.boundary_loops, static_cast<int>(holes.size()) + 1);
-  const ModuleResult result = conformal_module(mesh);
+  const ModuleResult result = conformal_module(mesh, options);
   ASSERT_TRUE(result.converged) << result.message;
   EXPECT_EQ(result.kind, ModuleKind::CircleDomain);
+  EXPECT_EQ(result.preparation,
+            options.intrinsic_circle_domain ? "intrinsic Delaunay" : "as given");
   const std::vector<double> expected = expected_module(holes);
   ASSERT_EQ(result.values.size(), expected.size());
   std::cout << mesh.n_faces() << " faces, " << result.circle_iterations << " target updates, "
@@ -57,6 +59,33 @@ TEST(CircleDomain, FiveHoles) {
   expect_circle_domain(testing::circle_domain_mesh(kFiveHoles, 0.02), kFiveHoles, 1e-3);
 }
 
+TEST(CircleDomain, IntrinsicDelaunayFlowGivesTheSameDomain) {
+  // The flow with intrinsic flips on the double cover (another discrete conformal structure, the
+  // route for lion.off): the five holes again, and on the stereographic image, whose faces the
+  // flips change, and the drawn domain has every face counter-clockwise.
+  ModuleOptions options;
+  options.intrinsic_circle_domain = true;
+  const Mesh plane = testing::circle_domain_mesh(kFiveHoles, 0.02);
+  expect_circle_domain(plane, kFiveHoles, 1e-3, options);
+  const Mesh sphere =
+      testing::mapped(plane, [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 2.0); });
+  const ModuleResult result = conformal_module(sphere, options);
+  ASSERT_TRUE(result.converged) << result.message;
+  const std::vector<double> expected = expected_module(kFiveHoles);
+  ASSERT_EQ(result.values.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_NEAR(result.values[i], expected[i], 1e-3) << result.names[i];
+  }
+  const CanonicalDomain& domain = result.domain;
+  ASSERT_GE(domain.positions.rows(), static_cast<Eigen::Index>(sphere.n_vertices()));
+  for (Eigen::Index f = 0; f < domain.faces.rows(); ++f) {
+    const Eigen::Vector2d a = domain.positions.row(domain.faces(f, 0));
+    const Eigen::Vector2d b = domain.positions.row(domain.faces(f, 1));
+    const Eigen::Vector2d c = domain.positions.row(domain.faces(f, 2));
+    EXPECT_GT((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x(), 0) << "face " << f;
+  }
+}
+
 TEST(CircleDomain, ConformalImagesKeepTheModule) {
   // A disk automorphism (circles stay circles, but the sampling and the normalisation change)
   // and the stereographic image on the sphere; both keep the holes' order by length.
@@ -67,8 +96,7 @@ TEST(CircleDomain, ConformalImagesKeepTheModule) {
                                        }),
                        kFiveHoles, 1e-3);
   expect_circle_domain(
-      testing::mapped(plane,
-                      [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 2.0); }),
+      testing::mapped(plane, [](const Eigen::Vector3d& p) { return testing::onto_sphere(p, 2.0); }),
       kFiveHoles, 1e-3);
 }
 

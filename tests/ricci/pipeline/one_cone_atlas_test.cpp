@@ -322,4 +322,33 @@ TEST(OneConeAtlas, DefaultMetricIsTheMostConformalRouteThatConverges) {
   EXPECT_EQ(next.atlas.layout.flipped_faces, 0);
 }
 
+// Under the 10 pi cone of genus3_10k's vertex 0 the inversive-distance route breaks triangles;
+// the intrinsic Delaunay flow (vertex scaling) comes next and wins over the circle packing,
+// which is far less conformal, and the route's failure stays listed.
+TEST(OneConeAtlas, AfterAFailedRouteTheIntrinsicFlowComesBeforeTheCirclePacking) {
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj.gz"));
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  const ricci::OneConeAtlasResult best = ricci::build_one_cone_atlas(mesh, options);
+  ASSERT_TRUE(best.intrinsic) << best.flow.metric_name;
+  EXPECT_EQ(best.flow.metric_name.rfind("intrinsic Delaunay flow", 0), 0u) << best.flow.metric_name;
+  ASSERT_FALSE(best.flow.failed_attempts.empty());
+  EXPECT_EQ(best.flow.failed_attempts.front().rfind("inversive-distance", 0), 0u)
+      << best.flow.failed_attempts.front();
+  EXPECT_LT(best.distortion.quasi_conformal_area_mean, 1.3);
+  EXPECT_GT(best.distortion.faces, 0.99 * static_cast<double>(best.problem.mesh.n_faces()));
+  EXPECT_EQ(best.atlas.layout.flipped_faces, 0);
+  EXPECT_LT(best.relative_transition_residual(), 1e-9);
+  EXPECT_LT(best.atlas.layout.max_relative_length_error, 1e-9);
+  EXPECT_NEAR(best.problem.targets.curvature[best.problem.cone],
+              2 * M_PI * (2 - 2 * 3), 1e-12);
+
+  options.intrinsic_before_fixed = false;
+  const ricci::OneConeAtlasResult next = ricci::build_one_cone_atlas(mesh, options);
+  EXPECT_FALSE(next.intrinsic);
+  EXPECT_EQ(next.flow.metric.scheme, ricci::Scheme::circle_packing);
+  EXPECT_GT(next.distortion.quasi_conformal_area_mean,
+            best.distortion.quasi_conformal_area_mean + 0.3);
+}
+
 }  // namespace

@@ -71,4 +71,18 @@ TEST(Distortion, WrongSizeAndDegenerateMetricsAreRefused) {
   EXPECT_THROW((void)ricci::measure_distortion(mesh, l), ricci::InvalidInputError);
 }
 
+// With skip_degenerate the faces of edge 0 (broken by a huge length) are left out and counted;
+// the others are measured as before.
+TEST(Distortion, DegenerateFacesAreCountedWhenSkipped) {
+  auto mesh = eight();
+  Eigen::VectorXd l = own_lengths(mesh);
+  l[0] = 1e6;
+  ricci::DistortionOptions options;
+  options.skip_degenerate = true;
+  const auto r = ricci::measure_distortion(mesh, l, options);
+  EXPECT_EQ(r.skipped_faces, 2);
+  EXPECT_EQ(r.faces, static_cast<int>(mesh.n_faces()) - 2);
+  EXPECT_NEAR(r.quasi_conformal_max, 1.0, 1e-9);
+}
+
 }  // namespace

@@ -147,6 +147,28 @@ TEST(Fit, ScanPipelineFitsTheBundledTorus) {
   EXPECT_LT(result.fairing.max_constraint_residual, 1e-9 * diagonal);
 }
 
+// A dense input (here: vertices asked for at only 0.1 per control point) is fitted through its
+// vertices alone, without face centroids, and fits as well.
+TEST(Fit, DenseInputsAreFittedThroughTheirVerticesAlone) {
+  const ricci::Mesh dense = ricci::read_mesh(msp_test::bundled_model("genus1.off"));
+  const auto nv = static_cast<int>(dense.n_vertices());
+  ScanFitOptions options;
+  options.domain_faces = 600;
+  const ScanFitResult all = fit_scan(dense, options);
+  EXPECT_GE(all.scan_data_points, nv + static_cast<int>(dense.n_faces()));  // and grid points
+  options.vertices_only_per_control_point = 0.1;
+  const ScanFitResult vertices = fit_scan(dense, options);
+  EXPECT_EQ(vertices.scan_data_points, nv);
+  Eigen::MatrixX3d points(nv, 3);
+  for (auto v : dense.vertices()) points.row(v.idx()) = ricci::to_eigen(dense.point(v)).transpose();
+  const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+  const FitErrors a = fit_errors(all.spline, all.vertex_parameters, points);
+  const FitErrors b = fit_errors(vertices.spline, vertices.vertex_parameters, points);
+  EXPECT_EQ(b.points, nv);
+  EXPECT_LT(b.rms, 2e-3 * diagonal);
+  EXPECT_LT(b.rms, 1.5 * a.rms);
+}
+
 // Random points near the piecewise-linear surface of a small space, with parameters.
 struct Samples {
   std::vector<DomainPoint> parameters;

@@ -159,6 +159,32 @@ TEST(MeasureAgainstScan, UnmeasuredTrianglesAreLeftOutAndCounted) {
                ricci::InvalidInputError);
 }
 
+// A scan with one triangle missing in the middle, measured against a surface that covers it:
+// the hole's rim is half a unit from the surface's boundary unless its vertices are flagged.
+TEST(MeasureAgainstScan, FlaggedScanBoundaryIsLeftOutOfTheBoundaryComparison) {
+  const Grid surface = grid(10, 1.0, 0.0);
+  Grid scan = surface;
+  ASSERT_EQ(scan.triangles[110], (std::array<int, 3>{60, 61, 72}));  // cell (5, 5)
+  scan.triangles.erase(scan.triangles.begin() + 110);
+  const ScanDistanceReport open =
+      measure_against_scan(surface.positions, surface.triangles, scan.positions, scan.triangles);
+  EXPECT_EQ(open.scan_boundary_edges, 40 + 3);
+  EXPECT_NEAR(open.boundary_hausdorff, 0.5, 1e-12);  // vertex 60 = (0.5, 0.5)
+  ScanDistanceOptions options;
+  options.unmeasured_scan_boundary.assign(static_cast<std::size_t>(scan.positions.rows()), 0);
+  for (int v : {60, 61, 72}) options.unmeasured_scan_boundary[static_cast<std::size_t>(v)] = 1;
+  const ScanDistanceReport r = measure_against_scan(surface.positions, surface.triangles,
+                                                    scan.positions, scan.triangles, options);
+  EXPECT_EQ(r.scan_boundary_edges, 40);
+  EXPECT_EQ(r.scan_boundary_edges_left_out, 3);
+  EXPECT_NEAR(r.boundary_hausdorff, 0.0, 1e-12);
+  EXPECT_EQ(r.fit_max, 0.0);  // the vertices still measured
+  options.unmeasured_scan_boundary.pop_back();
+  EXPECT_THROW((void)measure_against_scan(surface.positions, surface.triangles, scan.positions,
+                                          scan.triangles, options),
+               ricci::InvalidInputError);
+}
+
 TEST(MeasureAgainstScan, ClosedSurfacesHaveNoBoundaryFigure) {
   Eigen::MatrixX3d p(4, 3);
   p << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
