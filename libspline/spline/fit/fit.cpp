@@ -751,6 +751,9 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     result.spline.control_points = result.fairing.control_points;
     result.timings.fair = t.seconds();
   }
+  result.data_points = std::move(data);
+  result.data_parameters = std::move(parameters);
+  result.fit_options = std::move(fit_options);
   result.timings.total = total_start.seconds();
   return result;
 }

@@ -231,6 +231,12 @@ struct ScanFitResult {
   /// The domain before the collar and the atlas (simplified, boundary followed, or the given
   /// ScanFitOptions::domain): what a refinement of the domain starts from.
   ricci::Mesh domain;
+  /// What a refit on the same space starts from: every data point fitted (the input's
+  /// vertices, face centroids and grid points, boundary samples), its parameter after the
+  /// corrections, and the fit options the fit used (constraint_r set).
+  Eigen::MatrixX3d data_points;
+  std::vector<DomainPoint> data_parameters;
+  FitOptions fit_options;
 };
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the

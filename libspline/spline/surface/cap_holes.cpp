@@ -88,7 +88,7 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
   ChosenRims chosen;
   chosen.rims = find(0);
   chosen.cone = cone_rim(chosen.rims);
-  if (chosen.cone < 0) return chosen;
+  if (chosen.cone < 0 || !options.make_patches) return chosen;
   chosen.cone_fill = fill_rim(surface.spline, surface.domain, chosen.rims[chosen.cone],
                               cone_options);
   constexpr double kFlipped = 90.0;
@@ -152,6 +152,17 @@ CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options)
   CapHolesReport report;
   surface.fills.clear();
   surface.open_rims.clear();
+  if (!options.make_patches) {
+    for (Rim& rim : chosen.rims) {
+      const bool input_boundary = rim.kind == Rim::Kind::boundary && options.open_input;
+      report.boundary_rims += input_boundary;
+      // As below: an open boundary's band stays with a collar, a capped rim's faces go.
+      if (!input_boundary || options.fill_boundaries || collar.empty())
+        for (int f : rim.covered_faces) surface.skipped_faces[static_cast<std::size_t>(f)] = 1;
+      surface.open_rims.push_back(std::move(rim));
+    }
+    return report;
+  }
   for (std::size_t r = 0; r < chosen.rims.size(); ++r) {
     Rim& rim = chosen.rims[r];
     // A closed input's domain boundary is the punctured sphere's removed star: always capped.

@@ -34,6 +34,11 @@ struct CapHolesOptions {
   std::vector<char> collar_faces;
   /// Growth limits of the cone hole (fit_surface: cone_hole_limits of the input's genus).
   ConeHoleLimits cone_hole;
+  /// false: the rims are found (the cone hole grown past badly conditioned or folded faces,
+  /// without the retries a flipping patch causes) and their faces skipped, but no patch is
+  /// made and every rim stays open: the surface as a fit round is judged before the delivered
+  /// round is capped (fit_surface).
+  bool make_patches = true;
 };
 
 struct CapHolesReport {
@@ -52,7 +57,8 @@ struct CapHolesReport {
 /// (kept only when the largest seam drops). Sets surface.fills, open_rims, skipped_faces (the
 /// faces outside the domain, the collar, and every rim's covered faces; an open rim's too when
 /// there is no collar) and surface.spline.
-/// \pre surface.domain and surface.spline as fit_scan leaves them; fills and open_rims empty.
+/// With make_patches false only the rims and skipped_faces are set (open_rims holds every rim).
+/// \pre surface.domain and surface.spline as fit_scan leaves them.
 /// \throw ricci::SolverError when a patch's system cannot be solved; as find_rims.
 [[nodiscard]] CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options);
 

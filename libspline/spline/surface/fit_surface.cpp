@@ -210,6 +210,8 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
                                        const std::vector<PatchTessellation>& patches,
                                        FittedSurface& out) {
   const SplineSurface& surface = out.surface;
+  out.fit_points_on_fills = out.projection_points = 0;
+  out.projection_max = 0.0;
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
   std::vector<char> on_fill(distance.size(), 0);
@@ -279,8 +281,14 @@ void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& option
 }
 
 // Topology and smoothness of the tessellation and the spline's own seams.
-void measure_surface(FittedSurface& out) {
+// `folds_only`: the dihedral angles alone (a round judged before its holes are capped, whose
+// topology and seams are measured again once it is delivered).
+void measure_surface(FittedSurface& out, bool folds_only) {
   const Tessellation& t = out.tessellation;
+  if (folds_only) {
+    out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
+    return;
+  }
   out.topology = check_watertight(t.triangles, t.positions);
   // The rims left open on purpose: each is one boundary loop of the result (nearby input loops
   // merged into one rim count once).
@@ -307,30 +315,31 @@ void take_scan(ScanFitResult&& scan, FittedSurface& out) {
   out.boundary_follow = scan.boundary_follow;
 }
 
-// What one fit round leaves for the refinement: the domain it was built on and the distance of
-// every input vertex to the surface (-1: not measured).
+// What one fit round leaves for the refinement: the domain it was built on, the parameters of
+// the input's vertices and the distance of every input vertex to the surface (-1: not measured).
 struct Round {
   ricci::Mesh domain;
+  std::vector<DomainPoint> parameters;
   std::vector<double> vertex_distance;
+  Eigen::MatrixX3d data_points;  // fit_scan's, for a refit on the same space
+  std::vector<DomainPoint> data_parameters;
+  FitOptions fit;
 };
 
-// One whole fit: fit_scan, the patches, the tessellation (at `density`, 0: by domain size) and
-// the measures of the surface itself; the delivered-surface measures come once, at the end.
-Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
-                const FitSurfaceOptions& options, int density, StageClock& clock,
-                FittedSurface& out) {
-  ScanFitResult fitted = fit_scan(dense, scan);
-  const std::vector<DomainPoint> parameters = std::move(fitted.vertex_parameters);
-  Round round;
-  round.domain = std::move(fitted.domain);
-  take_scan(std::move(fitted), out);
-
-  clock.begin("fill");
+// The holes of out.surface (its spline as fit_scan left it) found and, with `patches`, capped;
+// the tessellation (at `density`, 0: by domain size) and the measures of the surface itself.
+// Without patches the rims stay open and the vertices over them are left out of the projection:
+// rounds judged that way compare with each other, and only the delivered one is capped.
+void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, int density,
+                  bool patches, bool project, StageClock& clock, Round& round,
+                  FittedSurface& out) {
+  clock.begin(patches ? "fill" : "rims");
   CapHolesOptions cap;
   cap.open_input = out.input.boundary_loops > 0;
   cap.fill_boundaries = options.fill_boundaries;
   cap.collar_faces = out.collar_faces;
   cap.cone_hole = cone_hole_limits(out.input.genus);
+  cap.make_patches = patches;
   CapHolesReport capped = cap_holes(out.surface, cap);
   out.fill_failures = std::move(capped.failures);
   out.boundary_rims = capped.boundary_rims;
@@ -344,13 +353,46 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
                  : options.density > 0      ? options.density
                                             : default_density(
                                              out.surface.spline.space->domain_face_count());
-  std::vector<PatchTessellation> patches;
-  out.tessellation = tessellate_surface(out.surface, tess, patches);
+  std::vector<PatchTessellation> tessellated_patches;
+  out.tessellation = tessellate_surface(out.surface, tess, tessellated_patches);
 
   clock.begin("measure");
-  measure_surface(out);
-  round.vertex_distance = measure_projection(dense, parameters, patches, out);
+  measure_surface(out, !patches);
+  if (project)
+    round.vertex_distance = measure_projection(dense, round.parameters, tessellated_patches, out);
+}
+
+// One whole fit: fit_scan, then finish_round without patches (fit_surface caps the delivered
+// round once, deliver_round); `project`: with the projection's measures.
+Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
+                const FitSurfaceOptions& options, int density, bool project, StageClock& clock,
+                FittedSurface& out) {
+  ScanFitResult fitted = fit_scan(dense, scan);
+  Round round;
+  round.parameters = std::move(fitted.vertex_parameters);
+  round.domain = std::move(fitted.domain);
+  round.data_points = std::move(fitted.data_points);
+  round.data_parameters = std::move(fitted.data_parameters);
+  round.fit = std::move(fitted.fit_options);
+  take_scan(std::move(fitted), out);
+  finish_round(dense, options, density, false, project, clock, round, out);
   return round;
+}
+
+// The projection's measures of a round fitted without them (fit_round's `project`).
+void project_round(const ricci::Mesh& dense, StageClock& clock, Round& round,
+                   FittedSurface& out) {
+  clock.begin("measure");
+  round.vertex_distance = measure_projection(dense, round.parameters, {}, out);
+}
+
+// The delivered round capped: its holes filled (the spline moved to meet the patches),
+// tessellated and measured again.
+void deliver_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, Round& best,
+                   StageClock& clock, FittedSurface& out) {
+  out.surface.fills.clear();
+  out.surface.open_rims.clear();
+  finish_round(dense, options, out.tessellation.density, true, true, clock, best, out);
 }
 
 // A fit round after the first one, on scan.domain, into a surface of the same input.
@@ -360,7 +402,82 @@ std::pair<FittedSurface, Round> next_round(const ricci::Mesh& dense, const ScanF
   FittedSurface next;
   next.input = out.input;
   next.bbox_diagonal = out.bbox_diagonal;
-  Round round = fit_round(dense, scan, options, out.tessellation.density, clock, next);
+  Round round = fit_round(dense, scan, options, out.tessellation.density, true, clock, next);
+  return {std::move(next), std::move(round)};
+}
+
+// The data points whose parameter lies on a face with a smoothing floor moved to their closest
+// points on `spline` (correct_parameters, ScanFitOptions' correction steps). Returns whether
+// any point was on such a face.
+bool correct_smoothed_parameters(const ManifoldSpline& spline,
+                                 const std::vector<double>& face_smoothing, Round& round) {
+  std::vector<std::size_t> which;
+  for (std::size_t k = 0; k < round.data_parameters.size(); ++k) {
+    const int face = round.data_parameters[k].face;
+    if (face >= 0 && static_cast<std::size_t>(face) < face_smoothing.size() &&
+        face_smoothing[static_cast<std::size_t>(face)] > 0.0)
+      which.push_back(k);
+  }
+  if (which.empty()) return false;
+  std::vector<DomainPoint> parameters(which.size());
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(which.size()), 3);
+  for (std::size_t i = 0; i < which.size(); ++i) {
+    parameters[i] = round.data_parameters[which[i]];
+    points.row(static_cast<Eigen::Index>(i)) =
+        round.data_points.row(static_cast<Eigen::Index>(which[i]));
+  }
+  const ScanFitOptions scan_defaults;
+  const CorrectedParameters corrected =
+      correct_parameters(spline, parameters, points, scan_defaults.correction_iterations,
+                         round.fit.threads);
+  for (std::size_t i = 0; i < which.size(); ++i)
+    round.data_parameters[which[i]] = corrected.parameters[i];
+  return true;
+}
+
+// A fold round: out's spline fitted again on its own space (the same domain, atlas and
+// parameters as `best`), each face smoothed at least face_smoothing[f], the parameters on those
+// faces corrected and the fit run again; measured as fit_round measures. No atlas, space or
+// parameters of the whole scan are computed again.
+std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
+                                            const FitSurfaceOptions& options,
+                                            const std::vector<double>& face_smoothing,
+                                            const Round& best, StageClock& clock,
+                                            const FittedSurface& out) {
+  clock.begin("fit");
+  FittedSurface next;
+  next.input = out.input;
+  next.bbox_diagonal = out.bbox_diagonal;
+  next.atlas = out.atlas;
+  next.surface.domain = out.surface.domain;
+  next.surface.singular_vertex = out.surface.singular_vertex;
+  next.collar_faces = out.collar_faces;
+  next.collar_refused = out.collar_refused;
+  next.boundary_follow = out.boundary_follow;
+  const auto& space = out.surface.spline.space;
+  FitOptions fit = best.fit;
+  fit.face_smoothing = face_smoothing;
+  const Eigen::MatrixX3d initial = piecewise_linear_control_points(*space, next.surface.domain);
+  Round round;
+  round.domain = best.domain;
+  round.data_points = best.data_points;
+  round.data_parameters = best.data_parameters;
+  round.fit = best.fit;
+  FitResult refit = fit_control_points(*space, round.data_parameters, round.data_points,
+                                       initial, fit);
+  next.surface.spline.space = space;
+  next.surface.spline.control_points = refit.control_points;
+  // The parameter correction (as fit_scan's) of the points on the faces smoothed more, where
+  // the surface moved, then the fit again: without it the foot points' error adds to the RMS.
+  if (correct_smoothed_parameters(next.surface.spline, face_smoothing, round)) {
+    refit = fit_control_points(*space, round.data_parameters, round.data_points, initial, fit);
+    next.surface.spline.control_points = refit.control_points;
+  }
+  next.fit_constraint_residual = refit.max_constraint_residual;
+  round.parameters.assign(round.data_parameters.begin(),
+                          round.data_parameters.begin() +
+                              static_cast<std::ptrdiff_t>(best.parameters.size()));
+  finish_round(dense, options, out.tessellation.density, false, true, clock, round, next);
   return {std::move(next), std::move(round)};
 }
 
@@ -549,6 +666,8 @@ void check_options(const FitSurfaceOptions& o,
   require(o.fold_rms_growth >= 1.0, "fold_rms_growth", ">= 1");
   require(o.small_hole_diameter >= 0.0 && o.small_hole_diameter < 1.0, "small_hole_diameter",
           "in [0, 1) (a fraction of the diagonal; 0: no hole capped)");
+  require(o.fold_rms_goal >= 0.0 && o.fold_rms_goal < 1.0, "fold_rms_goal",
+          "in [0, 1) (a fraction of the diagonal)");
 }
 
 FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& options) {
@@ -580,8 +699,15 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     if (needs_singularity(out.input)) scan.atlas.singular_vertex = vertex;
   }
   scan.progress = [&clock](const std::string& stage) { clock.begin(stage); };
-  Round best = fit_round(dense, scan, options, 0, clock, out);
-  out.refinement.push_back(round_summary(out, best, options));
+  Round best = fit_round(dense, scan, options, 0, false, clock, out);
+  // A first round without folds and without a tolerance is the only one (nothing to refine):
+  // it is measured once, capped; any other round is measured before the caps, as its
+  // successors are.
+  const bool single_round = out.surface_dihedral.over_90_deg == 0 && options.tolerance == 0.0;
+  if (!single_round) {
+    project_round(dense, clock, best, out);
+    out.refinement.push_back(round_summary(out, best, options));
+  }
 
   // Refinement: the domain split where the surface folds or misses the input by more than the
   // tolerance, the same cone kept, and the whole fit run again; the best round is delivered.
@@ -599,10 +725,15 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   }
 
   // Fold rounds: the faces around the folds left fit again with stronger fairing (the same
-  // domain and cone, so the domain's face indices stay), a round kept when it folds less.
+  // space, so the domain's face indices stay), a round kept when it folds less.
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
-  const double rms_limit = options.fold_rms_growth * out.projection_rms;
+  // The goal and the refit on the same space were measured on closed inputs; open ones fit
+  // the whole scan again each round (h/rim's boundary measurements).
+  const bool closed = out.input.boundary_loops == 0;
+  const double rms_limit =
+      std::max(options.fold_rms_growth * out.projection_rms,
+               closed ? options.fold_rms_goal * out.bbox_diagonal : 0.0);
   // Open inputs: not in the band along the boundary, where the smoothing moved the boundary
   // (ChineseDragon-10kv: boundary distance 0.92% -> 1.39% of the diagonal).
   const std::vector<char> band = out.input.boundary_loops > 0
@@ -616,11 +747,15 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     for (std::size_t f = 0; f < near.size(); ++f)
       if (near[f] && (band.empty() || !band[f]))
         face_smoothing[f] = std::max(face_smoothing[f], level);
-    scan.domain = best.domain;
-    scan.boundary_follow.max_rounds = 0;
-    scan.fit.face_smoothing = face_smoothing;
-    if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
-    auto next = next_round(dense, scan, options, clock, out);
+    std::pair<FittedSurface, Round> next;
+    if (closed) {
+      next = refit_round(dense, options, face_smoothing, best, clock, out);
+    } else {
+      scan.domain = best.domain;
+      scan.boundary_follow.max_rounds = 0;
+      scan.fit.face_smoothing = face_smoothing;
+      next = next_round(dense, scan, options, clock, out);
+    }
     out.refinement.push_back(round_summary(next.first, next.second, options));
     if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
     if (!better(next.first, next.second, out, best, options)) continue;
@@ -628,6 +763,8 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   }
 
   refit_folded_boundary(dense, options, scan, best, clock, out);
+  deliver_round(dense, options, best, clock, out);
+  if (single_round) out.refinement.push_back(round_summary(out, best, options));
 
   clock.begin("measure");
   out.capped_holes = holes.capped_loops;  // on the round delivered

@@ -62,9 +62,12 @@ struct FitSurfaceOptions {
   /// rounded, not folded). 0: none.
   int fold_rounds = 4;
   double fold_smoothing = 1e-2;
-  /// The fold rounds stop at the first whose RMS (projection) exceeds this factor times the
-  /// RMS before them: folds are traded for error only this far (>= 1).
+  /// The fold rounds stop at the first whose RMS (projection) exceeds both this factor times
+  /// the RMS before them (>= 1) and fold_rms_goal: folds are traded for error only this far.
   double fold_rms_growth = 1.25;
+  /// Closed inputs: RMS (projection, fraction of the input's bounding-box diagonal) the fold
+  /// rounds may always reach, below the 0.2% asked of smooth scans; 0: the growth factor alone.
+  double fold_rms_goal = 0.0019;
   /// Measures of the delivered surface against the input (coverage tolerance, threads).
   ScanDistanceOptions measure;
   /// Denser domain around the cone (levels 0: off; ricci/singularity/one_cone.h).
@@ -77,14 +80,15 @@ struct FitSurfaceOptions {
 /// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64], cone_refinement.levels
 /// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
 /// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1,
-/// small_hole_diameter in [0, 1). `name` spells a field (given as "domain_faces",
-/// "cone_refinement", ...) the way the caller's user knows it, e.g. msp fit's "--domain-faces"
-/// (default: the field's own name).
+/// fold_rms_goal in [0, 1), small_hole_diameter in [0, 1). `name` spells a field (given as
+/// "domain_faces", "cone_refinement", ...) the way the caller's user knows it, e.g. msp fit's
+/// "--domain-faces" (default: the field's own name).
 /// \throw ricci::InvalidInputError naming the first option out of range and its range.
 void check_options(const FitSurfaceOptions& options,
                    const std::function<std::string(const std::string& field)>& name = {});
 
-/// One fit round of fit_surface (the first, then each refinement).
+/// One fit round of fit_surface (the first, then each refinement or fold round), measured
+/// before the holes are capped (the patches and the vertices over them are not in it).
 struct RefinementRound {
   int domain_faces = 0, control_points = 0;
   int folds = 0;  ///< Tessellation edges over 90 degrees.
@@ -170,9 +174,11 @@ struct FittedSurface {
 /// and caps the surface's holes: the cone
 /// hole always (grown, and retried on a bigger hole where its patch flips), excluded-face holes
 /// always, boundary loops with fill_boundaries (a closed genus-0 input's puncture always).
-/// Stages: "domain" (the adaptive domain), "singularity" (with a given vertex), fit_scan's,
-/// "fill", "tessellate", "measure", then "refine" and the same again per refinement or fold
-/// round, and the last "measure".
+/// Every round (the first, each refinement or fold round) is judged with its holes found but
+/// not capped; the delivered round alone is capped. Stages: "domain" (the adaptive domain),
+/// "singularity" (with a given vertex), fit_scan's, "rims", "tessellate", "measure", then
+/// "refine" and the same again per refinement or fold round, then "fill", "tessellate" and
+/// "measure" of the delivered round (a stage run again adds to its first entry).
 /// \pre `dense` is a connected oriented 2-manifold triangle mesh.
 /// \throw ricci::InvalidInputError for options out of range (check_options), a singular vertex
 ///        out of range or on the boundary, or fewer domain faces (asked for, or in the mesh)

@@ -43,6 +43,9 @@ TEST(CheckOptions, DefaultsPassAndEachRangeIsEnforced) {
   EXPECT_NE(with([](auto& o) { o.small_hole_diameter = -1e-3; }), "");
   EXPECT_NE(with([](auto& o) { o.small_hole_diameter = std::nan(""); }), "");
   EXPECT_EQ(with([](auto& o) { o.small_hole_diameter = 0.0; }), "");
+  EXPECT_NE(with([](auto& o) { o.fold_rms_goal = -1e-3; }), "");
+  EXPECT_NE(with([](auto& o) { o.fold_rms_goal = 1.0; }), "");
+  EXPECT_EQ(with([](auto& o) { o.fold_rms_goal = 0.0; }), "");
 }
 
 TEST(CheckOptions, NamesTheOptionTheCallersWay) {
