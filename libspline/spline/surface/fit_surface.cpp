@@ -481,15 +481,52 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   return {std::move(next), std::move(round)};
 }
 
+// Rounds a better one replaced, latest last: the rounds are judged with their holes open, so
+// deliver_best_round falls back on them when capping the holes makes the delivered one fold.
+using Superseded = std::vector<std::pair<FittedSurface, Round>>;
+
 // Delivers `next` (and its round) instead of `out`, keeping out's stage times and history and
-// what follow_boundary did (the later rounds reuse the first round's followed domain).
-void adopt_round(std::pair<FittedSurface, Round>&& next, FittedSurface& out, Round& best) {
+// what follow_boundary did (the later rounds reuse the first round's followed domain); the
+// replaced round goes to `superseded` when given.
+void adopt_round(std::pair<FittedSurface, Round>&& next, FittedSurface& out, Round& best,
+                 Superseded* superseded = nullptr) {
   next.first.boundary_follow = out.boundary_follow;
   next.first.seconds = std::move(out.seconds);
   next.first.cpu_seconds = std::move(out.cpu_seconds);
   next.first.refinement = std::move(out.refinement);
+  if (superseded) superseded->emplace_back(std::move(out), std::move(best));
   out = std::move(next.first);
   best = std::move(next.second);
+}
+
+// The largest normal jump across the spline's seams and the patches' rims, in degrees.
+double seam_jump_deg(const FittedSurface& s) {
+  return std::max(s.edge_normal_jump_deg, s.fill_normal_jump_deg);
+}
+
+// A seam this smooth or smoother is G1 to the eye (the fit's seam criterion).
+constexpr double kSeamGoalDeg = 1.0;
+
+// deliver_round on `best`; when the capped surface folds more than it did with its holes open,
+// or its seams reach kSeamGoalDeg, the superseded rounds (latest first) are capped too and the
+// one that folds least (then with seams under the goal) is delivered.
+void deliver_best_round(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                        Superseded& superseded, Round& best, StageClock& clock,
+                        FittedSurface& out) {
+  const int judged = out.surface_dihedral.over_90_deg;
+  deliver_round(dense, options, best, clock, out);
+  for (auto it = superseded.rbegin(); it != superseded.rend(); ++it) {
+    if (out.surface_dihedral.over_90_deg <= judged && seam_jump_deg(out) < kSeamGoalDeg) break;
+    deliver_round(dense, options, it->second, clock, it->first);
+    const int folds = it->first.surface_dihedral.over_90_deg;
+    const int delivered = out.surface_dihedral.over_90_deg;
+    const bool smoother = seam_jump_deg(it->first) < kSeamGoalDeg &&
+                          seam_jump_deg(out) >= kSeamGoalDeg;
+    if (folds < delivered || (folds == delivered && smoother)) {
+      adopt_round(std::move(*it), out, best);
+    }
+  }
+  superseded.clear();
 }
 
 int vertices_over(const std::vector<double>& distance, double limit) {
@@ -711,6 +748,7 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
 
   // Refinement: the domain split where the surface folds or misses the input by more than the
   // tolerance, the same cone kept, and the whole fit run again; the best round is delivered.
+  Superseded superseded;
   for (int round = 1; round <= options.refinement_rounds; ++round) {
     const std::vector<Eigen::Vector3d> where = refinement_points(dense, options, out, best);
     if (where.empty()) break;
@@ -721,7 +759,7 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     auto next = next_round(dense, scan, options, clock, out);
     out.refinement.push_back(round_summary(next.first, next.second, options));
     if (!better(next.first, next.second, out, best, options)) break;
-    adopt_round(std::move(next), out, best);
+    adopt_round(std::move(next), out, best, &superseded);
   }
 
   // Fold rounds: the faces around the folds left fit again with stronger fairing (the same
@@ -759,11 +797,11 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     out.refinement.push_back(round_summary(next.first, next.second, options));
     if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
     if (!better(next.first, next.second, out, best, options)) continue;
-    adopt_round(std::move(next), out, best);
+    adopt_round(std::move(next), out, best, &superseded);
   }
 
   refit_folded_boundary(dense, options, scan, best, clock, out);
-  deliver_round(dense, options, best, clock, out);
+  deliver_best_round(dense, options, superseded, best, clock, out);
   if (single_round) out.refinement.push_back(round_summary(out, best, options));
 
   clock.begin("measure");
