@@ -43,7 +43,7 @@ echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for model in $MODELS; do
   dir="$(basename "$(dirname "$model")")"
   name="$dir/$(basename "$model")"
-  stem="$OUT/${dir}_$(basename "${model%.*}")"
+  stem="$OUT/${dir}_$(basename "$model")"  # with its extension: horse.off and horse.ply differ
   if ! "$MSP" fit "$model" -o "$stem.glb" --json "$stem.json" "$@" 2>"$stem.log"; then
     echo "| $name | failed: $(tail -1 "$stem.log" | cut -c1-120) |||||||||||||| "
     continue
