@@ -3,7 +3,7 @@
 #include "ricci/metric/polish_e2.h"
 
 #include <algorithm>
-#include <limits>
+#include <cmath>
 
 #include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/arrays.h"
@@ -133,8 +133,16 @@ void polish_lengths(const OneConeAtlasOptions& options, OneConeAtlasResult& resu
   }
 }
 
-// polish_threshold at infinity switches the polish off.
-constexpr double kNeverPolish = std::numeric_limits<double>::infinity();
+// prepare_and_solve, then the long-double polish of its lengths (polish_lengths), timed: the
+// layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it closes.
+void solve_and_polish(const Mesh& mesh, const OneConeAtlasOptions& options,
+                      OneConeAtlasResult& result, const std::function<void(const char*)>& report,
+                      bool fall_back) {
+  prepare_and_solve(mesh, options, result, report, fall_back);
+  Stopwatch polish;
+  polish_lengths(options, result);
+  result.timings.polish = polish.seconds();
+}
 
 bool intrinsic_applies(const OneConeProblem& problem) {
   return problem.kind == OneConeKind::SingleCone || problem.kind == OneConeKind::FlatTorus;
@@ -172,7 +180,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     // leftover defect by the distances it spans, so it goes in long double first, whatever its
     // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
     // 1.4e-13 gave 1e-9 relative error on its shortest edge).
-    if (!r.converged() || options.polish_threshold < kNeverPolish) {
+    if (!r.converged() || std::isfinite(options.polish_threshold)) {
       result.polish =
           polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature);
       result.polished = true;
@@ -277,10 +285,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     solve_intrinsic(options, result, report);
   } else if (takes_inversive_distance_route(mesh, options)) {
     OneConeAtlasResult attempt = result;
-    prepare_and_solve(mesh, inversive_distance_route(options), attempt, report, false);
-    Stopwatch polish;
-    polish_lengths(options, attempt);
-    attempt.timings.polish = polish.seconds();
+    solve_and_polish(mesh, inversive_distance_route(options), attempt, report, false);
     if (attempt.flow.converged()) {
       result = std::move(attempt);
       result.flow.metric_name = "inversive-distance route (" + result.flow.metric_name + ")";
@@ -305,22 +310,14 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
         }
       }
       if (!result.flow.converged()) {
-        prepare_and_solve(mesh, options, result, report, true);
-        Stopwatch polish_fixed;
-        polish_lengths(options, result);
-        result.timings.polish = polish_fixed.seconds();
+        solve_and_polish(mesh, options, result, report, true);
         result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(),
                                            failures.end());
       }
       result.timings.flow += failed_flow_seconds;
     }
   } else {
-    prepare_and_solve(mesh, options, result, report, true);
-    // The layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it
-    // closes: remove it in long double first (metric/polish_e2.h).
-    Stopwatch polish;
-    polish_lengths(options, result);
-    result.timings.polish = polish.seconds();
+    solve_and_polish(mesh, options, result, report, true);
   }
   if (!result.flow.converged() && options.route == FlowRoute::automatic && !fixed_failed &&
       !intrinsic_tried && intrinsic_applies(result.problem)) {
