@@ -238,9 +238,11 @@ int run_one_cone_case(int argc, char** argv) {
   ricci::OneConeAtlasOptions options;
   const std::string cone = args.get_or("cone", "auto");
   options.singular_vertex = cone == "auto" ? -1 : std::stoi(cone);
-  if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
+  const bool intrinsic = args.get_or("metric", "") == "intrinsic-delaunay";
+  if (intrinsic) options.route = ricci::FlowRoute::intrinsic_delaunay;
+  if (args.has("metric") && !intrinsic) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
-  options.keep_metric = args.has("metric") || args.has("radii");
+  options.keep_metric = (args.has("metric") && !intrinsic) || args.has("radii");
   if (args.has("polish-threshold")) options.polish_threshold = std::stod(*args.get("polish-threshold"));
   options.valence.cone_valence_margin = args.get_int("cone-margin", options.valence.cone_valence_margin);
   options.valence.ring_valence = args.get_int("ring-valence", options.valence.ring_valence);
@@ -266,6 +268,7 @@ int run_one_cone_case(int argc, char** argv) {
       std::cerr << "  newton " << p.iteration << ": error " << p.max_error << ", step " << p.step << ", "
                 << p.seconds << " s\n";
     };
+    options.intrinsic.progress = options.flow.progress;
     options.progress = [t = ricci::Stopwatch()](const std::string& stage) {
       std::cerr << std::fixed << t.seconds() << " s: " << stage << std::defaultfloat << "\n";
     };

@@ -202,12 +202,17 @@ bool convex_energy(const FlowRun& run) {
 // One more Newton step after convergence when the error is still above 1e-12 (the tolerance,
 // 1e-10, can stop a step short of the rounding floor), kept only if it lowers the error: a
 // layout's closure error is the curvature error times the size of the loops it closes, up to
-// 1e3 times an edge. The step reuses the factorisation (no new numeric factorisation).
+// 1e3 times an edge. The step reuses the factorisation (no new numeric factorisation). A loose
+// tolerance (a continuation's intermediate stage, a ranking flow) asks for no such step.
 void polish(const FlowRun& run, HessianAssembler& assembler, NewtonSystem& system, FlowState& state,
             FlowResult& result) {
   const MeshTables& t = run.tables;
   const double error = max_error(state, run.target);
-  if (run.geometry != Geometry::euclidean || result.iterations == 0 || error < 1e-12) return;
+  constexpr double kLooseTolerance = 1e-8;
+  if (run.geometry != Geometry::euclidean || result.iterations == 0 || error < 1e-12 ||
+      run.options.tolerance > kLooseTolerance) {
+    return;
+  }
   Stopwatch t0;
   const Eigen::SparseMatrix<double>& H = assembler.assemble(run.geometry, run.eta, state);
   result.timings.assembly += t0.seconds();

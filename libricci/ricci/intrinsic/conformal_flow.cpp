@@ -176,9 +176,9 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
       return FlowStatus::stalled;
     }
     // Along the line the energy is convex with slope phi'(t) = (K - K̄) . d, phi'(0) < 0. A step
-    // is taken when phi'(t) <= 0.8 |phi'(0)| (Hager and Zhang's approximate Armijo condition
-    // with delta = 0.1: the trapezoid estimate of the energy drops by a tenth of the linear
-    // model's); otherwise the step shrinks to the secant estimate of the minimum, by 0.1-0.5.
+    // is taken when phi'(t) <= slope_fraction |phi'(0)| (by convexity this also bounds how far
+    // past the line's minimum it lands); otherwise the step shrinks to the secant estimate of
+    // the minimum, by min_shrink-0.5.
     // Near the answer, where the slopes are rounding noise, a step lowering max |K - K̄| is taken.
     const double slope0 = gradient.dot(direction);
     const bool flip = error >= options.freeze_connectivity_below;

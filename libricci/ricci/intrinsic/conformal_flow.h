@@ -32,8 +32,10 @@ struct IntrinsicFlowOptions {
   /// Halvings of a Newton step before the line search gives up.
   int max_step_halvings = 60;
   /// A step is taken when the energy's slope along it is at most this times |slope at 0|
-  /// (0: only up to the line's minimum).
-  double slope_fraction = 0.0;
+  /// (0: only up to the line's minimum). 0 rejects every full Newton step that lands a little
+  /// past the minimum, and the halved steps that follow converge only linearly
+  /// (docs/design-notes.md, "Intrinsic flow line search").
+  double slope_fraction = 0.1;
   /// Smallest factor a rejected step shrinks by (the secant estimate is clamped to [this, 0.5]).
   double min_shrink = 0.25;
   /// Sparse factorisation of the cotangent Laplacian (automatic: resolve_linear_solver).
