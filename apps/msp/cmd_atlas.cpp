@@ -64,8 +64,9 @@ const CommandSpec& atlas_command() {
       "one-cone flat metric, cut graph, layout and affine atlas",
       {{"MESH", "the input mesh: OBJ, OFF, PLY or STL, also gzipped"}},
       {singularity_option(),
-       metric_option("chosen per surface: the most conformal that converges (the "
-                     "inversive-distance route, intrinsic-delaunay, the circle packings)",
+       metric_option("chosen per surface: the most conformal that converges (on genus >= 2 "
+                     "intrinsic-delaunay, then the inversive-distance route, then the circle "
+                     "packings)",
                      true),
        radii_option(),
        tolerance_option("1e-10"),

@@ -221,6 +221,13 @@ OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options)
   return route;
 }
 
+bool takes_intrinsic_flow_first(const Mesh& mesh, const OneConeAtlasOptions& options) {
+  return options.intrinsic_first && options.route == FlowRoute::automatic &&
+         !options.keep_metric && options.flow.geometry == Geometry::euclidean &&
+         options.cone_ring_metrics.empty() && needs_singular_vertex(mesh) &&
+         surface_topology(mesh).genus >= 2;
+}
+
 bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options) {
   const bool asked = !options.keep_metric || options.flow.scheme == Scheme::inversive_distance;
   return options.inversive_distance_route && asked &&
@@ -277,7 +284,27 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     result.timings.choice = t.seconds();
   }
 
-  if (intrinsic_only || fixed_failed) {
+  // Failures of flows whose attempt was thrown away, and their seconds.
+  std::vector<std::string> failures;
+  double failed_flow_seconds = 0.0;
+  if (!intrinsic_only && !fixed_failed && takes_intrinsic_flow_first(mesh, options)) {
+    OneConeAtlasResult first = result;
+    prepare_problem(mesh, options, first, report);
+    if (intrinsic_applies(first.problem)) {
+      solve_intrinsic(options, first, report);
+      intrinsic_tried = true;
+      if (first.flow.converged()) {
+        result = std::move(first);
+      } else {
+        failures = first.flow.failed_attempts;
+        failures.push_back(first.flow.message);
+        failed_flow_seconds = first.timings.flow;
+      }
+    }
+  }
+  if (result.flow.converged()) {
+    // The intrinsic flow ran first and won.
+  } else if (intrinsic_only || fixed_failed) {
     prepare_problem(mesh, options, result, report);
     if (!intrinsic_applies(result.problem)) {
       throw InvalidInputError("the intrinsic Delaunay flow needs a closed surface of genus >= 1");
@@ -290,9 +317,11 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       result = std::move(attempt);
       result.flow.metric_name = "inversive-distance route (" + result.flow.metric_name + ")";
     } else {
-      std::vector<std::string> failures = attempt.flow.failed_attempts;
-      double failed_flow_seconds = attempt.timings.flow;
-      if (options.route == FlowRoute::automatic && options.intrinsic_before_fixed) {
+      failures.insert(failures.end(), attempt.flow.failed_attempts.begin(),
+                      attempt.flow.failed_attempts.end());
+      failed_flow_seconds += attempt.timings.flow;
+      if (options.route == FlowRoute::automatic && options.intrinsic_before_fixed &&
+          !intrinsic_tried) {
         // Next in conformality: the intrinsic flow (vertex scaling), before the circle packings.
         OneConeAtlasResult second = result;
         prepare_problem(mesh, options, second, report);
@@ -309,16 +338,21 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
           }
         }
       }
-      if (!result.flow.converged()) {
-        solve_and_polish(mesh, options, result, report, true);
-        result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(),
-                                           failures.end());
-      }
-      result.timings.flow += failed_flow_seconds;
+      if (!result.flow.converged()) solve_and_polish(mesh, options, result, report, true);
     }
   } else {
     solve_and_polish(mesh, options, result, report, true);
   }
+  // The thrown-away attempts' failures come first, in the order they ran.
+  if (!failures.empty()) {
+    std::vector<std::string>& listed = result.flow.failed_attempts;
+    std::vector<std::string> earlier;
+    for (const std::string& f : failures) {
+      if (std::find(listed.begin(), listed.end(), f) == listed.end()) earlier.push_back(f);
+    }
+    listed.insert(listed.begin(), earlier.begin(), earlier.end());
+  }
+  result.timings.flow += failed_flow_seconds;
   if (!result.flow.converged() && options.route == FlowRoute::automatic && !fixed_failed &&
       !intrinsic_tried && intrinsic_applies(result.problem)) {
     solve_intrinsic(options, result, report);

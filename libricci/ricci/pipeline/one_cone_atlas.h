@@ -62,6 +62,14 @@ struct OneConeAtlasOptions {
   /// keep_metric; the route's failures are listed first in flow.failed_attempts and
   /// flow.metric_name names the winner.
   bool inversive_distance_route = true;
+  /// With route automatic and no metric asked for (keep_metric false), on a closed surface of
+  /// genus >= 2: the intrinsic Delaunay flow (vertex scaling with flips, the discrete conformal
+  /// metric, which exists for any cone) runs first; the inversive-distance route and the
+  /// circle packings run only if it fails. It is at least as conformal as the route on the
+  /// bench and shared genus 2-3 meshes (docs/design-notes.md, "Default metric order") and
+  /// costs one flow where the route fails at 10 pi cones. The atlas is then on the flipped
+  /// triangulation (OneConeAtlasResult::intrinsic).
+  bool intrinsic_first = true;
   /// With route automatic, when the inversive-distance route fails: the intrinsic Delaunay flow
   /// (vertex scaling, the discrete conformal metric: QC near 1) is tried before the circle
   /// packings of solve_one_cone_flow (area-weighted QC ~1.7 under the 10 pi cone of genus 3),
@@ -119,7 +127,11 @@ struct OneConeAtlasResult {
 /// edge (collapses, thin flips).
 [[nodiscard]] OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options);
 
-/// Whether build_one_cone_atlas tries inversive_distance_route first (see the option).
+/// Whether build_one_cone_atlas runs the intrinsic Delaunay flow first (see intrinsic_first).
+[[nodiscard]] bool takes_intrinsic_flow_first(const Mesh& mesh, const OneConeAtlasOptions& options);
+
+/// Whether build_one_cone_atlas tries inversive_distance_route (see the option; after the
+/// intrinsic flow when takes_intrinsic_flow_first).
 [[nodiscard]] bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options);
 
 /// \pre a connected, oriented 2-manifold triangle mesh.

@@ -151,13 +151,15 @@ struct ScanFitOptions {
   KnotCloudOptions knots;
   /// The atlas, with the cone's neighbourhood sampled densely (cone_refinement, 2 levels of 6
   /// rings: ricci/singularity/one_cone.h), so the spline does not fold next to a large cone.
-  /// The circle packing's metric route (not the inversive-distance route msp atlas takes by
-  /// default): with it the bundled genus-3 model's Bezier export meets the spline to 1e-12 of
-  /// the diagonal (3.7e-11 with the route).
+  /// The circle packing's metric route (not the intrinsic flow or the inversive-distance route
+  /// msp atlas takes first by default): with it the bundled genus-3 model's Bezier export meets
+  /// the spline to 1e-12 of the diagonal (3.7e-11 with the route). The intrinsic flow still
+  /// runs where the circle packings fail (genus >= 4 directly).
   ricci::OneConeAtlasOptions atlas = [] {
     ricci::OneConeAtlasOptions o;
     o.cone_refinement.levels = 2;
     o.inversive_distance_route = false;
+    o.intrinsic_first = false;
     return o;
   }();
   /// Open surfaces: ghost rings added outside the simplified domain's boundary loops

@@ -120,6 +120,7 @@ TEST(OneConeAtlas, PolishRunsOnlyAboveItsThreshold) {
   ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
+  options.intrinsic_first = false;  // the gate of the fixed-connectivity flows' polish
   options.polish_threshold = 0.0;
   const ricci::OneConeAtlasResult always = ricci::build_one_cone_atlas(mesh, options);
   EXPECT_TRUE(always.polished);
@@ -148,11 +149,13 @@ namespace {
 // circles near the cone converges on its own once the line search follows the convex Ricci
 // energy (a residual-only search accepted an overshooting first step and the next Hessian was
 // singular: three metrics failed and the combinatorial one, which ignores the mesh, was used).
-// The circle-packing route alone (the inversive-distance route, tried first by default, off).
+// The circle-packing route alone (the intrinsic flow and the inversive-distance route, tried
+// first by default, off).
 TEST(OneConeAtlas, TenPiConeOnMarchingCubesKeepsTheMeshConformalMetric) {
   ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj.gz"));
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
+  options.intrinsic_first = false;
   options.inversive_distance_route = false;
   const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
   EXPECT_TRUE(r.flow.failed_attempts.empty()) << r.flow.failed_attempts.front();
@@ -298,21 +301,31 @@ TEST(OneConeAtlas, InversiveDistanceRouteByDefaultOrWhenAskedForOnASingleCone) {
   EXPECT_FALSE(ricci::takes_inversive_distance_route(genus2, options));
 }
 
-// By default the most conformal route that converges wins: on genus2_10k the inversive-distance
-// route (QC near 1), named in flow.metric_name with nothing refused; with the route switched
-// off (as when it fails), the circle packing with tangent circles at the cone, far less
-// conformal.
+// By default the most conformal route that converges wins: on genus2_10k the intrinsic
+// Delaunay flow (the discrete conformal metric), named in flow.metric_name with nothing
+// refused. Without it the inversive-distance route runs, no more conformal; with the route off
+// too (as when both fail), the circle packing with tangent circles at the cone, far less so.
 TEST(OneConeAtlas, DefaultMetricIsTheMostConformalRouteThatConverges) {
   const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
+  EXPECT_TRUE(ricci::takes_intrinsic_flow_first(mesh, options));
   const ricci::OneConeAtlasResult best = ricci::build_one_cone_atlas(mesh, options);
-  EXPECT_EQ(best.flow.metric.scheme, ricci::Scheme::inversive_distance);
-  EXPECT_EQ(best.flow.metric_name.rfind("inversive-distance route", 0), 0u) << best.flow.metric_name;
+  ASSERT_TRUE(best.intrinsic) << best.flow.metric_name;
+  EXPECT_EQ(best.flow.metric_name.rfind("intrinsic Delaunay flow", 0), 0u) << best.flow.metric_name;
   EXPECT_TRUE(best.flow.failed_attempts.empty());
   EXPECT_LT(best.distortion.quasi_conformal_area_mean, 1.2);
   EXPECT_EQ(best.atlas.layout.flipped_faces, 0);
   EXPECT_LT(best.relative_transition_residual(), 1e-9);
+
+  options.intrinsic_first = false;
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(mesh, options));
+  const ricci::OneConeAtlasResult route = ricci::build_one_cone_atlas(mesh, options);
+  EXPECT_FALSE(route.intrinsic);
+  EXPECT_EQ(route.flow.metric_name.rfind("inversive-distance route", 0), 0u) << route.flow.metric_name;
+  EXPECT_GE(route.distortion.quasi_conformal_area_mean,
+            best.distortion.quasi_conformal_area_mean);
+  EXPECT_LT(route.relative_transition_residual(), 1e-9);
 
   options.inversive_distance_route = false;
   const ricci::OneConeAtlasResult next = ricci::build_one_cone_atlas(mesh, options);
@@ -322,6 +335,24 @@ TEST(OneConeAtlas, DefaultMetricIsTheMostConformalRouteThatConverges) {
   EXPECT_EQ(next.atlas.layout.flipped_faces, 0);
 }
 
+// The intrinsic flow first only by default: not when a metric is asked for, on a torus (no
+// cone) or when switched off.
+TEST(OneConeAtlas, IntrinsicFlowFirstOnlyByDefaultOnASingleCone) {
+  const ricci::Mesh genus2 = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
+  const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj.gz"));
+  ricci::OneConeAtlasOptions options;
+  EXPECT_TRUE(ricci::takes_intrinsic_flow_first(genus2, options));
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(torus, options));
+  options.keep_metric = true;
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, options));
+  options.keep_metric = false;
+  options.route = ricci::FlowRoute::fixed_connectivity;
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, options));
+  options.route = ricci::FlowRoute::automatic;
+  options.intrinsic_first = false;
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, options));
+}
+
 // Under the 10 pi cone of genus3_10k's vertex 0 the inversive-distance route breaks triangles;
 // the intrinsic Delaunay flow (vertex scaling) comes next and wins over the circle packing,
 // which is far less conformal, and the route's failure stays listed.
@@ -329,6 +360,7 @@ TEST(OneConeAtlas, AfterAFailedRouteTheIntrinsicFlowComesBeforeTheCirclePacking)
   const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus3_10k.obj.gz"));
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
+  options.intrinsic_first = false;  // the order after the route, which the default skips
   const ricci::OneConeAtlasResult best = ricci::build_one_cone_atlas(mesh, options);
   ASSERT_TRUE(best.intrinsic) << best.flow.metric_name;
   EXPECT_EQ(best.flow.metric_name.rfind("intrinsic Delaunay flow", 0), 0u) << best.flow.metric_name;
