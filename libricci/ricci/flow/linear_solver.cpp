@@ -5,6 +5,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 
+#include "ricci/flow/serial_blas.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/util/stopwatch.h"
 
@@ -29,6 +30,10 @@ using Sparse = Eigen::SparseMatrix<double>;
 }  // namespace
 
 struct SymmetricFactorization::Impl {
+  // CHOLMOD's BLAS calls run on the calling thread while a factorisation exists: OpenBLAS'
+  // spinning workers gain nothing on a surface mesh's small supernodes and, when the cores are
+  // busy, made a 100k-vertex factorisation 3-7x slower (docs/design-notes.md, "Serial BLAS").
+  SerialBlasScope serial_blas;
   Eigen::SimplicialLDLT<Sparse, Eigen::Lower> eigen_ldlt;
   Eigen::SimplicialLLT<Sparse, Eigen::Lower> eigen_llt;
   Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> cholmod_supernodal;

@@ -26,6 +26,7 @@ std::string to_string(LinearSolver solver);
 [[nodiscard]] LinearSolver resolve_linear_solver(LinearSolver kind, Eigen::Index unknowns);
 
 /// A factorisation of a symmetric matrix given by its lower triangle (compressed columns).
+/// While one exists, the process' OpenBLAS runs on one thread (serial_blas.h).
 class SymmetricFactorization {
  public:
   explicit SymmetricFactorization(LinearSolver kind);
