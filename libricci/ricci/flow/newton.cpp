@@ -50,25 +50,7 @@ class NewtonSystem {
                      Eigen::VectorXd& x) {
     if (!factored_) return false;
     const Stopwatch t0;
-    x = factorization_->solve(rhs);
-    double previous = rhs.norm();
-    bool ok = false;
-    for (int i = 0; i < 12 && x.allFinite(); ++i) {
-      const Eigen::VectorXd residual = rhs - H.selfadjointView<Eigen::Lower>() * x;
-      const double norm = residual.norm();
-      // Rounding floors the residual near eps·cond(H)·‖rhs‖ (H is a Laplacian, cond ~ #V), so
-      // stop when it stalls; an inexact step with relative residual 1e-8 still converges fast.
-      if (norm <= 1e-12 * rhs.norm()) {
-        ok = true;
-        break;
-      }
-      if (!(norm < 0.3 * previous)) {
-        ok = norm <= 1e-8 * rhs.norm();
-        break;
-      }
-      previous = norm;
-      x += factorization_->solve(residual);
-    }
+    const bool ok = solve_with_nearby_factorization(*factorization_, H, rhs, x);
     timings_.solve += t0.seconds();
     return ok;
   }

@@ -138,6 +138,10 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
   double best = error;
   int since_best = 0;
   FactorizationCache cache;  // flips change the pattern; steps without flips keep the analysis
+  // The last factorised Laplacian: once the connectivity is frozen and Newton takes full steps,
+  // the next one changes little and solve_with_nearby_factorization spares its factorisation.
+  std::shared_ptr<SymmetricFactorization> factored_last;
+  bool last_step_full = false;
   for (int iteration = 0; error > tolerance; ++iteration) {
     if (iteration >= max_iterations) {
       reason = "iteration budget spent";
@@ -152,21 +156,30 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     result.timings.assembly += clock.seconds();
     const std::shared_ptr<SymmetricFactorization> factorization =
         cache.get(result.solver, lower, result.timings.analysis);
-    clock.restart();
-    const bool factored = factorization->factorize(lower);
-    result.timings.factorization += clock.seconds();
-    ++result.factorizations;
-    if (!factored) {
-      reason = "the cotangent Laplacian did not factorise";
-      return FlowStatus::stalled;
-    }
     Eigen::VectorXd rhs(n - 1);
     for (int v = 0; v < n; ++v) {
       if (v != pinned) rhs[v < pinned ? v : v - 1] = -gradient[v];
     }
+    Eigen::VectorXd reduced;
     clock.restart();
-    const Eigen::VectorXd reduced = factorization->solve(rhs);
+    const bool reused = factorization == factored_last && last_step_full &&
+                        error < options.freeze_connectivity_below &&
+                        solve_with_nearby_factorization(*factorization, lower, rhs, reduced);
     result.timings.solve += clock.seconds();
+    if (!reused) {
+      clock.restart();
+      const bool factored = factorization->factorize(lower);
+      result.timings.factorization += clock.seconds();
+      ++result.factorizations;
+      if (!factored) {
+        reason = "the cotangent Laplacian did not factorise";
+        return FlowStatus::stalled;
+      }
+      factored_last = factorization;
+      clock.restart();
+      reduced = factorization->solve(rhs);
+      result.timings.solve += clock.seconds();
+    }
     Eigen::VectorXd direction = Eigen::VectorXd::Zero(n);
     for (int v = 0; v < n; ++v) {
       if (v != pinned) direction[v] = reduced[v < pinned ? v : v - 1];
@@ -214,6 +227,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
       return FlowStatus::stalled;
     }
     ++result.iterations;
+    last_step_full = step == 1.0;
     if (error < 0.5 * best) {
       best = error;
       since_best = 0;
