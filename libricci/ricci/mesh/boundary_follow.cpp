@@ -279,13 +279,9 @@ int spread_boundary_vertices(Mesh& coarse, const Loops& target, const SegmentSou
   return moved;
 }
 
-}  // namespace
-
-BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
-                                     const BoundaryFollowOptions& options) {
-  if (!(options.tolerance > 0.0) || options.max_rounds < 0) {
-    throw InvalidInputError("follow_boundary: tolerance must be positive, rounds >= 0");
-  }
+// follow_boundary's moves and splits, with or without the spread.
+BoundaryFollowResult follow(Mesh& coarse, const Mesh& dense, const BoundaryFollowOptions& options,
+                            bool spread) {
   BoundaryFollowResult result;
   const Curve target = boundary_curve(dense);
   if (target.edges.empty() || boundary_curve(coarse).edges.empty()) return result;
@@ -309,7 +305,7 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
       const SoupHit hit = target_tree.closest(to_eigen(coarse.point(v)));
       if (hit.distance > 0.25 * tolerance) move_towards(coarse, v, hit.point, reference);
     }
-    if (options.spread && round == 0)
+    if (spread && round == 0)
       result.spread += spread_boundary_vertices(coarse, loops, loop_tree, reference);
     const Curve curve = boundary_curve(coarse);
     const SegmentSoupDistance tree(curve.points, curve.edges);
@@ -347,6 +343,28 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
   }
   result.distance_after = hausdorff(boundary_curve(coarse), target) / diagonal;
   return result;
+}
+
+}  // namespace
+
+BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
+                                     const BoundaryFollowOptions& options) {
+  if (!(options.tolerance > 0.0) || options.max_rounds < 0) {
+    throw InvalidInputError("follow_boundary: tolerance must be positive, rounds >= 0");
+  }
+  if (!options.spread) return follow(coarse, dense, options, false);
+  // Spreading helps at V-notches and can hurt at a small hole's few corners: the boundary that
+  // ends nearer the dense one is kept.
+  Mesh spread = coarse;
+  BoundaryFollowResult with = follow(spread, dense, options, true);
+  if (with.spread == 0) {
+    coarse = std::move(spread);
+    return with;
+  }
+  const BoundaryFollowResult without = follow(coarse, dense, options, false);
+  if (without.distance_after < with.distance_after) return without;
+  coarse = std::move(spread);
+  return with;
 }
 
 }  // namespace ricci

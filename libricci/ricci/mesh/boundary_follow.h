@@ -34,8 +34,9 @@ struct BoundaryFollowResult {
 /// round first moves a coarse boundary vertex closer (in arc length along the dense loop it
 /// follows) than a third of its loop's mean spacing to a neighbour to the middle of its two
 /// neighbours: projected onto a zigzag boundary, several vertices land in one V-notch and the
-/// teeth between them are left out. The topology does not
-/// change. Nothing happens when either mesh has no boundary.
+/// teeth between them are left out; the result with the spread is kept only when its boundary
+/// ends no farther from the dense one than without (a small hole's few corners). The topology
+/// does not change. Nothing happens when either mesh has no boundary.
 /// \throw InvalidInputError for a tolerance <= 0 or max_rounds < 0.
 BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
                                      const BoundaryFollowOptions& options = {});
