@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -82,9 +84,15 @@ class ReferenceNormals {
 };
 
 // True when the triangle (a, b, c) faces within ~78 degrees of `reference` (unit).
+// With min_shape > 0, also twice its area over its longest edge squared at least min_shape.
 bool faces_like(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                const Eigen::Vector3d& reference) {
+                const Eigen::Vector3d& reference, double min_shape = 0.0) {
   const Eigen::Vector3d n = face_normal(a, b, c);
+  if (min_shape > 0.0) {
+    const double longest =
+        std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    if (!(n.norm() >= min_shape * longest)) return false;
+  }
   return n.dot(reference) > 0.2 * n.norm();
 }
 
@@ -114,9 +122,12 @@ bool split_towards(Mesh& mesh, EdgeHandle e, const Eigen::Vector3d& target,
 }
 
 // Moves boundary vertex v towards `target`, pulled back as far as needed for every face around
-// it to face like it did at first. Returns whether v moved.
+// it to face like it did at first (and, with min_shape > 0, no face to flatten below it; see
+// faces_like; with whole_move_only, v moves to the target or not at all). Returns whether v
+// moved.
 bool move_towards(Mesh& mesh, VertexHandle v, const Eigen::Vector3d& target,
-                  const ReferenceNormals& reference) {
+                  const ReferenceNormals& reference, double min_shape = 0.0,
+                  bool whole_move_only = false) {
   const Eigen::Vector3d start = to_eigen(mesh.point(v));
   std::vector<std::array<Eigen::Vector3d, 2>> others;  // the two other corners, in order
   std::vector<Eigen::Vector3d> normals;
@@ -128,11 +139,11 @@ bool move_towards(Mesh& mesh, VertexHandle v, const Eigen::Vector3d& target,
     others.push_back({b, c});
     normals.push_back(reference[mesh.face_handle(h)]);
   }
-  for (double t = 1.0; t > 0.05; t *= 0.5) {
+  for (double t = 1.0; t > (whole_move_only ? 0.9 : 0.05); t *= 0.5) {
     const Eigen::Vector3d p = start + t * (target - start);
     bool ok = true;
     for (std::size_t i = 0; i < others.size() && ok; ++i)
-      ok = faces_like(p, others[i][0], others[i][1], normals[i]);
+      ok = faces_like(p, others[i][0], others[i][1], normals[i], min_shape);
     if (ok) {
       mesh.set_point(v, to_openmesh(p));
       return true;
@@ -141,13 +152,136 @@ bool move_towards(Mesh& mesh, VertexHandle v, const Eigen::Vector3d& target,
   return false;
 }
 
-}  // namespace
+// The boundary loops of a mesh, each walked along its boundary halfedges, as one segment soup
+// with each segment's loop and arc length at its start.
+struct Loops {
+  Eigen::MatrixX3d points;
+  std::vector<std::array<int, 2>> segments;
+  std::vector<int> loop;       // by segment
+  std::vector<double> start;   // by segment: arc length of its first point along its loop
+  std::vector<double> length;  // by loop
+  std::vector<std::vector<int>> vertices;  // by loop: the mesh's vertex indices, in order
+};
 
-BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
-                                     const BoundaryFollowOptions& options) {
-  if (!(options.tolerance > 0.0) || options.max_rounds < 0) {
-    throw InvalidInputError("follow_boundary: tolerance must be positive, rounds >= 0");
+Loops boundary_loops(const Mesh& mesh) {
+  Loops l;
+  l.points.resize(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  for (auto v : mesh.vertices()) l.points.row(v.idx()) = to_eigen(mesh.point(v)).transpose();
+  std::vector<char> seen(mesh.n_halfedges(), 0);
+  for (auto h0 : mesh.halfedges()) {
+    if (!mesh.is_boundary(h0) || seen[static_cast<std::size_t>(h0.idx())]) continue;
+    const int id = static_cast<int>(l.length.size());
+    double arc = 0.0;
+    l.vertices.emplace_back();
+    auto h = h0;
+    do {
+      seen[static_cast<std::size_t>(h.idx())] = 1;
+      const int a = mesh.from_vertex_handle(h).idx(), b = mesh.to_vertex_handle(h).idx();
+      l.segments.push_back({a, b});
+      l.loop.push_back(id);
+      l.start.push_back(arc);
+      l.vertices.back().push_back(a);
+      arc += (l.points.row(b) - l.points.row(a)).norm();
+      h = mesh.next_halfedge_handle(h);
+    } while (h != h0 && l.vertices.back().size() <= mesh.n_vertices());
+    l.length.push_back(arc);
   }
+  return l;
+}
+
+// The point at arc length s (taken modulo the loop's length) along loop `id`.
+Eigen::Vector3d point_at(const Loops& l, int id, double s) {
+  const double length = l.length[static_cast<std::size_t>(id)];
+  s -= std::floor(s / length) * length;
+  const auto first =
+      static_cast<std::size_t>(std::find(l.loop.begin(), l.loop.end(), id) - l.loop.begin());
+  std::size_t k = first;
+  while (k + 1 < l.loop.size() && l.loop[k + 1] == id && l.start[k + 1] <= s) ++k;
+  const Eigen::Vector3d a = l.points.row(l.segments[k][0]).transpose();
+  const Eigen::Vector3d b = l.points.row(l.segments[k][1]).transpose();
+  const double seg = (b - a).norm();
+  return seg > 0.0 ? a + std::min(1.0, (s - l.start[k]) / seg) * (b - a) : a;
+}
+
+// Coarse boundary vertices that bunch along the dense boundary (projected onto a zigzag scan
+// boundary, several land in one V-notch) are spread along it: a vertex whose arc-length gap to a
+// neighbour is below a third of its loop's mean gap moves to the arc-length midpoint of its
+// neighbours, as far as its faces allow. A coarse loop that does not wind once around one dense
+// loop, in the same direction, is left. Returns the vertices moved.
+// The flattest face a spread move may leave (twice the area over the longest edge squared; an
+// equilateral triangle has 0.87): moved along a straight boundary, a vertex may otherwise land
+// on the line of its neighbours.
+constexpr double kSpreadShape = 0.05;
+
+int spread_boundary_vertices(Mesh& coarse, const Loops& target, const SegmentSoupDistance& tree,
+                             const ReferenceNormals& reference) {
+  const Loops loops = boundary_loops(coarse);
+  int moved = 0;
+  for (const auto& ring : loops.vertices) {
+    const std::size_t n = ring.size();
+    if (n < 4) continue;
+    std::vector<double> s(n);
+    int id = -1;
+    bool one_loop = true;
+    for (std::size_t i = 0; i < n && one_loop; ++i) {
+      const SoupHit hit = tree.closest(loops.points.row(ring[i]).transpose());
+      const auto k = static_cast<std::size_t>(hit.primitive);
+      if (id < 0) id = target.loop[k];
+      one_loop = target.loop[k] == id;
+      s[i] = target.start[k] +
+             (hit.point - target.points.row(target.segments[k][0]).transpose()).norm();
+    }
+    if (!one_loop) continue;
+    const double length = target.length[static_cast<std::size_t>(id)];
+    // Unwrapped along the loop: each step forwards by less than half the loop.
+    for (std::size_t i = 1; i < n; ++i) {
+      double d = s[i] - s[i - 1];
+      d -= std::round(d / length) * length;
+      s[i] = s[i - 1] + d;
+    }
+    double closing = s[0] + length - s[n - 1];
+    if (std::abs(closing - length / static_cast<double>(n)) > 0.5 * length) continue;
+    const double small = length / (3.0 * static_cast<double>(n));
+    const auto at = [&](std::ptrdiff_t i) {  // s extended periodically
+      const auto m = static_cast<std::ptrdiff_t>(n);
+      const std::ptrdiff_t wraps = (i >= 0 ? i / m : -((-i + m - 1) / m));
+      return s[static_cast<std::size_t>(i - wraps * m)] + static_cast<double>(wraps) * length;
+    };
+    const std::vector<double> original = s;
+    std::vector<char> changed(n, 0);
+    for (int sweep = 0; sweep < 8; ++sweep) {
+      bool any = false;
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto j = static_cast<std::ptrdiff_t>(i);
+        const double before = at(j) - at(j - 1), after = at(j + 1) - at(j);
+        if (std::min(before, after) >= small) continue;
+        const double mid = 0.5 * (at(j - 1) + at(j + 1));
+        if (std::abs(mid - s[i]) < 1e-3 * small) continue;
+        s[i] = mid;
+        changed[i] = 1;
+        any = true;
+      }
+      if (!any) break;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!changed[i]) continue;
+      const auto v = coarse.vertex_handle(ring[i]);
+      // Points on the dense boundary only: part of the way along it, not along a chord.
+      for (double t = 1.0; t > 0.2; t *= 0.5) {
+        const double at_t = original[i] + t * (s[i] - original[i]);
+        if (move_towards(coarse, v, point_at(target, id, at_t), reference, kSpreadShape, true)) {
+          ++moved;
+          break;
+        }
+      }
+    }
+  }
+  return moved;
+}
+
+// follow_boundary's moves and splits, with or without the spread.
+BoundaryFollowResult follow(Mesh& coarse, const Mesh& dense, const BoundaryFollowOptions& options,
+                            bool spread) {
   BoundaryFollowResult result;
   const Curve target = boundary_curve(dense);
   if (target.edges.empty() || boundary_curve(coarse).edges.empty()) return result;
@@ -155,6 +289,8 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
       (target.points.colwise().maxCoeff() - target.points.colwise().minCoeff()).norm();
   const double tolerance = options.tolerance * diagonal;
   const SegmentSoupDistance target_tree(target.points, target.edges);
+  const Loops loops = boundary_loops(dense);
+  const SegmentSoupDistance loop_tree(loops.points, loops.segments);
   ReferenceNormals reference(coarse);
   // Dense boundary vertices (the curve's samples) used as split targets.
   std::vector<int> dense_vertices;
@@ -169,6 +305,8 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
       const SoupHit hit = target_tree.closest(to_eigen(coarse.point(v)));
       if (hit.distance > 0.25 * tolerance) move_towards(coarse, v, hit.point, reference);
     }
+    if (spread && round == 0)
+      result.spread += spread_boundary_vertices(coarse, loops, loop_tree, reference);
     const Curve curve = boundary_curve(coarse);
     const SegmentSoupDistance tree(curve.points, curve.edges);
     // Per coarse edge: the farthest dense boundary vertex among those it is nearest to.
@@ -205,6 +343,28 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
   }
   result.distance_after = hausdorff(boundary_curve(coarse), target) / diagonal;
   return result;
+}
+
+}  // namespace
+
+BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
+                                     const BoundaryFollowOptions& options) {
+  if (!(options.tolerance > 0.0) || options.max_rounds < 0) {
+    throw InvalidInputError("follow_boundary: tolerance must be positive, rounds >= 0");
+  }
+  if (!options.spread) return follow(coarse, dense, options, false);
+  // Spreading helps at V-notches and can hurt at a small hole's few corners: the boundary that
+  // ends nearer the dense one is kept.
+  Mesh spread = coarse;
+  BoundaryFollowResult with = follow(spread, dense, options, true);
+  if (with.spread == 0) {
+    coarse = std::move(spread);
+    return with;
+  }
+  const BoundaryFollowResult without = follow(coarse, dense, options, false);
+  if (without.distance_after < with.distance_after) return without;
+  coarse = std::move(spread);
+  return with;
 }
 
 }  // namespace ricci

@@ -12,11 +12,14 @@ struct BoundaryFollowOptions {
   /// mesh's bounding-box diagonal.
   double tolerance = 0.002;
   int max_rounds = 6;  ///< Rounds of splits (each splits every edge still too far, once).
+  /// Spread boundary vertices that bunch along the dense boundary (see follow_boundary).
+  bool spread = true;
 };
 
 struct BoundaryFollowResult {
   int splits = 0;  ///< Boundary edges split (one vertex and one face each).
   int rounds = 0;
+  int spread = 0;  ///< Moves of bunched boundary vertices along the dense boundary.
   /// Hausdorff distance between the boundary curves (vertices and edge midpoints sampled)
   /// before and after, as fractions of the dense mesh's diagonal; 0 without boundary.
   double distance_before = 0.0, distance_after = 0.0;
@@ -27,8 +30,13 @@ struct BoundaryFollowResult {
 /// dense boundary, or max_rounds. A split edge's new vertex goes to the dense boundary point
 /// farthest from the edge among those nearest to it (or the dense boundary point nearest to the
 /// midpoint), moved back towards the midpoint as far as needed for its two triangles to keep
-/// the split face's orientation; an edge that cannot be split so is left. The topology does not
-/// change. Nothing happens when either mesh has no boundary.
+/// the split face's orientation; an edge that cannot be split so is left. With `spread`, each
+/// round first moves a coarse boundary vertex closer (in arc length along the dense loop it
+/// follows) than a third of its loop's mean spacing to a neighbour to the middle of its two
+/// neighbours: projected onto a zigzag boundary, several vertices land in one V-notch and the
+/// teeth between them are left out; the result with the spread is kept only when its boundary
+/// ends no farther from the dense one than without (a small hole's few corners). The topology
+/// does not change. Nothing happens when either mesh has no boundary.
 /// \throw InvalidInputError for a tolerance <= 0 or max_rounds < 0.
 BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
                                      const BoundaryFollowOptions& options = {});

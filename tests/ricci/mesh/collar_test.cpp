@@ -2,8 +2,10 @@
 // the original faces, lie in the tangent plane, and leave closed meshes alone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -148,6 +150,75 @@ TEST(FollowBoundary, NoFaceTurnsOverOnAZigzagBoundary) {
   EXPECT_GT(r.splits, 100);
   EXPECT_LT(r.distance_after, 0.5 * r.distance_before);
   EXPECT_EQ(edges_over_120_deg(coarse), 0);
+}
+
+}  // namespace
+}  // namespace ricci
+
+// follow_boundary spreads boundary vertices that bunch along the dense boundary: a coarse disk
+// whose odd boundary vertices were slid along the circle to 0.15 of a gap from their even
+// neighbour (the pairs a zigzag scan's V-notches leave) comes back with every gap at least a
+// third of the mean, still on the circle, no face turned; without `spread` the pairs stay.
+namespace ricci {
+namespace {
+
+std::vector<double> sorted_boundary_angles(const Mesh& mesh) {
+  std::vector<double> angles;
+  for (auto v : mesh.vertices()) {
+    if (!mesh.is_boundary(v)) continue;
+    const auto p = mesh.point(v);
+    angles.push_back(std::atan2(p[1], p[0]));
+  }
+  std::sort(angles.begin(), angles.end());
+  return angles;
+}
+
+double smallest_gap(const std::vector<double>& sorted) {
+  double gap = sorted.front() + 2.0 * M_PI - sorted.back();
+  for (std::size_t i = 1; i < sorted.size(); ++i) gap = std::min(gap, sorted[i] - sorted[i - 1]);
+  return gap;
+}
+
+Mesh bunched_disk() {
+  Mesh disk = make_disk(4, 8);  // 32 boundary vertices on the unit circle
+  const double gap = 2.0 * M_PI / 32.0;
+  for (auto v : disk.vertices()) {
+    if (!disk.is_boundary(v)) continue;
+    const auto p = disk.point(v);
+    const double angle = std::atan2(p[1], p[0]);
+    const long k = std::lround(angle / gap);
+    if (k % 2 == 0) continue;
+    const double moved = static_cast<double>(k - 1) * gap + 0.15 * gap;
+    disk.set_point(v, Mesh::Point(std::cos(moved), std::sin(moved), 0.0));
+  }
+  return disk;
+}
+
+TEST(FollowBoundary, BunchedBoundaryVerticesAreSpreadAlongTheDenseBoundary) {
+  const Mesh fine = make_disk(24, 8);
+  const double mean = 2.0 * M_PI / 32.0;
+  BoundaryFollowOptions options;
+  options.tolerance = 0.05;  // wide: no split, only the moves
+  options.max_rounds = 1;
+  Mesh kept = bunched_disk();
+  ASSERT_GT(min_area(kept), 0.0);
+  ASSERT_LT(smallest_gap(sorted_boundary_angles(kept)), 0.2 * mean);
+  options.spread = false;
+  EXPECT_EQ(follow_boundary(kept, fine, options).spread, 0);
+  EXPECT_LT(smallest_gap(sorted_boundary_angles(kept)), 0.2 * mean);
+
+  Mesh spread = bunched_disk();
+  options.spread = true;
+  const BoundaryFollowResult r = follow_boundary(spread, fine, options);
+  EXPECT_EQ(r.splits, 0);
+  EXPECT_GT(r.spread, 0);
+  EXPECT_GE(smallest_gap(sorted_boundary_angles(spread)), mean / 3.0 - 1e-9);
+  EXPECT_GT(min_area(spread), 0.0);
+  for (auto v : spread.vertices()) {
+    if (!spread.is_boundary(v)) continue;
+    const auto p = spread.point(v);
+    EXPECT_NEAR(std::hypot(p[0], p[1]), 1.0, 0.01);  // on the fine circle's chords
+  }
 }
 
 }  // namespace

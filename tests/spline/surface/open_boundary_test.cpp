@@ -42,25 +42,30 @@ INSTANTIATE_TEST_SUITE_P(Scans, OpenBoundary,
 
 // mech-holes-shark.off's boundary zigzags across a crease where the domain's boundary cannot
 // follow it: pulled onto it the spline folded the band next to it (108 fold edges), so the fit
-// without the pull is kept; its boundary stays where it was (1.69% before the pull existed).
+// without the pull is kept. Its boundary vertices bunch at the V-notches; spread along the
+// scan's boundary (follow_boundary) and without the fold rounds' smoothing in the band, the
+// boundary is 1.43% from the scan's (1.69% before the pull existed, 1.55% before the spread).
 TEST(OpenBoundary, AZigzagBoundaryThatFoldsIsNotPulled) {
   const ricci::Mesh scan = ricci::read_mesh(msp_test::test_mesh("open/mech-holes-shark.off.gz"));
   const FittedSurface r = fit_surface(scan);
   EXPECT_TRUE(r.boundary_curve_dropped);
   EXPECT_EQ(r.surface_dihedral.over_90_deg, 0);
-  EXPECT_LT(r.delivered.boundary_hausdorff, 0.017 * r.bbox_diagonal);
+  EXPECT_LT(r.delivered.boundary_hausdorff, 0.015 * r.bbox_diagonal);
   EXPECT_LT(r.delivered.surface_to_scan_max, 0.02 * r.bbox_diagonal);
 }
 
-// lion.off folds inside (its mane: 36 fold edges after the refinement round); the fold rounds
-// smooth there but not within two rings of the boundary, which stays where it was.
-TEST(OpenBoundary, FoldsInsideAnOpenScanAreSmoothedAwayFromTheBoundary) {
+// lion.off folds inside (its mane: 40 fold edges with the boundary curve pulled) and next to its
+// boundary; the fold rounds smooth there, up to the RMS goal, and keep the pull: 0 folds and the
+// boundary within the 0.5% (0.495% measured; 0.774% and 2 folds when the band was left
+// out and the pull dropped).
+TEST(OpenBoundary, FoldsOfAnOpenScanAreSmoothedAndItsBoundaryReached) {
   const ricci::Mesh scan = ricci::read_mesh(msp_test::test_mesh("open/lion.off.gz"));
   const FittedSurface r = fit_surface(scan);
   const double diag = r.bbox_diagonal;
   EXPECT_TRUE(r.watertight);
-  EXPECT_LE(r.surface_dihedral.over_90_deg, 4);
-  EXPECT_LT(r.delivered.boundary_hausdorff, 0.008 * diag);
+  EXPECT_EQ(r.surface_dihedral.over_90_deg, 0);
+  EXPECT_FALSE(r.boundary_curve_dropped);
+  EXPECT_LT(r.delivered.boundary_hausdorff, 0.005 * diag);
   EXPECT_LT(r.fit_rms, 0.002 * diag);
   EXPECT_LT(r.fit_max, 0.02 * diag);
   EXPECT_LT(r.delivered.surface_to_scan_max, 0.02 * diag);
