@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <limits>
 #include <map>
-#include <queue>
 #include <sstream>
 
 #include <Eigen/SparseCore>
@@ -77,49 +76,19 @@ void check_feature(const MeshTables& tables, int v, const char* name) {
   }
 }
 
-/// Shortest edge path (under `lengths`) from interior vertex p to boundary loop `target`,
-/// through interior vertices not `used` by earlier paths, ending at its first vertex on the
-/// loop. Marks its vertices used. \throw TopologyError when the loop cannot be reached.
+/// The ray from interior vertex p to boundary loop `target` avoiding the `used` vertices of
+/// earlier rays, ending at its first vertex on the loop; marks its vertices but p used.
+/// \throw TopologyError when the loop cannot be reached.
 std::vector<HalfedgeHandle> ray_to_loop(const Mesh& mesh, const std::vector<int>& loop_of,
                                         const EdgeLengths& lengths, int p, int target,
                                         std::vector<char>& used) {
-  const int n = static_cast<int>(loop_of.size());
-  std::vector<double> dist(n, kInfinity);
-  std::vector<HalfedgeHandle> parent(n);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  dist[p] = 0;
-  queue.push({0.0, p});
-  int end = -1;
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[v]) continue;
-    if (loop_of[v] == target) {
-      end = v;
-      break;
-    }
-    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
-      const int w = mesh.to_vertex_handle(h).idx();
-      if (used[w] || (loop_of[w] >= 0 && loop_of[w] != target)) continue;
-      const double nd = d + lengths[mesh.edge_handle(h).idx()];
-      if (nd < dist[w]) {
-        dist[w] = nd;
-        parent[w] = h;
-        queue.push({nd, w});
-      }
-    }
-  }
-  if (end < 0) {
+  const std::vector<HalfedgeHandle> path = detail::shortest_path_to_loop(
+      mesh, loop_of, lengths, {p}, [target](int loop) { return loop == target; }, used);
+  if (path.empty()) {
     throw TopologyError("no path from the feature vertex reaches boundary loop " +
                         std::to_string(target) + " without crossing the other cuts");
   }
-  std::vector<HalfedgeHandle> path;
-  for (int v = end; v != p; v = mesh.from_vertex_handle(parent[v]).idx()) {
-    path.push_back(parent[v]);
-    used[v] = 1;
-  }
-  std::reverse(path.begin(), path.end());
+  for (HalfedgeHandle h : path) used[mesh.to_vertex_handle(h).idx()] = 1;
   return path;
 }
 
