@@ -694,9 +694,16 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     const Star star_b = cone_star(b, tables_b, result.b.feature, options, "B", result.b);
     result.b.seconds = stage.lap();
     if (star_a.loop_order != star_b.loop_order) {
+      const auto text = [](const std::vector<int>& order) {
+        std::string t;
+        for (int rank : order) t += (t.empty() ? "c" : " c") + std::to_string(rank);
+        return t;
+      };
       throw InvalidInputError(
           "the cuts leave the feature vertex towards the boundary loops in "
-          "a different order on A and B; choose other feature vertices");
+          "a different order on A (" +
+          text(star_a.loop_order) + ") and B (" + text(star_b.loop_order) +
+          "); choose other feature vertices");
     }
     const std::vector<double> fa = arc_fractions(star_a), fb = arc_fractions(star_b);
     std::vector<double> extents(fa.size());
