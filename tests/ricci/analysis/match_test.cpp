@@ -217,6 +217,36 @@ TEST(Match, HyperbolicFiveHolePlateAgainstItsStretchedAndBentCopyIsOneToOne) {
   expect_one_to_one(match_surfaces(a, b, options));
 }
 
+/// Three holes of radii 0.150, 0.151 and 0.152 round the centre, and a copy stretched by 1.1
+/// along x whose smallest hole grows by about 3% (a bump about its centre): the loops' length
+/// ranks differ on A and B, so the rays leave the feature in another order of ranks; the loops
+/// pair by their order round the feature (the centre) instead (lengths within 5%), and the map
+/// is one-to-one and near the vertex correspondence.
+TEST(Match, EuclideanPairsLoopsOfAboutTheSameLengthByTheirOrderRoundTheFeature) {
+  std::vector<TestCircle> holes;
+  for (int k = 0; k < 3; ++k) {
+    const double angle = M_PI / 2 + 2 * M_PI * k / 3;
+    holes.push_back({0.45 * std::cos(angle), 0.45 * std::sin(angle), 0.150 + 0.001 * k});
+  }
+  const Mesh a = testing::circle_domain_mesh(holes, 0.05);
+  const Eigen::Vector2d c(holes[0].x, holes[0].y);
+  const Mesh b = testing::mapped(a, [c](const Eigen::Vector3d& p) {
+    const Eigen::Vector2d d = p.head<2>() - c;
+    const Eigen::Vector2d q = c + d * (1 + 0.03 * std::exp(-d.squaredNorm() / 0.02));
+    return Eigen::Vector3d(1.1 * q.x(), q.y(), p.z());
+  });
+  MatchOptions options;  // the centre on both (the same vertex index)
+  options.feature_a = options.feature_b = vertex_near(a, 0.0, 0.0);
+  MatchOptions strict = options;
+  strict.loop_length_tolerance = 0;  // ranks only: refused
+  EXPECT_THROW((void)match_surfaces(a, b, strict), InvalidInputError);
+  const MatchResult r = match_surfaces(a, b, options);
+  EXPECT_NE(r.a.loop_order, r.b.loop_order);
+  expect_one_to_one(r);
+  // 5.3% (the stretch and the bump are not conformal); paired by rank order it was 39%.
+  EXPECT_LT(r.correspondence_error, 0.1);
+}
+
 // Open (issue 17): the euclidean cone star reverses 40 faces of A here (main before the radial
 // map: 77 of A and 21 of B), thin faces next to the unit circle; the paper's decomposition into
 // several convex pieces is not built.
