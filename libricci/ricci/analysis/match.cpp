@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <limits>
 #include <map>
-#include <queue>
 #include <sstream>
 
 #include <Eigen/SparseCore>
@@ -77,49 +76,19 @@ void check_feature(const MeshTables& tables, int v, const char* name) {
   }
 }
 
-/// Shortest edge path (under `lengths`) from interior vertex p to boundary loop `target`,
-/// through interior vertices not `used` by earlier paths, ending at its first vertex on the
-/// loop. Marks its vertices used. \throw TopologyError when the loop cannot be reached.
+/// The ray from interior vertex p to boundary loop `target` avoiding the `used` vertices of
+/// earlier rays, ending at its first vertex on the loop; marks its vertices but p used.
+/// \throw TopologyError when the loop cannot be reached.
 std::vector<HalfedgeHandle> ray_to_loop(const Mesh& mesh, const std::vector<int>& loop_of,
                                         const EdgeLengths& lengths, int p, int target,
                                         std::vector<char>& used) {
-  const int n = static_cast<int>(loop_of.size());
-  std::vector<double> dist(n, kInfinity);
-  std::vector<HalfedgeHandle> parent(n);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  dist[p] = 0;
-  queue.push({0.0, p});
-  int end = -1;
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[v]) continue;
-    if (loop_of[v] == target) {
-      end = v;
-      break;
-    }
-    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
-      const int w = mesh.to_vertex_handle(h).idx();
-      if (used[w] || (loop_of[w] >= 0 && loop_of[w] != target)) continue;
-      const double nd = d + lengths[mesh.edge_handle(h).idx()];
-      if (nd < dist[w]) {
-        dist[w] = nd;
-        parent[w] = h;
-        queue.push({nd, w});
-      }
-    }
-  }
-  if (end < 0) {
+  const std::vector<HalfedgeHandle> path = detail::shortest_path_to_loop(
+      mesh, loop_of, lengths, {p}, [target](int loop) { return loop == target; }, used);
+  if (path.empty()) {
     throw TopologyError("no path from the feature vertex reaches boundary loop " +
                         std::to_string(target) + " without crossing the other cuts");
   }
-  std::vector<HalfedgeHandle> path;
-  for (int v = end; v != p; v = mesh.from_vertex_handle(parent[v]).idx()) {
-    path.push_back(parent[v]);
-    used[v] = 1;
-  }
-  std::reverse(path.begin(), path.end());
+  for (HalfedgeHandle h : path) used[mesh.to_vertex_handle(h).idx()] = 1;
   return path;
 }
 
@@ -133,9 +102,10 @@ struct Star {
   std::vector<int> loop_order;  ///< Loop rank of each ray, in walk order.
 };
 
-/// Algorithm 8, steps 1-4 and the cut: flow, rays, slice, boundary walk.
+/// Algorithm 8, steps 1-4 and the cut: flow, rays, slice, boundary walk. The rays are taken in
+/// rank order, then (if one is blocked) nearest loop first; `reach_first` swaps the two.
 Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOptions& options,
-               const char* name, ParameterDomain& domain) {
+               const char* name, ParameterDomain& domain, bool reach_first = false) {
   const int n = tables.num_vertices();
   const int loops = static_cast<int>(tables.boundary_loops.size());
   const std::vector<int> order = detail::loops_by_length(mesh, tables);
@@ -176,7 +146,7 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
   std::vector<char> is_cut;
   std::vector<int> end_rank;
   for (int attempt = 0; attempt < 2; ++attempt) {
-    const std::vector<int>& ranks = attempt == 0 ? by_rank : by_reach;
+    const std::vector<int>& ranks = (attempt == 0) != reach_first ? by_rank : by_reach;
     std::vector<char> used(n, 0);
     used[p] = 1;
     is_cut.assign(mesh.n_edges(), 0);
@@ -250,6 +220,61 @@ std::vector<double> arc_fractions(const Star& star) {
     fractions.push_back((star.arc[to] - star.arc[from]) / star.arc.back());
   }
   return fractions;
+}
+
+/// The star with its walk starting at its j-th ray (loop_order[j]) instead of the ray to c0.
+Star rotated(const Star& star, int j) {
+  Star out = star;
+  if (j == 0) return out;
+  const int m = static_cast<int>(star.walk.size());
+  const int shift = star.corners[3 * static_cast<size_t>(j)];
+  std::rotate(out.walk.begin(), out.walk.begin() + shift, out.walk.end());
+  for (int i = 0; i < m; ++i) {
+    const int from = (i + shift) % m;
+    out.arc[i + 1] = out.arc[i] + star.arc[from + 1] - star.arc[from];
+  }
+  for (int& corner : out.corners) corner = (corner - shift + m) % m;
+  std::sort(out.corners.begin(), out.corners.end());
+  std::rotate(out.loop_order.begin(), out.loop_order.begin() + j, out.loop_order.end());
+  return out;
+}
+
+/// By rank (c0 the longest): each boundary loop's 3D length over the whole boundary's.
+std::vector<double> relative_loop_lengths(const Mesh& mesh, const MeshTables& tables) {
+  std::vector<double> lengths;
+  double total = 0;
+  for (int loop : detail::loops_by_length(mesh, tables)) {
+    const std::vector<int>& vertices = tables.boundary_loops[loop];
+    double length = 0;
+    for (size_t i = 0; i < vertices.size(); ++i) {
+      length += (mesh.point(mesh.vertex_handle(vertices[i])) -
+                 mesh.point(mesh.vertex_handle(vertices[(i + 1) % vertices.size()])))
+                    .norm();
+    }
+    lengths.push_back(length);
+    total += length;
+  }
+  for (double& length : lengths) length /= total;
+  return lengths;
+}
+
+/// When the rays leave the feature towards the loops in another order on A and B: the turns j
+/// of B's star (its ray j paired with A's ray 0, and so on round) that pair each loop of A with
+/// a loop of B of the same relative 3D length within `tolerance` (relative): where the lengths
+/// cannot tell the loops apart, their cyclic order around the feature does.
+std::vector<int> pairing_turns(const Star& a, const Star& b, const std::vector<double>& lengths_a,
+                               const std::vector<double>& lengths_b, double tolerance) {
+  std::vector<int> turns;
+  const size_t k = a.loop_order.size();
+  for (size_t j = 0; j < k; ++j) {
+    bool fits = true;
+    for (size_t i = 0; i < k && fits; ++i) {
+      const double x = lengths_a[a.loop_order[i]], y = lengths_b[b.loop_order[(i + j) % k]];
+      fits = std::abs(x - y) <= tolerance * std::max(x, y);
+    }
+    if (fits) turns.push_back(static_cast<int>(j));
+  }
+  return turns;
 }
 
 /// Steps 6-7: the disk's boundary on the unit circle (arc j spans extents[j] of the turn,
@@ -656,93 +681,12 @@ void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
 
 }  // namespace detail
 
-MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& options) {
-  const Stopwatch watch;
-  const SurfaceTopology ta = checked_topology(a, "A"), tb = checked_topology(b, "B");
-  if (ta.genus != tb.genus || ta.boundary_loops != tb.boundary_loops) {
-    throw InvalidInputError("A is " + topology_text(ta) + " and B " + topology_text(tb) +
-                            "; matching needs the same topology");
-  }
-  if (ta.boundary_loops == 0 || ta.genus > 0) {
-    throw InvalidInputError("matching needs genus-0 surfaces with boundary; the meshes are " +
-                            topology_text(ta));
-  }
-  if ((options.feature_a == -1) != (options.feature_b == -1)) {
-    throw InvalidInputError("give feature vertices on both surfaces or on neither");
-  }
-  const MeshTables tables_a = build_mesh_tables(a), tables_b = build_mesh_tables(b);
-  MatchResult result;
-  Stopwatch stage;
-  if (options.method == MatchMethod::hyperbolic) {
-    if (ta.boundary_loops < 3) {
-      throw InvalidInputError("the hyperbolic method needs a negative Euler characteristic " +
-                              std::string("(three or more boundary loops); the meshes are ") +
-                              topology_text(ta) + ": use the euclidean one");
-    }
-    if (options.feature_a != -1 || !options.corners_a.empty() || !options.corners_b.empty()) {
-      throw InvalidInputError("feature vertices and corners are for the euclidean method");
-    }
-    detail::klein_polygon_domains(a, tables_a, b, tables_b, options, result);
-  } else if (ta.boundary_loops == 1 && options.feature_a != -1) {
-    result.domain = "unit disk";
-    if (!options.corners_a.empty() || !options.corners_b.empty()) {
-      throw InvalidInputError("rectangle corners are for disks without feature vertices");
-    }
-    check_feature(tables_a, options.feature_a, "A");
-    check_feature(tables_b, options.feature_b, "B");
-    unit_disk_domain(a, options.feature_a, options, "A", result.a);
-    result.a.seconds = stage.lap();
-    unit_disk_domain(b, options.feature_b, options, "B", result.b);
-    result.b.seconds = stage.lap();
-  } else if (ta.boundary_loops == 1) {
-    result.domain = "rectangle";
-    if (options.corners_a.empty() != options.corners_b.empty()) {
-      throw InvalidInputError("give rectangle corners on both surfaces or on neither");
-    }
-    rectangle_domain(a, tables_a, options.corners_a, options, "A", result.a);
-    result.a.seconds = stage.lap();
-    rectangle_domain(b, tables_b, options.corners_b, options, "B", result.b);
-    result.b.seconds = stage.lap();
-  } else {
-    result.domain = "cone star";
-    if (!options.corners_a.empty() || !options.corners_b.empty()) {
-      throw InvalidInputError("rectangle corners are for disks without feature vertices");
-    }
-    if (options.feature_a != -1) {
-      check_feature(tables_a, options.feature_a, "A");
-      check_feature(tables_b, options.feature_b, "B");
-    }
-    result.a.feature = options.feature_a != -1
-                           ? options.feature_a
-                           : detail::farthest_interior_vertex(
-                                 a, tables_a, static_cast<int>(tables_a.boundary_loops.size()));
-    result.b.feature = options.feature_b != -1
-                           ? options.feature_b
-                           : detail::farthest_interior_vertex(
-                                 b, tables_b, static_cast<int>(tables_b.boundary_loops.size()));
-    const Star star_a = cone_star(a, tables_a, result.a.feature, options, "A", result.a);
-    result.a.seconds = stage.lap();
-    const Star star_b = cone_star(b, tables_b, result.b.feature, options, "B", result.b);
-    result.b.seconds = stage.lap();
-    if (star_a.loop_order != star_b.loop_order) {
-      throw InvalidInputError(
-          "the cuts leave the feature vertex towards the boundary loops in "
-          "a different order on A and B; choose other feature vertices");
-    }
-    const std::vector<double> fa = arc_fractions(star_a), fb = arc_fractions(star_b);
-    std::vector<double> extents(fa.size());
-    // Half of the turn by the arcs' mean flat lengths, half evenly: a small hole's arcs keep
-    // room enough that the harmonic map does not crowd its faces below the rounding.
-    for (size_t j = 0; j < fa.size(); ++j) {
-      extents[j] = 0.25 * (fa[j] + fb[j]) + 0.5 / static_cast<double>(fa.size());
-    }
-    result.a.positions = star_positions(star_a, extents);
-    detail::fill_cut_domain(star_a.sliced, result.a);
-    result.a.seconds += stage.lap();
-    result.b.positions = star_positions(star_b, extents);
-    detail::fill_cut_domain(star_b.sliced, result.b);
-    result.b.seconds += stage.lap();
-  }
+namespace {
+
+/// Locates A's vertices in B's parameter domain (phi is the identity there) and fills
+/// result.map, the reversed faces and ears, the snaps and the shape errors.
+void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
+                  const MeshTables& tables_b, MatchResult& result) {
   // Locate every copy of A's vertices in B's domain (phi is the identity there).
   const Locator locator(result.b.positions, result.b.faces);
   const Eigen::MatrixX2d on_domain_b = radial_onto(result.a, result.b);
@@ -821,6 +765,138 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
   result.shape_error = mean_distance(a, shape, diag);
   result.correspondence_error =
       same ? mean_distance(a, correspondence, diag) : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& options) {
+  const Stopwatch watch;
+  const SurfaceTopology ta = checked_topology(a, "A"), tb = checked_topology(b, "B");
+  if (ta.genus != tb.genus || ta.boundary_loops != tb.boundary_loops) {
+    throw InvalidInputError("A is " + topology_text(ta) + " and B " + topology_text(tb) +
+                            "; matching needs the same topology");
+  }
+  if (ta.boundary_loops == 0 || ta.genus > 0) {
+    throw InvalidInputError("matching needs genus-0 surfaces with boundary; the meshes are " +
+                            topology_text(ta));
+  }
+  if ((options.feature_a == -1) != (options.feature_b == -1)) {
+    throw InvalidInputError("give feature vertices on both surfaces or on neither");
+  }
+  const MeshTables tables_a = build_mesh_tables(a), tables_b = build_mesh_tables(b);
+  MatchResult result;
+  bool evaluated = false;  // the cone star evaluates each pairing of loops it tries
+  Stopwatch stage;
+  if (options.method == MatchMethod::hyperbolic) {
+    if (ta.boundary_loops < 3) {
+      throw InvalidInputError("the hyperbolic method needs a negative Euler characteristic " +
+                              std::string("(three or more boundary loops); the meshes are ") +
+                              topology_text(ta) + ": use the euclidean one");
+    }
+    if (options.feature_a != -1 || !options.corners_a.empty() || !options.corners_b.empty()) {
+      throw InvalidInputError("feature vertices and corners are for the euclidean method");
+    }
+    detail::klein_polygon_domains(a, tables_a, b, tables_b, options, result);
+  } else if (ta.boundary_loops == 1 && options.feature_a != -1) {
+    result.domain = "unit disk";
+    if (!options.corners_a.empty() || !options.corners_b.empty()) {
+      throw InvalidInputError("rectangle corners are for disks without feature vertices");
+    }
+    check_feature(tables_a, options.feature_a, "A");
+    check_feature(tables_b, options.feature_b, "B");
+    unit_disk_domain(a, options.feature_a, options, "A", result.a);
+    result.a.seconds = stage.lap();
+    unit_disk_domain(b, options.feature_b, options, "B", result.b);
+    result.b.seconds = stage.lap();
+  } else if (ta.boundary_loops == 1) {
+    result.domain = "rectangle";
+    if (options.corners_a.empty() != options.corners_b.empty()) {
+      throw InvalidInputError("give rectangle corners on both surfaces or on neither");
+    }
+    rectangle_domain(a, tables_a, options.corners_a, options, "A", result.a);
+    result.a.seconds = stage.lap();
+    rectangle_domain(b, tables_b, options.corners_b, options, "B", result.b);
+    result.b.seconds = stage.lap();
+  } else {
+    result.domain = "cone star";
+    if (!options.corners_a.empty() || !options.corners_b.empty()) {
+      throw InvalidInputError("rectangle corners are for disks without feature vertices");
+    }
+    if (options.feature_a != -1) {
+      check_feature(tables_a, options.feature_a, "A");
+      check_feature(tables_b, options.feature_b, "B");
+    }
+    result.a.feature = options.feature_a != -1
+                           ? options.feature_a
+                           : detail::farthest_interior_vertex(
+                                 a, tables_a, static_cast<int>(tables_a.boundary_loops.size()));
+    result.b.feature = options.feature_b != -1
+                           ? options.feature_b
+                           : detail::farthest_interior_vertex(
+                                 b, tables_b, static_cast<int>(tables_b.boundary_loops.size()));
+    const Star star_a = cone_star(a, tables_a, result.a.feature, options, "A", result.a);
+    result.a.seconds = stage.lap();
+    const Star star_b = cone_star(b, tables_b, result.b.feature, options, "B", result.b);
+    result.b.seconds = stage.lap();
+    // The stars of B tried against A's, each with the turns that pair the loops: B's own when
+    // the orders agree; else B's rays in both orders, at every turn that pairs loops of about
+    // the same length (rays taken in rank order go round other loops when the ranks differ).
+    std::vector<std::pair<Star, std::vector<int>>> candidates;
+    if (star_a.loop_order == star_b.loop_order) {
+      candidates.push_back({star_b, {0}});
+    } else if (options.loop_length_tolerance > 0) {
+      const std::vector<double> lengths_a = relative_loop_lengths(a, tables_a),
+                                lengths_b = relative_loop_lengths(b, tables_b);
+      ParameterDomain ignored;
+      for (int reach_first = 0; reach_first < 2; ++reach_first) {
+        Star star = reach_first
+                        ? cone_star(b, tables_b, result.b.feature, options, "B", ignored, true)
+                        : star_b;
+        std::vector<int> turns =
+            pairing_turns(star_a, star, lengths_a, lengths_b, options.loop_length_tolerance);
+        if (!turns.empty()) candidates.push_back({std::move(star), std::move(turns)});
+      }
+    }
+    if (candidates.empty()) {
+      const auto text = [](const std::vector<int>& order) {
+        std::string t;
+        for (int rank : order) t += (t.empty() ? "c" : " c") + std::to_string(rank);
+        return t;
+      };
+      throw InvalidInputError(
+          "the cuts leave the feature vertex towards the boundary loops in "
+          "a different order on A (" +
+          text(star_a.loop_order) + ") and B (" + text(star_b.loop_order) +
+          ") and no turn pairs loops of the same length; choose other feature vertices");
+    }
+    const std::vector<double> fa = arc_fractions(star_a);
+    detail::fill_cut_domain(star_a.sliced, result.a);
+    result.a.seconds += stage.lap();
+    MatchResult best;
+    for (const auto& [candidate, turns] : candidates) {
+      for (int turn : turns) {
+        const Star star = rotated(candidate, turn);
+        const std::vector<double> fb = arc_fractions(star);
+        std::vector<double> extents(fa.size());
+        // Half of the turn by the arcs' mean flat lengths, half evenly: a small hole's arcs keep
+        // room enough that the harmonic map does not crowd its faces below the rounding.
+        for (size_t j = 0; j < fa.size(); ++j) {
+          extents[j] = 0.25 * (fa[j] + fb[j]) + 0.5 / static_cast<double>(fa.size());
+        }
+        MatchResult trial = result;
+        trial.a.positions = star_positions(star_a, extents);
+        trial.b.positions = star_positions(star, extents);
+        trial.b.loop_order = star.loop_order;
+        detail::fill_cut_domain(star.sliced, trial.b);
+        evaluate_map(a, b, tables_a, tables_b, trial);
+        if (best.map.empty() || trial.shape_error < best.shape_error) best = std::move(trial);
+      }
+    }
+    result = std::move(best);
+    result.b.seconds += stage.lap();
+    evaluated = true;
+  }
+  if (!evaluated) evaluate_map(a, b, tables_a, tables_b, result);
   result.seconds = watch.seconds();
   return result;
 }

@@ -33,8 +33,9 @@
 //               length along each side, the interior by the mean-value harmonic map of each
 //               surface's own Klein layout (which it reproduces when the sides are straight).
 // Boundary loops correspond by 3D length (c0 the longest, as for the circle-domain module);
-// the cuts must leave the feature vertex in the same cyclic order of loops (cone star), or join
-// the same loops in the same order (klein polygon), on both surfaces.
+// the cuts must leave the feature vertex in the same cyclic order of loops (cone star: else the
+// loops pair by that order where their lengths agree, MatchOptions::loop_length_tolerance), or
+// join the same loops in the same order (klein polygon), on both surfaces.
 #include <array>
 #include <string>
 #include <vector>
@@ -77,6 +78,12 @@ struct MatchOptions {
   /// The cone's curvature 2 pi chi is spread evenly over the feature vertex and the interior
   /// vertices within this many rings of it (0: the vertex alone).
   int cone_rings = 2;
+  /// Cone star: when the rays leave the feature towards the loops in another cyclic order on
+  /// A and B (loops of about the same length swap ranks under a deformation), the loops pair by
+  /// that cyclic order instead, at each turn whose pairs have relative 3D lengths (over the
+  /// whole boundary's) within this fraction of each other; of those, the turn with the
+  /// smallest shape error. No such turn: InvalidInputError.
+  double loop_length_tolerance = 0.05;
   /// Rectangle: four boundary vertices of A and the four of B they correspond to, in the
   /// boundary's counter-clockwise order (ModuleOptions::corners). Empty = the four vertices
   /// where the boundary turns most in 3D, at least 1/20 of its length apart, the lowest index

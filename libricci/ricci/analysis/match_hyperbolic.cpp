@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
-#include <limits>
-#include <queue>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "ricci/analysis/match_internal.h"
 #include "ricci/analysis/module_internal.h"
@@ -21,8 +21,6 @@ namespace ricci::detail {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
 /// The loops joined into a tree by shortest paths.
 struct LoopTree {
   std::vector<char> is_cut;               ///< By mesh edge.
@@ -31,13 +29,16 @@ struct LoopTree {
   std::vector<int> first_end;             ///< By cut: its end on the loop reached before it.
 };
 
-/// Prim's tree over the loops (ranks by 3D length): from the loops joined so far (c0 first),
-/// the shortest edge path under `lengths` to the nearest other loop, through interior vertices
-/// no earlier cut uses and starting at a vertex no cut ends at. With `chain`, cut k joins c_k
-/// to c_(k+1) instead, whatever is nearer: one tree for every surface.
+/// Which loops each cut joins, by rank (c0 the longest): {loop reached, new loop}.
+using LoopPlan = std::vector<std::array<int, 2>>;
+
+/// The loops joined into a tree by n shortest edge paths under `lengths`, through interior
+/// vertices no earlier cut uses and starting at a vertex no cut ends at. With an empty `plan`,
+/// Prim's tree from c0 (each cut from the loops joined so far to the nearest other loop);
+/// otherwise cut k joins plan[k][0] to plan[k][1], whatever is nearer.
 /// \throw TopologyError when a loop cannot be reached.
 LoopTree join_loops(const Mesh& mesh, const MeshTables& tables, const Eigen::VectorXd& lengths,
-                    bool chain, const char* name) {
+                    const LoopPlan& plan, const char* name) {
   const int n = tables.num_vertices();
   const std::vector<int> order = loops_by_length(mesh, tables);
   const int loops = static_cast<int>(order.size());
@@ -50,54 +51,32 @@ LoopTree join_loops(const Mesh& mesh, const MeshTables& tables, const Eigen::Vec
   tree.cut_of_edge.assign(mesh.n_edges(), -1);
   std::vector<char> joined(loops, 0), used(n, 0);
   joined[0] = 1;
-  using Entry = std::pair<double, int>;
   for (int cut = 0; cut + 1 < loops; ++cut) {
-    std::vector<double> dist(n, kInfinity);
-    std::vector<HalfedgeHandle> parent(n);
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-    const auto source = [&](int rank) { return chain ? rank == cut : joined[rank] != 0; };
-    const auto target = [&](int rank) { return chain ? rank == cut + 1 : !joined[rank]; };
+    const bool planned = !plan.empty();
+    const auto source = [&](int rank) {
+      return planned ? rank == plan[cut][0] : joined[rank] != 0;
+    };
+    const auto target = [&](int rank) { return planned ? rank == plan[cut][1] : !joined[rank]; };
+    std::vector<int> sources;
     for (int v = 0; v < n; ++v) {
-      if (loop_of[v] >= 0 && source(loop_of[v]) && !used[v]) {
-        dist[v] = 0;
-        queue.push({0.0, v});
-      }
+      if (loop_of[v] >= 0 && source(loop_of[v]) && !used[v]) sources.push_back(v);
     }
-    int end = -1;
-    while (!queue.empty() && end < 0) {
-      const auto [d, v] = queue.top();
-      queue.pop();
-      if (d > dist[v]) continue;
-      if (loop_of[v] >= 0 && target(loop_of[v])) {
-        end = v;
-        break;
-      }
-      for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
-        const int w = mesh.to_vertex_handle(h).idx();
-        if (used[w] || (loop_of[w] >= 0 && !target(loop_of[w]))) continue;
-        const double nd = d + lengths[mesh.edge_handle(h).idx()];
-        if (nd < dist[w]) {
-          dist[w] = nd;
-          parent[w] = h;
-          queue.push({nd, w});
-        }
-      }
-    }
-    if (end < 0) {
+    const std::vector<HalfedgeHandle> path =
+        shortest_path_to_loop(mesh, loop_of, lengths, sources, target, used);
+    if (path.empty()) {
       throw TopologyError(std::string(name) + ": no path joins the boundary loops reached so " +
                           "far to another one without crossing the earlier cuts");
     }
-    int v = end;
-    used[v] = 1;
-    while (dist[v] > 0) {
-      const HalfedgeHandle h = parent[v];
+    const int start = mesh.from_vertex_handle(path.front()).idx();
+    const int end = mesh.to_vertex_handle(path.back()).idx();
+    used[start] = 1;
+    for (HalfedgeHandle h : path) {
       tree.is_cut[mesh.edge_handle(h).idx()] = 1;
       tree.cut_of_edge[mesh.edge_handle(h).idx()] = cut;
-      v = mesh.from_vertex_handle(h).idx();
-      used[v] = 1;
+      used[mesh.to_vertex_handle(h).idx()] = 1;
     }
-    tree.joins.push_back({loop_of[v], loop_of[end]});
-    tree.first_end.push_back(v);
+    tree.joins.push_back({loop_of[start], loop_of[end]});
+    tree.first_end.push_back(start);
     joined[loop_of[end]] = 1;
   }
   return tree;
@@ -113,6 +92,7 @@ struct KleinDisk {
   std::vector<int> corners;  ///< Walk positions of the cut ends.
   std::vector<int> labels;   ///< By arc: the loop rank (>= 0) or -1 - the cut's index.
   std::vector<std::array<int, 2>> joins;
+  std::vector<int> loop_order;  ///< The loop of each boundary side, ccw.
 };
 
 /// Step 1 of Algorithm 9: the hyperbolic metric with geodesic boundaries.
@@ -130,8 +110,8 @@ FlowResult hyperbolic_metric(const Mesh& mesh, const MeshTables& tables,
 
 /// Steps 2-3 of Algorithm 9 on one surface: the cut, the layout, the polygon's corners.
 KleinDisk klein_disk(const Mesh& mesh, const MeshTables& tables, const FlowResult& hyperbolic,
-                     bool chain, const char* name, ParameterDomain& domain) {
-  const LoopTree tree = join_loops(mesh, tables, hyperbolic.lengths, chain, name);
+                     const LoopPlan& plan, const char* name) {
+  const LoopTree tree = join_loops(mesh, tables, hyperbolic.lengths, plan, name);
   KleinDisk disk;
   disk.joins = tree.joins;
   disk.sliced = slice_along(mesh, tree.is_cut);
@@ -193,7 +173,7 @@ KleinDisk klein_disk(const Mesh& mesh, const MeshTables& tables, const FlowResul
     if (is_end[original(walk[i])]) {
       disk.corners.push_back(i);
       disk.labels.push_back(label(i));
-      if (disk.labels.back() >= 0) domain.loop_order.push_back(disk.labels.back());
+      if (disk.labels.back() >= 0) disk.loop_order.push_back(disk.labels.back());
     }
   }
   return disk;
@@ -259,31 +239,71 @@ void klein_polygon_domains(const Mesh& a, const MeshTables& tables_a, const Mesh
   result.domain = "klein polygon";
   Stopwatch stage;
   const FlowResult metric_a = hyperbolic_metric(a, tables_a, options, "A", result.a);
-  KleinDisk disk_a = klein_disk(a, tables_a, metric_a, false, "A", result.a);
   result.a.seconds = stage.lap();
   const FlowResult metric_b = hyperbolic_metric(b, tables_b, options, "B", result.b);
-  KleinDisk disk_b = klein_disk(b, tables_b, metric_b, false, "B", result.b);
   result.b.seconds = stage.lap();
-  if (disk_a.joins != disk_b.joins || disk_a.labels != disk_b.labels) {
-    // The nearest loops differ (the surfaces are not conformal): the chain c0-c1-...-cn by
-    // rank gives both surfaces the same polygon.
-    result.a.loop_order.clear();
-    result.b.loop_order.clear();
-    disk_a = klein_disk(a, tables_a, metric_a, true, "A", result.a);
-    result.a.seconds += stage.lap();
-    disk_b = klein_disk(b, tables_b, metric_b, true, "B", result.b);
-    result.b.seconds += stage.lap();
+  // Trees tried in turn until A's and B's polygons have the same sides: each surface's own
+  // (Prim's, nearest loop first); B along A's joins, or A along B's (a stretch can change which
+  // loop is nearest); the chain c0-c1-...-cn by rank on both (a cut of the chain can close a
+  // pocket around a loop between itself and another loop, so it comes last).
+  std::optional<KleinDisk> own_a, own_b;
+  try {
+    own_a = klein_disk(a, tables_a, metric_a, {}, "A");
+  } catch (const TopologyError&) {
   }
-  if (disk_a.labels != disk_b.labels) {
+  result.a.seconds += stage.lap();
+  try {
+    own_b = klein_disk(b, tables_b, metric_b, {}, "B");
+  } catch (const TopologyError&) {
+  }
+  result.b.seconds += stage.lap();
+  std::vector<std::pair<LoopPlan, LoopPlan>> plans;
+  if (own_a) plans.push_back({{}, own_a->joins});
+  if (own_b) plans.push_back({own_b->joins, {}});
+  LoopPlan chain;
+  for (int k = 0; k + 1 < static_cast<int>(tables_a.boundary_loops.size()); ++k) {
+    chain.push_back({k, k + 1});
+  }
+  plans.push_back({chain, chain});
+  std::optional<KleinDisk> disk_a, disk_b;
+  const auto same = [](const KleinDisk& x, const KleinDisk& y) {
+    return x.joins == y.joins && x.labels == y.labels;
+  };
+  if (own_a && own_b && same(*own_a, *own_b)) {
+    disk_a = std::move(own_a);
+    disk_b = std::move(own_b);
+  }
+  bool cut_both = own_a && own_b;  // some tree cut both surfaces (but joined them differently)
+  std::string blocked;
+  for (size_t i = 0; i < plans.size() && !disk_a; ++i) {
+    const auto& [plan_a, plan_b] = plans[i];
+    try {
+      KleinDisk x = plan_a.empty() ? *own_a : klein_disk(a, tables_a, metric_a, plan_a, "A");
+      result.a.seconds += stage.lap();
+      KleinDisk y = plan_b.empty() ? *own_b : klein_disk(b, tables_b, metric_b, plan_b, "B");
+      result.b.seconds += stage.lap();
+      cut_both = true;
+      if (same(x, y)) {
+        disk_a = std::move(x);
+        disk_b = std::move(y);
+      }
+    } catch (const TopologyError& e) {
+      blocked = e.what();
+    }
+  }
+  if (!disk_a && cut_both) {
     throw InvalidInputError(
         "the cuts join the boundary loops differently on A and B; the hyperbolic method needs "
         "the same tree of loops");
   }
+  if (!disk_a) throw TopologyError(blocked);
+  result.a.loop_order = disk_a->loop_order;
+  result.b.loop_order = disk_b->loop_order;
   // The common polygon: B's corners, a right-angled hyperbolic polygon, convex in the Klein
   // model (its sides are B's geodesic boundary arcs and the chords between its cut ends).
-  const int k = static_cast<int>(disk_b.corners.size());
+  const int k = static_cast<int>(disk_b->corners.size());
   Eigen::MatrixX2d polygon(k, 2);
-  for (int j = 0; j < k; ++j) polygon.row(j) = disk_b.klein.row(disk_b.walk[disk_b.corners[j]]);
+  for (int j = 0; j < k; ++j) polygon.row(j) = disk_b->klein.row(disk_b->walk[disk_b->corners[j]]);
   for (int j = 0; j < k; ++j) {
     const Eigen::Vector2d p = polygon.row(j), q = polygon.row((j + 1) % k),
                           r = polygon.row((j + 2) % k);
@@ -292,11 +312,11 @@ void klein_polygon_domains(const Mesh& a, const MeshTables& tables_a, const Mesh
                         std::to_string((j + 1) % k) + "; the hyperbolic metric is off");
     }
   }
-  result.a.positions = polygon_positions(disk_a, polygon);
-  fill_cut_domain(disk_a.sliced, result.a);
+  result.a.positions = polygon_positions(*disk_a, polygon);
+  fill_cut_domain(disk_a->sliced, result.a);
   result.a.seconds += stage.lap();
-  result.b.positions = polygon_positions(disk_b, polygon);
-  fill_cut_domain(disk_b.sliced, result.b);
+  result.b.positions = polygon_positions(*disk_b, polygon);
+  fill_cut_domain(disk_b->sliced, result.b);
   result.b.seconds += stage.lap();
 }
 

@@ -14,55 +14,6 @@ namespace ricci::detail {
 
 namespace {
 
-/// Edges of a shortest path (under `lengths`) from loop `from` to loop `to`, from its vertex on
-/// `from` to its vertex on `to`, through interior edges. Multi-source Dijkstra: every vertex of
-/// `from` starts at 0, so the path meets each loop only at its ends.
-std::vector<HalfedgeHandle> shortest_path_between(const Mesh& mesh, const MeshTables& tables,
-                                                  const EdgeLengths& lengths, int from, int to) {
-  const int n = tables.num_vertices();
-  std::vector<int> loop_of(n, -1);
-  for (size_t k = 0; k < tables.boundary_loops.size(); ++k) {
-    for (int v : tables.boundary_loops[k]) loop_of[v] = static_cast<int>(k);
-  }
-  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-  std::vector<HalfedgeHandle> parent(n);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (int v : tables.boundary_loops[from]) {
-    dist[v] = 0;
-    queue.push({0.0, v});
-  }
-  int end = -1;
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[v]) continue;
-    if (loop_of[v] == to) {
-      end = v;
-      break;
-    }
-    // A path through another boundary loop would not cut the surface along one arc.
-    if (loop_of[v] >= 0 && loop_of[v] != from) continue;
-    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
-      if (mesh.is_boundary(mesh.edge_handle(h))) continue;
-      const int w = mesh.to_vertex_handle(h).idx();
-      const double nd = d + lengths[mesh.edge_handle(h).idx()];
-      if (nd < dist[w]) {
-        dist[w] = nd;
-        parent[w] = h;
-        queue.push({nd, w});
-      }
-    }
-  }
-  if (end < 0) throw TopologyError("no path joins the two boundary loops through the interior");
-  std::vector<HalfedgeHandle> path;
-  for (int v = end; dist[v] > 0; v = mesh.from_vertex_handle(parent[v]).idx()) {
-    path.push_back(parent[v]);
-  }
-  std::reverse(path.begin(), path.end());
-  return path;
-}
-
 /// The period of the strip: the left copy of a path vertex minus its right copy (the same for
 /// every copy because the flat cylinder's holonomy is a translation: each boundary's total
 /// geodesic curvature is 0).
@@ -97,7 +48,17 @@ AnnulusMap annulus_map(const Mesh& mesh, const MeshTables& tables, const FlowOpt
   targets.curvature = Eigen::VectorXd::Zero(tables.num_vertices());
   map.flow = flow(mesh, targets, options);
   if (!map.flow.converged() && map.flow.status != FlowStatus::stalled) return map;
-  map.path = shortest_path_between(mesh, tables, map.flow.lengths, 0, 1);
+  std::vector<int> loop_of(tables.num_vertices(), -1);
+  for (int k = 0; k < 2; ++k) {
+    for (int v : tables.boundary_loops[k]) loop_of[v] = k;
+  }
+  // The cut: the shortest path from loop 0 to loop 1 through the interior.
+  map.path = shortest_path_to_loop(
+      mesh, loop_of, map.flow.lengths, tables.boundary_loops[0], [](int loop) { return loop == 1; },
+      std::vector<char>(loop_of.size(), 0));
+  if (map.path.empty()) {
+    throw TopologyError("no path joins the two boundary loops through the interior");
+  }
   std::vector<char> is_cut(mesh.n_edges(), 0);
   for (HalfedgeHandle h : map.path) is_cut[mesh.edge_handle(h).idx()] = 1;
   map.sliced = slice_along(mesh, is_cut);
@@ -111,12 +72,8 @@ AnnulusMap annulus_map(const Mesh& mesh, const MeshTables& tables, const FlowOpt
   for (int v = 0; v < n; ++v) {
     map.w[v] = scale * Complex(layout.positions(v, 0), layout.positions(v, 1));
   }
-  std::vector<int> loop_of(tables.num_vertices(), -1);
   map.copy_of.assign(tables.num_vertices(), -1);
   for (int v = 0; v < n; ++v) map.copy_of[map.sliced.to_original_vertex[v]] = v;
-  for (int k = 0; k < 2; ++k) {
-    for (int v : tables.boundary_loops[k]) loop_of[v] = k;
-  }
   double mean[2] = {0, 0};
   for (int k = 0; k < 2; ++k) {
     for (int v : tables.boundary_loops[k]) mean[k] += map.w[map.copy_of[v]].real();
@@ -165,6 +122,48 @@ void annulus_module(const Mesh& mesh, const MeshTables& tables, const ModuleOpti
     domain.boundary_loop.push_back(static_cast<int>(domain.boundaries.size()));
     domain.boundaries.push_back(polyline);
   }
+}
+
+std::vector<HalfedgeHandle> shortest_path_to_loop(const Mesh& mesh, const std::vector<int>& loop_of,
+                                                  const EdgeLengths& lengths,
+                                                  const std::vector<int>& sources,
+                                                  const std::function<bool(int)>& is_target,
+                                                  const std::vector<char>& used) {
+  const int n = static_cast<int>(loop_of.size());
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  std::vector<HalfedgeHandle> parent(n);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int s : sources) {
+    dist[s] = 0;
+    queue.push({0.0, s});
+  }
+  int end = -1;
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[v]) continue;
+    if (loop_of[v] >= 0 && is_target(loop_of[v])) {
+      end = v;
+      break;
+    }
+    for (HalfedgeHandle h : mesh.voh_range(mesh.vertex_handle(v))) {
+      const int w = mesh.to_vertex_handle(h).idx();
+      if (used[w] || (loop_of[w] >= 0 && !is_target(loop_of[w]))) continue;
+      const double nd = d + lengths[mesh.edge_handle(h).idx()];
+      if (nd < dist[w]) {
+        dist[w] = nd;
+        parent[w] = h;
+        queue.push({nd, w});
+      }
+    }
+  }
+  std::vector<HalfedgeHandle> path;
+  for (int v = end; v >= 0 && dist[v] > 0; v = mesh.from_vertex_handle(parent[v]).idx()) {
+    path.push_back(parent[v]);
+  }
+  std::reverse(path.begin(), path.end());
+  return path;
 }
 
 }  // namespace ricci::detail

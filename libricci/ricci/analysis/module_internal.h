@@ -1,5 +1,6 @@
 #pragma once
 // Pieces of conformal_module shared between its source files (not a public header).
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -33,6 +34,17 @@ struct AnnulusMap {
 /// vertex of the loop sent to |z| = 1) or -1: the loop the orientation makes outer.
 [[nodiscard]] AnnulusMap annulus_map(const Mesh& mesh, const MeshTables& tables,
                                      const FlowOptions& options, int outer_vertex);
+
+/// The shortest edge path (under `lengths`) from one of `sources` to a vertex of a boundary loop
+/// `is_target` accepts (loop_of: by vertex, a loop label or -1 inside), through vertices neither
+/// `used` nor on a loop it rejects; the search stops at the first target vertex it settles. The
+/// cuts of the annulus (loop 0 to loop 1), the cone star (a ray from the feature vertex to one
+/// loop) and the loop tree (from the loops reached so far to the next). Returns the halfedges from
+/// the source to the loop, empty when no target is reachable; marks nothing.
+[[nodiscard]] std::vector<HalfedgeHandle> shortest_path_to_loop(
+    const Mesh& mesh, const std::vector<int>& loop_of, const EdgeLengths& lengths,
+    const std::vector<int>& sources, const std::function<bool(int)>& is_target,
+    const std::vector<char>& used);
 
 /// Indices of tables.boundary_loops by 3D length, longest first (c0, c1, ...).
 [[nodiscard]] std::vector<int> loops_by_length(const Mesh& mesh, const MeshTables& tables);
