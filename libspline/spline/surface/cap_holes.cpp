@@ -96,14 +96,15 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
   constexpr double kFlipped = 90.0;
   int chosen_extra = 0;
   std::vector<int> covered_vertices;
-  // The rims of find(extra, to_cover) when its cone patch's seam is smaller than the chosen's.
+  // Adopts the rims of find(extra, to_cover) when its cone patch's seam is smaller than the
+  // chosen's. False when the cone hole would be the same (or there is none): nothing to try.
   const auto try_rims = [&](int extra, const std::vector<int>& to_cover) {
     std::vector<Rim> rims = find(extra, to_cover);
     const int cone = cone_rim(rims);
     if (cone < 0 || rims[cone].covered_faces == chosen.rims[chosen.cone].covered_faces)
       return false;
     HoleFill fill = fill_rim(surface.spline, surface.domain, rims[cone], cone_options);
-    if (!(fill.max_normal_jump_deg < chosen.cone_fill->max_normal_jump_deg)) return false;
+    if (!(fill.max_normal_jump_deg < chosen.cone_fill->max_normal_jump_deg)) return true;
     chosen.rims = std::move(rims);
     chosen.cone = cone;
     chosen.cone_fill = std::move(fill);
@@ -112,7 +113,7 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
     return true;
   };
   for (int extra = 1; extra <= 2 && chosen.cone_fill->max_normal_jump_deg > kFlipped; ++extra) {
-    if (!try_rims(extra, {}) && chosen_extra == 0) break;
+    if (!try_rims(extra, {})) break;
   }
   // A seam missing its target at a few rim vertices (the fitted surface turns sharply at a
   // vertex, e.g. fertility's cone rim: 30 degrees at one vertex, below 6 elsewhere): the faces
@@ -135,7 +136,9 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
     }
     std::sort(to_cover.begin(), to_cover.end());
     to_cover.erase(std::unique(to_cover.begin(), to_cover.end()), to_cover.end());
-    if (!try_rims(chosen_extra, to_cover)) break;
+    const double before = chosen.cone_fill->max_normal_jump_deg;
+    if (!try_rims(chosen_extra, to_cover) || !(chosen.cone_fill->max_normal_jump_deg < before))
+      break;
   }
   return chosen;
 }
