@@ -327,6 +327,7 @@ HoleFill fill_rim_once(const ManifoldSpline& spline, const ricci::Mesh& domain_m
     fill.diagonal = diagonal;
     const SeamReport report = measure_seam(spline, fill, options.samples_per_edge);
     fill.max_normal_jump_deg = report.max_normal_jump_deg;
+    fill.edge_normal_jump_deg = report.edge_normal_jump_deg;
     fill.max_position_gap = report.max_position_gap;
     fill.rms_position_gap = report.rms_position_gap;
     fill.seam_samples = report.samples;

@@ -87,6 +87,11 @@ struct FindRimsOptions {
   /// ... and on the domain faces the cone hole may cover (a coarse domain, e.g. joint.off's 540
   /// faces, distorted everywhere, would otherwise lose a large part of its spline to the patch).
   double max_cone_cover_fraction = 0.08;
+  /// Cone hole only, after its layers: the kept faces around these domain vertices (vertices
+  /// of its rim) join it face by face, keeping it a disk (the cover fraction does not apply):
+  /// where its patch cannot meet the surface (cap_holes passes the ends of the rim edges whose
+  /// seam is worst). Empty: none.
+  std::vector<int> cone_rim_vertices_to_cover{};
   /// By face, nonzero: a face beyond the surface's own boundary (the scan fit's boundary collar,
   /// fitted but not part of the surface): not kept, and its hole is a boundary hole. Empty: none.
   std::vector<char> boundary_faces{};
@@ -214,6 +219,8 @@ struct HoleFill {
 
   // Seam figures (measure_seam at FillOptions::samples_per_edge).
   double max_normal_jump_deg = 0.0;  ///< max angle between the surface's and patch's normals
+  /// By rim edge: its largest normal jump (degrees).
+  std::vector<double> edge_normal_jump_deg;
   double max_position_gap = 0.0;     ///< max |P - S| / diagonal
   double rms_position_gap = 0.0;     ///< RMS |P - S| / diagonal
   int seam_samples = 0;
@@ -238,6 +245,8 @@ struct HoleFill {
 
 struct SeamReport {
   double max_normal_jump_deg = 0.0;
+  /// By rim edge: the largest normal jump (degrees) at its samples.
+  std::vector<double> edge_normal_jump_deg;
   double max_position_gap = 0.0;  ///< relative to fill.diagonal
   double rms_position_gap = 0.0;  ///< relative to fill.diagonal
   int samples = 0;

@@ -441,6 +441,32 @@ void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, c
   }
 }
 
+// FindRimsOptions::cone_rim_vertices_to_cover: the kept faces around those vertices join the
+// cone hole where grow_face_by_face allows it.
+void cover_around_cone_rim_vertices(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
+                                    const std::vector<int>& vertices) {
+  if (vertices.empty()) return;
+  const int cone = kind_rank(Rim::Kind::cone_hole);
+  std::vector<int> candidates;
+  for (int v : vertices) {
+    if (v < 0 || v >= static_cast<int>(mesh.n_vertices())) {
+      throw ricci::InvalidInputError("find_rims: cone rim vertex " + std::to_string(v) +
+                                     " is not a vertex of the mesh");
+    }
+    bool on_cone_hole = false;
+    for (auto f : mesh.vf_range(mesh.vertex_handle(v))) {
+      on_cone_hole = on_cone_hole || (!regions.kept[f.idx()] && regions.rank[f.idx()] == cone);
+    }
+    if (!on_cone_hole) continue;
+    for (auto f : mesh.vf_range(mesh.vertex_handle(v))) {
+      if (regions.kept[f.idx()]) candidates.push_back(f.idx());
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  grow_face_by_face(regions, mesh, loops, candidates);
+}
+
 // Covered domain faces reachable from the faces across the rim through covered faces.
 std::vector<int> covered_inside(const std::vector<char>& domain, const Regions& regions,
                                 const ricci::Mesh& mesh,
@@ -515,6 +541,7 @@ std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& dom
   for (int layer = 0; layer < options.grow; ++layer) grow_layer(regions, mesh, loops, merge);
   grow_cone_hole_while_distorted(regions, mesh, loops, domain, chart_scale, normal_step_deg,
                                  options);
+  cover_around_cone_rim_vertices(regions, mesh, loops, options.cone_rim_vertices_to_cover);
 
   std::vector<char> visited(mesh.n_halfedges(), 0);
   std::vector<Rim> rims;

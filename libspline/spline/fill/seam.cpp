@@ -19,6 +19,8 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
   SeamReport report;
   double sum_squares = 0.0;
   const int m = static_cast<int>(fill.rim.edges.size());
+  report.edge_normal_jump_deg.assign(static_cast<std::size_t>(m), 0.0);
+  std::vector<double>& per_edge = report.edge_normal_jump_deg;
   for (int j = 0; j < m; ++j) {
     for (int i = 0; i <= samples_per_edge; ++i) {
       const double t = static_cast<double>(i) / samples_per_edge;
@@ -26,6 +28,8 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
       const PatchPoint p = fill.evaluate(fill.parameter(j, t));
       const double angle = ricci::angle_between(s.jet.normal, p.normal);
       report.max_normal_jump_deg = std::max(report.max_normal_jump_deg, angle * 180.0 / M_PI);
+      per_edge[static_cast<std::size_t>(j)] =
+          std::max(per_edge[static_cast<std::size_t>(j)], angle * 180.0 / M_PI);
       const double gap = (p.position - s.jet.position).norm() / fill.diagonal;
       report.max_position_gap = std::max(report.max_position_gap, gap);
       sum_squares += gap * gap;

@@ -15,12 +15,18 @@ namespace spline {
 struct ConeHoleLimits {
   int max_layers = FindRimsOptions{}.max_cone_layers;
   double max_cover_fraction = FindRimsOptions{}.max_cone_cover_fraction;
+  /// Retries of a cone patch whose seam misses FillOptions::target_jump_deg (and is no flip):
+  /// the faces around the ends of its worst rim edges (those above a quarter of the largest
+  /// jump) join the hole (FindRimsOptions::cone_rim_vertices_to_cover); a retry is kept only
+  /// when the seam drops. Each retry costs one fill_rim. 0: none.
+  int vertex_rounds = 0;
 };
 
 /// The limits for the one-cone surface of this genus: FindRimsOptions' up to genus 3; from
 /// genus 4 (a cone of 2 pi (2g - 1) >= 14 pi, around which the flat metric scales like
 /// rho^(2g - 2)) 8 layers and a quarter of the domain, since the rings where neighbouring
-/// charts differ in scale by more than max_cone_rim_scale_ratio reach farther.
+/// charts differ in scale by more than max_cone_rim_scale_ratio reach farther, and 2 vertex
+/// rounds.
 [[nodiscard]] ConeHoleLimits cone_hole_limits(int genus);
 
 struct CapHolesOptions {

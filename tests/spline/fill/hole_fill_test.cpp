@@ -3,6 +3,8 @@
 // invariance, and the tessellation's topology and orientation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <map>
 #include <set>
 #include <string>
@@ -262,6 +264,14 @@ TEST(FillRim, MeetsFittedScansWithG1) {
     EXPECT_LT(fill.rms_position_gap, 1e-5) << path;
     const SeamReport report = measure_seam(fit.spline, fill, 37);
     EXPECT_LE(report.max_normal_jump_deg, 1.0);
+    // By rim edge: one entry per edge, the largest of them the seam's maximum.
+    ASSERT_EQ(fill.edge_normal_jump_deg.size(), rims[0].edges.size());
+    ASSERT_EQ(report.edge_normal_jump_deg.size(), rims[0].edges.size());
+    const auto& by_edge = report.edge_normal_jump_deg;
+    EXPECT_EQ(*std::max_element(by_edge.begin(), by_edge.end()), report.max_normal_jump_deg);
+    const auto& fill_by_edge = fill.edge_normal_jump_deg;
+    EXPECT_EQ(*std::max_element(fill_by_edge.begin(), fill_by_edge.end()),
+              fill.max_normal_jump_deg);
   }
 }
 

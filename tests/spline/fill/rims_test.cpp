@@ -388,6 +388,42 @@ TEST(Rims, ConeHoleGrowsPastFolds) {
   EXPECT_EQ(excluded[0].covered_faces, plain[0].covered_faces);
 }
 
+// FindRimsOptions::cone_rim_vertices_to_cover (msp fit's retry where a cone patch's seam is
+// worst at a few rim vertices): every face around the chosen rim vertices joins the cone hole,
+// the vertices leave the rim (inside the hole now), nothing else is covered, and the hole stays
+// closable; an excluded-face hole takes no such faces; a vertex index out of range throws.
+TEST(Rims, ConeHoleCoversTheFacesAroundChosenRimVertices) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  const auto domain = g.domain_without({{{0, 0}}, {{0, 1}}, {{1, 0}}, {{1, 1}}});
+  const auto plain = find_rims(g.mesh, domain, domain);
+  ASSERT_EQ(plain.size(), 1u);
+  const std::vector<int> on_rim = rim_vertices(plain[0], g.mesh);
+  ASSERT_GE(on_rim.size(), 8u);
+  FindRimsOptions options;
+  options.cone_rim_vertices_to_cover = {on_rim[0], on_rim[on_rim.size() / 2]};
+  const auto grown = find_rims(g.mesh, domain, domain, options);
+  ASSERT_EQ(grown.size(), 1u);
+  EXPECT_EQ(grown[0].kind, Rim::Kind::cone_hole);
+  expect_closable(g.mesh, domain, grown, 1, "cone hole grown at two rim vertices");
+  std::set<int> expected(plain[0].covered_faces.begin(), plain[0].covered_faces.end());
+  for (int v : options.cone_rim_vertices_to_cover) {
+    for (auto f : g.mesh.vf_range(g.mesh.vertex_handle(v))) {
+      if (domain[f.idx()]) expected.insert(f.idx());
+    }
+  }
+  const std::set<int> covered(grown[0].covered_faces.begin(), grown[0].covered_faces.end());
+  EXPECT_EQ(covered, expected);
+  const std::vector<int> new_rim = rim_vertices(grown[0], g.mesh);
+  for (int v : options.cone_rim_vertices_to_cover)
+    EXPECT_EQ(std::count(new_rim.begin(), new_rim.end(), v), 0) << "vertex " << v;
+  const std::vector<char> excluded_atlas(g.mesh.n_faces(), 1);
+  const auto excluded = find_rims(g.mesh, domain, excluded_atlas, options);
+  ASSERT_EQ(excluded.size(), 1u);
+  EXPECT_EQ(excluded[0].covered_faces, plain[0].covered_faces);
+  options.cone_rim_vertices_to_cover = {static_cast<int>(g.mesh.n_vertices())};
+  EXPECT_THROW((void)find_rims(g.mesh, domain, domain, options), ricci::InvalidInputError);
+}
+
 // A closed genus-0 scan: the one-cone pipeline punctures it (removes a vertex star); the grown
 // puncture is exactly one rim, and the kept faces plus its patch form a sphere.
 TEST(Rims, PuncturedSphereHasOneRim) {
