@@ -485,19 +485,32 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
 // deliver_best_round falls back on them when capping the holes makes the delivered one fold.
 using Superseded = std::vector<std::pair<FittedSurface, Round>>;
 
+// The stage times and the history of rounds of `from` moved to `to` (the surface delivered
+// changes, the clock and the history go on).
+void take_history(FittedSurface& to, FittedSurface& from) {
+  to.seconds = std::move(from.seconds);
+  to.cpu_seconds = std::move(from.cpu_seconds);
+  to.refinement = std::move(from.refinement);
+}
+
 // Delivers `next` (and its round) instead of `out`, keeping out's stage times and history and
 // what follow_boundary did (the later rounds reuse the first round's followed domain); the
 // replaced round goes to `superseded` when given.
 void adopt_round(std::pair<FittedSurface, Round>&& next, FittedSurface& out, Round& best,
                  Superseded* superseded = nullptr) {
   next.first.boundary_follow = out.boundary_follow;
-  next.first.seconds = std::move(out.seconds);
-  next.first.cpu_seconds = std::move(out.cpu_seconds);
-  next.first.refinement = std::move(out.refinement);
+  take_history(next.first, out);
   if (superseded) superseded->emplace_back(std::move(out), std::move(best));
   out = std::move(next.first);
   best = std::move(next.second);
 }
+
+// A fit's state between rounds: the surface delivered so far, its round, the rounds it replaced.
+struct Attempt {
+  FittedSurface out;
+  Round round;
+  Superseded superseded;
+};
 
 // The largest normal jump across the spline's seams and the patches' rims, in degrees.
 double seam_jump_deg(const FittedSurface& s) {
@@ -654,6 +667,50 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
   return next.projection_rms < out.projection_rms;
 }
 
+// Fold rounds: the faces around the folds left fit again with stronger fairing (the same
+// space, so the domain's face indices stay), a round kept when it folds less; the replaced
+// rounds go to `superseded`. Open inputs fit the whole scan again (scan.domain and
+// scan.fit.face_smoothing are left as the last round set them).
+void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                     ScanFitOptions& scan, Round& best, Superseded& superseded,
+                     StageClock& clock, FittedSurface& out) {
+  std::vector<double> face_smoothing;
+  double level = options.fold_smoothing;
+  // The goal and the refit on the same space were measured on closed inputs; open ones fit
+  // the whole scan again each round (h/rim's boundary measurements).
+  const bool closed = out.input.boundary_loops == 0;
+  const double rms_limit =
+      std::max(options.fold_rms_growth * out.projection_rms,
+               closed ? options.fold_rms_goal * out.bbox_diagonal : 0.0);
+  // Open inputs: not in the band along the boundary, where the smoothing moved the boundary
+  // (ChineseDragon-10kv: boundary distance 0.92% -> 1.39% of the diagonal).
+  const std::vector<char> band = out.input.boundary_loops > 0
+                                     ? faces_near_boundary(out, kBoundaryBandRings)
+                                     : std::vector<char>{};
+  for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
+       ++round, level *= kFoldSmoothingStep) {
+    clock.begin("refine");
+    const std::vector<char> near = faces_near_folds(out, kFoldRings);
+    face_smoothing.resize(near.size(), 0.0);
+    for (std::size_t f = 0; f < near.size(); ++f)
+      if (near[f] && (band.empty() || !band[f]))
+        face_smoothing[f] = std::max(face_smoothing[f], level);
+    std::pair<FittedSurface, Round> next;
+    if (closed) {
+      next = refit_round(dense, options, face_smoothing, best, clock, out);
+    } else {
+      scan.domain = best.domain;
+      scan.boundary_follow.max_rounds = 0;
+      scan.fit.face_smoothing = face_smoothing;
+      next = next_round(dense, scan, options, clock, out);
+    }
+    out.refinement.push_back(round_summary(next.first, next.second, options));
+    if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
+    if (!better(next.first, next.second, out, best, options)) continue;
+    adopt_round(std::move(next), out, best, &superseded);
+  }
+}
+
 // An open surface that folds is fitted once more on the same domain without the boundary curve
 // (ScanFitOptions::boundary_curve): on a scan whose boundary zigzags where the domain's boundary
 // could not follow it, pulling the spline onto it folds the band next to the boundary
@@ -749,6 +806,26 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   // Refinement: the domain split where the surface folds or misses the input by more than the
   // tolerance, the same cone kept, and the whole fit run again; the best round is delivered.
   Superseded superseded;
+  // Closed inputs that fold, without a tolerance: the fold rounds run first, on the first
+  // round. A fold round refits on the same space at a fraction of a refinement round's cost,
+  // and the refinement's small new faces can fold more than the first round did (horse.off:
+  // 9 -> 56, the refined round thrown away). When they leave no fold, the refinement is
+  // skipped; otherwise the first round goes on as without them (refinement, fold rounds) and
+  // this early attempt is delivered instead if it is better.
+  std::optional<Attempt> early;
+  if (out.input.boundary_loops == 0 && options.tolerance == 0.0 &&
+      options.refinement_rounds > 0 && options.fold_rounds > 0 &&
+      out.surface_dihedral.over_90_deg > 0) {
+    Attempt first{out, best, {}};
+    run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+    if (out.surface_dihedral.over_90_deg > 0) {
+      early = Attempt{std::move(out), std::move(best), std::move(superseded)};
+      superseded.clear();
+      out = std::move(first.out);
+      best = std::move(first.round);
+      take_history(out, early->out);
+    }
+  }
   for (int round = 1; round <= options.refinement_rounds; ++round) {
     const std::vector<Eigen::Vector3d> where = refinement_points(dense, options, out, best);
     if (where.empty()) break;
@@ -762,42 +839,13 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     adopt_round(std::move(next), out, best, &superseded);
   }
 
-  // Fold rounds: the faces around the folds left fit again with stronger fairing (the same
-  // space, so the domain's face indices stay), a round kept when it folds less.
-  std::vector<double> face_smoothing;
-  double level = options.fold_smoothing;
-  // The goal and the refit on the same space were measured on closed inputs; open ones fit
-  // the whole scan again each round (h/rim's boundary measurements).
-  const bool closed = out.input.boundary_loops == 0;
-  const double rms_limit =
-      std::max(options.fold_rms_growth * out.projection_rms,
-               closed ? options.fold_rms_goal * out.bbox_diagonal : 0.0);
-  // Open inputs: not in the band along the boundary, where the smoothing moved the boundary
-  // (ChineseDragon-10kv: boundary distance 0.92% -> 1.39% of the diagonal).
-  const std::vector<char> band = out.input.boundary_loops > 0
-                                     ? faces_near_boundary(out, kBoundaryBandRings)
-                                     : std::vector<char>{};
-  for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
-       ++round, level *= kFoldSmoothingStep) {
-    clock.begin("refine");
-    const std::vector<char> near = faces_near_folds(out, kFoldRings);
-    face_smoothing.resize(near.size(), 0.0);
-    for (std::size_t f = 0; f < near.size(); ++f)
-      if (near[f] && (band.empty() || !band[f]))
-        face_smoothing[f] = std::max(face_smoothing[f], level);
-    std::pair<FittedSurface, Round> next;
-    if (closed) {
-      next = refit_round(dense, options, face_smoothing, best, clock, out);
-    } else {
-      scan.domain = best.domain;
-      scan.boundary_follow.max_rounds = 0;
-      scan.fit.face_smoothing = face_smoothing;
-      next = next_round(dense, scan, options, clock, out);
-    }
-    out.refinement.push_back(round_summary(next.first, next.second, options));
-    if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
-    if (!better(next.first, next.second, out, best, options)) continue;
-    adopt_round(std::move(next), out, best, &superseded);
+  run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+  if (early && better(early->out, early->round, out, best, options)) {
+    // The fold rounds on the first round did better than the refinement and its fold rounds.
+    take_history(early->out, out);
+    out = std::move(early->out);
+    best = std::move(early->round);
+    superseded = std::move(early->superseded);
   }
 
   refit_folded_boundary(dense, options, scan, best, clock, out);
