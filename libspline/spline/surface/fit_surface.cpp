@@ -809,21 +809,30 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   // Closed inputs that fold, without a tolerance: the fold rounds run first, on the first
   // round. A fold round refits on the same space at a fraction of a refinement round's cost,
   // and the refinement's small new faces can fold more than the first round did (horse.off:
-  // 9 -> 56, the refined round thrown away). When they leave no fold, the refinement is
-  // skipped; otherwise the first round goes on as without them (refinement, fold rounds) and
-  // this early attempt is delivered instead if it is better.
+  // 9 -> 56, the refined round thrown away). When they leave no fold and the capped surface
+  // does not fold, it is delivered and the refinement skipped; otherwise the first round goes
+  // on as without them (refinement, fold rounds), and an early attempt left with folds is
+  // delivered instead if it is better.
   std::optional<Attempt> early;
+  bool delivered = false, refined = false;
   if (out.input.boundary_loops == 0 && options.tolerance == 0.0 &&
       options.refinement_rounds > 0 && options.fold_rounds > 0 &&
       out.surface_dihedral.over_90_deg > 0) {
     Attempt first{out, best, {}};
     run_fold_rounds(dense, options, scan, best, superseded, clock, out);
-    if (out.surface_dihedral.over_90_deg > 0) {
-      early = Attempt{std::move(out), std::move(best), std::move(superseded)};
+    const bool unfolded = out.surface_dihedral.over_90_deg == 0;
+    if (unfolded) {
+      // Capped, the surface must still not fold (else the refinement is tried).
+      deliver_best_round(dense, options, superseded, best, clock, out);
+      delivered = out.surface_dihedral.over_90_deg == 0;
+    }
+    if (!delivered) {
+      if (!unfolded) early = Attempt{std::move(out), std::move(best), std::move(superseded)};
+      FittedSurface& history = unfolded ? out : early->out;
+      take_history(first.out, history);
       superseded.clear();
       out = std::move(first.out);
       best = std::move(first.round);
-      take_history(out, early->out);
     }
   }
   for (int round = 1; round <= options.refinement_rounds; ++round) {
@@ -837,9 +846,11 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     out.refinement.push_back(round_summary(next.first, next.second, options));
     if (!better(next.first, next.second, out, best, options)) break;
     adopt_round(std::move(next), out, best, &superseded);
+    refined = true;
   }
 
-  run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+  // Without a refined round they would repeat the early attempt's rounds exactly.
+  if (!early || refined) run_fold_rounds(dense, options, scan, best, superseded, clock, out);
   if (early && better(early->out, early->round, out, best, options)) {
     // The fold rounds on the first round did better than the refinement and its fold rounds.
     take_history(early->out, out);
@@ -848,8 +859,10 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     superseded = std::move(early->superseded);
   }
 
-  refit_folded_boundary(dense, options, scan, best, clock, out);
-  deliver_best_round(dense, options, superseded, best, clock, out);
+  if (!delivered) {
+    refit_folded_boundary(dense, options, scan, best, clock, out);
+    deliver_best_round(dense, options, superseded, best, clock, out);
+  }
   if (single_round) out.refinement.push_back(round_summary(out, best, options));
 
   clock.begin("measure");
