@@ -486,19 +486,32 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
 // deliver_best_round falls back on them when capping the holes makes the delivered one fold.
 using Superseded = std::vector<std::pair<FittedSurface, Round>>;
 
+// The stage times and the history of rounds of `from` moved to `to` (the surface delivered
+// changes, the clock and the history go on).
+void take_history(FittedSurface& to, FittedSurface& from) {
+  to.seconds = std::move(from.seconds);
+  to.cpu_seconds = std::move(from.cpu_seconds);
+  to.refinement = std::move(from.refinement);
+}
+
 // Delivers `next` (and its round) instead of `out`, keeping out's stage times and history and
 // what follow_boundary did (the later rounds reuse the first round's followed domain); the
 // replaced round goes to `superseded` when given.
 void adopt_round(std::pair<FittedSurface, Round>&& next, FittedSurface& out, Round& best,
                  Superseded* superseded = nullptr) {
   next.first.boundary_follow = out.boundary_follow;
-  next.first.seconds = std::move(out.seconds);
-  next.first.cpu_seconds = std::move(out.cpu_seconds);
-  next.first.refinement = std::move(out.refinement);
+  take_history(next.first, out);
   if (superseded) superseded->emplace_back(std::move(out), std::move(best));
   out = std::move(next.first);
   best = std::move(next.second);
 }
+
+// A fit's state between rounds: the surface delivered so far, its round, the rounds it replaced.
+struct Attempt {
+  FittedSurface out;
+  Round round;
+  Superseded superseded;
+};
 
 // The largest normal jump across the spline's seams and the patches' rims, in degrees.
 double seam_jump_deg(const FittedSurface& s) {
@@ -655,6 +668,46 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
   return next.projection_rms < out.projection_rms;
 }
 
+// Fold rounds: the faces around the folds left fit again with stronger fairing (the same
+// space, so the domain's face indices stay), a round kept when it folds less; the replaced
+// rounds go to `superseded`. Open inputs fit the whole scan again (scan.domain and
+// scan.fit.face_smoothing are left as the last round set them).
+void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                     ScanFitOptions& scan, Round& best, Superseded& superseded,
+                     StageClock& clock, FittedSurface& out) {
+  std::vector<double> face_smoothing;
+  double level = options.fold_smoothing;
+  // The refit on the same space was measured on closed inputs; open ones fit the whole scan
+  // again each round (h/rim's boundary measurements). Both may trade folds for error up to the
+  // goal (lion.off: the first fold round, 40 -> 7 folds at 1.3 times the RMS, was refused).
+  const bool closed = out.input.boundary_loops == 0;
+  const double rms_limit = std::max(options.fold_rms_growth * out.projection_rms,
+                                    options.fold_rms_goal * out.bbox_diagonal);
+  // Open inputs: the band along the boundary is smoothed too (lion.off's last folds are there,
+  // with the boundary curve pulled); refit_folded_boundary leaves it out.
+  for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
+       ++round, level *= kFoldSmoothingStep) {
+    clock.begin("refine");
+    const std::vector<char> near = faces_near_folds(out, kFoldRings);
+    face_smoothing.resize(near.size(), 0.0);
+    for (std::size_t f = 0; f < near.size(); ++f)
+      if (near[f]) face_smoothing[f] = std::max(face_smoothing[f], level);
+    std::pair<FittedSurface, Round> next;
+    if (closed) {
+      next = refit_round(dense, options, face_smoothing, best, clock, out);
+    } else {
+      scan.domain = best.domain;
+      scan.boundary_follow.max_rounds = 0;
+      scan.fit.face_smoothing = face_smoothing;
+      next = next_round(dense, scan, options, clock, out);
+    }
+    out.refinement.push_back(round_summary(next.first, next.second, options));
+    if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
+    if (!better(next.first, next.second, out, best, options)) continue;
+    adopt_round(std::move(next), out, best, &superseded);
+  }
+}
+
 // An open surface that folds is fitted once more on the same domain without the boundary curve
 // (ScanFitOptions::boundary_curve): on a scan whose boundary zigzags where the domain's boundary
 // could not follow it, pulling the spline onto it folds the band next to the boundary
@@ -756,6 +809,35 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   // Refinement: the domain split where the surface folds or misses the input by more than the
   // tolerance, the same cone kept, and the whole fit run again; the best round is delivered.
   Superseded superseded;
+  // Closed inputs that fold, without a tolerance: the fold rounds run first, on the first
+  // round. A fold round refits on the same space at a fraction of a refinement round's cost,
+  // and the refinement's small new faces can fold more than the first round did (horse.off:
+  // 9 -> 56, the refined round thrown away). When they leave no fold and the capped surface
+  // does not fold, it is delivered and the refinement skipped; otherwise the first round goes
+  // on as without them (refinement, fold rounds), and an early attempt left with folds is
+  // delivered instead if it is better.
+  std::optional<Attempt> early;
+  bool delivered = false, refined = false;
+  if (out.input.boundary_loops == 0 && options.tolerance == 0.0 &&
+      options.refinement_rounds > 0 && options.fold_rounds > 0 &&
+      out.surface_dihedral.over_90_deg > 0) {
+    Attempt first{out, best, {}};
+    run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+    const bool unfolded = out.surface_dihedral.over_90_deg == 0;
+    if (unfolded) {
+      // Capped, the surface must still not fold (else the refinement is tried).
+      deliver_best_round(dense, options, superseded, best, clock, out);
+      delivered = out.surface_dihedral.over_90_deg == 0;
+    }
+    if (!delivered) {
+      if (!unfolded) early = Attempt{std::move(out), std::move(best), std::move(superseded)};
+      FittedSurface& history = unfolded ? out : early->out;
+      take_history(first.out, history);
+      superseded.clear();
+      out = std::move(first.out);
+      best = std::move(first.round);
+    }
+  }
   for (int round = 1; round <= options.refinement_rounds; ++round) {
     const std::vector<Eigen::Vector3d> where = refinement_points(dense, options, out, best);
     if (where.empty()) break;
@@ -767,47 +849,26 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     out.refinement.push_back(round_summary(next.first, next.second, options));
     if (!better(next.first, next.second, out, best, options)) break;
     adopt_round(std::move(next), out, best, &superseded);
+    refined = true;
   }
 
-  // Fold rounds: the faces around the folds left fit again with stronger fairing (the same
-  // space, so the domain's face indices stay), a round kept when it folds less.
-  std::vector<double> face_smoothing;
-  double level = options.fold_smoothing;
-  // The refit on the same space was measured on closed inputs; open ones fit the whole scan
-  // again each round (h/rim's boundary measurements). Both may trade folds for error up to the
-  // goal (lion.off: the first fold round, 40 -> 7 folds at 1.3 times the RMS, was refused).
-  const bool closed = out.input.boundary_loops == 0;
-  const double rms_limit = std::max(options.fold_rms_growth * out.projection_rms,
-                                    options.fold_rms_goal * out.bbox_diagonal);
-  // Open inputs: the band along the boundary is smoothed too (lion.off's last folds are there,
-  // with the boundary curve pulled); refit_folded_boundary leaves it out.
-  const std::vector<char> band = out.input.boundary_loops > 0
-                                     ? faces_near_boundary(out, kBoundaryBandRings)
-                                     : std::vector<char>{};
-  for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
-       ++round, level *= kFoldSmoothingStep) {
-    clock.begin("refine");
-    const std::vector<char> near = faces_near_folds(out, kFoldRings);
-    face_smoothing.resize(near.size(), 0.0);
-    for (std::size_t f = 0; f < near.size(); ++f)
-      if (near[f]) face_smoothing[f] = std::max(face_smoothing[f], level);
-    std::pair<FittedSurface, Round> next;
-    if (closed) {
-      next = refit_round(dense, options, face_smoothing, best, clock, out);
-    } else {
-      scan.domain = best.domain;
-      scan.boundary_follow.max_rounds = 0;
-      scan.fit.face_smoothing = face_smoothing;
-      next = next_round(dense, scan, options, clock, out);
-    }
-    out.refinement.push_back(round_summary(next.first, next.second, options));
-    if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
-    if (!better(next.first, next.second, out, best, options)) continue;
-    adopt_round(std::move(next), out, best, &superseded);
+  // Without a refined round they would repeat the early attempt's rounds exactly.
+  if (!early || refined) run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+  if (early && better(early->out, early->round, out, best, options)) {
+    // The fold rounds on the first round did better than the refinement and its fold rounds.
+    take_history(early->out, out);
+    out = std::move(early->out);
+    best = std::move(early->round);
+    superseded = std::move(early->superseded);
   }
 
-  refit_folded_boundary(dense, options, band, scan, best, clock, out);
-  deliver_best_round(dense, options, superseded, best, clock, out);
+  if (!delivered) {
+    const std::vector<char> band = out.input.boundary_loops > 0
+                                       ? faces_near_boundary(out, kBoundaryBandRings)
+                                       : std::vector<char>{};
+    refit_folded_boundary(dense, options, band, scan, best, clock, out);
+    deliver_best_round(dense, options, superseded, best, clock, out);
+  }
   if (single_round) out.refinement.push_back(round_summary(out, best, options));
 
   clock.begin("measure");

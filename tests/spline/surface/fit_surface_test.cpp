@@ -357,5 +357,21 @@ TEST(FitSurfaceFoldRounds, RefitOnTheSameSpaceUntilNoFold) {
   EXPECT_LT(r.fit_rms, 0.002 * r.bbox_diagonal);
 }
 
+// At the defaults (one refinement round) the fold rounds run first on the first fit: they
+// leave the plate without folds, so the refinement round (a whole fit on a split domain) is
+// never run: every round has the first one's domain and control points.
+TEST(FitSurfaceFoldRounds, RunBeforeTheRefinementAndSkipIt) {
+  const FittedSurface r = fit_surface(plate(0.25));
+  ASSERT_GE(r.refinement.size(), 2u);
+  EXPECT_GT(r.refinement.front().folds, 0);
+  for (const RefinementRound& round : r.refinement) {
+    EXPECT_EQ(round.control_points, r.refinement.front().control_points);
+    EXPECT_EQ(round.domain_faces, r.refinement.front().domain_faces);
+  }
+  EXPECT_EQ(r.surface_dihedral.over_90_deg, 0);
+  EXPECT_TRUE(r.watertight);
+  EXPECT_LT(r.fit_rms, 0.002 * r.bbox_diagonal);
+}
+
 }  // namespace
 }  // namespace spline
