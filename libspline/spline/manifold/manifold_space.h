@@ -94,7 +94,8 @@ class ManifoldSplineSpace {
   [[nodiscard]] const KnotCloud& home_cloud(int vertex) const { return home_clouds_[vertex]; }
   [[nodiscard]] int home_chart(int vertex) const { return home_chart_[vertex]; }
   /// Atlas domain faces left out: no neighbourhood chart, flipped or degenerate in a chart, or
-  /// a chart inradius below 1e-8 of the median face's (next to a cone of high genus).
+  /// on a surface of genus >= 4 (next to its large cone), a chart inradius below 1e-8 of the
+  /// median face's or 1e-13 of its chart coordinates.
   [[nodiscard]] int excluded_faces() const { return excluded_faces_; }
 
   /// True when `chart` holds every domain face sharing a vertex with `face` glued around it.

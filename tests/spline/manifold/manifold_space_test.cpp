@@ -7,6 +7,7 @@
 #include <random>
 
 #include "ricci/mesh/errors.h"
+#include "spline/fit/fit.h"
 #include "spline/manifold/manifold_fixtures.h"
 
 namespace spline {
@@ -236,6 +237,31 @@ TEST(ManifoldSpline, HoleFacesCarryNoFunctions) {
   }
   EXPECT_GT(hole, 2);  // the cone's one-ring
   EXPECT_EQ(space->function_count(), space->domain_face_count() * 10);
+}
+
+// camel (genus 0, a scan in tests/data): the one-cone metric shrinks the far ends of its legs
+// to below 1e-8 of the rest. Every face still carries its functions (the size rules are for the
+// large cones of genus >= 4): dropping such faces cut the legs off the fitted surface.
+TEST(ManifoldSpline, TinyFacesOfAGenusZeroExtremityKeepTheirFunctions) {
+  const ricci::Mesh dense = ricci::read_mesh(msp_test::test_mesh("closed_g0/camel.off.gz"));
+  ricci::SimplifyOptions simplify;
+  simplify.target_faces = 3000;
+  const ricci::OneConeAtlasResult a = ricci::build_one_cone_atlas(
+      ricci::simplify_mesh(dense, simplify).mesh, ScanFitOptions().atlas);
+  double smallest = INFINITY, largest = 0.0;
+  for (const ricci::Chart& chart : a.atlas.charts) {
+    for (Eigen::Index r = 0; r < chart.corners.rows(); ++r) {
+      const Eigen::Vector2d p = chart.positions.row(chart.corners(r, 0)).transpose();
+      const Eigen::Vector2d q = chart.positions.row(chart.corners(r, 1)).transpose();
+      smallest = std::min(smallest, (q - p).norm());
+      largest = std::max(largest, (q - p).norm());
+    }
+  }
+  EXPECT_LT(smallest, 1e-8 * largest);  // the premise: faces far below the rest
+  ManifoldSplineOptions options;
+  options.degree = 3;
+  const ManifoldSplineSpace space(a.problem.mesh, a.atlas, options);
+  EXPECT_EQ(space.excluded_faces(), 0);
 }
 
 TEST(ManifoldSpline, BadInputThrows) {
