@@ -203,6 +203,27 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   result.timings.flow += t.seconds();
 }
 
+// The intrinsic flow on a fresh copy of `result`'s problem: `result` becomes it when it
+// converges; otherwise its failures join `failures` and its seconds `failed_seconds`. Returns
+// whether it ran (the problem suits it).
+bool try_intrinsic(const Mesh& mesh, const OneConeAtlasOptions& options,
+                   const std::function<void(const char*)>& report, OneConeAtlasResult& result,
+                   std::vector<std::string>& failures, double& failed_seconds) {
+  OneConeAtlasResult attempt = result;
+  prepare_problem(mesh, options, attempt, report);
+  if (!intrinsic_applies(attempt.problem)) return false;
+  attempt.flow.failed_attempts = failures;
+  solve_intrinsic(options, attempt, report);
+  if (attempt.flow.converged()) {
+    result = std::move(attempt);
+  } else {
+    failures = attempt.flow.failed_attempts;
+    failures.push_back(attempt.flow.message);
+    failed_seconds += attempt.timings.flow;
+  }
+  return true;
+}
+
 }  // namespace
 
 OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options) {
@@ -288,19 +309,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   std::vector<std::string> failures;
   double failed_flow_seconds = 0.0;
   if (!intrinsic_only && !fixed_failed && takes_intrinsic_flow_first(mesh, options)) {
-    OneConeAtlasResult first = result;
-    prepare_problem(mesh, options, first, report);
-    if (intrinsic_applies(first.problem)) {
-      solve_intrinsic(options, first, report);
-      intrinsic_tried = true;
-      if (first.flow.converged()) {
-        result = std::move(first);
-      } else {
-        failures = first.flow.failed_attempts;
-        failures.push_back(first.flow.message);
-        failed_flow_seconds = first.timings.flow;
-      }
-    }
+    intrinsic_tried = try_intrinsic(mesh, options, report, result, failures, failed_flow_seconds);
   }
   if (result.flow.converged()) {
     // The intrinsic flow ran first and won.
@@ -323,20 +332,8 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       if (options.route == FlowRoute::automatic && options.intrinsic_before_fixed &&
           !intrinsic_tried) {
         // Next in conformality: the intrinsic flow (vertex scaling), before the circle packings.
-        OneConeAtlasResult second = result;
-        prepare_problem(mesh, options, second, report);
-        if (intrinsic_applies(second.problem)) {
-          second.flow.failed_attempts = failures;
-          solve_intrinsic(options, second, report);
-          intrinsic_tried = true;
-          if (second.flow.converged()) {
-            result = std::move(second);
-          } else {
-            failures = second.flow.failed_attempts;
-            failures.push_back(second.flow.message);
-            failed_flow_seconds += second.timings.flow;
-          }
-        }
+        intrinsic_tried =
+            try_intrinsic(mesh, options, report, result, failures, failed_flow_seconds);
       }
       if (!result.flow.converged()) solve_and_polish(mesh, options, result, report, true);
     }
