@@ -268,7 +268,6 @@ int run_one_cone_case(int argc, char** argv) {
       std::cerr << "  newton " << p.iteration << ": error " << p.max_error << ", step " << p.step << ", "
                 << p.seconds << " s\n";
     };
-    options.intrinsic.progress = options.flow.progress;
     options.progress = [t = ricci::Stopwatch()](const std::string& stage) {
       std::cerr << std::fixed << t.seconds() << " s: " << stage << std::defaultfloat << "\n";
     };

@@ -113,7 +113,8 @@ void ManifoldSplineSpace::build_domain(const ricci::Mesh& mesh) {
   std::vector<char> usable(static_cast<std::size_t>(faces), 1);
   for (int i = 0; i < faces; ++i) usable[i] = atlas_.neighbourhood_chart[i] >= 0;
   const bool size_rules = ricci::surface_topology(mesh).genus >= kSizeRulesGenus;
-  std::vector<double> smallest(static_cast<std::size_t>(faces), INFINITY);
+  // Each face's smallest chart inradius (0 where flipped), for the size rules only.
+  std::vector<double> smallest(size_rules ? static_cast<std::size_t>(faces) : 0, INFINITY);
   for (const ricci::Chart& chart : atlas_.charts) {
     for (std::size_t row = 0; row < chart.faces.size(); ++row) {
       const auto r = static_cast<Eigen::Index>(row);
@@ -121,23 +122,25 @@ void ManifoldSplineSpace::build_domain(const ricci::Mesh& mesh) {
       const Eigen::Vector2d a = chart.positions.row(chart.corners(r, 0)).transpose();
       const Eigen::Vector2d b = chart.positions.row(chart.corners(r, 1)).transpose();
       const Eigen::Vector2d c = chart.positions.row(chart.corners(r, 2)).transpose();
-      const double cross = ricci::cross2d(b - a, c - a);
-      const double rho = cross > 0.0 ? inradius(a, b, c) : 0.0;
-      const double floor = size_rules ? kMinChartInradius * std::max({a.norm(), b.norm(), c.norm()})
-                                      : 0.0;
-      if (!(rho > floor)) usable[face] = 0;
+      const bool counter_clockwise = ricci::cross2d(b - a, c - a) > 0.0;
+      if (!counter_clockwise) usable[face] = 0;
+      if (!size_rules) continue;
+      const double rho = counter_clockwise ? inradius(a, b, c) : 0.0;
+      if (!(rho > kMinChartInradius * std::max({a.norm(), b.norm(), c.norm()}))) usable[face] = 0;
       smallest[face] = std::min(smallest[face], rho);
     }
   }
-  std::vector<double> inradii;
-  for (int i = 0; i < faces; ++i) {
-    if (atlas_.in_domain[i] && std::isfinite(smallest[i])) inradii.push_back(smallest[i]);
-  }
-  if (!inradii.empty() && size_rules) {
-    const auto middle = inradii.begin() + static_cast<std::ptrdiff_t>(inradii.size() / 2);
-    std::nth_element(inradii.begin(), middle, inradii.end());
+  if (size_rules) {
+    std::vector<double> inradii;
     for (int i = 0; i < faces; ++i) {
-      if (!(smallest[i] >= kMinRelativeInradius * *middle)) usable[i] = 0;
+      if (atlas_.in_domain[i] && std::isfinite(smallest[i])) inradii.push_back(smallest[i]);
+    }
+    if (!inradii.empty()) {
+      const auto middle = inradii.begin() + static_cast<std::ptrdiff_t>(inradii.size() / 2);
+      std::nth_element(inradii.begin(), middle, inradii.end());
+      for (int i = 0; i < faces; ++i) {
+        if (!(smallest[i] >= kMinRelativeInradius * *middle)) usable[i] = 0;
+      }
     }
   }
   domain_index_.assign(static_cast<std::size_t>(faces), -1);

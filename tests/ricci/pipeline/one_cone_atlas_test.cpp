@@ -284,11 +284,25 @@ TEST(OneConeAtlas, InversiveDistanceRouteIsNearlyConformalAndExact) {
   EXPECT_LT(r.relative_transition_residual(), 1e-9);
 }
 
-// The metric routes' order on a single cone: the inversive-distance route by default or when
-// asked for, never when another metric is asked for or there is no cone.
-TEST(OneConeAtlas, InversiveDistanceRouteByDefaultOrWhenAskedForOnASingleCone) {
+// The metric routes on a single cone. The intrinsic flow first only by default: not when a
+// metric is asked for, with fixed connectivity, when switched off, or on a torus (no cone).
+// The inversive-distance route by default or when asked for, never when another metric is asked
+// for or there is no cone.
+TEST(OneConeAtlas, RoutesByDefaultOrWhenAskedForOnASingleCone) {
   const ricci::Mesh genus2 = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
   const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj.gz"));
+  ricci::OneConeAtlasOptions first;
+  EXPECT_TRUE(ricci::takes_intrinsic_flow_first(genus2, first));
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(torus, first));
+  first.keep_metric = true;
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, first));
+  first.keep_metric = false;
+  first.route = ricci::FlowRoute::fixed_connectivity;
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, first));
+  first.route = ricci::FlowRoute::automatic;
+  first.intrinsic_first = false;
+  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, first));
+
   ricci::OneConeAtlasOptions options;
   EXPECT_TRUE(ricci::takes_inversive_distance_route(genus2, options));  // the default
   EXPECT_FALSE(ricci::takes_inversive_distance_route(torus, options));  // no cone
@@ -333,24 +347,6 @@ TEST(OneConeAtlas, DefaultMetricIsTheMostConformalRouteThatConverges) {
   EXPECT_NE(next.flow.metric_name.find("tangent"), std::string::npos) << next.flow.metric_name;
   EXPECT_GT(next.distortion.quasi_conformal_area_mean, best.distortion.quasi_conformal_area_mean + 0.2);
   EXPECT_EQ(next.atlas.layout.flipped_faces, 0);
-}
-
-// The intrinsic flow first only by default: not when a metric is asked for, on a torus (no
-// cone) or when switched off.
-TEST(OneConeAtlas, IntrinsicFlowFirstOnlyByDefaultOnASingleCone) {
-  const ricci::Mesh genus2 = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
-  const ricci::Mesh torus = ricci::read_mesh(resolve("bench/torus_10k.obj.gz"));
-  ricci::OneConeAtlasOptions options;
-  EXPECT_TRUE(ricci::takes_intrinsic_flow_first(genus2, options));
-  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(torus, options));
-  options.keep_metric = true;
-  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, options));
-  options.keep_metric = false;
-  options.route = ricci::FlowRoute::fixed_connectivity;
-  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, options));
-  options.route = ricci::FlowRoute::automatic;
-  options.intrinsic_first = false;
-  EXPECT_FALSE(ricci::takes_intrinsic_flow_first(genus2, options));
 }
 
 // Under the 10 pi cone of genus3_10k's vertex 0 the inversive-distance route breaks triangles;
