@@ -139,10 +139,29 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
   std::map<int, int> vertex_chart;  // original vertex -> chart index (-1: none possible)
   atlas.neighbourhood_chart.assign(mesh.n_faces(), -1);
   atlas.uncovered_faces = 0;
+  // Away from the cut, the central chart holds a neighbourhood whose faces it holds and whose
+  // vertices it has once each: the test without holds_as_one_piece's search and sort.
+  // (atlas.charts grows below: no reference into it is kept.)
+  std::vector<char> in_central(mesh.n_faces(), 0), copies(mesh.n_vertices(), 0);
+  for (int f : atlas.charts[0].faces) in_central[static_cast<size_t>(f)] = 1;
+  for (int v : atlas.charts[0].to_original_vertex) {
+    char& count = copies[static_cast<size_t>(v)];
+    count = static_cast<char>(std::min(count + 1, 2));
+  }
+  const auto plainly_central = [&](const std::vector<int>& hood) {
+    for (int g : hood) {
+      if (!in_central[static_cast<size_t>(g)]) return false;
+      for (auto v : mesh.fv_range(FaceHandle(g))) {
+        if (copies[static_cast<size_t>(v.idx())] != 1) return false;
+      }
+    }
+    return true;
+  };
   for (auto f : mesh.faces()) {
     if (!atlas.in_domain[f.idx()]) continue;
     const std::vector<int> hood = detail::face_neighbourhood(mesh, f.idx(), atlas.in_domain);
-    int found = detail::holds_as_one_piece(mesh, atlas.charts[0], hood) ? 0 : -1;
+    int found =
+        plainly_central(hood) || detail::holds_as_one_piece(mesh, atlas.charts[0], hood) ? 0 : -1;
     for (size_t i = 0; found < 0 && i < charts_of_face[f.idx()].size(); ++i) {
       const int c = charts_of_face[f.idx()][i];
       if (detail::holds_as_one_piece(mesh, atlas.charts[c], hood)) found = c;

@@ -113,7 +113,8 @@ Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs
 }
 
 bool solve_with_nearby_factorization(const SymmetricFactorization& nearby, const Sparse& lower,
-                                     const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+                                     const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
+                                     double relative_tolerance) {
   x = nearby.solve(rhs);
   double previous = rhs.norm();
   for (int i = 0; i < 12 && x.allFinite(); ++i) {
@@ -121,8 +122,8 @@ bool solve_with_nearby_factorization(const SymmetricFactorization& nearby, const
     const double norm = residual.norm();
     // Rounding floors the residual near eps·cond(H)·‖rhs‖ (H is a Laplacian, cond ~ #V), so
     // stop when it stalls; an inexact step with relative residual 1e-8 still converges fast.
-    if (norm <= 1e-12 * rhs.norm()) return true;
-    if (!(norm < 0.3 * previous)) return norm <= 1e-8 * rhs.norm();
+    if (norm <= relative_tolerance * rhs.norm()) return true;
+    if (!(norm < 0.3 * previous)) return norm <= std::max(1e-8, relative_tolerance) * rhs.norm();
     previous = norm;
     x += nearby.solve(residual);
   }

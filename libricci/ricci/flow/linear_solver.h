@@ -53,12 +53,14 @@ class SymmetricFactorization {
 
 /// Solves H x = rhs (H by its lower triangle) with the factorisation of a nearby matrix F (an
 /// earlier Newton step's, same size): x += F⁻¹(rhs - H x), a stationary iteration converging at
-/// rate ‖I - F⁻¹H‖. Returns false when it is not fast (then factorise H): each step must cut the
-/// residual by 0.3, and it must end below 1e-12 ‖rhs‖ (1e-8 when rounding stalls it).
+/// rate ‖I - F⁻¹H‖. F's pattern may differ from H's (flips). Returns false when it is not fast
+/// (then factorise H): each step must cut the residual by 0.3, and it must end below
+/// relative_tolerance ‖rhs‖ (1e-8 when rounding stalls it first).
 /// \pre `nearby` holds a successful factorisation.
 [[nodiscard]] bool solve_with_nearby_factorization(const SymmetricFactorization& nearby,
                                                    const Eigen::SparseMatrix<double>& lower,
-                                                   const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
+                                                   const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
+                                                   double relative_tolerance = 1e-12);
 
 /// A factorisation kept across solves whose matrices share one sparsity pattern (the stages of
 /// a continuation, retries of a flow on one mesh): the symbolic analysis (ordering, elimination

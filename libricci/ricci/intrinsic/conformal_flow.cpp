@@ -138,9 +138,11 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
   double best = error;
   int since_best = 0;
   FactorizationCache cache;  // flips change the pattern; steps without flips keep the analysis
-  // The last factorised Laplacian: once the connectivity is frozen and Newton takes full steps,
-  // the next one changes little and solve_with_nearby_factorization spares its factorisation.
-  std::shared_ptr<SymmetricFactorization> factored_last;
+  // The last factorised Laplacian: near the answer Newton takes full steps, the next Laplacian
+  // differs from it by little (and a few flips), and conjugate gradients preconditioned with it
+  // (solve_with_nearby_factorization) spare the analysis and the factorisation.
+  std::shared_ptr<const SymmetricFactorization>& factored_last = result.laplacian_factorization;
+  result.pinned_vertex = pinned;
   bool last_step_full = false;
   for (int iteration = 0; error > tolerance; ++iteration) {
     if (iteration >= max_iterations) {
@@ -154,19 +156,20 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     clock.restart();
     const Eigen::SparseMatrix<double> lower = reduced_laplacian(tri, eval.cotangents, pinned);
     result.timings.assembly += clock.seconds();
-    const std::shared_ptr<SymmetricFactorization> factorization =
-        cache.get(result.solver, lower, result.timings.analysis);
     Eigen::VectorXd rhs(n - 1);
     for (int v = 0; v < n; ++v) {
       if (v != pinned) rhs[v < pinned ? v : v - 1] = -gradient[v];
     }
     Eigen::VectorXd reduced;
     clock.restart();
-    const bool reused = factorization == factored_last && last_step_full &&
-                        error < options.freeze_connectivity_below &&
-                        solve_with_nearby_factorization(*factorization, lower, rhs, reduced);
+    const bool reused = factored_last && last_step_full &&
+                        error < options.nearby_factorization_below &&
+                        solve_with_nearby_factorization(*factored_last, lower, rhs, reduced);
     result.timings.solve += clock.seconds();
     if (!reused) {
+      factored_last.reset();  // at most one factor alive besides the cache's
+      const std::shared_ptr<SymmetricFactorization> factorization =
+          cache.get(result.solver, lower, result.timings.analysis);
       clock.restart();
       const bool factored = factorization->factorize(lower);
       result.timings.factorization += clock.seconds();

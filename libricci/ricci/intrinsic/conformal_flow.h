@@ -12,12 +12,14 @@
 //       ricci::intrinsic_conformal_flow(mesh, ricci::single_cone_target(mesh, cone));
 //   if (r.converged()) use(ricci::to_mesh(r.triangulation, r.u, positions));
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "ricci/flow/flow.h"
+#include "ricci/flow/linear_solver.h"
 #include "ricci/flow/targets.h"
 #include "ricci/intrinsic/intrinsic_triangulation.h"
 #include "ricci/mesh/mesh.h"
@@ -46,6 +48,10 @@ struct IntrinsicFlowOptions {
   /// finishes on it (quadratically; at the answer it is Delaunay up to this order). Flipping to
   /// the end can make Newton circle between the triangulations of nearly co-circular quads.
   double freeze_connectivity_below = 1e-4;
+  /// Below this max |K - K̄| (radians), after a full step, Newton first solves with the last
+  /// factorisation as a preconditioner (solve_with_nearby_factorization) and factorises only
+  /// when that does not converge.
+  double nearby_factorization_below = 0.05;
   /// Below freeze_connectivity_below, the flow stops (stalled) after this many iterations
   /// without halving max |K - K̄|: the double evaluation's rounding floor (long needles next to
   /// a large cone), which a long-double polish (metric/polish_e2.h) can pass.
@@ -69,6 +75,11 @@ struct IntrinsicFlowResult {
   double max_error = 0;
   LinearSolver solver = LinearSolver::automatic;
   FlowTimings timings;
+  /// The last factorisation Newton used (null if none): of the cotangent Laplacian at an
+  /// iterate near u, without pinned_vertex's row and column (a preconditioner for a polish,
+  /// metric/polish_e2.h).
+  std::shared_ptr<const SymmetricFactorization> laplacian_factorization;
+  int pinned_vertex = -1;  ///< the vertex held at u = 0
 
   [[nodiscard]] bool converged() const { return status == FlowStatus::converged; }
 };

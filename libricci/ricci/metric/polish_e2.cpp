@@ -1,7 +1,10 @@
 #include "ricci/metric/polish_e2.h"
 
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/SparseCore>
@@ -14,6 +17,8 @@ namespace ricci {
 namespace {
 
 constexpr long double kPi = 3.141592653589793238462643383279502884L;
+// 8 roundings of a double angle sum of 2 pi (1.1e-14).
+constexpr double kFloor = 8.0 * 2.0 * M_PI * std::numeric_limits<double>::epsilon();
 using VectorL = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
 
 // Angles of a Euclidean triangle with sides l (l[k] opposite corner k) by the half-angle
@@ -57,33 +62,82 @@ VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::Ve
   return r;
 }
 
+// The lower triangle of the matrix of `triplets` (n x n) without row and column `pinned`, or,
+// when pinned < 0, with 1 added at (0, 0) (the gauge of a factorisation of its own).
+Eigen::SparseMatrix<double> gauged_lower(std::vector<Eigen::Triplet<double>> triplets, int n,
+                                         int pinned) {
+  std::vector<Eigen::Triplet<double>> kept;
+  kept.reserve(triplets.size() / 2 + 1);
+  if (pinned < 0) triplets.emplace_back(0, 0, 1.0);
+  for (const Eigen::Triplet<double>& e : triplets) {
+    if (e.row() == pinned || e.col() == pinned || e.row() < e.col()) continue;
+    const auto row = [pinned](int v) { return pinned >= 0 && v > pinned ? v - 1 : v; };
+    kept.emplace_back(row(e.row()), row(e.col()), e.value());
+  }
+  const int size = pinned < 0 ? n : n - 1;
+  Eigen::SparseMatrix<double> lower(size, size);
+  lower.setFromTriplets(kept.begin(), kept.end());
+  return lower;
+}
+
 }  // namespace
 
 PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths,
-                                 const Eigen::VectorXd& target, int max_iterations) {
+                                 const Eigen::VectorXd& target, int max_iterations,
+                                 NearbyLaplacian nearby) {
   const MeshTables t = build_mesh_tables(mesh);
-  if (lengths.size() != t.num_edges() || target.size() != t.num_vertices()) {
+  const int n = t.num_vertices();
+  if (lengths.size() != t.num_edges() || target.size() != n || n < 2) {
     throw InvalidInputError("polish_e2_lengths: lengths or target do not match the mesh");
   }
+  if (nearby.factorization && (nearby.pinned < 0 || nearby.pinned >= n)) {
+    throw InvalidInputError("polish_e2_lengths: the pinned vertex is not the mesh's");
+  }
+  // A uniform du only rescales (E2): du is held at 0 on the nearby factorisation's pinned
+  // vertex, or by the gauge of gauged_lower.
+  const int pinned = nearby.factorization ? nearby.pinned : -1;
+  const auto row = [pinned](int v) { return pinned >= 0 && v > pinned ? v - 1 : v; };
   const VectorL base = lengths.cast<long double>();
-  VectorL current = base, u = VectorL::Zero(t.num_vertices());
+  VectorL current = base, u = VectorL::Zero(n);
   std::vector<Eigen::Triplet<double>> triplets;
   VectorL r = residual_of(t, current, target, &triplets);
-  triplets.emplace_back(0, 0, 1.0);  // the E2 gauge: a uniform du only rescales
-  Eigen::SparseMatrix<double> laplacian(t.num_vertices(), t.num_vertices());
-  laplacian.setFromTriplets(triplets.begin(), triplets.end());
-  // The flow's factorisation (CHOLMOD supernodal on large meshes, Eigen below 20k unknowns).
-  const Eigen::SparseMatrix<double> lower = laplacian.triangularView<Eigen::Lower>();
-  SymmetricFactorization solver(resolve_linear_solver(LinearSolver::automatic, lower.rows()));
-  solver.analyze(lower);
+  const Eigen::SparseMatrix<double> lower = gauged_lower(std::move(triplets), n, pinned);
+  // Without a nearby factorisation, or where it does not converge, the matrix's own (the
+  // flow's kind: CHOLMOD supernodal on large meshes, Eigen below 20k unknowns).
+  std::unique_ptr<SymmetricFactorization> own;
+  bool own_failed = false;
+  const auto solve = [&](const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+    // A step solved to 1e-6 leaves a defect 1e-6 of the flow's (~1e-10): below the floor.
+    if (nearby.factorization &&
+        solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6)) {
+      return true;
+    }
+    fprintf(stderr, "DEBUG polish own factorization\n");
+    if (!own && !own_failed) {
+      own = std::make_unique<SymmetricFactorization>(
+          resolve_linear_solver(LinearSolver::automatic, lower.rows()));
+      own->analyze(lower);
+      own_failed = !own->factorize(lower);
+    }
+    if (own_failed) return false;
+    x = own->solve(rhs);
+    return true;
+  };
   PolishE2Result result;
   result.lengths = lengths;
   result.error_before = result.error_after = static_cast<double>(r.cwiseAbs().maxCoeff());
-  if (!solver.factorize(lower)) return result;
-  for (int it = 1; it <= max_iterations && result.error_after > 0.0; ++it) {
+  // The lengths are delivered in double: a defect below the rounding of a double angle sum
+  // (kFloor) is as good as none.
+  for (int it = 1; it <= max_iterations && result.error_after > kFloor; ++it) {
     const long double scale = r.cwiseAbs().maxCoeff();  // keeps the residual's digits in double
-    const Eigen::VectorXd du = solver.solve((r / scale).cast<double>());
-    u -= du.cast<long double>() * scale;
+    Eigen::VectorXd rhs(lower.rows()), du;
+    for (int v = 0; v < n; ++v) {
+      if (v != pinned) rhs[row(v)] = static_cast<double>(r[v] / scale);
+    }
+    if (!solve(rhs, du)) break;
+    for (int v = 0; v < n; ++v) {
+      if (v != pinned) u[v] -= static_cast<long double>(du[row(v)]) * scale;
+    }
     for (int e = 0; e < t.num_edges(); ++e) {
       current[e] = std::exp(0.5L * (u[t.edge_vertices(e, 0)] + u[t.edge_vertices(e, 1)])) * base[e];
     }

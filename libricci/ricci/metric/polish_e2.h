@@ -8,6 +8,7 @@
 // hyperbolic room does the same for H2.
 #include <Eigen/Core>
 
+#include "ricci/flow/linear_solver.h"
 #include "ricci/mesh/mesh.h"
 
 namespace ricci {
@@ -19,13 +20,26 @@ struct PolishE2Result {
   int iterations = 0;
 };
 
+/// A factorisation of a cotangent Laplacian near the one at the lengths being polished (the
+/// flow's last), without vertex `pinned`'s row and column: polish_e2_lengths then solves by
+/// conjugate gradients preconditioned with it instead of factorising.
+struct NearbyLaplacian {
+  const SymmetricFactorization* factorization = nullptr;
+  int pinned = 0;
+};
+
 /// Vertex scaling l'_ij = e^{(u_i + u_j) / 2} l_ij solving K(u) = target (interior: 2 pi minus
-/// the angle sum; boundary: pi minus it), each step solving (L + e_0 e_0^T) du = -(K - target)
-/// with L the cotangent Laplacian at the given lengths (dK/du), factored once; the residual is
-/// evaluated in long double. Returns the given lengths when a step does not improve.
-/// \pre lengths close to a solution (a converged flow's); target sums to 2 pi chi.
+/// the angle sum; boundary: pi minus it), each step solving L du = -(K - target) with du
+/// pinned to 0 at one vertex and L the cotangent Laplacian at the given lengths (dK/du),
+/// factored once (or `nearby`'s, see NearbyLaplacian); the residual is evaluated in long
+/// double; it stops below 1.1e-14 (8 roundings of a double angle sum: the delivered lengths are
+/// double). Returns the given lengths when a step does not improve.
+/// \pre lengths close to a solution (a converged flow's); target sums to 2 pi chi; a nearby
+///      factorisation has the size of the mesh's vertices minus one.
 /// \throw InvalidInputError on a size mismatch or a face violating the triangle inequality.
 [[nodiscard]] PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths,
-                                               const Eigen::VectorXd& target, int max_iterations = 6);
+                                               const Eigen::VectorXd& target,
+                                               int max_iterations = 6,
+                                               NearbyLaplacian nearby = {});
 
 }  // namespace ricci
