@@ -27,6 +27,18 @@ std::string to_string(LinearSolver solver) {
 
 namespace {
 using Sparse = Eigen::SparseMatrix<double>;
+using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+
+// CHOLMOD's supernodal LLT, with the ordering it chose readable.
+class CholmodSupernodal : public Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> {
+ public:
+  // Perm of the analysed factor: L L^T = A(perm, perm); empty before an analysis.
+  Eigen::VectorXi ordering() const {
+    if (!m_cholmodFactor || !m_cholmodFactor->Perm) return {};
+    return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(m_cholmodFactor->Perm),
+                                             static_cast<Eigen::Index>(m_cholmodFactor->n));
+  }
+};
 }  // namespace
 
 struct SymmetricFactorization::Impl {
@@ -36,8 +48,19 @@ struct SymmetricFactorization::Impl {
   SerialBlasScope serial_blas;
   Eigen::SimplicialLDLT<Sparse, Eigen::Lower> eigen_ldlt;
   Eigen::SimplicialLLT<Sparse, Eigen::Lower> eigen_llt;
-  Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> cholmod_supernodal;
+  CholmodSupernodal cholmod_supernodal;
   Eigen::CholmodSimplicialLDLT<Sparse, Eigen::Lower> cholmod_simplicial;
+  // With a given ordering g (analyze with an ordering): CHOLMOD factors B = A(g, g) in its
+  // natural order, `given` maps b to b(g) (given * b), given^T back. Size 0 otherwise.
+  Permutation given;
+  double fill = 0.0;  // nonzeros of L predicted by the last analysis (CHOLMOD only)
+
+  // The lower triangle of A(g, g).
+  Sparse permuted(const Sparse& lower) const {
+    Sparse b(lower.rows(), lower.cols());
+    b.selfadjointView<Eigen::Lower>() = lower.selfadjointView<Eigen::Lower>().twistedBy(given);
+    return b;
+  }
 };
 
 LinearSolver resolve_linear_solver(LinearSolver kind, Eigen::Index unknowns) {
@@ -57,6 +80,7 @@ SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
 SymmetricFactorization::~SymmetricFactorization() = default;
 
 void SymmetricFactorization::analyze(const Sparse& lower) {
+  impl_->given = Permutation();
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
       impl_->eigen_ldlt.analyzePattern(lower);
@@ -66,10 +90,44 @@ void SymmetricFactorization::analyze(const Sparse& lower) {
       break;
     case LinearSolver::cholmod_supernodal:
       impl_->cholmod_supernodal.analyzePattern(lower);
+      impl_->fill = impl_->cholmod_supernodal.cholmod().lnz;
       break;
     default: impl_->cholmod_simplicial.analyzePattern(lower); break;
   }
 }
+
+void SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi& ordering,
+                                     double fill) {
+  if (kind_ != LinearSolver::cholmod_supernodal || ordering.size() != lower.rows()) {
+    analyze(lower);
+    return;
+  }
+  // given * b = b(ordering): its indices are the inverse of `ordering`.
+  impl_->given = Permutation(ordering).inverse();
+  cholmod_common& common = impl_->cholmod_supernodal.cholmod();
+  const int methods = common.nmethods, method = common.method[0].ordering;
+  common.nmethods = 1;
+  common.method[0].ordering = CHOLMOD_NATURAL;
+  impl_->cholmod_supernodal.analyzePattern(impl_->permuted(lower));
+  impl_->fill = common.lnz;
+  common.nmethods = methods;
+  common.method[0].ordering = method;
+  // A pattern too far from the ordering's: order afresh.
+  if (fill > 0 && impl_->fill > 1.25 * fill) analyze(lower);
+}
+
+Eigen::VectorXi SymmetricFactorization::ordering() const {
+  if (kind_ != LinearSolver::cholmod_supernodal) return {};
+  const Eigen::VectorXi own = impl_->cholmod_supernodal.ordering();
+  if (impl_->given.size() == 0 || own.size() == 0) return own;
+  // CHOLMOD ordered B = A(g, g) by q (its postorder): A's order is g(q).
+  const Eigen::VectorXi g = Permutation(impl_->given.inverse()).indices();
+  Eigen::VectorXi composed(own.size());
+  for (Eigen::Index k = 0; k < own.size(); ++k) composed[k] = g[own[k]];
+  return composed;
+}
+
+double SymmetricFactorization::fill() const { return impl_->fill; }
 
 bool SymmetricFactorization::factorize(const Sparse& lower) {
   switch (kind_) {
@@ -80,7 +138,11 @@ bool SymmetricFactorization::factorize(const Sparse& lower) {
       impl_->eigen_llt.factorize(lower);
       return impl_->eigen_llt.info() == Eigen::Success;
     case LinearSolver::cholmod_supernodal:
-      impl_->cholmod_supernodal.factorize(lower);
+      if (impl_->given.size() > 0) {
+        impl_->cholmod_supernodal.factorize(impl_->permuted(lower));
+      } else {
+        impl_->cholmod_supernodal.factorize(lower);
+      }
       return impl_->cholmod_supernodal.info() == Eigen::Success;
     default:
       impl_->cholmod_simplicial.factorize(lower);
@@ -95,6 +157,11 @@ Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const 
     case LinearSolver::eigen_llt:
       return impl_->eigen_llt.solve(rhs);
     case LinearSolver::cholmod_supernodal:
+      if (impl_->given.size() > 0) {
+        const Eigen::VectorXd permuted_rhs = impl_->given * rhs;
+        const Eigen::VectorXd y = impl_->cholmod_supernodal.solve(permuted_rhs);
+        return impl_->given.transpose() * y;
+      }
       return impl_->cholmod_supernodal.solve(rhs);
     default: return impl_->cholmod_simplicial.solve(rhs);
   }
@@ -107,6 +174,11 @@ Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs
     case LinearSolver::eigen_llt:
       return impl_->eigen_llt.solve(rhs);
     case LinearSolver::cholmod_supernodal:
+      if (impl_->given.size() > 0) {
+        const Eigen::MatrixXd permuted_rhs = impl_->given * rhs;
+        const Eigen::MatrixXd y = impl_->cholmod_supernodal.solve(permuted_rhs);
+        return impl_->given.transpose() * y;
+      }
       return impl_->cholmod_supernodal.solve(rhs);
     default: return impl_->cholmod_simplicial.solve(rhs);
   }
@@ -147,8 +219,23 @@ std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kin
     return factorization_;
   }
   const Stopwatch clock;
+  // Same size, other pattern (flips): the cached factorisation's ordering serves, and the
+  // ordering is most of an analysis on large meshes.
+  Eigen::VectorXi ordering;
+  double fill = 0.0;
+  if (factorization_ && factorization_->kind() == resolved &&
+      lower.rows() == static_cast<Eigen::Index>(outer_.size()) - 1) {
+    ordering = factorization_->ordering();
+    fill = factorization_->fill();
+  }
+  factorization_.reset();  // its factor goes before the new one is made
   factorization_ = std::make_shared<SymmetricFactorization>(resolved);
-  factorization_->analyze(lower);
+  if (ordering.size() > 0) {
+    factorization_->analyze(lower, ordering, fill);
+    ++orderings_reused_;
+  } else {
+    factorization_->analyze(lower);
+  }
   analysis_seconds += clock.seconds();
   ++analyses_;
   if (lower.isCompressed()) {

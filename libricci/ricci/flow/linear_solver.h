@@ -36,6 +36,18 @@ class SymmetricFactorization {
 
   /// Symbolic analysis of the pattern; call again only if the pattern changes.
   void analyze(const Eigen::SparseMatrix<double>& lower);
+  /// The same with a given fill-reducing ordering (another factorisation's ordering(), of a
+  /// matrix of this size whose pattern differs a little, e.g. by flips), which spares the
+  /// ordering (METIS: most of an analysis on large meshes). Orders afresh when the factor
+  /// would have over 1.25 times `fill` nonzeros (fill 0: no check), when the ordering's size
+  /// differs, and for the kinds other than cholmod_supernodal.
+  void analyze(const Eigen::SparseMatrix<double>& lower, const Eigen::VectorXi& ordering,
+               double fill);
+  /// The analysed fill-reducing ordering (L L^T = A(p, p)); empty except for
+  /// cholmod_supernodal.
+  [[nodiscard]] Eigen::VectorXi ordering() const;
+  /// Nonzeros of the factor the last analysis predicted (0 except for cholmod_supernodal).
+  [[nodiscard]] double fill() const;
   /// Numeric factorisation. Returns false if it failed (not positive definite, zero pivot).
   bool factorize(const Eigen::SparseMatrix<double>& lower);
   /// Solves with the last successful factorisation.
@@ -69,17 +81,20 @@ class FactorizationCache {
  public:
   /// A factorisation of `kind` (resolved by size) analysed for `lower`'s pattern: the cached
   /// one when kind and pattern are the ones it was analysed for, otherwise a new analysis that
-  /// replaces the cached one. Adds the time of any analysis to `analysis_seconds`.
+  /// replaces the cached one (with its ordering when the size is the same). Adds the time of
+  /// any analysis to `analysis_seconds`.
   [[nodiscard]] std::shared_ptr<SymmetricFactorization> get(
       LinearSolver kind, const Eigen::SparseMatrix<double>& lower, double& analysis_seconds);
   /// Analyses done and analyses saved so far.
   int analyses() const { return analyses_; }
   int reuses() const { return reuses_; }
+  /// Analyses that took the cached factorisation's ordering.
+  int orderings_reused() const { return orderings_reused_; }
 
  private:
   std::shared_ptr<SymmetricFactorization> factorization_;
   std::vector<int> outer_, inner_;
-  int analyses_ = 0, reuses_ = 0;
+  int analyses_ = 0, reuses_ = 0, orderings_reused_ = 0;
 };
 
 }  // namespace ricci

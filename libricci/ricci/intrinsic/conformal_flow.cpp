@@ -149,7 +149,9 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
       reason = "iteration budget spent";
       return FlowStatus::max_iterations;
     }
-    if (error < options.freeze_connectivity_below && since_best >= options.plateau_iterations) {
+    const int plateau = error < options.floor_below ? options.floor_plateau_iterations
+                                                    : options.plateau_iterations;
+    if (error < options.freeze_connectivity_below && since_best >= plateau) {
       reason = "rounding plateau: no progress in " + std::to_string(since_best) + " iterations";
       return FlowStatus::stalled;
     }

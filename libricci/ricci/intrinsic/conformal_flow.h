@@ -56,6 +56,11 @@ struct IntrinsicFlowOptions {
   /// without halving max |K - K̄|: the double evaluation's rounding floor (long needles next to
   /// a large cone), which a long-double polish (metric/polish_e2.h) can pass.
   int plateau_iterations = 12;
+  /// Below this max |K - K̄| (radians) the plateau ends after floor_plateau_iterations: Newton
+  /// on double evaluations gains nothing there that the long-double polish does not do in one
+  /// step (a 1.6M-face mesh's floor is ~1e-10).
+  double floor_below = 1e-8;
+  int floor_plateau_iterations = 2;
   /// Optional progress report, after each Newton iteration.
   std::function<void(const FlowProgress&)> progress;
 };
