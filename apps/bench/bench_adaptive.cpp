@@ -1,11 +1,15 @@
-// msp-bench adaptive [--rms F] [paths...]: the adaptive domain (fit_surface's
-// default on closed scans) against the uniform one. For each model and each domain, fit_surface
-// on a ladder of domain targets (400 up, x1.25) until the delivered surface's RMS over every
+// msp-bench adaptive [--rms F] [--from N] [--base-share F] [--max-turn D] [--thickness E]
+// [--by-turn] [--relax N] [--adaptive-only] [paths...]: the adaptive domain (msp fit
+// --adaptive-domain) against the uniform one. For each model and each domain, fit_surface on a
+// ladder of domain targets (400 up, x1.25) until the delivered surface's RMS over every
 // input vertex falls below F (0.1% of the diagonal): per step the domain faces, control points,
 // RMS and max over the diagonal, folds and seconds (and as a multiple of one CHOLMOD solve of
 // the scan's cotangent Laplacian); then the control points each domain needs for F (log-linear
 // between the two steps around it) and their ratio. Refinement and fold rounds are off: the
-// domains alone are compared.
+// domains alone are compared. --from starts both ladders at another target; --base-share,
+// --max-turn, --thickness, --by-turn (split by normal turn, not by the scan's deviation) and
+// --relax set the adaptive domain's sizing (AdaptiveDomainOptions); --adaptive-only skips the
+// uniform ladder.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -24,6 +28,13 @@ namespace {
 constexpr int kFirstTarget = 400;
 constexpr double kStep = 1.25;
 constexpr int kLastTarget = 20000;
+
+struct Ladder {
+  int first_target = kFirstTarget;
+  double goal = 1e-3;
+  spline::AdaptiveDomainOptions sizing;
+  bool uniform = true;  // run the uniform ladder too
+};
 
 struct Step {
   int control_points = 0;
@@ -45,12 +56,14 @@ double control_points_at(const std::vector<Step>& steps, double goal) {
   return -1.0;
 }
 
-std::vector<Step> ladder(const ricci::Mesh& dense, bool adaptive, double goal, double cholesky) {
+std::vector<Step> ladder(const ricci::Mesh& dense, bool adaptive, const Ladder& run,
+                         double cholesky) {
   std::vector<Step> steps;
-  for (double target = kFirstTarget; target <= kLastTarget; target *= kStep) {
+  for (double target = run.first_target; target <= kLastTarget; target *= kStep) {
     spline::FitSurfaceOptions options;
     options.domain_faces = static_cast<int>(std::lround(target));
     options.adaptive_domain = adaptive;
+    options.sizing = run.sizing;
     options.refinement_rounds = 0;
     options.fold_rounds = 0;
     const ricci::Stopwatch clock;
@@ -66,7 +79,7 @@ std::vector<Step> ladder(const ricci::Mesh& dense, bool adaptive, double goal, d
                 seconds / cholesky);
     std::fflush(stdout);
     steps.push_back(s);
-    if (s.rms <= goal) break;
+    if (s.rms <= run.goal) break;
   }
   return steps;
 }
@@ -74,17 +87,37 @@ std::vector<Step> ladder(const ricci::Mesh& dense, bool adaptive, double goal, d
 }  // namespace
 
 int run_adaptive_benchmark(int argc, char** argv) {
-  double goal = 1e-3;
+  Ladder run;
+  double& goal = run.goal;
   std::vector<std::string> models;
   for (int i = 0; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--rms") == 0 && i + 1 < argc) {
+    const bool value = i + 1 < argc;
+    if (std::strcmp(argv[i], "--rms") == 0 && value) {
       goal = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--from") == 0 && value) {
+      run.first_target = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--base-share") == 0 && value) {
+      run.sizing.base_share = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--max-turn") == 0 && value) {
+      run.sizing.max_turn_deg = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--thickness") == 0 && value) {
+      run.sizing.min_thickness_edges = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--relax") == 0 && value) {
+      run.sizing.relax_iterations = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--by-turn") == 0) {
+      run.sizing.by_deviation = false;
+    } else if (std::strcmp(argv[i], "--adaptive-only") == 0) {
+      run.uniform = false;
     } else {
       models.emplace_back(argv[i]);
     }
   }
   if (!(goal > 0.0 && goal < 1.0)) {
     std::fprintf(stderr, "msp-bench adaptive: --rms must be in (0, 1)\n");
+    return 2;
+  }
+  if (run.first_target < 4 || run.first_target > kLastTarget) {
+    std::fprintf(stderr, "msp-bench adaptive: --from must be in [4, %d]\n", kLastTarget);
     return 2;
   }
   try {
@@ -97,7 +130,7 @@ int run_adaptive_benchmark(int argc, char** argv) {
         "targets %d, x%.2f ..., until the RMS of every input vertex to the delivered surface is "
         "below %.3g%% of the diagonal. chol = seconds / one CHOLMOD solve of the scan's "
         "cotangent Laplacian.\n\n",
-        kFirstTarget, kStep, 100.0 * goal);
+        run.first_target, kStep, 100.0 * goal);
     for (const std::string& path : models) {
       const ricci::Mesh dense = ricci::read_mesh(path);
       const double cholesky = cotangent_cholesky_seconds(dense);
@@ -105,8 +138,9 @@ int run_adaptive_benchmark(int argc, char** argv) {
                   cholesky);
       std::printf("| domain | target | faces | control points | rms | max | folds | s | chol |\n");
       std::printf("|---|---|---|---|---|---|---|---|---|\n");
-      const double uniform = control_points_at(ladder(dense, false, goal, cholesky), goal);
-      const double adaptive = control_points_at(ladder(dense, true, goal, cholesky), goal);
+      const double uniform =
+          run.uniform ? control_points_at(ladder(dense, false, run, cholesky), goal) : -1.0;
+      const double adaptive = control_points_at(ladder(dense, true, run, cholesky), goal);
       std::printf(
           "\ncontrol points for %.3g%%: uniform %.0f, adaptive %.0f, adaptive / uniform "
           "%.2f\n\n",

@@ -153,7 +153,7 @@ const CommandSpec& fit_command() {
         "refine the domain where the input is farther than F diagonals from the surface (0)"},
        {"refine-rounds", "N", "domain refinements where the surface folds or misses (1)"},
        {"fold-rounds", "N", "refits with stronger fairing around folds left (4)"},
-       {"adaptive-domain", "", "closed scans: a domain denser where the surface turns or is thin"},
+       {"adaptive-domain", "", "closed scans: a domain denser at detail and thin parts"},
        {"max-deviation", "F",
         "fail when the surface strays farther than F diagonals from the input; 0: off (0.05)"},
        {"obj", "OUT.obj", "also write the tessellation as OBJ"},

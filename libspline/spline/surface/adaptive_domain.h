@@ -1,8 +1,9 @@
 #pragma once
 // The spline's domain mesh with a density that follows what the spline must resolve: a uniform
-// simplification of the scan, then red-green 1-to-4 splits where the surface turns sharply
-// across a domain edge or a part is thin for the local edge length (thin rims, legs, ears,
-// handles), new vertices placed on the scan, the total aimed at a face count.
+// simplification of the scan, then red-green 1-to-4 splits where the scan departs most from the
+// domain (detail within a face; or, optionally, where the surface turns sharply across a domain
+// edge) or a part is thin for the local edge length (thin rims, legs, ears, handles), new
+// vertices placed on the scan, a tangential relaxation, the total aimed at a face count.
 #include <vector>
 
 #include "ricci/mesh/mesh.h"
@@ -15,12 +16,21 @@ struct AdaptiveDomainOptions {
   int target_faces = 2000;
   /// Share of target_faces given to the uniform base mesh; the rest goes to the splits.
   double base_share = 0.6;
-  /// A face is split where its normal and a neighbour's differ by more than this (degrees).
+  /// With by_deviation false: a face is split where its normal and a neighbour's differ by
+  /// more than this (degrees).
   double max_turn_deg = 20.0;
   /// ... or where the part is thinner (ricci::face_thickness) than this many of the face's
   /// mean edge lengths.
   double min_thickness_edges = 3.0;
   int max_levels = 2;  ///< Split rounds (each may split a face created by the one before).
+  /// A face is split where the scan departs from the domain more than on the mean face (the
+  /// squared distances of the scan's vertices to their closest domain face, summed by face),
+  /// instead of by normal turn: detail smaller than a face is seen, a smooth bend is not.
+  bool by_deviation = true;
+  /// Tangential relaxation rounds after the splits: each interior vertex half-way to its
+  /// neighbours' mean in its tangent plane, then onto the scan (evens out the red-green
+  /// closures' obtuse halves and the 4:1 size steps).
+  int relax_iterations = 2;
 };
 
 struct AdaptiveDomain {
@@ -30,13 +40,15 @@ struct AdaptiveDomain {
 };
 
 /// The adaptive domain of `dense`: ricci::simplify_mesh to base_share * target_faces faces,
-/// then up to max_levels rounds splitting the faces whose sizing score (normal turn over
-/// max_turn_deg, min_thickness_edges * edge length over thickness) exceeds 1, highest first,
+/// then up to max_levels rounds splitting the faces whose sizing score (the scan's deviation
+/// or normal turn, min_thickness_edges * edge length over thickness) exceeds 1, highest first,
 /// while the total stays below the uniform domain's; when few faces need splitting the base is
-/// rebuilt larger once, so the total comes near it. Same topology as `dense`.
+/// rebuilt larger once, so the total comes near it; then relax_iterations relaxation rounds.
+/// Same topology as `dense`.
 /// \pre `dense` a closed or open 2-manifold triangle mesh.
 /// \throw ricci::InvalidInputError for target_faces < 4, base_share outside (0, 1],
-///        max_turn_deg <= 0, min_thickness_edges < 0 or max_levels < 0; as ricci::simplify_mesh.
+///        max_turn_deg <= 0, min_thickness_edges < 0, max_levels < 0 or relax_iterations < 0;
+///        as ricci::simplify_mesh.
 [[nodiscard]] AdaptiveDomain adaptive_domain(const ricci::Mesh& dense,
                                              const AdaptiveDomainOptions& options = {});
 

@@ -29,7 +29,7 @@ struct FitSurfaceOptions {
   /// Weight of the fit's thin-plate energy (FitOptions::smoothing, dimensionless).
   double smoothing = FitOptions{}.smoothing;
   /// Closed inputs: the domain's density follows the shape (adaptive_domain: splits where the
-  /// surface turns sharply or a part is thin), domain_faces its target; false (default), or
+  /// scan departs from the domain or a part is thin), domain_faces its target; false (default), or
   /// open inputs: one edge length (fit_scan's simplification).
   bool adaptive_domain = false;
   /// The adaptive domain's sizing (its target_faces is replaced by domain_faces).
