@@ -54,6 +54,9 @@ struct SymmetricFactorization::Impl {
   // natural order, `given` maps b to b(g) (given * b), given^T back. Size 0 otherwise.
   Permutation given;
   double fill = 0.0;  // nonzeros of L predicted by the last analysis (CHOLMOD only)
+  // ...by the last one that ordered afresh, of this factorisation or of the one whose ordering
+  // it took
+  double fresh_fill = 0.0;
 
   // The lower triangle of A(g, g).
   Sparse permuted(const Sparse& lower) const {
@@ -90,7 +93,7 @@ void SymmetricFactorization::analyze(const Sparse& lower) {
       break;
     case LinearSolver::cholmod_supernodal:
       impl_->cholmod_supernodal.analyzePattern(lower);
-      impl_->fill = impl_->cholmod_supernodal.cholmod().lnz;
+      impl_->fill = impl_->fresh_fill = impl_->cholmod_supernodal.cholmod().lnz;
       break;
     default: impl_->cholmod_simplicial.analyzePattern(lower); break;
   }
@@ -113,7 +116,8 @@ void SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi&
   common.nmethods = methods;
   common.method[0].ordering = method;
   // A pattern too far from the ordering's: order afresh.
-  if (fill > 0 && impl_->fill > 1.25 * fill) analyze(lower);
+  impl_->fresh_fill = fill;
+  if (fill > 0 && impl_->fill > 1.1 * fill) analyze(lower);
 }
 
 Eigen::VectorXi SymmetricFactorization::ordering() const {
@@ -127,7 +131,7 @@ Eigen::VectorXi SymmetricFactorization::ordering() const {
   return composed;
 }
 
-double SymmetricFactorization::fill() const { return impl_->fill; }
+double SymmetricFactorization::fill() const { return impl_->fresh_fill; }
 
 bool SymmetricFactorization::factorize(const Sparse& lower) {
   switch (kind_) {

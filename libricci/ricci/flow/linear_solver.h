@@ -39,14 +39,15 @@ class SymmetricFactorization {
   /// The same with a given fill-reducing ordering (another factorisation's ordering(), of a
   /// matrix of this size whose pattern differs a little, e.g. by flips), which spares the
   /// ordering (METIS: most of an analysis on large meshes). Orders afresh when the factor
-  /// would have over 1.25 times `fill` nonzeros (fill 0: no check), when the ordering's size
-  /// differs, and for the kinds other than cholmod_supernodal.
+  /// would have over 1.1 times `fill` nonzeros (the other's fill(); 0: no check), when the
+  /// ordering's size differs, and for the kinds other than cholmod_supernodal.
   void analyze(const Eigen::SparseMatrix<double>& lower, const Eigen::VectorXi& ordering,
                double fill);
   /// The analysed fill-reducing ordering (L L^T = A(p, p)); empty except for
   /// cholmod_supernodal.
   [[nodiscard]] Eigen::VectorXi ordering() const;
-  /// Nonzeros of the factor the last analysis predicted (0 except for cholmod_supernodal).
+  /// Nonzeros of the factor predicted by the last analysis that ordered afresh, here or for
+  /// the factorisation whose ordering this one took (0 except for cholmod_supernodal).
   [[nodiscard]] double fill() const;
   /// Numeric factorisation. Returns false if it failed (not positive definite, zero pivot).
   bool factorize(const Eigen::SparseMatrix<double>& lower);
