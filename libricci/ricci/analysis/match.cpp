@@ -679,12 +679,6 @@ void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
   domain.to_original_vertex = sliced.to_original_vertex;
 }
 
-}  // namespace detail
-
-namespace {
-
-/// Locates A's vertices in B's parameter domain (phi is the identity there) and fills
-/// result.map, the reversed faces and ears, the snaps and the shape errors.
 void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
                   const MeshTables& tables_b, MatchResult& result) {
   // Locate every copy of A's vertices in B's domain (phi is the identity there).
@@ -767,7 +761,7 @@ void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
       same ? mean_distance(a, correspondence, diag) : std::numeric_limits<double>::quiet_NaN();
 }
 
-}  // namespace
+}  // namespace detail
 
 MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& options) {
   const Stopwatch watch;
@@ -797,6 +791,7 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
       throw InvalidInputError("feature vertices and corners are for the euclidean method");
     }
     detail::klein_polygon_domains(a, tables_a, b, tables_b, options, result);
+    evaluated = true;
   } else if (ta.boundary_loops == 1 && options.feature_a != -1) {
     result.domain = "unit disk";
     if (!options.corners_a.empty() || !options.corners_b.empty()) {
@@ -888,7 +883,7 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
         trial.b.positions = star_positions(star, extents);
         trial.b.loop_order = star.loop_order;
         detail::fill_cut_domain(star.sliced, trial.b);
-        evaluate_map(a, b, tables_a, tables_b, trial);
+        detail::evaluate_map(a, b, tables_a, tables_b, trial);
         if (best.map.empty() || trial.shape_error < best.shape_error) best = std::move(trial);
       }
     }
@@ -896,7 +891,7 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     result.b.seconds += stage.lap();
     evaluated = true;
   }
-  if (!evaluated) evaluate_map(a, b, tables_a, tables_b, result);
+  if (!evaluated) detail::evaluate_map(a, b, tables_a, tables_b, result);
   result.seconds = watch.seconds();
   return result;
 }

@@ -32,10 +32,14 @@
 //               parabola so that no face lies flat on a side): the boundary by hyperbolic arc
 //               length along each side, the interior by the mean-value harmonic map of each
 //               surface's own Klein layout (which it reproduces when the sides are straight).
-// Boundary loops correspond by 3D length (c0 the longest, as for the circle-domain module);
-// the cuts must leave the feature vertex in the same cyclic order of loops (cone star: else the
-// loops pair by that order where their lengths agree, MatchOptions::loop_length_tolerance), or
-// join the same loops in the same order (klein polygon), on both surfaces.
+// Boundary loops are ranked by 3D length (c0 the longest, as for the circle-domain module).
+// Cone star: the loops correspond by rank; the cuts must leave the feature vertex in the same
+// cyclic order of loops on both surfaces, else the loops pair by that order where their
+// lengths agree (MatchOptions::loop_length_tolerance). Klein polygon: B's loops pair with A's
+// by their conformal invariants, the hyperbolic lengths of the loops and the hyperbolic
+// distances between them (MatchOptions::loop_invariant_tolerance), not by rank, which a
+// deformation permutes among loops of about one length; the cuts must join the paired loops in
+// the same order on both surfaces.
 #include <array>
 #include <string>
 #include <vector>
@@ -84,6 +88,13 @@ struct MatchOptions {
   /// whole boundary's) within this fraction of each other; of those, the turn with the
   /// smallest shape error. No such turn: InvalidInputError.
   double loop_length_tolerance = 0.05;
+  /// Klein polygon: the pairings of B's loops with A's (permutations; up to 8 loops, more pair
+  /// by rank) are ordered by the relative difference of their invariants, sqrt(sum (x_A -
+  /// x_B)^2 / sum x_A^2) over the loops' hyperbolic lengths and the hyperbolic distances
+  /// between loops; those within this of the closest (at most loop_pairings of them) are each
+  /// mapped, and the map with the smallest shape error is kept.
+  double loop_invariant_tolerance = 0.05;
+  int loop_pairings = 8;
   /// Rectangle: four boundary vertices of A and the four of B they correspond to, in the
   /// boundary's counter-clockwise order (ModuleOptions::corners). Empty = the four vertices
   /// where the boundary turns most in 3D, at least 1/20 of its length apart, the lowest index
@@ -108,7 +119,7 @@ struct ParameterDomain {
   int feature = -1;                     ///< The cone vertex or disk centre, else -1.
   std::vector<int> corners;             ///< Rectangle: the corner vertices, ccw from corner 0.
   /// Cone star: loops (by 3D length rank) around p, ccw. Klein polygon: the loop of each
-  /// boundary side, ccw.
+  /// boundary side, ccw, by the rank of A's loop it is paired with.
   std::vector<int> loop_order;
   std::string metric;  ///< The metric of the flow that converged (FlowResult::metric.scheme).
   int flow_iterations = 0;

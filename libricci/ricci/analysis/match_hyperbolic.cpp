@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -33,14 +35,14 @@ struct LoopTree {
 using LoopPlan = std::vector<std::array<int, 2>>;
 
 /// The loops joined into a tree by n shortest edge paths under `lengths`, through interior
-/// vertices no earlier cut uses and starting at a vertex no cut ends at. With an empty `plan`,
+/// vertices no earlier cut uses and starting at a vertex no cut ends at; loop order[r] is
+/// labelled r (the rank of A's loop it pairs with). With an empty `plan`,
 /// Prim's tree from c0 (each cut from the loops joined so far to the nearest other loop);
 /// otherwise cut k joins plan[k][0] to plan[k][1], whatever is nearer.
 /// \throw TopologyError when a loop cannot be reached.
 LoopTree join_loops(const Mesh& mesh, const MeshTables& tables, const Eigen::VectorXd& lengths,
-                    const LoopPlan& plan, const char* name) {
+                    const std::vector<int>& order, const LoopPlan& plan, const char* name) {
   const int n = tables.num_vertices();
-  const std::vector<int> order = loops_by_length(mesh, tables);
   const int loops = static_cast<int>(order.size());
   std::vector<int> loop_of(n, -1);
   for (int rank = 0; rank < loops; ++rank) {
@@ -108,10 +110,11 @@ FlowResult hyperbolic_metric(const Mesh& mesh, const MeshTables& tables,
   return hyperbolic;
 }
 
-/// Steps 2-3 of Algorithm 9 on one surface: the cut, the layout, the polygon's corners.
+/// Steps 2-3 of Algorithm 9 on one surface: the cut, the layout, the polygon's corners; loop
+/// order[r] labelled r.
 KleinDisk klein_disk(const Mesh& mesh, const MeshTables& tables, const FlowResult& hyperbolic,
-                     const LoopPlan& plan, const char* name) {
-  const LoopTree tree = join_loops(mesh, tables, hyperbolic.lengths, plan, name);
+                     const std::vector<int>& order, const LoopPlan& plan, const char* name) {
+  const LoopTree tree = join_loops(mesh, tables, hyperbolic.lengths, order, plan, name);
   KleinDisk disk;
   disk.joins = tree.joins;
   disk.sliced = slice_along(mesh, tree.is_cut);
@@ -132,8 +135,7 @@ KleinDisk klein_disk(const Mesh& mesh, const MeshTables& tables, const FlowResul
                             disk.klein.row(cut.to_vertex_handle(h).idx()))
                                .norm();
   }
-  // Cut ends: the corners. Rank of each loop vertex, for the loop arcs' labels.
-  const std::vector<int> order = loops_by_length(mesh, tables);
+  // Cut ends: the corners. Label of each loop vertex, for the loop arcs' labels.
   std::vector<int> loop_of(tables.num_vertices(), -1);
   for (size_t rank = 0; rank < order.size(); ++rank) {
     for (int v : tables.boundary_loops[order[rank]]) loop_of[v] = static_cast<int>(rank);
@@ -231,6 +233,133 @@ Eigen::MatrixX2d polygon_positions(const KleinDisk& disk, const Eigen::MatrixX2d
   return x;
 }
 
+/// The loops' conformal invariants under the hyperbolic metric with geodesic boundaries, loop
+/// order[r] at r: each loop's length and the shortest edge path between two loops.
+struct LoopInvariants {
+  std::vector<double> lengths;
+  Eigen::MatrixXd distances;  ///< Infinite when a path would cross a third loop.
+};
+
+LoopInvariants loop_invariants(const Mesh& mesh, const MeshTables& tables,
+                               const Eigen::VectorXd& lengths, const std::vector<int>& order) {
+  const int loops = static_cast<int>(order.size());
+  std::vector<int> loop_of(tables.num_vertices(), -1);
+  LoopInvariants invariants;
+  invariants.lengths.assign(loops, 0.0);
+  for (int r = 0; r < loops; ++r) {
+    const std::vector<int>& loop = tables.boundary_loops[order[r]];
+    for (size_t i = 0; i < loop.size(); ++i) {
+      loop_of[loop[i]] = r;
+      const HalfedgeHandle h = mesh.find_halfedge(mesh.vertex_handle(loop[i]),
+                                                  mesh.vertex_handle(loop[(i + 1) % loop.size()]));
+      invariants.lengths[r] += lengths[mesh.edge_handle(h).idx()];
+    }
+  }
+  invariants.distances = Eigen::MatrixXd::Zero(loops, loops);
+  const std::vector<char> used(tables.num_vertices(), 0);
+  for (int i = 0; i < loops; ++i) {
+    for (int j = i + 1; j < loops; ++j) {
+      const std::vector<HalfedgeHandle> path = shortest_path_to_loop(
+          mesh, loop_of, lengths, tables.boundary_loops[order[i]], [j](int r) { return r == j; },
+          used);
+      double d = path.empty() ? std::numeric_limits<double>::infinity() : 0.0;
+      for (HalfedgeHandle h : path) d += lengths[mesh.edge_handle(h).idx()];
+      invariants.distances(i, j) = invariants.distances(j, i) = d;
+    }
+  }
+  return invariants;
+}
+
+/// Pairings of B's loops with A's (pairing[r]: the rank of B's loop paired with A's c_r), by the
+/// relative difference of their invariants, sqrt(sum (x_A - x_B)^2 / sum x_A^2) over the loop
+/// lengths and the distances between loops: every permutation (up to 8 loops; more: the ranks
+/// alone), the closest first, those within `tolerance` of it, at most `most`.
+std::vector<std::vector<int>> loop_pairings(const LoopInvariants& a, const LoopInvariants& b,
+                                            double tolerance, int most) {
+  const int loops = static_cast<int>(a.lengths.size());
+  std::vector<int> pairing(loops);
+  std::iota(pairing.begin(), pairing.end(), 0);
+  if (loops > 8) return {pairing};
+  const auto squared = [](double x, double y) {
+    if (std::isinf(x) && std::isinf(y)) return 0.0;
+    return std::isinf(x) || std::isinf(y) ? std::numeric_limits<double>::infinity()
+                                          : (x - y) * (x - y);
+  };
+  double scale = 0;
+  for (int i = 0; i < loops; ++i) {
+    scale += a.lengths[i] * a.lengths[i];
+    for (int j = i + 1; j < loops; ++j) {
+      if (std::isfinite(a.distances(i, j))) scale += a.distances(i, j) * a.distances(i, j);
+    }
+  }
+  std::vector<std::pair<double, std::vector<int>>> all;
+  do {  // from the ranks' own pairing, which stays first among equals
+    double cost = 0;
+    for (int i = 0; i < loops; ++i) {
+      cost += squared(a.lengths[i], b.lengths[pairing[i]]);
+      for (int j = i + 1; j < loops; ++j) {
+        cost += squared(a.distances(i, j), b.distances(pairing[i], pairing[j]));
+      }
+    }
+    all.push_back({std::sqrt(cost / std::max(scale, 1e-300)), pairing});
+  } while (std::next_permutation(pairing.begin(), pairing.end()));
+  std::stable_sort(all.begin(), all.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::vector<int>> pairings;
+  for (const auto& [cost, p] : all) {
+    if (static_cast<int>(pairings.size()) >= std::max(most, 1) ||
+        (!pairings.empty() && !(cost <= all.front().first + tolerance))) {
+      break;
+    }
+    pairings.push_back(p);
+  }
+  return pairings;
+}
+
+/// A's and B's disks cut by one tree of loops (B's loop order_b[r] labelled r), the trees tried
+/// in turn until the two polygons have the same sides: each surface's own (Prim's, nearest loop
+/// first); B along A's joins, or A along B's (a stretch can change which loop is nearest); the
+/// chain c0-c1-...-cn on both (a cut of the chain can close a pocket around a loop between
+/// itself and another loop, so it comes last). Empty when none does; `cut_both` is set when some
+/// tree cut both surfaces, `blocked` says why the last tree failed to cut one.
+std::optional<std::pair<KleinDisk, KleinDisk>> cut_alike(
+    const Mesh& a, const MeshTables& tables_a, const FlowResult& metric_a,
+    const std::vector<int>& order_a, const std::optional<KleinDisk>& own_a, const Mesh& b,
+    const MeshTables& tables_b, const FlowResult& metric_b, const std::vector<int>& order_b,
+    bool& cut_both, std::string& blocked) {
+  std::optional<KleinDisk> own_b;
+  try {
+    own_b = klein_disk(b, tables_b, metric_b, order_b, {}, "B");
+  } catch (const TopologyError&) {
+  }
+  const auto same = [](const KleinDisk& x, const KleinDisk& y) {
+    return x.joins == y.joins && x.labels == y.labels;
+  };
+  if (own_a && own_b) {
+    cut_both = true;
+    if (same(*own_a, *own_b)) return std::make_pair(*own_a, std::move(*own_b));
+  }
+  std::vector<std::pair<LoopPlan, LoopPlan>> plans;
+  if (own_a) plans.push_back({{}, own_a->joins});
+  if (own_b) plans.push_back({own_b->joins, {}});
+  LoopPlan chain;
+  for (int k = 0; k + 1 < static_cast<int>(order_a.size()); ++k) chain.push_back({k, k + 1});
+  plans.push_back({chain, chain});
+  for (const auto& [plan_a, plan_b] : plans) {
+    try {
+      KleinDisk x =
+          plan_a.empty() ? *own_a : klein_disk(a, tables_a, metric_a, order_a, plan_a, "A");
+      KleinDisk y =
+          plan_b.empty() ? *own_b : klein_disk(b, tables_b, metric_b, order_b, plan_b, "B");
+      cut_both = true;
+      if (same(x, y)) return std::make_pair(std::move(x), std::move(y));
+    } catch (const TopologyError& e) {
+      blocked = e.what();
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 void klein_polygon_domains(const Mesh& a, const MeshTables& tables_a, const Mesh& b,
@@ -242,82 +371,65 @@ void klein_polygon_domains(const Mesh& a, const MeshTables& tables_a, const Mesh
   result.a.seconds = stage.lap();
   const FlowResult metric_b = hyperbolic_metric(b, tables_b, options, "B", result.b);
   result.b.seconds = stage.lap();
-  // Trees tried in turn until A's and B's polygons have the same sides: each surface's own
-  // (Prim's, nearest loop first); B along A's joins, or A along B's (a stretch can change which
-  // loop is nearest); the chain c0-c1-...-cn by rank on both (a cut of the chain can close a
-  // pocket around a loop between itself and another loop, so it comes last).
-  std::optional<KleinDisk> own_a, own_b;
+  // B's loops paired with A's by their conformal invariants (3D length ranks change under a
+  // deformation where loops have about one length); of the close pairings, the smallest d_g.
+  const std::vector<int> order_a = loops_by_length(a, tables_a);
+  const std::vector<int> ranks_b = loops_by_length(b, tables_b);
+  const std::vector<std::vector<int>> pairings =
+      loop_pairings(loop_invariants(a, tables_a, metric_a.lengths, order_a),
+                    loop_invariants(b, tables_b, metric_b.lengths, ranks_b),
+                    options.loop_invariant_tolerance, options.loop_pairings);
+  std::optional<KleinDisk> own_a;
   try {
-    own_a = klein_disk(a, tables_a, metric_a, {}, "A");
+    own_a = klein_disk(a, tables_a, metric_a, order_a, {}, "A");
   } catch (const TopologyError&) {
   }
   result.a.seconds += stage.lap();
-  try {
-    own_b = klein_disk(b, tables_b, metric_b, {}, "B");
-  } catch (const TopologyError&) {
-  }
-  result.b.seconds += stage.lap();
-  std::vector<std::pair<LoopPlan, LoopPlan>> plans;
-  if (own_a) plans.push_back({{}, own_a->joins});
-  if (own_b) plans.push_back({own_b->joins, {}});
-  LoopPlan chain;
-  for (int k = 0; k + 1 < static_cast<int>(tables_a.boundary_loops.size()); ++k) {
-    chain.push_back({k, k + 1});
-  }
-  plans.push_back({chain, chain});
-  std::optional<KleinDisk> disk_a, disk_b;
-  const auto same = [](const KleinDisk& x, const KleinDisk& y) {
-    return x.joins == y.joins && x.labels == y.labels;
-  };
-  if (own_a && own_b && same(*own_a, *own_b)) {
-    disk_a = std::move(own_a);
-    disk_b = std::move(own_b);
-  }
-  bool cut_both = own_a && own_b;  // some tree cut both surfaces (but joined them differently)
-  std::string blocked;
-  for (size_t i = 0; i < plans.size() && !disk_a; ++i) {
-    const auto& [plan_a, plan_b] = plans[i];
-    try {
-      KleinDisk x = plan_a.empty() ? *own_a : klein_disk(a, tables_a, metric_a, plan_a, "A");
-      result.a.seconds += stage.lap();
-      KleinDisk y = plan_b.empty() ? *own_b : klein_disk(b, tables_b, metric_b, plan_b, "B");
-      result.b.seconds += stage.lap();
-      cut_both = true;
-      if (same(x, y)) {
-        disk_a = std::move(x);
-        disk_b = std::move(y);
+  MatchResult best;
+  bool cut_both = false;  // some tree cut both surfaces (but joined them differently)
+  std::string blocked, not_convex;
+  for (const std::vector<int>& pairing : pairings) {
+    std::vector<int> order_b(pairing.size());
+    for (size_t r = 0; r < pairing.size(); ++r) order_b[r] = ranks_b[pairing[r]];
+    const auto disks = cut_alike(a, tables_a, metric_a, order_a, own_a, b, tables_b, metric_b,
+                                 order_b, cut_both, blocked);
+    if (!disks) continue;
+    const auto& [disk_a, disk_b] = *disks;
+    // The common polygon: B's corners, a right-angled hyperbolic polygon, convex in the Klein
+    // model (its sides are B's geodesic boundary arcs and the chords between its cut ends).
+    const int k = static_cast<int>(disk_b.corners.size());
+    Eigen::MatrixX2d polygon(k, 2);
+    for (int j = 0; j < k; ++j) polygon.row(j) = disk_b.klein.row(disk_b.walk[disk_b.corners[j]]);
+    for (int j = 0; j < k && not_convex.empty(); ++j) {
+      const Eigen::Vector2d p = polygon.row(j), q = polygon.row((j + 1) % k),
+                            r = polygon.row((j + 2) % k);
+      if (cross2d(q - p, r - q) <= 0) {
+        not_convex = "B's right-angled polygon is not convex in the Klein model at corner " +
+                     std::to_string((j + 1) % k) + "; the hyperbolic metric is off";
       }
-    } catch (const TopologyError& e) {
-      blocked = e.what();
     }
+    if (!not_convex.empty()) continue;
+    MatchResult trial = result;
+    trial.a.loop_order = disk_a.loop_order;
+    trial.b.loop_order = disk_b.loop_order;
+    trial.a.positions = polygon_positions(disk_a, polygon);
+    fill_cut_domain(disk_a.sliced, trial.a);
+    trial.b.positions = polygon_positions(disk_b, polygon);
+    fill_cut_domain(disk_b.sliced, trial.b);
+    evaluate_map(a, b, tables_a, tables_b, trial);
+    if (best.map.empty() || trial.shape_error < best.shape_error) best = std::move(trial);
   }
-  if (!disk_a && cut_both) {
-    throw InvalidInputError(
-        "the cuts join the boundary loops differently on A and B; the hyperbolic method needs "
-        "the same tree of loops");
-  }
-  if (!disk_a) throw TopologyError(blocked);
-  result.a.loop_order = disk_a->loop_order;
-  result.b.loop_order = disk_b->loop_order;
-  // The common polygon: B's corners, a right-angled hyperbolic polygon, convex in the Klein
-  // model (its sides are B's geodesic boundary arcs and the chords between its cut ends).
-  const int k = static_cast<int>(disk_b->corners.size());
-  Eigen::MatrixX2d polygon(k, 2);
-  for (int j = 0; j < k; ++j) polygon.row(j) = disk_b->klein.row(disk_b->walk[disk_b->corners[j]]);
-  for (int j = 0; j < k; ++j) {
-    const Eigen::Vector2d p = polygon.row(j), q = polygon.row((j + 1) % k),
-                          r = polygon.row((j + 2) % k);
-    if (cross2d(q - p, r - q) <= 0) {
-      throw SolverError("B's right-angled polygon is not convex in the Klein model at corner " +
-                        std::to_string((j + 1) % k) + "; the hyperbolic metric is off");
+  if (best.map.empty()) {
+    if (!not_convex.empty()) throw SolverError(not_convex);
+    if (cut_both) {
+      throw InvalidInputError(
+          "the cuts join the boundary loops differently on A and B; the hyperbolic method needs "
+          "the same tree of loops");
     }
+    throw TopologyError(blocked);
   }
-  result.a.positions = polygon_positions(*disk_a, polygon);
-  fill_cut_domain(disk_a->sliced, result.a);
-  result.a.seconds += stage.lap();
-  result.b.positions = polygon_positions(*disk_b, polygon);
-  fill_cut_domain(disk_b->sliced, result.b);
-  result.b.seconds += stage.lap();
+  best.b.seconds += stage.lap();  // B's cuts and both maps, for each pairing tried
+  result = std::move(best);
 }
 
 }  // namespace ricci::detail

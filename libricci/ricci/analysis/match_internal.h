@@ -26,8 +26,15 @@ void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths, const std::v
 /// domain.faces and domain.to_original_vertex from the sliced mesh.
 void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain);
 
+/// Locates A's vertices in B's parameter domain (phi is the identity there) and fills
+/// result.map, the reversed faces and ears, the snaps and the shape errors.
+void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
+                  const MeshTables& tables_b, MatchResult& result);
+
 /// Algorithm 9: both surfaces (genus 0, three or more boundary loops) in the Klein model on
-/// B's right-angled polygon (see match.h). Fills result.domain, result.a and result.b.
+/// B's right-angled polygon (see match.h), B's loops paired with A's by their hyperbolic
+/// lengths and distances (MatchOptions::loop_invariant_tolerance). Fills result.domain,
+/// result.a, result.b and the map (evaluate_map).
 /// \throw InvalidInputError when the cuts join the loops differently on A and B; TopologyError
 ///        when the loops cannot be joined by vertex-disjoint paths; SolverError when a flow does
 ///        not converge or B's polygon is not convex.
