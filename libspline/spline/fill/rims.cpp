@@ -477,11 +477,14 @@ void cover_around_cone_rim_vertices(Regions& regions, const ricci::Mesh& mesh, c
   grow_face_by_face(regions, mesh, loops, candidates);
 }
 
-// Covered domain faces reachable from the faces across the rim through covered faces.
+// Covered domain faces reachable from the faces across the rim through the hole's faces.
 std::vector<int> covered_inside(const std::vector<char>& domain, const Regions& regions,
                                 const ricci::Mesh& mesh,
                                 const std::vector<ricci::HalfedgeHandle>& loop) {
-  auto covered = [&](int f) { return !regions.kept[f] && domain[f]; };
+  // Through every face of the hole: domain faces past a band of faces outside the domain
+  // (kept faces around the cone's one-ring, an island inside the excluded faces at genus 6-9)
+  // are covered too, or they would be tessellated inside the patch.
+  auto covered = [&](int f) { return !regions.kept[f]; };
   std::vector<char> seen(mesh.n_faces(), 0);
   std::vector<int> stack, faces;
   for (auto h : loop) {
@@ -496,7 +499,7 @@ std::vector<int> covered_inside(const std::vector<char>& domain, const Regions& 
   while (!stack.empty()) {
     const int f = stack.back();
     stack.pop_back();
-    faces.push_back(f);
+    if (domain[f]) faces.push_back(f);
     for (auto g : mesh.ff_range(mesh.face_handle(f))) {
       if (covered(g.idx()) && !seen[g.idx()]) {
         seen[g.idx()] = 1;

@@ -455,6 +455,32 @@ TEST(Rims, ExcludedFacesAroundTheConeOneRingAreTheConeHole) {
   expect_closable(g.mesh, domain, grown, 1, "grown cone hole");
 }
 
+// ... and where a ring of domain faces around the one-ring is left inside the excluded faces
+// (an island of the kept region), those faces are covered by the cone patch: none of them is
+// tessellated inside it.
+TEST(Rims, DomainFacesAroundTheConeOneRingInsideExcludedFacesAreCovered) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  std::vector<std::array<int, 2>> around;
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 7; ++j)
+      if (std::max(std::abs(i - 3), std::abs(j - 3)) >= 2 || (i == 3 && j == 3))
+        around.push_back({i, j});
+  const auto domain = g.domain_without(around);
+  std::vector<char> atlas(g.mesh.n_faces(), 1);
+  for (int f : g.cell(3, 3)) atlas[f] = 0;
+  const auto rims = find_rims(g.mesh, domain, atlas);
+  ASSERT_EQ(rims.size(), 1u);
+  EXPECT_EQ(rims[0].kind, Rim::Kind::cone_hole);
+  const std::set<int> covered(rims[0].covered_faces.begin(), rims[0].covered_faces.end());
+  for (int i = 2; i <= 4; ++i) {
+    for (int j = 2; j <= 4; ++j) {
+      if (i == 3 && j == 3) continue;
+      for (int f : g.cell(i, j)) EXPECT_EQ(covered.count(f), 1u) << "cell " << i << ", " << j;
+    }
+  }
+  expect_closable(g.mesh, domain, rims, 1, "island around the cone's one-ring");
+}
+
 // A closed genus-0 scan: the one-cone pipeline punctures it (removes a vertex star); the grown
 // puncture is exactly one rim, and the kept faces plus its patch form a sphere.
 TEST(Rims, PuncturedSphereHasOneRim) {
