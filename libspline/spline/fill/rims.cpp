@@ -156,6 +156,16 @@ Holes label_holes(const Regions& regions, const ricci::Mesh& mesh, const Loops& 
   return holes;
 }
 
+// Every face of a hole takes the hole's rank (its smallest): the faces the spline space
+// excluded around the cone's one-ring (at genus 6-9 the flat metric shrinks them below the size
+// rules, hundreds of faces) are the cone hole, whose rim then lies on excluded faces only.
+void share_hole_ranks(Regions& regions, const ricci::Mesh& mesh, const Loops& loops) {
+  const Holes holes = label_holes(regions, mesh, loops);
+  for (std::size_t f = 0; f < holes.of_face.size(); ++f) {
+    if (holes.of_face[f] >= 0) regions.rank[f] = holes.rank[holes.of_face[f]];
+  }
+}
+
 // The hole on the far side of h (its opposite's face or boundary loop), -1 when that is kept.
 int hole_across(const Holes& holes, const Loops& loops, const ricci::Mesh& mesh,
                 ricci::HalfedgeHandle h) {
@@ -467,11 +477,14 @@ void cover_around_cone_rim_vertices(Regions& regions, const ricci::Mesh& mesh, c
   grow_face_by_face(regions, mesh, loops, candidates);
 }
 
-// Covered domain faces reachable from the faces across the rim through covered faces.
+// Covered domain faces reachable from the faces across the rim through the hole's faces.
 std::vector<int> covered_inside(const std::vector<char>& domain, const Regions& regions,
                                 const ricci::Mesh& mesh,
                                 const std::vector<ricci::HalfedgeHandle>& loop) {
-  auto covered = [&](int f) { return !regions.kept[f] && domain[f]; };
+  // Through every face of the hole: domain faces past a band of faces outside the domain
+  // (kept faces around the cone's one-ring, an island inside the excluded faces at genus 6-9)
+  // are covered too, or they would be tessellated inside the patch.
+  auto covered = [&](int f) { return !regions.kept[f]; };
   std::vector<char> seen(mesh.n_faces(), 0);
   std::vector<int> stack, faces;
   for (auto h : loop) {
@@ -486,7 +499,7 @@ std::vector<int> covered_inside(const std::vector<char>& domain, const Regions& 
   while (!stack.empty()) {
     const int f = stack.back();
     stack.pop_back();
-    faces.push_back(f);
+    if (domain[f]) faces.push_back(f);
     for (auto g : mesh.ff_range(mesh.face_handle(f))) {
       if (covered(g.idx()) && !seen[g.idx()]) {
         seen[g.idx()] = 1;
@@ -538,7 +551,9 @@ std::vector<Rim> find_rims(const ricci::Mesh& mesh, const std::vector<char>& dom
   }
   Regions regions = initial_regions(domain, atlas_domain, options.boundary_faces);
   const Loops loops = boundary_loops(mesh);
+  share_hole_ranks(regions, mesh, loops);
   for (int layer = 0; layer < options.grow; ++layer) grow_layer(regions, mesh, loops, merge);
+  share_hole_ranks(regions, mesh, loops);
   grow_cone_hole_while_distorted(regions, mesh, loops, domain, chart_scale, normal_step_deg,
                                  options);
   cover_around_cone_rim_vertices(regions, mesh, loops, options.cone_rim_vertices_to_cover);

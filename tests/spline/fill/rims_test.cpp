@@ -424,6 +424,63 @@ TEST(Rims, ConeHoleCoversTheFacesAroundChosenRimVertices) {
   EXPECT_THROW((void)find_rims(g.mesh, domain, domain, options), ricci::InvalidInputError);
 }
 
+// The flat metric next to a cone of angle 2 pi (2g - 1) at genus 6-9 shrinks hundreds of faces
+// around the cone's one-ring below the spline space's size rules: the one-ring (outside the
+// atlas) sits inside a larger hole of excluded faces, and no rim edge borders it. That hole is
+// still the cone hole (it takes the cone's extra layers past folds); an excluded-face hole
+// apart from the cone stays an excluded one.
+TEST(Rims, ExcludedFacesAroundTheConeOneRingAreTheConeHole) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  std::vector<std::array<int, 2>> around;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) around.push_back({i, j});
+  around.push_back({24, 12});  // a hole of excluded faces apart from the cone
+  const auto domain = g.domain_without(around);
+  std::vector<char> atlas(g.mesh.n_faces(), 1);
+  for (int f : g.cell(2, 2)) atlas[f] = 0;  // the cone's "one-ring", deep inside the block
+  const auto rims = find_rims(g.mesh, domain, atlas);
+  ASSERT_EQ(rims.size(), 2u);
+  EXPECT_EQ(rims[0].kind, Rim::Kind::cone_hole);
+  EXPECT_EQ(rims[1].kind, Rim::Kind::excluded);
+  expect_closable(g.mesh, domain, rims, 1, "cone one-ring inside excluded faces");
+
+  // The spline folds on the faces next to the block: only the cone hole grows past them.
+  const auto ring = rings_around(g.mesh, domain);
+  const auto step = [&ring](int face) { return ring[face] <= 2 ? 90.0 : 1.0; };
+  const auto grown = find_rims(g.mesh, domain, atlas, {}, {}, {}, step);
+  ASSERT_EQ(grown.size(), 2u);
+  EXPECT_EQ(grown[0].kind, Rim::Kind::cone_hole);
+  EXPECT_GT(grown[0].covered_faces.size(), rims[0].covered_faces.size());
+  EXPECT_EQ(grown[1].covered_faces, rims[1].covered_faces);
+  expect_closable(g.mesh, domain, grown, 1, "grown cone hole");
+}
+
+// ... and where a ring of domain faces around the one-ring is left inside the excluded faces
+// (an island of the kept region), those faces are covered by the cone patch: none of them is
+// tessellated inside it.
+TEST(Rims, DomainFacesAroundTheConeOneRingInsideExcludedFacesAreCovered) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  std::vector<std::array<int, 2>> around;
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 7; ++j)
+      if (std::max(std::abs(i - 3), std::abs(j - 3)) >= 2 || (i == 3 && j == 3))
+        around.push_back({i, j});
+  const auto domain = g.domain_without(around);
+  std::vector<char> atlas(g.mesh.n_faces(), 1);
+  for (int f : g.cell(3, 3)) atlas[f] = 0;
+  const auto rims = find_rims(g.mesh, domain, atlas);
+  ASSERT_EQ(rims.size(), 1u);
+  EXPECT_EQ(rims[0].kind, Rim::Kind::cone_hole);
+  const std::set<int> covered(rims[0].covered_faces.begin(), rims[0].covered_faces.end());
+  for (int i = 2; i <= 4; ++i) {
+    for (int j = 2; j <= 4; ++j) {
+      if (i == 3 && j == 3) continue;
+      for (int f : g.cell(i, j)) EXPECT_EQ(covered.count(f), 1u) << "cell " << i << ", " << j;
+    }
+  }
+  expect_closable(g.mesh, domain, rims, 1, "island around the cone's one-ring");
+}
+
 // A closed genus-0 scan: the one-cone pipeline punctures it (removes a vertex star); the grown
 // puncture is exactly one rim, and the kept faces plus its patch form a sphere.
 TEST(Rims, PuncturedSphereHasOneRim) {
