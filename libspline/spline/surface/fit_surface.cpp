@@ -16,6 +16,7 @@
 #include "ricci/mesh/small_holes.h"
 #include "spline/surface/adaptive_domain.h"
 #include "spline/surface/cap_holes.h"
+#include "spline/surface/fold_smoothing.h"
 #include "spline/surface/tessellate_surface.h"
 #include "spline/tessellate/parallel_for.h"
 
@@ -147,9 +148,7 @@ ScanFitOptions scan_options(const FitSurfaceOptions& options) {
   return scan;
 }
 
-// Fold rounds: the faces within this many rings of a fold get the raised smoothing, which grows
-// by this factor each round.
-constexpr int kFoldRings = 2;
+// Fold rounds: the raised smoothing (fold_smoothing_floor) grows by this factor each round.
 constexpr double kFoldSmoothingStep = 3.0;
 // An open input's refit without the boundary curve takes none of it within this many rings of
 // the boundary (the collar included).
@@ -604,21 +603,16 @@ std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
 }
 
 // `faces` (flags by face of `domain`) grown by `rings` rings of edge neighbours.
-std::vector<char> grown_by_rings(const ricci::Mesh& domain, std::vector<char> faces, int rings) {
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> grown = faces;
-    for (auto f : domain.faces()) {
-      if (!faces[static_cast<std::size_t>(f.idx())]) continue;
-      for (auto g : domain.ff_range(f)) grown[static_cast<std::size_t>(g.idx())] = 1;
-    }
-    faces = std::move(grown);
-  }
-  return faces;
+std::vector<char> grown_by_rings(const ricci::Mesh& domain, const std::vector<char>& faces,
+                                 int rings) {
+  const std::vector<int> ring = rings_from_faces(domain, faces, rings);
+  std::vector<char> grown(ring.size());
+  for (std::size_t f = 0; f < ring.size(); ++f) grown[f] = ring[f] >= 0;
+  return grown;
 }
 
-// Faces of the surface's domain (mesh indices) holding an edge of the tessellation that folds,
-// grown by `rings` rings of edge neighbours.
-std::vector<char> faces_near_folds(const FittedSurface& out, int rings) {
+// Faces of the surface's domain (mesh indices) holding an edge of the tessellation that folds.
+std::vector<char> faces_with_folds(const FittedSurface& out) {
   const ricci::Mesh& domain = out.surface.domain;
   const Tessellation& t = out.tessellation;
   const auto n = static_cast<long long>(t.positions.rows());
@@ -633,7 +627,7 @@ std::vector<char> faces_near_folds(const FittedSurface& out, int rings) {
       if (folds.count(std::min(a, b) * n + std::max(a, b))) near[face] = 1;
     }
   }
-  return grown_by_rings(domain, std::move(near), rings);
+  return near;
 }
 
 // Domain faces of an open surface within `rings` rings of the input's boundary: the collar's
@@ -650,7 +644,7 @@ std::vector<char> faces_near_boundary(const FittedSurface& out, int rings) {
       for (auto v : domain.fv_range(f)) flag |= static_cast<char>(domain.is_boundary(v));
     }
   }
-  return grown_by_rings(domain, std::move(near), rings);
+  return grown_by_rings(domain, near, rings);
 }
 
 // A refined round is kept when it folds less, or as little with fewer vertices over the
@@ -688,10 +682,13 @@ void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
   for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
        ++round, level *= kFoldSmoothingStep) {
     clock.begin("refine");
-    const std::vector<char> near = faces_near_folds(out, kFoldRings);
-    face_smoothing.resize(near.size(), 0.0);
-    for (std::size_t f = 0; f < near.size(); ++f)
-      if (near[f]) face_smoothing[f] = std::max(face_smoothing[f], level);
+    FoldSmoothingOptions floor_options;
+    floor_options.level = level;
+    const std::vector<double> floor =
+        fold_smoothing_floor(out.surface.domain, faces_with_folds(out), floor_options);
+    face_smoothing.resize(floor.size(), 0.0);
+    for (std::size_t f = 0; f < floor.size(); ++f)
+      face_smoothing[f] = std::max(face_smoothing[f], floor[f]);
     std::pair<FittedSurface, Round> next;
     if (closed) {
       next = refit_round(dense, options, face_smoothing, best, clock, out);

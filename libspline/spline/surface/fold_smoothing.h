@@ -1,0 +1,37 @@
+#pragma once
+// The smoothing floor of fit_surface's fold rounds: raised fairing on the domain faces around
+// the folds, tapered to nothing over a few rings so the fairing has no step at its border.
+#include <vector>
+
+#include "ricci/mesh/mesh.h"
+
+namespace spline {
+
+struct FoldSmoothingOptions {
+  /// The floor (FitOptions::smoothing's unit, dimensionless) on the flagged faces and on those
+  /// within `rings` rings of edge neighbours of them.
+  double level = 1e-2;
+  int rings = 2;
+  /// Beyond `rings` the floor falls by this factor per ring, in (0, 1], over `taper_rings`
+  /// rings, then is 0. A step from `level` to the fit's own smoothing at the border of the
+  /// raised faces folds the surface there (femur.off, horse.ply); 0 rings: the step.
+  double taper = 1.0 / 3.0;
+  int taper_rings = 3;
+};
+
+/// Rings of edge neighbours between each face of `domain` and the faces flagged in `faces`
+/// (by face index; 0 on a flagged face), counted up to `max_rings`; -1 beyond.
+/// \throw ricci::InvalidInputError when faces.size() is not domain.n_faces() or max_rings < 0.
+[[nodiscard]] std::vector<int> rings_from_faces(const ricci::Mesh& domain,
+                                                const std::vector<char>& faces, int max_rings);
+
+/// The smoothing floor by face of `domain` around the faces flagged in `folded`:
+/// level * taper^max(0, ring - rings) within rings + taper_rings rings of a flagged face, 0
+/// beyond (ring as rings_from_faces counts it).
+/// \throw ricci::InvalidInputError when folded.size() is not domain.n_faces(), level <= 0,
+/// taper outside (0, 1] or a ring count is negative.
+[[nodiscard]] std::vector<double> fold_smoothing_floor(const ricci::Mesh& domain,
+                                                       const std::vector<char>& folded,
+                                                       const FoldSmoothingOptions& options = {});
+
+}  // namespace spline
