@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "ricci/mesh/arrays.h"
+#include "ricci/mesh/edge_statistics.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/mesh/small_holes.h"
@@ -148,8 +149,13 @@ ScanFitOptions scan_options(const FitSurfaceOptions& options) {
   return scan;
 }
 
-// Fold rounds: the raised smoothing (fold_smoothing_floor) grows by this factor each round.
+// Fold rounds: the raised smoothing (fold_smoothing_floor) grows by this factor each round;
+// they stop after this many rounds in a row that fold no less (horse.ply: its first fit folds
+// at 3 edges, every round at 5).
 constexpr double kFoldSmoothingStep = 3.0;
+constexpr int kFoldRoundsWithoutGain = 2;
+// A fold of the surface is "at the input's own folds" within this many median domain edges.
+constexpr double kFoldNearInputFoldEdges = 2.0;
 // An open input's refit without the boundary curve takes none of it within this many rings of
 // the boundary (the collar included).
 constexpr int kBoundaryBandRings = 2;
@@ -583,15 +589,21 @@ ricci::Mesh refine_domain(const ricci::Mesh& domain, const ricci::Mesh& dense,
   return split_domain_faces(domain, dense, refine);
 }
 
+// The midpoints of the tessellation's edges that fold.
+std::vector<Eigen::Vector3d> fold_points(const FittedSurface& out) {
+  std::vector<Eigen::Vector3d> points;
+  const auto& x = out.tessellation.positions;
+  for (const auto& e : out.surface_dihedral.fold_edges)
+    points.emplace_back(0.5 * (x.row(e[0]) + x.row(e[1])).transpose());
+  return points;
+}
+
 // Where the domain is refined: the folds' midpoints and, with a tolerance, the input vertices
 // farther than it from the surface.
 std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
                                                const FitSurfaceOptions& options,
                                                const FittedSurface& out, const Round& round) {
-  std::vector<Eigen::Vector3d> points;
-  const auto& x = out.tessellation.positions;
-  for (const auto& e : out.surface_dihedral.fold_edges)
-    points.emplace_back(0.5 * (x.row(e[0]) + x.row(e[1])).transpose());
+  std::vector<Eigen::Vector3d> points = fold_points(out);
   if (options.tolerance > 0.0) {
     const double limit = options.tolerance * out.bbox_diagonal;
     for (std::size_t v = 0; v < round.vertex_distance.size(); ++v) {
@@ -675,8 +687,18 @@ void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
   // again each round (h/rim's boundary measurements). Both may trade folds for error up to the
   // goal (lion.off: the first fold round, 40 -> 7 folds at 1.3 times the RMS, was refused).
   const bool closed = out.input.boundary_loops == 0;
-  const double rms_limit = std::max(options.fold_rms_growth * out.projection_rms,
-                                    options.fold_rms_goal * out.bbox_diagonal);
+  const double goal = options.fold_rms_goal * out.bbox_diagonal;
+  const double rms_limit = std::max(options.fold_rms_growth * out.projection_rms, goal);
+  // A jagged input folds itself (femur.off: 497 edges over 90 degrees) and a spline that follows
+  // it folds there too; while every fold left lies that near the input's own, rounding them is
+  // worth more error (crease_fold_rms_growth).
+  const double crease_limit = std::max(options.crease_fold_rms_growth * out.projection_rms, goal);
+  const std::vector<Eigen::Vector3d> input_folds =
+      options.crease_fold_rms_growth > options.fold_rms_growth ? mesh_fold_points(dense)
+                                                               : std::vector<Eigen::Vector3d>{};
+  const double near_input_fold =
+      kFoldNearInputFoldEdges * ricci::median_edge_length(out.surface.domain);
+  int without_gain = 0;
   // Open inputs: the band along the boundary is smoothed too (lion.off's last folds are there,
   // with the boundary curve pulled); refit_folded_boundary leaves it out.
   for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
@@ -699,8 +721,15 @@ void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
       next = next_round(dense, scan, options, clock, out);
     }
     out.refinement.push_back(round_summary(next.first, next.second, options));
-    if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
-    if (!better(next.first, next.second, out, best, options)) continue;
+    const bool at_input_folds =
+        !input_folds.empty() && all_within(fold_points(out), input_folds, near_input_fold);
+    // More smoothing would only raise the RMS.
+    if (next.first.projection_rms > (at_input_folds ? crease_limit : rms_limit)) break;
+    if (!better(next.first, next.second, out, best, options)) {
+      if (++without_gain >= kFoldRoundsWithoutGain) break;
+      continue;
+    }
+    without_gain = 0;
     adopt_round(std::move(next), out, best, &superseded);
   }
 }
@@ -758,6 +787,7 @@ void check_options(const FitSurfaceOptions& o,
   require(o.fold_rounds >= 0 && o.fold_rounds <= 8, "fold_rounds", "in [0, 8]");
   require(o.fold_smoothing > 0.0 && o.fold_smoothing < 1e6, "fold_smoothing", "in (0, 1e6)");
   require(o.fold_rms_growth >= 1.0, "fold_rms_growth", ">= 1");
+  require(o.crease_fold_rms_growth >= 1.0, "crease_fold_rms_growth", ">= 1");
   require(o.small_hole_diameter >= 0.0 && o.small_hole_diameter < 1.0, "small_hole_diameter",
           "in [0, 1) (a fraction of the diagonal; 0: no hole capped)");
   require(o.fold_rms_goal >= 0.0 && o.fold_rms_goal < 1.0, "fold_rms_goal",

@@ -1,11 +1,14 @@
 #include "spline/surface/fold_smoothing.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
 
+#include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
+#include "spline/tessellate/dihedral.h"
 
 namespace spline {
 namespace {
@@ -46,8 +49,7 @@ std::vector<int> rings_from_faces(const ricci::Mesh& domain, const std::vector<c
   return ring;
 }
 
-std::vector<double> fold_smoothing_floor(const ricci::Mesh& domain,
-                                         const std::vector<char>& folded,
+std::vector<double> fold_smoothing_floor(const ricci::Mesh& domain, const std::vector<char>& folded,
                                          const FoldSmoothingOptions& options) {
   check_flags(domain, folded, "fold_smoothing_floor");
   if (!(options.level > 0.0) || !(options.taper > 0.0 && options.taper <= 1.0) ||
@@ -63,6 +65,35 @@ std::vector<double> fold_smoothing_floor(const ricci::Mesh& domain,
     floor[f] = options.level * std::pow(options.taper, std::max(0, ring[f] - options.rings));
   }
   return floor;
+}
+
+std::vector<Eigen::Vector3d> mesh_fold_points(const ricci::Mesh& mesh) {
+  const ricci::VertexFaceArrays arrays = ricci::to_arrays(mesh);
+  std::vector<std::array<int, 3>> triangles(static_cast<std::size_t>(arrays.F.rows()));
+  for (Eigen::Index f = 0; f < arrays.F.rows(); ++f)
+    triangles[static_cast<std::size_t>(f)] = {arrays.F(f, 0), arrays.F(f, 1), arrays.F(f, 2)};
+  const DihedralReport report = dihedral_angles(triangles, arrays.V);
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(report.fold_edges.size());
+  for (const auto& e : report.fold_edges)
+    points.push_back(0.5 * (arrays.V.row(e[0]) + arrays.V.row(e[1])).transpose());
+  return points;
+}
+
+bool all_within(const std::vector<Eigen::Vector3d>& points,
+                const std::vector<Eigen::Vector3d>& near, double radius) {
+  const double r2 = radius * radius;
+  for (const auto& p : points) {
+    bool found = false;
+    for (const auto& q : near) {
+      if ((p - q).squaredNorm() <= r2) {
+        found = true;
+        break;
+      }
+    }
+    if (!found) return false;
+  }
+  return true;
 }
 
 }  // namespace spline

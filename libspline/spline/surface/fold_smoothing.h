@@ -1,6 +1,7 @@
 #pragma once
 // The smoothing floor of fit_surface's fold rounds: raised fairing on the domain faces around
 // the folds, tapered to nothing over a few rings so the fairing has no step at its border.
+#include <Eigen/Core>
 #include <vector>
 
 #include "ricci/mesh/mesh.h"
@@ -33,5 +34,16 @@ struct FoldSmoothingOptions {
 [[nodiscard]] std::vector<double> fold_smoothing_floor(const ricci::Mesh& domain,
                                                        const std::vector<char>& folded,
                                                        const FoldSmoothingOptions& options = {});
+
+/// Midpoints of the edges of `mesh` where it folds itself: the normals of the edge's two
+/// triangles differ by more than 90 degrees (dihedral_angles, tessellate/dihedral.h, so a scan
+/// and the surface fitted to it are judged alike). A jagged scan folds at such edges, and a
+/// spline that follows it folds there too.
+[[nodiscard]] std::vector<Eigen::Vector3d> mesh_fold_points(const ricci::Mesh& mesh);
+
+/// Whether every point of `points` lies within `radius` of a point of `near` (true when
+/// `points` is empty).
+[[nodiscard]] bool all_within(const std::vector<Eigen::Vector3d>& points,
+                              const std::vector<Eigen::Vector3d>& near, double radius);
 
 }  // namespace spline

@@ -82,6 +82,24 @@ TEST(FoldSmoothing, FloorTapersWithoutAStepAndVanishesFarAway) {
     EXPECT_EQ(step[i], ring[i] <= options.rings ? options.level : 0.0);
 }
 
+TEST(FoldSmoothing, MeshFoldPointsAreTheEdgesTurningOverNinetyDegrees) {
+  // A regular tetrahedron's face normals differ by 180 - 70.53 = 109.47 degrees at every edge;
+  // a finely sampled sphere turns by a few degrees per edge.
+  const ricci::Mesh tetrahedron = ricci::make_tetrahedron();
+  const std::vector<Eigen::Vector3d> folds = mesh_fold_points(tetrahedron);
+  ASSERT_EQ(folds.size(), 6u);
+  for (auto e : tetrahedron.edges()) {
+    const Eigen::Vector3d mid = 0.5 * (ricci::to_eigen(tetrahedron.point(e.v0())) +
+                                       ricci::to_eigen(tetrahedron.point(e.v1())));
+    EXPECT_TRUE(all_within({mid}, folds, 1e-12));
+  }
+  EXPECT_TRUE(mesh_fold_points(ricci::make_icosphere(2)).empty());
+
+  EXPECT_TRUE(all_within({}, folds, 0.0));
+  EXPECT_FALSE(all_within({Eigen::Vector3d(10.0, 0.0, 0.0)}, folds, 1.0));
+  EXPECT_FALSE(all_within({folds[0]}, {}, 1.0));
+}
+
 TEST(FoldSmoothing, BadInputThrows) {
   const ricci::Mesh mesh = ricci::make_icosphere(1);
   const std::vector<char> wrong_size(mesh.n_faces() + 1, 0);
