@@ -58,7 +58,7 @@ struct FitSurfaceOptions {
   /// Fold rounds, after the refinement: while the surface folds, the domain faces within two
   /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with
   /// at least fold_smoothing (FitOptions::smoothing's unit; three times more each further
-  /// round), tapered over three more rings (fold_smoothing.h), on the same domain and cone; a
+  /// round), tapered over one more ring (fold_smoothing.h), on the same domain and cone; a
   /// round is kept when it folds less (a sharp crease is rounded, not folded), and they stop
   /// after two rounds in a row that do not. Closed inputs without a tolerance run them first on
   /// the first fit: when that leaves no fold (capped too) the refinement is skipped, otherwise

@@ -15,9 +15,10 @@ struct FoldSmoothingOptions {
   int rings = 2;
   /// Beyond `rings` the floor falls by this factor per ring, in (0, 1], over `taper_rings`
   /// rings, then is 0. A step from `level` to the fit's own smoothing at the border of the
-  /// raised faces folds the surface there (femur.off, horse.ply); 0 rings: the step.
+  /// raised faces folds the surface there (femur.off); 0 rings: the step. More rings raise the
+  /// RMS sooner (elk.off: 0 folds at RMS 0.199% with one ring, 7 at the RMS limit with three).
   double taper = 1.0 / 3.0;
-  int taper_rings = 3;
+  int taper_rings = 0;
 };
 
 /// Rings of edge neighbours between each face of `domain` and the faces flagged in `faces`

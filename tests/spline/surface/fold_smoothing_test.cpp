@@ -47,6 +47,7 @@ TEST(FoldSmoothing, FloorTapersWithoutAStepAndVanishesFarAway) {
   folded[7] = 1;
   FoldSmoothingOptions options;
   options.level = 0.03;
+  options.taper_rings = 3;
   const std::vector<double> floor = fold_smoothing_floor(mesh, folded, options);
   const std::vector<int> ring = rings_from_faces(mesh, folded, 64);
   int raised = 0, tapered = 0, zero = 0;
