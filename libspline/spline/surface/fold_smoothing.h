@@ -14,9 +14,9 @@ struct FoldSmoothingOptions {
   double level = 1e-2;
   int rings = 2;
   /// Beyond `rings` the floor falls by this factor per ring, in (0, 1], over `taper_rings`
-  /// rings, then is 0. A step from `level` to the fit's own smoothing at the border of the
-  /// raised faces folds the surface there (femur.off); 0 rings: the step. More rings raise the
-  /// RMS sooner (elk.off: 0 folds at RMS 0.199% with one ring, 7 at the RMS limit with three).
+  /// rings, then is 0; 0 rings: a step from `level` to the fit's own smoothing at the border
+  /// of the raised faces. The step can fold the surface at that border (a jagged scan), the
+  /// taper raises the RMS sooner; fit_surface tries both.
   double taper = 1.0 / 3.0;
   int taper_rings = 0;
 };
