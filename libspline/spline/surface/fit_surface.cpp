@@ -11,11 +11,13 @@
 #include <utility>
 
 #include "ricci/mesh/arrays.h"
+#include "ricci/mesh/edge_statistics.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/mesh/small_holes.h"
 #include "spline/surface/adaptive_domain.h"
 #include "spline/surface/cap_holes.h"
+#include "spline/surface/fold_smoothing.h"
 #include "spline/surface/tessellate_surface.h"
 #include "spline/tessellate/parallel_for.h"
 
@@ -147,10 +149,16 @@ ScanFitOptions scan_options(const FitSurfaceOptions& options) {
   return scan;
 }
 
-// Fold rounds: the faces within this many rings of a fold get the raised smoothing, which grows
-// by this factor each round.
-constexpr int kFoldRings = 2;
+// Fold rounds: the raised smoothing (fold_smoothing_floor) grows by this factor each round;
+// they stop after this many rounds in a row that fold no less (horse.ply: its first fit folds
+// at 3 edges, every round at 5).
 constexpr double kFoldSmoothingStep = 3.0;
+constexpr int kFoldRoundsWithoutGain = 2;
+// A fold of the surface is "at the input's own folds" within this many median domain edges.
+constexpr double kFoldNearInputFoldEdges = 2.0;
+// The tapered series' FoldSmoothingOptions::taper_rings (run_fold_rounds).
+constexpr int kFoldTaperRings = 3;
+
 // An open input's refit without the boundary curve takes none of it within this many rings of
 // the boundary (the collar included).
 constexpr int kBoundaryBandRings = 2;
@@ -584,15 +592,21 @@ ricci::Mesh refine_domain(const ricci::Mesh& domain, const ricci::Mesh& dense,
   return split_domain_faces(domain, dense, refine);
 }
 
+// The midpoints of the tessellation's edges that fold.
+std::vector<Eigen::Vector3d> fold_points(const FittedSurface& out) {
+  std::vector<Eigen::Vector3d> points;
+  const auto& x = out.tessellation.positions;
+  for (const auto& e : out.surface_dihedral.fold_edges)
+    points.emplace_back(0.5 * (x.row(e[0]) + x.row(e[1])).transpose());
+  return points;
+}
+
 // Where the domain is refined: the folds' midpoints and, with a tolerance, the input vertices
 // farther than it from the surface.
 std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
                                                const FitSurfaceOptions& options,
                                                const FittedSurface& out, const Round& round) {
-  std::vector<Eigen::Vector3d> points;
-  const auto& x = out.tessellation.positions;
-  for (const auto& e : out.surface_dihedral.fold_edges)
-    points.emplace_back(0.5 * (x.row(e[0]) + x.row(e[1])).transpose());
+  std::vector<Eigen::Vector3d> points = fold_points(out);
   if (options.tolerance > 0.0) {
     const double limit = options.tolerance * out.bbox_diagonal;
     for (std::size_t v = 0; v < round.vertex_distance.size(); ++v) {
@@ -604,21 +618,16 @@ std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
 }
 
 // `faces` (flags by face of `domain`) grown by `rings` rings of edge neighbours.
-std::vector<char> grown_by_rings(const ricci::Mesh& domain, std::vector<char> faces, int rings) {
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> grown = faces;
-    for (auto f : domain.faces()) {
-      if (!faces[static_cast<std::size_t>(f.idx())]) continue;
-      for (auto g : domain.ff_range(f)) grown[static_cast<std::size_t>(g.idx())] = 1;
-    }
-    faces = std::move(grown);
-  }
-  return faces;
+std::vector<char> grown_by_rings(const ricci::Mesh& domain, const std::vector<char>& faces,
+                                 int rings) {
+  const std::vector<int> ring = rings_from_faces(domain, faces, rings);
+  std::vector<char> grown(ring.size());
+  for (std::size_t f = 0; f < ring.size(); ++f) grown[f] = ring[f] >= 0;
+  return grown;
 }
 
-// Faces of the surface's domain (mesh indices) holding an edge of the tessellation that folds,
-// grown by `rings` rings of edge neighbours.
-std::vector<char> faces_near_folds(const FittedSurface& out, int rings) {
+// Faces of the surface's domain (mesh indices) holding an edge of the tessellation that folds.
+std::vector<char> faces_with_folds(const FittedSurface& out) {
   const ricci::Mesh& domain = out.surface.domain;
   const Tessellation& t = out.tessellation;
   const auto n = static_cast<long long>(t.positions.rows());
@@ -633,7 +642,7 @@ std::vector<char> faces_near_folds(const FittedSurface& out, int rings) {
       if (folds.count(std::min(a, b) * n + std::max(a, b))) near[face] = 1;
     }
   }
-  return grown_by_rings(domain, std::move(near), rings);
+  return near;
 }
 
 // Domain faces of an open surface within `rings` rings of the input's boundary: the collar's
@@ -650,7 +659,7 @@ std::vector<char> faces_near_boundary(const FittedSurface& out, int rings) {
       for (auto v : domain.fv_range(f)) flag |= static_cast<char>(domain.is_boundary(v));
     }
   }
-  return grown_by_rings(domain, std::move(near), rings);
+  return grown_by_rings(domain, near, rings);
 }
 
 // A refined round is kept when it folds less, or as little with fewer vertices over the
@@ -672,26 +681,42 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
 // space, so the domain's face indices stay), a round kept when it folds less; the replaced
 // rounds go to `superseded`. Open inputs fit the whole scan again (scan.domain and
 // scan.fit.face_smoothing are left as the last round set them).
-void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
-                     ScanFitOptions& scan, Round& best, Superseded& superseded,
-                     StageClock& clock, FittedSurface& out) {
+void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                       int taper_rings, ScanFitOptions& scan, Round& best,
+                       Superseded& superseded, StageClock& clock, FittedSurface& out) {
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
   // The refit on the same space was measured on closed inputs; open ones fit the whole scan
   // again each round (h/rim's boundary measurements). Both may trade folds for error up to the
   // goal (lion.off: the first fold round, 40 -> 7 folds at 1.3 times the RMS, was refused).
   const bool closed = out.input.boundary_loops == 0;
-  const double rms_limit = std::max(options.fold_rms_growth * out.projection_rms,
-                                    options.fold_rms_goal * out.bbox_diagonal);
+  const double goal = options.fold_rms_goal * out.bbox_diagonal;
+  const double rms_limit = std::max(options.fold_rms_growth * out.projection_rms, goal);
+  // A jagged input folds itself (femur.off: 497 edges over 90 degrees) and a spline that follows
+  // it folds there too; while every fold left lies that near the input's own, rounding them is
+  // worth more error (crease_fold_rms_growth).
+  const double crease_limit = std::max(options.crease_fold_rms_growth * out.projection_rms, goal);
+  const std::vector<Eigen::Vector3d> input_folds =
+      options.crease_fold_rms_growth > options.fold_rms_growth ? mesh_fold_points(dense)
+                                                               : std::vector<Eigen::Vector3d>{};
+  const double near_input_fold =
+      kFoldNearInputFoldEdges * ricci::median_edge_length(out.surface.domain);
+  int without_gain = 0;
   // Open inputs: the band along the boundary is smoothed too (lion.off's last folds are there,
   // with the boundary curve pulled); refit_folded_boundary leaves it out.
   for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
        ++round, level *= kFoldSmoothingStep) {
     clock.begin("refine");
-    const std::vector<char> near = faces_near_folds(out, kFoldRings);
-    face_smoothing.resize(near.size(), 0.0);
-    for (std::size_t f = 0; f < near.size(); ++f)
-      if (near[f]) face_smoothing[f] = std::max(face_smoothing[f], level);
+    const bool at_input_folds =
+        !input_folds.empty() && all_within(fold_points(out), input_folds, near_input_fold);
+    FoldSmoothingOptions floor_options;
+    floor_options.level = level;
+    floor_options.taper_rings = taper_rings;
+    const std::vector<double> floor =
+        fold_smoothing_floor(out.surface.domain, faces_with_folds(out), floor_options);
+    face_smoothing.resize(floor.size(), 0.0);
+    for (std::size_t f = 0; f < floor.size(); ++f)
+      face_smoothing[f] = std::max(face_smoothing[f], floor[f]);
     std::pair<FittedSurface, Round> next;
     if (closed) {
       next = refit_round(dense, options, face_smoothing, best, clock, out);
@@ -702,10 +727,42 @@ void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
       next = next_round(dense, scan, options, clock, out);
     }
     out.refinement.push_back(round_summary(next.first, next.second, options));
-    if (next.first.projection_rms > rms_limit) break;  // more smoothing would only raise it
-    if (!better(next.first, next.second, out, best, options)) continue;
+    // More smoothing would only raise the RMS.
+    if (next.first.projection_rms > (at_input_folds ? crease_limit : rms_limit)) break;
+    if (!better(next.first, next.second, out, best, options)) {
+      if (++without_gain >= kFoldRoundsWithoutGain) break;
+      continue;
+    }
+    without_gain = 0;
     adopt_round(std::move(next), out, best, &superseded);
   }
+}
+
+// The fold rounds (fold_round_series) with the raised smoothing stepping down at its border;
+// when they leave folds, closed inputs run them again from the same start with the smoothing
+// tapered (kFoldTaperRings) and keep the series that does better. Neither wins everywhere:
+// femur.off (a jagged scan) 19 folds stepped, 0 tapered; camel.off 0 stepped, 2 tapered.
+void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                     ScanFitOptions& scan, Round& best, Superseded& superseded,
+                     StageClock& clock, FittedSurface& out) {
+  if (out.surface_dihedral.over_90_deg == 0) return;
+  const bool closed = out.input.boundary_loops == 0;
+  std::optional<Attempt> start;
+  if (closed) start = Attempt{out, best, {}};
+  fold_round_series(dense, options, 0, scan, best, superseded, clock, out);
+  if (!start || out.surface_dihedral.over_90_deg == 0) return;
+  Attempt stepped{std::move(out), std::move(best), {}};
+  take_history(start->out, stepped.out);
+  out = std::move(start->out);
+  best = std::move(start->round);
+  fold_round_series(dense, options, kFoldTaperRings, scan, best, start->superseded, clock, out);
+  if (better(out, best, stepped.out, stepped.round, options)) {
+    for (auto& s : start->superseded) superseded.push_back(std::move(s));
+    return;
+  }
+  take_history(stepped.out, out);
+  out = std::move(stepped.out);
+  best = std::move(stepped.round);
 }
 
 // An open surface that folds is fitted once more on the same domain without the boundary curve
@@ -761,6 +818,7 @@ void check_options(const FitSurfaceOptions& o,
   require(o.fold_rounds >= 0 && o.fold_rounds <= 8, "fold_rounds", "in [0, 8]");
   require(o.fold_smoothing > 0.0 && o.fold_smoothing < 1e6, "fold_smoothing", "in (0, 1e6)");
   require(o.fold_rms_growth >= 1.0, "fold_rms_growth", ">= 1");
+  require(o.crease_fold_rms_growth >= 1.0, "crease_fold_rms_growth", ">= 1");
   require(o.small_hole_diameter >= 0.0 && o.small_hole_diameter < 1.0, "small_hole_diameter",
           "in [0, 1) (a fraction of the diagonal; 0: no hole capped)");
   require(o.fold_rms_goal >= 0.0 && o.fold_rms_goal < 1.0, "fold_rms_goal",

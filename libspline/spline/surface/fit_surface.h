@@ -59,14 +59,21 @@ struct FitSurfaceOptions {
   /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with
   /// at least fold_smoothing (FitOptions::smoothing's unit; three times more each further
   /// round) on the same domain and cone; a round is kept when it folds less (a sharp crease is
-  /// rounded, not folded). Closed inputs without a tolerance run them first on the first fit:
-  /// when that leaves no fold (capped too) the refinement is skipped, otherwise the refinement
-  /// and its fold rounds follow and the better of the two is delivered. 0: none.
-  int fold_rounds = 4;
+  /// rounded, not folded), and they stop after two rounds in a row that do not. On closed
+  /// inputs a series that leaves folds is run again from its start with the raised smoothing
+  /// tapered over three more rings (fold_smoothing.h), and the better series is kept. Closed
+  /// inputs without a tolerance run them first on the first fit: when that leaves no fold
+  /// (capped too) the refinement is skipped, otherwise the refinement and its fold rounds
+  /// follow and the better of the two is delivered. 0: none.
+  int fold_rounds = 6;
   double fold_smoothing = 1e-2;
   /// The fold rounds stop at the first whose RMS (projection) exceeds both this factor times
   /// the RMS before them (>= 1) and fold_rms_goal: folds are traded for error only this far.
   double fold_rms_growth = 1.25;
+  /// The factor instead of fold_rms_growth while every fold left lies within two median domain
+  /// edges of an edge where the input folds itself (mesh_fold_points, fold_smoothing.h): a
+  /// jagged scan, whose folds the surface rounds rather than follows.
+  double crease_fold_rms_growth = 2.0;
   /// Closed inputs: RMS (projection, fraction of the input's bounding-box diagonal) the fold
   /// rounds may always reach, below the 0.2% asked of smooth scans; 0: the growth factor alone.
   double fold_rms_goal = 0.0019;
@@ -82,8 +89,9 @@ struct FitSurfaceOptions {
 /// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64], cone_refinement.levels
 /// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
 /// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1,
-/// fold_rms_goal in [0, 1), small_hole_diameter in [0, 1). `name` spells a field (given as
-/// "domain_faces", "cone_refinement", ...) the way the caller's user knows it, e.g. msp fit's
+/// crease_fold_rms_growth >= 1, fold_rms_goal in [0, 1), small_hole_diameter in [0, 1). `name`
+/// spells a field (given as "domain_faces", "cone_refinement", ...) the way the caller's user
+/// knows it, e.g. msp fit's
 /// "--domain-faces" (default: the field's own name).
 /// \throw ricci::InvalidInputError naming the first option out of range and its range.
 void check_options(const FitSurfaceOptions& options,
