@@ -1,7 +1,6 @@
 #include "ricci/metric/polish_e2.h"
 
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -17,8 +16,6 @@ namespace ricci {
 namespace {
 
 constexpr long double kPi = 3.141592653589793238462643383279502884L;
-// 8 roundings of a double angle sum of 2 pi (1.1e-14).
-constexpr double kFloor = 8.0 * 2.0 * M_PI * std::numeric_limits<double>::epsilon();
 using VectorL = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
 
 // Angles of a Euclidean triangle with sides l (l[k] opposite corner k) by the half-angle
@@ -126,9 +123,7 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
   PolishE2Result result;
   result.lengths = lengths;
   result.error_before = result.error_after = static_cast<double>(r.cwiseAbs().maxCoeff());
-  // The lengths are delivered in double: a defect below the rounding of a double angle sum
-  // (kFloor) is as good as none.
-  for (int it = 1; it <= max_iterations && result.error_after > kFloor; ++it) {
+  for (int it = 1; it <= max_iterations && result.error_after > 0.0; ++it) {
     const long double scale = r.cwiseAbs().maxCoeff();  // keeps the residual's digits in double
     Eigen::VectorXd rhs(lower.rows()), du;
     for (int v = 0; v < n; ++v) {

@@ -32,8 +32,7 @@ struct NearbyLaplacian {
 /// the angle sum; boundary: pi minus it), each step solving L du = -(K - target) with du
 /// pinned to 0 at one vertex and L the cotangent Laplacian at the given lengths (dK/du),
 /// factored once (or `nearby`'s, see NearbyLaplacian); the residual is evaluated in long
-/// double; it stops below 1.1e-14 (8 roundings of a double angle sum: the delivered lengths are
-/// double). Returns the given lengths when a step does not improve.
+/// double. Returns the given lengths when a step does not improve.
 /// \pre lengths close to a solution (a converged flow's); target sums to 2 pi chi; a nearby
 ///      factorisation has the size of the mesh's vertices minus one.
 /// \throw InvalidInputError on a size mismatch or a face violating the triangle inequality.

@@ -188,7 +188,9 @@ TEST(FitSurface, FiguresAreThoseMspFitReports) {
 // (block: retried on a bigger hole), the spline folded next to large cones (elephant_cgal,
 // helmet, joint: the domain refined around the cone), the surface turned fast next to the rim
 // (bunny_npm_closed, femur: meet_patches and the corner-refined patch). joint is a 446-face CAD
-// mesh whose creases the spline rounds: a looser RMS bound.
+// mesh whose creases the spline rounds: a looser RMS bound. femur's scan folds itself (497 of
+// its edges turn by more than 90 degrees): the fold rounds round the surface there instead of
+// folding it, up to crease_fold_rms_growth times the RMS: a looser bound too.
 struct SeamCase {
   const char* model;
   double max_rms_relative;
@@ -213,7 +215,7 @@ TEST_P(FitSurfaceSeams, BelowOneDegreeAtTheDefaults) {
 
 INSTANTIATE_TEST_SUITE_P(Scans, FitSurfaceSeams,
                          ::testing::Values(SeamCase{"closed_g0/bunny_npm_closed.off", 0.002},
-                                           SeamCase{"closed_g2/femur.off.gz", 0.002},
+                                           SeamCase{"closed_g2/femur.off.gz", 0.003},
                                            SeamCase{"closed_g2/joint.off", 0.004},
                                            SeamCase{"closed_g3/block.off", 0.002},
                                            SeamCase{"closed_g3/elephant_cgal.off", 0.002},
