@@ -53,9 +53,8 @@ struct SymmetricFactorization::Impl {
   // With a given ordering g (analyze with an ordering): CHOLMOD factors B = A(g, g) in its
   // natural order, `given` maps b to b(g) (given * b), given^T back. Size 0 otherwise.
   Permutation given;
-  double fill = 0.0;  // nonzeros of L predicted by the last analysis (CHOLMOD only)
-  // ...by the last one that ordered afresh, of this factorisation or of the one whose ordering
-  // it took
+  // Nonzeros of L predicted by the last analysis that ordered afresh, of this factorisation or
+  // of the one whose ordering it took (CHOLMOD only).
   double fresh_fill = 0.0;
 
   // The lower triangle of A(g, g).
@@ -93,7 +92,7 @@ void SymmetricFactorization::analyze(const Sparse& lower) {
       break;
     case LinearSolver::cholmod_supernodal:
       impl_->cholmod_supernodal.analyzePattern(lower);
-      impl_->fill = impl_->fresh_fill = impl_->cholmod_supernodal.cholmod().lnz;
+      impl_->fresh_fill = impl_->cholmod_supernodal.cholmod().lnz;
       break;
     default: impl_->cholmod_simplicial.analyzePattern(lower); break;
   }
@@ -112,12 +111,12 @@ void SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi&
   common.nmethods = 1;
   common.method[0].ordering = CHOLMOD_NATURAL;
   impl_->cholmod_supernodal.analyzePattern(impl_->permuted(lower));
-  impl_->fill = common.lnz;
+  const double given_fill = common.lnz;
   common.nmethods = methods;
   common.method[0].ordering = method;
   // A pattern too far from the ordering's: order afresh.
   impl_->fresh_fill = fill;
-  if (fill > 0 && impl_->fill > 1.1 * fill) analyze(lower);
+  if (fill > 0 && given_fill > 1.1 * fill) analyze(lower);
 }
 
 Eigen::VectorXi SymmetricFactorization::ordering() const {

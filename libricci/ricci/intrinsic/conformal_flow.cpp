@@ -139,7 +139,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
   int since_best = 0;
   FactorizationCache cache;  // flips change the pattern; steps without flips keep the analysis
   // The last factorised Laplacian: near the answer Newton takes full steps, the next Laplacian
-  // differs from it by little (and a few flips), and conjugate gradients preconditioned with it
+  // differs from it by little (and a few flips), and refinement steps with it
   // (solve_with_nearby_factorization) spare the analysis and the factorisation.
   std::shared_ptr<const SymmetricFactorization>& factored_last = result.laplacian_factorization;
   result.pinned_vertex = pinned;

@@ -59,6 +59,9 @@ VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::Ve
   return r;
 }
 
+// Row of vertex v in a system without vertex `pinned` (none when pinned < 0).
+int reduced_row(int v, int pinned) { return pinned >= 0 && v > pinned ? v - 1 : v; }
+
 // The lower triangle of the matrix of `triplets` (n x n) without row and column `pinned`, or,
 // when pinned < 0, with 1 added at (0, 0) (the gauge of a factorisation of its own).
 Eigen::SparseMatrix<double> gauged_lower(std::vector<Eigen::Triplet<double>> triplets, int n,
@@ -68,8 +71,7 @@ Eigen::SparseMatrix<double> gauged_lower(std::vector<Eigen::Triplet<double>> tri
   if (pinned < 0) triplets.emplace_back(0, 0, 1.0);
   for (const Eigen::Triplet<double>& e : triplets) {
     if (e.row() == pinned || e.col() == pinned || e.row() < e.col()) continue;
-    const auto row = [pinned](int v) { return pinned >= 0 && v > pinned ? v - 1 : v; };
-    kept.emplace_back(row(e.row()), row(e.col()), e.value());
+    kept.emplace_back(reduced_row(e.row(), pinned), reduced_row(e.col(), pinned), e.value());
   }
   const int size = pinned < 0 ? n : n - 1;
   Eigen::SparseMatrix<double> lower(size, size);
@@ -93,7 +95,6 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
   // A uniform du only rescales (E2): du is held at 0 on the nearby factorisation's pinned
   // vertex, or by the gauge of gauged_lower.
   const int pinned = nearby.factorization ? nearby.pinned : -1;
-  const auto row = [pinned](int v) { return pinned >= 0 && v > pinned ? v - 1 : v; };
   const VectorL base = lengths.cast<long double>();
   VectorL current = base, u = VectorL::Zero(n);
   std::vector<Eigen::Triplet<double>> triplets;
@@ -109,7 +110,6 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
         solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6)) {
       return true;
     }
-    fprintf(stderr, "DEBUG polish own factorization\n");
     if (!own && !own_failed) {
       own = std::make_unique<SymmetricFactorization>(
           resolve_linear_solver(LinearSolver::automatic, lower.rows()));
@@ -127,11 +127,11 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
     const long double scale = r.cwiseAbs().maxCoeff();  // keeps the residual's digits in double
     Eigen::VectorXd rhs(lower.rows()), du;
     for (int v = 0; v < n; ++v) {
-      if (v != pinned) rhs[row(v)] = static_cast<double>(r[v] / scale);
+      if (v != pinned) rhs[reduced_row(v, pinned)] = static_cast<double>(r[v] / scale);
     }
     if (!solve(rhs, du)) break;
     for (int v = 0; v < n; ++v) {
-      if (v != pinned) u[v] -= static_cast<long double>(du[row(v)]) * scale;
+      if (v != pinned) u[v] -= static_cast<long double>(du[reduced_row(v, pinned)]) * scale;
     }
     for (int e = 0; e < t.num_edges(); ++e) {
       current[e] = std::exp(0.5L * (u[t.edge_vertices(e, 0)] + u[t.edge_vertices(e, 1)])) * base[e];

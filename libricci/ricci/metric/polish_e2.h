@@ -22,7 +22,7 @@ struct PolishE2Result {
 
 /// A factorisation of a cotangent Laplacian near the one at the lengths being polished (the
 /// flow's last), without vertex `pinned`'s row and column: polish_e2_lengths then solves by
-/// conjugate gradients preconditioned with it instead of factorising.
+/// solve_with_nearby_factorization with it (factorising its own matrix only if that fails).
 struct NearbyLaplacian {
   const SymmetricFactorization* factorization = nullptr;
   int pinned = 0;
