@@ -1,6 +1,7 @@
 #include "ricci/flow/hessian.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "ricci/mesh/errors.h"
 
@@ -28,6 +29,36 @@ double dl_du_at(const MeshTables& t, const Eigen::VectorXd& d0, const Eigen::Vec
 }
 
 }  // namespace
+
+Eigen::SparseMatrix<double> reduced_graph_laplacian(const Eigen::MatrixX2i& ends,
+                                                    const Eigen::VectorXd& weights, int n,
+                                                    int pinned, double gauge) {
+  if (ends.rows() != weights.size() || n < 1 || pinned >= n ||
+      (ends.size() > 0 && (ends.minCoeff() < 0 || ends.maxCoeff() >= n))) {
+    throw InvalidInputError("reduced_graph_laplacian: edges, weights or pinned vertex out of range");
+  }
+  Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(n);
+  if (pinned < 0) diagonal[0] = gauge;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(ends.rows() + n));
+  for (Eigen::Index e = 0; e < ends.rows(); ++e) {
+    const int i = ends(e, 0), j = ends(e, 1);
+    if (i == j) continue;
+    const double w = weights[e];
+    diagonal[i] += w;
+    diagonal[j] += w;
+    if (i == pinned || j == pinned) continue;
+    const int a = reduced_index(i, pinned), b = reduced_index(j, pinned);
+    entries.emplace_back(std::max(a, b), std::min(a, b), -w);
+  }
+  for (int v = 0; v < n; ++v) {
+    if (v != pinned) entries.emplace_back(reduced_index(v, pinned), reduced_index(v, pinned), diagonal[v]);
+  }
+  const int size = pinned < 0 ? n : n - 1;
+  Eigen::SparseMatrix<double> lower(size, size);
+  lower.setFromTriplets(entries.begin(), entries.end());
+  return lower;
+}
 
 void face_angle_derivatives(const MeshTables& t, Geometry g, const FlowState& s,
                             const Eigen::VectorXd& d0, const Eigen::VectorXd& d1, int f,

@@ -77,6 +77,14 @@ SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
   // handles the failure (libraries never print).
   impl_->cholmod_supernodal.cholmod().print = 0;
   impl_->cholmod_simplicial.cholmod().print = 0;
+  // AMD alone orders: by default CHOLMOD also runs METIS where AMD's factor looks costly
+  // (large meshes), which at 800k unknowns took 4-5 s to save 1 s of a 3-s factorisation;
+  // our factorisations serve a few solves each (docs/design-notes.md, "Orderings").
+  for (cholmod_common* common : {&impl_->cholmod_supernodal.cholmod(),
+                                 &impl_->cholmod_simplicial.cholmod()}) {
+    common->nmethods = 1;
+    common->method[0].ordering = CHOLMOD_AMD;
+  }
 }
 
 SymmetricFactorization::~SymmetricFactorization() = default;

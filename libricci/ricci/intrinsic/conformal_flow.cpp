@@ -9,6 +9,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "ricci/flow/hessian.h"
 #include "ricci/flow/linear_solver.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/metric/mesh_tables.h"
@@ -91,27 +92,36 @@ bool evaluate(IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
 // Lower triangle of the cotangent Laplacian without the pinned vertex's row and column.
 Eigen::SparseMatrix<double> reduced_laplacian(const IntrinsicTriangulation& tri,
                                               const Eigen::MatrixX3d& cot, int pinned) {
-  const auto row = [pinned](int v) { return v < pinned ? v : v - 1; };
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(tri.tail.size() * 3);
+  Eigen::MatrixX2i ends(tri.edge_count(), 2);
+  Eigen::VectorXd weights = Eigen::VectorXd::Zero(tri.edge_count());
+  for (int e = 0; e < tri.edge_count(); ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    ends(e, 0) = tri.tail[static_cast<size_t>(h)];
+    ends(e, 1) = tri.head(h);
+  }
   for (int f = 0; f < tri.face_count(); ++f) {
+    // The corner at tail(3f + k) faces the halfedge 3f + (k + 1) % 3.
     for (int k = 0; k < 3; ++k) {
-      // The corner at tail(3f + k) faces the edge from tail(3f + k + 1) to tail(3f + k + 2).
-      const int i = tri.tail[static_cast<size_t>(3 * f + (k + 1) % 3)];
-      const int j = tri.tail[static_cast<size_t>(3 * f + (k + 2) % 3)];
-      const double w = 0.5 * cot(f, k);
-      if (i != pinned) entries.emplace_back(row(i), row(i), w);
-      if (j != pinned) entries.emplace_back(row(j), row(j), w);
-      if (i != pinned && j != pinned) {
-        entries.emplace_back(std::max(row(i), row(j)), std::min(row(i), row(j)),
-                             i == j ? -2.0 * w : -w);
-      }
+      weights[tri.edge[static_cast<size_t>(3 * f + (k + 1) % 3)]] += 0.5 * cot(f, k);
     }
   }
-  const int n = tri.vertex_count - 1;
-  Eigen::SparseMatrix<double> lower(n, n);
-  lower.setFromTriplets(entries.begin(), entries.end());
-  return lower;
+  return reduced_graph_laplacian(ends, weights, tri.vertex_count, pinned);
+}
+
+// options.first_direction without the pinned vertex's entry, as `reduced`, gauged to 0 there,
+// when it is usable: one entry per vertex, finite, and a descent direction of the energy.
+bool given_first_direction(const IntrinsicFlowOptions& options, const Eigen::VectorXd& gradient,
+                           int pinned, Eigen::VectorXd& reduced) {
+  const Eigen::VectorXd& d = options.first_direction;
+  const Eigen::Index n = gradient.size();
+  if (d.size() != n || !d.allFinite()) return false;
+  const Eigen::VectorXd gauged = d.array() - d[pinned];
+  if (!(gradient.dot(gauged) < 0.0)) return false;
+  reduced.resize(n - 1);
+  for (Eigen::Index v = 0; v < n; ++v) {
+    if (v != pinned) reduced[reduced_index(static_cast<int>(v), pinned)] = gauged[v];
+  }
+  return true;
 }
 
 std::string failure_message(const IntrinsicFlowResult& result, const std::string& reason) {
@@ -164,9 +174,10 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     }
     Eigen::VectorXd reduced;
     clock.restart();
-    const bool reused = factored_last && last_step_full &&
+    const bool given = iteration == 0 && given_first_direction(options, gradient, pinned, reduced);
+    const bool reused = given || (factored_last && last_step_full &&
                         error < options.nearby_factorization_below &&
-                        solve_with_nearby_factorization(*factored_last, lower, rhs, reduced);
+                        solve_with_nearby_factorization(*factored_last, lower, rhs, reduced));
     result.timings.solve += clock.seconds();
     if (!reused) {
       factored_last.reset();  // at most one factor alive besides the cache's

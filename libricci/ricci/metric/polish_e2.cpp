@@ -1,5 +1,6 @@
 #include "ricci/metric/polish_e2.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "ricci/flow/hessian.h"
 #include "ricci/flow/linear_solver.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/metric/mesh_tables.h"
@@ -30,13 +32,15 @@ bool angles_l(const long double l[3], long double theta[3]) {
   return true;
 }
 
-// Residual K - target in long double (and, when `triplets`, the cotangent Laplacian).
+// Residual K - target in long double (and, when `edge_weights`, the cotangent Laplacian's
+// weight of each edge: the sum of 0.5 cot of the corners facing it).
 VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::VectorXd& target,
-                    std::vector<Eigen::Triplet<double>>* triplets) {
+                    Eigen::VectorXd* edge_weights) {
   VectorL r(t.num_vertices());
   for (int v = 0; v < t.num_vertices(); ++v) {
     r[v] = (t.is_boundary_vertex[v] ? kPi : 2.0L * kPi) - static_cast<long double>(target[v]);
   }
+  if (edge_weights) *edge_weights = Eigen::VectorXd::Zero(t.num_edges());
   for (int f = 0; f < t.num_faces(); ++f) {
     const long double l[3] = {lengths[t.face_edges(f, 0)], lengths[t.face_edges(f, 1)],
                               lengths[t.face_edges(f, 2)]};
@@ -46,37 +50,12 @@ VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::Ve
                               " violates the triangle inequality");
     }
     for (int k = 0; k < 3; ++k) r[t.face_vertices(f, k)] -= theta[k];
-    if (!triplets) continue;
+    if (!edge_weights) continue;
     for (int k = 0; k < 3; ++k) {
-      const int i = t.face_vertices(f, (k + 1) % 3), j = t.face_vertices(f, (k + 2) % 3);
-      const double w = 0.5 / std::tan(static_cast<double>(theta[k]));
-      triplets->emplace_back(i, i, w);
-      triplets->emplace_back(j, j, w);
-      triplets->emplace_back(i, j, -w);
-      triplets->emplace_back(j, i, -w);
+      (*edge_weights)[t.face_edges(f, k)] += 0.5 / std::tan(static_cast<double>(theta[k]));
     }
   }
   return r;
-}
-
-// Row of vertex v in a system without vertex `pinned` (none when pinned < 0).
-int reduced_row(int v, int pinned) { return pinned >= 0 && v > pinned ? v - 1 : v; }
-
-// The lower triangle of the matrix of `triplets` (n x n) without row and column `pinned`, or,
-// when pinned < 0, with 1 added at (0, 0) (the gauge of a factorisation of its own).
-Eigen::SparseMatrix<double> gauged_lower(std::vector<Eigen::Triplet<double>> triplets, int n,
-                                         int pinned) {
-  std::vector<Eigen::Triplet<double>> kept;
-  kept.reserve(triplets.size() / 2 + 1);
-  if (pinned < 0) triplets.emplace_back(0, 0, 1.0);
-  for (const Eigen::Triplet<double>& e : triplets) {
-    if (e.row() == pinned || e.col() == pinned || e.row() < e.col()) continue;
-    kept.emplace_back(reduced_row(e.row(), pinned), reduced_row(e.col(), pinned), e.value());
-  }
-  const int size = pinned < 0 ? n : n - 1;
-  Eigen::SparseMatrix<double> lower(size, size);
-  lower.setFromTriplets(kept.begin(), kept.end());
-  return lower;
 }
 
 }  // namespace
@@ -93,13 +72,14 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
     throw InvalidInputError("polish_e2_lengths: the pinned vertex is not the mesh's");
   }
   // A uniform du only rescales (E2): du is held at 0 on the nearby factorisation's pinned
-  // vertex, or by the gauge of gauged_lower.
+  // vertex, or by a gauge of 1 at (0, 0) in a factorisation of its own.
   const int pinned = nearby.factorization ? nearby.pinned : -1;
   const VectorL base = lengths.cast<long double>();
   VectorL current = base, u = VectorL::Zero(n);
-  std::vector<Eigen::Triplet<double>> triplets;
-  VectorL r = residual_of(t, current, target, &triplets);
-  const Eigen::SparseMatrix<double> lower = gauged_lower(std::move(triplets), n, pinned);
+  Eigen::VectorXd edge_weights;
+  VectorL r = residual_of(t, current, target, &edge_weights);
+  const Eigen::SparseMatrix<double> lower =
+      reduced_graph_laplacian(t.edge_vertices, edge_weights, n, pinned, 1.0);
   // Without a nearby factorisation, or where it does not converge, the matrix's own (the
   // flow's kind: CHOLMOD supernodal on large meshes, Eigen below 20k unknowns).
   std::unique_ptr<SymmetricFactorization> own;
@@ -127,11 +107,11 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
     const long double scale = r.cwiseAbs().maxCoeff();  // keeps the residual's digits in double
     Eigen::VectorXd rhs(lower.rows()), du;
     for (int v = 0; v < n; ++v) {
-      if (v != pinned) rhs[reduced_row(v, pinned)] = static_cast<double>(r[v] / scale);
+      if (v != pinned) rhs[reduced_index(v, pinned)] = static_cast<double>(r[v] / scale);
     }
     if (!solve(rhs, du)) break;
     for (int v = 0; v < n; ++v) {
-      if (v != pinned) u[v] -= static_cast<long double>(du[reduced_row(v, pinned)]) * scale;
+      if (v != pinned) u[v] -= static_cast<long double>(du[reduced_index(v, pinned)]) * scale;
     }
     for (int e = 0; e < t.num_edges(); ++e) {
       current[e] = std::exp(0.5L * (u[t.edge_vertices(e, 0)] + u[t.edge_vertices(e, 1)])) * base[e];

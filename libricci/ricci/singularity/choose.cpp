@@ -17,8 +17,16 @@ namespace ricci {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Right-hand sides solved together (one blocked back-substitution).
+// Right-hand sides solved together (one blocked back-substitution)...
 constexpr int kBlockColumns = 32;
+// ...at most this many doubles per block: a block lives in about five copies (right-hand
+// sides, CHOLMOD's two workspaces, its solution, Eigen's), 1 GB at 800k vertices and 32
+// columns; 8M doubles keep them near 0.3 GB.
+constexpr double kBlockDoubles = 8e6;
+
+int block_columns(int vertices) {
+  return std::clamp(static_cast<int>(kBlockDoubles / std::max(vertices, 1)), 1, kBlockColumns);
+}
 // Vertices scored per level of the linear zoom search.
 constexpr int kZoomSamples = 24;
 
@@ -106,8 +114,9 @@ class LinearModel {
         todo.push_back(p);
       }
     }
-    for (size_t start = 0; start < todo.size(); start += kBlockColumns) {
-      const size_t count = std::min<size_t>(kBlockColumns, todo.size() - start);
+    const size_t block = static_cast<size_t>(block_columns(n_));
+    for (size_t start = 0; start < todo.size(); start += block) {
+      const size_t count = std::min<size_t>(block, todo.size() - start);
       Eigen::MatrixXd rhs = Eigen::MatrixXd::Constant(n_, static_cast<Eigen::Index>(count), -1.0 / n_);
       for (size_t j = 0; j < count; ++j) rhs(todo[start + j], static_cast<Eigen::Index>(j)) += 1.0;
       const Eigen::MatrixXd green = solver_.solve_columns(rhs);
@@ -123,6 +132,14 @@ class LinearModel {
   }
 
   double scored(int p) const { return cache_.count(p) ? cache_.at(p) : kInfinity; }
+
+  // The predicted log-scale field of a cone at p (one back-substitution).
+  Eigen::VectorXd field(int p) {
+    Eigen::VectorXd rhs = Eigen::VectorXd::Constant(n_, -1.0 / n_);
+    rhs[p] += 1.0;
+    ++solves_;
+    return u0_ + cone_ * solver_.solve(rhs);
+  }
   int solves() const { return solves_; }
   const std::map<int, double>& cache() const { return cache_; }
 
@@ -370,6 +387,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
     choice.area_distortion = best.area_distortion;
   }
   choice.predicted_area_distortion = model.score({choice.vertex})[0];
+  choice.predicted_u = model.field(choice.vertex);
   choice.linear_solves = model.solves();
   choice.seconds = start.seconds();
   return choice;
