@@ -108,22 +108,6 @@ Eigen::SparseMatrix<double> reduced_laplacian(const IntrinsicTriangulation& tri,
   return reduced_graph_laplacian(ends, weights, tri.vertex_count, pinned);
 }
 
-// options.first_direction without the pinned vertex's entry, as `reduced`, gauged to 0 there,
-// when it is usable: one entry per vertex, finite, and a descent direction of the energy.
-bool given_first_direction(const IntrinsicFlowOptions& options, const Eigen::VectorXd& gradient,
-                           int pinned, Eigen::VectorXd& reduced) {
-  const Eigen::VectorXd& d = options.first_direction;
-  const Eigen::Index n = gradient.size();
-  if (d.size() != n || !d.allFinite()) return false;
-  const Eigen::VectorXd gauged = d.array() - d[pinned];
-  if (!(gradient.dot(gauged) < 0.0)) return false;
-  reduced.resize(n - 1);
-  for (Eigen::Index v = 0; v < n; ++v) {
-    if (v != pinned) reduced[reduced_index(static_cast<int>(v), pinned)] = gauged[v];
-  }
-  return true;
-}
-
 std::string failure_message(const IntrinsicFlowResult& result, const std::string& reason) {
   Eigen::Index worst = 0;
   (result.curvature - result.target).cwiseAbs().maxCoeff(&worst);
@@ -174,10 +158,9 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     }
     Eigen::VectorXd reduced;
     clock.restart();
-    const bool given = iteration == 0 && given_first_direction(options, gradient, pinned, reduced);
-    const bool reused = given || (factored_last && last_step_full &&
+    const bool reused = factored_last && last_step_full &&
                         error < options.nearby_factorization_below &&
-                        solve_with_nearby_factorization(*factored_last, lower, rhs, reduced));
+                        solve_with_nearby_factorization(*factored_last, lower, rhs, reduced);
     result.timings.solve += clock.seconds();
     if (!reused) {
       factored_last.reset();  // at most one factor alive besides the cache's

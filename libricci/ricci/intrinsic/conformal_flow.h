@@ -61,11 +61,6 @@ struct IntrinsicFlowOptions {
   /// step (a 1.6M-face mesh's floor is ~1e-10).
   double floor_below = 1e-8;
   int floor_plateau_iterations = 2;
-  /// When it has one entry per vertex: the first Newton iteration searches along this
-  /// direction (up to an additive constant) instead of solving with the Laplacian, sparing a
-  /// factorisation; for example SingularityChoice::predicted_u, the linear model's first step.
-  /// Ignored when it is not a descent direction or not finite.
-  Eigen::VectorXd first_direction;
   /// Optional progress report, after each Newton iteration.
   std::function<void(const FlowProgress&)> progress;
 };

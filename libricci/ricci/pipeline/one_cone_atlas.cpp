@@ -148,67 +148,17 @@ bool intrinsic_applies(const OneConeProblem& problem) {
   return problem.kind == OneConeKind::SingleCone || problem.kind == OneConeKind::FlatTorus;
 }
 
-// A field by input vertex carried to the problem's mesh: vertices added by splits take the mean
-// of their neighbours that have a value (sweeping outwards). Empty when `by_input` is.
-Eigen::VectorXd on_problem_vertices(const OneConeProblem& problem, const Eigen::VectorXd& by_input) {
-  const Mesh& mesh = problem.mesh;
-  const int n = static_cast<int>(mesh.n_vertices());
-  if (by_input.size() == 0 || static_cast<int>(problem.input_vertex.size()) != n) return {};
-  Eigen::VectorXd field(n);
-  std::vector<char> known(static_cast<size_t>(n), 0);
-  std::vector<int> pending;
-  for (int v = 0; v < n; ++v) {
-    const int input = problem.input_vertex[static_cast<size_t>(v)];
-    if (input >= 0 && input < by_input.size()) {
-      field[v] = by_input[input];
-      known[static_cast<size_t>(v)] = 1;
-    } else {
-      pending.push_back(v);
-    }
-  }
-  while (!pending.empty()) {
-    std::vector<int> left;
-    std::vector<std::pair<int, double>> found;
-    for (int v : pending) {
-      double sum = 0.0;
-      int count = 0;
-      for (auto w : mesh.vv_range(mesh.vertex_handle(v))) {
-        if (known[static_cast<size_t>(w.idx())]) {
-          sum += field[w.idx()];
-          ++count;
-        }
-      }
-      if (count > 0) {
-        found.emplace_back(v, sum / count);
-      } else {
-        left.push_back(v);
-      }
-    }
-    if (found.empty()) return {};  // a component without any input vertex
-    for (const auto& [v, value] : found) {
-      field[v] = value;
-      known[static_cast<size_t>(v)] = 1;
-    }
-    pending = std::move(left);
-  }
-  return field;
-}
-
 // The intrinsic Delaunay flow on the problem's mesh and targets. When it converges, the problem's
 // mesh becomes its triangulation (vertices kept) and result.flow carries its figures and
 // lengths; the failures of earlier flows stay listed in flow.failed_attempts.
-// `predicted_u` (by input vertex, may be empty): the choice's linear prediction, the flow's first
-// search direction.
 void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& result,
-                     const std::function<void(const char*)>& report,
-                     const Eigen::VectorXd& predicted_u) {
+                     const std::function<void(const char*)>& report) {
   report("intrinsic Delaunay flow");
   Stopwatch t;
   IntrinsicFlowOptions settings = options.intrinsic;
   settings.tolerance = options.flow.tolerance;
   settings.solver = options.flow.solver;
   settings.progress = options.flow.progress;
-  settings.first_direction = on_problem_vertices(result.problem, predicted_u);
   std::vector<std::string> failures = result.flow.failed_attempts;
   if (!result.flow.message.empty()) failures.push_back(result.flow.message);
   const IntrinsicFlowResult r =
@@ -263,14 +213,13 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
 // converges; otherwise its failures join `failures` and its seconds `failed_seconds`. Returns
 // whether it ran (the problem suits it).
 bool try_intrinsic(const Mesh& mesh, const OneConeAtlasOptions& options,
-                   const std::function<void(const char*)>& report,
-                   const Eigen::VectorXd& predicted_u, OneConeAtlasResult& result,
+                   const std::function<void(const char*)>& report, OneConeAtlasResult& result,
                    std::vector<std::string>& failures, double& failed_seconds) {
   OneConeAtlasResult attempt = result;
   prepare_problem(mesh, options, attempt, report);
   if (!intrinsic_applies(attempt.problem)) return false;
   attempt.flow.failed_attempts = failures;
-  solve_intrinsic(options, attempt, report, predicted_u);
+  solve_intrinsic(options, attempt, report);
   if (attempt.flow.converged()) {
     result = std::move(attempt);
   } else {
@@ -331,7 +280,6 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
        surface_topology(mesh).genus >= options.intrinsic_from_genus);
   bool fixed_failed = false;  // no candidate vertex converged with the fixed-connectivity flows
   bool intrinsic_tried = false;
-  Eigen::VectorXd predicted_u;  // the choice's linear model, by input vertex
   if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
     report("choosing the singular vertex");
     Stopwatch t;
@@ -351,7 +299,6 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
         result.chosen_vertex = chosen.vertex;
         result.flows_for_choice = chosen.flows_run;
         result.solves_for_choice = chosen.linear_solves;
-        predicted_u = std::move(chosen.predicted_u);
       } catch (const SolverError& error) {
         if (options.route == FlowRoute::fixed_connectivity) throw;
         // No candidate converged with fixed connectivity: the intrinsic flow converges at any
@@ -368,8 +315,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   std::vector<std::string> failures;
   double failed_flow_seconds = 0.0;
   if (!intrinsic_only && !fixed_failed && takes_intrinsic_flow_first(mesh, options)) {
-    intrinsic_tried = try_intrinsic(mesh, options, report, predicted_u, result, failures,
-                                    failed_flow_seconds);
+    intrinsic_tried = try_intrinsic(mesh, options, report, result, failures, failed_flow_seconds);
   }
   if (result.flow.converged()) {
     // The intrinsic flow ran first and won.
@@ -378,7 +324,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     if (!intrinsic_applies(result.problem)) {
       throw InvalidInputError("the intrinsic Delaunay flow needs a closed surface of genus >= 1");
     }
-    solve_intrinsic(options, result, report, predicted_u);
+    solve_intrinsic(options, result, report);
   } else if (takes_inversive_distance_route(mesh, options)) {
     OneConeAtlasResult attempt = result;
     solve_and_polish(mesh, inversive_distance_route(options), attempt, report, false);
@@ -392,8 +338,8 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       if (options.route == FlowRoute::automatic && options.intrinsic_before_fixed &&
           !intrinsic_tried) {
         // Next in conformality: the intrinsic flow (vertex scaling), before the circle packings.
-        intrinsic_tried = try_intrinsic(mesh, options, report, predicted_u, result, failures,
-                                        failed_flow_seconds);
+        intrinsic_tried =
+            try_intrinsic(mesh, options, report, result, failures, failed_flow_seconds);
       }
       if (!result.flow.converged()) solve_and_polish(mesh, options, result, report, true);
     }
@@ -412,7 +358,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   result.timings.flow += failed_flow_seconds;
   if (!result.flow.converged() && options.route == FlowRoute::automatic && !fixed_failed &&
       !intrinsic_tried && intrinsic_applies(result.problem)) {
-    solve_intrinsic(options, result, report, predicted_u);
+    solve_intrinsic(options, result, report);
   }
   if (!result.flow.converged()) throw SolverError(result.flow.message);
 

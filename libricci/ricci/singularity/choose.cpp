@@ -132,14 +132,6 @@ class LinearModel {
   }
 
   double scored(int p) const { return cache_.count(p) ? cache_.at(p) : kInfinity; }
-
-  // The predicted log-scale field of a cone at p (one back-substitution).
-  Eigen::VectorXd field(int p) {
-    Eigen::VectorXd rhs = Eigen::VectorXd::Constant(n_, -1.0 / n_);
-    rhs[p] += 1.0;
-    ++solves_;
-    return u0_ + cone_ * solver_.solve(rhs);
-  }
   int solves() const { return solves_; }
   const std::map<int, double>& cache() const { return cache_; }
 
@@ -387,7 +379,6 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
     choice.area_distortion = best.area_distortion;
   }
   choice.predicted_area_distortion = model.score({choice.vertex})[0];
-  choice.predicted_u = model.field(choice.vertex);
   choice.linear_solves = model.solves();
   choice.seconds = start.seconds();
   return choice;

@@ -12,8 +12,6 @@
 // factorisation and a few solves.
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "ricci/flow/flow.h"
 #include "ricci/mesh/mesh.h"
 #include "ricci/singularity/one_cone.h"
@@ -71,11 +69,6 @@ struct SingularityChoice {
   int ranked = 0;         ///< vertices the linear model scored
   int linear_solves = 0;  ///< back-substitutions with the Laplacian's factorisation
   double seconds = 0.0;
-  /// The linear model's log scale factors for the chosen vertex (by input vertex, up to an
-  /// additive constant): to first order the flat metric's u, and the first Newton step of
-  /// its flow from the input's metric (IntrinsicFlowOptions::first_direction). Empty when no
-  /// vertex is needed.
-  Eigen::VectorXd predicted_u;
 };
 
 /// Area distortion of the one-cone flat metric around `vertex` (one full flow); +inf when the

@@ -8,14 +8,11 @@
 #include "ricci/intrinsic/conformal_flow.h"
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
-#include "ricci/mesh/io.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/metric/curvature.h"
 #include "ricci/metric/polish_e2.h"
 #include "ricci/pipeline/one_cone_atlas.h"
-#include "ricci/singularity/choose.h"
 #include "ricci/singularity/one_cone.h"
-#include "test_paths.h"
 
 namespace {
 
@@ -47,32 +44,6 @@ TEST(IntrinsicConformalFlow, RefusesATargetBreakingGaussBonnet) {
   } catch (const ricci::InfeasibleTargetError& e) {
     EXPECT_NE(std::string(e.what()).find("Gauss-Bonnet"), std::string::npos) << e.what();
   }
-}
-
-// The linear model's prediction (singularity/choose.h) is the first Newton step from the input's
-// metric, up to the Delaunay flips and the clamped weights: searching along it instead of solving
-// reaches the same flat metric (unique up to scale) with one factorisation fewer.
-TEST(IntrinsicConformalFlow, FirstStepAlongTheChoicesPredictionSparesAFactorisation) {
-  const ricci::Mesh mesh = ricci::read_mesh(msp_test::bundled_model("genus2.off"));
-  ricci::SingularityOptions choosing;
-  choosing.verification_work = 0;  // the linear model's choice
-  const ricci::SingularityChoice choice = ricci::choose_singularity(mesh, choosing);
-  ASSERT_GE(choice.vertex, 0);
-  const ricci::Targets targets = ricci::single_cone_target(mesh, choice.vertex);
-  const ricci::IntrinsicFlowResult plain = ricci::intrinsic_conformal_flow(mesh, targets);
-  ricci::IntrinsicFlowOptions warm;
-  warm.first_direction = choice.predicted_u;
-  const ricci::IntrinsicFlowResult started = ricci::intrinsic_conformal_flow(mesh, targets, warm);
-  ASSERT_TRUE(plain.converged()) << plain.message;
-  ASSERT_TRUE(started.converged()) << started.message;
-  EXPECT_EQ(started.factorizations, plain.factorizations - 1);
-  // Both pin the same vertex at u = 0: the same u.
-  EXPECT_LT((started.u - plain.u).cwiseAbs().maxCoeff(), 1e-7);
-  // A direction that climbs the energy is not taken: the flow solves as usual.
-  warm.first_direction = -choice.predicted_u;
-  const ricci::IntrinsicFlowResult refused = ricci::intrinsic_conformal_flow(mesh, targets, warm);
-  EXPECT_EQ(refused.factorizations, plain.factorizations);
-  EXPECT_EQ(refused.iterations, plain.iterations);
 }
 
 class OneConeEveryGenus : public ::testing::TestWithParam<int> {};

@@ -97,11 +97,7 @@ TEST(ChooseSingularity, LargeMeshesRunNoVerifyingFlow) {
   EXPECT_GT(choice.predicted_area_distortion, 0);
   EXPECT_GE(choice.vertex, 0);
   EXPECT_LT(choice.ranked, static_cast<int>(mesh.n_vertices()) / 4);
-  // One back-substitution per scored vertex, one for the input's own field, one for the
-  // chosen vertex's predicted field.
-  EXPECT_EQ(choice.linear_solves, choice.ranked + 2);
-  EXPECT_EQ(choice.predicted_u.size(), static_cast<Eigen::Index>(mesh.n_vertices()));
-  EXPECT_TRUE(choice.predicted_u.allFinite());
+  EXPECT_EQ(choice.linear_solves, choice.ranked + 1);
   // The zoom search improves on the spread sample it starts from.
   const std::vector<ricci::SingularityScore> sample = ricci::rank_singularities(mesh, options);
   EXPECT_EQ(static_cast<int>(sample.size()), options.min_ranked_vertices);
