@@ -17,8 +17,7 @@ namespace {
 
 // Distances of every row of `points` to `tree`, in parallel (queries on a const tree).
 template <class Tree>
-Eigen::VectorXd parallel_distances(const Tree& tree, const Eigen::MatrixX3d& points,
-                                   int threads) {
+Eigen::VectorXd parallel_distances(const Tree& tree, const Eigen::MatrixX3d& points, int threads) {
   Eigen::VectorXd out(points.rows());
   parallel_for(static_cast<std::size_t>(points.rows()), threads, [&](std::size_t i) {
     const auto row = static_cast<Eigen::Index>(i);
@@ -145,7 +144,8 @@ Eigen::MatrixX3d edge_samples(const Eigen::MatrixX3d& positions,
 
 }  // namespace
 
-std::vector<std::array<int, 2>> soup_boundary_edges(const std::vector<std::array<int, 3>>& triangles) {
+std::vector<std::array<int, 2>> soup_boundary_edges(
+    const std::vector<std::array<int, 3>>& triangles) {
   // Undirected edges sorted, so that an edge's copies are adjacent.
   const auto key = [](int a, int b) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
@@ -236,10 +236,10 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
       distances_of(closest_hits(scan, samples.centroids, options.threads, corner_hit));
   report.surface_points = static_cast<int>(back.size());
   report.surface_to_scan_max = back.maxCoeff(&farthest);
-  report.surface_to_scan_max_point = farthest < samples.vertices.rows()
-                                         ? samples.vertices.row(farthest).transpose()
-                                         : samples.centroids.row(farthest - samples.vertices.rows())
-                                               .transpose();
+  report.surface_to_scan_max_point =
+      farthest < samples.vertices.rows()
+          ? samples.vertices.row(farthest).transpose()
+          : samples.centroids.row(farthest - samples.vertices.rows()).transpose();
   std::vector<double> sorted(back.data(), back.data() + back.size());
   const auto k = static_cast<std::size_t>(0.99 * static_cast<double>(sorted.size() - 1));
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
@@ -318,8 +318,8 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
         report.surface_boundary_to_scan_boundary >= report.scan_boundary_to_surface_boundary;
     report.boundary_hausdorff = outward ? report.surface_boundary_to_scan_boundary
                                         : report.scan_boundary_to_surface_boundary;
-    report.boundary_hausdorff_point = outward ? surface_side.row(worst_out).transpose()
-                                              : scan_side.row(worst_in).transpose();
+    report.boundary_hausdorff_point =
+        outward ? surface_side.row(worst_out).transpose() : scan_side.row(worst_in).transpose();
   }
   return report;
 }

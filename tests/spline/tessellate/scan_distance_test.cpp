@@ -72,7 +72,8 @@ TEST(TriangleSoupDistance, DegenerateTrianglesAreLeftOutAndBadSoupsThrow) {
 Grid wavy(int n, double z) {
   Grid g = grid(n, 1.0, z);
   for (Eigen::Index v = 0; v < g.positions.rows(); ++v)
-    g.positions(v, 2) += 0.1 * std::sin(5.0 * g.positions(v, 0)) * std::cos(4.0 * g.positions(v, 1));
+    g.positions(v, 2) +=
+        0.1 * std::sin(5.0 * g.positions(v, 0)) * std::cos(4.0 * g.positions(v, 1));
   return g;
 }
 
@@ -135,7 +136,8 @@ TEST(MeasureAgainstScan, AParallelCopyIsItsOffsetAwayBothWays) {
 
 TEST(MeasureAgainstScan, OneThreadOrTwoGiveTheSameReport) {
   const Grid scan = wavy(40, 0.0);
-  const Grid surface = wavy(23, 0.003);  // another triangulation: its steep flanks within the tolerance
+  // Another triangulation, lifted: its steep flanks lie within the tolerance, its flat parts not.
+  const Grid surface = wavy(23, 0.003);
   ScanDistanceOptions options;
   options.coverage_tolerance = 0.002;  // 0.0028 absolute, below the offset on the flat parts
   options.threads = 1;
@@ -176,7 +178,7 @@ TEST(MeasureAgainstScan, ASurfaceThatStopsShortIsSeenFromTheScan) {
       measure_against_scan(half.positions, half.triangles, scan.positions, scan.triangles);
   EXPECT_NEAR(r.fit_max, 0.5, 1e-12);              // the scan's far side
   EXPECT_NEAR(r.surface_to_scan_max, 0.0, 1e-12);  // the surface lies on the scan
-  EXPECT_NEAR(r.coverage, 0.5, 1e-12);  // the right half's samples are >= 0.1 / 6 away
+  EXPECT_NEAR(r.coverage, 0.5, 1e-12);             // the right half's samples are >= 0.1 / 6 away
   EXPECT_NEAR(r.scan_boundary_to_surface_boundary, 0.5, 1e-12);
   // The cut x = 0.5 is half a unit from the scan's rim at its middle.
   EXPECT_NEAR(r.surface_boundary_to_scan_boundary, 0.5, 1e-12);
