@@ -32,6 +32,12 @@ class TriangleSoupDistance {
   TriangleSoupDistance& operator=(const TriangleSoupDistance&) = delete;
 
   [[nodiscard]] SoupHit closest(const Eigen::Vector3d& query) const;
+  /// closest(query) searched from `hint`, this tree's answer for another query: the search
+  /// starts within the hint's distance instead of a nearest-vertex look-up, so a nearby query's
+  /// hint makes it faster. The same distance; between primitives at exactly equal distance the
+  /// one returned may differ.
+  /// \throw InvalidInputError when hint.primitive is not a triangle of the tree.
+  [[nodiscard]] SoupHit closest(const Eigen::Vector3d& query, const SoupHit& hint) const;
   /// Distance of every row of `queries` (#Q by 3).
   [[nodiscard]] Eigen::VectorXd distances(const Eigen::MatrixX3d& queries) const;
   /// Triangles kept in the tree (the non-degenerate ones).

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "ricci/mesh/cgal_convert.h"
 #include "ricci/mesh/errors.h"
@@ -43,11 +44,9 @@ Eigen::Vector3d to_vector(const Point3& p) { return Eigen::Vector3d(p.x(), p.y()
 
 // The nearest primitive of a tree holding `first`'s primitives; `original` maps their order to
 // the soup's indices.
-template <class Tree, class Iterator>
-SoupHit closest_in(const Tree& tree, Iterator first, const std::vector<int>& original,
-                   const Eigen::Vector3d& query) {
-  const auto [point, primitive] =
-      tree.closest_point_and_primitive(Point3(query.x(), query.y(), query.z()));
+template <class Iterator>
+SoupHit hit_of(const Point3& point, Iterator primitive, Iterator first,
+               const std::vector<int>& original, const Eigen::Vector3d& query) {
   SoupHit hit;
   hit.primitive = original[static_cast<std::size_t>(primitive - first)];
   hit.point = to_vector(point);
@@ -55,11 +54,20 @@ SoupHit closest_in(const Tree& tree, Iterator first, const std::vector<int>& ori
   return hit;
 }
 
+template <class Tree, class Iterator>
+SoupHit closest_in(const Tree& tree, Iterator first, const std::vector<int>& original,
+                   const Eigen::Vector3d& query) {
+  const auto [point, primitive] =
+      tree.closest_point_and_primitive(Point3(query.x(), query.y(), query.z()));
+  return hit_of(point, primitive, first, original, query);
+}
+
 }  // namespace
 
 struct TriangleSoupDistance::Tree {
   std::vector<Triangle3> triangles;
   std::vector<int> original;  // soup index of each kept triangle
+  std::vector<int> kept;      // by soup index: its place in `triangles`, -1 if left out
   CGAL::AABB_tree<CGAL::AABB_traits<Kernel, TrianglePrimitive>> tree;
   TriangleIterator first;
 };
@@ -68,12 +76,14 @@ TriangleSoupDistance::TriangleSoupDistance(const Eigen::MatrixX3d& positions,
                                            const std::vector<std::array<int, 3>>& triangles)
     : tree_(std::make_unique<Tree>()) {
   tree_->triangles.reserve(triangles.size());
+  tree_->kept.assign(triangles.size(), -1);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& tri = triangles[t];
     const Triangle3 triangle(checked_point(positions, tri[0], "triangle soup"),
                              checked_point(positions, tri[1], "triangle soup"),
                              checked_point(positions, tri[2], "triangle soup"));
     if (triangle.is_degenerate()) continue;
+    tree_->kept[t] = static_cast<int>(tree_->triangles.size());
     tree_->triangles.push_back(triangle);
     tree_->original.push_back(static_cast<int>(t));
   }
@@ -94,6 +104,20 @@ int TriangleSoupDistance::triangle_count() const {
 
 SoupHit TriangleSoupDistance::closest(const Eigen::Vector3d& query) const {
   return closest_in(tree_->tree, tree_->first, tree_->original, query);
+}
+
+SoupHit TriangleSoupDistance::closest(const Eigen::Vector3d& query, const SoupHit& hint) const {
+  const auto& kept = tree_->kept;
+  if (hint.primitive < 0 || hint.primitive >= static_cast<int>(kept.size()) ||
+      kept[static_cast<std::size_t>(hint.primitive)] < 0) {
+    throw InvalidInputError("triangle soup: hint primitive " + std::to_string(hint.primitive) +
+                            " is not a triangle of the tree");
+  }
+  const auto start = std::make_pair(Point3(hint.point.x(), hint.point.y(), hint.point.z()),
+                                    tree_->first + kept[static_cast<std::size_t>(hint.primitive)]);
+  const auto [point, primitive] =
+      tree_->tree.closest_point_and_primitive(Point3(query.x(), query.y(), query.z()), start);
+  return hit_of(point, primitive, tree_->first, tree_->original, query);
 }
 
 Eigen::VectorXd TriangleSoupDistance::distances(const Eigen::MatrixX3d& queries) const {

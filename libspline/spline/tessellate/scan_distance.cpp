@@ -17,8 +17,7 @@ namespace {
 
 // Distances of every row of `points` to `tree`, in parallel (queries on a const tree).
 template <class Tree>
-Eigen::VectorXd parallel_distances(const Tree& tree, const Eigen::MatrixX3d& points,
-                                   int threads) {
+Eigen::VectorXd parallel_distances(const Tree& tree, const Eigen::MatrixX3d& points, int threads) {
   Eigen::VectorXd out(points.rows());
   parallel_for(static_cast<std::size_t>(points.rows()), threads, [&](std::size_t i) {
     const auto row = static_cast<Eigen::Index>(i);
@@ -27,12 +26,53 @@ Eigen::VectorXd parallel_distances(const Tree& tree, const Eigen::MatrixX3d& poi
   return out;
 }
 
-// Every surface vertex used by a triangle, then every non-degenerate triangle's centroid.
-// The vertices of the measured triangles and their non-degenerate centroids; `left_out`
-// counts the samples of the others (vertices that no measured triangle uses).
-Eigen::MatrixX3d surface_samples(const Eigen::MatrixX3d& positions,
-                                 const std::vector<std::array<int, 3>>& triangles,
-                                 const std::vector<char>& unmeasured, int& left_out) {
+Eigen::MatrixX3d to_rows(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::MatrixX3d out(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  return out;
+}
+
+// Nearest points on `tree` of every row of `points`, in parallel (queries on a const tree);
+// hint(i), when not null, is the tree's answer for a point near row i, where the search starts
+// (the same distances, found faster than from the tree's nearest-vertex look-up).
+template <class Hint>
+std::vector<ricci::SoupHit> closest_hits(const ricci::TriangleSoupDistance& tree,
+                                         const Eigen::MatrixX3d& points, int threads,
+                                         const Hint& hint) {
+  std::vector<ricci::SoupHit> hits(static_cast<std::size_t>(points.rows()));
+  parallel_for(hits.size(), threads, [&](std::size_t i) {
+    const Eigen::Vector3d query = points.row(static_cast<Eigen::Index>(i)).transpose();
+    const ricci::SoupHit* start = hint(i);
+    hits[i] = start ? tree.closest(query, *start) : tree.closest(query);
+  });
+  return hits;
+}
+
+std::vector<ricci::SoupHit> closest_hits(const ricci::TriangleSoupDistance& tree,
+                                         const Eigen::MatrixX3d& points, int threads) {
+  return closest_hits(tree, points, threads,
+                      [](std::size_t) -> const ricci::SoupHit* { return nullptr; });
+}
+
+Eigen::VectorXd distances_of(const std::vector<ricci::SoupHit>& hits) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(hits.size()));
+  for (std::size_t i = 0; i < hits.size(); ++i)
+    out[static_cast<Eigen::Index>(i)] = hits[i].distance;
+  return out;
+}
+
+// The points measured on the surface: the vertices of the measured triangles, and their
+// non-degenerate centroids, each with the row in `vertices` of its triangle's first corner.
+struct SurfaceSamples {
+  Eigen::MatrixX3d vertices, centroids;
+  std::vector<int> centroid_corner;
+  int left_out = 0;  ///< Samples of the unmeasured triangles (vertices no measured one uses).
+};
+
+SurfaceSamples surface_samples(const Eigen::MatrixX3d& positions,
+                               const std::vector<std::array<int, 3>>& triangles,
+                               const std::vector<char>& unmeasured) {
   const auto measured = [&unmeasured](std::size_t t) {
     return unmeasured.empty() || !unmeasured[t];
   };
@@ -43,27 +83,31 @@ Eigen::MatrixX3d surface_samples(const Eigen::MatrixX3d& positions,
       u = std::max<char>(u, measured(t) ? 2 : 1);
     }
   }
-  left_out = 0;
+  SurfaceSamples out;
+  std::vector<int> row(used.size(), -1);
   std::vector<Eigen::Vector3d> points;
   for (Eigen::Index v = 0; v < positions.rows(); ++v) {
     const char u = used[static_cast<std::size_t>(v)];
-    if (u == 2) points.emplace_back(positions.row(v).transpose());
-    left_out += u == 1;
+    if (u == 2) {
+      row[static_cast<std::size_t>(v)] = static_cast<int>(points.size());
+      points.emplace_back(positions.row(v).transpose());
+    }
+    out.left_out += u == 1;
   }
+  out.vertices = to_rows(points);
+  points.clear();
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     const auto& t = triangles[i];
     const Eigen::Vector3d a = positions.row(t[0]), b = positions.row(t[1]), c = positions.row(t[2]);
     if (!((b - a).cross(c - a).norm() > 0.0)) continue;
     if (measured(i)) {
       points.push_back((a + b + c) / 3.0);
+      out.centroid_corner.push_back(row[static_cast<std::size_t>(t[0])]);
     } else {
-      ++left_out;
+      ++out.left_out;
     }
   }
-  Eigen::MatrixX3d out(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    out.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
-  }
+  out.centroids = to_rows(points);
   return out;
 }
 
@@ -100,7 +144,8 @@ Eigen::MatrixX3d edge_samples(const Eigen::MatrixX3d& positions,
 
 }  // namespace
 
-std::vector<std::array<int, 2>> soup_boundary_edges(const std::vector<std::array<int, 3>>& triangles) {
+std::vector<std::array<int, 2>> soup_boundary_edges(
+    const std::vector<std::array<int, 3>>& triangles) {
   // Undirected edges sorted, so that an edge's copies are adjacent.
   const auto key = [](int a, int b) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
@@ -111,11 +156,19 @@ std::vector<std::array<int, 2>> soup_boundary_edges(const std::vector<std::array
   for (const auto& t : triangles)
     for (int k = 0; k < 3; ++k) edges.push_back(key(t[k], t[(k + 1) % 3]));
   std::sort(edges.begin(), edges.end());
-  const auto single = [&edges](std::uint64_t e) {
-    const auto range = std::equal_range(edges.begin(), edges.end(), e);
-    return range.second - range.first == 1;
-  };
+  // The keys that occur once (sorted); a closed soup has none and is done.
+  std::vector<std::uint64_t> singles;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) singles.push_back(edges[i]);
+    i = j;
+  }
   std::vector<std::array<int, 2>> out;
+  if (singles.empty()) return out;
+  const auto single = [&singles](std::uint64_t e) {
+    return std::binary_search(singles.begin(), singles.end(), e);
+  };
   for (const auto& t : triangles) {
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
@@ -157,21 +210,36 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
   const ricci::TriangleSoupDistance scan(scan_positions, scan_triangles);
 
   // Every scan vertex to the surface.
-  const Eigen::VectorXd fit = parallel_distances(surface, scan_positions, options.threads);
+  const std::vector<ricci::SoupHit> fit_hits =
+      closest_hits(surface, scan_positions, options.threads);
+  const Eigen::VectorXd fit = distances_of(fit_hits);
   report.scan_points = static_cast<int>(fit.size());
   Eigen::Index farthest = 0;
   report.fit_max = fit.maxCoeff(&farthest);
   report.fit_max_point = scan_positions.row(farthest).transpose();
   report.fit_rms = std::sqrt(fit.squaredNorm() / static_cast<double>(fit.size()));
 
-  // The surface back to the scan.
-  const Eigen::MatrixX3d samples = surface_samples(surface_positions, surface_triangles,
-                                                   unmeasured, report.surface_points_left_out);
-  if (samples.rows() == 0) throw ricci::InvalidInputError("surface: every triangle left out");
-  Eigen::VectorXd back = parallel_distances(scan, samples, options.threads);
+  // The surface back to the scan: the vertices, then the centroids (searched from a corner's).
+  const SurfaceSamples samples = surface_samples(surface_positions, surface_triangles, unmeasured);
+  report.surface_points_left_out = samples.left_out;
+  if (samples.vertices.rows() == 0) {
+    throw ricci::InvalidInputError("surface: every triangle left out");
+  }
+  const std::vector<ricci::SoupHit> vertex_hits =
+      closest_hits(scan, samples.vertices, options.threads);
+  const auto corner_hit = [&](std::size_t i) {
+    return &vertex_hits[static_cast<std::size_t>(samples.centroid_corner[i])];
+  };
+  Eigen::VectorXd back(samples.vertices.rows() + samples.centroids.rows());
+  back.head(samples.vertices.rows()) = distances_of(vertex_hits);
+  back.tail(samples.centroids.rows()) =
+      distances_of(closest_hits(scan, samples.centroids, options.threads, corner_hit));
   report.surface_points = static_cast<int>(back.size());
   report.surface_to_scan_max = back.maxCoeff(&farthest);
-  report.surface_to_scan_max_point = samples.row(farthest).transpose();
+  report.surface_to_scan_max_point =
+      farthest < samples.vertices.rows()
+          ? samples.vertices.row(farthest).transpose()
+          : samples.centroids.row(farthest - samples.vertices.rows()).transpose();
   std::vector<double> sorted(back.data(), back.data() + back.size());
   const auto k = static_cast<std::size_t>(0.99 * static_cast<double>(sorted.size() - 1));
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
@@ -191,12 +259,34 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
     cover.row(row + 2) = (a + 4.0 * b + c) / 6.0;
     cover.row(row + 3) = (a + b + 4.0 * c) / 6.0;
   }
-  const Eigen::VectorXd cover_distance = parallel_distances(surface, cover, options.threads);
+  // A sample is covered when a corner's nearest surface point lies within the tolerance (its
+  // own nearest point is no farther); the others are measured, searched from the corner's hit.
+  const auto corner = [&](std::size_t i, int k) -> const ricci::SoupHit& {
+    return fit_hits[static_cast<std::size_t>(scan_triangles[i / 4][static_cast<std::size_t>(k)])];
+  };
+  std::vector<char> inside(static_cast<std::size_t>(cover.rows()), 0);
+  std::vector<std::size_t> measured;
+  std::vector<Eigen::Vector3d> uncertain;
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    const Eigen::Vector3d sample = cover.row(static_cast<Eigen::Index>(i)).transpose();
+    for (int k = 0; k < 3 && !inside[i]; ++k)
+      inside[i] = (corner(i, k).point - sample).norm() <= report.coverage_tolerance;
+    if (inside[i]) continue;
+    measured.push_back(i);
+    uncertain.push_back(sample);
+  }
+  const std::vector<ricci::SoupHit> cover_hits =
+      closest_hits(surface, to_rows(uncertain), options.threads, [&](std::size_t j) {
+        const std::size_t i = measured[j];
+        return &corner(i, i % 4 == 0 ? 0 : static_cast<int>(i % 4) - 1);
+      });
+  for (std::size_t j = 0; j < measured.size(); ++j)
+    inside[measured[j]] = cover_hits[j].distance <= report.coverage_tolerance;
   double covered = 0.0;
   for (Eigen::Index t = 0; t < area.size(); ++t) {
-    int inside = 0;
-    for (int s = 0; s < 4; ++s) inside += cover_distance[4 * t + s] <= report.coverage_tolerance;
-    covered += area[t] * inside / 4.0;
+    int count = 0;
+    for (int s = 0; s < 4; ++s) count += inside[static_cast<std::size_t>(4 * t + s)];
+    covered += area[t] * count / 4.0;
   }
   report.coverage = area.sum() > 0.0 ? std::min(1.0, covered / area.sum()) : 1.0;
 
@@ -228,8 +318,8 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
         report.surface_boundary_to_scan_boundary >= report.scan_boundary_to_surface_boundary;
     report.boundary_hausdorff = outward ? report.surface_boundary_to_scan_boundary
                                         : report.scan_boundary_to_surface_boundary;
-    report.boundary_hausdorff_point = outward ? surface_side.row(worst_out).transpose()
-                                              : scan_side.row(worst_in).transpose();
+    report.boundary_hausdorff_point =
+        outward ? surface_side.row(worst_out).transpose() : scan_side.row(worst_in).transpose();
   }
   return report;
 }

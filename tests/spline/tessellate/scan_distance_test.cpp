@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/soup_distance.h"
 #include "spline/tessellate/dihedral.h"
@@ -66,6 +68,39 @@ TEST(TriangleSoupDistance, DegenerateTrianglesAreLeftOutAndBadSoupsThrow) {
   EXPECT_THROW(ricci::TriangleSoupDistance(p, {{0, 1, 3}}), ricci::InvalidInputError);
 }
 
+// A wavy sheet z = 0.1 sin(5x) cos(4y) over the unit square, n x n cells, lifted by `z`.
+Grid wavy(int n, double z) {
+  Grid g = grid(n, 1.0, z);
+  for (Eigen::Index v = 0; v < g.positions.rows(); ++v)
+    g.positions(v, 2) +=
+        0.1 * std::sin(5.0 * g.positions(v, 0)) * std::cos(4.0 * g.positions(v, 1));
+  return g;
+}
+
+TEST(TriangleSoupDistance, AHintGivesTheSameNearestDistance) {
+  const Grid g = wavy(12, 0.0);
+  const ricci::TriangleSoupDistance soup(g.positions, g.triangles);
+  // Hints near and far from each query: the search bound changes, the answer does not.
+  const ricci::SoupHit far = soup.closest(Eigen::Vector3d(1.0, 1.0, 0.0));
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector3d q(-0.2 + 1.4 * std::fmod(0.37 * i, 1.0),
+                            -0.2 + 1.4 * std::fmod(0.61 * i, 1.0), 0.3 * std::sin(i));
+    const ricci::SoupHit plain = soup.closest(q);
+    const ricci::SoupHit nearby = soup.closest(q + Eigen::Vector3d(0.01, -0.02, 0.0));
+    EXPECT_NEAR(soup.closest(q, far).distance, plain.distance, 1e-15) << i;
+    EXPECT_NEAR(soup.closest(q, nearby).distance, plain.distance, 1e-15) << i;
+  }
+  ricci::SoupHit bad = far;
+  bad.primitive = static_cast<int>(g.triangles.size());
+  EXPECT_THROW((void)soup.closest(Eigen::Vector3d::Zero(), bad), ricci::InvalidInputError);
+  Eigen::MatrixX3d p(4, 3);
+  p << 0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 1, 0;
+  const ricci::TriangleSoupDistance flat(p, {{0, 1, 2}, {0, 1, 3}});
+  ricci::SoupHit degenerate;
+  degenerate.primitive = 0;  // collinear: not in the tree
+  EXPECT_THROW((void)flat.closest(Eigen::Vector3d::Zero(), degenerate), ricci::InvalidInputError);
+}
+
 TEST(SegmentSoupDistance, DistanceToAPolyline) {
   Eigen::MatrixX3d p(3, 3);
   p << 0, 0, 0, 1, 0, 0, 1, 1, 0;
@@ -99,6 +134,43 @@ TEST(MeasureAgainstScan, AParallelCopyIsItsOffsetAwayBothWays) {
               0.0, 1e-15);
 }
 
+TEST(MeasureAgainstScan, OneThreadOrTwoGiveTheSameReport) {
+  const Grid scan = wavy(40, 0.0);
+  // Another triangulation, lifted: its steep flanks lie within the tolerance, its flat parts not.
+  const Grid surface = wavy(23, 0.003);
+  ScanDistanceOptions options;
+  options.coverage_tolerance = 0.002;  // 0.0028 absolute, below the offset on the flat parts
+  options.threads = 1;
+  const ScanDistanceReport one = measure_against_scan(surface.positions, surface.triangles,
+                                                      scan.positions, scan.triangles, options);
+  options.threads = 2;
+  const ScanDistanceReport two = measure_against_scan(surface.positions, surface.triangles,
+                                                      scan.positions, scan.triangles, options);
+  EXPECT_GT(one.coverage, 0.02);
+  EXPECT_LT(one.coverage, 0.98);
+  EXPECT_EQ(one.coverage, two.coverage);
+  EXPECT_EQ(one.fit_rms, two.fit_rms);
+  EXPECT_EQ(one.fit_max, two.fit_max);
+  EXPECT_EQ(one.surface_to_scan_p99, two.surface_to_scan_p99);
+  EXPECT_EQ(one.surface_to_scan_max, two.surface_to_scan_max);
+  EXPECT_EQ(one.surface_to_scan_max_point, two.surface_to_scan_max_point);
+  EXPECT_EQ(one.boundary_hausdorff, two.boundary_hausdorff);
+  // Coverage by brute force: each scan triangle's four samples against every surface triangle.
+  const ricci::TriangleSoupDistance tree(surface.positions, surface.triangles);
+  double covered = 0.0, total = 0.0;
+  for (const auto& t : scan.triangles) {
+    const Eigen::Vector3d a = scan.positions.row(t[0]), b = scan.positions.row(t[1]),
+                          c = scan.positions.row(t[2]);
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    const Eigen::Vector3d samples[4] = {(a + b + c) / 3.0, (4.0 * a + b + c) / 6.0,
+                                        (a + 4.0 * b + c) / 6.0, (a + b + 4.0 * c) / 6.0};
+    for (const auto& s : samples)
+      covered += area / 4.0 * (tree.closest(s).distance <= one.coverage_tolerance);
+    total += area;
+  }
+  EXPECT_NEAR(one.coverage, covered / total, 1e-14);
+}
+
 TEST(MeasureAgainstScan, ASurfaceThatStopsShortIsSeenFromTheScan) {
   const Grid scan = grid(10, 1.0, 0.0);
   const Grid half = grid(5, 0.5, 0.0);  // covers x <= 0.5 only
@@ -106,7 +178,7 @@ TEST(MeasureAgainstScan, ASurfaceThatStopsShortIsSeenFromTheScan) {
       measure_against_scan(half.positions, half.triangles, scan.positions, scan.triangles);
   EXPECT_NEAR(r.fit_max, 0.5, 1e-12);              // the scan's far side
   EXPECT_NEAR(r.surface_to_scan_max, 0.0, 1e-12);  // the surface lies on the scan
-  EXPECT_NEAR(r.coverage, 0.5, 1e-12);  // the right half's samples are >= 0.1 / 6 away
+  EXPECT_NEAR(r.coverage, 0.5, 1e-12);             // the right half's samples are >= 0.1 / 6 away
   EXPECT_NEAR(r.scan_boundary_to_surface_boundary, 0.5, 1e-12);
   // The cut x = 0.5 is half a unit from the scan's rim at its middle.
   EXPECT_NEAR(r.surface_boundary_to_scan_boundary, 0.5, 1e-12);

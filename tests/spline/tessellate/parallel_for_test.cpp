@@ -1,0 +1,66 @@
+// parallel_for and run_workers (the library's one thread pool): every item once, the result
+// of the serial loop whatever the thread count, exceptions carried to the caller.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <vector>
+
+#include "spline/tessellate/parallel_for.h"
+
+namespace spline {
+namespace {
+
+// A value of i that costs a little and depends on nothing else.
+double item(std::size_t i) {
+  double x = static_cast<double>(i) + 0.5;
+  for (int k = 0; k < 20; ++k) x = std::sin(x) + std::sqrt(x * x + 1.0);
+  return x;
+}
+
+TEST(ParallelFor, GivesTheSerialLoopsResultOnEveryThreadCount) {
+  // Sizes around the block of 64 and the 256 items a thread needs to be worth starting.
+  for (std::size_t count : {0u, 1u, 63u, 64u, 65u, 257u, 1000u, 4099u}) {
+    std::vector<double> serial(count);
+    for (std::size_t i = 0; i < count; ++i) serial[i] = item(i);
+    for (int threads : {1, 2, 3, 0}) {
+      std::vector<double> parallel(count, -1.0);
+      std::vector<int> visits(count, 0);
+      parallel_for(count, threads, [&](std::size_t i) {
+        parallel[i] = item(i);
+        ++visits[i];  // each index belongs to one thread: no race when it is visited once
+      });
+      for (std::size_t i = 0; i < count; ++i) {
+        ASSERT_EQ(visits[i], 1) << "item " << i << " of " << count << ", " << threads;
+        ASSERT_EQ(parallel[i], serial[i]) << "item " << i << " of " << count;  // bit for bit
+      }
+    }
+  }
+}
+
+TEST(ParallelFor, UsesFewerThreadsOnSmallLoops) {
+  EXPECT_EQ(parallel_thread_count(2, 10), 1);
+  EXPECT_EQ(parallel_thread_count(2, 100000), 2);
+  EXPECT_EQ(parallel_thread_count(-3, 0), 1);
+}
+
+TEST(RunWorkers, EveryWorkerRunsOnceAndTheLowestExceptionIsRethrown) {
+  std::vector<int> ran(4, 0);
+  run_workers(4, [&](int t) { ++ran[static_cast<std::size_t>(t)]; });
+  EXPECT_EQ(ran, std::vector<int>(4, 1));
+  EXPECT_THROW(run_workers(3,
+                           [](int t) {
+                             if (t == 1) throw std::invalid_argument("one");
+                             if (t == 2) throw std::runtime_error("two");
+                           }),
+               std::invalid_argument);
+  EXPECT_THROW(parallel_for(5000, 2,
+                            [](std::size_t i) {
+                              if (i == 4321) throw std::runtime_error("item");
+                            }),
+               std::runtime_error);
+}
+
+}  // namespace
+}  // namespace spline
