@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <set>
 #include <string>
 #include <utility>
 
 #include "ricci/mesh/errors.h"
 #include "ricci/metric/geometry.h"
+#include "ricci/util/parallel.h"
 
 namespace ricci {
 namespace {
@@ -179,7 +182,10 @@ bool intrinsic_corner_angles(const IntrinsicTriangulation& tri, const Eigen::Vec
   const int faces = tri.face_count();
   angles.resize(faces, 3);
   if (cotangents) cotangents->resize(faces, 3);
-  for (int f = 0; f < faces; ++f) {
+  std::atomic<bool> valid{true};
+  // Each face writes its own rows: the same result on any number of threads.
+  parallel_for(static_cast<std::size_t>(faces), 0, [&](std::size_t face) {
+    const int f = static_cast<int>(face);
     // l[k] is opposite corner k, the tail of halfedge 3f + k: the edge of halfedge 3f + k + 1.
     double log_l[3];
     for (int k = 0; k < 3; ++k)
@@ -188,13 +194,16 @@ bool intrinsic_corner_angles(const IntrinsicTriangulation& tri, const Eigen::Vec
     const double l[3] = {std::exp(log_l[0] - scale), std::exp(log_l[1] - scale),
                          std::exp(log_l[2] - scale)};
     double theta[3], cosine[3], sine[3];
-    if (!triangle_angles(Geometry::euclidean, l, theta, cosine, sine)) return false;
+    if (!triangle_angles(Geometry::euclidean, l, theta, cosine, sine)) {
+      valid.store(false, std::memory_order_relaxed);
+      return;
+    }
     for (int k = 0; k < 3; ++k) {
       angles(f, k) = theta[k];
       if (cotangents) (*cotangents)(f, k) = cosine[k] / sine[k];
     }
-  }
-  return true;
+  });
+  return valid.load();
 }
 
 Eigen::VectorXd intrinsic_curvature(const IntrinsicTriangulation& tri,

@@ -6,11 +6,14 @@
 #include <map>
 #include <numeric>
 #include <set>
+#include <thread>
+#include <vector>
 
 #include "ricci/flow/linear_solver.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/quality/distortion.h"
+#include "ricci/util/parallel.h"
 #include "ricci/util/stopwatch.h"
 
 namespace ricci {
@@ -121,9 +124,16 @@ class LinearModel {
       for (size_t j = 0; j < count; ++j) rhs(todo[start + j], static_cast<Eigen::Index>(j)) += 1.0;
       const Eigen::MatrixXd green = solver_.solve_columns(rhs);
       solves_ += static_cast<int>(count);
-      for (size_t j = 0; j < count; ++j) {
-        cache_[todo[start + j]] = distortion(u0_ + cone_ * green.col(static_cast<Eigen::Index>(j)));
-      }
+      // Each column's score on one thread (the same sums on any number of threads).
+      std::vector<double> scores(count);
+      const int workers = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
+                                     static_cast<int>(count));
+      run_workers(workers, [&](int t) {
+        for (size_t j = static_cast<size_t>(t); j < count; j += static_cast<size_t>(workers)) {
+          scores[j] = distortion(u0_ + cone_ * green.col(static_cast<Eigen::Index>(j)));
+        }
+      });
+      for (size_t j = 0; j < count; ++j) cache_[todo[start + j]] = scores[j];
     }
     std::vector<double> out;
     out.reserve(vertices.size());

@@ -1,0 +1,67 @@
+#pragma once
+// The project's one thread pool: run_workers (a fixed number of workers, each told its index)
+// and parallel_for on top of it (independent items: per-face angles, the choice's scores,
+// tessellation, projections, assembly). Each item writes its own outputs, so results do not
+// depend on the number of threads. libspline uses it as spline::parallel_for.
+#include <algorithm>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <thread>
+#include <vector>
+
+namespace ricci {
+
+/// Runs work(t) for t = 0..workers-1, each on its own thread (on the calling thread alone when
+/// workers <= 1), and rethrows the exception of the lowest-numbered worker that threw, after all
+/// have joined.
+inline void run_workers(int workers, const std::function<void(int)>& work) {
+  if (workers <= 1) {
+    work(0);
+    return;
+  }
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < workers; ++t) {
+    pool.emplace_back([&, t] {
+      try {
+        work(t);
+      } catch (...) {
+        errors[static_cast<std::size_t>(t)] = std::current_exception();
+      }
+    });
+  }
+  for (auto& th : pool) th.join();
+  for (const auto& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
+/// Threads for `work` items: `requested` (0 = hardware concurrency), fewer for small loops.
+inline int parallel_thread_count(int requested, std::size_t work) {
+  int n = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
+  n = std::max(1, n);
+  // Below a few hundred evaluations a thread costs more than it saves.
+  return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(n), 1 + work / 256));
+}
+
+/// Runs body(i) for i in [0, count) on up to `threads` threads (run_workers), in interleaved
+/// blocks of 64 (neighbouring items share charts and cost about the same); rethrows the first
+/// exception of any thread after all have joined.
+template <class Body>
+void parallel_for(std::size_t count, int threads, const Body& body) {
+  const int n = parallel_thread_count(threads, count);
+  if (n <= 1) {
+    for (std::size_t i = 0; i < count; ++i) body(i);
+    return;
+  }
+  constexpr std::size_t kBlock = 64;
+  run_workers(n, [&](int t) {
+    for (std::size_t start = static_cast<std::size_t>(t) * kBlock; start < count;
+         start += static_cast<std::size_t>(n) * kBlock) {
+      for (std::size_t i = start; i < std::min(count, start + kBlock); ++i) body(i);
+    }
+  });
+}
+
+}  // namespace ricci
