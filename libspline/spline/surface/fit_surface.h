@@ -56,10 +56,12 @@ struct FitSurfaceOptions {
   /// Error goal as a fraction of the input's bounding-box diagonal (0: folds only).
   double tolerance = 0.0;
   /// RMS goal as a fraction of the input's bounding-box diagonal (0: none). When the first
-  /// round's RMS (projection) exceeds it and refinement_rounds > 0, its domain is split around
-  /// the input vertices farther than 2.5 times the goal from the surface and the fit starts again
-  /// on it with the same cone (the fold rounds and refinement follow on that round); a first
-  /// round within the goal costs nothing more.
+  /// round's RMS over its data points (FitResult::rms_at_parameters) passes 0.8 times it, its
+  /// RMS over the input's vertices (projection) is measured; when that exceeds it too and
+  /// refinement_rounds > 0, the domain is split around the input vertices farther than 2.5 times
+  /// the goal from the surface and the fit starts again on it with the same cone (the fold
+  /// rounds and refinement follow on that round). A coarse input's data points are mostly on
+  /// its flat facets, so rounding its corners does not count against the goal.
   double rms_goal = 0.0019;
   /// Fold rounds, after the refinement: while the surface folds, the domain faces within two
   /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with
