@@ -76,6 +76,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   o.fold_rounds = args.get_int("fold-rounds", o.fold_rounds);
   o.adaptive_domain = args.has("adaptive-domain");
   o.tolerance = args.get_double("tolerance", o.tolerance);
+  o.rms_goal = args.get_double("rms-goal", o.rms_goal);
   o.max_surface_deviation = args.get_double("max-deviation", o.max_surface_deviation);
   try {
     spline::check_options(o, [](const std::string& field) {
@@ -151,6 +152,8 @@ const CommandSpec& fit_command() {
        {"smoothing", "LAMBDA", "weight of the thin-plate energy (1e-4)"},
        {"tolerance", "F",
         "refine the domain where the input is farther than F diagonals from the surface (0)"},
+       {"rms-goal", "F",
+        "refine the domain where the fit misses most when its RMS exceeds F diagonals (0.0019)"},
        {"refine-rounds", "N", "domain refinements where the surface folds or misses (1)"},
        {"fold-rounds", "N", "refits with stronger fairing around folds left (4)"},
        {"adaptive-domain", "", "closed scans: a domain denser at detail and thin parts"},

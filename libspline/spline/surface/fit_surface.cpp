@@ -333,6 +333,7 @@ struct Round {
   Eigen::MatrixX3d data_points;  // fit_scan's, for a refit on the same space
   std::vector<DomainPoint> data_parameters;
   FitOptions fit;
+  double fit_rms_at_parameters = 0.0;  // fit_scan's FitResult::rms_at_parameters
 };
 
 // The holes of out.surface (its spline as fit_scan left it) found and, with `patches`, capped;
@@ -383,6 +384,7 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
   round.data_points = std::move(fitted.data_points);
   round.data_parameters = std::move(fitted.data_parameters);
   round.fit = std::move(fitted.fit_options);
+  round.fit_rms_at_parameters = fitted.fit.rms_at_parameters;
   take_scan(std::move(fitted), out);
   finish_round(dense, options, density, false, project, clock, round, out);
   return round;
@@ -791,6 +793,46 @@ void refit_folded_boundary(const ricci::Mesh& dense, const FitSurfaceOptions& op
   adopt_round(std::move(next), out, best);
 }
 
+// The RMS goal (FitSurfaceOptions::rms_goal): the first round is refined around the input
+// vertices farther than this many times the goal from its surface.
+constexpr double kGoalRefineDistance = 2.5;
+// The first round's projection is measured only when the fit's own RMS at its parameters
+// (which the projection can only lower, up to the points fitted that are not input vertices)
+// exceeds this share of the goal: a round well within it costs nothing more.
+constexpr double kGoalCheckShare = 0.8;
+
+// The RMS goal on the first round (`best`, `out`): when its RMS (projection) exceeds
+// options.rms_goal, its domain is split (refine_domain) around the input vertices farther than
+// kGoalRefineDistance times the goal and the whole fit runs again on it with the same cone; that
+// round replaces the first, which goes to `superseded`, and scan keeps the refined domain.
+// Returns whether the first round was measured (projected, its summary and, when refined, the
+// new round's in out.refinement).
+bool refine_to_rms_goal(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                        ScanFitOptions& scan, Round& best, Superseded& superseded,
+                        StageClock& clock, FittedSurface& out) {
+  const double goal = options.rms_goal * out.bbox_diagonal;
+  if (!(goal > 0.0) || options.refinement_rounds == 0 ||
+      !(best.fit_rms_at_parameters > kGoalCheckShare * goal))
+    return false;
+  project_round(dense, clock, best, out);
+  out.refinement.push_back(round_summary(out, best, options));
+  if (!(out.projection_rms > goal)) return true;
+  std::vector<Eigen::Vector3d> where;
+  for (std::size_t v = 0; v < best.vertex_distance.size(); ++v) {
+    if (best.vertex_distance[v] > kGoalRefineDistance * goal)
+      where.push_back(ricci::to_eigen(dense.point(dense.vertex_handle(static_cast<int>(v)))));
+  }
+  if (where.empty()) return true;
+  clock.begin("refine");
+  scan.domain = refine_domain(best.domain, dense, where);
+  scan.boundary_follow.max_rounds = 0;  // the refined domain keeps the followed boundary
+  if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
+  auto next = next_round(dense, scan, options, clock, out);
+  out.refinement.push_back(round_summary(next.first, next.second, options));
+  adopt_round(std::move(next), out, best, &superseded);
+  return true;
+}
+
 }  // namespace
 
 int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
@@ -823,6 +865,8 @@ void check_options(const FitSurfaceOptions& o,
           "in [0, 1) (a fraction of the diagonal; 0: no hole capped)");
   require(o.fold_rms_goal >= 0.0 && o.fold_rms_goal < 1.0, "fold_rms_goal",
           "in [0, 1) (a fraction of the diagonal)");
+  require(o.rms_goal >= 0.0 && o.rms_goal < 1.0, "rms_goal",
+          "in [0, 1) (a fraction of the diagonal; 0: none)");
 }
 
 FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& options) {
@@ -855,18 +899,20 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   }
   scan.progress = [&clock](const std::string& stage) { clock.begin(stage); };
   Round best = fit_round(dense, scan, options, 0, false, clock, out);
+  Superseded superseded;
+  const bool measured = refine_to_rms_goal(dense, options, scan, best, superseded, clock, out);
   // A first round without folds and without a tolerance is the only one (nothing to refine):
   // it is measured once, capped; any other round is measured before the caps, as its
   // successors are.
-  const bool single_round = out.surface_dihedral.over_90_deg == 0 && options.tolerance == 0.0;
-  if (!single_round) {
+  const bool single_round =
+      !measured && out.surface_dihedral.over_90_deg == 0 && options.tolerance == 0.0;
+  if (!single_round && !measured) {
     project_round(dense, clock, best, out);
     out.refinement.push_back(round_summary(out, best, options));
   }
 
   // Refinement: the domain split where the surface folds or misses the input by more than the
   // tolerance, the same cone kept, and the whole fit run again; the best round is delivered.
-  Superseded superseded;
   // Closed inputs that fold, without a tolerance: the fold rounds run first, on the first
   // round. A fold round refits on the same space at a fraction of a refinement round's cost,
   // and the refinement's small new faces can fold more than the first round did (horse.off:

@@ -55,6 +55,14 @@ struct FitSurfaceOptions {
   int refinement_rounds = 1;
   /// Error goal as a fraction of the input's bounding-box diagonal (0: folds only).
   double tolerance = 0.0;
+  /// RMS goal as a fraction of the input's bounding-box diagonal (0: none). When the first
+  /// round's RMS over its data points (FitResult::rms_at_parameters) passes 0.8 times it, its
+  /// RMS over the input's vertices (projection) is measured; when that exceeds it too and
+  /// refinement_rounds > 0, the domain is split around the input vertices farther than 2.5 times
+  /// the goal from the surface and the fit starts again on it with the same cone (the fold
+  /// rounds and refinement follow on that round). A coarse input's data points are mostly on
+  /// its flat facets, so rounding its corners does not count against the goal.
+  double rms_goal = 0.0019;
   /// Fold rounds, after the refinement: while the surface folds, the domain faces within two
   /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with
   /// at least fold_smoothing (FitOptions::smoothing's unit; three times more each further
@@ -89,7 +97,8 @@ struct FitSurfaceOptions {
 /// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64], cone_refinement.levels
 /// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
 /// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1,
-/// crease_fold_rms_growth >= 1, fold_rms_goal in [0, 1), small_hole_diameter in [0, 1). `name`
+/// crease_fold_rms_growth >= 1, fold_rms_goal and rms_goal in [0, 1), small_hole_diameter in
+/// [0, 1). `name`
 /// spells a field (given as "domain_faces", "cone_refinement", ...) the way the caller's user
 /// knows it, e.g. msp fit's
 /// "--domain-faces" (default: the field's own name).
