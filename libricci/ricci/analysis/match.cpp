@@ -277,15 +277,11 @@ std::vector<int> pairing_turns(const Star& a, const Star& b, const std::vector<d
   return turns;
 }
 
-/// Steps 6-7: the disk's boundary on the unit circle (arc j spans extents[j] of the turn,
-/// parametrised by flat arc length), the interior by the mean-value harmonic map of the flat
-/// metric. \throw SolverError when the sparse solve fails.
-Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& extents) {
-  const Mesh& cut = star.sliced.mesh;
-  const int n = static_cast<int>(cut.n_vertices());
-  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
-  std::vector<char> fixed(n, 0);
+/// Step 6: where each vertex of the walk goes on the turn (a fraction in [0, 1)): arc j spans
+/// extents[j], parametrised by flat arc length.
+std::vector<double> star_parameters(const Star& star, const std::vector<double>& extents) {
   const int m = static_cast<int>(star.walk.size());
+  std::vector<double> s(static_cast<size_t>(m));
   double start = 0;
   for (size_t j = 0; j < star.corners.size(); ++j) {
     const int from = star.corners[j];
@@ -293,13 +289,26 @@ Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& ext
     const double length = star.arc[to] - star.arc[from];
     for (int i = from; i < to; ++i) {
       const double t = length > 0 ? (star.arc[i] - star.arc[from]) / length : 0;
-      const double angle = 2 * M_PI * (start + t * extents[j]);
-      x.row(star.walk[i]) << std::cos(angle), std::sin(angle);
-      fixed[star.walk[i]] = 1;
+      s[static_cast<size_t>(i)] = start + t * extents[j];
     }
     start += extents[j];
   }
-  detail::harmonic_fill(cut, star.lengths, fixed, x);
+  return s;
+}
+
+/// Steps 6-7 for B: the disk's boundary on the unit circle at 2 pi times its parameters, the
+/// interior by the mean-value harmonic map of the flat metric.
+/// \throw SolverError when the sparse solve fails.
+Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& parameters) {
+  const int n = static_cast<int>(star.sliced.mesh.n_vertices());
+  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
+  std::vector<char> fixed(n, 0);
+  for (size_t i = 0; i < star.walk.size(); ++i) {
+    const double angle = 2 * M_PI * parameters[i];
+    x.row(star.walk[i]) << std::cos(angle), std::sin(angle);
+    fixed[star.walk[i]] = 1;
+  }
+  detail::harmonic_fill(star.sliced.mesh, star.lengths, fixed, x);
   return x;
 }
 
@@ -670,6 +679,29 @@ void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths, const std::v
   }
 }
 
+Eigen::MatrixX2d fill_inside(const Mesh& cut_a, const Eigen::VectorXd& lengths_a,
+                             const std::vector<int>& walk_a, const std::vector<double>& params_a,
+                             const std::vector<int>& walk_b, const std::vector<double>& params_b,
+                             const Eigen::MatrixX2d& positions_b, double period) {
+  const int n = static_cast<int>(cut_a.n_vertices());
+  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
+  std::vector<char> fixed(n, 0);
+  const size_t m = walk_b.size();
+  size_t j = 0;  // B's side from walk vertex j to j + 1 (mod m) holds the current parameter
+  for (size_t i = 0; i < walk_a.size(); ++i) {
+    const double s = params_a[i];
+    while (j + 1 < m && params_b[j + 1] <= s) ++j;
+    const double from = params_b[j], to = j + 1 < m ? params_b[j + 1] : period;
+    const double t = to > from ? std::clamp((s - from) / (to - from), 0.0, 1.0) : 0.0;
+    const Eigen::RowVector2d p = positions_b.row(walk_b[j]);
+    const Eigen::RowVector2d q = positions_b.row(walk_b[(j + 1) % m]);
+    x.row(walk_a[i]) = t == 0 ? p : p + t * (q - p);
+    fixed[walk_a[i]] = 1;
+  }
+  harmonic_fill(cut_a, lengths_a, fixed, x);
+  return x;
+}
+
 void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
   domain.faces.resize(static_cast<Eigen::Index>(sliced.mesh.n_faces()), 3);
   for (FaceHandle f : sliced.mesh.faces()) {
@@ -680,10 +712,11 @@ void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
 }
 
 void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
-                  const MeshTables& tables_b, MatchResult& result) {
+                  const MeshTables& tables_b, MatchResult& result, bool carry_radially) {
   // Locate every copy of A's vertices in B's domain (phi is the identity there).
   const Locator locator(result.b.positions, result.b.faces);
-  const Eigen::MatrixX2d on_domain_b = radial_onto(result.a, result.b);
+  const Eigen::MatrixX2d on_domain_b =
+      carry_radially ? radial_onto(result.a, result.b) : result.a.positions;
   const Eigen::Index copies = result.a.positions.rows();
   Eigen::MatrixX2d image(copies, 2);
   std::vector<Locator::Hit> hits(static_cast<size_t>(copies));
@@ -879,11 +912,14 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
           extents[j] = 0.25 * (fa[j] + fb[j]) + 0.5 / static_cast<double>(fa.size());
         }
         MatchResult trial = result;
-        trial.a.positions = star_positions(star_a, extents);
-        trial.b.positions = star_positions(star, extents);
+        const std::vector<double> sa = star_parameters(star_a, extents),
+                                  sb = star_parameters(star, extents);
+        trial.b.positions = star_positions(star, sb);
+        trial.a.positions = detail::fill_inside(star_a.sliced.mesh, star_a.lengths, star_a.walk,
+                                                sa, star.walk, sb, trial.b.positions, 1.0);
         trial.b.loop_order = star.loop_order;
         detail::fill_cut_domain(star.sliced, trial.b);
-        detail::evaluate_map(a, b, tables_a, tables_b, trial);
+        detail::evaluate_map(a, b, tables_a, tables_b, trial, false);
         if (best.map.empty() || trial.shape_error < best.shape_error) best = std::move(trial);
       }
     }
@@ -891,7 +927,11 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     result.b.seconds += stage.lap();
     evaluated = true;
   }
-  if (!evaluated) detail::evaluate_map(a, b, tables_a, tables_b, result);
+  // The unit disk's two conformal maps sample the circle at different vertices: A's are carried
+  // radially into B's polygon. The rectangle's sides are straight: A's boundary is on B's.
+  if (!evaluated) {
+    detail::evaluate_map(a, b, tables_a, tables_b, result, result.domain == "unit disk");
+  }
   result.seconds = watch.seconds();
   return result;
 }
