@@ -144,10 +144,11 @@ struct MatchResult {
   /// reversed or degenerate in the parameter domain. The map is one-to-one when both are 0.
   int flipped_faces = 0;
   int flipped_faces_b = 0;
-  /// Faces of A with two sides on its (cut) boundary whose three corners land on one side of
-  /// B's boundary, so that their image is a segment: any map given by vertices flattens such an
-  /// ear (its tip goes to B's boundary between its neighbours' images, and B has no vertex
-  /// there). Not counted in flipped_faces: the rest of the map stays one-to-one.
+  /// Faces of A with their three corners on its (cut) boundary (ears, and faces across a
+  /// corner of the cut) that land on one side of B's boundary, so that their image is a segment
+  /// (within the rounding of the positions): any map given by vertices that covers B's domain
+  /// flattens such a face (its corners go to B's boundary, and B has no vertex between them).
+  /// Not counted in flipped_faces: the rest of the map stays one-to-one.
   int flattened_ears = 0;
   /// Vertices of A that fell outside B's parameter domain (on its boundary, within rounding
   /// or the boundary's chords) and were moved to the nearest point of it.
