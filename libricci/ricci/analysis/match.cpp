@@ -97,9 +97,9 @@ std::vector<HalfedgeHandle> ray_to_loop(const Mesh& mesh, const std::vector<int>
 /// A surface cut along its cone star: the disk, its boundary walk and the walk's arcs.
 struct Star {
   SlicedMesh sliced;
-  Eigen::VectorXd lengths;      ///< Flat lengths by sliced edge.
-  std::vector<int> walk;        ///< The disk's boundary, counter-clockwise, from a copy of p.
-  std::vector<double> arc;      ///< Flat arc length along the walk (walk.size() + 1 entries).
+  Eigen::VectorXd lengths;  ///< Flat lengths by sliced edge.
+  std::vector<int> walk;    ///< The disk's boundary, counter-clockwise, from a copy of p.
+  std::vector<double> arc;  ///< Flat arc length along the walk (walk.size() + 1 entries).
   /// Like arc, but 3D lengths along the rays: the flat metric shrinks them towards the cone
   /// (as r^(theta / 2 pi - 1) for cone angle theta), where flat arc length would crowd the
   /// ray's vertices below the rounding of the unit circle.
