@@ -4,10 +4,12 @@
 #include "ricci/analysis/match.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <Eigen/SparseCore>
@@ -95,20 +97,23 @@ std::vector<HalfedgeHandle> ray_to_loop(const Mesh& mesh, const std::vector<int>
 /// A surface cut along its cone star: the disk, its boundary walk and the walk's arcs.
 struct Star {
   SlicedMesh sliced;
-  Eigen::VectorXd lengths;      ///< Flat lengths by sliced edge.
-  std::vector<int> walk;        ///< The disk's boundary, counter-clockwise, from a copy of p.
-  std::vector<double> arc;      ///< Flat arc length along the walk (walk.size() + 1 entries).
+  Eigen::VectorXd lengths;  ///< Flat lengths by sliced edge.
+  std::vector<int> walk;    ///< The disk's boundary, counter-clockwise, from a copy of p.
+  std::vector<double> arc;  ///< Flat arc length along the walk (walk.size() + 1 entries).
+  /// Like arc, but 3D lengths along the rays: the flat metric shrinks them towards the cone
+  /// (as r^(theta / 2 pi - 1) for cone angle theta), where flat arc length would crowd the
+  /// ray's vertices below the rounding of the unit circle.
+  std::vector<double> param_arc;
   std::vector<int> corners;     ///< Walk positions of the 3 (n + 1) arc ends.
   std::vector<int> loop_order;  ///< Loop rank of each ray, in walk order.
 };
 
-/// Algorithm 8, steps 1-4 and the cut: flow, rays, slice, boundary walk. The rays are taken in
-/// rank order, then (if one is blocked) nearest loop first; `reach_first` swaps the two.
-Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOptions& options,
-               const char* name, ParameterDomain& domain, bool reach_first = false) {
+/// Algorithm 8, steps 1-3: the flat metric with geodesic boundaries and the cone at p.
+/// \throw SolverError when the flow does not converge.
+EdgeLengths cone_flow(const Mesh& mesh, const MeshTables& tables, int p,
+                      const MatchOptions& options, const char* name, ParameterDomain& domain) {
   const int n = tables.num_vertices();
   const int loops = static_cast<int>(tables.boundary_loops.size());
-  const std::vector<int> order = detail::loops_by_length(mesh, tables);
   Targets targets;
   targets.curvature = Eigen::VectorXd::Zero(n);
   // A single vertex of valence ~6 cannot take -2π or less under the inversive-distance
@@ -120,8 +125,20 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
   for (int v : cone) {
     targets.curvature[v] = 2 * M_PI * (2 - loops) / static_cast<double>(cone.size());
   }
-  const FlowResult flat = flow(mesh, targets, options.flow);
+  FlowResult flat = flow(mesh, targets, options.flow);
   detail::record_match_flow(flat, options, name, domain);
+  return std::move(flat.lengths);
+}
+
+/// Algorithm 8, step 4 and the cut: rays, slice, boundary walk, under the flat metric `flat`.
+/// The rays are taken in rank order, then (if one is blocked) nearest loop first;
+/// `reach_first` swaps the two.
+/// \throw TopologyError when the rays cannot be made vertex-disjoint or the cut is not a disk.
+Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const EdgeLengths& flat,
+               const char* name, bool reach_first) {
+  const int n = tables.num_vertices();
+  const int loops = static_cast<int>(tables.boundary_loops.size());
+  const std::vector<int> order = detail::loops_by_length(mesh, tables);
   // Step 4: one ray from p to each loop, longest loop first, vertex-disjoint.
   std::vector<int> loop_of(n, -1);
   for (int k = 0; k < loops; ++k) {
@@ -134,8 +151,8 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
     std::vector<char> none(n, 0);
     none[p] = 1;
     double length = 0;
-    for (HalfedgeHandle h : ray_to_loop(mesh, loop_of, flat.lengths, p, order[rank], none)) {
-      length += flat.lengths[mesh.edge_handle(h).idx()];
+    for (HalfedgeHandle h : ray_to_loop(mesh, loop_of, flat, p, order[rank], none)) {
+      length += flat[mesh.edge_handle(h).idx()];
     }
     reach[rank] = length;
   }
@@ -153,7 +170,7 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
     end_rank.assign(n, -1);
     try {
       for (int rank : ranks) {
-        const auto path = ray_to_loop(mesh, loop_of, flat.lengths, p, order[rank], used);
+        const auto path = ray_to_loop(mesh, loop_of, flat, p, order[rank], used);
         for (HalfedgeHandle h : path) is_cut[mesh.edge_handle(h).idx()] = 1;
         end_rank[mesh.to_vertex_handle(path.back()).idx()] = rank;
       }
@@ -168,7 +185,7 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
   Star star;
   star.sliced = slice_along(mesh, is_cut);
   check_disk(star.sliced, "cone-star cut");
-  star.lengths = sliced_edge_lengths(star.sliced, flat.lengths);
+  star.lengths = sliced_edge_lengths(star.sliced, flat);
   const MeshTables cut_tables = build_mesh_tables(star.sliced.mesh);
   // Face-less halfedges run clockwise: reversed, the surface is on the left.
   std::vector<int> walk(cut_tables.boundary_loops[0].rbegin(), cut_tables.boundary_loops[0].rend());
@@ -206,7 +223,15 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const MatchOpt
     throw TopologyError(std::string(name) + ": the cut disk's boundary is not out-around-back " +
                         "along each ray");
   }
-  domain.loop_order = star.loop_order;
+  const Eigen::VectorXd lengths_3d = sliced_edge_lengths(star.sliced, mesh_edge_lengths(mesh));
+  star.param_arc.assign(m + 1, 0.0);
+  for (int i = 0, j = 0; i < m; ++i) {
+    while (j + 1 < static_cast<int>(star.corners.size()) && star.corners[j + 1] <= i) ++j;
+    const HalfedgeHandle h = star.sliced.mesh.find_halfedge(
+        star.sliced.mesh.vertex_handle(walk[i]), star.sliced.mesh.vertex_handle(walk[(i + 1) % m]));
+    const int e = star.sliced.mesh.edge_handle(h).idx();
+    star.param_arc[i + 1] = star.param_arc[i] + (j % 3 == 1 ? star.lengths[e] : lengths_3d[e]);
+  }
   return star;
 }
 
@@ -232,6 +257,7 @@ Star rotated(const Star& star, int j) {
   for (int i = 0; i < m; ++i) {
     const int from = (i + shift) % m;
     out.arc[i + 1] = out.arc[i] + star.arc[from + 1] - star.arc[from];
+    out.param_arc[i + 1] = out.param_arc[i] + star.param_arc[from + 1] - star.param_arc[from];
   }
   for (int& corner : out.corners) corner = (corner - shift + m) % m;
   std::sort(out.corners.begin(), out.corners.end());
@@ -277,29 +303,39 @@ std::vector<int> pairing_turns(const Star& a, const Star& b, const std::vector<d
   return turns;
 }
 
-/// Steps 6-7: the disk's boundary on the unit circle (arc j spans extents[j] of the turn,
-/// parametrised by flat arc length), the interior by the mean-value harmonic map of the flat
-/// metric. \throw SolverError when the sparse solve fails.
-Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& extents) {
-  const Mesh& cut = star.sliced.mesh;
-  const int n = static_cast<int>(cut.n_vertices());
-  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
-  std::vector<char> fixed(n, 0);
+/// Step 6: where each vertex of the walk goes on the turn (a fraction in [0, 1)): arc j spans
+/// extents[j], parametrised by flat arc length round the loops and by 3D length along the rays
+/// (Star::param_arc).
+std::vector<double> star_parameters(const Star& star, const std::vector<double>& extents) {
   const int m = static_cast<int>(star.walk.size());
+  std::vector<double> s(static_cast<size_t>(m));
   double start = 0;
   for (size_t j = 0; j < star.corners.size(); ++j) {
     const int from = star.corners[j];
     const int to = j + 1 < star.corners.size() ? star.corners[j + 1] : m;
-    const double length = star.arc[to] - star.arc[from];
+    const double length = star.param_arc[to] - star.param_arc[from];
     for (int i = from; i < to; ++i) {
-      const double t = length > 0 ? (star.arc[i] - star.arc[from]) / length : 0;
-      const double angle = 2 * M_PI * (start + t * extents[j]);
-      x.row(star.walk[i]) << std::cos(angle), std::sin(angle);
-      fixed[star.walk[i]] = 1;
+      const double t = length > 0 ? (star.param_arc[i] - star.param_arc[from]) / length : 0;
+      s[static_cast<size_t>(i)] = start + t * extents[j];
     }
     start += extents[j];
   }
-  detail::harmonic_fill(cut, star.lengths, fixed, x);
+  return s;
+}
+
+/// Steps 6-7 for B: the disk's boundary on the unit circle at 2 pi times its parameters, the
+/// interior by the mean-value harmonic map of the flat metric.
+/// \throw SolverError when the sparse solve fails.
+Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& parameters) {
+  const int n = static_cast<int>(star.sliced.mesh.n_vertices());
+  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
+  std::vector<char> fixed(n, 0);
+  for (size_t i = 0; i < star.walk.size(); ++i) {
+    const double angle = 2 * M_PI * parameters[i];
+    x.row(star.walk[i]) << std::cos(angle), std::sin(angle);
+    fixed[star.walk[i]] = 1;
+  }
+  detail::harmonic_fill(star.sliced.mesh, star.lengths, fixed, x);
   return x;
 }
 
@@ -506,12 +542,6 @@ std::map<std::pair<int, int>, int> side_uses(const Eigen::MatrixX3i& faces) {
   return sides;
 }
 
-/// Whether the side from a to b is on the boundary.
-bool on_rim(const std::map<std::pair<int, int>, int>& sides, int a, int b) {
-  const auto it = sides.find({std::min(a, b), std::max(a, b)});
-  return it != sides.end() && it->second == 1;
-}
-
 /// The boundary of a planar triangulation that is star-shaped about `centre` (a convex
 /// domain), as a radial function: the boundary vertices by angle about the centre.
 class RadialBoundary {
@@ -670,6 +700,29 @@ void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths, const std::v
   }
 }
 
+Eigen::MatrixX2d fill_inside(const Mesh& cut_a, const Eigen::VectorXd& lengths_a,
+                             const std::vector<int>& walk_a, const std::vector<double>& params_a,
+                             const std::vector<int>& walk_b, const std::vector<double>& params_b,
+                             const Eigen::MatrixX2d& positions_b, double period) {
+  const int n = static_cast<int>(cut_a.n_vertices());
+  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
+  std::vector<char> fixed(n, 0);
+  const size_t m = walk_b.size();
+  size_t j = 0;  // B's side from walk vertex j to j + 1 (mod m) holds the current parameter
+  for (size_t i = 0; i < walk_a.size(); ++i) {
+    const double s = params_a[i];
+    while (j + 1 < m && params_b[j + 1] <= s) ++j;
+    const double from = params_b[j], to = j + 1 < m ? params_b[j + 1] : period;
+    const double t = to > from ? std::clamp((s - from) / (to - from), 0.0, 1.0) : 0.0;
+    const Eigen::RowVector2d p = positions_b.row(walk_b[j]);
+    const Eigen::RowVector2d q = positions_b.row(walk_b[(j + 1) % m]);
+    x.row(walk_a[i]) = t == 0 ? p : p + t * (q - p);
+    fixed[walk_a[i]] = 1;
+  }
+  harmonic_fill(cut_a, lengths_a, fixed, x);
+  return x;
+}
+
 void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
   domain.faces.resize(static_cast<Eigen::Index>(sliced.mesh.n_faces()), 3);
   for (FaceHandle f : sliced.mesh.faces()) {
@@ -680,10 +733,11 @@ void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain) {
 }
 
 void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
-                  const MeshTables& tables_b, MatchResult& result) {
+                  const MeshTables& tables_b, MatchResult& result, bool carry_radially) {
   // Locate every copy of A's vertices in B's domain (phi is the identity there).
   const Locator locator(result.b.positions, result.b.faces);
-  const Eigen::MatrixX2d on_domain_b = radial_onto(result.a, result.b);
+  const Eigen::MatrixX2d on_domain_b =
+      carry_radially ? radial_onto(result.a, result.b) : result.a.positions;
   const Eigen::Index copies = result.a.positions.rows();
   Eigen::MatrixX2d image(copies, 2);
   std::vector<Locator::Hit> hits(static_cast<size_t>(copies));
@@ -714,21 +768,26 @@ void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
       point.vertices[k] = result.b.to_original_vertex[result.b.faces(hit.face, k)];
     }
   }
-  // A face of A with two sides on its boundary whose image lies flat on one side of B's is a
-  // flattened ear, not a reversal: no map by vertices avoids it (see MatchResult).
-  const std::map<std::pair<int, int>, int> sides_a = side_uses(result.a.faces);
+  // A face of A with its three corners on its boundary whose image lies flat (within the
+  // rounding of the positions) on one side of B's is flattened, not reversed: no map by
+  // vertices avoids it (see MatchResult).
+  std::vector<char> on_boundary(static_cast<size_t>(copies), 0);
+  for (const auto& [side, uses] : side_uses(result.a.faces)) {
+    if (uses == 1) on_boundary[side.first] = on_boundary[side.second] = 1;
+  }
   for (Eigen::Index f = 0; f < result.a.faces.rows(); ++f) {
     const auto& F = result.a.faces;
     const Eigen::Vector2d p[3] = {image.row(F(f, 0)), image.row(F(f, 1)), image.row(F(f, 2))};
     const double area = signed_area(p[0], p[1], p[2]);
     if (area > 0) continue;
     int rim = 0;
-    double longest = 0;
+    double longest = 0, extent = 1;
     for (int k = 0; k < 3; ++k) {
-      rim += on_rim(sides_a, F(f, k), F(f, (k + 1) % 3)) ? 1 : 0;
-      longest = std::max(longest, (p[(k + 1) % 3] - p[k]).squaredNorm());
+      rim += on_boundary[F(f, k)];
+      longest = std::max(longest, (p[(k + 1) % 3] - p[k]).norm());
+      extent = std::max(extent, p[k].lpNorm<Eigen::Infinity>());
     }
-    if (rim == 2 && std::abs(area) <= 1e-12 * longest) {
+    if (rim == 3 && std::abs(area) <= 1e-13 * extent * longest) {
       ++result.flattened_ears;
     } else {
       ++result.flipped_faces;
@@ -829,27 +888,37 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
                            ? options.feature_b
                            : detail::farthest_interior_vertex(
                                  b, tables_b, static_cast<int>(tables_b.boundary_loops.size()));
-    const Star star_a = cone_star(a, tables_a, result.a.feature, options, "A", result.a);
+    const EdgeLengths flat_a = cone_flow(a, tables_a, result.a.feature, options, "A", result.a);
+    const Star star_a = cone_star(a, tables_a, result.a.feature, flat_a, "A", false);
     result.a.seconds = stage.lap();
-    const Star star_b = cone_star(b, tables_b, result.b.feature, options, "B", result.b);
+    const EdgeLengths flat_b = cone_flow(b, tables_b, result.b.feature, options, "B", result.b);
+    const Star star_b = cone_star(b, tables_b, result.b.feature, flat_b, "B", false);
     result.b.seconds = stage.lap();
-    // The stars of B tried against A's, each with the turns that pair the loops: B's own when
-    // the orders agree; else B's rays in both orders, at every turn that pairs loops of about
-    // the same length (rays taken in rank order go round other loops when the ranks differ).
-    std::vector<std::pair<Star, std::vector<int>>> candidates;
+    // The pairs of stars tried, each with the turns of B's star that pair the loops: the two
+    // stars when their orders agree; else each surface's rays in both orders (rank order, or
+    // nearest loop first, which does not depend on the ranks: rays taken in rank order go round
+    // other loops when the ranks differ), at every turn that pairs loops of about the same
+    // length.
+    struct Candidate {
+      const Star* a;
+      const Star* b;
+      std::vector<int> turns;
+    };
+    std::vector<Candidate> candidates;
+    std::optional<Star> reach_a, reach_b;
     if (star_a.loop_order == star_b.loop_order) {
-      candidates.push_back({star_b, {0}});
+      candidates.push_back({&star_a, &star_b, {0}});
     } else if (options.loop_length_tolerance > 0) {
       const std::vector<double> lengths_a = relative_loop_lengths(a, tables_a),
                                 lengths_b = relative_loop_lengths(b, tables_b);
-      ParameterDomain ignored;
-      for (int reach_first = 0; reach_first < 2; ++reach_first) {
-        Star star = reach_first
-                        ? cone_star(b, tables_b, result.b.feature, options, "B", ignored, true)
-                        : star_b;
-        std::vector<int> turns =
-            pairing_turns(star_a, star, lengths_a, lengths_b, options.loop_length_tolerance);
-        if (!turns.empty()) candidates.push_back({std::move(star), std::move(turns)});
+      reach_a = cone_star(a, tables_a, result.a.feature, flat_a, "A", true);
+      reach_b = cone_star(b, tables_b, result.b.feature, flat_b, "B", true);
+      for (const Star* sa : std::array<const Star*, 2>{&star_a, &*reach_a}) {
+        for (const Star* sb : std::array<const Star*, 2>{&star_b, &*reach_b}) {
+          std::vector<int> turns =
+              pairing_turns(*sa, *sb, lengths_a, lengths_b, options.loop_length_tolerance);
+          if (!turns.empty()) candidates.push_back({sa, sb, std::move(turns)});
+        }
       }
     }
     if (candidates.empty()) {
@@ -864,13 +933,13 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
           text(star_a.loop_order) + ") and B (" + text(star_b.loop_order) +
           ") and no turn pairs loops of the same length; choose other feature vertices");
     }
-    const std::vector<double> fa = arc_fractions(star_a);
-    detail::fill_cut_domain(star_a.sliced, result.a);
     result.a.seconds += stage.lap();
     MatchResult best;
-    for (const auto& [candidate, turns] : candidates) {
-      for (int turn : turns) {
-        const Star star = rotated(candidate, turn);
+    for (const Candidate& candidate : candidates) {
+      const Star& star_a_cut = *candidate.a;
+      const std::vector<double> fa = arc_fractions(star_a_cut);
+      for (int turn : candidate.turns) {
+        const Star star = rotated(*candidate.b, turn);
         const std::vector<double> fb = arc_fractions(star);
         std::vector<double> extents(fa.size());
         // Half of the turn by the arcs' mean flat lengths, half evenly: a small hole's arcs keep
@@ -879,11 +948,17 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
           extents[j] = 0.25 * (fa[j] + fb[j]) + 0.5 / static_cast<double>(fa.size());
         }
         MatchResult trial = result;
-        trial.a.positions = star_positions(star_a, extents);
-        trial.b.positions = star_positions(star, extents);
+        const std::vector<double> sa = star_parameters(star_a_cut, extents),
+                                  sb = star_parameters(star, extents);
+        trial.b.positions = star_positions(star, sb);
+        trial.a.positions =
+            detail::fill_inside(star_a_cut.sliced.mesh, star_a_cut.lengths, star_a_cut.walk, sa,
+                                star.walk, sb, trial.b.positions, 1.0);
+        trial.a.loop_order = star_a_cut.loop_order;
         trial.b.loop_order = star.loop_order;
+        detail::fill_cut_domain(star_a_cut.sliced, trial.a);
         detail::fill_cut_domain(star.sliced, trial.b);
-        detail::evaluate_map(a, b, tables_a, tables_b, trial);
+        detail::evaluate_map(a, b, tables_a, tables_b, trial, false);
         if (best.map.empty() || trial.shape_error < best.shape_error) best = std::move(trial);
       }
     }
@@ -891,7 +966,11 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     result.b.seconds += stage.lap();
     evaluated = true;
   }
-  if (!evaluated) detail::evaluate_map(a, b, tables_a, tables_b, result);
+  // The unit disk's two conformal maps sample the circle at different vertices: A's are carried
+  // radially into B's polygon. The rectangle's sides are straight: A's boundary is on B's.
+  if (!evaluated) {
+    detail::evaluate_map(a, b, tables_a, tables_b, result, result.domain == "unit disk");
+  }
   result.seconds = watch.seconds();
   return result;
 }

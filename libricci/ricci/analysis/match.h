@@ -15,23 +15,25 @@
 //               the whole curvature 2 pi chi at a cone on the feature vertex p (steps 1-3), cut
 //               along vertex-disjoint shortest paths (flat metric) from p to each boundary
 //               (step 4), which leaves one disk whose boundary is 3 (n + 1) arcs: out along a
-//               cut, around a boundary loop, back along the cut. Both disks are carried onto the
-//               same convex polygon inscribed in the unit circle, each arc spanning the mean of
-//               its two relative flat lengths and parametrised by flat arc length, by the
-//               harmonic map with mean-value weights of the flat metric (one-to-one onto a
-//               convex polygon: Rado, Floater); phi is the identity of that polygon (steps 6-8
-//               with one convex piece per surface instead of the paper's pieces bounded by
-//               geodesic loops, step 5).
+//               cut, around a boundary loop, back along the cut. B's disk is carried onto a
+//               convex polygon inscribed in the unit circle, each arc spanning the mean of its
+//               two relative flat lengths and parametrised by flat arc length, by the harmonic
+//               map with mean-value weights of the flat metric (one-to-one onto a convex
+//               polygon: Rado, Floater); A's boundary goes onto B's polygon at the same
+//               parameters and A's interior by its own harmonic map, so that A's vertices all
+//               lie in B's domain; phi is the identity there (steps 6-8 with one convex piece
+//               per surface instead of the paper's pieces bounded by geodesic loops, step 5).
 // The hyperbolic method (Algorithm 9):
 //   klein       genus 0, n + 1 >= 3 boundaries: the hyperbolic metric with geodesic boundaries;
 //   polygon     the loops joined into a tree by n shortest paths (Prim's order from c0,
 //               vertex-disjoint), which leaves one disk: a right-angled hyperbolic polygon of
 //               4n sides (the paper cuts pants into right-angled hexagons instead), laid out in
 //               the Poincaré disk and carried to the Klein model, where its sides are chords and
-//               it is convex. A and B are mapped onto B's polygon (its sides bowed out by a
-//               parabola so that no face lies flat on a side): the boundary by hyperbolic arc
-//               length along each side, the interior by the mean-value harmonic map of each
-//               surface's own Klein layout (which it reproduces when the sides are straight).
+//               it is convex. B is mapped onto its polygon (the sides bowed out by a parabola
+//               so that no face lies flat on a side), A onto B's boundary polygon: the boundary
+//               by hyperbolic arc length along each side, the interior by the mean-value
+//               harmonic map of each surface's own Klein layout (which it reproduces when the
+//               sides are straight).
 // Boundary loops are ranked by 3D length (c0 the longest, as for the circle-domain module).
 // Cone star: the loops correspond by rank; the cuts must leave the feature vertex in the same
 // cyclic order of loops on both surfaces, else the loops pair by that order where their
@@ -142,10 +144,11 @@ struct MatchResult {
   /// reversed or degenerate in the parameter domain. The map is one-to-one when both are 0.
   int flipped_faces = 0;
   int flipped_faces_b = 0;
-  /// Faces of A with two sides on its (cut) boundary whose three corners land on one side of
-  /// B's boundary, so that their image is a segment: any map given by vertices flattens such an
-  /// ear (its tip goes to B's boundary between its neighbours' images, and B has no vertex
-  /// there). Not counted in flipped_faces: the rest of the map stays one-to-one.
+  /// Faces of A with their three corners on its (cut) boundary (ears, and faces across a
+  /// corner of the cut) that land on one side of B's boundary, so that their image is a segment
+  /// (within the rounding of the positions): any map given by vertices that covers B's domain
+  /// flattens such a face (its corners go to B's boundary, and B has no vertex between them).
+  /// Not counted in flipped_faces: the rest of the map stays one-to-one.
   int flattened_ears = 0;
   /// Vertices of A that fell outside B's parameter domain (on its boundary, within rounding
   /// or the boundary's chords) and were moved to the nearest point of it.

@@ -233,6 +233,23 @@ Eigen::MatrixX2d polygon_positions(const KleinDisk& disk, const Eigen::MatrixX2d
   return x;
 }
 
+/// The parameter of each walk vertex on the polygon: j + t on side j, t the surface's own
+/// hyperbolic arc length along the side over the side's (as polygon_positions places it).
+std::vector<double> polygon_parameters(const KleinDisk& disk) {
+  const int m = static_cast<int>(disk.walk.size());
+  const int k = static_cast<int>(disk.corners.size());
+  std::vector<double> s(static_cast<size_t>(m));
+  for (int j = 0; j < k; ++j) {
+    const int from = disk.corners[j];
+    const int to = j + 1 < k ? disk.corners[j + 1] : m;
+    const double length = disk.arc[to] - disk.arc[from];
+    for (int i = from; i < to; ++i) {
+      s[static_cast<size_t>(i)] = j + (length > 0 ? (disk.arc[i] - disk.arc[from]) / length : 0);
+    }
+  }
+  return s;
+}
+
 /// The loops' conformal invariants under the hyperbolic metric with geodesic boundaries, loop
 /// order[r] at r: each loop's length and the shortest edge path between two loops.
 struct LoopInvariants {
@@ -412,11 +429,13 @@ void klein_polygon_domains(const Mesh& a, const MeshTables& tables_a, const Mesh
     MatchResult trial = result;
     trial.a.loop_order = disk_a.loop_order;
     trial.b.loop_order = disk_b.loop_order;
-    trial.a.positions = polygon_positions(disk_a, polygon);
-    fill_cut_domain(disk_a.sliced, trial.a);
     trial.b.positions = polygon_positions(disk_b, polygon);
     fill_cut_domain(disk_b.sliced, trial.b);
-    evaluate_map(a, b, tables_a, tables_b, trial);
+    trial.a.positions =
+        fill_inside(disk_a.sliced.mesh, disk_a.chords, disk_a.walk, polygon_parameters(disk_a),
+                    disk_b.walk, polygon_parameters(disk_b), trial.b.positions, k);
+    fill_cut_domain(disk_a.sliced, trial.a);
+    evaluate_map(a, b, tables_a, tables_b, trial, false);
     if (best.map.empty() || trial.shape_error < best.shape_error) best = std::move(trial);
   }
   if (best.map.empty()) {
