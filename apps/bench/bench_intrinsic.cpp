@@ -53,8 +53,7 @@ void print_tracking(const ricci::Mesh& mesh, int cone) {
   const double flow_seconds = flow_clock.seconds();
   const ricci::Stopwatch clock;
   const ricci::IntrinsicCorrespondence map(initial, r.flip_log);
-  std::vector<ricci::TriangulationPoint> points;
-  for (int v = 0; v < initial.vertex_count; ++v) points.push_back(ricci::vertex_point(initial, v));
+  std::vector<ricci::TriangulationPoint> points = ricci::vertex_points(initial);
   for (int f = 0; f < initial.face_count(); ++f)
     points.push_back({f, Eigen::Vector3d::Constant(1.0 / 3.0)});
   const std::vector<ricci::TriangulationPoint> back = map.to_initial(map.to_final(points));

@@ -65,18 +65,23 @@ struct EdgeLetters {
   }
 };
 
+/// Appends the arc crossed (if any) when developing from face(g) across g's edge.
+void cross(const Mesh& mesh, const EdgeLetters& letters, HalfedgeHandle g, ArcWord& word) {
+  const EdgeHandle e = mesh.edge_handle(g);
+  ArcLetter l = letters.letter[e.idx()];
+  if (l.arc >= 0) {
+    // Leaving face(halfedge(e, 0)) multiplies by P_e on the right, the other way by P_e^-1.
+    if (g != mesh.halfedge_handle(e, 0)) l.sign = -l.sign;
+    word.push_back(l);
+  }
+}
+
 /// Develops clockwise around from_vertex(start) from face(start) to face(stop), appending the
 /// arcs crossed to `word`.
 void turn_clockwise(const Mesh& mesh, const EdgeLetters& letters, HalfedgeHandle start,
                     HalfedgeHandle stop, ArcWord& word) {
   for (auto g = start; g != stop;) {
-    const EdgeHandle e = mesh.edge_handle(g);
-    ArcLetter l = letters.letter[e.idx()];
-    if (l.arc >= 0) {
-      // Leaving face(halfedge(e, 0)) multiplies by P_e on the right, the other way by P_e^-1.
-      if (g != mesh.halfedge_handle(e, 0)) l.sign = -l.sign;
-      word.push_back(l);
-    }
+    cross(mesh, letters, g, word);
     g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
   }
 }
@@ -211,12 +216,9 @@ Complex best_frame_centre(const DomainPairings& pairings, const ArcWord& word,
   return best;
 }
 
-}  // namespace
-
-double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
-                            const std::vector<Complex>& candidates) {
-  const ArcWord w = cyclically_reduced(word);
-  const Complex c = best_frame_centre(pairings, w, candidates);
+/// distance_to_identity of the word's product (not reduced) in the frame centred at c,
+/// multiplied in ProductReal.
+double residual_in_frame(const DomainPairings& pairings, const ArcWord& w, Complex c) {
   const MobiusL to_c = MobiusL::from_rotation_point(0.0L, ComplexL(c));
   const MobiusL from_c = to_c.inverse();
   ProductMatrix product;
@@ -226,6 +228,51 @@ double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
                          ProductMatrix(from_c));
   }
   return product.distance_to_identity();
+}
+
+}  // namespace
+
+double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
+                            const std::vector<Complex>& candidates) {
+  const ArcWord w = cyclically_reduced(word);
+  return residual_in_frame(pairings, w, best_frame_centre(pairings, w, candidates));
+}
+
+std::vector<VertexCycle> vertex_cycles(const Mesh& mesh, const CutGraph& cut,
+                                       const SlicedMesh& sliced, const DomainPairings& pairings,
+                                       const Eigen::VectorXcd& positions) {
+  if (positions.size() != static_cast<Eigen::Index>(sliced.mesh.n_vertices()) ||
+      cut.is_cut_edge.size() != mesh.n_edges()) {
+    throw InvalidInputError("vertex_cycles: positions or cut do not match the meshes");
+  }
+  const EdgeLetters letters(mesh, pairings);
+  std::vector<VertexCycle> cycles;
+  for (auto v : mesh.vertices()) {
+    int valence = 0;
+    for (auto e : mesh.ve_range(v)) valence += cut.is_cut_edge[e.idx()] ? 1 : 0;
+    if (valence < 3 || mesh.is_boundary(v)) continue;
+    const HalfedgeHandle start = *mesh.voh_range(v).begin();
+    VertexCycle cycle;
+    cycle.vertex = v.idx();
+    cross(mesh, letters, start, cycle.word);
+    turn_clockwise(mesh, letters, mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(start)),
+                   start, cycle.word);
+    // v's copy in face(start): the corner that prev(start) enters.
+    const int copy =
+        sliced.corner_vertex[static_cast<size_t>(mesh.prev_halfedge_handle(start).idx())];
+    cycle.centre = positions[copy];
+    cycles.push_back(std::move(cycle));
+  }
+  return cycles;
+}
+
+double vertex_cycle_residual(const DomainPairings& pairings,
+                             const std::vector<VertexCycle>& cycles) {
+  double worst = 0.0;
+  for (const VertexCycle& c : cycles) {
+    worst = std::max(worst, residual_in_frame(pairings, c.word, c.centre));
+  }
+  return worst;
 }
 
 ArcWord freely_reduced(const ArcWord& word) {
@@ -335,6 +382,10 @@ HolonomyGroup holonomy_group(const Mesh& mesh, const CutGraph& cut, const Sliced
   }
   group.relation_residual = conditioned_residual(pairings, relation, candidates);
   group.relation_residual_direct = relation_residual(group.generators);
+  if (positions.size() > 0) {
+    group.cycle_residual =
+        vertex_cycle_residual(pairings, vertex_cycles(mesh, cut, sliced, pairings, positions));
+  }
   return group;
 }
 

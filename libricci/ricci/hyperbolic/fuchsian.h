@@ -80,6 +80,31 @@ using ArcWord = std::vector<ArcLetter>;
 [[nodiscard]] double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
                                           const std::vector<Complex>& candidates);
 
+/// A corner of the fundamental domain: a vertex where three or more cut edges meet, the arcs
+/// crossed turning once around it (from the face of its first outgoing halfedge), and the
+/// position of its copy in that face.
+struct VertexCycle {
+  int vertex = -1;
+  ArcWord word;
+  Complex centre{0, 0};
+};
+
+/// The vertex cycles of a closed surface's cut graph, `positions` the layout of the sliced disk.
+/// Poincaré's polygon theorem: together with the side pairings they generate every relation of
+/// the group, Π [a_i, b_i] among them (a product of their conjugates).
+/// 	hrow InvalidInputError for positions or a cut of the wrong size.
+[[nodiscard]] std::vector<VertexCycle> vertex_cycles(const Mesh& mesh, const CutGraph& cut,
+                                                     const SlicedMesh& sliced,
+                                                     const DomainPairings& pairings,
+                                                     const Eigen::VectorXcd& positions);
+
+/// max over the cycles of distance_to_identity of the cycle's product (ProductReal, as
+/// conditioned_residual) in the frame centred at its vertex's copy: each cycle's defect where
+/// it lives (its curvature error, the layout's local error), which no conjugation by a long
+/// word amplifies.
+[[nodiscard]] double vertex_cycle_residual(const DomainPairings& pairings,
+                                           const std::vector<VertexCycle>& cycles);
+
 /// The product of the arcs' pairings along `word`, left to right (multiplied in extended
 /// precision from the precise pairings, rounded to double at the end).
 [[nodiscard]] Mobius evaluate(const DomainPairings& pairings, const ArcWord& word);
@@ -120,6 +145,10 @@ struct HolonomyGroup {
   /// The same product multiplied from the generator matrices as they are (rounding of long
   /// products of large matrices included).
   double relation_residual_direct = 0.0;
+  /// vertex_cycle_residual of the domain's corners (0 without positions): the relations'
+  /// defect in the frames where they live. relation_residual is this amplified by the
+  /// conjugating words, up to the square of their norms (e^d for words that move by d).
+  double cycle_residual = 0.0;
 };
 
 /// Loop holonomies, the polygon word and the canonical generators as its words. `positions`

@@ -144,6 +144,22 @@ TriangulationPoint vertex_point(const IntrinsicTriangulation& tri, int v) {
   return p;
 }
 
+std::vector<TriangulationPoint> vertex_points(const IntrinsicTriangulation& tri) {
+  std::vector<TriangulationPoint> points(static_cast<size_t>(tri.vertex_count));
+  for (size_t slot = tri.tail.size(); slot-- > 0;) {
+    TriangulationPoint& p = points[static_cast<size_t>(tri.tail[slot])];
+    p.face = static_cast<int>(slot / 3);
+    p.weights = Eigen::Vector3d::Zero();
+    p.weights[static_cast<Eigen::Index>(slot % 3)] = 1.0;
+  }
+  for (size_t v = 0; v < points.size(); ++v) {
+    if (points[v].face < 0) {
+      throw InvalidInputError("intrinsic point: vertex " + std::to_string(v) + " has no face");
+    }
+  }
+  return points;
+}
+
 Eigen::Vector3d point_position(const IntrinsicTriangulation& tri, const Eigen::MatrixX3d& positions,
                                const TriangulationPoint& point) {
   check_face(tri, point.face);

@@ -50,9 +50,13 @@ struct TriangulationPoint {
                                                       const Eigen::Vector3d& barycentric,
                                                       const Eigen::VectorXd& u);
 
-/// The point at vertex v: weight 1 at a corner of v. \throw InvalidInputError for v out of
-/// range.
+/// The point at vertex v: weight 1 at a corner of v (a search of the corners: vertex_points for
+/// all of them). \throw InvalidInputError for v out of range or without a face.
 [[nodiscard]] TriangulationPoint vertex_point(const IntrinsicTriangulation& tri, int v);
+
+/// vertex_point of every vertex, by vertex index, in one pass over the corners.
+/// \throw InvalidInputError for a vertex without a face.
+[[nodiscard]] std::vector<TriangulationPoint> vertex_points(const IntrinsicTriangulation& tri);
 
 /// The point's 3D position when tri's faces are flat triangles between `positions` (#V by 3),
 /// as make_intrinsic_triangulation's faces are the input mesh's: sum_k weights_k x(corner k).

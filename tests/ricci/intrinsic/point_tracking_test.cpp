@@ -129,7 +129,7 @@ TEST(PointTracking, GenusFourFlowKeepsEveryPointAndVertex) {
 
   std::vector<TriangulationPoint> points = face_points(initial, 4);
   const size_t first_vertex = points.size();
-  for (int v = 0; v < initial.vertex_count; ++v) points.push_back(ricci::vertex_point(initial, v));
+  for (const TriangulationPoint& p : ricci::vertex_points(initial)) points.push_back(p);
   const std::vector<TriangulationPoint> on_final = map.to_final(points);
   const std::vector<TriangulationPoint> back = map.to_initial(on_final);
 
@@ -196,6 +196,12 @@ TEST(PointTracking, RefusesBadFlipsAndPoints) {
                ricci::InvalidInputError);
   EXPECT_THROW((void)map.to_initial({{0, Eigen::Vector3d(0, 0, 0)}}), ricci::InvalidInputError);
   EXPECT_THROW((void)ricci::vertex_point(tri, -1), ricci::InvalidInputError);
+  const std::vector<TriangulationPoint> corners = ricci::vertex_points(tri);
+  for (int v = 0; v < tri.vertex_count; v += 7) {  // both find a corner of v
+    const TriangulationPoint p = ricci::vertex_point(tri, v), q = corners[static_cast<size_t>(v)];
+    EXPECT_EQ(ricci::point_position(tri, Eigen::MatrixX3d::Identity(tri.vertex_count, 3), p),
+              ricci::point_position(tri, Eigen::MatrixX3d::Identity(tri.vertex_count, 3), q));
+  }
 }
 
 }  // namespace
