@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "ricci/hyperbolic/mobius.h"
+#include "ricci/hyperbolic/mobius_q.h"
 #include "ricci/metric/geometry.h"
 #include "ricci/topology/cut_graph.h"
 #include "ricci/topology/polygon_word.h"
@@ -30,6 +31,9 @@ struct CutArc {
   /// `pairing` in extended precision: the relator residuals and the generators are multiplied
   /// from these (long words of large matrices amplify double rounding to 1e-8 on genus 4).
   MobiusL precise_pairing;
+  /// `pairing` in quad precision, from the layout's quad positions when given (else
+  /// precise_pairing): the residuals and the generators are multiplied from these.
+  MobiusQ quad_pairing;
   /// max over the arc's edges of mobius_distance(edge map, first edge map): the paper's
   /// "generators from different edges of the same side agree" check.
   double spread = 0.0;
@@ -47,13 +51,15 @@ struct DomainPairings {
 /// Pairings of every cut edge from the layout of the sliced disk (positions by sliced vertex
 /// index; in the disk for hyperbolic, the plane for euclidean), grouped into arcs.
 /// `precise_positions` (optional, the same in extended precision, e.g. from layout_h2) are used
-/// instead of `positions` when given.
+/// instead of `positions` when given, and `quad_positions` (optional, quad precision, hyperbolic
+/// only) instead of both.
 /// \pre `sliced` is `mesh` cut along `cut.is_cut_edge`, closed mesh; geometry is hyperbolic or
 ///      euclidean. \throw InvalidInputError for the spherical geometry or a size mismatch.
 [[nodiscard]] DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut,
                                              const SlicedMesh& sliced,
                                              const Eigen::VectorXcd& positions, Geometry geometry,
-                                             const std::vector<ComplexL>& precise_positions = {});
+                                             const std::vector<ComplexL>& precise_positions = {},
+                                             const std::vector<ComplexQ>& quad_positions = {});
 
 /// A letter of a word in the arcs' pairings: arcs[arc].pairing^sign.
 struct ArcLetter {
