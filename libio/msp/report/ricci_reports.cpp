@@ -220,6 +220,7 @@ nlohmann::json uniformize_report_json(const std::string& path, const ricci::Mesh
   } else {
     j["polygon_residual"] = u.group.polygon_residual;
     j["relation_residual_direct"] = u.group.relation_residual_direct;
+    j["cycle_residual"] = u.group.cycle_residual;
     j["side_spread"] = u.pairings.max_spread;
     if (u.geometry == ricci::Geometry::hyperbolic) {
       j["polish"] = {{"curvature_error_before", u.polish.error_before},

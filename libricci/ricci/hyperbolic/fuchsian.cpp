@@ -65,18 +65,23 @@ struct EdgeLetters {
   }
 };
 
+/// Appends the arc crossed (if any) when developing from face(g) across g's edge.
+void cross(const Mesh& mesh, const EdgeLetters& letters, HalfedgeHandle g, ArcWord& word) {
+  const EdgeHandle e = mesh.edge_handle(g);
+  ArcLetter l = letters.letter[e.idx()];
+  if (l.arc >= 0) {
+    // Leaving face(halfedge(e, 0)) multiplies by P_e on the right, the other way by P_e^-1.
+    if (g != mesh.halfedge_handle(e, 0)) l.sign = -l.sign;
+    word.push_back(l);
+  }
+}
+
 /// Develops clockwise around from_vertex(start) from face(start) to face(stop), appending the
 /// arcs crossed to `word`.
 void turn_clockwise(const Mesh& mesh, const EdgeLetters& letters, HalfedgeHandle start,
                     HalfedgeHandle stop, ArcWord& word) {
   for (auto g = start; g != stop;) {
-    const EdgeHandle e = mesh.edge_handle(g);
-    ArcLetter l = letters.letter[e.idx()];
-    if (l.arc >= 0) {
-      // Leaving face(halfedge(e, 0)) multiplies by P_e on the right, the other way by P_e^-1.
-      if (g != mesh.halfedge_handle(e, 0)) l.sign = -l.sign;
-      word.push_back(l);
-    }
+    cross(mesh, letters, g, word);
     g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
   }
 }
@@ -85,19 +90,23 @@ void turn_clockwise(const Mesh& mesh, const EdgeLetters& letters, HalfedgeHandle
 
 DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const SlicedMesh& sliced,
                                const Eigen::VectorXcd& positions, Geometry geometry,
-                               const std::vector<ComplexL>& precise_positions) {
+                               const std::vector<ComplexL>& precise_positions,
+                               const std::vector<ComplexQ>& quad_positions) {
   if (geometry == Geometry::spherical) {
     throw InvalidInputError("domain_pairings: the sphere has no side pairings");
   }
   if (positions.size() != static_cast<Eigen::Index>(sliced.mesh.n_vertices()) ||
       cut.is_cut_edge.size() != mesh.n_edges() ||
-      (!precise_positions.empty() && precise_positions.size() != sliced.mesh.n_vertices())) {
+      (!precise_positions.empty() && precise_positions.size() != sliced.mesh.n_vertices()) ||
+      (!quad_positions.empty() &&
+       (quad_positions.size() != sliced.mesh.n_vertices() || geometry != Geometry::hyperbolic))) {
     throw InvalidInputError("domain_pairings: positions or cut do not match the meshes");
   }
   DomainPairings result;
   result.is_cut_edge = cut.is_cut_edge;
   result.edge_pairing.assign(mesh.n_edges(), Mobius::identity());
   std::vector<MobiusL> precise_edge_pairing(mesh.n_edges());
+  std::vector<MobiusQ> quad_edge_pairing(mesh.n_edges());
   auto position = [&](VertexHandle v) {
     return precise_positions.empty() ? ComplexL(positions[v.idx()])
                                      : precise_positions[static_cast<size_t>(v.idx())];
@@ -109,7 +118,18 @@ DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const Slic
     // side[1] runs the other way (to -> from of the original halfedge 0).
     const ComplexL y1 = position(sm.from_vertex_handle(s.side[1]));
     const ComplexL x1 = position(sm.to_vertex_handle(s.side[1]));
-    precise_edge_pairing[s.edge.idx()] = pair_segments(x0, y0, x1, y1, geometry);
+    MobiusQ& quad = quad_edge_pairing[s.edge.idx()];
+    if (quad_positions.empty()) {
+      quad = MobiusQ(pair_segments(x0, y0, x1, y1, geometry));
+    } else {
+      const auto q = [&](HalfedgeHandle h, bool from) {
+        const VertexHandle v = from ? sm.from_vertex_handle(h) : sm.to_vertex_handle(h);
+        return quad_positions[static_cast<size_t>(v.idx())];
+      };
+      quad = disk_to_centre_q(q(s.side[0], true), q(s.side[0], false)).inverse() *
+             disk_to_centre_q(q(s.side[1], false), q(s.side[1], true));
+    }
+    precise_edge_pairing[s.edge.idx()] = quad.to_long();
     result.edge_pairing[s.edge.idx()] = precise_edge_pairing[s.edge.idx()].to_double();
   }
   result.arcs = trace_arcs(mesh, cut.is_cut_edge);
@@ -118,17 +138,19 @@ DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const Slic
     loop_of_edge[mesh.edge_handle(cut.loops[i].generator).idx()] = static_cast<int>(i);
   }
   for (CutArc& arc : result.arcs) {
-    std::vector<MobiusL> maps;
+    std::vector<MobiusQ> maps;
     for (auto h : arc.halfedges) {
       const EdgeHandle e = mesh.edge_handle(h);
       if (loop_of_edge[e.idx()] >= 0) arc.loop = loop_of_edge[e.idx()];
-      const MobiusL& m = precise_edge_pairing[e.idx()];
+      const MobiusQ& m = quad_edge_pairing[e.idx()];
       maps.push_back(h == mesh.halfedge_handle(e, 0) ? m : m.inverse());
     }
-    for (const MobiusL& m : maps) {
-      arc.spread = std::max(arc.spread, mobius_distance(m.to_double(), maps[0].to_double()));
+    const Mobius first = maps[0].to_long().to_double();
+    for (const MobiusQ& m : maps) {
+      arc.spread = std::max(arc.spread, mobius_distance(m.to_long().to_double(), first));
     }
-    arc.precise_pairing = mobius_mean(maps.data(), static_cast<int>(maps.size()));
+    arc.quad_pairing = mobius_mean_q(maps.data(), static_cast<int>(maps.size()));
+    arc.precise_pairing = arc.quad_pairing.to_long();
     arc.pairing = arc.precise_pairing.to_double();
     result.max_spread = std::max(result.max_spread, arc.spread);
   }
@@ -137,11 +159,7 @@ DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const Slic
 
 namespace {
 
-#ifdef __SIZEOF_FLOAT128__
-__extension__ typedef __float128 ProductReal;  // 113-bit mantissa, software arithmetic
-#else
-typedef long double ProductReal;
-#endif
+typedef RealQ ProductReal;  // 113-bit mantissa, software arithmetic (mobius_q.h)
 
 /// A 2x2 complex matrix in ProductReal: the relators are multiplied in it. Their partial
 /// products reach norm ~1e6 on elephant_cgal, and the rounding of each product, amplified by
@@ -155,6 +173,15 @@ struct ProductMatrix {
       for (int j = 0; j < 2; ++j) {
         re[i][j] = a.m(i, j).real();
         im[i][j] = a.m(i, j).imag();
+      }
+    }
+  }
+  explicit ProductMatrix(const MobiusQ& a) {
+    const ComplexQ* entries[2][2] = {{&a.a, &a.b}, {&a.c, &a.d}};
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        re[i][j] = entries[i][j]->re;
+        im[i][j] = entries[i][j]->im;
       }
     }
   }
@@ -211,21 +238,64 @@ Complex best_frame_centre(const DomainPairings& pairings, const ArcWord& word,
   return best;
 }
 
+/// distance_to_identity of the word's product (not reduced) in the frame centred at c,
+/// multiplied in ProductReal.
+double residual_in_frame(const DomainPairings& pairings, const ArcWord& w, Complex c) {
+  // Determinant 1 in quad precision, and from_c its exact inverse (the adjugate).
+  const MobiusQ to_c = MobiusQ(MobiusL::from_rotation_point(0.0L, ComplexL(c))).normalised();
+  const MobiusQ from_c = to_c.inverse();
+  ProductMatrix product;
+  for (const ArcLetter& l : w) {
+    const MobiusQ& m = pairings.arcs[static_cast<size_t>(l.arc)].quad_pairing;
+    product = product * (ProductMatrix(to_c) * ProductMatrix(l.sign > 0 ? m : m.inverse()) *
+                         ProductMatrix(from_c));
+  }
+  return product.distance_to_identity();
+}
+
 }  // namespace
 
 double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
                             const std::vector<Complex>& candidates) {
   const ArcWord w = cyclically_reduced(word);
-  const Complex c = best_frame_centre(pairings, w, candidates);
-  const MobiusL to_c = MobiusL::from_rotation_point(0.0L, ComplexL(c));
-  const MobiusL from_c = to_c.inverse();
-  ProductMatrix product;
-  for (const ArcLetter& l : w) {
-    const MobiusL& m = pairings.arcs[static_cast<size_t>(l.arc)].precise_pairing;
-    product = product * (ProductMatrix(to_c) * ProductMatrix(l.sign > 0 ? m : m.inverse()) *
-                         ProductMatrix(from_c));
+  return residual_in_frame(pairings, w, best_frame_centre(pairings, w, candidates));
+}
+
+std::vector<VertexCycle> vertex_cycles(const Mesh& mesh, const CutGraph& cut,
+                                       const SlicedMesh& sliced, const DomainPairings& pairings,
+                                       const Eigen::VectorXcd& positions) {
+  if (positions.size() != static_cast<Eigen::Index>(sliced.mesh.n_vertices()) ||
+      cut.is_cut_edge.size() != mesh.n_edges()) {
+    throw InvalidInputError("vertex_cycles: positions or cut do not match the meshes");
   }
-  return product.distance_to_identity();
+  const EdgeLetters letters(mesh, pairings);
+  std::vector<VertexCycle> cycles;
+  for (auto v : mesh.vertices()) {
+    int valence = 0;
+    for (auto e : mesh.ve_range(v)) valence += cut.is_cut_edge[e.idx()] ? 1 : 0;
+    if (valence < 3 || mesh.is_boundary(v)) continue;
+    const HalfedgeHandle start = *mesh.voh_range(v).begin();
+    VertexCycle cycle;
+    cycle.vertex = v.idx();
+    cross(mesh, letters, start, cycle.word);
+    turn_clockwise(mesh, letters, mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(start)),
+                   start, cycle.word);
+    // v's copy in face(start): the corner that prev(start) enters.
+    const int copy =
+        sliced.corner_vertex[static_cast<size_t>(mesh.prev_halfedge_handle(start).idx())];
+    cycle.centre = positions[copy];
+    cycles.push_back(std::move(cycle));
+  }
+  return cycles;
+}
+
+double vertex_cycle_residual(const DomainPairings& pairings,
+                             const std::vector<VertexCycle>& cycles) {
+  double worst = 0.0;
+  for (const VertexCycle& c : cycles) {
+    worst = std::max(worst, residual_in_frame(pairings, c.word, c.centre));
+  }
+  return worst;
 }
 
 ArcWord freely_reduced(const ArcWord& word) {
@@ -252,12 +322,12 @@ ArcWord cyclically_reduced(const ArcWord& word) {
 }
 
 Mobius evaluate(const DomainPairings& pairings, const ArcWord& word) {
-  MobiusL product;
+  MobiusQ product;
   for (const ArcLetter& l : word) {
-    const MobiusL& m = pairings.arcs.at(static_cast<size_t>(l.arc)).precise_pairing;
+    const MobiusQ& m = pairings.arcs.at(static_cast<size_t>(l.arc)).quad_pairing;
     product = product * (l.sign > 0 ? m : m.inverse());
   }
-  return MobiusL::from_matrix(product.m).to_double();
+  return product.to_long().to_double();
 }
 
 std::vector<ArcWord> loop_arc_words(const Mesh& mesh, const CutGraph& cut,
@@ -335,6 +405,10 @@ HolonomyGroup holonomy_group(const Mesh& mesh, const CutGraph& cut, const Sliced
   }
   group.relation_residual = conditioned_residual(pairings, relation, candidates);
   group.relation_residual_direct = relation_residual(group.generators);
+  if (positions.size() > 0) {
+    group.cycle_residual =
+        vertex_cycle_residual(pairings, vertex_cycles(mesh, cut, sliced, pairings, positions));
+  }
   return group;
 }
 

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "ricci/hyperbolic/mobius.h"
+#include "ricci/hyperbolic/mobius_q.h"
 #include "ricci/metric/geometry.h"
 #include "ricci/topology/cut_graph.h"
 #include "ricci/topology/polygon_word.h"
@@ -30,6 +31,9 @@ struct CutArc {
   /// `pairing` in extended precision: the relator residuals and the generators are multiplied
   /// from these (long words of large matrices amplify double rounding to 1e-8 on genus 4).
   MobiusL precise_pairing;
+  /// `pairing` in quad precision, from the layout's quad positions when given (else
+  /// precise_pairing): the residuals and the generators are multiplied from these.
+  MobiusQ quad_pairing;
   /// max over the arc's edges of mobius_distance(edge map, first edge map): the paper's
   /// "generators from different edges of the same side agree" check.
   double spread = 0.0;
@@ -47,13 +51,15 @@ struct DomainPairings {
 /// Pairings of every cut edge from the layout of the sliced disk (positions by sliced vertex
 /// index; in the disk for hyperbolic, the plane for euclidean), grouped into arcs.
 /// `precise_positions` (optional, the same in extended precision, e.g. from layout_h2) are used
-/// instead of `positions` when given.
+/// instead of `positions` when given, and `quad_positions` (optional, quad precision, hyperbolic
+/// only) instead of both.
 /// \pre `sliced` is `mesh` cut along `cut.is_cut_edge`, closed mesh; geometry is hyperbolic or
 ///      euclidean. \throw InvalidInputError for the spherical geometry or a size mismatch.
 [[nodiscard]] DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut,
                                              const SlicedMesh& sliced,
                                              const Eigen::VectorXcd& positions, Geometry geometry,
-                                             const std::vector<ComplexL>& precise_positions = {});
+                                             const std::vector<ComplexL>& precise_positions = {},
+                                             const std::vector<ComplexQ>& quad_positions = {});
 
 /// A letter of a word in the arcs' pairings: arcs[arc].pairing^sign.
 struct ArcLetter {
@@ -79,6 +85,31 @@ using ArcWord = std::vector<ArcLetter>;
 /// compiler has none): in long double the conjugation's rounding left 2e-8 on elephant_cgal.
 [[nodiscard]] double conditioned_residual(const DomainPairings& pairings, const ArcWord& word,
                                           const std::vector<Complex>& candidates);
+
+/// A corner of the fundamental domain: a vertex where three or more cut edges meet, the arcs
+/// crossed turning once around it (from the face of its first outgoing halfedge), and the
+/// position of its copy in that face.
+struct VertexCycle {
+  int vertex = -1;
+  ArcWord word;
+  Complex centre{0, 0};
+};
+
+/// The vertex cycles of a closed surface's cut graph, `positions` the layout of the sliced disk.
+/// Poincaré's polygon theorem: together with the side pairings they generate every relation of
+/// the group, Π [a_i, b_i] among them (a product of their conjugates).
+/// 	hrow InvalidInputError for positions or a cut of the wrong size.
+[[nodiscard]] std::vector<VertexCycle> vertex_cycles(const Mesh& mesh, const CutGraph& cut,
+                                                     const SlicedMesh& sliced,
+                                                     const DomainPairings& pairings,
+                                                     const Eigen::VectorXcd& positions);
+
+/// max over the cycles of distance_to_identity of the cycle's product (ProductReal, as
+/// conditioned_residual) in the frame centred at its vertex's copy: each cycle's defect where
+/// it lives (its curvature error, the layout's local error), which no conjugation by a long
+/// word amplifies.
+[[nodiscard]] double vertex_cycle_residual(const DomainPairings& pairings,
+                                           const std::vector<VertexCycle>& cycles);
 
 /// The product of the arcs' pairings along `word`, left to right (multiplied in extended
 /// precision from the precise pairings, rounded to double at the end).
@@ -120,6 +151,10 @@ struct HolonomyGroup {
   /// The same product multiplied from the generator matrices as they are (rounding of long
   /// products of large matrices included).
   double relation_residual_direct = 0.0;
+  /// vertex_cycle_residual of the domain's corners (0 without positions): the relations'
+  /// defect in the frames where they live. relation_residual is this amplified by the
+  /// conjugating words, up to the square of their norms (e^d for words that move by d).
+  double cycle_residual = 0.0;
 };
 
 /// Loop holonomies, the polygon word and the canonical generators as its words. `positions`

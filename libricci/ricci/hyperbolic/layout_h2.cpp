@@ -110,13 +110,16 @@ LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
   // placing each vertex from its two already-placed neighbours (whose rounding is amplified by
   // the ratio of the triangle's sides at every step, a product that grows along a long front),
   // the frames only accumulate one rounding per step.
+  // The frames are composed in quad precision: a frame reaching distance d has entries ~e^{d/2}
+  // and keeps its image exact only to eps e^d (mobius_q.h).
   struct Item {
     HalfedgeHandle h;
-    MobiusL frame;
+    MobiusQ frame;
   };
   const FaceHandle seed(result.seed_face);
   result.precise_positions.assign(mesh.n_vertices(), ComplexL(NAN, NAN));
-  std::deque<Item> queue{{mesh.halfedge_handle(seed), MobiusL()}};
+  result.quad_positions.assign(mesh.n_vertices(), ComplexQ());
+  std::deque<Item> queue{{mesh.halfedge_handle(seed), MobiusQ()}};
   reached[seed.idx()] = 1;
   int reached_count = 1;
   while (!queue.empty()) {
@@ -126,8 +129,10 @@ LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
     for (int k = 0; k < 3; ++k) {
       const int v = mesh.from_vertex_handle(c.h[k]).idx();
       if (!placed[v]) {
-        result.precise_positions[static_cast<size_t>(v)] = item.frame(c.z[k]);
-        result.positions[v] = Complex(result.precise_positions[static_cast<size_t>(v)]);
+        const ComplexQ z = item.frame(ComplexQ(c.z[k]));
+        result.quad_positions[static_cast<size_t>(v)] = z;
+        result.precise_positions[static_cast<size_t>(v)] = z.to_long();
+        result.positions[v] = Complex(z.to_long());
         placed[v] = 1;
       }
     }
@@ -139,7 +144,7 @@ LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
       // In the neighbour's frame for o, from(o) = to(h_k) is at 0 and to(o) = from(h_k) on the
       // positive axis: the map from that frame into ours is the inverse of disk_to_centre.
       const MobiusL into_ours = disk_to_centre(c.z[(k + 1) % 3], c.z[k]).inverse();
-      queue.push_back({o, MobiusL::from_matrix((item.frame * into_ours).m)});
+      queue.push_back({o, (item.frame * MobiusQ(into_ours)).normalised()});
     }
   }
   if (reached_count != static_cast<int>(mesh.n_faces())) {

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "ricci/hyperbolic/mobius.h"
+#include "ricci/hyperbolic/mobius_q.h"
 #include "ricci/hyperbolic/polish_h2.h"
 #include "ricci/mesh/mesh.h"
 
@@ -33,6 +34,9 @@ struct LayoutH2Result {
   /// are computed from these, since rounding a coordinate near the rim to double moves it by
   /// ~1e-14 in hyperbolic distance, which the generators' long words amplify.
   std::vector<ComplexL> precise_positions;
+  /// The same in quad precision (frames are composed in it, mobius_q.h): the side pairings of
+  /// domains reaching far towards the rim (genus >= 6) are computed from these.
+  std::vector<ComplexQ> quad_positions;
   int seed_face = -1;
   /// Smallest signed (Euclidean) area of a face's vertex triangle: positive = counter-clockwise,
   /// which for the disk's geodesic triangles is the hyperbolic orientation too.

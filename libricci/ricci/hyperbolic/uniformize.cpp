@@ -65,7 +65,7 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   t.restart();
   if (u.geometry == Geometry::hyperbolic) {
     u.pairings = domain_pairings(u.surface, u.cut, u.sliced, u.positions, u.geometry,
-                                 u.layout.precise_positions);
+                                 u.layout.precise_positions, u.layout.quad_positions);
     u.group = holonomy_group(u.surface, u.cut, u.sliced, u.pairings, u.positions);
   } else {
     // Translations carry the unit of length; the residuals are taken on the domain scaled to
@@ -80,6 +80,8 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
     for (CutArc& a : u.pairings.arcs) {
       back(a.pairing);
       a.precise_pairing = MobiusL(to_mesh) * a.precise_pairing * MobiusL(to_mesh.inverse());
+      a.quad_pairing =
+          MobiusQ(MobiusL(to_mesh)) * a.quad_pairing * MobiusQ(MobiusL(to_mesh.inverse()));
     }
     for (Mobius& m : u.group.loop_holonomy) back(m);
     for (Mobius& m : u.group.generators) back(m);

@@ -77,11 +77,14 @@ struct Evaluation {
   Eigen::VectorXd curvature;
 };
 
+// Flips (when `flip`) are counted in and appended to result's flips and flip_log.
 bool evaluate(IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
-              const IntrinsicFlowOptions& options, bool flip, Evaluation& eval, int& flips) {
+              const IntrinsicFlowOptions& options, bool flip, Evaluation& eval,
+              IntrinsicFlowResult& result) {
   if (flip) {
-    const DelaunayFlipResult flipped = flip_to_delaunay(tri, u, options.delaunay_margin);
-    flips += flipped.flips;
+    const DelaunayFlipResult flipped =
+        flip_to_delaunay(tri, u, options.delaunay_margin, 200.0, &result.flip_log);
+    result.flips += flipped.flips;
     if (!flipped.delaunay) return false;
   }
   if (!intrinsic_corner_angles(tri, u, eval.angles, &eval.cotangents)) return false;
@@ -200,7 +203,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     for (int trial_count = 0; trial_count <= options.max_step_halvings; ++trial_count) {
       const Eigen::VectorXd trial = result.u + step * direction;
       Evaluation trial_eval;
-      if (!evaluate(tri, trial, options, flip, trial_eval, result.flips)) {
+      if (!evaluate(tri, trial, options, flip, trial_eval, result)) {
         step *= 0.5;
         continue;
       }
@@ -221,7 +224,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     result.timings.evaluation += clock.seconds();
     if (!accepted) {
       Evaluation back;  // leave the triangulation Delaunay at the last accepted u
-      evaluate(tri, result.u, options, flip, back, result.flips);
+      evaluate(tri, result.u, options, flip, back, result);
       reason = "the line search found no decrease";
       return FlowStatus::stalled;
     }
@@ -263,7 +266,7 @@ IntrinsicFlowResult intrinsic_conformal_flow(IntrinsicTriangulation initial,
   result.solver = resolve_linear_solver(options.solver, n - 1);
 
   Evaluation eval;
-  if (!evaluate(result.triangulation, result.u, options, true, eval, result.flips)) {
+  if (!evaluate(result.triangulation, result.u, options, true, eval, result)) {
     throw InvalidInputError(
         "intrinsic conformal flow: the input's lengths break a triangle inequality");
   }

@@ -76,6 +76,9 @@ struct IntrinsicFlowResult {
   std::vector<double> error_history;  ///< max |K - K̄| before the first iteration and after each
   int iterations = 0;
   int flips = 0;  ///< Ptolemy flips, including those of rejected line-search trials
+  /// By flip, in order: the edge flipped (flip_edge) on the way from the initial triangulation
+  /// to `triangulation`; point_tracking.h replays it to carry points between the two.
+  std::vector<int> flip_log;
   int factorizations = 0;
   double max_error = 0;
   LinearSolver solver = LinearSolver::automatic;

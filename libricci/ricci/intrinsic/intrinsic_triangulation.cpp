@@ -147,7 +147,8 @@ double delaunay_measure(const IntrinsicTriangulation& tri, int e, const Eigen::V
 }
 
 DelaunayFlipResult flip_to_delaunay(IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
-                                    double margin, double max_flips_per_edge) {
+                                    double margin, double max_flips_per_edge,
+                                    std::vector<int>* flip_log) {
   DelaunayFlipResult result;
   const int edges = tri.edge_count();
   std::vector<int> stack(static_cast<size_t>(edges));
@@ -162,6 +163,7 @@ DelaunayFlipResult flip_to_delaunay(IntrinsicTriangulation& tri, const Eigen::Ve
     if (result.flips >= budget) return result;
     flip_edge(tri, e);
     ++result.flips;
+    if (flip_log) flip_log->push_back(e);
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
     const int t = tri.twin[static_cast<size_t>(h)];
     for (int s : {IntrinsicTriangulation::next(h), IntrinsicTriangulation::prev(h),

@@ -63,9 +63,11 @@ struct DelaunayFlipResult {
 
 /// Flips non-Delaunay edges (delaunay_measure < -margin) until none is left, at scale factors u
 /// (Lawson's algorithm; it ends for decorated surfaces, Springborn 2020, section 5). At most
-/// max_flips_per_edge * #E flips.
+/// max_flips_per_edge * #E flips. When `flip_log` is given, each flipped edge is appended to it
+/// in order (replayed by point_tracking.h's IntrinsicCorrespondence).
 DelaunayFlipResult flip_to_delaunay(IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
-                                    double margin = 1e-12, double max_flips_per_edge = 200.0);
+                                    double margin = 1e-12, double max_flips_per_edge = 200.0,
+                                    std::vector<int>* flip_log = nullptr);
 
 /// Corner angles (row f: the angles at the tails of halfedges 3f, 3f+1, 3f+2) and their
 /// cotangents, at scale factors u. Returns false when some face breaks the triangle inequality.

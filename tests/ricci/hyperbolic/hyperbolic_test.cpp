@@ -5,6 +5,7 @@
 #include <ricci/hyperbolic/klein.h>
 #include <ricci/hyperbolic/uniformize.h>
 #include <ricci/mesh/io.h>
+#include <ricci/mesh/primitives.h>
 #include "test_paths.h"
 
 namespace ricci {
@@ -153,6 +154,31 @@ TEST_P(HyperbolicModel, SeedFaceIndependence) {
       EXPECT_EQ(a.group.generator_words[k][i].arc, b.group.generator_words[k][i].arc);
       EXPECT_EQ(a.group.generator_words[k][i].sign, b.group.generator_words[k][i].sign);
     }
+  }
+}
+
+// At genus 6-10 the domain reaches hyperbolic distances d ~ 15-20 from its centre, where a
+// long-double coordinate is exact only to 1e-19 e^d (the layout keeps quad precision); the
+// canonical relator, a product of the vertex cycles conjugated by long words, amplifies any local
+// defect by up to e^d. Each vertex cycle, evaluated in the frame at its corner, closes to the
+// metric's and the layout's local accuracy.
+TEST(VertexCycles, EveryCornerOfTheDomainClosesAtGenus4To10) {
+  for (int genus : {4, 6, 8, 10}) {
+    const Uniformization u = uniformize(make_genus_slab(genus, 1, 4));
+    ASSERT_TRUE(u.converged()) << u.flow.message;
+    const std::vector<VertexCycle> cycles =
+        vertex_cycles(u.surface, u.cut, u.sliced, u.pairings, u.positions);
+    ASSERT_FALSE(cycles.empty());
+    for (const VertexCycle& c : cycles) EXPECT_GE(c.word.size(), 3u) << "vertex " << c.vertex;
+    EXPECT_LT(u.group.cycle_residual, 1e-9) << "genus " << genus;
+    EXPECT_EQ(u.group.cycle_residual, vertex_cycle_residual(u.pairings, cycles));
+    // A pairing off by a rotation of 1e-6 about the first corner breaks that corner's cycle.
+    DomainPairings bent = u.pairings;
+    const ArcLetter first = cycles[0].word[0];
+    const MobiusL to_corner = MobiusL::from_rotation_point(0.0L, ComplexL(cycles[0].centre));
+    MobiusQ& m = bent.arcs[static_cast<size_t>(first.arc)].quad_pairing;
+    m = MobiusQ(to_corner.inverse() * MobiusL::from_rotation_point(1e-6L, 0.0L) * to_corner) * m;
+    EXPECT_GT(vertex_cycle_residual(bent, cycles), 1e-7) << "genus " << genus;
   }
 }
 
