@@ -249,6 +249,13 @@ int run_fit(int argc, char** argv) {
                   seconds["total"].get<double>());
     std::cerr << line;
   }
+  // A surface of another genus than the input's is a failure, not a result (outputs are kept
+  // for inspection).
+  const std::string mismatch = report["topology_mismatch"].get<std::string>();
+  if (!mismatch.empty() && mismatch.find("Euler characteristic") != std::string::npos) {
+    std::cerr << "msp fit: error: " << mismatch << "\n";
+    return 1;
+  }
   return 0;
 }
 

@@ -203,6 +203,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"boundary_rims", fitted.boundary_rims},
       {"fallback_fills", fitted.fallback_fills},
       {"watertight", fitted.watertight},
+      {"topology_mismatch", spline::topology_mismatch(fitted)},
       {"tessellation", tessellation_json(fitted)},
       {"surface_dihedral", dihedral_json(fitted.surface_dihedral)},
       {"boundary", boundary_json(fitted, diag)},

@@ -292,6 +292,12 @@ void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& option
 // Topology and smoothness of the tessellation and the spline's own seams.
 // `folds_only`: the dihedral angles alone (a round judged before its holes are capped, whose
 // topology and seams are measured again once it is delivered).
+// The rims left open on purpose: each is one boundary loop of the result (nearby input loops
+// merged into one rim count once).
+int expected_boundary_loops(const FittedSurface& out) {
+  return static_cast<int>(out.surface.open_rims.size() - out.fill_failures.size());
+}
+
 void measure_surface(FittedSurface& out, bool folds_only) {
   const Tessellation& t = out.tessellation;
   if (folds_only) {
@@ -299,10 +305,7 @@ void measure_surface(FittedSurface& out, bool folds_only) {
     return;
   }
   out.topology = check_watertight(t.triangles, t.positions);
-  // The rims left open on purpose: each is one boundary loop of the result (nearby input loops
-  // merged into one rim count once).
-  const int expected_loops =
-      static_cast<int>(out.surface.open_rims.size() - out.fill_failures.size());
+  const int expected_loops = expected_boundary_loops(out);
   out.float_topology = float_welded_topology(t);
   out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
   out.watertight = out.topology.matches(out.input.genus, expected_loops) &&
@@ -834,6 +837,30 @@ bool refine_to_rms_goal(const ricci::Mesh& dense, const FitSurfaceOptions& optio
 }
 
 }  // namespace
+
+std::string topology_mismatch(const FittedSurface& fitted) {
+  const int loops = expected_boundary_loops(fitted);
+  const int genus = fitted.input.genus;
+  const int chi = 2 - 2 * genus - loops;
+  for (const WatertightReport* t : {&fitted.topology, &fitted.float_topology}) {
+    const char* what = t == &fitted.topology ? "" : " (welded as float)";
+    if (!t->manifold()) return std::string("the surface") + what + " is not a manifold";
+    if (t->boundary_loops != loops) {
+      return std::string("the surface") + what + " has " + std::to_string(t->boundary_loops) +
+             " boundary loops, " + std::to_string(loops) + " expected";
+    }
+    if (t->euler_characteristic != chi) {
+      const int parity = 2 - loops - t->euler_characteristic;
+      const std::string its_genus =
+          parity >= 0 && parity % 2 == 0 ? " (genus " + std::to_string(parity / 2) + ")" : "";
+      return std::string("the surface") + what + " has Euler characteristic " +
+             std::to_string(t->euler_characteristic) + its_genus + ", the input " +
+             std::to_string(chi) + " (genus " + std::to_string(genus) +
+             ")" + (t->euler_characteristic > chi ? ": a patch capped a handle" : "");
+    }
+  }
+  return "";
+}
 
 int minimum_domain_faces(int genus) { return 100 * std::max(1, genus + 1); }
 

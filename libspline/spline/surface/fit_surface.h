@@ -185,6 +185,13 @@ struct FittedSurface {
   StageSeconds cpu_seconds;
 };
 
+/// "" when the delivered tessellation (`topology`, and `float_topology` as a file holds it) is
+/// a manifold with the input's Euler characteristic and one boundary loop per rim left open on
+/// purpose; otherwise one line saying how it differs, e.g. a closed surface of another genus
+/// (a patch capped a handle: a hole that held one was filled by a disk). fit_surface does not
+/// throw on this: the caller decides (msp fit writes its outputs and exits non-zero).
+[[nodiscard]] std::string topology_mismatch(const FittedSurface& fitted);
+
 /// Smallest FitSurfaceOptions::domain_faces for a surface of this genus: the domain must hold
 /// the cone's star, the cut graph's 2g loops and a vertex chart around each.
 [[nodiscard]] int minimum_domain_faces(int genus);

@@ -57,5 +57,31 @@ TEST(CheckOptions, NamesTheOptionTheCallersWay) {
   EXPECT_THROW((void)fit_surface(ricci::Mesh{}, o), ricci::InvalidInputError);
 }
 
+// The delivered surface must have the input's topology: a genus-8 input closed as genus 6 (two
+// handles capped by patches, as generated genus 8 was) is named, a matching one is not.
+TEST(TopologyMismatch, NamesAnotherGenusAndPassesTheInputs) {
+  FittedSurface fitted;
+  fitted.input.genus = 8;
+  WatertightReport closed;
+  closed.vertices = 100;
+  closed.faces = 228;
+  closed.edges = 342;
+  closed.euler_characteristic = -14;
+  fitted.topology = fitted.float_topology = closed;
+  ASSERT_TRUE(closed.manifold());
+  EXPECT_EQ(topology_mismatch(fitted), "");
+  fitted.topology.euler_characteristic = -10;
+  EXPECT_EQ(topology_mismatch(fitted),
+            "the surface has Euler characteristic -10 (genus 6), the input -14 (genus 8): a "
+            "patch capped a handle");
+  fitted.topology = closed;
+  fitted.float_topology.boundary_loops = 1;
+  EXPECT_NE(topology_mismatch(fitted).find("(welded as float) has 1 boundary loops, 0"),
+            std::string::npos);
+  fitted.float_topology = closed;
+  fitted.topology.nonmanifold_edges = 2;
+  EXPECT_EQ(topology_mismatch(fitted), "the surface is not a manifold");
+}
+
 }  // namespace
 }  // namespace spline
