@@ -804,6 +804,22 @@ constexpr double kGoalRefineDistance = 2.5;
 // exceeds this share of the goal: a round well within it costs nothing more.
 constexpr double kGoalCheckShare = 0.8;
 
+// The next round on `best`'s domain refined around `where` (the followed boundary and the cone
+// kept), its summary added to out.refinement.
+std::pair<FittedSurface, Round> refined_round(const ricci::Mesh& dense, ScanFitOptions& scan,
+                                              const FitSurfaceOptions& options, StageClock& clock,
+                                              const Round& best,
+                                              const std::vector<Eigen::Vector3d>& where,
+                                              FittedSurface& out) {
+  clock.begin("refine");
+  scan.domain = refine_domain(best.domain, dense, where);
+  scan.boundary_follow.max_rounds = 0;  // the refined domain keeps the followed boundary
+  if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
+  auto next = next_round(dense, scan, options, clock, out);
+  out.refinement.push_back(round_summary(next.first, next.second, options));
+  return next;
+}
+
 // The RMS goal on the first round (`best`, `out`): when its RMS (projection) exceeds
 // options.rms_goal, its domain is split (refine_domain) around the input vertices farther than
 // kGoalRefineDistance times the goal and the whole fit runs again on it with the same cone; that
@@ -826,13 +842,8 @@ bool refine_to_rms_goal(const ricci::Mesh& dense, const FitSurfaceOptions& optio
       where.push_back(ricci::to_eigen(dense.point(dense.vertex_handle(static_cast<int>(v)))));
   }
   if (where.empty()) return true;
-  clock.begin("refine");
-  scan.domain = refine_domain(best.domain, dense, where);
-  scan.boundary_follow.max_rounds = 0;  // the refined domain keeps the followed boundary
-  if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
-  auto next = next_round(dense, scan, options, clock, out);
-  out.refinement.push_back(round_summary(next.first, next.second, options));
-  adopt_round(std::move(next), out, best, &superseded);
+  adopt_round(refined_round(dense, scan, options, clock, best, where, out), out, best,
+              &superseded);
   return true;
 }
 
@@ -972,12 +983,7 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   for (int round = 1; round <= options.refinement_rounds; ++round) {
     const std::vector<Eigen::Vector3d> where = refinement_points(dense, options, out, best);
     if (where.empty()) break;
-    clock.begin("refine");
-    scan.domain = refine_domain(best.domain, dense, where);
-    scan.boundary_follow.max_rounds = 0;  // the refined domain keeps the followed boundary
-    if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
-    auto next = next_round(dense, scan, options, clock, out);
-    out.refinement.push_back(round_summary(next.first, next.second, options));
+    auto next = refined_round(dense, scan, options, clock, best, where, out);
     if (!better(next.first, next.second, out, best, options)) break;
     adopt_round(std::move(next), out, best, &superseded);
     refined = true;
