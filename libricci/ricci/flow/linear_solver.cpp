@@ -78,8 +78,9 @@ SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
   impl_->cholmod_supernodal.cholmod().print = 0;
   impl_->cholmod_simplicial.cholmod().print = 0;
   // AMD alone orders: by default CHOLMOD also runs METIS where AMD's factor looks costly
-  // (large meshes), which at 800k unknowns took 4-5 s to save 1 s of a 3-s factorisation;
-  // our factorisations serve a few solves each (docs/design-notes.md, "Orderings").
+  // (large meshes), which at 800k unknowns took 4-5 s to save 1-3 s of the factorisation; our
+  // factorisations serve a few solves each (docs/design-notes.md, "Memory and orderings at
+  // 1.6M faces").
   for (cholmod_common* common : {&impl_->cholmod_supernodal.cholmod(),
                                  &impl_->cholmod_simplicial.cholmod()}) {
     common->nmethods = 1;

@@ -38,7 +38,7 @@ class SymmetricFactorization {
   void analyze(const Eigen::SparseMatrix<double>& lower);
   /// The same with a given fill-reducing ordering (another factorisation's ordering(), of a
   /// matrix of this size whose pattern differs a little, e.g. by flips), which spares the
-  /// ordering (METIS: most of an analysis on large meshes). Orders afresh when the factor
+  /// ordering (most of an analysis on large meshes). Orders afresh when the factor
   /// would have over 1.1 times `fill` nonzeros (the other's fill(); 0: no check), when the
   /// ordering's size differs, and for the kinds other than cholmod_supernodal.
   void analyze(const Eigen::SparseMatrix<double>& lower, const Eigen::VectorXi& ordering,

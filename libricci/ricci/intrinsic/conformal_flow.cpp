@@ -157,7 +157,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     result.timings.assembly += clock.seconds();
     Eigen::VectorXd rhs(n - 1);
     for (int v = 0; v < n; ++v) {
-      if (v != pinned) rhs[v < pinned ? v : v - 1] = -gradient[v];
+      if (v != pinned) rhs[reduced_index(v, pinned)] = -gradient[v];
     }
     Eigen::VectorXd reduced;
     clock.restart();
@@ -184,7 +184,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     }
     Eigen::VectorXd direction = Eigen::VectorXd::Zero(n);
     for (int v = 0; v < n; ++v) {
-      if (v != pinned) direction[v] = reduced[v < pinned ? v : v - 1];
+      if (v != pinned) direction[v] = reduced[reduced_index(v, pinned)];
     }
     if (!direction.allFinite()) {
       reason = "the Newton step is not finite";

@@ -6,7 +6,6 @@
 #include <map>
 #include <numeric>
 #include <set>
-#include <thread>
 #include <vector>
 
 #include "ricci/flow/linear_solver.h"
@@ -129,8 +128,7 @@ class LinearModel {
       solves_ += static_cast<int>(count);
       // Each column's score on one thread (the same sums on any number of threads).
       std::vector<double> scores(count);
-      const int workers = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
-                                     static_cast<int>(count));
+      const int workers = std::min(requested_threads(0), static_cast<int>(count));
       run_workers(workers, [&](int t) {
         for (size_t j = static_cast<size_t>(t); j < count; j += static_cast<size_t>(workers)) {
           scores[j] = distortion(u0_ + cone_ * green.col(static_cast<Eigen::Index>(j)));

@@ -37,10 +37,15 @@ inline void run_workers(int workers, const std::function<void(int)>& work) {
   }
 }
 
+/// Threads asked for: `requested`, or the hardware's concurrency when 0; at least 1.
+inline int requested_threads(int requested) {
+  if (requested > 0) return requested;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 /// Threads for `work` items: `requested` (0 = hardware concurrency), fewer for small loops.
 inline int parallel_thread_count(int requested, std::size_t work) {
-  int n = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
-  n = std::max(1, n);
+  const int n = requested_threads(requested);
   // Below a few hundred evaluations a thread costs more than it saves.
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(n), 1 + work / 256));
 }
