@@ -71,6 +71,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   o.fill_boundaries = args.has("fill-boundaries");
   o.small_hole_diameter = args.get_double("small-holes", o.small_hole_diameter);
   o.density = args.get_int("density", 0);
+  o.density_refine_levels = args.get_int("turn-refinement", o.density_refine_levels);
   o.cone_refinement.levels = args.get_int("cone-refinement", o.cone_refinement.levels);
   o.refinement_rounds = args.get_int("refine-rounds", o.refinement_rounds);
   o.fold_rounds = args.get_int("fold-rounds", o.fold_rounds);
@@ -83,6 +84,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
       if (field == "refinement_rounds") return std::string("--refine-rounds");
       if (field == "max_surface_deviation") return std::string("--max-deviation");
       if (field == "small_hole_diameter") return std::string("--small-holes");
+      if (field == "density_refine_levels") return std::string("--turn-refinement");
       std::string flag = "--" + field;
       std::replace(flag.begin(), flag.end(), '_', '-');
       return flag;
@@ -148,6 +150,8 @@ const CommandSpec& fit_command() {
        {"small-holes", "F", "cap boundary loops narrower than F diagonals before the fit (0.002)"},
        {"json", "REPORT", "write the JSON report to the file REPORT"},
        {"density", "d", "tessellation samples per domain edge (chosen by domain size)"},
+       {"turn-refinement", "LEVELS",
+        "split the tessellation where it turns over 60 degrees, 0 to 6 levels (3)"},
        {"cone-refinement", "LEVELS", "1-to-4 splits of the domain around the cone, 0 to 4 (2)"},
        {"smoothing", "LAMBDA", "weight of the thin-plate energy (1e-4)"},
        {"tolerance", "F",

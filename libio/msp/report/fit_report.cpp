@@ -36,6 +36,7 @@ nlohmann::json stage_seconds_json(const spline::StageSeconds& stages) {
 nlohmann::json tessellation_json(const spline::FittedSurface& fitted) {
   const auto& t = fitted.topology;
   return {{"density", fitted.tessellation.density},
+          {"turn_splits", fitted.tessellation.turn_splits},
           {"vertices", t.vertices},
           {"triangles", t.faces},
           {"render_vertices", fitted.tessellation.uvs.rows()},

@@ -327,6 +327,19 @@ void take_scan(ScanFitResult&& scan, FittedSurface& out) {
   out.boundary_follow = scan.boundary_follow;
 }
 
+// A round judged on the uniform grid whose folds all go when the grid is refined where it turns
+// sharply (a tightly curved tip sampled too coarsely, not a fold of the spline) is judged on the
+// refined grid: no fold. Otherwise the uniform grid's count stands, so that rounds compare.
+void take_refined_if_unfolded(const FitSurfaceOptions& options, FittedSurface& out) {
+  Tessellation refined = out.tessellation;
+  refine_sharp_turns(refined, out.surface.spline, options.density_refine_turn_deg,
+                     options.density_refine_levels);
+  DihedralReport dihedral = dihedral_angles(refined.triangles, refined.positions);
+  if (dihedral.over_90_deg > 0) return;
+  out.tessellation = std::move(refined);
+  out.surface_dihedral = std::move(dihedral);
+}
+
 // What one fit round leaves for the refinement: the domain it was built on, the parameters of
 // the input's vertices and the distance of every input vertex to the surface (-1: not measured).
 struct Round {
@@ -366,11 +379,17 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
                  : options.density > 0      ? options.density
                                             : default_density(
                                              out.surface.spline.space->domain_face_count());
+  // Rounds are judged on the uniform grid, where a fold's edges do not multiply with the
+  // refinement; the delivered surface is refined where the grid turns sharply.
+  tess.refine_levels = patches ? options.density_refine_levels : 0;
+  tess.refine_turn_deg = options.density_refine_turn_deg;
   std::vector<PatchTessellation> tessellated_patches;
   out.tessellation = tessellate_surface(out.surface, tess, tessellated_patches);
 
   clock.begin("measure");
   measure_surface(out, !patches);
+  if (!patches && out.surface_dihedral.over_90_deg > 0 && options.density_refine_levels > 0)
+    take_refined_if_unfolded(options, out);
   if (project)
     round.vertex_distance = measure_projection(dense, round.parameters, tessellated_patches, out);
 }
@@ -887,6 +906,10 @@ void check_options(const FitSurfaceOptions& o,
           "-1 (none) or in [0, degree - 1]");
   require(o.smoothing >= 0.0 && o.smoothing < 1e6, "smoothing", "in [0, 1e6)");
   require(o.density >= 0 && o.density <= 64, "density", "in [1, 64] (0: chosen by size)");
+  require(o.density_refine_levels >= 0 && o.density_refine_levels <= 6, "density_refine_levels",
+          "in [0, 6]");
+  require(o.density_refine_turn_deg > 0.0 && o.density_refine_turn_deg < 180.0,
+          "density_refine_turn_deg", "in (0, 180) degrees");
   require(o.cone_refinement.levels >= 0 && o.cone_refinement.levels <= 4, "cone_refinement",
           "in [0, 4]");
   require(o.refinement_rounds >= 0 && o.refinement_rounds <= 8, "refinement_rounds",

@@ -43,6 +43,10 @@ struct FitSurfaceOptions {
   double small_hole_diameter = 0.002;
   /// Tessellation samples per domain edge - 1; 0: chosen by domain size (default_density).
   int density = 0;
+  /// The delivered tessellation is refined where adjacent triangles turn by more than
+  /// density_refine_turn_deg, up to this many levels (refine_sharp_turns); 0: the uniform grid.
+  int density_refine_levels = 3;
+  double density_refine_turn_deg = 60.0;
   /// The run fails (ricci::SolverError, nothing delivered) when a point of the tessellated
   /// surface lies farther than this fraction of the input's bounding-box diagonal from the input
   /// (a spike or a sheet sticking out); 0 turns the guard off.
@@ -94,7 +98,8 @@ struct FitSurfaceOptions {
 };
 
 /// Checks the ranges of the options: domain_faces >= 1, degree in [1, kMaxDmsDegree], fairness
-/// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64], cone_refinement.levels
+/// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64],
+/// density_refine_levels in [0, 6], density_refine_turn_deg in (0, 180), cone_refinement.levels
 /// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
 /// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1,
 /// crease_fold_rms_growth >= 1, fold_rms_goal and rms_goal in [0, 1), small_hole_diameter in

@@ -45,6 +45,9 @@ Tessellation tessellate_surface(const SplineSurface& surface, const Tessellation
     patches.push_back(tessellate_fill(surface.fills[i], t.density));
     append_fill(t, surface.fills[i], patches.back(), static_cast<int>(i));
   }
+  if (options.refine_levels > 0)
+    refine_sharp_turns(t, surface.spline, options.refine_turn_deg, options.refine_levels,
+                       options.threads);
   return t;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
@@ -213,6 +214,229 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
   for (std::size_t i = 0; i < uvs.size(); ++i)
     out.uvs.row(static_cast<Eigen::Index>(i)) = uvs[i].transpose();
   return out;
+}
+
+namespace {
+
+std::uint64_t pair_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+
+// Barycentric coordinates in domain face `face` of sample `p`, which lies on that face's
+// closure: its parameter's nonzero corners carried to `face`'s corners by domain vertex.
+Eigen::Vector3d barycentric_in(const Tessellation& t, int p, int face) {
+  const DomainPoint& q = t.parameters[static_cast<std::size_t>(p)];
+  if (q.face == face) return q.barycentric;
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  const auto& from = t.face_corner_vertex_[static_cast<std::size_t>(q.face)];
+  const auto& to = t.face_corner_vertex_[static_cast<std::size_t>(face)];
+  for (int k = 0; k < 3; ++k) {
+    if (q.barycentric[k] == 0.0) continue;
+    const auto j = std::find(to.begin(), to.end(), from[k]) - to.begin();
+    if (j == 3)
+      throw std::logic_error("refine_sharp_turns: a sample off its triangle's domain face");
+    b[j] = q.barycentric[k];
+  }
+  return b;
+}
+
+Eigen::Vector3d triangle_normal(const Tessellation& t, const std::array<int, 3>& c) {
+  const Eigen::Vector3d a = t.positions.row(c[0]), b = t.positions.row(c[1]),
+                        d = t.positions.row(c[2]);
+  const Eigen::Vector3d n = (b - a).cross(d - a);
+  const double len = n.norm();
+  return len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+}
+
+// One refinement level: the triangles marked red split 1-to-4, red closure where a triangle
+// would get two split edges (unless it borders a patch), the rest bisected. Returns the reds.
+int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn, int threads) {
+  const std::size_t n = t.triangles.size();
+  std::unordered_map<std::uint64_t, std::array<int, 2>> edge_triangles;
+  edge_triangles.reserve(n * 2);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      auto [it, inserted] = edge_triangles.try_emplace(
+          pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]), std::array<int, 2>{-1, -1});
+      it->second[it->second[0] < 0 ? 0 : 1] = static_cast<int>(i);
+    }
+  }
+  auto neighbour = [&](std::size_t i, int k) {
+    const auto& two = edge_triangles.at(pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]));
+    return two[0] == static_cast<int>(i) ? two[1] : two[0];
+  };
+  // A triangle may split 1-to-4 when it is the spline's and no patch triangle borders it.
+  std::vector<char> may_split(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (t.triangle_face[i] < 0) continue;
+    bool next_to_patch = false;
+    for (int k = 0; k < 3; ++k) {
+      const int j = neighbour(i, k);
+      next_to_patch |= j >= 0 && t.triangle_face[static_cast<std::size_t>(j)] < 0;
+    }
+    may_split[i] = !next_to_patch;
+  }
+  std::vector<Eigen::Vector3d> normal(n);
+  for (std::size_t i = 0; i < n; ++i) normal[i] = triangle_normal(t, t.triangles[i]);
+  std::vector<char> red(n, 0);
+  for (const auto& [key, two] : edge_triangles) {
+    if (two[1] < 0) continue;
+    const auto a = static_cast<std::size_t>(two[0]), b = static_cast<std::size_t>(two[1]);
+    if (normal[a].isZero() || normal[b].isZero() || normal[a].dot(normal[b]) >= cos_turn)
+      continue;
+    red[a] |= may_split[a];
+    red[b] |= may_split[b];
+  }
+  // Closure: an edge splits when a red triangle has it; two split edges make a triangle red.
+  std::unordered_map<std::uint64_t, int> midpoint;  // by split edge: its new sample
+  auto split_edges = [&](std::size_t i) {
+    int count = 0;
+    for (int k = 0; k < 3; ++k)
+      count += midpoint.count(pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3])) > 0;
+    return count;
+  };
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < n; ++i)
+    if (red[i]) queue.push_back(i);
+  if (queue.empty()) return 0;
+  while (!queue.empty()) {
+    const std::size_t i = queue.back();
+    queue.pop_back();
+    for (int k = 0; k < 3; ++k) {
+      if (!midpoint.emplace(pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]), -1).second)
+        continue;
+      const int j = neighbour(i, k);
+      if (j < 0) continue;
+      const auto u = static_cast<std::size_t>(j);
+      if (!red[u] && may_split[u] && split_edges(u) >= 2) {
+        red[u] = 1;
+        queue.push_back(u);
+      }
+    }
+  }
+
+  // The new samples: each split edge's domain midpoint in one of its triangles' faces.
+  std::vector<DomainPoint> points;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int face = t.triangle_face[i];
+    if (face < 0) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = t.triangles[i][k], b = t.triangles[i][(k + 1) % 3];
+      auto it = midpoint.find(pair_key(a, b));
+      if (it == midpoint.end() || it->second >= 0) continue;
+      it->second = static_cast<int>(t.positions.rows() + static_cast<Eigen::Index>(points.size()));
+      points.push_back({face, 0.5 * (barycentric_in(t, a, face) + barycentric_in(t, b, face))});
+    }
+  }
+  const Eigen::Index base = t.positions.rows();
+  const auto added = static_cast<Eigen::Index>(points.size());
+  t.positions.conservativeResize(base + added, 3);
+  t.normals.conservativeResize(base + added, 3);
+  parallel_for(points.size(), threads, [&](std::size_t i) {
+    const SurfaceJet jet = evaluate_with_normal(spline, points[i]);
+    t.positions.row(base + static_cast<Eigen::Index>(i)) = jet.position.transpose();
+    t.normals.row(base + static_cast<Eigen::Index>(i)) = jet.normal.transpose();
+  });
+  t.parameters.insert(t.parameters.end(), points.begin(), points.end());
+
+  // Render midpoints by render edge: the two sides of a cut keep their own uvs.
+  std::unordered_map<std::uint64_t, int> render_midpoint;
+  std::vector<Eigen::Vector2d> new_uvs;
+  const auto render_base = static_cast<int>(t.uvs.rows());
+  auto render_mid = [&](int ra, int rb, int position) {
+    auto [it, inserted] = render_midpoint.emplace(pair_key(ra, rb), 0);
+    if (inserted) {
+      it->second = render_base + static_cast<int>(new_uvs.size());
+      new_uvs.push_back(0.5 * (t.uvs.row(ra) + t.uvs.row(rb)).transpose());
+      t.render_position.push_back(position);
+    }
+    return it->second;
+  };
+
+  std::vector<std::array<int, 3>> triangles, render_triangles;
+  std::vector<int> triangle_face;
+  triangles.reserve(n + 3 * midpoint.size());
+  render_triangles.reserve(triangles.capacity());
+  triangle_face.reserve(triangles.capacity());
+  int reds = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& p = t.triangles[i];
+    const auto& r = t.render_triangles[i];
+    const int face = t.triangle_face[i];
+    // Midpoint (position, render) of edge k, from corner k to corner k + 1; -1: not split.
+    std::array<int, 3> mp{-1, -1, -1}, mr{-1, -1, -1};
+    int split = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int k1 = (k + 1) % 3;
+      auto it = midpoint.find(pair_key(p[k], p[k1]));
+      if (it == midpoint.end()) continue;
+      mp[k] = it->second;
+      mr[k] = render_mid(r[k], r[k1], mp[k]);
+      ++split;
+    }
+    auto emit = [&](std::array<int, 3> tri_p, std::array<int, 3> tri_r) {
+      triangles.push_back(tri_p);
+      render_triangles.push_back(tri_r);
+      triangle_face.push_back(face);
+    };
+    if (split == 0) {
+      emit(p, r);
+    } else if (split == 3) {
+      ++reds;
+      for (int k = 0; k < 3; ++k) {
+        const int prev = (k + 2) % 3;
+        emit({p[k], mp[k], mp[prev]}, {r[k], mr[k], mr[prev]});
+      }
+      emit({mp[0], mp[1], mp[2]}, {mr[0], mr[1], mr[2]});
+    } else if (split == 1) {
+      const int k = mp[0] >= 0 ? 0 : mp[1] >= 0 ? 1 : 2;
+      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      emit({p[k], mp[k], p[k2]}, {r[k], mr[k], r[k2]});
+      emit({mp[k], p[k1], p[k2]}, {mr[k], r[k1], r[k2]});
+    } else {
+      // Edges k and k + 1 split (k + 2 not): the corner triangle at k + 1, and the quad
+      // p[k], m_k, m_{k+1}, p[k+2] cut along its shorter diagonal.
+      const int k = mp[0] < 0 ? 1 : mp[1] < 0 ? 2 : 0;
+      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      emit({mp[k], p[k1], mp[k1]}, {mr[k], r[k1], mr[k1]});
+      const double d1 = (t.positions.row(p[k]) - t.positions.row(mp[k1])).squaredNorm();
+      const double d2 = (t.positions.row(mp[k]) - t.positions.row(p[k2])).squaredNorm();
+      if (d1 <= d2) {
+        emit({p[k], mp[k], mp[k1]}, {r[k], mr[k], mr[k1]});
+        emit({p[k], mp[k1], p[k2]}, {r[k], mr[k1], r[k2]});
+      } else {
+        emit({p[k], mp[k], p[k2]}, {r[k], mr[k], r[k2]});
+        emit({mp[k], mp[k1], p[k2]}, {mr[k], mr[k1], r[k2]});
+      }
+    }
+  }
+  t.triangles = std::move(triangles);
+  t.render_triangles = std::move(render_triangles);
+  t.triangle_face = std::move(triangle_face);
+  t.uvs.conservativeResize(render_base + static_cast<Eigen::Index>(new_uvs.size()), 2);
+  for (std::size_t i = 0; i < new_uvs.size(); ++i)
+    t.uvs.row(render_base + static_cast<Eigen::Index>(i)) = new_uvs[i].transpose();
+  return reds;
+}
+
+}  // namespace
+
+int refine_sharp_turns(Tessellation& t, const ManifoldSpline& spline, double turn_deg, int levels,
+                       int threads) {
+  if (!(turn_deg > 0.0 && turn_deg < 180.0) || levels < 0)
+    throw ricci::InvalidInputError("refine_sharp_turns: the turn must be in (0, 180) degrees and "
+                                   "the levels >= 0, not " +
+                                   std::to_string(turn_deg) + " and " + std::to_string(levels));
+  const double cos_turn = std::cos(turn_deg * M_PI / 180.0);
+  int reds = 0;
+  for (int level = 0; level < levels; ++level) {
+    const int split = refine_level(t, spline, cos_turn, threads);
+    if (split == 0) break;
+    reds += split;
+  }
+  t.turn_splits += reds;
+  return reds;
 }
 
 double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,

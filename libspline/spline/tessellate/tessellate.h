@@ -20,6 +20,10 @@ namespace spline {
 struct TessellationOptions {
   int density = 8;  ///< d >= 1: samples per domain edge - 1; d^2 triangles per domain face.
   int threads = 0;  ///< Evaluation threads; 0 = std::thread::hardware_concurrency().
+  /// tessellate_surface only (tessellate() keeps the uniform grid): refine_sharp_turns with
+  /// these, after the fills are welded in. 0 levels: the uniform grid alone.
+  int refine_levels = 3;
+  double refine_turn_deg = 60.0;
   /// By face, nonzero: not tessellated (a fill patch covers it, fill/hole_fill.h's
   /// Rim::covered_faces). Empty: every domain face.
   std::vector<char> skip_faces;
@@ -27,6 +31,7 @@ struct TessellationOptions {
 
 struct Tessellation {
   int density = 0;
+  int turn_splits = 0;  ///< Triangles split 1-to-4 by refine_sharp_turns (0: the uniform grid).
   /// Welded topology: one row per surface sample.
   Eigen::MatrixX3d positions;
   Eigen::MatrixX3d normals;                   ///< Unit (du x dv); a zero row only if F is singular.
@@ -63,6 +68,19 @@ struct Tessellation {
 ///        as ManifoldSpline::evaluate.
 [[nodiscard]] Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                                       const TessellationOptions& options = {});
+
+/// Local refinement where the sampled surface turns sharply, so that a smooth but tightly curved
+/// part (an ear tip, a hoof) is not shown as a fold of the grid: every spline triangle on an edge
+/// whose two triangles' normals differ by more than `turn_deg` degrees is split 1-to-4 at its
+/// edges' domain midpoints (evaluated on `spline`), and its neighbours are closed by bisection
+/// (red-green), so the result stays welded; repeated up to `levels` times while such edges
+/// remain. Fill-patch triangles (triangle_face < 0) and the triangles next to them stay whole.
+/// New samples are appended (earlier indices and the lookups above keep their meaning); render
+/// vertices split where the central chart's uvs do. Returns the number of 1-to-4 splits.
+/// \pre t = tessellate(spline, mesh, ...), fills appended or not.
+/// \throw ricci::InvalidInputError for turn_deg outside (0, 180) or levels < 0.
+int refine_sharp_turns(Tessellation& t, const ManifoldSpline& spline, double turn_deg, int levels,
+                       int threads = 0);
 
 /// What a triangle soup (by position index) is topologically.
 struct WatertightReport {

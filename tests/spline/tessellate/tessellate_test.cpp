@@ -2,12 +2,14 @@
 // topology check itself on hand-made soups.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "ricci/mesh/errors.h"
 #include "ricci/topology/slice.h"
 #include "spline/fit/fit.h"
 #include "spline/manifold/manifold_fixtures.h"
+#include "spline/tessellate/dihedral.h"
 #include "spline/tessellate/tessellate.h"
 #include "spline/tessellate/tessellate_fill.h"
 
@@ -302,6 +304,77 @@ TEST(Tessellate, FillPatchWeldsIntoAClosedSurface) {
   // A patch made at another density is refused.
   Tessellation other = tessellate(c.spline, *c.mesh, opts);
   EXPECT_THROW(append_fill(other, fill, tessellate_fill(fill, d + 2), 0), ricci::InvalidInputError);
+}
+
+// Refinement where the grid turns sharply: the refined soup stays closed and welded, every new
+// sample lies on the spline at its parameter, uvs stay counter-clockwise in the central chart,
+// the patch is left whole, and the sharpest turn drops.
+TEST(Tessellate, SharpTurnsAreRefinedOnTheSurface) {
+  const Case c = make_case("genus2.off");
+  const auto& space = *c.spline.space;
+  const auto rims = find_rims(space, *c.mesh);
+  ASSERT_EQ(rims.size(), 1u);
+  const int d = 2;
+  TessellationOptions opts = options(d, 2);
+  opts.skip_faces.assign(c.mesh->n_faces(), 0);
+  for (int f = 0; f < static_cast<int>(c.mesh->n_faces()); ++f)
+    opts.skip_faces[f] = !space.in_domain(f);
+  for (int f : rims[0].covered_faces) opts.skip_faces[f] = 1;
+  Tessellation t = tessellate(c.spline, *c.mesh, opts);
+  const HoleFill fill = fill_rim(c.spline, *c.mesh, rims[0]);
+  append_fill(t, fill, tessellate_fill(fill, d), 0);
+  auto patch_triangles = [](const Tessellation& s) {
+    return std::count_if(s.triangle_face.begin(), s.triangle_face.end(),
+                         [](int f) { return f < 0; });
+  };
+  const auto patch_before = patch_triangles(t);
+  const auto triangles_before = t.triangles.size();
+  const auto positions_before = t.positions.rows();
+  const DihedralReport before = dihedral_angles(t.triangles, t.positions);
+  const double turn = 0.5 * before.max_deg;
+
+  Tessellation same = t;
+  EXPECT_EQ(refine_sharp_turns(same, c.spline, turn, 0), 0);
+  EXPECT_EQ(same.triangles, t.triangles);
+  const int splits = refine_sharp_turns(t, c.spline, turn, 2, 2);
+  ASSERT_GT(splits, 0);
+  EXPECT_GE(t.triangles.size(), triangles_before + 3 * static_cast<std::size_t>(splits));
+  EXPECT_EQ(patch_triangles(t), patch_before);
+
+  const WatertightReport closed = check_watertight(t.triangles, t.positions);
+  EXPECT_TRUE(closed.closed(2)) << closed.boundary_edges << " " << closed.misoriented_edges;
+  EXPECT_EQ(closed.duplicate_positions, 0);
+  const DihedralReport after = dihedral_angles(t.triangles, t.positions);
+  EXPECT_LT(after.max_deg, before.max_deg);
+
+  ASSERT_EQ(t.parameters.size(), static_cast<std::size_t>(t.positions.rows()));
+  ASSERT_EQ(t.normals.rows(), t.positions.rows());
+  for (Eigen::Index i = positions_before; i < t.positions.rows(); ++i) {
+    const DomainPoint& p = t.parameters[static_cast<std::size_t>(i)];
+    ASSERT_GE(p.face, 0);
+    EXPECT_NEAR(p.barycentric.sum(), 1.0, 1e-15);
+    const SurfaceJet jet = c.spline.evaluate(p);
+    EXPECT_LT((jet.position - t.positions.row(i).transpose()).norm(), 1e-12) << i;
+    EXPECT_GT(jet.normal.dot(t.normals.row(i).transpose()), 1.0 - 1e-12) << i;
+  }
+  ASSERT_EQ(t.render_triangles.size(), t.triangles.size());
+  ASSERT_EQ(t.render_position.size(), static_cast<std::size_t>(t.uvs.rows()));
+  for (std::size_t i = 0; i < t.triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(t.render_position[t.render_triangles[i][k]], t.triangles[i][k]) << i;
+    if (t.triangle_face[i] < 0) continue;
+    const auto& r = t.render_triangles[i];
+    const Eigen::Vector2d a = t.uvs.row(r[1]) - t.uvs.row(r[0]),
+                          b = t.uvs.row(r[2]) - t.uvs.row(r[0]);
+    EXPECT_GT(a.x() * b.y() - a.y() * b.x(), 0.0) << i;
+    // Orientation kept: the triangle faces the way the exact normals at its corners do.
+    const Eigen::Vector3d e = t.positions.row(t.triangles[i][1]) - t.positions.row(t.triangles[i][0]),
+                          f = t.positions.row(t.triangles[i][2]) - t.positions.row(t.triangles[i][0]);
+    EXPECT_GT(e.cross(f).dot(t.normals.row(t.triangles[i][0])), 0.0) << i;
+  }
+  EXPECT_THROW(refine_sharp_turns(t, c.spline, 0.0, 1), ricci::InvalidInputError);
+  EXPECT_THROW(refine_sharp_turns(t, c.spline, 180.0, 1), ricci::InvalidInputError);
+  EXPECT_THROW(refine_sharp_turns(t, c.spline, 60.0, -1), ricci::InvalidInputError);
 }
 
 TEST(Tessellate, RefusesBadDensity) {
