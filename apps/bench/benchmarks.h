@@ -48,5 +48,8 @@ int run_spline_file_benchmark(int argc, char** argv);  // bench_spline_file.cpp
 int run_match_benchmark(int argc, char** argv);  // bench_match.cpp
 /// Issue 15: control points the adaptive and the uniform domain need for a fit RMS goal.
 int run_adaptive_benchmark(int argc, char** argv);  // bench_adaptive.cpp
+/// Issue 19: msp fit's stages at 1, 4 and 16 times a scan's faces (1.6M from venus).
+int run_fit_scale_benchmark(int argc, char** argv);  // bench_fit_scale.cpp
+int run_fit_scale_case(int argc, char** argv);       // bench_fit_scale.cpp
 
 }  // namespace msp::bench

@@ -56,6 +56,10 @@ const Benchmark kBenchmarks[] = {
      "issue 7: uniformization (flow, cut, layout, Fuchsian group) at the Ricci-flow paper's Table I sizes"},
     {"match", msp::bench::run_match_benchmark,
      "issue 17: msp module and msp match at ~20k and ~100k faces [MODELS [CASE...]]"},
+    {"fit-scale", msp::bench::run_fit_scale_benchmark,
+     "issue 19: msp fit at 1x, 4x, 16x a scan's faces (venus to 1.6M): stages, per M faces, vs one "
+     "Cholesky [MESH] [--levels 0,1,2]"},
+    {"fit-scale-one", msp::bench::run_fit_scale_case, "one row of 'fit-scale' in this process"},
     {"adaptive", msp::bench::run_adaptive_benchmark,
      "issue 15: control points for 0.1% RMS, adaptive vs uniform domain (venus, horse) [--rms F]\n"
      "      [--from N] [--base-share F] [--max-turn D] [--thickness E] [--by-turn] [--relax N]\n"
