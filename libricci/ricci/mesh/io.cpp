@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <sstream>
 
 #include "ricci/mesh/build_mesh.h"
 #include "ricci/mesh/errors.h"
@@ -62,6 +63,14 @@ Mesh read_mesh(const std::string& path) { return build_mesh(read_soup(path)); }
 
 ColouredMesh read_mesh_with_colours(const std::string& path) {
   const PolygonSoup soup = read_soup(path);
+  for (std::size_t v = 0; v < soup.colours.size(); ++v) {
+    const Eigen::Vector3d& c = soup.colours[v];
+    if (c.allFinite() && c.minCoeff() >= 0.0 && c.maxCoeff() <= 1.0) continue;
+    std::ostringstream what;
+    what << path << ": " << soup.vertex_where(v) << " has the colour (" << c.x() << ", " << c.y()
+         << ", " << c.z() << "), outside 0-1 (0-255 for integers)";
+    throw IOError(what.str());
+  }
   MeshBuildResult built = build_mesh_with_report(soup);
   ColouredMesh out;
   out.mesh = std::move(built.mesh);

@@ -24,7 +24,8 @@ struct ColouredMesh {
   Eigen::MatrixX3d colours;
 };
 
-/// read_mesh() keeping the vertex colours (see ColouredMesh). \throw as read_mesh().
+/// read_mesh() keeping the vertex colours (see ColouredMesh). \throw as read_mesh(), and
+/// IOError on a colour that is not finite or lies outside 0-1 (0-255 for integer colours).
 [[nodiscard]] ColouredMesh read_mesh_with_colours(const std::string& path);
 
 /// Writes OBJ, OFF or PLY (ascii), chosen by the extension, with every coordinate in the

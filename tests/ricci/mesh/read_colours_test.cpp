@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
 
 namespace {
@@ -64,6 +65,24 @@ TEST_F(ReadColours, CoffWithAMissingColourHasNone) {
     const ricci::ColouredMesh m = ricci::read_mesh_with_colours(coff);
     EXPECT_EQ(m.mesh.n_vertices(), 4u) << third;
     EXPECT_EQ(m.colours.rows(), 0) << third;
+  }
+}
+
+// Colours that are not numbers of the range are refused with the file and the vertex named.
+TEST_F(ReadColours, NonFiniteOrOutOfRangeColoursAreRefused) {
+  for (const char* third : {"9 9 9 nan 0 0 255\n", "9 9 9 -1 0 0 255\n", "9 9 9 0 300 0 255\n",
+                            "9 9 9 inf 0 0 255\n"}) {
+    const std::string coff = file("e.off", std::string("COFF\n5 2 0\n0 0 0 255 0 0 255\n"
+                                                       "1 0 0 0 255 0 255\n") +
+                                               third + "0 1 0 0 0 255 255\n1 1 0 1 2 3 255\n" +
+                                               kFaces);
+    try {
+      (void)ricci::read_mesh_with_colours(coff);
+      ADD_FAILURE() << "accepted " << third;
+    } catch (const ricci::IOError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("e.off: vertex 2 (line 5) has the colour"), std::string::npos) << what;
+    }
   }
 }
 
