@@ -94,19 +94,7 @@ std::vector<HalfedgeHandle> ray_to_loop(const Mesh& mesh, const std::vector<int>
   return path;
 }
 
-/// A surface cut along its cone star: the disk, its boundary walk and the walk's arcs.
-struct Star {
-  SlicedMesh sliced;
-  Eigen::VectorXd lengths;  ///< Flat lengths by sliced edge.
-  std::vector<int> walk;    ///< The disk's boundary, counter-clockwise, from a copy of p.
-  std::vector<double> arc;  ///< Flat arc length along the walk (walk.size() + 1 entries).
-  /// Like arc, but 3D lengths along the rays: the flat metric shrinks them towards the cone
-  /// (as r^(theta / 2 pi - 1) for cone angle theta), where flat arc length would crowd the
-  /// ray's vertices below the rounding of the unit circle.
-  std::vector<double> param_arc;
-  std::vector<int> corners;     ///< Walk positions of the 3 (n + 1) arc ends.
-  std::vector<int> loop_order;  ///< Loop rank of each ray, in walk order.
-};
+using detail::Star;
 
 /// Algorithm 8, steps 1-3: the flat metric with geodesic boundaries and the cone at p.
 /// \throw SolverError when the flow does not converge.
@@ -235,18 +223,6 @@ Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const EdgeLeng
   return star;
 }
 
-/// The relative flat length of each of the walk's arcs.
-std::vector<double> arc_fractions(const Star& star) {
-  std::vector<double> fractions;
-  const size_t k = star.corners.size();
-  for (size_t j = 0; j < k; ++j) {
-    const int from = star.corners[j];
-    const int to = j + 1 < k ? star.corners[j + 1] : static_cast<int>(star.walk.size());
-    fractions.push_back((star.arc[to] - star.arc[from]) / star.arc.back());
-  }
-  return fractions;
-}
-
 /// The star with its walk starting at its j-th ray (loop_order[j]) instead of the ray to c0.
 Star rotated(const Star& star, int j) {
   Star out = star;
@@ -303,40 +279,24 @@ std::vector<int> pairing_turns(const Star& a, const Star& b, const std::vector<d
   return turns;
 }
 
-/// Step 6: where each vertex of the walk goes on the turn (a fraction in [0, 1)): arc j spans
-/// extents[j], parametrised by flat arc length round the loops and by 3D length along the rays
-/// (Star::param_arc).
-std::vector<double> star_parameters(const Star& star, const std::vector<double>& extents) {
-  const int m = static_cast<int>(star.walk.size());
-  std::vector<double> s(static_cast<size_t>(m));
-  double start = 0;
-  for (size_t j = 0; j < star.corners.size(); ++j) {
-    const int from = star.corners[j];
-    const int to = j + 1 < star.corners.size() ? star.corners[j + 1] : m;
-    const double length = star.param_arc[to] - star.param_arc[from];
-    for (int i = from; i < to; ++i) {
-      const double t = length > 0 ? (star.param_arc[i] - star.param_arc[from]) / length : 0;
-      s[static_cast<size_t>(i)] = start + t * extents[j];
-    }
-    start += extents[j];
-  }
-  return s;
-}
-
-/// Steps 6-7 for B: the disk's boundary on the unit circle at 2 pi times its parameters, the
-/// interior by the mean-value harmonic map of the flat metric.
-/// \throw SolverError when the sparse solve fails.
-Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& parameters) {
-  const int n = static_cast<int>(star.sliced.mesh.n_vertices());
+/// Steps 6-8 with one convex piece per surface: B's disk onto a polygon inscribed in the unit
+/// circle by the mean-value harmonic map of its flat metric, A's disk inside it (fill_inside).
+/// \throw SolverError when a sparse solve fails.
+void one_convex_piece(const Star& star_a, const Star& star_b, MatchResult& trial) {
+  const std::vector<double> extents = detail::common_extents(star_a, star_b);
+  const std::vector<double> sa = detail::arc_parameters(star_a, extents),
+                            sb = detail::arc_parameters(star_b, extents);
+  const int n = static_cast<int>(star_b.sliced.mesh.n_vertices());
   Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
   std::vector<char> fixed(n, 0);
-  for (size_t i = 0; i < star.walk.size(); ++i) {
-    const double angle = 2 * M_PI * parameters[i];
-    x.row(star.walk[i]) << std::cos(angle), std::sin(angle);
-    fixed[star.walk[i]] = 1;
-  }
-  detail::harmonic_fill(star.sliced.mesh, star.lengths, fixed, x);
-  return x;
+  detail::place_on_circle(star_b, sb, Eigen::Vector2d::Zero(), x, fixed);
+  detail::harmonic_fill(star_b.sliced.mesh, star_b.lengths, fixed, x);
+  trial.b.positions = std::move(x);
+  trial.a.positions = detail::fill_inside(star_a.sliced.mesh, star_a.lengths, star_a.walk, sa,
+                                          star_b.walk, sb, trial.b.positions, 1.0);
+  detail::fill_cut_domain(star_a.sliced, trial.a);
+  detail::fill_cut_domain(star_b.sliced, trial.b);
+  trial.pieces = 1;
 }
 
 /// Four boundary vertices of a disk where the boundary turns most in 3D (pi minus the sum of the
@@ -700,13 +660,10 @@ void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths, const std::v
   }
 }
 
-Eigen::MatrixX2d fill_inside(const Mesh& cut_a, const Eigen::VectorXd& lengths_a,
-                             const std::vector<int>& walk_a, const std::vector<double>& params_a,
-                             const std::vector<int>& walk_b, const std::vector<double>& params_b,
-                             const Eigen::MatrixX2d& positions_b, double period) {
-  const int n = static_cast<int>(cut_a.n_vertices());
-  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
-  std::vector<char> fixed(n, 0);
+void place_on_polygon(const std::vector<int>& walk_a, const std::vector<double>& params_a,
+                      const std::vector<int>& walk_b, const std::vector<double>& params_b,
+                      const Eigen::MatrixX2d& positions_b, double period, Eigen::MatrixX2d& x,
+                      std::vector<char>& fixed) {
   const size_t m = walk_b.size();
   size_t j = 0;  // B's side from walk vertex j to j + 1 (mod m) holds the current parameter
   for (size_t i = 0; i < walk_a.size(); ++i) {
@@ -719,6 +676,16 @@ Eigen::MatrixX2d fill_inside(const Mesh& cut_a, const Eigen::VectorXd& lengths_a
     x.row(walk_a[i]) = t == 0 ? p : p + t * (q - p);
     fixed[walk_a[i]] = 1;
   }
+}
+
+Eigen::MatrixX2d fill_inside(const Mesh& cut_a, const Eigen::VectorXd& lengths_a,
+                             const std::vector<int>& walk_a, const std::vector<double>& params_a,
+                             const std::vector<int>& walk_b, const std::vector<double>& params_b,
+                             const Eigen::MatrixX2d& positions_b, double period) {
+  const int n = static_cast<int>(cut_a.n_vertices());
+  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
+  std::vector<char> fixed(n, 0);
+  place_on_polygon(walk_a, params_a, walk_b, params_b, positions_b, period, x, fixed);
   harmonic_fill(cut_a, lengths_a, fixed, x);
   return x;
 }
@@ -937,27 +904,21 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     MatchResult best;
     for (const Candidate& candidate : candidates) {
       const Star& star_a_cut = *candidate.a;
-      const std::vector<double> fa = arc_fractions(star_a_cut);
       for (int turn : candidate.turns) {
         const Star star = rotated(*candidate.b, turn);
-        const std::vector<double> fb = arc_fractions(star);
-        std::vector<double> extents(fa.size());
-        // Half of the turn by the arcs' mean flat lengths, half evenly: a small hole's arcs keep
-        // room enough that the harmonic map does not crowd its faces below the rounding.
-        for (size_t j = 0; j < fa.size(); ++j) {
-          extents[j] = 0.25 * (fa[j] + fb[j]) + 0.5 / static_cast<double>(fa.size());
-        }
         MatchResult trial = result;
-        const std::vector<double> sa = star_parameters(star_a_cut, extents),
-                                  sb = star_parameters(star, extents);
-        trial.b.positions = star_positions(star, sb);
-        trial.a.positions =
-            detail::fill_inside(star_a_cut.sliced.mesh, star_a_cut.lengths, star_a_cut.walk, sa,
-                                star.walk, sb, trial.b.positions, 1.0);
         trial.a.loop_order = star_a_cut.loop_order;
         trial.b.loop_order = star.loop_order;
-        detail::fill_cut_domain(star_a_cut.sliced, trial.a);
-        detail::fill_cut_domain(star.sliced, trial.b);
+        bool pieces = false;
+        if (options.decompose) {
+          try {
+            detail::cone_pieces(a, star_a_cut, flat_a, b, star, flat_b, trial);
+            pieces = true;
+          } catch (const TopologyError&) {
+            // no gamma on both surfaces, or pieces that differ: one convex piece
+          }
+        }
+        if (!pieces) one_convex_piece(star_a_cut, star, trial);
         detail::evaluate_map(a, b, tables_a, tables_b, trial, false);
         if (best.map.empty() || trial.shape_error < best.shape_error) best = std::move(trial);
       }

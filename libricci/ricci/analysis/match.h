@@ -84,6 +84,12 @@ struct MatchOptions {
   /// The cone's curvature 2 pi chi is spread evenly over the feature vertex and the interior
   /// vertices within this many rings of it (0: the vertex alone).
   int cone_rings = 2;
+  /// Cone star: decompose each surface into convex pieces (Algorithm 8, steps 5-8): a
+  /// quadrilateral between each loop but c0 and a shortest loop round it through its ray
+  /// (gamma, near the ray's middle), and one central piece with the cone; corresponding pieces
+  /// are mapped harmonically onto common convex polygons and glued along the gammas. Loops
+  /// without a gamma on both surfaces stay in the central piece. false: one convex piece.
+  bool decompose = true;
   /// Cone star: when the rays leave the feature towards the loops in another cyclic order on
   /// A and B (loops of about the same length swap ranks under a deformation), the loops pair by
   /// that cyclic order instead, at each turn whose pairs have relative 3D lengths (over the
@@ -115,8 +121,10 @@ struct MapPoint {
 
 /// One surface in the common parameter domain: the mesh cut open (the rectangle: not cut).
 struct ParameterDomain {
-  Eigen::MatrixX3i faces;               ///< By face of the mesh (same index), into positions.
-  Eigen::MatrixX2d positions;           ///< By cut vertex, in the unit square or unit disk.
+  Eigen::MatrixX3i faces;  ///< By face of the mesh (same index), into positions.
+  /// By cut vertex, in the unit square or unit disk; cone pieces: piece k in the unit disk
+  /// about (3 k, 0).
+  Eigen::MatrixX2d positions;
   std::vector<int> to_original_vertex;  ///< By cut vertex: the mesh vertex.
   int feature = -1;                     ///< The cone vertex or disk centre, else -1.
   std::vector<int> corners;             ///< Rectangle: the corner vertices, ccw from corner 0.
@@ -140,6 +148,9 @@ struct MatchResult {
   /// correspondence (r_A replaced by r_B of the same vertex index): 0 for the identity. NaN
   /// otherwise.
   double correspondence_error = 0;
+  /// Convex pieces of the common domain: 1 + the loops with a gamma for the cone star
+  /// (MatchOptions::decompose), else 1.
+  int pieces = 1;
   /// Faces of A whose image in B's parameter domain has signed area <= 0, and faces of B
   /// reversed or degenerate in the parameter domain. The map is one-to-one when both are 0.
   int flipped_faces = 0;
