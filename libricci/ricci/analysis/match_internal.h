@@ -31,6 +31,26 @@ struct Star : ArcWalk {
   std::vector<int> loop_order;  ///< Loop rank of each ray, in walk order.
 };
 
+/// Algorithm 8, step 4 and the cut (match_star.cpp): vertex-disjoint shortest rays (under the
+/// flat metric `flat`) from interior vertex p to each boundary loop, taken in rank order, then
+/// (if one is blocked) nearest loop first (`reach_first` swaps the two); the surface sliced
+/// along them, its walk from the copy of p whose ray goes to c0.
+/// \throw TopologyError when the rays cannot be made vertex-disjoint or the cut is not a disk.
+[[nodiscard]] Star cone_star(const Mesh& mesh, const MeshTables& tables, int p,
+                             const EdgeLengths& flat, const char* name, bool reach_first);
+
+/// The cone star whose rays leave p towards the loops in the cyclic order `order` (loop ranks,
+/// as Star::loop_order, from c0): each ray starts at its own neighbour of p, the neighbours
+/// chosen in that order round p's fan as near as can be to the first steps of the free rays,
+/// and is the shortest path from there avoiding p, the other starts and the earlier rays
+/// (nearest loop first). Where the free rays pass other sides of the holes than on the other
+/// surface, this gives both surfaces one cut pattern.
+/// \throw TopologyError when no choice of starts gives such rays (p's valence too low, rays
+///        fenced in) or the cut is not a disk.
+[[nodiscard]] Star ordered_star(const Mesh& mesh, const MeshTables& tables, int p,
+                                const EdgeLengths& flat, const std::vector<int>& order,
+                                const char* name);
+
 /// The relative flat length of each arc of `w`.
 [[nodiscard]] std::vector<double> arc_fractions(const ArcWalk& w);
 
@@ -94,6 +114,10 @@ void fill_cut_domain(const SlicedMesh& sliced, ParameterDomain& domain);
 /// vertices are taken where they are (fill_inside).
 void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
                   const MeshTables& tables_b, MatchResult& result, bool carry_radially);
+
+/// result.shape_error and result.correspondence_error of result.map (by vertex of A).
+void map_errors(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
+                const MeshTables& tables_b, MatchResult& result);
 
 /// Algorithm 8, steps 5-8 (match_pieces.cpp): each star's disk (`a` and `b`, B's turned so
 /// that its rays pair with A's in walk order) is cut further along a shortest loop gamma_r round
