@@ -108,7 +108,9 @@ std::vector<int> interior_path(const Mesh& disk, const Eigen::VectorXd& lengths,
 /// Step 5: for each triple r > 0 of the star's walk, a shortest loop round its boundary loop
 /// through a vertex x of its ray (the out copy to the back copy, through the disk's interior,
 /// vertex-disjoint from the others), tried first at the ray's 3D middle, then towards the loop,
-/// then towards p. By triple; empty where none was found (and always for triple 0).
+/// then towards p, last next to the loop. By triple; empty where none was found (always for
+/// triple 0; and where a ray to another loop runs one edge from this loop, as shortest rays
+/// hug the holes they pass, no path goes round it).
 std::vector<std::vector<int>> gammas(const Star& star) {
   const Mesh& disk = star.sliced.mesh;
   const int m = static_cast<int>(star.walk.size());
@@ -129,10 +131,12 @@ std::vector<std::vector<int>> gammas(const Star& star) {
         middle = i;
       }
     }
+    // At most 8 tries; the vertex next to the loop last (its gamma hugs the loop at one ring).
     std::vector<int> tries;
-    for (int i = middle; i < rays; ++i) tries.push_back(i);
+    for (int i = middle; i < rays - 1; ++i) tries.push_back(i);
     for (int i = middle - 1; i >= 1; --i) tries.push_back(i);
-    if (tries.size() > 6) tries.resize(6);
+    if (tries.size() > 7) tries.resize(7);
+    tries.push_back(rays - 1);
     for (int i : tries) {
       const int x_out = star.walk[p_out + i], x_back = star.walk[p_back - i];
       if (star.sliced.to_original_vertex[x_out] != star.sliced.to_original_vertex[x_back]) break;
