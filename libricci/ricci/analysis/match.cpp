@@ -880,7 +880,8 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
           "the cuts leave the feature vertex towards the boundary loops in "
           "a different order on A (" +
           text(star_a.loop_order) + ") and B (" + text(star_b.loop_order) +
-          ") and no turn pairs loops of the same length; choose other feature vertices");
+          ") and neither a turn nor rays forced into one order pair loops of the same length; " +
+          "choose other feature vertices");
     }
     result.a.seconds += stage.lap();
     MatchResult best;
