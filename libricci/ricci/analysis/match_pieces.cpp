@@ -150,31 +150,112 @@ std::vector<std::vector<int>> gammas(const Star& star) {
   return out;
 }
 
-/// The mesh cut along the star's rays and the gammas `kept` (by triple), and its pieces' walks:
-/// central piece first (from the copy of p before triple 0's ray), then one per gamma (from the
-/// copy of x before its ray part), each with its corners and arc kinds.
+/// The mesh cut along the star's rays and the gammas kept, and its pieces: central piece first
+/// (from the copy of p before triple 0's ray), then one per gamma (from the copy of x before its
+/// ray part), each with its corners and arc kinds.
 struct Cut {
   SlicedMesh sliced;
   Eigen::VectorXd flat;  ///< By sliced edge.
   std::vector<Piece> pieces;
 };
 
+/// What tells the corners and arcs of a piece's walk apart, by original vertex or edge.
+struct Marks {
+  int p = -1;
+  std::vector<int> triple_of_end;  ///< The triple whose ray ends here, else -1.
+  std::vector<char> is_x;          ///< A kept gamma's x.
+  std::vector<char> is_ray;        ///< By original edge.
+};
+
+/// One piece from its boundary loop (as build_mesh_tables gives it) in the cut mesh.
+/// \throw TopologyError when the walk has no start corner or a gamma's piece is not x, ray,
+///        loop, ray, gamma.
+Piece piece_of(const std::vector<int>& loop, const Mesh& mesh, const Cut& cut,
+               const Eigen::VectorXd& lengths_3d, const Marks& marks) {
+  const Mesh& pieces = cut.sliced.mesh;
+  // Face-less halfedges run clockwise: reversed, the surface is on the left.
+  std::vector<int> walk(loop.rbegin(), loop.rend());
+  const int m = static_cast<int>(walk.size());
+  const auto to_original = [&](int s) { return cut.sliced.to_original_vertex[s]; };
+  const auto edge_of = [&](int i) {
+    return pieces.edge_handle(pieces.find_halfedge(pieces.vertex_handle(walk[i]),
+                                                   pieces.vertex_handle(walk[(i + 1) % m])));
+  };
+  const auto kind_of = [&](int i) {
+    const EdgeHandle e = mesh.edge_handle(cut.sliced.to_original_edge[edge_of(i).idx()]);
+    return mesh.is_boundary(e)     ? ArcKind::loop
+           : marks.is_ray[e.idx()] ? ArcKind::ray
+                                   : ArcKind::gamma;
+  };
+  const auto is_corner = [&](int i) {
+    const int v = to_original(walk[i]);
+    return v == marks.p || marks.triple_of_end[v] >= 0 || marks.is_x[v];
+  };
+  // The start: central, the copy of p whose ray ends on triple 0's loop; else the x whose next
+  // arc is its ray part.
+  Piece piece;
+  int start = -1;
+  for (int i = 0; i < m && start < 0; ++i) {
+    if (!is_corner(i)) continue;
+    int j = (i + 1) % m;
+    while (!is_corner(j)) j = (j + 1) % m;
+    const int v = to_original(walk[i]), w = to_original(walk[j]);
+    if (v == marks.p && marks.triple_of_end[w] == 0) start = i;
+    if (marks.is_x[v] && kind_of(i) == ArcKind::ray && marks.triple_of_end[w] >= 0) {
+      start = i;
+      piece.triple = marks.triple_of_end[w];
+    }
+  }
+  if (start < 0) throw TopologyError("cone pieces: a piece without its start corner");
+  if (piece.triple >= 0) {
+    // x, out along the ray, round the loop, back along the ray, the gamma back to x.
+    piece.kinds = {ArcKind::ray, ArcKind::loop, ArcKind::ray, ArcKind::gamma};
+  }
+  std::rotate(walk.begin(), walk.begin() + start, walk.end());
+  piece.arc.assign(m + 1, 0.0);
+  piece.param_arc.assign(m + 1, 0.0);
+  for (int i = 0; i < m; ++i) {
+    if (is_corner(i)) {
+      const ArcKind kind = kind_of(i);
+      if (piece.triple >= 0 &&
+          (piece.corners.size() >= 4 || piece.kinds[piece.corners.size()] != kind)) {
+        throw TopologyError("cone pieces: a gamma encloses more than its loop");
+      }
+      piece.corners.push_back(i);
+      if (piece.triple < 0) piece.kinds.push_back(kind);
+    }
+    const int e = edge_of(i).idx();
+    piece.arc[i + 1] = piece.arc[i] + cut.flat[e];
+    piece.param_arc[i + 1] =
+        piece.param_arc[i] +
+        (piece.kinds[piece.corners.size() - 1] == ArcKind::ray ? lengths_3d[e] : cut.flat[e]);
+  }
+  if (piece.triple >= 0 && piece.corners.size() != 4) {
+    throw TopologyError("cone pieces: a gamma encloses more than its loop");
+  }
+  piece.walk = std::move(walk);
+  return piece;
+}
+
+/// The mesh cut along the star's rays and the gammas `kept` (by triple), and its pieces.
+/// \throw TopologyError when the pieces are not disks or not of the expected pattern.
 Cut cut_pieces(const Mesh& mesh, const Star& star, const EdgeLengths& flat,
                const std::vector<std::vector<int>>& gamma, const std::vector<char>& kept) {
   const auto original = [&](int s) { return star.sliced.to_original_vertex[s]; };
-  std::vector<char> is_cut(mesh.n_edges(), 0), is_ray(mesh.n_edges(), 0);
-  for (const CutEdgeSides& sides : star.sliced.cut_sides) is_cut[sides.edge.idx()] = 1;
-  is_ray = is_cut;
+  Marks marks;
+  marks.p = original(star.walk[0]);
+  marks.triple_of_end.assign(mesh.n_vertices(), -1);
+  marks.is_x.assign(mesh.n_vertices(), 0);
+  marks.is_ray.assign(mesh.n_edges(), 0);
+  for (const CutEdgeSides& sides : star.sliced.cut_sides) marks.is_ray[sides.edge.idx()] = 1;
+  std::vector<char> is_cut = marks.is_ray;
   const Mesh& disk = star.sliced.mesh;
-  const int p = original(star.walk[0]);
-  std::vector<int> triple_of_end(mesh.n_vertices(), -1);  // by original ray end
-  std::vector<char> is_x(mesh.n_vertices(), 0);
   int expected = 1;
   for (size_t r = 0; r < gamma.size(); ++r) {
-    triple_of_end[original(star.walk[star.corners[3 * r + 1]])] = static_cast<int>(r);
+    marks.triple_of_end[original(star.walk[star.corners[3 * r + 1]])] = static_cast<int>(r);
     if (!kept[r]) continue;
     ++expected;
-    is_x[original(gamma[r].front())] = 1;
+    marks.is_x[original(gamma[r].front())] = 1;
     for (size_t k = 0; k + 1 < gamma[r].size(); ++k) {
       const HalfedgeHandle h =
           disk.find_halfedge(disk.vertex_handle(gamma[r][k]), disk.vertex_handle(gamma[r][k + 1]));
@@ -189,69 +270,8 @@ Cut cut_pieces(const Mesh& mesh, const Star& star, const EdgeLengths& flat,
   }
   cut.flat = sliced_edge_lengths(cut.sliced, flat);
   const Eigen::VectorXd lengths_3d = sliced_edge_lengths(cut.sliced, mesh_edge_lengths(mesh));
-  const Mesh& pieces = cut.sliced.mesh;
-  const MeshTables tables = build_mesh_tables(pieces);
-  const auto to_original = [&](int s) { return cut.sliced.to_original_vertex[s]; };
-  for (const std::vector<int>& loop : tables.boundary_loops) {
-    // Face-less halfedges run clockwise: reversed, the surface is on the left.
-    std::vector<int> walk(loop.rbegin(), loop.rend());
-    const int m = static_cast<int>(walk.size());
-    const auto edge_of = [&](int i) {
-      return pieces.edge_handle(pieces.find_halfedge(pieces.vertex_handle(walk[i]),
-                                                     pieces.vertex_handle(walk[(i + 1) % m])));
-    };
-    const auto kind_of = [&](int i) {
-      const EdgeHandle e = mesh.edge_handle(cut.sliced.to_original_edge[edge_of(i).idx()]);
-      return mesh.is_boundary(e) ? ArcKind::loop : is_ray[e.idx()] ? ArcKind::ray : ArcKind::gamma;
-    };
-    const auto is_corner = [&](int i) {
-      const int v = to_original(walk[i]);
-      return v == p || triple_of_end[v] >= 0 || is_x[v];
-    };
-    // The start: central, the copy of p whose ray ends on triple 0's loop; else the x whose
-    // next arc is its ray part.
-    Piece piece;
-    int start = -1;
-    for (int i = 0; i < m && start < 0; ++i) {
-      if (!is_corner(i)) continue;
-      int j = (i + 1) % m;
-      while (!is_corner(j)) j = (j + 1) % m;
-      const int v = to_original(walk[i]), w = to_original(walk[j]);
-      if (v == p && triple_of_end[w] == 0) start = i;
-      if (is_x[v] && kind_of(i) == ArcKind::ray && triple_of_end[w] >= 0) {
-        start = i;
-        piece.triple = triple_of_end[w];
-      }
-    }
-    if (start < 0) throw TopologyError("cone pieces: a piece without its start corner");
-    if (piece.triple >= 0) {
-      // x, out along the ray, round the loop, back along the ray, the gamma back to x.
-      piece.kinds = {ArcKind::ray, ArcKind::loop, ArcKind::ray, ArcKind::gamma};
-    }
-    std::rotate(walk.begin(), walk.begin() + start, walk.end());
-    piece.walk = walk;  // the lambdas read walk
-    piece.arc.assign(m + 1, 0.0);
-    piece.param_arc.assign(m + 1, 0.0);
-    for (int i = 0; i < m; ++i) {
-      if (is_corner(i)) {
-        const ArcKind kind = kind_of(i);
-        if (piece.triple >= 0 &&
-            (piece.corners.size() >= 4 || piece.kinds[piece.corners.size()] != kind)) {
-          throw TopologyError("cone pieces: a gamma encloses more than its loop");
-        }
-        piece.corners.push_back(i);
-        if (piece.triple < 0) piece.kinds.push_back(kind);
-      }
-      const int e = edge_of(i).idx();
-      piece.arc[i + 1] = piece.arc[i] + cut.flat[e];
-      piece.param_arc[i + 1] =
-          piece.param_arc[i] +
-          (piece.kinds[piece.corners.size() - 1] == ArcKind::ray ? lengths_3d[e] : cut.flat[e]);
-    }
-    if (piece.triple >= 0 && piece.corners.size() != 4) {
-      throw TopologyError("cone pieces: a gamma encloses more than its loop");
-    }
-    cut.pieces.push_back(std::move(piece));
+  for (const std::vector<int>& loop : build_mesh_tables(cut.sliced.mesh).boundary_loops) {
+    cut.pieces.push_back(piece_of(loop, mesh, cut, lengths_3d, marks));
   }
   std::sort(cut.pieces.begin(), cut.pieces.end(),
             [](const Piece& x, const Piece& y) { return x.triple < y.triple; });
