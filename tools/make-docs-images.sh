@@ -36,7 +36,7 @@ awk 'NR == 2 {n = $1} NR > 2 && NR <= n + 2 {
        printf "%.9g %.9g %.9g\n", x * s + cx, y * s + cy, z * s + cz; next} {print}' \
   "$models/open/head.off" >"$work/head_deformed.off"
 "$msp" match "$models/open/head.off" "$work/head_deformed.off" --feature-a 185 --feature-b 185 \
-  -o "$work/head.map" --glb "$work/match_head.glb" --quiet >/dev/null
+  -o "$work/head.map" --glb "$work/match_head.glb" --checker-squares 40 --quiet >/dev/null
 node "$root/tools/validate.mjs" "$work/match_head.glb"
 node "$root/tools/render.mjs" "$work/match_head.glb" "$out/match_head.png" --width 1000 --height 500 \
   --azimuth 0 --elevation 0

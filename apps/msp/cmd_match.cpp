@@ -45,6 +45,7 @@ nlohmann::json match_json(const std::string& path_a, const std::string& path_b,
   j["b"]["mesh"] = path_b;
   j["method"] = ricci::to_string(method);
   j["domain"] = r.domain;
+  j["pieces"] = r.pieces;
   j["shape_error_percent"] = 100 * r.shape_error;
   j["correspondence_error_percent"] = number(100 * r.correspondence_error);
   j["flipped_faces"] = r.flipped_faces;
@@ -57,7 +58,8 @@ nlohmann::json match_json(const std::string& path_a, const std::string& path_b,
 }
 
 void print_summary(ricci::MatchMethod method, const ricci::MatchResult& r) {
-  std::cout << "method " << ricci::to_string(method) << "\ndomain " << r.domain << "\n";
+  std::cout << "method " << ricci::to_string(method) << "\ndomain " << r.domain << "\npieces "
+            << r.pieces << "\n";
   if (r.a.feature >= 0) std::cout << "features " << r.a.feature << " " << r.b.feature << "\n";
   if (!r.a.loop_order.empty()) {
     std::cout << "loop_order";
@@ -144,6 +146,8 @@ const CommandSpec& match_command() {
        {"corners-a", "a,b,c,d", "a disk's rectangle corners on A (default: where it turns most)"},
        {"corners-b", "a,b,c,d", "the corners of B that match --corners-a, in the same order"},
        {"method", "euclidean|hyperbolic", "Algorithm 8 (default) or 9 (3+ boundary loops)"},
+       {"one-piece", "",
+        "cone star: one convex piece, not the pieces cut by loops round the holes"},
        {"glb", "OUT.glb", "draw the match: A and B with one checkerboard carried from A to B"},
        {"checker-squares", "N", "checkerboard squares along each side, 1 to 256 (16)"},
        json_option(),
@@ -161,6 +165,7 @@ int run_match(int argc, char** argv) {
   } catch (const ricci::InvalidInputError& e) {
     throw UsageError(e.what());
   }
+  options.decompose = !args.has("one-piece");
   options.feature_a = args.get_int("feature-a", -1);
   options.feature_b = args.get_int("feature-b", -1);
   if (auto c = args.get("corners-a")) options.corners_a = parse_corners(*c, "corners-a");

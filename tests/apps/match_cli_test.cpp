@@ -55,10 +55,19 @@ TEST_F(MatchCli, PlateAgainstItsBendingIsTheIdentity) {
   ASSERT_EQ(r.exit_status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["domain"], "cone star");
+  EXPECT_EQ(j["pieces"], 3);  // a quadrilateral round each hole and the central piece
   EXPECT_EQ(j["flipped_faces"], 0);
   EXPECT_EQ(j["flipped_faces_b"], 0);
   EXPECT_LT(j["correspondence_error_percent"].get<double>(), 0.1);
   EXPECT_TRUE(fs::file_size(path("match.glb")) > 1000);
+  // --one-piece: the cut disk whole, the same identity.
+  const auto one =
+      msp_test::run_msp({"match", a, b, "-o", path("one.txt"), "--one-piece", "--json"});
+  ASSERT_EQ(one.exit_status, 0) << one.err;
+  const auto k = nlohmann::json::parse(one.out);
+  EXPECT_EQ(k["pieces"], 1);
+  EXPECT_EQ(k["flipped_faces"], 0);
+  EXPECT_LT(k["correspondence_error_percent"].get<double>(), 0.1);
   // The map file: each vertex of A lands next to the same vertex of B.
   std::ifstream in(path("map.txt"));
   std::string magic;

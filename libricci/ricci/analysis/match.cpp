@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <deque>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -78,35 +80,7 @@ void check_feature(const MeshTables& tables, int v, const char* name) {
   }
 }
 
-/// The ray from interior vertex p to boundary loop `target` avoiding the `used` vertices of
-/// earlier rays, ending at its first vertex on the loop; marks its vertices but p used.
-/// \throw TopologyError when the loop cannot be reached.
-std::vector<HalfedgeHandle> ray_to_loop(const Mesh& mesh, const std::vector<int>& loop_of,
-                                        const EdgeLengths& lengths, int p, int target,
-                                        std::vector<char>& used) {
-  const std::vector<HalfedgeHandle> path = detail::shortest_path_to_loop(
-      mesh, loop_of, lengths, {p}, [target](int loop) { return loop == target; }, used);
-  if (path.empty()) {
-    throw TopologyError("no path from the feature vertex reaches boundary loop " +
-                        std::to_string(target) + " without crossing the other cuts");
-  }
-  for (HalfedgeHandle h : path) used[mesh.to_vertex_handle(h).idx()] = 1;
-  return path;
-}
-
-/// A surface cut along its cone star: the disk, its boundary walk and the walk's arcs.
-struct Star {
-  SlicedMesh sliced;
-  Eigen::VectorXd lengths;  ///< Flat lengths by sliced edge.
-  std::vector<int> walk;    ///< The disk's boundary, counter-clockwise, from a copy of p.
-  std::vector<double> arc;  ///< Flat arc length along the walk (walk.size() + 1 entries).
-  /// Like arc, but 3D lengths along the rays: the flat metric shrinks them towards the cone
-  /// (as r^(theta / 2 pi - 1) for cone angle theta), where flat arc length would crowd the
-  /// ray's vertices below the rounding of the unit circle.
-  std::vector<double> param_arc;
-  std::vector<int> corners;     ///< Walk positions of the 3 (n + 1) arc ends.
-  std::vector<int> loop_order;  ///< Loop rank of each ray, in walk order.
-};
+using detail::Star;
 
 /// Algorithm 8, steps 1-3: the flat metric with geodesic boundaries and the cone at p.
 /// \throw SolverError when the flow does not converge.
@@ -128,123 +102,6 @@ EdgeLengths cone_flow(const Mesh& mesh, const MeshTables& tables, int p,
   FlowResult flat = flow(mesh, targets, options.flow);
   detail::record_match_flow(flat, options, name, domain);
   return std::move(flat.lengths);
-}
-
-/// Algorithm 8, step 4 and the cut: rays, slice, boundary walk, under the flat metric `flat`.
-/// The rays are taken in rank order, then (if one is blocked) nearest loop first;
-/// `reach_first` swaps the two.
-/// \throw TopologyError when the rays cannot be made vertex-disjoint or the cut is not a disk.
-Star cone_star(const Mesh& mesh, const MeshTables& tables, int p, const EdgeLengths& flat,
-               const char* name, bool reach_first) {
-  const int n = tables.num_vertices();
-  const int loops = static_cast<int>(tables.boundary_loops.size());
-  const std::vector<int> order = detail::loops_by_length(mesh, tables);
-  // Step 4: one ray from p to each loop, longest loop first, vertex-disjoint.
-  std::vector<int> loop_of(n, -1);
-  for (int k = 0; k < loops; ++k) {
-    for (int v : tables.boundary_loops[k]) loop_of[v] = k;
-  }
-  // Rays are taken in rank order (the same on both surfaces), then, if one is blocked, nearest
-  // loop first (fewest detours around earlier rays).
-  std::vector<double> reach(loops);
-  for (int rank = 0; rank < loops; ++rank) {
-    std::vector<char> none(n, 0);
-    none[p] = 1;
-    double length = 0;
-    for (HalfedgeHandle h : ray_to_loop(mesh, loop_of, flat, p, order[rank], none)) {
-      length += flat[mesh.edge_handle(h).idx()];
-    }
-    reach[rank] = length;
-  }
-  std::vector<int> by_reach(loops), by_rank(loops);
-  for (int rank = 0; rank < loops; ++rank) by_reach[rank] = by_rank[rank] = rank;
-  std::stable_sort(by_reach.begin(), by_reach.end(),
-                   [&](int x, int y) { return reach[x] < reach[y]; });
-  std::vector<char> is_cut;
-  std::vector<int> end_rank;
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    const std::vector<int>& ranks = (attempt == 0) != reach_first ? by_rank : by_reach;
-    std::vector<char> used(n, 0);
-    used[p] = 1;
-    is_cut.assign(mesh.n_edges(), 0);
-    end_rank.assign(n, -1);
-    try {
-      for (int rank : ranks) {
-        const auto path = ray_to_loop(mesh, loop_of, flat, p, order[rank], used);
-        for (HalfedgeHandle h : path) is_cut[mesh.edge_handle(h).idx()] = 1;
-        end_rank[mesh.to_vertex_handle(path.back()).idx()] = rank;
-      }
-      break;
-    } catch (const TopologyError&) {
-      if (attempt == 0) continue;
-      throw TopologyError(std::string(name) + ": no vertex-disjoint shortest paths join the " +
-                          "feature vertex " + std::to_string(p) +
-                          " to every boundary loop; choose another feature vertex");
-    }
-  }
-  Star star;
-  star.sliced = slice_along(mesh, is_cut);
-  check_disk(star.sliced, "cone-star cut");
-  star.lengths = sliced_edge_lengths(star.sliced, flat);
-  const MeshTables cut_tables = build_mesh_tables(star.sliced.mesh);
-  // Face-less halfedges run clockwise: reversed, the surface is on the left.
-  std::vector<int> walk(cut_tables.boundary_loops[0].rbegin(), cut_tables.boundary_loops[0].rend());
-  const auto original = [&](int s) { return star.sliced.to_original_vertex[s]; };
-  const auto is_corner = [&](int s) { return original(s) == p || end_rank[original(s)] >= 0; };
-  // Start at the copy of p whose next arc goes out to c0.
-  const int m = static_cast<int>(walk.size());
-  int start = -1;
-  for (int i = 0; i < m && start < 0; ++i) {
-    if (original(walk[i]) != p) continue;
-    int j = (i + 1) % m;
-    while (!is_corner(walk[j])) j = (j + 1) % m;
-    if (end_rank[original(walk[j])] == 0) start = i;
-  }
-  if (start < 0) throw TopologyError(std::string(name) + ": the cone star has no ray to c0");
-  std::rotate(walk.begin(), walk.begin() + start, walk.end());
-  star.walk = walk;
-  star.arc.assign(m + 1, 0.0);
-  for (int i = 0; i < m; ++i) {
-    const HalfedgeHandle h = star.sliced.mesh.find_halfedge(
-        star.sliced.mesh.vertex_handle(walk[i]), star.sliced.mesh.vertex_handle(walk[(i + 1) % m]));
-    star.arc[i + 1] = star.arc[i] + star.lengths[star.sliced.mesh.edge_handle(h).idx()];
-    if (is_corner(walk[i])) star.corners.push_back(i);
-  }
-  // The walk is p, e_k, e_k, p, e_j, e_j, ...: out along a ray, around its loop, back.
-  bool pattern = static_cast<int>(star.corners.size()) == 3 * loops;
-  for (int r = 0; pattern && r < loops; ++r) {
-    const int a = original(walk[star.corners[3 * r]]);
-    const int b = original(walk[star.corners[3 * r + 1]]);
-    const int c = original(walk[star.corners[3 * r + 2]]);
-    pattern = a == p && b == c && end_rank[b] >= 0;
-    if (pattern) star.loop_order.push_back(end_rank[b]);
-  }
-  if (!pattern) {
-    throw TopologyError(std::string(name) + ": the cut disk's boundary is not out-around-back " +
-                        "along each ray");
-  }
-  const Eigen::VectorXd lengths_3d = sliced_edge_lengths(star.sliced, mesh_edge_lengths(mesh));
-  star.param_arc.assign(m + 1, 0.0);
-  for (int i = 0, j = 0; i < m; ++i) {
-    while (j + 1 < static_cast<int>(star.corners.size()) && star.corners[j + 1] <= i) ++j;
-    const HalfedgeHandle h = star.sliced.mesh.find_halfedge(
-        star.sliced.mesh.vertex_handle(walk[i]), star.sliced.mesh.vertex_handle(walk[(i + 1) % m]));
-    const int e = star.sliced.mesh.edge_handle(h).idx();
-    star.param_arc[i + 1] = star.param_arc[i] + (j % 3 == 1 ? star.lengths[e] : lengths_3d[e]);
-  }
-  return star;
-}
-
-/// The relative flat length of each of the walk's arcs.
-std::vector<double> arc_fractions(const Star& star) {
-  std::vector<double> fractions;
-  const size_t k = star.corners.size();
-  for (size_t j = 0; j < k; ++j) {
-    const int from = star.corners[j];
-    const int to = j + 1 < k ? star.corners[j + 1] : static_cast<int>(star.walk.size());
-    fractions.push_back((star.arc[to] - star.arc[from]) / star.arc.back());
-  }
-  return fractions;
 }
 
 /// The star with its walk starting at its j-th ray (loop_order[j]) instead of the ray to c0.
@@ -284,6 +141,44 @@ std::vector<double> relative_loop_lengths(const Mesh& mesh, const MeshTables& ta
   return lengths;
 }
 
+/// Pairings of A's loop ranks with B's (pairing[rank of A] = rank of B) in which every pair's
+/// relative 3D lengths agree within `tolerance` (relative), the smallest summed relative
+/// difference first, at most `limit` (the search stops after 100000 partial pairings).
+std::vector<std::vector<int>> length_pairings(const std::vector<double>& lengths_a,
+                                              const std::vector<double>& lengths_b,
+                                              double tolerance, size_t limit) {
+  const int k = static_cast<int>(lengths_a.size());
+  std::vector<std::pair<double, std::vector<int>>> found;
+  std::vector<int> pairing;
+  std::vector<char> taken(k, 0);
+  int budget = 100000;
+  const auto difference = [&](int r, int q) {
+    return std::abs(lengths_a[r] - lengths_b[q]) / std::max(lengths_a[r], lengths_b[q]);
+  };
+  const std::function<void(double)> extend = [&](double sum) {
+    if (--budget < 0) return;
+    const int r = static_cast<int>(pairing.size());
+    if (r == k) {
+      found.push_back({sum, pairing});
+      return;
+    }
+    for (int q = 0; q < k; ++q) {
+      if (taken[q] || !(difference(r, q) <= tolerance)) continue;
+      taken[q] = 1;
+      pairing.push_back(q);
+      extend(sum + difference(r, q));
+      pairing.pop_back();
+      taken[q] = 0;
+    }
+  };
+  extend(0.0);
+  std::stable_sort(found.begin(), found.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::vector<int>> out;
+  for (size_t i = 0; i < found.size() && i < limit; ++i) out.push_back(found[i].second);
+  return out;
+}
+
 /// When the rays leave the feature towards the loops in another order on A and B: the turns j
 /// of B's star (its ray j paired with A's ray 0, and so on round) that pair each loop of A with
 /// a loop of B of the same relative 3D length within `tolerance` (relative): where the lengths
@@ -303,40 +198,80 @@ std::vector<int> pairing_turns(const Star& a, const Star& b, const std::vector<d
   return turns;
 }
 
-/// Step 6: where each vertex of the walk goes on the turn (a fraction in [0, 1)): arc j spans
-/// extents[j], parametrised by flat arc length round the loops and by 3D length along the rays
-/// (Star::param_arc).
-std::vector<double> star_parameters(const Star& star, const std::vector<double>& extents) {
-  const int m = static_cast<int>(star.walk.size());
-  std::vector<double> s(static_cast<size_t>(m));
-  double start = 0;
-  for (size_t j = 0; j < star.corners.size(); ++j) {
-    const int from = star.corners[j];
-    const int to = j + 1 < star.corners.size() ? star.corners[j + 1] : m;
-    const double length = star.param_arc[to] - star.param_arc[from];
-    for (int i = from; i < to; ++i) {
-      const double t = length > 0 ? (star.param_arc[i] - star.param_arc[from]) / length : 0;
-      s[static_cast<size_t>(i)] = start + t * extents[j];
+/// One surface's mesh, tables, flat metric and cone star.
+struct MeshCut {
+  const Mesh* mesh;
+  const MeshTables* tables;
+  const EdgeLengths* flat;
+  const Star* star;
+};
+
+/// A pair of cone stars to map, at each turn of B's.
+struct Candidate {
+  const Star* a;
+  const Star* b;
+  std::vector<int> turns;
+};
+
+/// The loops paired by relative 3D length alone (length_pairings; ranks may swap among loops of
+/// about one length), and for each pairing one surface's rays forced to leave p in the other's
+/// cyclic order (detail::ordered_star): B in A's, and A in B's; `forced` holds their stars.
+void forced_candidates(const MeshCut& a, const MeshCut& b, const MatchOptions& options,
+                       const MatchResult& result, std::deque<Star>& forced,
+                       std::vector<Candidate>& candidates) {
+  const std::vector<int>& loops_a = a.star->loop_order;
+  const std::vector<int>& loops_b = b.star->loop_order;
+  const int k = static_cast<int>(loops_a.size());
+  for (const std::vector<int>& pairing : length_pairings(relative_loop_lengths(*a.mesh, *a.tables),
+                                                         relative_loop_lengths(*b.mesh, *b.tables),
+                                                         options.loop_length_tolerance, 4)) {
+    std::vector<int> inverse(pairing.size());
+    for (size_t r = 0; r < pairing.size(); ++r) inverse[pairing[r]] = static_cast<int>(r);
+    std::vector<int> order_b, order_a;
+    for (int rank : loops_a) order_b.push_back(pairing[rank]);
+    for (int rank : loops_b) order_a.push_back(inverse[rank]);
+    const auto zero = [](std::vector<int>& order) {  // rotated to start at c0
+      const auto at = std::find(order.begin(), order.end(), 0);
+      const int i = static_cast<int>(at - order.begin());
+      std::rotate(order.begin(), at, order.end());
+      return i;
+    };
+    const int ib = zero(order_b), ia = zero(order_a);
+    try {
+      forced.push_back(
+          detail::ordered_star(*b.mesh, *b.tables, result.b.feature, *b.flat, order_b, "B"));
+      candidates.push_back({a.star, &forced.back(), {(k - ib) % k}});
+    } catch (const TopologyError&) {
+      // B's rays cannot take A's order: A's may take B's
     }
-    start += extents[j];
+    try {
+      forced.push_back(
+          detail::ordered_star(*a.mesh, *a.tables, result.a.feature, *a.flat, order_a, "A"));
+      candidates.push_back({&forced.back(), b.star, {ia}});
+    } catch (const TopologyError&) {
+      // neither: the next pairing
+    }
   }
-  return s;
 }
 
-/// Steps 6-7 for B: the disk's boundary on the unit circle at 2 pi times its parameters, the
-/// interior by the mean-value harmonic map of the flat metric.
-/// \throw SolverError when the sparse solve fails.
-Eigen::MatrixX2d star_positions(const Star& star, const std::vector<double>& parameters) {
-  const int n = static_cast<int>(star.sliced.mesh.n_vertices());
+/// Steps 6-8 with one convex piece per surface: B's disk onto a polygon inscribed in the unit
+/// circle by the mean-value harmonic map of its flat metric, A's disk inside it (fill_inside).
+/// \throw SolverError when a sparse solve fails.
+void one_convex_piece(const Star& star_a, const Star& star_b, MatchResult& trial) {
+  const std::vector<double> extents = detail::common_extents(star_a, star_b);
+  const std::vector<double> sa = detail::arc_parameters(star_a, extents),
+                            sb = detail::arc_parameters(star_b, extents);
+  const int n = static_cast<int>(star_b.sliced.mesh.n_vertices());
   Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
   std::vector<char> fixed(n, 0);
-  for (size_t i = 0; i < star.walk.size(); ++i) {
-    const double angle = 2 * M_PI * parameters[i];
-    x.row(star.walk[i]) << std::cos(angle), std::sin(angle);
-    fixed[star.walk[i]] = 1;
-  }
-  detail::harmonic_fill(star.sliced.mesh, star.lengths, fixed, x);
-  return x;
+  detail::place_on_circle(star_b, sb, Eigen::Vector2d::Zero(), x, fixed);
+  detail::harmonic_fill(star_b.sliced.mesh, star_b.lengths, fixed, x);
+  trial.b.positions = std::move(x);
+  trial.a.positions = detail::fill_inside(star_a.sliced.mesh, star_a.lengths, star_a.walk, sa,
+                                          star_b.walk, sb, trial.b.positions, 1.0);
+  detail::fill_cut_domain(star_a.sliced, trial.a);
+  detail::fill_cut_domain(star_b.sliced, trial.b);
+  trial.pieces = 1;
 }
 
 /// Four boundary vertices of a disk where the boundary turns most in 3D (pi minus the sum of the
@@ -700,13 +635,10 @@ void harmonic_fill(const Mesh& cut, const Eigen::VectorXd& lengths, const std::v
   }
 }
 
-Eigen::MatrixX2d fill_inside(const Mesh& cut_a, const Eigen::VectorXd& lengths_a,
-                             const std::vector<int>& walk_a, const std::vector<double>& params_a,
-                             const std::vector<int>& walk_b, const std::vector<double>& params_b,
-                             const Eigen::MatrixX2d& positions_b, double period) {
-  const int n = static_cast<int>(cut_a.n_vertices());
-  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
-  std::vector<char> fixed(n, 0);
+void place_on_polygon(const std::vector<int>& walk_a, const std::vector<double>& params_a,
+                      const std::vector<int>& walk_b, const std::vector<double>& params_b,
+                      const Eigen::MatrixX2d& positions_b, double period, Eigen::MatrixX2d& x,
+                      std::vector<char>& fixed) {
   const size_t m = walk_b.size();
   size_t j = 0;  // B's side from walk vertex j to j + 1 (mod m) holds the current parameter
   for (size_t i = 0; i < walk_a.size(); ++i) {
@@ -719,6 +651,16 @@ Eigen::MatrixX2d fill_inside(const Mesh& cut_a, const Eigen::VectorXd& lengths_a
     x.row(walk_a[i]) = t == 0 ? p : p + t * (q - p);
     fixed[walk_a[i]] = 1;
   }
+}
+
+Eigen::MatrixX2d fill_inside(const Mesh& cut_a, const Eigen::VectorXd& lengths_a,
+                             const std::vector<int>& walk_a, const std::vector<double>& params_a,
+                             const std::vector<int>& walk_b, const std::vector<double>& params_b,
+                             const Eigen::MatrixX2d& positions_b, double period) {
+  const int n = static_cast<int>(cut_a.n_vertices());
+  Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(n, 2);
+  std::vector<char> fixed(n, 0);
+  place_on_polygon(walk_a, params_a, walk_b, params_b, positions_b, period, x, fixed);
   harmonic_fill(cut_a, lengths_a, fixed, x);
   return x;
 }
@@ -798,6 +740,12 @@ void evaluate_map(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
     const auto& P = result.b.positions;
     if (signed_area(P.row(F(f, 0)), P.row(F(f, 1)), P.row(F(f, 2))) <= 0) ++result.flipped_faces_b;
   }
+  map_errors(a, b, tables_a, tables_b, result);
+}
+
+void map_errors(const Mesh& a, const Mesh& b, const MeshTables& tables_a,
+                const MeshTables& tables_b, MatchResult& result) {
+  const int na = static_cast<int>(a.n_vertices());
   // Eq. (13), and against the vertex correspondence when the meshes share their connectivity.
   const auto on_b = [&](const MapPoint& point) {
     Eigen::Vector3d r = Eigen::Vector3d::Zero();
@@ -889,21 +837,16 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
                            : detail::farthest_interior_vertex(
                                  b, tables_b, static_cast<int>(tables_b.boundary_loops.size()));
     const EdgeLengths flat_a = cone_flow(a, tables_a, result.a.feature, options, "A", result.a);
-    const Star star_a = cone_star(a, tables_a, result.a.feature, flat_a, "A", false);
+    const Star star_a = detail::cone_star(a, tables_a, result.a.feature, flat_a, "A", false);
     result.a.seconds = stage.lap();
     const EdgeLengths flat_b = cone_flow(b, tables_b, result.b.feature, options, "B", result.b);
-    const Star star_b = cone_star(b, tables_b, result.b.feature, flat_b, "B", false);
+    const Star star_b = detail::cone_star(b, tables_b, result.b.feature, flat_b, "B", false);
     result.b.seconds = stage.lap();
     // The pairs of stars tried, each with the turns of B's star that pair the loops: the two
     // stars when their orders agree; else each surface's rays in both orders (rank order, or
     // nearest loop first, which does not depend on the ranks: rays taken in rank order go round
     // other loops when the ranks differ), at every turn that pairs loops of about the same
     // length.
-    struct Candidate {
-      const Star* a;
-      const Star* b;
-      std::vector<int> turns;
-    };
     std::vector<Candidate> candidates;
     std::optional<Star> reach_a, reach_b;
     if (star_a.loop_order == star_b.loop_order) {
@@ -911,8 +854,8 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
     } else if (options.loop_length_tolerance > 0) {
       const std::vector<double> lengths_a = relative_loop_lengths(a, tables_a),
                                 lengths_b = relative_loop_lengths(b, tables_b);
-      reach_a = cone_star(a, tables_a, result.a.feature, flat_a, "A", true);
-      reach_b = cone_star(b, tables_b, result.b.feature, flat_b, "B", true);
+      reach_a = detail::cone_star(a, tables_a, result.a.feature, flat_a, "A", true);
+      reach_b = detail::cone_star(b, tables_b, result.b.feature, flat_b, "B", true);
       for (const Star* sa : std::array<const Star*, 2>{&star_a, &*reach_a}) {
         for (const Star* sb : std::array<const Star*, 2>{&star_b, &*reach_b}) {
           std::vector<int> turns =
@@ -920,6 +863,12 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
           if (!turns.empty()) candidates.push_back({sa, sb, std::move(turns)});
         }
       }
+    }
+    // Else, loops paired by length alone, one surface's rays forced into the other's order.
+    std::deque<Star> forced;
+    if (candidates.empty() && options.loop_length_tolerance > 0) {
+      const MeshCut cut_a{&a, &tables_a, &flat_a, &star_a}, cut_b{&b, &tables_b, &flat_b, &star_b};
+      forced_candidates(cut_a, cut_b, options, result, forced, candidates);
     }
     if (candidates.empty()) {
       const auto text = [](const std::vector<int>& order) {
@@ -931,33 +880,28 @@ MatchResult match_surfaces(const Mesh& a, const Mesh& b, const MatchOptions& opt
           "the cuts leave the feature vertex towards the boundary loops in "
           "a different order on A (" +
           text(star_a.loop_order) + ") and B (" + text(star_b.loop_order) +
-          ") and no turn pairs loops of the same length; choose other feature vertices");
+          ") and neither a turn nor rays forced into one order pair loops of the same length; " +
+          "choose other feature vertices");
     }
     result.a.seconds += stage.lap();
     MatchResult best;
     for (const Candidate& candidate : candidates) {
       const Star& star_a_cut = *candidate.a;
-      const std::vector<double> fa = arc_fractions(star_a_cut);
       for (int turn : candidate.turns) {
         const Star star = rotated(*candidate.b, turn);
-        const std::vector<double> fb = arc_fractions(star);
-        std::vector<double> extents(fa.size());
-        // Half of the turn by the arcs' mean flat lengths, half evenly: a small hole's arcs keep
-        // room enough that the harmonic map does not crowd its faces below the rounding.
-        for (size_t j = 0; j < fa.size(); ++j) {
-          extents[j] = 0.25 * (fa[j] + fb[j]) + 0.5 / static_cast<double>(fa.size());
-        }
         MatchResult trial = result;
-        const std::vector<double> sa = star_parameters(star_a_cut, extents),
-                                  sb = star_parameters(star, extents);
-        trial.b.positions = star_positions(star, sb);
-        trial.a.positions =
-            detail::fill_inside(star_a_cut.sliced.mesh, star_a_cut.lengths, star_a_cut.walk, sa,
-                                star.walk, sb, trial.b.positions, 1.0);
         trial.a.loop_order = star_a_cut.loop_order;
         trial.b.loop_order = star.loop_order;
-        detail::fill_cut_domain(star_a_cut.sliced, trial.a);
-        detail::fill_cut_domain(star.sliced, trial.b);
+        bool pieces = false;
+        if (options.decompose) {
+          try {
+            detail::cone_pieces(a, star_a_cut, flat_a, b, star, flat_b, trial);
+            pieces = true;
+          } catch (const TopologyError&) {
+            // no gamma on both surfaces, or pieces that differ: one convex piece
+          }
+        }
+        if (!pieces) one_convex_piece(star_a_cut, star, trial);
         detail::evaluate_map(a, b, tables_a, tables_b, trial, false);
         if (best.map.empty() || trial.shape_error < best.shape_error) best = std::move(trial);
       }

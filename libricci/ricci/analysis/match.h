@@ -15,14 +15,20 @@
 //               the whole curvature 2 pi chi at a cone on the feature vertex p (steps 1-3), cut
 //               along vertex-disjoint shortest paths (flat metric) from p to each boundary
 //               (step 4), which leaves one disk whose boundary is 3 (n + 1) arcs: out along a
-//               cut, around a boundary loop, back along the cut. B's disk is carried onto a
-//               convex polygon inscribed in the unit circle, each arc spanning the mean of its
-//               two relative flat lengths and parametrised by flat arc length, by the harmonic
-//               map with mean-value weights of the flat metric (one-to-one onto a convex
-//               polygon: Rado, Floater); A's boundary goes onto B's polygon at the same
-//               parameters and A's interior by its own harmonic map, so that A's vertices all
-//               lie in B's domain; phi is the identity there (steps 6-8 with one convex piece
-//               per surface instead of the paper's pieces bounded by geodesic loops, step 5).
+//               cut, around a boundary loop, back along the cut. Step 5: the disk is cut
+//               further along a shortest loop gamma round each loop but c0, through a vertex
+//               of its ray (the flat collar of a geodesic boundary makes it about parallel to
+//               the loop): a quadrilateral per such loop (ray, loop, ray back, gamma) and one
+//               central piece holding the cone's copies. Steps 6-8: each piece of B is carried
+//               onto a convex polygon inscribed in its own unit circle, each arc spanning the
+//               mean of its two relative flat lengths and parametrised by flat arc length (3D
+//               along the rays), by the harmonic map with mean-value weights of the flat metric
+//               (one-to-one onto a convex polygon: Rado, Kneser-Choquet, Floater); each piece of
+//               A's boundary goes onto B's polygon at the same parameters and its interior by
+//               its own harmonic map, so that A's vertices all lie in B's pieces; the pieces
+//               glue along the gammas and rays (the same parameters on both sides); phi is the
+//               identity there. A loop without a gamma on both surfaces (a ray to another loop
+//               runs one edge from it) stays in the central piece (MatchOptions::decompose).
 // The hyperbolic method (Algorithm 9):
 //   klein       genus 0, n + 1 >= 3 boundaries: the hyperbolic metric with geodesic boundaries;
 //   polygon     the loops joined into a tree by n shortest paths (Prim's order from c0,
@@ -37,8 +43,10 @@
 // Boundary loops are ranked by 3D length (c0 the longest, as for the circle-domain module).
 // Cone star: the loops correspond by rank; the cuts must leave the feature vertex in the same
 // cyclic order of loops on both surfaces, else the loops pair by that order where their
-// lengths agree (MatchOptions::loop_length_tolerance). Klein polygon: B's loops pair with A's
-// by their conformal invariants, the hyperbolic lengths of the loops and the hyperbolic
+// lengths agree (MatchOptions::loop_length_tolerance), else by length alone, one surface's
+// rays forced to leave p in the other's cyclic order (each from its own neighbour of p: the
+// feature needs a neighbour per loop, and a forced ray may detour). Klein polygon: B's loops pair
+// with A's by their conformal invariants, the hyperbolic lengths of the loops and the hyperbolic
 // distances between them (MatchOptions::loop_invariant_tolerance), not by rank, which a
 // deformation permutes among loops of about one length; the cuts must join the paired loops in
 // the same order on both surfaces.
@@ -84,11 +92,19 @@ struct MatchOptions {
   /// The cone's curvature 2 pi chi is spread evenly over the feature vertex and the interior
   /// vertices within this many rings of it (0: the vertex alone).
   int cone_rings = 2;
+  /// Cone star: decompose each surface into convex pieces (Algorithm 8, steps 5-8): a
+  /// quadrilateral between each loop but c0 and a shortest loop round it through its ray
+  /// (gamma, near the ray's middle), and one central piece with the cone; corresponding pieces
+  /// are mapped harmonically onto common convex polygons and glued along the gammas. Loops
+  /// without a gamma on both surfaces stay in the central piece. false: one convex piece.
+  bool decompose = true;
   /// Cone star: when the rays leave the feature towards the loops in another cyclic order on
   /// A and B (loops of about the same length swap ranks under a deformation), the loops pair by
   /// that cyclic order instead, at each turn whose pairs have relative 3D lengths (over the
   /// whole boundary's) within this fraction of each other; of those, the turn with the
-  /// smallest shape error. No such turn: InvalidInputError.
+  /// smallest shape error. No such turn: the loops pair by these lengths alone (up to 4
+  /// pairings, the closest first) and one surface's rays are forced into the other's cyclic
+  /// order round p; none of those either: InvalidInputError.
   double loop_length_tolerance = 0.05;
   /// Klein polygon: the pairings of B's loops with A's (permutations; up to 8 loops, more pair
   /// by rank) are ordered by the relative difference of their invariants, sqrt(sum (x_A -
@@ -115,8 +131,10 @@ struct MapPoint {
 
 /// One surface in the common parameter domain: the mesh cut open (the rectangle: not cut).
 struct ParameterDomain {
-  Eigen::MatrixX3i faces;               ///< By face of the mesh (same index), into positions.
-  Eigen::MatrixX2d positions;           ///< By cut vertex, in the unit square or unit disk.
+  Eigen::MatrixX3i faces;  ///< By face of the mesh (same index), into positions.
+  /// By cut vertex, in the unit square or unit disk; cone pieces: piece k in the unit disk
+  /// about (3 k, 0).
+  Eigen::MatrixX2d positions;
   std::vector<int> to_original_vertex;  ///< By cut vertex: the mesh vertex.
   int feature = -1;                     ///< The cone vertex or disk centre, else -1.
   std::vector<int> corners;             ///< Rectangle: the corner vertices, ccw from corner 0.
@@ -140,6 +158,9 @@ struct MatchResult {
   /// correspondence (r_A replaced by r_B of the same vertex index): 0 for the identity. NaN
   /// otherwise.
   double correspondence_error = 0;
+  /// Convex pieces of the common domain: 1 + the loops with a gamma for the cone star
+  /// (MatchOptions::decompose), else 1.
+  int pieces = 1;
   /// Faces of A whose image in B's parameter domain has signed area <= 0, and faces of B
   /// reversed or degenerate in the parameter domain. The map is one-to-one when both are 0.
   int flipped_faces = 0;

@@ -13,6 +13,7 @@
 #include <ricci/metric/mesh_tables.h>
 
 #include "ricci/analysis/analysis_meshes.h"
+#include "ricci/analysis/match_internal.h"
 #include "ricci/analysis/module_internal.h"
 #include "ricci/test_meshes.h"
 
@@ -107,7 +108,16 @@ TEST(Match, PlateWithHolesRolledIsTheIdentity) {
     EXPECT_EQ(r.domain, "cone star");
     EXPECT_EQ(r.a.loop_order.size(), holes.size() + 1);
     EXPECT_EQ(r.a.loop_order, r.b.loop_order);
+    // Algorithm 8's pieces: a quadrilateral round each hole and the central piece, glued
+    // along the loops round the holes (a seam in the wrong place would move the vertices on it).
+    EXPECT_EQ(r.pieces, static_cast<int>(holes.size()) + 1);
     expect_identity(r, 1e-3);
+    // One convex piece per surface: the same map within the discretisation.
+    MatchOptions one;
+    one.decompose = false;
+    const MatchResult single = match_surfaces(flat, bent, one);
+    EXPECT_EQ(single.pieces, 1);
+    expect_identity(single, 1e-3);
   }
 }
 
@@ -270,7 +280,36 @@ TEST(Match, HyperbolicPairsLoopsOfAboutTheSameLengthByTheirConformalInvariants) 
 /// before the radial carry).
 TEST(Match, EuclideanFiveHolePlateAgainstItsStretchedAndBentCopyIsOneToOne) {
   const auto [a, b] = five_hole_plate_and_deformed_copy();
-  expect_one_to_one(match_surfaces(a, b, {}));
+  const MatchResult r = match_surfaces(a, b, {});
+  // A piece for each hole but two (rays to other holes run one edge from them, leaving no
+  // room for a loop round them) and the central one.
+  EXPECT_EQ(r.pieces, 4);
+  expect_one_to_one(r);
+}
+
+/// The cone star's rays forced into a given cyclic order round the feature (what the cone star
+/// does when the two surfaces' free rays pass other sides of the holes): the order asked for,
+/// the free one or two holes swapped, comes out, and the cut is a disk out along each ray,
+/// round its loop and back (detail::star_from_rays checks the walk); an order of the wrong
+/// length is refused.
+TEST(Match, ConeStarRaysLeaveTheFeatureInTheOrderAskedFor) {
+  const auto [a, b] = five_hole_plate_and_deformed_copy();
+  (void)b;
+  const MeshTables tables = build_mesh_tables(a);
+  const EdgeLengths lengths = mesh_edge_lengths(a);  // a plane: a flat metric
+  const int p = vertex_near(a, 0.3, 0.45);
+  const detail::Star free = detail::cone_star(a, tables, p, lengths, "A", false);
+  ASSERT_EQ(free.loop_order.size(), 6u);
+  EXPECT_EQ(free.loop_order[0], 0);
+  std::vector<int> swapped = free.loop_order;
+  std::swap(swapped[2], swapped[4]);
+  for (const std::vector<int>& order : {free.loop_order, swapped}) {
+    const detail::Star star = detail::ordered_star(a, tables, p, lengths, order, "A");
+    EXPECT_EQ(star.loop_order, order);
+    EXPECT_EQ(star.corners.size(), 3 * order.size());
+    check_disk(star.sliced, "forced star");
+  }
+  EXPECT_THROW((void)detail::ordered_star(a, tables, p, lengths, {0, 1, 2}, "A"), TopologyError);
 }
 
 /// The cut search shared by the annulus, the cone star and the loop tree, on the annulus
