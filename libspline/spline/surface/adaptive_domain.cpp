@@ -56,13 +56,103 @@ std::vector<double> deviation_scores(const ricci::Mesh& mesh, const ricci::Mesh&
   return score;
 }
 
+// Fewest scan vertices for a quadric height field over a face's neighbourhood (6 unknowns).
+constexpr int kMinQuadricPoints = 12;
+
+// The sum of squared misses of the points `own` against the quadric height field
+// h(x, y) = a + b x + c y + d x^2 + e x y + f y^2 fitted (least squares) to the points `near`, in
+// the frame of a face: origin `centre`, unit normal n, x and y in units of `edge`.
+double quadric_misses(const Eigen::MatrixX3d& points, const std::vector<Eigen::Index>& near,
+                      const std::vector<Eigen::Index>& own, const Eigen::Vector3d& centre,
+                      const Eigen::Vector3d& n, double edge) {
+  const Eigen::Vector3d u = n.unitOrthogonal(), w = n.cross(u);
+  const auto row = [&](Eigen::Index k, double& height) {
+    const Eigen::Vector3d d = points.row(k).transpose() - centre;
+    const double x = d.dot(u) / edge, y = d.dot(w) / edge;
+    height = d.dot(n);
+    Eigen::Matrix<double, 6, 1> r;
+    r << 1.0, x, y, x * x, x * y, y * y;
+    return r;
+  };
+  Eigen::Matrix<double, 6, 6> normal = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
+  for (Eigen::Index k : near) {
+    double height = 0.0;
+    const Eigen::Matrix<double, 6, 1> r = row(k, height);
+    normal += r * r.transpose();
+    rhs += height * r;
+  }
+  const Eigen::Matrix<double, 6, 1> q = normal.ldlt().solve(rhs);
+  double sum = 0.0;
+  for (Eigen::Index k : own) {
+    double height = 0.0;
+    const double fitted = row(k, height).dot(q);
+    const double miss = height - fitted;
+    sum += std::isfinite(miss) ? miss * miss : 0.0;
+  }
+  return sum;
+}
+
+// Squared residuals of the scan's vertices against a quadric height field fitted to those whose
+// closest face is f or a face sharing a vertex with it, in f's normal frame, summed by closest
+// face, over their mean. A cubic spline follows a smooth bend across a few faces; what a
+// quadric over the neighbourhood misses is detail the faces must resolve. Faces with too few
+// points take their squared distances to the domain instead.
+std::vector<double> quadric_residual_scores(const ricci::Mesh& mesh, const ricci::Mesh& dense) {
+  const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
+  const std::vector<ricci::SurfacePoint> hits = ricci::closest_points(mesh, points);
+  std::vector<std::vector<Eigen::Index>> by_face(mesh.n_faces());
+  for (std::size_t k = 0; k < hits.size(); ++k)
+    if (hits[k].face >= 0)
+      by_face[static_cast<std::size_t>(hits[k].face)].push_back(static_cast<Eigen::Index>(k));
+  std::vector<double> score(mesh.n_faces(), 0.0);
+  double total = 0.0;
+  for (auto f : mesh.faces()) {
+    const auto fi = static_cast<std::size_t>(f.idx());
+    if (by_face[fi].empty()) continue;
+    std::vector<int> ring;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double edge = 0.0;
+    for (auto h : mesh.fh_range(f)) {
+      const auto v = mesh.to_vertex_handle(h);
+      centre += ricci::to_eigen(mesh.point(v)) / 3.0;
+      edge += mesh.calc_edge_length(h) / 3.0;
+      for (auto g : mesh.vf_range(v)) ring.push_back(g.idx());
+    }
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    std::vector<Eigen::Index> near;
+    for (int g : ring)
+      for (Eigen::Index k : by_face[static_cast<std::size_t>(g)]) near.push_back(k);
+    const Eigen::Vector3d n = unit_normal(mesh, f);
+    double sum = 0.0;
+    if (static_cast<int>(near.size()) < kMinQuadricPoints || n.isZero() || !(edge > 0.0)) {
+      for (Eigen::Index k : by_face[fi]) {
+        const double d = hits[static_cast<std::size_t>(k)].distance;
+        sum += d * d;
+      }
+    } else {
+      sum = quadric_misses(points, near, by_face[fi], centre, n, edge);
+    }
+    score[fi] = sum;
+    total += sum;
+  }
+  const double mean = total / static_cast<double>(std::max<std::size_t>(1, score.size()));
+  if (mean > 0.0)
+    for (double& s : score) s /= mean;
+  return score;
+}
+
 // Sizing score of every face: above 1 where the face is too large for what the spline must
-// resolve there (the larger of normal turn / max_turn_deg, or the scan's deviation with
-// by_deviation, and the thickness criterion).
+// resolve there (the larger of the split score, AdaptiveDomainOptions::split_by, and the
+// thickness criterion).
 std::vector<double> sizing_scores(const ricci::Mesh& mesh, const ricci::Mesh& dense,
                                   const AdaptiveDomainOptions& o) {
+  using SplitBy = AdaptiveDomainOptions::SplitBy;
   const std::vector<double> deviation =
-      o.by_deviation ? deviation_scores(mesh, dense) : std::vector<double>();
+      o.split_by == SplitBy::deviation          ? deviation_scores(mesh, dense)
+      : o.split_by == SplitBy::quadric_residual ? quadric_residual_scores(mesh, dense)
+                                                : std::vector<double>();
   std::vector<Eigen::Vector3d> normal(mesh.n_faces());
   for (auto f : mesh.faces()) normal[static_cast<std::size_t>(f.idx())] = unit_normal(mesh, f);
   const Eigen::VectorXd thickness =
@@ -81,7 +171,7 @@ std::vector<double> sizing_scores(const ricci::Mesh& mesh, const ricci::Mesh& de
       turn = std::max(turn, std::acos(c) * 180.0 / M_PI);
     }
     double s =
-        o.by_deviation ? deviation[static_cast<std::size_t>(f.idx())] : turn / o.max_turn_deg;
+        deviation.empty() ? turn / o.max_turn_deg : deviation[static_cast<std::size_t>(f.idx())];
     if (thickness.size() > 0 && edges > 0) {
       const double t = thickness[f.idx()];
       if (t > 0.0 && std::isfinite(t)) s = std::max(s, o.min_thickness_edges * edge / edges / t);

@@ -16,17 +16,21 @@ struct AdaptiveDomainOptions {
   int target_faces = 2000;
   /// Share of target_faces given to the uniform base mesh; the rest goes to the splits.
   double base_share = 0.6;
-  /// With by_deviation false: a face is split where its normal and a neighbour's differ by
+  /// With split_by normal_turn: a face is split where its normal and a neighbour's differ by
   /// more than this (degrees).
   double max_turn_deg = 20.0;
   /// ... or where the part is thinner (ricci::face_thickness) than this many of the face's
   /// mean edge lengths.
   double min_thickness_edges = 3.0;
   int max_levels = 2;  ///< Split rounds (each may split a face created by the one before).
-  /// A face is split where the scan departs from the domain more than on the mean face (the
-  /// squared distances of the scan's vertices to their closest domain face, summed by face),
-  /// instead of by normal turn: detail smaller than a face is seen, a smooth bend is not.
-  bool by_deviation = true;
+  /// What marks a face for splitting (besides thickness). normal_turn: a turn over
+  /// max_turn_deg to a neighbour. deviation: the scan departs from the face more than from the
+  /// mean face (squared distances of the scan's vertices to their closest domain face, summed
+  /// by face): detail smaller than a face is seen, but so is every smooth bend. quadric_residual:
+  /// the same sum of what a quadric height field over the face's neighbourhood misses of the
+  /// scan (the bend a cubic spline follows anyway is not counted).
+  enum class SplitBy { normal_turn, deviation, quadric_residual };
+  SplitBy split_by = SplitBy::deviation;
   /// Tangential relaxation rounds after the splits: each interior vertex half-way to its
   /// neighbours' mean in its tangent plane, then onto the scan (evens out the red-green
   /// closures' obtuse halves and the 4:1 size steps).

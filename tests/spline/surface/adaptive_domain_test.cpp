@@ -126,6 +126,58 @@ TEST(AdaptiveDomain, ByDeviationDenserWhereTheScanHasDetailWithinAFace) {
   }
 }
 
+// An ellipsoid three times as long as it is wide (smooth, sharply bent at its two tips) with
+// ripples on its upper half.
+ricci::Mesh half_rippled_ellipsoid() {
+  ricci::Mesh m = ricci::make_icosphere(5);
+  for (auto v : m.vertices()) {
+    auto p = m.point(v);
+    if (p[2] > 0.0) p *= 1.0 + 0.1 * std::sin(30.0 * p[0]) * std::sin(30.0 * p[1]) * p[2];
+    m.set_point(v, ricci::Mesh::Point(3.0 * p[0], p[1], p[2]));
+  }
+  return m;
+}
+
+// Mean edge length of the lower half's edges (midpoint z < -0.2) whose midpoint's |x| lies in
+// [x0, x1).
+double mean_lower_edge_at_x(const ricci::Mesh& m, double x0, double x1) {
+  double sum = 0.0;
+  int count = 0;
+  for (auto e : m.edges()) {
+    const auto h = m.halfedge_handle(e, 0);
+    const auto mid = 0.5 * (m.point(m.from_vertex_handle(h)) + m.point(m.to_vertex_handle(h)));
+    if (mid[2] >= -0.2 || std::abs(mid[0]) < x0 || std::abs(mid[0]) >= x1) continue;
+    sum += m.calc_edge_length(e);
+    ++count;
+  }
+  return count > 0 ? sum / count : 0.0;
+}
+
+// The quadric residual splits where the scan has detail, not where it bends smoothly: by
+// deviation the ellipsoid's smooth tips draw splits (the chord misses the bend), by the residual
+// of a quadric over each face's neighbourhood they do not, and the ripples still do.
+TEST(AdaptiveDomain, QuadricResidualSplitsAtDetailNotAtSmoothBends) {
+  const ricci::Mesh scan = half_rippled_ellipsoid();
+  AdaptiveDomainOptions options;
+  options.target_faces = 600;
+  options.min_thickness_edges = 0.0;
+  options.relax_iterations = 0;
+  const auto tip_over_middle = [&](const ricci::Mesh& m) {
+    return mean_lower_edge_at_x(m, 2.6, 4.0) / mean_lower_edge_at_x(m, 0.0, 1.5);
+  };
+  options.split_by = AdaptiveDomainOptions::SplitBy::deviation;
+  const double by_deviation = tip_over_middle(adaptive_domain(scan, options).mesh);
+  options.split_by = AdaptiveDomainOptions::SplitBy::quadric_residual;
+  const AdaptiveDomain adaptive = adaptive_domain(scan, options);
+  const double by_residual = tip_over_middle(adaptive.mesh);
+  EXPECT_GT(by_residual, 1.1 * by_deviation)
+      << "tip / middle edge: by residual " << by_residual << ", by deviation " << by_deviation;
+  EXPECT_EQ(ricci::surface_topology(adaptive.mesh).euler_characteristic, 2);
+  const double rippled = mean_edge_in_z(adaptive.mesh, 0.2, 2.0);
+  const double smooth = mean_edge_in_z(adaptive.mesh, -2.0, -0.2);
+  EXPECT_LT(rippled, smooth / 1.25) << "rippled " << rippled << ", smooth " << smooth;
+}
+
 TEST(AdaptiveDomain, RelaxationWidensTheSplitsSmallestAngles) {
   const ricci::Mesh plate = squashed_sphere(0.25);
   AdaptiveDomainOptions options;
