@@ -124,6 +124,39 @@ TEST(Fit, ProjectionFindsTheFootPoint) {
   EXPECT_LT(worst, 1e-3);
 }
 
+// min_step: a projection stopped before steps that move the foot point by less than min_step
+// ends within about min_step of the converged foot point, its distance within min_step^2 / d of
+// the converged one; a min_step larger than every step keeps the start.
+TEST(Fit, ProjectionStopsBeforeShortSteps) {
+  const auto space = small_space("genus2.off", 3);
+  const ricci::Mesh& mesh = small_atlas("genus2.off").problem.mesh;
+  const ManifoldSpline spline{space, piecewise_linear_control_points(*space, mesh)};
+  const double edge = mean_edge_3d(mesh);
+  const double d = 0.01 * edge, min_step = 1e-4 * edge;
+  std::mt19937 rng(7);
+  int tested = 0;
+  double worst_foot = 0.0, worst_distance = 0.0;
+  for (int f : space->domain_faces()) {
+    if (f % 5 != 0) continue;
+    const DomainPoint foot{f, random_barycentric(rng)};
+    const SurfaceJet jet = spline.evaluate(foot);
+    const Eigen::Vector3d target = jet.position + d * jet.normal;
+    Eigen::Vector3d b = (foot.barycentric + Eigen::Vector3d(0.05, -0.03, -0.02)).cwiseMax(0.0);
+    const DomainPoint start{f, b / b.sum()};
+    const Projection converged = project_to_spline(spline, start, target, 8);
+    const Projection stopped = project_to_spline(spline, start, target, 8, min_step);
+    worst_foot = std::max(worst_foot, (stopped.position - converged.position).norm());
+    worst_distance = std::max(worst_distance, std::abs(stopped.distance - converged.distance));
+    const Projection kept = project_to_spline(spline, start, target, 8, 1e3 * edge);
+    EXPECT_EQ(kept.point.face, start.face);
+    EXPECT_EQ(kept.point.barycentric, start.barycentric);
+    ++tested;
+  }
+  EXPECT_GT(tested, 50);
+  EXPECT_LT(worst_foot, 2.0 * min_step);
+  EXPECT_LT(worst_distance, min_step * min_step / d);
+}
+
 // The whole pipeline on the bundled genus-1 model (3000 faces) with a 600-face domain: the fitted
 // and faired cubic spline stays within a small fraction of the bounding-box diagonal.
 TEST(Fit, ScanPipelineFitsTheBundledTorus) {
