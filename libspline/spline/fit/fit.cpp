@@ -486,7 +486,7 @@ std::vector<int> domain_rim_rings(const ManifoldSplineSpace& space) {
 CorrectedParameters correct_parameters(const ManifoldSpline& spline,
                                        const std::vector<DomainPoint>& parameters,
                                        const Eigen::MatrixX3d& points, int iterations,
-                                       int threads) {
+                                       int threads, double min_step) {
   if (static_cast<Eigen::Index>(parameters.size()) != points.rows()) {
     throw ricci::InvalidInputError("correct_parameters: " + std::to_string(parameters.size()) +
                                    " parameters for " + std::to_string(points.rows()) + " points");
@@ -499,9 +499,9 @@ CorrectedParameters correct_parameters(const ManifoldSpline& spline,
   // Foot points closer than this to convergence move the fit by nothing a figure shows: on
   // venus.off the correction's second Gauss-Newton steps have a median of 1.4e-7 of the domain's
   // diameter, the first 2.2e-5.
-  const double min_step =
+  const double step_length =
       points.rows() > 0
-          ? kProjectionMinStep * (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm()
+          ? min_step * (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm()
           : 0.0;
   threads = std::max(1, std::min(threads, std::max(count, 1)));
   run_workers(threads, [&](int t) {
@@ -509,7 +509,7 @@ CorrectedParameters correct_parameters(const ManifoldSpline& spline,
       const DomainPoint& start = parameters[k];
       if (start.face < 0 || !space.in_domain(start.face)) continue;
       const Projection p =
-          project_to_spline(spline, start, points.row(k).transpose(), iterations, min_step);
+          project_to_spline(spline, start, points.row(k).transpose(), iterations, step_length);
       if (on_domain_rim(space, p.point.face, p.point.barycentric)) continue;
       if (p.point.face == start.face && p.point.barycentric == start.barycentric) continue;
       result.parameters[k] = p.point;

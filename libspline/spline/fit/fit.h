@@ -95,7 +95,8 @@ struct FitResult {
 /// The closest point of the spline to `target`, by Gauss-Newton steps on |F(u) - target|^2 from
 /// `start`, moving between faces through the neighbourhood charts (stops at the hole's rim, at
 /// a step that does not bring the point closer, and before a step that would move the point on
-/// the surface by less than `min_step`, a length in the surface's units: converged).
+/// the surface by less than `min_step`, a length in the surface's units: the distance is then
+/// within min_step of the converged one, and within min_step^2 / distance when it is larger).
 struct Projection {
   DomainPoint point;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
@@ -127,7 +128,7 @@ struct FitErrors {
 
 /// Parameter correction (Hoschek's remedy for poor foot points): each point's parameter moved to
 /// its closest point on `spline` (project_to_spline from the current parameter, min_step
-/// kProjectionMinStep of the points' bounding-box diagonal). A projection
+/// `min_step` times the points' bounding-box diagonal; 0: every iteration). A projection
 /// that ends on the domain's rim (clamped there: the point lies over the hole or beyond an open
 /// boundary) keeps the old parameter, so the set of fitted points never changes. Points with
 /// face -1 stay -1. Runs on `threads` workers.
@@ -138,7 +139,8 @@ struct CorrectedParameters {
 [[nodiscard]] CorrectedParameters correct_parameters(const ManifoldSpline& spline,
                                                      const std::vector<DomainPoint>& parameters,
                                                      const Eigen::MatrixX3d& points,
-                                                     int iterations = 6, int threads = 2);
+                                                     int iterations = 6, int threads = 2,
+                                                     double min_step = kProjectionMinStep);
 
 struct ScanFitOptions {
   int domain_faces = 2000;  ///< target size of the simplified domain mesh

@@ -364,7 +364,8 @@ TEST(Fit, ParameterCorrectionPutsPointsOnTheSplineBackOnIt) {
     points.row(static_cast<Eigen::Index>(k)) = spline.evaluate(truth[k]).position.transpose();
   points.row(points.rows() - 1).setZero();
   const double scale = points.cwiseAbs().maxCoeff();
-  const CorrectedParameters corrected = correct_parameters(spline, start, points, 10, 2);
+  // min_step 0: every iteration (the default stops within 1e-6 of the diagonal, tested below).
+  const CorrectedParameters corrected = correct_parameters(spline, start, points, 10, 2, 0.0);
   ASSERT_EQ(corrected.parameters.size(), start.size());
   EXPECT_EQ(corrected.parameters.back().face, -1);
   // All but a few (a projection may end on the hole's rim and keep its start) must move.
@@ -378,6 +379,17 @@ TEST(Fit, ParameterCorrectionPutsPointsOnTheSplineBackOnIt) {
   }
   EXPECT_GT(before, 1e-3 * scale);  // the nudge was a real error
   EXPECT_LT(after, 1e-9 * scale);
+  // The default min_step: every point ends within it (points on the spline: distance 0).
+  const double diagonal = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+  const CorrectedParameters stopped = correct_parameters(spline, start, points, 10, 2);
+  double stopped_after = 0.0;
+  for (std::size_t k = 0; k + 1 < truth.size(); ++k) {
+    if (stopped.parameters[k].barycentric == start[k].barycentric) continue;
+    const Eigen::Vector3d p = points.row(static_cast<Eigen::Index>(k)).transpose();
+    stopped_after =
+        std::max(stopped_after, (spline.evaluate(stopped.parameters[k]).position - p).norm());
+  }
+  EXPECT_LT(stopped_after, 2.0 * kProjectionMinStep * diagonal);
   EXPECT_THROW((void)correct_parameters(spline, start, points.topRows(3)), ricci::InvalidInputError);
 }
 
