@@ -388,7 +388,7 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
 }
 
 Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& start,
-                             const Eigen::Vector3d& target, int iterations, double min_step) {
+                             const Eigen::Vector3d& target, int iterations) {
   const ManifoldSplineSpace& space = *spline.space;
   DomainPoint point = start;
   SurfaceJet jet = spline.evaluate(point);
@@ -399,9 +399,6 @@ Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& st
     const Eigen::Matrix2d jtj = j.transpose() * j;
     if (std::abs(jtj.determinant()) < 1e-300) break;
     const Eigen::Vector2d step = -jtj.ldlt().solve(j.transpose() * (jet.position - target));
-    // Converged: the distance moves by the square of so short a step (the foot point is nearly
-    // stationary); its evaluation is spared.
-    if ((j * step).norm() < min_step) break;
     const Eigen::Vector2d u = space.chart_point(chart, point.face, point.barycentric) + step;
     // The face of the neighbourhood (glued in this chart) containing u, else stay on the rim.
     DomainPoint next{-1, Eigen::Vector3d::Zero()};
@@ -486,7 +483,7 @@ std::vector<int> domain_rim_rings(const ManifoldSplineSpace& space) {
 CorrectedParameters correct_parameters(const ManifoldSpline& spline,
                                        const std::vector<DomainPoint>& parameters,
                                        const Eigen::MatrixX3d& points, int iterations,
-                                       int threads, double min_step) {
+                                       int threads) {
   if (static_cast<Eigen::Index>(parameters.size()) != points.rows()) {
     throw ricci::InvalidInputError("correct_parameters: " + std::to_string(parameters.size()) +
                                    " parameters for " + std::to_string(points.rows()) + " points");
@@ -496,20 +493,13 @@ CorrectedParameters correct_parameters(const ManifoldSpline& spline,
   result.parameters = parameters;
   const auto count = static_cast<int>(parameters.size());
   std::vector<char> moved(parameters.size(), 0);
-  // Foot points closer than this to convergence move the fit by nothing a figure shows: on
-  // venus.off the correction's second Gauss-Newton steps have a median of 1.4e-7 of the domain's
-  // diameter, the first 2.2e-5.
-  const double step_length =
-      points.rows() > 0
-          ? min_step * (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm()
-          : 0.0;
   threads = std::max(1, std::min(threads, std::max(count, 1)));
   run_workers(threads, [&](int t) {
     for (int k = t; k < count; k += threads) {
       const DomainPoint& start = parameters[k];
       if (start.face < 0 || !space.in_domain(start.face)) continue;
       const Projection p =
-          project_to_spline(spline, start, points.row(k).transpose(), iterations, step_length);
+          project_to_spline(spline, start, points.row(k).transpose(), iterations);
       if (on_domain_rim(space, p.point.face, p.point.barycentric)) continue;
       if (p.point.face == start.face && p.point.barycentric == start.barycentric) continue;
       result.parameters[k] = p.point;

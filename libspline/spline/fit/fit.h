@@ -93,23 +93,14 @@ struct FitResult {
                                            const FitOptions& options = {});
 
 /// The closest point of the spline to `target`, by Gauss-Newton steps on |F(u) - target|^2 from
-/// `start`, moving between faces through the neighbourhood charts (stops at the hole's rim, at
-/// a step that does not bring the point closer, and before a step that would move the point on
-/// the surface by less than `min_step`, a length in the surface's units: the distance is then
-/// within min_step of the converged one, and within min_step^2 / distance when it is larger).
+/// `start`, moving between faces through the neighbourhood charts (stops at the hole's rim).
 struct Projection {
   DomainPoint point;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double distance = 0.0;
 };
 [[nodiscard]] Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& start,
-                                           const Eigen::Vector3d& target, int iterations = 6,
-                                           double min_step = 0.0);
-
-/// The min_step of the fit's projections (correct_parameters, fit_surface's measure) as a
-/// fraction of the points' bounding-box diagonal: their last Gauss-Newton step is skipped where
-/// it would move a foot point by less.
-inline constexpr double kProjectionMinStep = 1e-6;
+                                           const Eigen::Vector3d& target, int iterations = 6);
 
 struct FitErrors {
   int points = 0;
@@ -127,8 +118,7 @@ struct FitErrors {
 [[nodiscard]] std::vector<int> domain_rim_rings(const ManifoldSplineSpace& space);
 
 /// Parameter correction (Hoschek's remedy for poor foot points): each point's parameter moved to
-/// its closest point on `spline` (project_to_spline from the current parameter, min_step
-/// `min_step` times the points' bounding-box diagonal; 0: every iteration). A projection
+/// its closest point on `spline` (project_to_spline from the current parameter). A projection
 /// that ends on the domain's rim (clamped there: the point lies over the hole or beyond an open
 /// boundary) keeps the old parameter, so the set of fitted points never changes. Points with
 /// face -1 stay -1. Runs on `threads` workers.
@@ -139,8 +129,7 @@ struct CorrectedParameters {
 [[nodiscard]] CorrectedParameters correct_parameters(const ManifoldSpline& spline,
                                                      const std::vector<DomainPoint>& parameters,
                                                      const Eigen::MatrixX3d& points,
-                                                     int iterations = 6, int threads = 2,
-                                                     double min_step = kProjectionMinStep);
+                                                     int iterations = 6, int threads = 2);
 
 struct ScanFitOptions {
   int domain_faces = 2000;  ///< target size of the simplified domain mesh

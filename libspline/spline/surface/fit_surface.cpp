@@ -224,14 +224,12 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
   std::vector<char> on_fill(distance.size(), 0);
-  const double min_step = kProjectionMinStep * out.bbox_diagonal;
   parallel_for(distance.size(), 0, [&](std::size_t k) {
     const DomainPoint& start = parameters[k];
     const Eigen::Vector3d target = points.row(static_cast<Eigen::Index>(k)).transpose();
     if (start.face >= 0 && !surface.skipped_faces[static_cast<std::size_t>(start.face)]) {
-      distance[k] = project_to_spline(surface.spline, start, target, kProjectionIterations,
-                                      min_step)
-                        .distance;
+      distance[k] =
+          project_to_spline(surface.spline, start, target, kProjectionIterations).distance;
       return;
     }
     distance[k] = distance_to_fills(surface, patches, target);
