@@ -56,7 +56,7 @@ const CommandSpec& uniformize_command() {
        json_option(),
        {"depth", "N", "rings of the universal cover in the picture, 0 to 6 (5)"},
        {"seed-face", "F", "the face the layout starts from (the most central one)"},
-       {"root", "V", "the vertex the cut graph's loops are based at (0)"},
+       {"root", "V", "the vertex the cut graph's loops are based at (central)"},
        solver_option(),
        tolerance_option("1e-12"),
        metric_option("inversive-distance, falling back to the others if it fails"),
@@ -69,7 +69,10 @@ int run_uniformize(int argc, char** argv) {
   const Args args(argc, argv, uniformize_command());
   ricci::UniformizeOptions options;
   options.seed_face = args.get_int("seed-face", -1);
-  options.root_vertex = args.get_int("root", 0);
+  options.root_vertex = args.get_int("root", -1);
+  if (args.has("root") && options.root_vertex < 0) {
+    throw UsageError("--root must be a vertex index (0 or more)");
+  }
   options.flow.solver = parse_solver(args.get_or("solver", "auto"));
   if (args.has("metric")) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));

@@ -228,6 +228,7 @@ nlohmann::json uniformize_report_json(const std::string& path, const ricci::Mesh
                      {"iterations", u.polish.iterations}};
     }
     j["sides"] = 2 * u.pairings.arcs.size();
+    j["root"] = u.cut.root.idx();
     j["layout"] = {{"seed_face", u.layout.seed_face},
                    {"flipped_faces", u.layout.flipped_faces},
                    {"max_relative_length_error", u.layout.max_relative_length_error},

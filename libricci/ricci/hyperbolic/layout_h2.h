@@ -55,9 +55,13 @@ struct LayoutH2Result {
 [[nodiscard]] LayoutH2Result layout_h2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
                                        const LayoutH2Options& options = {});
 
-/// The same from extended-precision lengths (e.g. polish_h2_lengths'), which the frames use
-/// as they are.
+/// The same from extended-precision lengths, which the frames use as they are.
 [[nodiscard]] LayoutH2Result layout_h2(const Mesh& mesh, const LengthsL& edge_lengths,
+                                       const LayoutH2Options& options = {});
+
+/// The same from quad-precision lengths (e.g. polish_h2_lengths' quad_lengths): the faces'
+/// corners and the frames are computed in quad precision throughout.
+[[nodiscard]] LayoutH2Result layout_h2(const Mesh& mesh, const LengthsQ& edge_lengths,
                                        const LayoutH2Options& options = {});
 
 /// Orientation, closure and radius of `positions` against `edge_lengths` (fills those fields).

@@ -2,6 +2,13 @@
 
 #include <cmath>
 
+#if defined(MSP_HAVE_QUADMATH) && defined(__SIZEOF_FLOAT128__)
+#include <quadmath.h>
+#define MSP_QUAD(f) f##q
+#else
+#define MSP_QUAD(f) f##_l
+#endif
+
 namespace ricci {
 namespace {
 
@@ -20,6 +27,45 @@ RealQ sqrt_q(RealQ x) {
   if (!(x > 0)) return 0;
   const RealQ s = std::sqrt(static_cast<long double>(x));
   return RealQ(0.5) * (s + x / s);
+}
+
+#if !(defined(MSP_HAVE_QUADMATH) && defined(__SIZEOF_FLOAT128__))
+// Without libquadmath the long double functions take the rounded argument.
+namespace {
+long double to_l(RealQ x) { return static_cast<long double>(x); }
+RealQ exp_l(RealQ x) { return std::exp(to_l(x)); }
+RealQ sinh_l(RealQ x) { return std::sinh(to_l(x)); }
+RealQ asinh_l(RealQ x) { return std::asinh(to_l(x)); }
+RealQ tanh_l(RealQ x) { return std::tanh(to_l(x)); }
+RealQ atan2_l(RealQ y, RealQ x) { return std::atan2(to_l(y), to_l(x)); }
+RealQ sin_l(RealQ x) { return std::sin(to_l(x)); }
+RealQ cos_l(RealQ x) { return std::cos(to_l(x)); }
+}  // namespace
+#endif
+
+RealQ exp_q(RealQ x) { return MSP_QUAD(exp)(x); }
+RealQ sinh_q(RealQ x) { return MSP_QUAD(sinh)(x); }
+RealQ asinh_q(RealQ x) { return MSP_QUAD(asinh)(x); }
+RealQ tanh_q(RealQ x) { return MSP_QUAD(tanh)(x); }
+RealQ atan2_q(RealQ y, RealQ x) { return MSP_QUAD(atan2)(y, x); }
+RealQ sin_q(RealQ x) { return MSP_QUAD(sin)(x); }
+RealQ cos_q(RealQ x) { return MSP_QUAD(cos)(x); }
+
+RealQ pi_q() {
+#if defined(MSP_HAVE_QUADMATH) && defined(__SIZEOF_FLOAT128__)
+  static const RealQ pi = 4 * atanq(RealQ(1));
+  return pi;
+#else
+  return 3.141592653589793238462643383279502884L;
+#endif
+}
+
+bool has_quad_transcendentals() {
+#if defined(MSP_HAVE_QUADMATH) && defined(__SIZEOF_FLOAT128__)
+  return true;
+#else
+  return false;
+#endif
 }
 
 MobiusQ MobiusQ::normalised() const {

@@ -4,8 +4,9 @@
 // hyperbolic distance d from the frame's centre lies 2 e^-d from the rim, so a coordinate with
 // relative rounding eps is exact only to ~eps e^d in hyperbolic distance: long double (eps 5e-20)
 // keeps 1e-12 at d = 17 (genus 4) but 1e-5 at d = 34, the far end of a genus-10 domain, and every
-// pairing computed from such coordinates is off by as much. Only + - * / and a Newton-refined
-// square root are used (no libquadmath).
+// pairing computed from such coordinates is off by as much. The transcendental functions below
+// come from GCC's libquadmath when the build found it (MSP_HAVE_QUADMATH), else they are the
+// long double ones (then only + - * / and the square root carry quad digits).
 #include "ricci/hyperbolic/mobius.h"
 
 namespace ricci {
@@ -18,6 +19,18 @@ typedef long double RealQ;
 
 /// sqrt(x) for x >= 0: the long double root refined by one Newton step.
 [[nodiscard]] RealQ sqrt_q(RealQ x);
+/// exp, sinh, asinh, tanh, atan2, sin and cos in quad precision (see the top of the file).
+[[nodiscard]] RealQ exp_q(RealQ x);
+[[nodiscard]] RealQ sinh_q(RealQ x);
+[[nodiscard]] RealQ asinh_q(RealQ x);
+[[nodiscard]] RealQ tanh_q(RealQ x);
+[[nodiscard]] RealQ atan2_q(RealQ y, RealQ x);
+[[nodiscard]] RealQ sin_q(RealQ x);
+[[nodiscard]] RealQ cos_q(RealQ x);
+/// True when the functions above carry quad digits (libquadmath was linked).
+[[nodiscard]] bool has_quad_transcendentals();
+/// pi in quad precision.
+[[nodiscard]] RealQ pi_q();
 
 struct ComplexQ {
   RealQ re = 0, im = 0;

@@ -9,10 +9,6 @@
 #include "ricci/mesh/errors.h"
 
 namespace ricci {
-namespace {
-constexpr long double kPi = 3.141592653589793238462643383279502884L;
-}  // namespace
-
 bool hyperbolic_angles_l(const long double l[3], long double theta[3]) {
   const long double s = 0.5L * (l[0] + l[1] + l[2]);
   const long double d[3] = {s - l[0], s - l[1], s - l[2]};
@@ -23,6 +19,18 @@ bool hyperbolic_angles_l(const long double l[3], long double theta[3]) {
     // tan²(θk/2) = sinh(s - l_{k+1}) sinh(s - l_{k+2}) / (sinh s sinh(s - l_k)).
     theta[k] =
         2.0L * std::atan2(std::sqrt(sh[(k + 1) % 3] * sh[(k + 2) % 3]), std::sqrt(ss * sh[k]));
+  }
+  return true;
+}
+
+bool hyperbolic_angles_q(const RealQ l[3], RealQ theta[3]) {
+  const RealQ s = RealQ(0.5) * (l[0] + l[1] + l[2]);
+  const RealQ d[3] = {s - l[0], s - l[1], s - l[2]};
+  if (!(d[0] > 0 && d[1] > 0 && d[2] > 0)) return false;
+  const RealQ sh[3] = {sinh_q(d[0]), sinh_q(d[1]), sinh_q(d[2])};
+  const RealQ ss = sinh_q(s);
+  for (int k = 0; k < 3; ++k) {
+    theta[k] = 2 * atan2_q(sqrt_q(sh[(k + 1) % 3] * sh[(k + 2) % 3]), sqrt_q(ss * sh[k]));
   }
   return true;
 }
@@ -51,17 +59,74 @@ std::vector<FaceCorners> face_corners(const Mesh& mesh) {
   return faces;
 }
 
-/// Scaled lengths sinh(l'/2) = e^{(u_i+u_j)/2} sinh(l/2).
-LengthsL scaled(const Mesh& mesh, const LengthsL& base_sinh, const LengthsL& u) {
-  LengthsL l(base_sinh.size());
+/// Scaled half-length sines sigma' = sinh(l'/2) = e^{(u_i+u_j)/2} sinh(l/2).
+LengthsQ scaled(const Mesh& mesh, const LengthsQ& base_sigma, const LengthsQ& u) {
+  LengthsQ sigma(base_sigma.size());
   for (auto e : mesh.edges()) {
     const auto h = mesh.halfedge_handle(e, 0);
-    const long double s =
-        std::exp(0.5L * (u[mesh.from_vertex_handle(h).idx()] + u[mesh.to_vertex_handle(h).idx()])) *
-        base_sinh[e.idx()];
-    l[e.idx()] = 2.0L * std::asinh(s);
+    const auto i = static_cast<size_t>(mesh.from_vertex_handle(h).idx());
+    const auto j = static_cast<size_t>(mesh.to_vertex_handle(h).idx());
+    const auto k = static_cast<size_t>(e.idx());
+    sigma[k] = exp_q(RealQ(0.5) * (u[i] + u[j])) * base_sigma[k];
   }
-  return l;
+  return sigma;
+}
+
+/// A triangle's corner angles (corner k opposite edge k) from its sides' sigma = sinh(l/2) by
+/// the law of cosines written without cancellation of the leading 1s: with x = cosh l - 1 =
+/// 2 sigma^2, cos θ_a = (x_b + x_c - x_a + x_b x_c) / (sinh l_b sinh l_c). One atan2 per corner
+/// and no sinh: a quarter of the half-angle formula's cost in quad precision. False when the
+/// triangle inequality fails.
+struct CornerAngles {
+  RealQ theta[3];
+  RealQ sin_theta[3], cos_theta[3], sinh_l[3];
+};
+
+bool corner_angles(const RealQ sigma[3], CornerAngles& c) {
+  RealQ x[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = 2 * sigma[k] * sigma[k];
+    c.sinh_l[k] = 2 * sigma[k] * sqrt_q(1 + sigma[k] * sigma[k]);
+  }
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, d = (a + 2) % 3;
+    const RealQ denominator = c.sinh_l[b] * c.sinh_l[d];
+    const RealQ cosine = (x[b] + x[d] - x[a] + x[b] * x[d]) / denominator;
+    const RealQ sine_squared = (1 - cosine) * (1 + cosine);
+    if (!(sine_squared > 0)) return false;
+    c.cos_theta[a] = cosine;
+    c.sin_theta[a] = sqrt_q(sine_squared);
+    c.theta[a] = atan2_q(c.sin_theta[a], cosine);
+  }
+  return true;
+}
+
+/// Adds the face's block of H = -dΘ/du (Θ the angle sums; exact, in double) to `triplets`:
+/// dθ_a/dl_a = sinh l_a / (sinh l_b sinh l_c sin θ_a) = D_a, dθ_a/dl_b = -D_a cos θ_c, and
+/// dl/du_i = tanh(l/2) for both ends of the edge.
+void add_jacobian(const FaceCorners& f, const RealQ sigma[3], const CornerAngles& c,
+                  std::vector<Eigen::Triplet<double>>& triplets) {
+  double dl_du[3];  // tanh(l_k / 2) = sigma / sqrt(1 + sigma^2)
+  for (int k = 0; k < 3; ++k) {
+    const double s = static_cast<double>(sigma[k]);
+    dl_du[k] = s / std::sqrt(1.0 + s * s);
+  }
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, d = (a + 2) % 3;
+    const double da =
+        static_cast<double>(c.sinh_l[a] / (c.sinh_l[b] * c.sinh_l[d] * c.sin_theta[a]));
+    // dθ_a/dl for the edges opposite a, b, d.
+    double dtheta_dl[3];
+    dtheta_dl[a] = da;
+    dtheta_dl[b] = -da * static_cast<double>(c.cos_theta[d]);
+    dtheta_dl[d] = -da * static_cast<double>(c.cos_theta[b]);
+    // Edge k joins the two corners other than k.
+    for (int k = 0; k < 3; ++k) {
+      const double g = -dtheta_dl[k] * dl_du[k];
+      triplets.emplace_back(f.v[a], f.v[(k + 1) % 3], g);
+      triplets.emplace_back(f.v[a], f.v[(k + 2) % 3], g);
+    }
+  }
 }
 
 }  // namespace
@@ -73,50 +138,47 @@ PolishH2Result polish_h2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
     throw InvalidInputError("polish_h2_lengths: lengths or target do not match the mesh");
   }
   const std::vector<FaceCorners> faces = face_corners(mesh);
-  LengthsL base_sinh(lengths.size());
-  for (Eigen::Index e = 0; e < lengths.size(); ++e) {
-    base_sinh[e] = std::sinh(0.5L * static_cast<long double>(lengths[e]));
+  LengthsQ base_sigma(static_cast<size_t>(lengths.size()));
+  for (size_t e = 0; e < base_sigma.size(); ++e) {
+    base_sigma[e] = sinh_q(RealQ(lengths[static_cast<Eigen::Index>(e)]) / 2);
   }
-  LengthsL u = LengthsL::Zero(nv);
+  LengthsQ u(static_cast<size_t>(nv), 0);
+  LengthsQ sigma = base_sigma;
   PolishH2Result result;
-  result.lengths = lengths.cast<long double>();
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   bool factored = false;
-  LengthsL best = result.lengths;
+  LengthsQ best = sigma;
+  RealQ best_error = 0;
+  const RealQ two_pi = 2 * pi_q();
   for (int it = 0;; ++it) {
-    // Curvature residual in long double, and (first time) the approximate Hessian.
-    LengthsL residual(nv);
-    for (int i = 0; i < nv; ++i) residual[i] = 2.0L * kPi - static_cast<long double>(target[i]);
+    // Curvature residual in quad precision, and (first time) the Jacobian.
+    std::vector<RealQ> residual(static_cast<size_t>(nv));
+    for (int i = 0; i < nv; ++i) residual[static_cast<size_t>(i)] = two_pi - RealQ(target[i]);
     std::vector<Eigen::Triplet<double>> triplets;
     for (size_t f = 0; f < faces.size(); ++f) {
       const FaceCorners& c = faces[f];
-      const long double l[3] = {result.lengths[c.e[0]], result.lengths[c.e[1]],
-                                result.lengths[c.e[2]]};
-      long double theta[3];
-      if (!hyperbolic_angles_l(l, theta)) {
+      const RealQ s[3] = {sigma[static_cast<size_t>(c.e[0])], sigma[static_cast<size_t>(c.e[1])],
+                          sigma[static_cast<size_t>(c.e[2])]};
+      CornerAngles angles;
+      if (!corner_angles(s, angles)) {
         throw InvalidInputError("polish_h2_lengths: face " + std::to_string(f) +
                                 " violates the hyperbolic triangle inequality");
       }
-      for (int k = 0; k < 3; ++k) residual[c.v[k]] -= theta[k];
-      if (factored) continue;
-      const double area = static_cast<double>(kPi - theta[0] - theta[1] - theta[2]);
-      for (int k = 0; k < 3; ++k) {
-        const int i = c.v[(k + 1) % 3], j = c.v[(k + 2) % 3];
-        const double w = 0.5 / std::tan(static_cast<double>(theta[k]));
-        triplets.emplace_back(i, i, w);
-        triplets.emplace_back(j, j, w);
-        triplets.emplace_back(i, j, -w);
-        triplets.emplace_back(j, i, -w);
-        triplets.emplace_back(c.v[k], c.v[k], 2.0 * area / 3.0);
-      }
+      for (int k = 0; k < 3; ++k) residual[static_cast<size_t>(c.v[k])] -= angles.theta[k];
+      if (!factored) add_jacobian(c, s, angles, triplets);
     }
-    const long double error = residual.cwiseAbs().maxCoeff();
-    if (it == 0) result.error_before = result.error_after = static_cast<double>(error);
-    if (error > static_cast<long double>(result.error_after)) break;  // no longer improving
-    best = result.lengths;
+    RealQ error = 0;
+    for (const RealQ& r : residual) error = std::max(error, r < 0 ? -r : r);
+    if (it == 0) {
+      result.error_before = static_cast<double>(error);
+      best_error = error;
+    }
+    if (error > best_error) break;  // no longer improving
+    best_error = error;
+    best = sigma;
     result.error_after = static_cast<double>(error);
     result.iterations = it;
-    if (error < options.tolerance || it >= options.max_iterations) break;
+    if (error < RealQ(options.tolerance) || it >= options.max_iterations || error == 0) break;
     if (!factored) {
       Eigen::SparseMatrix<double> hessian(nv, nv);
       hessian.setFromTriplets(triplets.begin(), triplets.end());
@@ -125,13 +187,20 @@ PolishH2Result polish_h2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
       factored = true;
     }
     // Scale the residual so that double carries its digits through the solve.
-    const long double scale = error;
-    const Eigen::VectorXd rhs = (residual / scale).cast<double>();
+    Eigen::VectorXd rhs(nv);
+    for (int i = 0; i < nv; ++i) {
+      rhs[i] = static_cast<double>(residual[static_cast<size_t>(i)] / error);
+    }
     const Eigen::VectorXd du = solver.solve(rhs);
-    u -= du.cast<long double>() * scale;
-    result.lengths = scaled(mesh, base_sinh, u);
+    for (int i = 0; i < nv; ++i) u[static_cast<size_t>(i)] -= RealQ(du[i]) * error;
+    sigma = scaled(mesh, base_sigma, u);
   }
-  result.lengths = best;
+  for (RealQ& s : best) s = 2 * asinh_q(s);
+  result.quad_lengths = best;
+  result.lengths.resize(static_cast<Eigen::Index>(best.size()));
+  for (size_t e = 0; e < best.size(); ++e) {
+    result.lengths[static_cast<Eigen::Index>(e)] = static_cast<long double>(best[e]);
+  }
   return result;
 }
 

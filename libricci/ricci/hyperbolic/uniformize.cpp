@@ -29,7 +29,9 @@ void torus_modulus(Uniformization& u) {
 /// Cut, slice, lay out the disk (H2 or E2) and build the holonomy group.
 void build_domain(Uniformization& u, const UniformizeOptions& options) {
   Stopwatch t;
-  const int root = std::clamp(options.root_vertex, 0, static_cast<int>(u.surface.n_vertices()) - 1);
+  const int root = options.root_vertex < 0 ? central_vertex(u.surface, u.flow.lengths).idx()
+                                           : std::min(options.root_vertex,
+                                                      static_cast<int>(u.surface.n_vertices()) - 1);
   u.cut = compute_cut_graph(u.surface, VertexHandle(root), u.flow.lengths);
   u.sliced = slice_along(u.surface, u.cut.is_cut_edge);
   check_disk(u.sliced, "uniformize");
@@ -37,13 +39,14 @@ void build_domain(Uniformization& u, const UniformizeOptions& options) {
   t.restart();
   const Eigen::VectorXd lengths = sliced_edge_lengths(u.sliced, u.flow.lengths);
   if (u.geometry == Geometry::hyperbolic) {
-    // The flow's metric in extended precision (see polish_h2.h), carried onto the sliced edges.
+    // The flow's metric in quad precision (see polish_h2.h), carried onto the sliced edges.
     const Stopwatch polish_start;
     u.polish = polish_h2_lengths(u.surface, u.flow.lengths, u.flow.target);
     u.timings.polish = polish_start.seconds();
-    LengthsL precise(u.sliced.mesh.n_edges());
+    LengthsQ precise(u.sliced.mesh.n_edges());
     for (auto e : u.sliced.mesh.edges()) {
-      precise[e.idx()] = u.polish.lengths[u.sliced.to_original_edge[static_cast<size_t>(e.idx())]];
+      const auto original = u.sliced.to_original_edge[static_cast<size_t>(e.idx())];
+      precise[static_cast<size_t>(e.idx())] = u.polish.quad_lengths[static_cast<size_t>(original)];
     }
     u.layout = layout_h2(u.sliced.mesh, precise, {options.seed_face});
     u.positions = u.layout.positions;

@@ -33,8 +33,11 @@ struct UniformizeOptions {
     o.tolerance = 1e-12;
     return o;
   }();
-  /// Root vertex of the cut graph (index in the closed surface; clamped to a valid vertex).
-  int root_vertex = 0;
+  /// Root vertex of the cut graph (index in the closed surface; clamped to a valid vertex);
+  /// -1 = central_vertex under the flow's metric, where the loops, and the words of the
+  /// relator Π [a_i, b_i], are shortest (the relator sees each local defect amplified by e^d,
+  /// d its distance from the root: 0.13 at root 0 of a chain of ten tori, 3e-12 at its centre).
+  int root_vertex = -1;
   /// Seed face of the disk / plane / sphere layout; -1 = the most central face.
   int seed_face = -1;
   /// Normalise the S2 embedding so the vertex centroid is at 0 (a Möbius map of the sphere).

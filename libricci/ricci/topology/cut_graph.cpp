@@ -36,7 +36,8 @@ struct ShortestPathTree {
 };
 
 ShortestPathTree shortest_path_tree(const Mesh& mesh, const Quotient& q, int root_node,
-                                    const Eigen::VectorXd& lengths) {
+                                    const Eigen::VectorXd& lengths,
+                                    bool over_boundary_edges = false) {
   const int n = q.node_count();
   ShortestPathTree t;
   t.distance.assign(n, std::numeric_limits<double>::infinity());
@@ -49,7 +50,7 @@ ShortestPathTree shortest_path_tree(const Mesh& mesh, const Quotient& q, int roo
   heap.push({0.0, root_node});
   auto relax_from = [&](int node, VertexHandle v) {
     for (auto h : mesh.voh_range(v)) {
-      if (mesh.is_boundary(mesh.edge_handle(h))) continue;
+      if (!over_boundary_edges && mesh.is_boundary(mesh.edge_handle(h))) continue;
       const int m = q.node(mesh.to_vertex_handle(h));
       if (m == node || done[m]) continue;
       const double d = t.distance[node] + lengths[mesh.edge_handle(h).idx()];
@@ -200,6 +201,32 @@ Eigen::VectorXd checked_edge_lengths(const Mesh& mesh, const Eigen::VectorXd& ed
     }
   }
   return edge_lengths;
+}
+
+VertexHandle central_vertex(const Mesh& mesh, const Eigen::VectorXd& edge_lengths, int samples) {
+  if (mesh.n_vertices() == 0) throw InvalidInputError("central vertex: mesh has no vertices");
+  const Eigen::VectorXd lengths = checked_edge_lengths(mesh, edge_lengths);
+  // Distances over every edge, no boundary loop contracted.
+  const Quotient q = make_quotient(mesh, {});
+  const auto distances = [&](int from) {
+    return shortest_path_tree(mesh, q, from, lengths, true).distance;
+  };
+  const auto farthest = [](const std::vector<double>& d) {
+    return static_cast<int>(std::max_element(d.begin(), d.end()) - d.begin());
+  };
+  std::vector<double> eccentricity(mesh.n_vertices(), 0.0);
+  std::vector<double> to_samples = distances(0);  // distance to the nearest sample so far
+  int sample = farthest(to_samples);
+  for (int k = 0; k < std::max(samples, 1); ++k) {
+    const std::vector<double> d = distances(sample);
+    for (size_t v = 0; v < d.size(); ++v) {
+      eccentricity[v] = std::max(eccentricity[v], d[v]);
+      to_samples[v] = k == 0 ? d[v] : std::min(to_samples[v], d[v]);
+    }
+    sample = farthest(to_samples);
+  }
+  const auto centre = std::min_element(eccentricity.begin(), eccentricity.end());
+  return VertexHandle(static_cast<int>(centre - eccentricity.begin()));
 }
 
 CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root, const Eigen::VectorXd& edge_lengths,

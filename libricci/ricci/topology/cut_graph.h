@@ -66,6 +66,16 @@ struct CutGraph {
                                          const Eigen::VectorXd& edge_lengths = {},
                                          const CutGraphOptions& options = {});
 
+/// An approximate centre of the surface under `edge_lengths` (empty = 3D lengths): the vertex
+/// minimising the largest graph distance to `samples` farthest-point samples (the first the
+/// vertex farthest from vertex 0). A root there keeps the greedy loops short, and so the side
+/// pairings' words and the matrices a relator multiplies (hyperbolic/fuchsian.h).
+/// \pre connected mesh; samples >= 1.
+/// \throw InvalidInputError on bad lengths or an empty mesh.
+[[nodiscard]] VertexHandle central_vertex(const Mesh& mesh,
+                                          const Eigen::VectorXd& edge_lengths = {},
+                                          int samples = 8);
+
 /// Checks lengths (size, finite, positive) or returns the mesh's 3D lengths when empty.
 /// \throw InvalidInputError naming the first bad edge.
 [[nodiscard]] Eigen::VectorXd checked_edge_lengths(const Mesh& mesh,

@@ -38,6 +38,28 @@ TEST(HyperbolicAnglesL, EquilateralAndDefect) {
   EXPECT_FALSE(hyperbolic_angles_l(bad, theta));
 }
 
+TEST(HyperbolicAnglesQ, AgreeWithTheLawOfCosinesInQuadPrecision) {
+  if (!has_quad_transcendentals()) GTEST_SKIP() << "built without libquadmath";
+  const RealQ l[3] = {RealQ(0.7L), RealQ(0.9L), RealQ(1.1L)};
+  RealQ theta[3];
+  ASSERT_TRUE(hyperbolic_angles_q(l, theta));
+  const auto cosh_q = [](RealQ x) { return (exp_q(x) + 1 / exp_q(x)) / 2; };
+  for (int k = 0; k < 3; ++k) {
+    const RealQ a = l[k], b = l[(k + 1) % 3], c = l[(k + 2) % 3];
+    const RealQ cos_k = (cosh_q(b) * cosh_q(c) - cosh_q(a)) / (sinh_q(b) * sinh_q(c));
+    const RealQ difference = cos_q(theta[k]) - cos_k;
+    EXPECT_LT(static_cast<double>(difference < 0 ? -difference : difference), 1e-31);
+  }
+  // The long double angles agree to their own precision, and the area is positive.
+  const long double ll[3] = {0.7L, 0.9L, 1.1L};
+  long double tl[3];
+  ASSERT_TRUE(hyperbolic_angles_l(ll, tl));
+  for (int k = 0; k < 3; ++k) EXPECT_LT(std::abs(static_cast<double>(theta[k] - tl[k])), 1e-17);
+  EXPECT_GT(static_cast<double>(pi_q() - theta[0] - theta[1] - theta[2]), 0.1);
+  const RealQ bad[3] = {RealQ(1.0), RealQ(0.3), RealQ(0.4)};
+  EXPECT_FALSE(hyperbolic_angles_q(bad, theta));
+}
+
 struct Flowed {
   Mesh mesh;
   FlowResult flow;
@@ -63,6 +85,26 @@ TEST(PolishH2, RemovesTheFlowsDefectsWithATinyChange) {
     EXPECT_LT(std::abs(static_cast<double>(p.lengths[e]) - f.flow.lengths[e]) / f.flow.lengths[e],
               1e-12);
   }
+}
+
+TEST(PolishH2, ReachesQuadPrecisionInAFewSteps) {
+  // The Jacobian is exact (factored once in double), so each step gains ~14 digits: the flow's
+  // 1e-14 becomes quad precision's floor in two or three steps.
+  if (!has_quad_transcendentals()) GTEST_SKIP() << "built without libquadmath";
+  const Flowed f = flowed_eight();
+  ASSERT_TRUE(f.flow.converged());
+  const PolishH2Result p = polish_h2_lengths(f.mesh, f.flow.lengths, f.flow.target);
+  EXPECT_LT(p.error_after, 1e-28);
+  EXPECT_LE(p.iterations, 3);
+  ASSERT_EQ(p.quad_lengths.size(), static_cast<size_t>(p.lengths.size()));
+  for (size_t e = 0; e < p.quad_lengths.size(); ++e) {
+    EXPECT_EQ(static_cast<long double>(p.quad_lengths[e]), p.lengths[static_cast<Eigen::Index>(e)]);
+  }
+  // A tighter tolerance than quad precision reaches stops where it stops improving, no worse.
+  PolishH2Options strict;
+  strict.tolerance = 0.0;
+  const PolishH2Result q = polish_h2_lengths(f.mesh, f.flow.lengths, f.flow.target, strict);
+  EXPECT_LE(q.error_after, p.error_after);
 }
 
 TEST(PolishH2, ConformalPerturbationConvergesBackToTheSameMetric) {

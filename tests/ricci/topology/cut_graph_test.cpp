@@ -212,5 +212,22 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
+TEST(CentralVertex, MinimisesTheLargestDistanceOnAStripAndAGenusSlab) {
+  // A 40 x 4 strip: the largest distance is least at the middle column (x = 20).
+  const Mesh strip = make_planar_grid(40, 4, 40.0, 4.0);
+  const VertexHandle c = central_vertex(strip);
+  EXPECT_NEAR(strip.point(c)[0], 20.0, 1.0);
+  // A chain of six tori: the centre lies halfway along the chain, not at vertex 0 (its end).
+  const Mesh slab = make_genus_slab(6);
+  double lo = INFINITY, hi = -INFINITY;
+  for (auto v : slab.vertices()) {
+    lo = std::min(lo, static_cast<double>(slab.point(v)[0]));
+    hi = std::max(hi, static_cast<double>(slab.point(v)[0]));
+  }
+  const double x = slab.point(central_vertex(slab))[0];
+  EXPECT_NEAR(x, 0.5 * (lo + hi), 0.2 * (hi - lo));
+  EXPECT_THROW((void)central_vertex(strip, Eigen::VectorXd::Ones(3)), InvalidInputError);
+}
+
 }  // namespace
 }  // namespace ricci
