@@ -110,10 +110,48 @@ void apply_strict_rules(const ricci::AffineAtlas& atlas, std::vector<char>& usab
   }
 }
 
-// Whether the faces outside `kept` form disks: each edge-connected piece of them has Euler
-// characteristic 1 (V - E + F of the closed faces; two pieces meeting at a vertex count as one
-// pinched piece and fail).
-bool holes_are_disks(const ricci::Mesh& mesh, const std::vector<char>& kept) {
+// Edge-connected pieces of the faces with inside[f] == want: a piece index by face (-1 for the
+// others) and the piece count.
+int face_pieces(const ricci::Mesh& mesh, const std::vector<char>& inside, char want,
+                std::vector<int>& piece) {
+  piece.assign(mesh.n_faces(), -1);
+  int count = 0;
+  for (auto start : mesh.faces()) {
+    if (inside[start.idx()] != want || piece[start.idx()] >= 0) continue;
+    std::vector<int> stack{start.idx()};
+    piece[start.idx()] = count;
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      for (auto g : mesh.ff_range(mesh.face_handle(f))) {
+        if (inside[g.idx()] == want && piece[g.idx()] < 0) {
+          piece[g.idx()] = count;
+          stack.push_back(g.idx());
+        }
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
+// Whether the faces outside `kept`, with the islands of kept faces they enclose (every kept
+// piece but the largest, which find_rims covers too), form disks: each edge-connected piece has
+// Euler characteristic 1 (V - E + F of the closed faces; pieces meeting at a vertex fail).
+bool holes_are_disks(const ricci::Mesh& mesh, std::vector<char> kept) {
+  std::vector<int> piece;
+  const int kept_pieces = face_pieces(mesh, kept, 1, piece);
+  if (kept_pieces > 1) {
+    std::vector<int> size(static_cast<std::size_t>(kept_pieces), 0);
+    for (int p : piece) {
+      if (p >= 0) ++size[static_cast<std::size_t>(p)];
+    }
+    const auto largest =
+        static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+    for (std::size_t f = 0; f < kept.size(); ++f) {
+      if (piece[f] >= 0 && piece[f] != largest) kept[f] = 0;
+    }
+  }
   std::vector<int> hole;
   for (auto f : mesh.faces()) {
     if (!kept[f.idx()]) hole.push_back(f.idx());
@@ -125,25 +163,7 @@ bool holes_are_disks(const ricci::Mesh& mesh, const std::vector<char>& kept) {
     for (auto v : mesh.fv_range(mesh.face_handle(f))) euler += vertex[v.idx()]++ == 0 ? 1 : 0;
     for (auto e : mesh.fe_range(mesh.face_handle(f))) euler -= edge[e.idx()]++ == 0 ? 1 : 0;
   }
-  // Edge-connected pieces, breadth-first.
-  std::vector<char> seen(mesh.n_faces(), 0);
-  long count = 0;
-  for (int start : hole) {
-    if (seen[start]) continue;
-    ++count;
-    std::vector<int> queue{start};
-    seen[start] = 1;
-    while (!queue.empty()) {
-      const int f = queue.back();
-      queue.pop_back();
-      for (auto g : mesh.ff_range(mesh.face_handle(f))) {
-        if (!kept[g.idx()] && !seen[g.idx()]) {
-          seen[g.idx()] = 1;
-          queue.push_back(g.idx());
-        }
-      }
-    }
-  }
+  const long count = face_pieces(mesh, kept, 0, piece);
   return euler == count;
 }
 
