@@ -96,8 +96,8 @@ class ManifoldSplineSpace {
   [[nodiscard]] int home_chart(int vertex) const { return home_chart_[vertex]; }
   /// Atlas domain faces left out: no neighbourhood chart, flipped or degenerate in it, or on a
   /// surface of genus >= 4, an inradius there below 1e-13 of its chart coordinates; and on such
-  /// a surface, where the faces so left out form disks, also those flipped or that small in any
-  /// chart or below 1e-8 of the median face's inradius.
+  /// a surface, below genus 8 or where the faces so left out form disks, also those flipped or
+  /// that small in any chart or below 1e-8 of the median face's inradius.
   [[nodiscard]] int excluded_faces() const { return excluded_faces_; }
 
   /// True when `chart` holds every domain face sharing a vertex with `face` glued around it.
