@@ -110,16 +110,81 @@ void add_cut_path_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, doubl
   }
 }
 
+// A chart places a face faithfully when the face is counter-clockwise there and its edges have
+// their metric lengths to this relative accuracy. Near a cone of 2 pi (2g - 1) at genus 8 the
+// flat metric shrinks faces to 1e-13 of the central chart's coordinates, whose rounding then
+// flips or collapses them; such a face's neighbourhood needs a chart in its own frame. The
+// bound is tight because the spline's knot clouds move between charts by rigid motions: two
+// charts placing a face differently by d (relative) give two surfaces d apart (1e-6 left gaps
+// of 6e-5 between the charts of a genus-8 domain with control points of size 1; 1e-9: < 1e-7).
+constexpr double kFaithfulLength = 1e-9;
+
+/// Whether `chart` (row `row`) places face `face` faithfully (kFaithfulLength).
+bool places_faithfully(const Mesh& mesh, const Eigen::VectorXd& lengths, const Chart& chart,
+                       int row, int face) {
+  const auto hs = face_halfedges(mesh, FaceHandle(face));
+  Eigen::Matrix<double, 3, 2> p;
+  for (int k = 0; k < 3; ++k) p.row(k) = chart.positions.row(chart.corners(row, k));
+  // Halfedge k runs from corner k + 2 to corner k.
+  for (int k = 0; k < 3; ++k) {
+    const double l = lengths[mesh.edge_handle(hs[k]).idx()];
+    const double d = (p.row(k) - p.row((k + 2) % 3)).norm();
+    if (!(std::abs(d - l) <= kFaithfulLength * l)) return false;
+  }
+  const Eigen::Vector2d u = (p.row(1) - p.row(0)).transpose();
+  const Eigen::Vector2d v = (p.row(2) - p.row(0)).transpose();
+  return u.x() * v.y() - u.y() * v.x() > 0.0;
+}
+
+/// Whether `chart` holds every face of `faces` faithfully.
+bool holds_faithfully(const Mesh& mesh, const Eigen::VectorXd& lengths, const Chart& chart,
+                      const std::vector<int>& faces) {
+  for (int f : faces) {
+    const int row = chart.slot(f);
+    if (row < 0 || !places_faithfully(mesh, lengths, chart, row, f)) return false;
+  }
+  return true;
+}
+
+/// Corner positions of `face` laid out from its lengths in a frame of its own (corner 2 at the
+/// origin), for faces the central chart does not place faithfully.
+Eigen::Matrix<double, 3, 2> own_frame_positions(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                                                int face) {
+  const auto hs = face_halfedges(mesh, FaceHandle(face));
+  const auto l = [&](int k) { return lengths[mesh.edge_handle(hs[k]).idx()]; };
+  Eigen::Matrix<double, 3, 2> p;
+  p.row(2) = Eigen::RowVector2d::Zero();
+  p.row(0) = Eigen::RowVector2d(l(0), 0.0);
+  p.row(1) = place_third_vertex(p.row(2).transpose(), p.row(0).transpose(), l(2), l(1)).transpose();
+  return p;
+}
+
 /// Develops exactly `hood` (the neighbourhood of `face`) as a chart of its own; returns its
 /// index, or -1 (and adds nothing) when even the neighbourhood is not one planar piece (it
-/// wraps around a handle).
-int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue, int face,
-                   const std::vector<int>& hood, AffineAtlas& atlas) {
+/// wraps around a handle). The seed is the central chart's placement when the chart developed
+/// from it holds the hood faithfully (transitions near the identity), else the face in its own
+/// frame, with copies glued within `glue_tolerance` of the neighbourhood's mean edge.
+int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue,
+                   double glue_tolerance, int face, const std::vector<int>& hood,
+                   AffineAtlas& atlas) {
   Eigen::Matrix<double, 3, 2> seed_positions;
   for (int k = 0; k < 3; ++k) {
     seed_positions.row(k) = atlas.charts[0].positions.row(atlas.charts[0].corners(face, k));
   }
   Chart chart = detail::develop_chart(mesh, lengths, hood, face, seed_positions, glue);
+  if (!holds_faithfully(mesh, lengths, chart, hood)) {
+    double sum = 0.0;
+    int count = 0;
+    for (int g : hood) {
+      for (auto e : mesh.fe_range(FaceHandle(g))) {
+        sum += lengths[e.idx()];
+        ++count;
+      }
+    }
+    const double local_glue = std::min(glue, glue_tolerance * sum / std::max(count, 1));
+    chart = detail::develop_chart(mesh, lengths, hood, face,
+                                  own_frame_positions(mesh, lengths, face), local_glue);
+  }
   if (!detail::holds_as_one_piece(mesh, chart, hood)) return -1;
   chart.kind = ChartKind::face;
   chart.source = face;
@@ -127,11 +192,11 @@ int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue
   return static_cast<int>(atlas.charts.size()) - 1;
 }
 
-/// Picks, for every domain face, the first chart holding its neighbourhood as one piece:
-/// central, then cut-path charts holding the face, then (built on demand) vertex charts, then a
-/// chart of the face's own neighbourhood.
+/// Picks, for every domain face, the first chart holding its neighbourhood as one piece and
+/// faithfully (places_faithfully): central, then cut-path charts holding the face, then (built
+/// on demand) vertex charts, then a chart of the face's own neighbourhood.
 void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue,
-                                 AffineAtlas& atlas) {
+                                 double glue_tolerance, AffineAtlas& atlas) {
   std::vector<std::vector<int>> charts_of_face(mesh.n_faces());
   for (size_t c = 1; c < atlas.charts.size(); ++c) {
     for (int f : atlas.charts[c].faces) charts_of_face[f].push_back(static_cast<int>(c));
@@ -143,7 +208,9 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
   // vertices it has once each: the test without holds_as_one_piece's search and sort.
   // (atlas.charts grows below: no reference into it is kept.)
   std::vector<char> in_central(mesh.n_faces(), 0), copies(mesh.n_vertices(), 0);
-  for (int f : atlas.charts[0].faces) in_central[static_cast<size_t>(f)] = 1;
+  for (int f : atlas.charts[0].faces) {
+    in_central[static_cast<size_t>(f)] = places_faithfully(mesh, lengths, atlas.charts[0], f, f);
+  }
   for (int v : atlas.charts[0].to_original_vertex) {
     char& count = copies[static_cast<size_t>(v)];
     count = static_cast<char>(std::min(count + 1, 2));
@@ -160,11 +227,14 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
   for (auto f : mesh.faces()) {
     if (!atlas.in_domain[f.idx()]) continue;
     const std::vector<int> hood = detail::face_neighbourhood(mesh, f.idx(), atlas.in_domain);
-    int found =
-        plainly_central(hood) || detail::holds_as_one_piece(mesh, atlas.charts[0], hood) ? 0 : -1;
+    const auto fits = [&](int c) {
+      return detail::holds_as_one_piece(mesh, atlas.charts[c], hood) &&
+             holds_faithfully(mesh, lengths, atlas.charts[c], hood);
+    };
+    int found = plainly_central(hood) || fits(0) ? 0 : -1;
     for (size_t i = 0; found < 0 && i < charts_of_face[f.idx()].size(); ++i) {
       const int c = charts_of_face[f.idx()][i];
-      if (detail::holds_as_one_piece(mesh, atlas.charts[c], hood)) found = c;
+      if (fits(c)) found = c;
     }
     for (auto v : mesh.fv_range(f)) {
       if (found >= 0) break;
@@ -183,11 +253,10 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
         }
         it = vertex_chart.emplace(v.idx(), index).first;
       }
-      if (it->second >= 0 && detail::holds_as_one_piece(mesh, atlas.charts[it->second], hood)) {
-        found = it->second;
-      }
+      if (it->second >= 0 && fits(it->second)) found = it->second;
     }
-    if (found < 0) found = add_face_chart(mesh, lengths, glue, f.idx(), hood, atlas);
+    if (found < 0)
+      found = add_face_chart(mesh, lengths, glue, glue_tolerance, f.idx(), hood, atlas);
     atlas.neighbourhood_chart[f.idx()] = found;
     if (found < 0) ++atlas.uncovered_faces;
   }
@@ -276,7 +345,7 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
 
   const double glue = options.glue_tolerance * lengths.mean();
   add_cut_path_charts(mesh, lengths, glue, atlas);
-  assign_neighbourhood_charts(mesh, lengths, glue, atlas);
+  assign_neighbourhood_charts(mesh, lengths, glue, options.glue_tolerance, atlas);
   detail::compute_transitions(mesh, atlas);
   detail::compute_side_pairings(mesh, atlas);
   atlas.canonical = canonical_basis(atlas.polygon.word);

@@ -22,17 +22,28 @@ using ricci::TopologyError;
 
 std::string face_name(int face) { return "face " + std::to_string(face); }
 
-// Around a cone of 2 pi (2g - 1) the flat metric shrinks like rho^(2g - 2): at genus 9 faces of
-// the refined one-ring are 1e-16 of their chart's coordinates, their knots (within half the
-// inradius) round onto each other and the DMS triangles degenerate. A face whose chart inradius
-// is below kMinRelativeInradius times the median face's, or below kMinChartInradius times its
-// coordinates, carries no functions. Both rules apply from genus kSizeRulesGenus only: at
-// genus 0 the one-cone metric shrinks long extremities far more than a cone does (camel.off's
-// legs, 59 of a 3000-face domain's faces: dropping them cut the legs off the fitted surface, RMS
-// 0.19% -> 2.7% of the diagonal), and such faces were fitted well before these rules.
-constexpr double kMinRelativeInradius = 1e-8;
+// Around a cone of 2 pi (2g - 1) the flat metric shrinks like rho^(2g - 2): at genus 8 faces of
+// the refined one-ring are 1e-13 of the central chart's coordinates. The atlas gives such faces
+// neighbourhood charts in their own frame (ricci/atlas/atlas.cpp, places_faithfully); a face
+// still below kMinChartInradius times its neighbourhood chart's coordinates carries no functions
+// (from genus kSizeRulesGenus: at genus 0 the one-cone metric shrinks long extremities far more
+// than a cone does, camel.off's legs, and such faces were fitted well without the rule).
 constexpr double kMinChartInradius = 1e-13;
+constexpr double kMinRelativeInradius = 1e-8;
 constexpr int kSizeRulesGenus = 4;
+// Below this genus the stricter rules always apply (apply_strict_rules): generated genus 6 with
+// the faces next to its cone kept came out with spikes (6-8% of the diagonal from the input,
+// not traced), with them left out at a seam of 0.2 degrees.
+constexpr int kFaithfulRulesGenus = 8;
+// A chart other than a face's neighbourhood chart carries the face's functions only when it
+// places the face as that chart does (edge lengths within this relative accuracy,
+// counter-clockwise): the central chart's rounding breaks the faces next to a large cone. (The
+// atlas places each neighbourhood within 1e-9 of the metric, so two such charts agree within
+// 2e-9.)
+constexpr double kSameShape = 1e-8;
+// Knot clouds move between charts by the atlas transition only when it places the vertex
+// within this fraction of the face's shortest edge (and 1e-7 of the domain diameter).
+constexpr double kTransitionToEdge = 1e-6;
 
 // Corner of chart row `row` at original vertex v, or -1.
 int corner_at(const ricci::Chart& chart, int row, int vertex) {
@@ -69,6 +80,95 @@ void check_home_cloud(const KnotCloud& cloud, int vertex, int degree,
                                                 : "that is not finite"));
     }
   }
+}
+
+// The stricter rules of a face's usability (from genus kSizeRulesGenus): counter-clockwise in
+// every chart holding it, an inradius above kMinChartInradius of the coordinates in each, and
+// above kMinRelativeInradius of the median face's smallest chart inradius. Where the faces they
+// leave out form disks, the hole's patch replaces them (generated genus 4 and 6: seams of 0.3
+// and 0.2 degrees); next to a cone of genus 8 they form a pair of pants round two tubes, which
+// disks cannot close (the surface came out of genus 6), and the faithful rules alone apply.
+void apply_strict_rules(const ricci::AffineAtlas& atlas, std::vector<char>& usable) {
+  std::vector<double> smallest(usable.size(), INFINITY);
+  for (const ricci::Chart& chart : atlas.charts) {
+    for (std::size_t row = 0; row < chart.faces.size(); ++row) {
+      const auto r = static_cast<Eigen::Index>(row);
+      const int face = chart.faces[row];
+      const Eigen::Vector2d a = chart.positions.row(chart.corners(r, 0)).transpose();
+      const Eigen::Vector2d b = chart.positions.row(chart.corners(r, 1)).transpose();
+      const Eigen::Vector2d c = chart.positions.row(chart.corners(r, 2)).transpose();
+      const double rho = ricci::cross2d(b - a, c - a) > 0.0 ? inradius(a, b, c) : 0.0;
+      if (!(rho > kMinChartInradius * std::max({a.norm(), b.norm(), c.norm()}))) usable[face] = 0;
+      smallest[face] = std::min(smallest[face], rho);
+    }
+  }
+  std::vector<double> inradii;
+  for (std::size_t i = 0; i < usable.size(); ++i) {
+    if (atlas.in_domain[i] && std::isfinite(smallest[i])) inradii.push_back(smallest[i]);
+  }
+  if (inradii.empty()) return;
+  const auto middle = inradii.begin() + static_cast<std::ptrdiff_t>(inradii.size() / 2);
+  std::nth_element(inradii.begin(), middle, inradii.end());
+  for (std::size_t i = 0; i < usable.size(); ++i) {
+    if (!(smallest[i] >= kMinRelativeInradius * *middle)) usable[i] = 0;
+  }
+}
+
+// Edge-connected pieces of the faces with inside[f] == want: a piece index by face (-1 for the
+// others) and the piece count.
+int face_pieces(const ricci::Mesh& mesh, const std::vector<char>& inside, char want,
+                std::vector<int>& piece) {
+  piece.assign(mesh.n_faces(), -1);
+  int count = 0;
+  for (auto start : mesh.faces()) {
+    if (inside[start.idx()] != want || piece[start.idx()] >= 0) continue;
+    std::vector<int> stack{start.idx()};
+    piece[start.idx()] = count;
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      for (auto g : mesh.ff_range(mesh.face_handle(f))) {
+        if (inside[g.idx()] == want && piece[g.idx()] < 0) {
+          piece[g.idx()] = count;
+          stack.push_back(g.idx());
+        }
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
+// Whether the faces outside `kept`, with the islands of kept faces they enclose (every kept
+// piece but the largest, which find_rims covers too), form disks: each edge-connected piece has
+// Euler characteristic 1 (V - E + F of the closed faces; pieces meeting at a vertex fail).
+bool holes_are_disks(const ricci::Mesh& mesh, std::vector<char> kept) {
+  std::vector<int> piece;
+  const int kept_pieces = face_pieces(mesh, kept, 1, piece);
+  if (kept_pieces > 1) {
+    std::vector<int> size(static_cast<std::size_t>(kept_pieces), 0);
+    for (int p : piece) {
+      if (p >= 0) ++size[static_cast<std::size_t>(p)];
+    }
+    const auto largest =
+        static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+    for (std::size_t f = 0; f < kept.size(); ++f) {
+      if (piece[f] >= 0 && piece[f] != largest) kept[f] = 0;
+    }
+  }
+  std::vector<int> hole;
+  for (auto f : mesh.faces()) {
+    if (!kept[f.idx()]) hole.push_back(f.idx());
+  }
+  if (hole.empty()) return true;
+  std::vector<char> vertex(mesh.n_vertices(), 0), edge(mesh.n_edges(), 0);
+  long euler = static_cast<long>(hole.size());
+  for (int f : hole) {
+    for (auto v : mesh.fv_range(mesh.face_handle(f))) euler += vertex[v.idx()]++ == 0 ? 1 : 0;
+    for (auto e : mesh.fe_range(mesh.face_handle(f))) euler -= edge[e.idx()]++ == 0 ? 1 : 0;
+  }
+  const long count = face_pieces(mesh, kept, 0, piece);
+  return euler == count;
 }
 
 }  // namespace
@@ -108,40 +208,26 @@ void ManifoldSplineSpace::build_domain(const ricci::Mesh& mesh) {
                             std::to_string(faces));
   }
   // A face without a neighbourhood chart (atlas.uncovered_faces), not strictly counter-clockwise
-  // in some chart (a flipped sliver), or too small there for its knots to be told apart in the
-  // chart's coordinates (kMinChartInradius) cannot carry DMS functions: it joins the hole.
-  std::vector<char> usable(static_cast<std::size_t>(faces), 1);
-  for (int i = 0; i < faces; ++i) usable[i] = atlas_.neighbourhood_chart[i] >= 0;
-  const bool size_rules = ricci::surface_topology(mesh).genus >= kSizeRulesGenus;
-  // Each face's smallest chart inradius (0 where flipped), for the size rules only.
-  std::vector<double> smallest(size_rules ? static_cast<std::size_t>(faces) : 0, INFINITY);
-  for (const ricci::Chart& chart : atlas_.charts) {
-    for (std::size_t row = 0; row < chart.faces.size(); ++row) {
-      const auto r = static_cast<Eigen::Index>(row);
-      const int face = chart.faces[row];
-      const Eigen::Vector2d a = chart.positions.row(chart.corners(r, 0)).transpose();
-      const Eigen::Vector2d b = chart.positions.row(chart.corners(r, 1)).transpose();
-      const Eigen::Vector2d c = chart.positions.row(chart.corners(r, 2)).transpose();
-      const bool counter_clockwise = ricci::cross2d(b - a, c - a) > 0.0;
-      if (!counter_clockwise) usable[face] = 0;
-      if (!size_rules) continue;
-      const double rho = counter_clockwise ? inradius(a, b, c) : 0.0;
-      if (!(rho > kMinChartInradius * std::max({a.norm(), b.norm(), c.norm()}))) usable[face] = 0;
-      smallest[face] = std::min(smallest[face], rho);
-    }
+  // there (a flipped sliver), or too small there for its knots to be told apart in the chart's
+  // coordinates (kMinChartInradius) cannot carry DMS functions: it joins the hole.
+  std::vector<char> usable(static_cast<std::size_t>(faces), 0);
+  const int genus = ricci::surface_topology(mesh).genus;
+  const bool size_rules = genus >= kSizeRulesGenus;
+  for (int i = 0; i < faces; ++i) {
+    const int c = atlas_.neighbourhood_chart[i];
+    if (c < 0) continue;
+    const Eigen::Matrix<double, 3, 2> p = atlas_.face_positions(c, i);
+    const Eigen::Vector2d a = p.row(0).transpose(), b = p.row(1).transpose(),
+                          d = p.row(2).transpose();
+    if (!(ricci::cross2d(b - a, d - a) > 0.0)) continue;
+    usable[i] = !size_rules ||
+                inradius(a, b, d) > kMinChartInradius * std::max({a.norm(), b.norm(), d.norm()});
   }
   if (size_rules) {
-    std::vector<double> inradii;
-    for (int i = 0; i < faces; ++i) {
-      if (atlas_.in_domain[i] && std::isfinite(smallest[i])) inradii.push_back(smallest[i]);
-    }
-    if (!inradii.empty()) {
-      const auto middle = inradii.begin() + static_cast<std::ptrdiff_t>(inradii.size() / 2);
-      std::nth_element(inradii.begin(), middle, inradii.end());
-      for (int i = 0; i < faces; ++i) {
-        if (!(smallest[i] >= kMinRelativeInradius * *middle)) usable[i] = 0;
-      }
-    }
+    std::vector<char> strict = usable;
+    apply_strict_rules(atlas_, strict);
+    for (int i = 0; i < faces; ++i) strict[i] = strict[i] && atlas_.in_domain[i];
+    if (genus < kFaithfulRulesGenus || holes_are_disks(mesh, strict)) usable = std::move(strict);
   }
   domain_index_.assign(static_cast<std::size_t>(faces), -1);
   neighbours_.assign(static_cast<std::size_t>(faces), {-1, -1, -1});
@@ -258,7 +344,11 @@ KnotCloud ManifoldSplineSpace::cloud_in_chart(int chart, int face, int corner) c
   const Eigen::Vector2d there = source.positions.row(source.corners(home_row, corner)).transpose();
   std::optional<ricci::RigidMotion2> motion;
   if (home != chart) motion = atlas_.transition(home, chart, face);
-  const double tolerance = 1e-7 * std::max(atlas_.domain_diameter, 1e-300);
+  const Eigen::Matrix<double, 3, 2> p = atlas_.face_positions(chart, face);
+  const double shortest = std::min(
+      {(p.row(0) - p.row(1)).norm(), (p.row(1) - p.row(2)).norm(), (p.row(2) - p.row(0)).norm()});
+  const double tolerance =
+      std::min(1e-7 * std::max(atlas_.domain_diameter, 1e-300), kTransitionToEdge * shortest);
   // (A transition fitted over vertices the layout lost, non-finite next to a genus-9 cone,
   // fails this test too.)
   if (!motion || !((motion->apply(there) - here).norm() <= tolerance)) {
@@ -268,6 +358,19 @@ KnotCloud ManifoldSplineSpace::cloud_in_chart(int chart, int face, int corner) c
   KnotCloud cloud = transformed(home_clouds_[vertex], motion->rotation(), motion->translation);
   cloud.knots[0] = here;  // exact: PlanarDmsSpace requires knots[0] == the vertex
   return cloud;
+}
+
+bool ManifoldSplineSpace::same_shape_as_home(int chart, int face) const {
+  const int home = atlas_.neighbourhood_chart[face];
+  if (home == chart) return true;
+  const Eigen::Matrix<double, 3, 2> p = atlas_.face_positions(chart, face);
+  const Eigen::Matrix<double, 3, 2> q = atlas_.face_positions(home, face);
+  for (int k = 0; k < 3; ++k) {
+    const double there = (q.row(k) - q.row((k + 1) % 3)).norm();
+    const double here = (p.row(k) - p.row((k + 1) % 3)).norm();
+    if (!(std::abs(here - there) <= kSameShape * there)) return false;
+  }
+  return ricci::cross2d((p.row(1) - p.row(0)).transpose(), (p.row(2) - p.row(0)).transpose()) > 0.0;
 }
 
 std::unique_ptr<ManifoldSplineSpace::ChartSpace> ManifoldSplineSpace::build_chart_space(
@@ -280,7 +383,7 @@ std::unique_ptr<ManifoldSplineSpace::ChartSpace> ManifoldSplineSpace::build_char
   std::vector<KnotCloud> clouds;
   for (std::size_t row = 0; row < chart.faces.size(); ++row) {
     const int face = chart.faces[row];
-    if (domain_index_[face] < 0) continue;
+    if (domain_index_[face] < 0 || !same_shape_as_home(chart_index, face)) continue;
     Eigen::Vector3i triangle;
     for (int k = 0; k < 3; ++k) {
       const int copy = chart.corners(static_cast<Eigen::Index>(row), k);
@@ -340,6 +443,7 @@ bool ManifoldSplineSpace::holds_neighbourhood(int chart_index, int face) const {
       if (g_row < 0) return false;
       const int corner = corner_at(chart, g_row, vertex);
       if (corner < 0 || chart.corners(g_row, corner) != copy) return false;
+      if (!same_shape_as_home(chart_index, g)) return false;
     }
   }
   return true;

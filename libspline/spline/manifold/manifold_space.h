@@ -10,19 +10,20 @@
 // atlas has none for that pair). Blossoms and DMS basis functions are affine invariant, so every
 // chart that holds a point's neighbourhood sees the same basis functions there.
 //
-// Functions. Domain face I (atlas.in_domain[I] != 0, a neighbourhood chart, counter-clockwise in
-// every chart holding it, and not vanishingly small there, as faces next to a cone of genus 9
-// are; the rare others are left out like the hole, see excluded_faces()) carries
-// (n + 1)(n + 2)/2 functions, beta in multi_indices(n) order relative to I's corners (corner k =
+// Functions. Domain face I (atlas.in_domain[I] != 0, a neighbourhood chart, counter-clockwise and
+// not vanishingly small there; the rare others are left out like the hole, see excluded_faces())
+// carries (n + 1)(n + 2)/2 functions, beta in multi_indices(n) order relative to I's corners (corner k =
 // to_vertex of the k-th halfedge of face_halfedges(mesh, I), the atlas' corner order): global index
 // domain_index(I) * functions_per_face() + beta. Faces of the cone's one-ring carry none.
 //
 // Evaluation. A point is a face and barycentric coordinates (in the same corner order). It is
 // evaluated in a chart holding the face's vertex-neighbourhood as one glued piece (by default the
-// atlas' neighbourhood chart); per chart a PlanarDmsSpace over its domain faces is built on first
-// use and cached (thread-safe). Only functions of faces sharing a chart vertex with the point's
-// face can reach it (clouds stay inside their vertex stars), so those are kept: this also makes
-// self-overlapping charts (the central chart around a cone of angle 6 pi) harmless.
+// atlas' neighbourhood chart); per chart a PlanarDmsSpace is built on first use and cached
+// (thread-safe), over the domain faces it places as their neighbourhood charts do (not the
+// central chart's faces next to a large cone, broken by its rounding). Only functions of faces
+// sharing a chart vertex with the point's face can reach it (clouds stay inside their vertex
+// stars), so those are kept: this also makes self-overlapping charts (the central chart around a
+// cone of angle 6 pi) harmless.
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <array>
@@ -93,9 +94,10 @@ class ManifoldSplineSpace {
   [[nodiscard]] const ricci::AffineAtlas& atlas() const { return atlas_; }
   [[nodiscard]] const KnotCloud& home_cloud(int vertex) const { return home_clouds_[vertex]; }
   [[nodiscard]] int home_chart(int vertex) const { return home_chart_[vertex]; }
-  /// Atlas domain faces left out: no neighbourhood chart, flipped or degenerate in a chart, or
-  /// on a surface of genus >= 4 (next to its large cone), a chart inradius below 1e-8 of the
-  /// median face's or 1e-13 of its chart coordinates.
+  /// Atlas domain faces left out: no neighbourhood chart, flipped or degenerate in it, or on a
+  /// surface of genus >= 4, an inradius there below 1e-13 of its chart coordinates; and on such
+  /// a surface, below genus 8 or where the faces so left out form disks, also those flipped or
+  /// that small in any chart or below 1e-8 of the median face's inradius.
   [[nodiscard]] int excluded_faces() const { return excluded_faces_; }
 
   /// True when `chart` holds every domain face sharing a vertex with `face` glued around it.
@@ -142,6 +144,9 @@ class ManifoldSplineSpace {
   void build_home_clouds(const ricci::Mesh& mesh, const ManifoldSplineOptions& options,
                          std::vector<KnotCloud>* given);
   [[nodiscard]] KnotCloud cloud_in_chart(int chart, int face, int corner) const;
+  // Whether `chart` places domain `face` as its neighbourhood chart does (same edge lengths,
+  // counter-clockwise); charts that do not (rounding next to a large cone) leave it out.
+  [[nodiscard]] bool same_shape_as_home(int chart, int face) const;
   [[nodiscard]] std::unique_ptr<ChartSpace> build_chart_space(int chart) const;
 
   int degree_ = 0;

@@ -1,0 +1,62 @@
+// Next to the one cone of a genus-8 surface (2 pi (2g - 1) = 30 pi) the flat metric shrinks
+// faces to ~1e-13 of the central chart's coordinates, whose rounding flips or collapses them.
+// Every domain face must still get a neighbourhood chart that holds its neighbourhood as one
+// piece with the metric's edge lengths and counter-clockwise (the atlas lays such faces out in
+// a frame of their own).
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+
+#include "ricci/atlas/chart_develop.h"
+#include "ricci/mesh/generate.h"
+#include "ricci/pipeline/one_cone_atlas.h"
+#include "ricci/util/cross2d.h"
+
+namespace {
+
+// Whether `chart` places face `face` with the metric's edge lengths (relative `tolerance`) and
+// counter-clockwise.
+bool placed_faithfully(const ricci::Mesh& mesh, const Eigen::VectorXd& lengths,
+                       const ricci::AffineAtlas& atlas, int chart, int face, double tolerance) {
+  const Eigen::Matrix<double, 3, 2> p = atlas.face_positions(chart, face);
+  const auto hs = ricci::face_halfedges(mesh, ricci::FaceHandle(face));
+  for (int k = 0; k < 3; ++k) {
+    const double l = lengths[mesh.edge_handle(hs[k]).idx()];
+    if (!(std::abs((p.row(k) - p.row((k + 2) % 3)).norm() - l) <= tolerance * l)) return false;
+  }
+  return ricci::cross2d((p.row(1) - p.row(0)).transpose(), (p.row(2) - p.row(0)).transpose()) > 0.0;
+}
+
+TEST(LargeConeCharts, EveryGenus8FaceHasAFaithfulNeighbourhoodChart) {
+  ricci::GenerateOptions generate;
+  generate.genus = 8;
+  generate.target_faces = 2400;
+  const ricci::Mesh input = ricci::generate_surface(generate);
+  ricci::OneConeAtlasOptions options;
+  options.cone_refinement.levels = 2;  // as msp fit's domain
+  const ricci::OneConeAtlasResult result = ricci::build_one_cone_atlas(input, options);
+  const ricci::Mesh& mesh = result.problem.mesh;
+  const ricci::AffineAtlas& atlas = result.atlas;
+  const Eigen::VectorXd& lengths = result.flow.lengths;
+  ASSERT_TRUE(atlas.root_is_cone);
+  EXPECT_NEAR(atlas.root_curvature, 2.0 * M_PI * (2.0 - 2.0 * 8), 1e-6);
+  EXPECT_EQ(atlas.uncovered_faces, 0);
+  int broken_in_central = 0;
+  for (auto f : mesh.faces()) {
+    if (!atlas.in_domain[f.idx()]) continue;
+    if (!placed_faithfully(mesh, lengths, atlas, 0, f.idx(), 1e-6)) ++broken_in_central;
+    const int c = atlas.neighbourhood_chart[f.idx()];
+    ASSERT_GE(c, 0) << "face " << f.idx();
+    const auto hood = ricci::detail::face_neighbourhood(mesh, f.idx(), atlas.in_domain);
+    EXPECT_TRUE(ricci::detail::holds_as_one_piece(mesh, atlas.charts[c], hood));
+    for (int g : hood) {
+      EXPECT_TRUE(placed_faithfully(mesh, lengths, atlas, c, g, 1e-6))
+          << "face " << g << " in the chart of face " << f.idx();
+    }
+  }
+  // The premise: the central chart alone cannot hold them.
+  EXPECT_GT(broken_in_central, 0);
+}
+
+}  // namespace
