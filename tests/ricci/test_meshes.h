@@ -5,9 +5,11 @@
 #include <string>
 #include <vector>
 
+#include <ricci/mesh/generate.h>
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/mesh.h>
 #include <ricci/metric/subdivide.h>
+#include <ricci/pipeline/one_cone_atlas.h>
 
 namespace ricci::testing {
 
@@ -74,5 +76,16 @@ inline void jitter(Mesh& mesh, double amount, unsigned seed) {
   for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) + OpenMesh::Vec3d(d(rng), d(rng), d(rng)));
 }
 
+
+/// The one-cone atlas msp fit builds (cone refinement 2) on a generated genus-8 surface of
+/// about 2400 faces: one cone of curvature 2 pi (2 - 2g) = -28 pi.
+inline OneConeAtlasResult genus8_fit_atlas() {
+  GenerateOptions generate;
+  generate.genus = 8;
+  generate.target_faces = 2400;
+  OneConeAtlasOptions options;
+  options.cone_refinement.levels = 2;
+  return build_one_cone_atlas(generate_surface(generate), options);
+}
 
 }  // namespace ricci::testing

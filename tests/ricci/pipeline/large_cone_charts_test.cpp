@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "ricci/atlas/chart_develop.h"
-#include "ricci/mesh/generate.h"
 #include "ricci/pipeline/one_cone_atlas.h"
+#include "ricci/test_meshes.h"
 #include "ricci/util/cross2d.h"
 
 namespace {
@@ -29,13 +29,7 @@ bool placed_faithfully(const ricci::Mesh& mesh, const Eigen::VectorXd& lengths,
 }
 
 TEST(LargeConeCharts, EveryGenus8FaceHasAFaithfulNeighbourhoodChart) {
-  ricci::GenerateOptions generate;
-  generate.genus = 8;
-  generate.target_faces = 2400;
-  const ricci::Mesh input = ricci::generate_surface(generate);
-  ricci::OneConeAtlasOptions options;
-  options.cone_refinement.levels = 2;  // as msp fit's domain
-  const ricci::OneConeAtlasResult result = ricci::build_one_cone_atlas(input, options);
+  const ricci::OneConeAtlasResult result = ricci::testing::genus8_fit_atlas();
   const ricci::Mesh& mesh = result.problem.mesh;
   const ricci::AffineAtlas& atlas = result.atlas;
   const Eigen::VectorXd& lengths = result.flow.lengths;

@@ -6,21 +6,15 @@
 
 #include <memory>
 
-#include "ricci/mesh/generate.h"
 #include "ricci/pipeline/one_cone_atlas.h"
+#include "ricci/test_meshes.h"
 #include "spline/manifold/manifold_space.h"
 
 namespace spline {
 namespace {
 
 TEST(LargeConeSpace, Genus8KeepsTheFacesNextToTheConeAndOneSurface) {
-  ricci::GenerateOptions generate;
-  generate.genus = 8;
-  generate.target_faces = 2400;
-  const ricci::Mesh input = ricci::generate_surface(generate);
-  ricci::OneConeAtlasOptions options;
-  options.cone_refinement.levels = 2;  // as msp fit's domain
-  const ricci::OneConeAtlasResult atlas = ricci::build_one_cone_atlas(input, options);
+  const ricci::OneConeAtlasResult atlas = ricci::testing::genus8_fit_atlas();
   const auto space = std::make_shared<const ManifoldSplineSpace>(atlas.problem.mesh, atlas.atlas);
   int atlas_domain = 0;
   for (char in : atlas.atlas.in_domain) atlas_domain += in != 0;

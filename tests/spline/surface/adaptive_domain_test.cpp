@@ -83,19 +83,26 @@ ricci::Mesh half_rippled_sphere() {
   return m;
 }
 
-// Mean length of the edges whose midpoint's z lies in [z0, z1).
-double mean_edge_in_z(const ricci::Mesh& m, double z0, double z1) {
+// Mean length of the edges whose midpoint `keep` accepts (0 when none).
+template <class Keep>
+double mean_edge_where(const ricci::Mesh& m, Keep keep) {
   double sum = 0.0;
   int count = 0;
   for (auto e : m.edges()) {
     const auto h = m.halfedge_handle(e, 0);
-    const double z =
-        0.5 * (m.point(m.from_vertex_handle(h))[2] + m.point(m.to_vertex_handle(h))[2]);
-    if (z < z0 || z >= z1) continue;
+    if (!keep(0.5 * (m.point(m.from_vertex_handle(h)) + m.point(m.to_vertex_handle(h)))))
+      continue;
     sum += m.calc_edge_length(e);
     ++count;
   }
   return count > 0 ? sum / count : 0.0;
+}
+
+// Mean length of the edges whose midpoint's z lies in [z0, z1).
+double mean_edge_in_z(const ricci::Mesh& m, double z0, double z1) {
+  return mean_edge_where(m, [&](const ricci::Mesh::Point& mid) {
+    return mid[2] >= z0 && mid[2] < z1;
+  });
 }
 
 double min_corner_angle_deg(const ricci::Mesh& m) {
@@ -141,16 +148,9 @@ ricci::Mesh half_rippled_ellipsoid() {
 // Mean edge length of the lower half's edges (midpoint z < -0.2) whose midpoint's |x| lies in
 // [x0, x1).
 double mean_lower_edge_at_x(const ricci::Mesh& m, double x0, double x1) {
-  double sum = 0.0;
-  int count = 0;
-  for (auto e : m.edges()) {
-    const auto h = m.halfedge_handle(e, 0);
-    const auto mid = 0.5 * (m.point(m.from_vertex_handle(h)) + m.point(m.to_vertex_handle(h)));
-    if (mid[2] >= -0.2 || std::abs(mid[0]) < x0 || std::abs(mid[0]) >= x1) continue;
-    sum += m.calc_edge_length(e);
-    ++count;
-  }
-  return count > 0 ? sum / count : 0.0;
+  return mean_edge_where(m, [&](const ricci::Mesh::Point& mid) {
+    return mid[2] < -0.2 && std::abs(mid[0]) >= x0 && std::abs(mid[0]) < x1;
+  });
 }
 
 // The quadric residual splits where the scan has detail, not where it bends smoothly: by

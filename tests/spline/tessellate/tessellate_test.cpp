@@ -37,6 +37,16 @@ Case make_case(const std::string& model, int degree = 3, int faces = 300) {
   return {&mesh, {space, piecewise_linear_control_points(*space, mesh)}};
 }
 
+// Density d, 2 threads, every face outside the domain or covered by `rim` skipped.
+TessellationOptions without_rim_faces(const Case& c, const Rim& rim, int d) {
+  TessellationOptions o = options(d, 2);
+  o.skip_faces.assign(c.mesh->n_faces(), 0);
+  for (int f = 0; f < static_cast<int>(c.mesh->n_faces()); ++f)
+    o.skip_faces[f] = !c.spline.space->in_domain(f);
+  for (int f : rim.covered_faces) o.skip_faces[f] = 1;
+  return o;
+}
+
 int interior_edges(const ricci::Mesh& mesh, const ManifoldSplineSpace& space) {
   int count = 0;
   for (auto e : mesh.edges()) {
@@ -276,11 +286,7 @@ TEST(Tessellate, FillPatchWeldsIntoAClosedSurface) {
   ASSERT_EQ(rims.size(), 1u);
   ASSERT_EQ(rims[0].kind, Rim::Kind::cone_hole);
   const int d = 3;
-  TessellationOptions opts = options(d, 2);
-  opts.skip_faces.assign(c.mesh->n_faces(), 0);
-  for (int f = 0; f < static_cast<int>(c.mesh->n_faces()); ++f)
-    opts.skip_faces[f] = !space.in_domain(f);
-  for (int f : rims[0].covered_faces) opts.skip_faces[f] = 1;
+  const TessellationOptions opts = without_rim_faces(c, rims[0], d);
   Tessellation t = tessellate(c.spline, *c.mesh, opts);
   const WatertightReport open = check_watertight(t.triangles, t.positions);
   EXPECT_TRUE(open.matches(2, 1));
@@ -315,11 +321,7 @@ TEST(Tessellate, SharpTurnsAreRefinedOnTheSurface) {
   const auto rims = find_rims(space, *c.mesh);
   ASSERT_EQ(rims.size(), 1u);
   const int d = 2;
-  TessellationOptions opts = options(d, 2);
-  opts.skip_faces.assign(c.mesh->n_faces(), 0);
-  for (int f = 0; f < static_cast<int>(c.mesh->n_faces()); ++f)
-    opts.skip_faces[f] = !space.in_domain(f);
-  for (int f : rims[0].covered_faces) opts.skip_faces[f] = 1;
+  const TessellationOptions opts = without_rim_faces(c, rims[0], d);
   Tessellation t = tessellate(c.spline, *c.mesh, opts);
   const HoleFill fill = fill_rim(c.spline, *c.mesh, rims[0]);
   append_fill(t, fill, tessellate_fill(fill, d), 0);
