@@ -1,5 +1,6 @@
 #include "spline/tessellate/tessellate.h"
 
+#include "spline/tessellate/dihedral.h"
 #include "spline/tessellate/parallel_for.h"
 
 #include <algorithm>
@@ -429,12 +430,23 @@ int refine_sharp_turns(Tessellation& t, const ManifoldSpline& spline, double tur
                                    "the levels >= 0, not " +
                                    std::to_string(turn_deg) + " and " + std::to_string(levels));
   const double cos_turn = std::cos(turn_deg * M_PI / 180.0);
-  int reds = 0;
+  // The level kept is the deepest one that shows no more fold edges than any before it: a
+  // level showing more has found a fold of the spline within a triangle, which the fit judged
+  // on the coarser grid (the next level may resolve a turn the first one only split).
+  int best_folds = levels > 0 ? dihedral_angles(t.triangles, t.positions).over_90_deg : 0;
+  int reds = 0, best_reds = 0;
+  Tessellation current = t;
   for (int level = 0; level < levels; ++level) {
-    const int split = refine_level(t, spline, cos_turn, threads);
+    const int split = refine_level(current, spline, cos_turn, threads);
     if (split == 0) break;
     reds += split;
+    const int folds = dihedral_angles(current.triangles, current.positions).over_90_deg;
+    if (folds > best_folds) continue;
+    best_folds = folds;
+    best_reds = reds;
+    t = current;
   }
+  reds = best_reds;
   t.turn_splits += reds;
   return reds;
 }

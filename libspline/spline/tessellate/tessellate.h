@@ -74,7 +74,10 @@ struct Tessellation {
 /// whose two triangles' normals differ by more than `turn_deg` degrees is split 1-to-4 at its
 /// edges' domain midpoints (evaluated on `spline`), and its neighbours are closed by bisection
 /// (red-green), so the result stays welded; repeated up to `levels` times while such edges
-/// remain. Fill-patch triangles (triangle_face < 0) and the triangles next to them stay whole.
+/// remain. The level kept is the deepest that shows no more fold edges (over 90 degrees) than
+/// the grid and every level before it: more would be a fold of the spline within a triangle,
+/// which the fit judged on the coarser grid. Fill-patch triangles (triangle_face < 0) and the
+/// triangles next to them stay whole.
 /// New samples are appended (earlier indices and the lookups above keep their meaning); render
 /// vertices split where the central chart's uvs do. Returns the number of 1-to-4 splits.
 /// \pre t = tessellate(spline, mesh, ...), fills appended or not.
