@@ -3,8 +3,6 @@
 // normals (scanner noise, so the fit has something to smooth), at 1, 4 and 16 times the faces:
 // seconds and CPU seconds by stage, the same per million input faces (near-linear scaling shows as
 // a flat column), peak memory, and the ratio to one CHOLMOD solve of the same mesh (issue 19).
-#include <sys/resource.h>
-
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -85,11 +83,7 @@ int run_fit_scale_case(int argc, char** argv) {
   } catch (const std::exception& e) {
     j["status"] = std::string("failed: ") + e.what();
   }
-  j["cholesky"] = cotangent_cholesky_seconds(mesh);
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  j["peak_mb"] = usage.ru_maxrss / 1024.0;
-  std::cout << j.dump() << std::endl;
+  print_child_row(j, mesh);
   return 0;
 }
 

@@ -3,7 +3,6 @@
 // folder bench/) and the genus 1-3 models, each mesh in a child process so that its peak memory
 // is its own; the figures of issue 8 against CEPS and Campen et al. (the collection's
 // bench/README.md).
-#include <sys/resource.h>
 #include <sys/wait.h>
 
 #include <cmath>
@@ -329,13 +328,7 @@ int run_one_cone_case(int argc, char** argv) {
   } catch (const std::exception& e) {
     j["status"] = std::string("failed: ") + e.what();
   }
-  t0.restart();
-  const double cholesky = cotangent_cholesky_seconds(mesh);
-  j["cholesky"] = cholesky;
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  j["peak_mb"] = usage.ru_maxrss / 1024.0;
-  std::cout << j.dump() << std::endl;
+  print_child_row(j, mesh);
   return 0;
 }
 

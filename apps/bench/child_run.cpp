@@ -1,9 +1,14 @@
 #include "bench/child_run.h"
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <stdexcept>
+
+#include "bench/benchmarks.h"
 
 namespace msp::bench {
 
@@ -22,6 +27,14 @@ ChildResult run_child(const std::string& command) {
     result.parsed = false;
   }
   return result;
+}
+
+void print_child_row(nlohmann::json& row, const ricci::Mesh& mesh) {
+  row["cholesky"] = cotangent_cholesky_seconds(mesh);
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  row["peak_mb"] = usage.ru_maxrss / 1024.0;
+  std::cout << row.dump() << std::endl;
 }
 
 std::string case_label(const std::string& path, int levels) {

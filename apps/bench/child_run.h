@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ricci/mesh/mesh.h"
+
 namespace msp::bench {
 
 /// This executable's path (popen runs a shell, whose /proc/self/exe is the shell: resolve ours
@@ -19,6 +21,11 @@ struct ChildResult {
 
 /// Runs `command` in a shell and parses its stdout. \throw std::runtime_error when it cannot start.
 [[nodiscard]] ChildResult run_child(const std::string& command);
+
+/// A child's row finished and printed: "cholesky" (seconds of one CHOLMOD solve of `mesh`'s
+/// cotangent Laplacian, the unit of the ratios) and "peak_mb" (the process's peak RSS) added to
+/// `row`, which goes to stdout as the child's one line of JSON.
+void print_child_row(nlohmann::json& row, const ricci::Mesh& mesh);
 
 /// The row name of a mesh: its file name, with " /L" for L subdivision levels.
 [[nodiscard]] std::string case_label(const std::string& path, int levels);
