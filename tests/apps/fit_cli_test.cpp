@@ -415,6 +415,10 @@ TEST(FitCli, RefusesBadCommandLines) {
   expect_refused("cone", {{model("genus1.off"), "-o", "{OUT}/x.glb", "--cone-refinement", "9"},
                           "--cone-refinement",
                           2});
+  expect_refused("turns",
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--turn-refinement", "7"},
+                  "--turn-refinement",
+                  2});
   expect_refused("smooth",
                  {{model("genus1.off"), "-o", "{OUT}/x.glb", "--smoothing", "-1"},
                   "--smoothing",

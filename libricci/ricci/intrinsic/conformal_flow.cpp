@@ -83,7 +83,7 @@ bool evaluate(IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
               IntrinsicFlowResult& result) {
   if (flip) {
     const DelaunayFlipResult flipped =
-        flip_to_delaunay(tri, u, options.delaunay_margin, 200.0, &result.flip_log);
+        flip_to_delaunay(tri, u, options.delaunay_margin, kMaxFlipsPerEdge, &result.flip_log);
     result.flips += flipped.flips;
     if (!flipped.delaunay) return false;
   }

@@ -65,8 +65,10 @@ struct DelaunayFlipResult {
 /// (Lawson's algorithm; it ends for decorated surfaces, Springborn 2020, section 5). At most
 /// max_flips_per_edge * #E flips. When `flip_log` is given, each flipped edge is appended to it
 /// in order (replayed by point_tracking.h's IntrinsicCorrespondence).
+inline constexpr double kMaxFlipsPerEdge = 200.0;  ///< flip_to_delaunay's default budget
 DelaunayFlipResult flip_to_delaunay(IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
-                                    double margin = 1e-12, double max_flips_per_edge = 200.0,
+                                    double margin = 1e-12,
+                                    double max_flips_per_edge = kMaxFlipsPerEdge,
                                     std::vector<int>* flip_log = nullptr);
 
 /// Corner angles (row f: the angles at the tails of halfedges 3f, 3f+1, 3f+2) and their

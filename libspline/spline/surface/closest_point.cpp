@@ -490,24 +490,17 @@ ClosestPoint ClosestPointIndex::find(const Eigen::Vector3d& target) const {
   const double nearest = d.tree->nearest(target);
   std::vector<std::pair<double, int>> near;
   d.tree->within(target, nearest + 2.0 * d.max_deviation, near);
-  // One start per owner (face or patch): its nearest triangle; owners by lower bound.
-  std::sort(near.begin(), near.end());
+  // One start per candidate triangle, by lower bound: Newton's method from one triangle of a
+  // face or patch can stop in a local minimum (a far target facing a broad patch, a minimum on a
+  // rim edge reached from across the face) that a start nearer the minimum does not.
   struct Start {
     double lower;
     int triangle;
   };
   std::vector<Start> starts;
-  std::vector<int> owners;
+  starts.reserve(near.size());
   for (const auto& [distance, t] : near) {
-    const CandidateTriangle& tri = d.triangles[static_cast<std::size_t>(t)];
-    const auto known = std::find(owners.begin(), owners.end(), tri.owner);
-    if (known != owners.end()) {
-      Start& s = starts[static_cast<std::size_t>(known - owners.begin())];
-      s.lower = std::min(s.lower, distance - tri.deviation);
-      continue;
-    }
-    owners.push_back(tri.owner);
-    starts.push_back({distance - tri.deviation, t});
+    starts.push_back({distance - d.triangles[static_cast<std::size_t>(t)].deviation, t});
   }
   std::sort(starts.begin(), starts.end(),
             [](const Start& a, const Start& b) { return a.lower < b.lower; });

@@ -3,7 +3,7 @@
 // globally: a tessellation of the whole surface in a bounding-volume tree gives every
 // tessellation triangle that can hold the answer (those whose distance, less the triangle's
 // deviation from the surface, is below the best distance found), and from each candidate
-// (one per domain face or patch) Newton's method on |S(u) - q|^2 runs in the face's chart,
+// triangle, lowest bound first, Newton's method on |S(u) - q|^2 runs in the face's chart,
 // walking across edges into neighbouring faces, clamped at the rim of the tessellated region
 // (skipped faces, the cone's hole, open boundaries) and, on a patch, at its domain D's boundary.
 //
@@ -31,7 +31,7 @@ struct ClosestPoint {
   SurfaceLocation location;  ///< a domain point, or a fill patch and its parameter point
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double distance = 0.0;
-  int candidates = 0;  ///< faces and patches Newton's method ran on
+  int candidates = 0;  ///< candidate triangles Newton's method ran from
 };
 
 /// A reusable closest-point index of one surface (which must outlive it). Queries are const
