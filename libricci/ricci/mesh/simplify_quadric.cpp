@@ -2,9 +2,9 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdint>
+#include <queue>
 #include <vector>
-
-#include "ricci/mesh/indexed_min_queue.h"
 
 namespace ricci {
 namespace {
@@ -55,6 +55,13 @@ Placement place(const Quadric& q, const Eigen::Vector3d& a, const Eigen::Vector3
   return best;
 }
 
+struct Entry {
+  double cost;
+  int edge;
+  std::uint32_t stamp;
+  bool operator<(const Entry& other) const { return cost > other.cost; }  // min-heap
+};
+
 class Decimator {
  public:
   explicit Decimator(Mesh& mesh) : mesh_(mesh) {
@@ -82,19 +89,19 @@ class Decimator {
       quadrics_[mesh_.from_vertex_handle(h).idx()] += q;
       quadrics_[mesh_.to_vertex_handle(h).idx()] += q;
     }
+    stamps_.assign(mesh_.n_edges(), 0);
     placements_.resize(mesh_.n_edges());
-    std::vector<double> costs(mesh_.n_edges());
-    for (auto e : mesh_.edges()) costs[static_cast<size_t>(e.idx())] = update_placement(e);
-    queue_ = IndexedMinQueue(static_cast<int>(mesh_.n_edges()));
-    queue_.assign(costs);
+    for (auto e : mesh_.edges()) push(e);
   }
 
   int run(int target_faces) {
     int faces = static_cast<int>(mesh_.n_faces());
     while (faces > target_faces && !queue_.empty()) {
-      const auto e = mesh_.edge_handle(queue_.pop());
-      if (mesh_.status(e).deleted()) continue;
-      const Eigen::Vector3d x = placements_[static_cast<size_t>(e.idx())].point;
+      const Entry top = queue_.top();
+      queue_.pop();
+      const auto e = mesh_.edge_handle(top.edge);
+      if (mesh_.status(e).deleted() || top.stamp != stamps_[top.edge]) continue;
+      const Eigen::Vector3d x = placements_[top.edge].point;
       HalfedgeHandle h = mesh_.halfedge_handle(e, 0);
       if (!collapse_allowed(h, x)) {
         h = mesh_.halfedge_handle(e, 1);
@@ -107,7 +114,7 @@ class Decimator {
       mesh_.set_point(to, to_openmesh(x));
       quadrics_[to.idx()] = q;
       faces -= removed;
-      for (auto around : mesh_.ve_range(to)) queue_.set(around.idx(), update_placement(around));
+      for (auto around : mesh_.ve_range(to)) push(around);
     }
     mesh_.garbage_collection();
     return static_cast<int>(mesh_.n_faces());
@@ -124,13 +131,12 @@ class Decimator {
     return (p[1] - p[0]).cross(p[2] - p[0]);
   }
 
-  // The placement of e's collapse, stored; returns its cost.
-  double update_placement(EdgeHandle e) {
+  void push(EdgeHandle e) {
     const auto h = mesh_.halfedge_handle(e, 0);
     const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
     const Placement p = place(quadrics_[a.idx()] + quadrics_[b.idx()], point(a), point(b));
-    placements_[static_cast<size_t>(e.idx())] = p;
-    return p.cost;
+    placements_[e.idx()] = p;
+    queue_.push({p.cost, e.idx(), ++stamps_[e.idx()]});
   }
 
   // Link condition, and no remaining face around either end turned by 90 degrees or more (or
@@ -153,10 +159,9 @@ class Decimator {
 
   Mesh& mesh_;
   std::vector<Quadric> quadrics_;
+  std::vector<std::uint32_t> stamps_;
   std::vector<Placement> placements_;
-  // Edges by (cost, index), a total order: the collapse sequence does not depend on the queue's
-  // internals. An edge refused a collapse leaves it until a neighbour's collapse re-queues it.
-  IndexedMinQueue queue_;
+  std::priority_queue<Entry> queue_;
 };
 
 }  // namespace
