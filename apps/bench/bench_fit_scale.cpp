@@ -61,15 +61,21 @@ const std::vector<std::string> kStages = {"simplify", "atlas",      "parameters"
 
 }  // namespace
 
+ricci::Mesh refined_scan(const std::string& path, int levels, double sigma) {
+  ricci::Mesh mesh = ricci::read_mesh(path);
+  for (int i = 0; i < levels; ++i) mesh = ricci::subdivide_midpoint(mesh);
+  displace_along_normals(mesh, sigma);
+  return mesh;
+}
+
 int run_fit_scale_case(int argc, char** argv) {
   Args args(argc, argv, {});
   args.require_known({"levels", "displace"});
   args.require_positionals(1, "msp-bench fit-scale-one MESH [--levels L] [--displace SIGMA]");
   nlohmann::json j;
   const ricci::Stopwatch read;
-  ricci::Mesh mesh = ricci::read_mesh(args.positionals()[0]);
-  for (int i = 0; i < args.get_int("levels", 0); ++i) mesh = ricci::subdivide_midpoint(mesh);
-  displace_along_normals(mesh, args.get_double("displace", 2e-4));
+  const ricci::Mesh mesh = refined_scan(args.positionals()[0], args.get_int("levels", 0),
+                                        args.get_double("displace", 2e-4));
   j["read_seconds"] = read.seconds();
   j["faces"] = mesh.n_faces();
   try {

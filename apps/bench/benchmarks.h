@@ -51,5 +51,12 @@ int run_adaptive_benchmark(int argc, char** argv);  // bench_adaptive.cpp
 /// Issue 19: msp fit's stages at 1, 4 and 16 times a scan's faces (1.6M from venus).
 int run_fit_scale_benchmark(int argc, char** argv);  // bench_fit_scale.cpp
 int run_fit_scale_case(int argc, char** argv);       // bench_fit_scale.cpp
+/// The mesh at `path` refined by midpoint subdivision `levels` times, every vertex then moved
+/// along its normal by a seeded normal deviate of `sigma` bounding-box diagonals (scanner noise):
+/// the larger scans of fit-scale and decimate (bench_fit_scale.cpp).
+ricci::Mesh refined_scan(const std::string& path, int levels, double sigma);
+/// ricci::quadric_decimate (msp fit's first simplification stage): CPU seconds and a hash of the
+/// result, to check that a faster decimation collapses the same edges (bench_decimate.cpp).
+int run_decimate_benchmark(int argc, char** argv);
 
 }  // namespace msp::bench

@@ -60,6 +60,9 @@ const Benchmark kBenchmarks[] = {
      "issue 19: msp fit at 1x, 4x, 16x a scan's faces (venus to 1.6M): stages, per M faces, vs one "
      "Cholesky [MESH] [--levels 0,1,2]"},
     {"fit-scale-one", msp::bench::run_fit_scale_case, "one row of 'fit-scale' in this process"},
+    {"decimate", msp::bench::run_decimate_benchmark,
+     "issue 19: msp fit's own quadric collapse: CPU seconds and a hash of the result [MESH...]\n"
+     "      [--faces N] [--levels L] [--repeat R] [--out DIR]"},
     {"adaptive", msp::bench::run_adaptive_benchmark,
      "issue 15: control points for 0.1% RMS, adaptive vs uniform domain (venus, horse) [--rms F]\n"
      "      [--from N] [--base-share F] [--max-turn D] [--thickness E] [--by-turn]\n"
