@@ -209,12 +209,11 @@ double mean_edge_length(const ricci::Mesh& mesh) {
   return mesh.n_edges() > 0 ? sum / static_cast<double>(mesh.n_edges()) : 0.0;
 }
 
-// A vertex move that turns a face by more than 60 degrees from `before` (its unit normals), or
-// flattens it to a segment, is undone: the corners of such faces go back to `old`, until no face
-// turns (at worst every move is undone).
+// Vertex moves that turn a face from `before` (its unit normals) to a cosine below `min_cos`, or
+// flatten it to a segment, are undone: the corners of such faces go back to `old`; with
+// `repeat`, until no face turns (at worst every move is undone).
 void undo_turning_moves(ricci::Mesh& mesh, const std::vector<Eigen::Vector3d>& before,
-                        const std::vector<ricci::Mesh::Point>& old) {
-  const double min_cos = 0.5;
+                        const std::vector<ricci::Mesh::Point>& old, double min_cos, bool repeat) {
   for (bool undone = true; undone;) {
     undone = false;
     for (auto f : mesh.faces()) {
@@ -223,7 +222,7 @@ void undo_turning_moves(ricci::Mesh& mesh, const std::vector<Eigen::Vector3d>& b
         const auto& p = old[static_cast<std::size_t>(v.idx())];
         if (mesh.point(v) == p) continue;
         mesh.set_point(v, p);
-        undone = true;
+        undone = repeat;
       }
     }
   }
@@ -266,7 +265,7 @@ void relax(ricci::Mesh& mesh, const ricci::Mesh& dense, int iterations) {
       const Eigen::Vector3d& q = hits[static_cast<std::size_t>(v.idx())].point;
       mesh.set_point(v, ricci::Mesh::Point(q.x(), q.y(), q.z()));
     }
-    undo_turning_moves(mesh, before, old);
+    undo_turning_moves(mesh, before, old, 0.5, false);  // 60 degrees
     mesh.release_vertex_normals();
     mesh.release_face_normals();
   }
@@ -318,6 +317,10 @@ AdaptiveDomain adaptive_domain(const ricci::Mesh& dense, const AdaptiveDomainOpt
   return out;
 }
 
+// A new vertex's move onto the scan may turn a face by up to ~78 degrees (the red-green halves
+// on a thin rim turn that much); beyond, or flat, it is undone.
+constexpr double kMinSplitMoveCos = 0.2;
+
 ricci::Mesh split_domain_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
                                const std::vector<char>& refine) {
   ricci::Mesh refined = ricci::subdivide_midpoint_locally(domain, refine);
@@ -345,7 +348,7 @@ ricci::Mesh split_domain_faces(const ricci::Mesh& domain, const ricci::Mesh& den
   }
   // Next to a boundary the closest scan point of a midpoint over a notch of the scan's boundary
   // lies on that boundary, in line with the domain's boundary edge: such a face would be flat.
-  undo_turning_moves(refined, before, old);
+  undo_turning_moves(refined, before, old, kMinSplitMoveCos, true);
   refined.release_vertex_normals();
   refined.release_face_normals();
   return refined;
