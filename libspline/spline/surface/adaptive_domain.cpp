@@ -317,9 +317,9 @@ AdaptiveDomain adaptive_domain(const ricci::Mesh& dense, const AdaptiveDomainOpt
   return out;
 }
 
-// A new vertex's move onto the scan may turn a face by up to ~78 degrees (the red-green halves
-// on a thin rim turn that much); beyond, or flat, it is undone.
-constexpr double kMinSplitMoveCos = 0.2;
+// A new vertex's move onto the scan is undone only where it turns a face over (90 degrees or
+// more) or flattens it: smaller turns are what the splits are for on curved parts.
+constexpr double kMinSplitMoveCos = 1e-3;
 
 ricci::Mesh split_domain_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
                                const std::vector<char>& refine) {
