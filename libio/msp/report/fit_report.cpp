@@ -85,6 +85,7 @@ nlohmann::json boundary_json(const spline::FittedSurface& fitted, double diag) {
           {"collar_refused", fitted.collar_refused},
           {"boundary_curve_dropped", fitted.boundary_curve_dropped},
           {"follow_splits", f.splits},
+          {"follow_loops_rebuilt", f.loops_rebuilt},
           {"follow_distance_before_relative", f.distance_before},
           {"follow_distance_after_relative", f.distance_after}};
 }

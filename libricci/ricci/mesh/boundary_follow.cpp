@@ -345,13 +345,9 @@ BoundaryFollowResult follow(Mesh& coarse, const Mesh& dense, const BoundaryFollo
   return result;
 }
 
-}  // namespace
-
-BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
-                                     const BoundaryFollowOptions& options) {
-  if (!(options.tolerance > 0.0) || options.max_rounds < 0) {
-    throw InvalidInputError("follow_boundary: tolerance must be positive, rounds >= 0");
-  }
+// follow() with and without the spread (follow_boundary's first part).
+BoundaryFollowResult follow_with_spread(Mesh& coarse, const Mesh& dense,
+                                        const BoundaryFollowOptions& options) {
   if (!options.spread) return follow(coarse, dense, options, false);
   // Spreading helps at V-notches and can hurt at a small hole's few corners: the boundary that
   // ends nearer the dense one is kept.
@@ -365,6 +361,25 @@ BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
   if (without.distance_after < with.distance_after) return without;
   coarse = std::move(spread);
   return with;
+}
+
+}  // namespace
+
+BoundaryFollowResult follow_boundary(Mesh& coarse, const Mesh& dense,
+                                     const BoundaryFollowOptions& options) {
+  if (!(options.tolerance > 0.0) || options.max_rounds < 0) {
+    throw InvalidInputError("follow_boundary: tolerance must be positive, rounds >= 0");
+  }
+  BoundaryFollowResult result = follow_with_spread(coarse, dense, options);
+  if (!(result.distance_after > options.band.rebuild_above)) return result;
+  result.loops_rebuilt = rebuild_boundary_bands(coarse, dense, options.band).loops_rebuilt;
+  if (result.loops_rebuilt > 0) {
+    const Curve target = boundary_curve(dense);
+    const double diagonal =
+        (target.points.colwise().maxCoeff() - target.points.colwise().minCoeff()).norm();
+    result.distance_after = hausdorff(boundary_curve(coarse), target) / diagonal;
+  }
+  return result;
 }
 
 }  // namespace ricci

@@ -39,6 +39,13 @@ Eigen::Vector3d unit_normal(const ricci::Mesh& mesh, ricci::FaceHandle f) {
   return length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
 }
 
+// Unit face normals by face index (zero for a degenerate face).
+std::vector<Eigen::Vector3d> face_normals(const ricci::Mesh& mesh) {
+  std::vector<Eigen::Vector3d> normals(mesh.n_faces());
+  for (auto f : mesh.faces()) normals[static_cast<std::size_t>(f.idx())] = unit_normal(mesh, f);
+  return normals;
+}
+
 // Squared distances of the scan's vertices to `mesh`, summed by closest face, over their mean.
 std::vector<double> deviation_scores(const ricci::Mesh& mesh, const ricci::Mesh& dense) {
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
@@ -153,8 +160,7 @@ std::vector<double> sizing_scores(const ricci::Mesh& mesh, const ricci::Mesh& de
       o.split_by == SplitBy::deviation          ? deviation_scores(mesh, dense)
       : o.split_by == SplitBy::quadric_residual ? quadric_residual_scores(mesh, dense)
                                                 : std::vector<double>();
-  std::vector<Eigen::Vector3d> normal(mesh.n_faces());
-  for (auto f : mesh.faces()) normal[static_cast<std::size_t>(f.idx())] = unit_normal(mesh, f);
+  const std::vector<Eigen::Vector3d> normal = face_normals(mesh);
   const Eigen::VectorXd thickness =
       o.min_thickness_edges > 0.0 ? ricci::face_thickness(mesh) : Eigen::VectorXd();
   std::vector<double> score(mesh.n_faces(), 0.0);
@@ -203,6 +209,25 @@ double mean_edge_length(const ricci::Mesh& mesh) {
   return mesh.n_edges() > 0 ? sum / static_cast<double>(mesh.n_edges()) : 0.0;
 }
 
+// Vertex moves that turn a face from `before` (its unit normals) to a cosine below `min_cos`, or
+// flatten it to a segment, are undone: the corners of such faces go back to `old`; with
+// `repeat`, until no face turns (at worst every move is undone).
+void undo_turning_moves(ricci::Mesh& mesh, const std::vector<Eigen::Vector3d>& before,
+                        const std::vector<ricci::Mesh::Point>& old, double min_cos, bool repeat) {
+  for (bool undone = true; undone;) {
+    undone = false;
+    for (auto f : mesh.faces()) {
+      if (unit_normal(mesh, f).dot(before[static_cast<std::size_t>(f.idx())]) >= min_cos) continue;
+      for (auto v : mesh.fv_range(f)) {
+        const auto& p = old[static_cast<std::size_t>(v.idx())];
+        if (mesh.point(v) == p) continue;
+        mesh.set_point(v, p);
+        undone = repeat;
+      }
+    }
+  }
+}
+
 // Tangential relaxation after the splits: each interior vertex moved half-way to its
 // neighbours' mean within its tangent plane, then onto the scan (oriented closest point); a
 // vertex whose move turns a face by more than 60 degrees stays. Evens out the red-green
@@ -233,19 +258,14 @@ void relax(ricci::Mesh& mesh, const ricci::Mesh& dense, int iterations) {
       normals.row(v.idx()) = nv.transpose();
     }
     const auto hits = ricci::closest_points(dense, moved, normals, search);
-    std::vector<Eigen::Vector3d> before(mesh.n_faces());
-    for (auto f : mesh.faces()) before[static_cast<std::size_t>(f.idx())] = unit_normal(mesh, f);
+    const std::vector<Eigen::Vector3d> before = face_normals(mesh);
     const std::vector<ricci::Mesh::Point> old(mesh.points(), mesh.points() + mesh.n_vertices());
     for (auto v : mesh.vertices()) {
       if (mesh.is_boundary(v)) continue;
       const Eigen::Vector3d& q = hits[static_cast<std::size_t>(v.idx())].point;
       mesh.set_point(v, ricci::Mesh::Point(q.x(), q.y(), q.z()));
     }
-    const double min_cos = 0.5;
-    for (auto f : mesh.faces()) {
-      if (unit_normal(mesh, f).dot(before[static_cast<std::size_t>(f.idx())]) >= min_cos) continue;
-      for (auto v : mesh.fv_range(f)) mesh.set_point(v, old[static_cast<std::size_t>(v.idx())]);
-    }
+    undo_turning_moves(mesh, before, old, 0.5, false);  // 60 degrees
     mesh.release_vertex_normals();
     mesh.release_face_normals();
   }
@@ -297,6 +317,10 @@ AdaptiveDomain adaptive_domain(const ricci::Mesh& dense, const AdaptiveDomainOpt
   return out;
 }
 
+// A new vertex's move onto the scan is undone only where it turns a face over (90 degrees or
+// more) or flattens it: smaller turns are what the splits are for on curved parts.
+constexpr double kMinSplitMoveCos = 1e-3;
+
 ricci::Mesh split_domain_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
                                const std::vector<char>& refine) {
   ricci::Mesh refined = ricci::subdivide_midpoint_locally(domain, refine);
@@ -313,12 +337,18 @@ ricci::Mesh split_domain_faces(const ricci::Mesh& domain, const ricci::Mesh& den
     normals.row(i) = ricci::to_eigen(refined.normal(v)).transpose();
   }
   const auto hits = ricci::closest_points(dense, moved, normals, 2.0 * mean_edge_length(refined));
+  const std::vector<Eigen::Vector3d> before = face_normals(refined);
+  const std::vector<ricci::Mesh::Point> old(refined.points(),
+                                            refined.points() + refined.n_vertices());
   for (Eigen::Index i = 0; i < added; ++i) {
     const auto v = refined.vertex_handle(static_cast<int>(first_new + i));
     if (refined.is_boundary(v)) continue;  // the boundary stays on the followed curve
     const Eigen::Vector3d& p = hits[static_cast<std::size_t>(i)].point;
     refined.set_point(v, ricci::Mesh::Point(p.x(), p.y(), p.z()));
   }
+  // Next to a boundary the closest scan point of a midpoint over a notch of the scan's boundary
+  // lies on that boundary, in line with the domain's boundary edge: such a face would be flat.
+  undo_turning_moves(refined, before, old, kMinSplitMoveCos, true);
   refined.release_vertex_normals();
   refined.release_face_normals();
   return refined;

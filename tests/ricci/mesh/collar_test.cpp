@@ -148,7 +148,9 @@ TEST(FollowBoundary, NoFaceTurnsOverOnAZigzagBoundary) {
   ASSERT_EQ(edges_over_120_deg(coarse), 0);
   const BoundaryFollowResult r = follow_boundary(coarse, dense);
   EXPECT_GT(r.splits, 100);
-  EXPECT_LT(r.distance_after, 0.5 * r.distance_before);
+  // The splits leave the outer loop's zigzag tangled (0.76%); its band is rebuilt.
+  EXPECT_EQ(r.loops_rebuilt, 1);
+  EXPECT_LT(r.distance_after, BoundaryFollowOptions{}.band.rebuild_above);
   EXPECT_EQ(edges_over_120_deg(coarse), 0);
 }
 
@@ -200,6 +202,7 @@ TEST(FollowBoundary, BunchedBoundaryVerticesAreSpreadAlongTheDenseBoundary) {
   BoundaryFollowOptions options;
   options.tolerance = 0.05;  // wide: no split, only the moves
   options.max_rounds = 1;
+  options.band.rebuild_above = 0.0;  // no band rebuilt
   Mesh kept = bunched_disk();
   ASSERT_GT(min_area(kept), 0.0);
   ASSERT_LT(smallest_gap(sorted_boundary_angles(kept)), 0.2 * mean);

@@ -2,7 +2,9 @@
 // uniform domain of the same target has, with the input's topology.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
@@ -187,6 +189,32 @@ TEST(AdaptiveDomain, RelaxationWidensTheSplitsSmallestAngles) {
   options.relax_iterations = 2;
   const double relaxed = min_corner_angle_deg(adaptive_domain(plate, options).mesh);
   EXPECT_GT(relaxed, raw) << "raw " << raw << ", relaxed " << relaxed;
+}
+
+// split_domain_faces moves new interior vertices onto the scan. A domain reaching past the
+// scan's boundary (a followed zigzag boundary's teeth cover the scan's notches) has midpoints
+// whose closest scan point is on that boundary, in line with or on top of other vertices: moved
+// there, the faces between them are flat (mech-holes-shark.off, `msp fit --tolerance 0.004
+// --refine-rounds 3`: "not a euclidean triangle"). Such moves are undone.
+TEST(AdaptiveDomain, SplitsNextToTheScansBoundaryLeaveNoFlatFace) {
+  const ricci::Mesh dense = ricci::make_planar_grid(12, 4, 3.0, 1.0);  // [0, 3] x [0, 1]
+  ricci::Mesh domain = ricci::make_planar_grid(4, 4, 1.0, 1.0);
+  for (auto v : domain.vertices())  // to [1, 2] x [-0.5, 0.5]: half of it past the scan's edge
+    domain.set_point(v, domain.point(v) + ricci::Mesh::Point(1.0, -0.5, 0.0));
+  const ricci::Mesh split =
+      split_domain_faces(domain, dense, std::vector<char>(domain.n_faces(), 1));
+  ASSERT_EQ(split.n_faces(), 4 * domain.n_faces());
+  // Moved onto the scan, the midpoints below y = 0 would land on its edge y = 0, where the
+  // vertices of that row already are.
+  for (auto f : split.faces()) {
+    std::array<Eigen::Vector3d, 3> p;
+    int k = 0;
+    for (auto v : split.fv_range(f))
+      p[static_cast<std::size_t>(k++)] = ricci::to_eigen(split.point(v));
+    const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
+    EXPECT_GT(n.z(), 0.5 * n.norm()) << "face " << f.idx();
+    EXPECT_GT(n.norm(), 1e-6);
+  }
 }
 
 TEST(AdaptiveDomain, BadOptionsThrow) {
