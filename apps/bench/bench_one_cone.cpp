@@ -407,7 +407,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
   std::cout << std::left << std::setw(22) << "mesh" << std::right << std::setw(8) << "faces" << std::setw(6)
             << "cone" << std::setw(5) << "spl" << std::setw(7) << "read" << std::setw(7) << "choice"
             << std::setw(7) << "val" << std::setw(7) << "flow" << std::setw(7) << "atlas" << std::setw(7)
-            << "total" << std::setw(7) << "all" << std::setw(7) << "chol" << std::setw(6) << "ratio" << std::setw(4) << "it" << std::setw(9) << "ptol"
+            << "total" << std::setw(7) << "all" << std::setw(7) << "chol" << std::setw(8) << "ratio" << std::setw(4) << "it" << std::setw(9) << "ptol"
             << std::setw(9) << "K err" << std::setw(5) << "flip" << std::setw(5) << "zero" << std::setw(5)
             << "dbl" << std::setw(9) << "edge" << std::setw(9) << "trans" << std::setw(8) << "QC mean" << std::setw(8) << "QC area" << std::setw(7) << "QC p50"
             << std::setw(10) << "QC max" << std::setw(7) << "MB"
@@ -434,7 +434,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
               << j["choice"].get<double>() << std::setw(7) << j["valence"].get<double>() << std::setw(7)
               << j["flow"].get<double>() << std::setw(7) << j["atlas"].get<double>() << std::setw(7) << total
               << std::setw(7) << j["total_with_choice"].get<double>()
-              << std::setw(7) << chol << std::setprecision(1) << std::setw(6) << total / chol << std::setw(4)
+              << std::setw(7) << chol << std::setprecision(1) << std::setw(8) << total / chol << std::setw(4)
               << j["newton"].get<int>() << std::setw(9) << j["intrinsic_flips"].get<int>() << std::scientific << std::setprecision(1) << std::setw(9)
               << j["curvature_error"].get<double>() << std::setw(5) << j["flipped"].get<int>() << std::setw(5)
               << j["zero_area"].get<int>() << std::setw(5) << j["degenerate_in_doubles"].get<int>()
