@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 #include <ricci/flow/linear_solver.h>
+#include <ricci/mesh/generate.h>
 #include <ricci/mesh/io.h>
 #include <ricci/metric/curvature.h>
 #include <ricci/metric/mesh_tables.h>
@@ -218,6 +219,26 @@ std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
   return rules;
 }
 
+// The mesh of a row: a file, or "generated:G:FACES", the surface `msp generate --genus G --faces
+// FACES` makes (seed 1), subdivided `levels` times by midpoints.
+ricci::Mesh case_mesh(const std::string& path, int levels) {
+  ricci::Mesh mesh;
+  if (path.rfind("generated:", 0) == 0) {
+    ricci::GenerateOptions generate;
+    std::stringstream fields(path.substr(10));
+    std::string genus, faces;
+    std::getline(fields, genus, ':');
+    std::getline(fields, faces, ':');
+    generate.genus = std::stoi(genus);
+    generate.target_faces = std::stoi(faces);
+    mesh = ricci::generate_surface(generate);
+  } else {
+    mesh = ricci::read_mesh(path);
+  }
+  for (int i = 0; i < levels; ++i) mesh = ricci::subdivide_midpoint(mesh);
+  return mesh;
+}
+
 }  // namespace
 
 int run_one_cone_case(int argc, char** argv) {
@@ -230,8 +251,7 @@ int run_one_cone_case(int argc, char** argv) {
                             "[--continuation STAGES] [--seed-face F] [--verbose]");
   const std::string path = args.positionals()[0];
   ricci::Stopwatch t0;
-  ricci::Mesh mesh = ricci::read_mesh(path);
-  for (int i = 0; i < args.get_int("levels", 0); ++i) mesh = ricci::subdivide_midpoint(mesh);
+  const ricci::Mesh mesh = case_mesh(path, args.get_int("levels", 0));
   const double read = t0.seconds();
 
   ricci::OneConeAtlasOptions options;
@@ -301,6 +321,7 @@ int run_one_cone_case(int argc, char** argv) {
     j["solves_for_choice"] = r.solves_for_choice;
     j["flows_for_choice"] = r.flows_for_choice;
     j["metric_route"] = r.flow.metric_name;
+    j["intrinsic_flips"] = r.intrinsic_flips;
     j["newton"] = r.flow.iterations;
     j["factorizations"] = r.flow.factorizations;
     const auto& ft = r.flow.timings;
@@ -333,23 +354,36 @@ int run_one_cone_case(int argc, char** argv) {
 }
 
 int run_one_cone_benchmark(int argc, char** argv) {
-  Args args(argc, argv, {"million"});
-  args.require_known({"million", "metric", "radii", "only"});
+  Args args(argc, argv, {"million", "high-genus"});
+  args.require_known({"million", "high-genus", "metric", "radii", "only"});
   struct Case {
     std::string path, cone;
     int levels;
   };
   const std::string m = shared_models();
   std::vector<Case> cases;
-  for (const char* name : {"torus_10k", "genus2_10k", "genus3_10k", "sphere_10k", "cap_10k", "torus_100k",
-                           "genus2_100k", "genus3_100k", "sphere_100k", "cap_100k"}) {
-    cases.push_back({m + "/bench/" + name + ".obj", "0", 0});  // vertex 0, as bench/README.md
-  }
-  for (const char* name : {"closed_g1/elk.off", "closed_g1/kitten_nf20k.off", "closed_g1/rocker-arm.off",
-                           "closed_g2/eight.off", "closed_g2/cup.off", "closed_g2/femur.off",
-                           "closed_g2/joint.off", "closed_g3/genus3.off", "closed_g3/block.off",
-                           "closed_g3/helmet.off", "closed_g3/elephant_cgal.off"}) {
-    cases.push_back({m + "/" + name, "auto", 0});
+  if (args.has("high-genus")) {  // issue 20: as `msp atlas X --json` runs them (automatic cone)
+    for (const char* name : {"closed_g4plus/anchor.off", "closed_g4plus/fertility.off",
+                             "closed_g4plus/couplingdown.off", "closed_g4plus/casting.off",
+                             "closed_g4plus/turbine.off", "bench/genus3_10k.obj", "bench/genus3_100k.obj"}) {
+      cases.push_back({m + "/" + name, "auto", 0});
+    }
+    for (int faces : {10000, 100000}) {
+      for (int genus : {4, 6, 8, 10}) {
+        cases.push_back({"generated:" + std::to_string(genus) + ":" + std::to_string(faces), "auto", 0});
+      }
+    }
+  } else {
+    for (const char* name : {"torus_10k", "genus2_10k", "genus3_10k", "sphere_10k", "cap_10k", "torus_100k",
+                             "genus2_100k", "genus3_100k", "sphere_100k", "cap_100k"}) {
+      cases.push_back({m + "/bench/" + name + ".obj", "0", 0});  // vertex 0, as bench/README.md
+    }
+    for (const char* name : {"closed_g1/elk.off", "closed_g1/kitten_nf20k.off", "closed_g1/rocker-arm.off",
+                             "closed_g2/eight.off", "closed_g2/cup.off", "closed_g2/femur.off",
+                             "closed_g2/joint.off", "closed_g3/genus3.off", "closed_g3/block.off",
+                             "closed_g3/helmet.off", "closed_g3/elephant_cgal.off"}) {
+      cases.push_back({m + "/" + name, "auto", 0});
+    }
   }
   if (args.has("million")) {  // midpoint subdivision twice: 1.6M faces
     cases.push_back({m + "/bench/torus_100k.obj", "0", 2});
@@ -363,9 +397,9 @@ int run_one_cone_benchmark(int argc, char** argv) {
 
   std::cout << "One-cone pipeline per mesh, each in its own process. Seconds: read (OBJ/OFF), "
                "choice (automatic\nsingularity, 'auto' rows only), valence, flow, atlas (cut graph "
-               "+ layout + charts +\ntransitions), total = clean-up + valence + flow + polish + atlas; chol = one CHOLMOD "
+               "+ layout + charts +\ntransitions), total = clean-up + valence + flow + polish + atlas (all: with the choice);\nchol = one CHOLMOD "
                "analyse+factorise+solve of\nthe cotangent Laplacian of the same mesh (best of 3), "
-               "ratio = total / chol. flip/zero: faces\nof the layout with negative/zero signed area "
+               "ratio = total / chol; it: Newton steps; ptol: Ptolemy flips of the intrinsic flow.\nflip/zero: faces of the layout with negative/zero signed area "
                "(double-double positions); dbl: faces with area\n<= 0 in the plain double chart "
                "coordinates; edge: max relative edge-length error of the\nlayout; trans: transition "
                "residual / domain diameter; QC: quasi-conformal distortion vs the\ninput mesh (mean, mean weighted by 3D area as Crane's tools report it,\nmedian, max over faces); MB: "
@@ -373,7 +407,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
   std::cout << std::left << std::setw(22) << "mesh" << std::right << std::setw(8) << "faces" << std::setw(6)
             << "cone" << std::setw(5) << "spl" << std::setw(7) << "read" << std::setw(7) << "choice"
             << std::setw(7) << "val" << std::setw(7) << "flow" << std::setw(7) << "atlas" << std::setw(7)
-            << "total" << std::setw(7) << "chol" << std::setw(6) << "ratio" << std::setw(4) << "it"
+            << "total" << std::setw(7) << "all" << std::setw(7) << "chol" << std::setw(8) << "ratio" << std::setw(4) << "it" << std::setw(9) << "ptol"
             << std::setw(9) << "K err" << std::setw(5) << "flip" << std::setw(5) << "zero" << std::setw(5)
             << "dbl" << std::setw(9) << "edge" << std::setw(9) << "trans" << std::setw(8) << "QC mean" << std::setw(8) << "QC area" << std::setw(7) << "QC p50"
             << std::setw(10) << "QC max" << std::setw(7) << "MB"
@@ -399,8 +433,9 @@ int run_one_cone_benchmark(int argc, char** argv) {
               << std::setprecision(2) << std::setw(7) << j["read_seconds"].get<double>() << std::setw(7)
               << j["choice"].get<double>() << std::setw(7) << j["valence"].get<double>() << std::setw(7)
               << j["flow"].get<double>() << std::setw(7) << j["atlas"].get<double>() << std::setw(7) << total
-              << std::setw(7) << chol << std::setprecision(1) << std::setw(6) << total / chol << std::setw(4)
-              << j["newton"].get<int>() << std::scientific << std::setprecision(1) << std::setw(9)
+              << std::setw(7) << j["total_with_choice"].get<double>()
+              << std::setw(7) << chol << std::setprecision(1) << std::setw(8) << total / chol << std::setw(4)
+              << j["newton"].get<int>() << std::setw(9) << j["intrinsic_flips"].get<int>() << std::scientific << std::setprecision(1) << std::setw(9)
               << j["curvature_error"].get<double>() << std::setw(5) << j["flipped"].get<int>() << std::setw(5)
               << j["zero_area"].get<int>() << std::setw(5) << j["degenerate_in_doubles"].get<int>()
               << std::setw(9) << j["edge_error"].get<double>() << std::setw(9) << j["transition"].get<double>()
@@ -408,7 +443,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
               << j["qc_area_mean"].get<double>() << std::setw(7)
               << j["qc_p50"].get<double>()
               << std::setprecision(1) << std::setw(10) << j["qc_max"].get<double>() << std::setprecision(0)
-              << std::setw(7) << j["peak_mb"].get<double>() << "  " << j["metric"].get<std::string>()
+              << std::setw(7) << j["peak_mb"].get<double>() << "  " << j["metric_route"].get<std::string>()
               << (j["failed_metrics"].get<int>() ? " (after " + std::to_string(j["failed_metrics"].get<int>()) + " failed)" : "")
               << (j["qc_skipped"].get<int>() ? "; QC leaves out " + std::to_string(j["qc_skipped"].get<int>()) +
                                                    " faces flat in 3D"

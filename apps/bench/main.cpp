@@ -40,7 +40,8 @@ const Benchmark kBenchmarks[] = {
     {"fill", msp::bench::run_fill_benchmark,
      "hole filling on fitted scans: per rim edges, seconds, max normal jump, position gaps"},
     {"one-cone", msp::bench::run_one_cone_benchmark,
-     "issue 8: whole one-cone pipeline per bench/genus 1-3 mesh vs one Cholesky [--million] [--metric M]"},
+     "issue 8: whole one-cone pipeline per bench/genus 1-3 mesh vs one Cholesky [--million] [--metric M]"
+     " [--high-genus: issue 20's genus 3-11 rows, generated genus 4-10 at 10k and 100k faces]"},
     {"one-cone-one", msp::bench::run_one_cone_case, "one row of 'one-cone' in this process"},
     {"intrinsic", msp::bench::run_intrinsic_benchmark,
      "issue 20: one cone by the intrinsic Delaunay flow on genus 4-10 slabs [--faces N,...]"},

@@ -159,11 +159,70 @@ DomainPairings domain_pairings(const Mesh& mesh, const CutGraph& cut, const Slic
 
 namespace {
 
-typedef RealQ ProductReal;  // 113-bit mantissa, software arithmetic (mobius_q.h)
+/// A double-quad number hi + lo (|lo| <= half an ulp of hi, ~226 bits) with error-free sums
+/// and products (Knuth's two-sum, Dekker's split): the relators are multiplied in it. Their
+/// partial products reach norm ~1e11 (casting, genus 9), and the rounding of a product in quad
+/// precision, amplified by the square of that norm and by the frame, left 7e-9 where the
+/// product of the same quad pairings is 3e-14 (long double left 2e-8 on elephant_cgal).
+struct ProductReal {
+  RealQ hi = 0, lo = 0;
 
-/// A 2x2 complex matrix in ProductReal: the relators are multiplied in it. Their partial
-/// products reach norm ~1e6 on elephant_cgal, and the rounding of each product, amplified by
-/// the square of that norm, left 2e-8 in long double.
+  ProductReal() = default;
+  ProductReal(RealQ x) : hi(x) {}  // NOLINT(google-explicit-constructor): exact
+  ProductReal(int x) : hi(x) {}    // NOLINT(google-explicit-constructor): exact
+  static ProductReal renormalised(RealQ a, RealQ b) {
+    ProductReal r;
+    r.hi = a + b;
+    r.lo = b - (r.hi - a);
+    return r;
+  }
+  static ProductReal two_sum(RealQ a, RealQ b) {
+    ProductReal r;
+    r.hi = a + b;
+    const RealQ bb = r.hi - a;
+    r.lo = (a - (r.hi - bb)) + (b - bb);
+    return r;
+  }
+  static void split(RealQ a, RealQ& high, RealQ& low) {
+#ifdef __SIZEOF_FLOAT128__
+    const RealQ splitter = RealQ(144115188075855873.0L);  // 2^57 + 1 (113-bit mantissa)
+#else
+    const RealQ splitter = RealQ(4294967297.0L);  // 2^32 + 1 (64-bit mantissa)
+#endif
+    const RealQ t = splitter * a;
+    high = t - (t - a);
+    low = a - high;
+  }
+  static ProductReal two_product(RealQ a, RealQ b) {
+    RealQ ah, al, bh, bl;
+    split(a, ah, al);
+    split(b, bh, bl);
+    ProductReal r;
+    r.hi = a * b;
+    r.lo = ((ah * bh - r.hi) + ah * bl + al * bh) + al * bl;
+    return r;
+  }
+  ProductReal operator+(const ProductReal& b) const {
+    const ProductReal s = two_sum(hi, b.hi);
+    return renormalised(s.hi, s.lo + lo + b.lo);
+  }
+  ProductReal operator-() const {
+    ProductReal r;
+    r.hi = -hi;
+    r.lo = -lo;
+    return r;
+  }
+  ProductReal operator-(const ProductReal& b) const { return *this + (-b); }
+  ProductReal operator*(const ProductReal& b) const {
+    const ProductReal p = two_product(hi, b.hi);
+    return renormalised(p.hi, p.lo + (hi * b.lo + lo * b.hi));
+  }
+  explicit operator long double() const {
+    return static_cast<long double>(hi) + static_cast<long double>(lo);
+  }
+};
+
+/// A 2x2 complex matrix in ProductReal: the relators are multiplied in it.
 struct ProductMatrix {
   ProductReal re[2][2] = {{1, 0}, {0, 1}}, im[2][2] = {{0, 0}, {0, 0}};
 
@@ -171,8 +230,8 @@ struct ProductMatrix {
   explicit ProductMatrix(const MobiusL& a) {
     for (int i = 0; i < 2; ++i) {
       for (int j = 0; j < 2; ++j) {
-        re[i][j] = a.m(i, j).real();
-        im[i][j] = a.m(i, j).imag();
+        re[i][j] = RealQ(a.m(i, j).real());
+        im[i][j] = RealQ(a.m(i, j).imag());
       }
     }
   }
@@ -242,7 +301,7 @@ Complex best_frame_centre(const DomainPairings& pairings, const ArcWord& word,
 /// multiplied in ProductReal. The product is taken first and conjugated once: conjugating each
 /// factor multiplies the frame's own rounding (its determinant is 1 only to eps ||to_c||^2,
 /// 1e-29 near the rim) by every factor's norm, which left 1e-14 on corners of casting whose
-/// cycles close to 2e-19; quad precision carries the prefixes' norms (e^{d/2}) without that.
+/// cycles close to 2e-19; double-quad carries the prefixes' norms (e^{d/2}) without that.
 double residual_in_frame(const DomainPairings& pairings, const ArcWord& w, Complex c) {
   const MobiusQ to_c = MobiusQ(MobiusL::from_rotation_point(0.0L, ComplexL(c))).normalised();
   ProductMatrix product;

@@ -38,6 +38,11 @@ struct UniformizeOptions {
   /// relator Π [a_i, b_i], are shortest (the relator sees each local defect amplified by e^d,
   /// d its distance from the root: 0.13 at root 0 of a chain of ten tori, 3e-12 at its centre).
   int root_vertex = -1;
+  /// With the automatic root (H2): while the relation residual is above this, the domain is
+  /// built again from up to root_retries other roots (farthest-point samples of the metric from
+  /// the central vertex), and the smallest residual is kept.
+  double retry_relation_above = 1e-12;
+  int root_retries = 6;
   /// Seed face of the disk / plane / sphere layout; -1 = the most central face.
   int seed_face = -1;
   /// Normalise the S2 embedding so the vertex centroid is at 0 (a Möbius map of the sphere).
@@ -46,7 +51,7 @@ struct UniformizeOptions {
 
 /// Seconds per stage.
 struct UniformizeTimings {
-  /// polish (H2: the metric in extended precision) is part of layout.
+  /// cut, layout and group add up over the roots tried (UniformizeOptions::root_retries).
   double double_cover = 0, flow = 0, cut = 0, layout = 0, polish = 0, group = 0, total = 0;
 };
 
@@ -60,6 +65,8 @@ struct Uniformization {
   /// E2/H2: the cut graph, the sliced disk and its layout (positions by sliced vertex, in the
   /// plane or the Poincaré disk).
   CutGraph cut;
+  /// Other roots the domain was built from (UniformizeOptions::retry_relation_above).
+  int root_attempts = 0;
   SlicedMesh sliced;
   Eigen::VectorXcd positions;
   /// H2: the flow's lengths polished in extended precision (what the disk layout uses), with

@@ -229,6 +229,27 @@ VertexHandle central_vertex(const Mesh& mesh, const Eigen::VectorXd& edge_length
   return VertexHandle(static_cast<int>(centre - eccentricity.begin()));
 }
 
+std::vector<VertexHandle> spread_vertices(const Mesh& mesh, VertexHandle first,
+                                          const Eigen::VectorXd& edge_lengths, int count) {
+  if (!first.is_valid() || first.idx() >= static_cast<int>(mesh.n_vertices())) {
+    throw InvalidInputError("spread vertices: vertex " + std::to_string(first.idx()) +
+                            " is out of range");
+  }
+  const Eigen::VectorXd lengths = checked_edge_lengths(mesh, edge_lengths);
+  const Quotient q = make_quotient(mesh, {});
+  std::vector<VertexHandle> samples{first};
+  std::vector<double> to_samples = shortest_path_tree(mesh, q, first.idx(), lengths, true).distance;
+  while (static_cast<int>(samples.size()) < count) {
+    const auto far = std::max_element(to_samples.begin(), to_samples.end());
+    if (!(*far > 0.0)) break;  // every vertex is a sample already
+    samples.emplace_back(static_cast<int>(far - to_samples.begin()));
+    const std::vector<double> d =
+        shortest_path_tree(mesh, q, samples.back().idx(), lengths, true).distance;
+    for (size_t v = 0; v < d.size(); ++v) to_samples[v] = std::min(to_samples[v], d[v]);
+  }
+  return samples;
+}
+
 CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root, const Eigen::VectorXd& edge_lengths,
                            const CutGraphOptions& options) {
   if (!root.is_valid() || root.idx() >= static_cast<int>(mesh.n_vertices())) {

@@ -76,6 +76,15 @@ struct CutGraph {
                                           const Eigen::VectorXd& edge_lengths = {},
                                           int samples = 8);
 
+/// `count` vertices spread over the surface by farthest-point sampling under `edge_lengths`
+/// (empty = 3D lengths): `first`, then each time the vertex farthest from those chosen (fewer
+/// when the mesh has fewer vertices).
+/// \pre connected mesh.
+/// \throw InvalidInputError on bad lengths or a vertex out of range.
+[[nodiscard]] std::vector<VertexHandle> spread_vertices(const Mesh& mesh, VertexHandle first,
+                                                        const Eigen::VectorXd& edge_lengths = {},
+                                                        int count = 8);
+
 /// Checks lengths (size, finite, positive) or returns the mesh's 3D lengths when empty.
 /// \throw InvalidInputError naming the first bad edge.
 [[nodiscard]] Eigen::VectorXd checked_edge_lengths(const Mesh& mesh,

@@ -213,6 +213,58 @@ TEST(Relation, ClosesAtGenus4To10FromTheCentralRoot) {
   }
 }
 
+// Which root keeps the relator's partial products small shows only after the layout: with a
+// residual above retry_relation_above the domain is built again from the spread roots and the
+// smallest residual is kept (casting, genus 9: 4e-9 from the central vertex, 6e-14 kept).
+TEST(Relation, RootRetriesKeepTheSmallestResidual) {
+  const Mesh slab = make_genus_slab(4, 1, 4);
+  UniformizeOptions once;
+  once.retry_relation_above = INFINITY;
+  const Uniformization central = uniformize(slab, once);
+  ASSERT_TRUE(central.converged()) << central.flow.message;
+  EXPECT_EQ(central.root_attempts, 0);
+  UniformizeOptions retried;
+  retried.retry_relation_above = 0;  // every root
+  retried.root_retries = 3;
+  const Uniformization best = uniformize(slab, retried);
+  EXPECT_EQ(best.root_attempts, 3);
+  const std::vector<VertexHandle> roots =
+      spread_vertices(central.surface, central.cut.root, central.flow.lengths, 4);
+  double smallest = INFINITY;
+  for (VertexHandle root : roots) {
+    UniformizeOptions at = once;
+    at.root_vertex = root.idx();
+    smallest = std::min(smallest, uniformize(slab, at).group.relation_residual);
+  }
+  EXPECT_EQ(best.group.relation_residual, smallest);
+  EXPECT_NE(std::find(roots.begin(), roots.end(), best.cut.root), roots.end());
+  EXPECT_LT(best.group.relation_residual, 1e-9);
+}
+
+// The check must not add rounding of its own: two arcs paired by the same translation h (length
+// 2, moved off the axes), the word h^20 h'^-20 is the identity exactly, but its prefixes reach
+// norm e^20, and its product multiplied in quad precision missed it by 1.7e-17 (5e-33 in
+// double-quad). A turn of 1e-20 of one arc is seen, amplified by the prefixes.
+TEST(Relation, TheResidualIsNotTheProductsRounding) {
+  const RealQ s = sinh_q(1), c = sqrt_q(1 + s * s);  // translation by 2 along the real axis
+  const MobiusQ along(ComplexQ(c, 0), ComplexQ(s, 0), ComplexQ(s, 0), ComplexQ(c, 0));
+  const MobiusQ turn(MobiusL::from_rotation_point(0.7L, ComplexL(0.3L, 0.2L)));
+  DomainPairings pairings;
+  pairings.arcs.resize(2);
+  for (CutArc& arc : pairings.arcs) {
+    arc.quad_pairing = (turn * along * turn.inverse()).normalised();
+    arc.precise_pairing = arc.quad_pairing.to_long();
+    arc.pairing = arc.precise_pairing.to_double();
+  }
+  ArcWord word;
+  for (int k = 0; k < 20; ++k) word.push_back({0, 1});
+  for (int k = 0; k < 20; ++k) word.push_back({1, -1});
+  EXPECT_LT(conditioned_residual(pairings, word, {0.0}), 1e-27);
+  pairings.arcs[1].quad_pairing =
+      MobiusQ(MobiusL::from_rotation_point(1e-20L, 0.0L)) * pairings.arcs[1].quad_pairing;
+  EXPECT_GT(conditioned_residual(pairings, word, {0.0}), 1e-8);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Genus2To4, HyperbolicModel,
     ::testing::Values(ModelCase{"closed_g2/eight.off"}, ModelCase{"closed_g2/eight_cgal.off"},

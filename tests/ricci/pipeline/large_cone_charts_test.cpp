@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "ricci/atlas/chart_develop.h"
+#include "ricci/metric/curvature.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "ricci/test_meshes.h"
 #include "ricci/util/cross2d.h"
@@ -51,6 +52,28 @@ TEST(LargeConeCharts, EveryGenus8FaceHasAFaithfulNeighbourhoodChart) {
   }
   // The premise: the central chart alone cannot hold them.
   EXPECT_GT(broken_in_central, 0);
+}
+
+// The one-cone atlas at genus 8 (the automatic cone, the intrinsic route), by the closed forms:
+// the cone carries the whole curvature 2 pi chi (cone angle 30 pi), every other vertex's angles
+// sum to 2 pi, the transitions are rigid motions, and no face of the central chart turns over.
+TEST(LargeConeCharts, Genus8AtlasHasOneConeAndRigidTransitions) {
+  const ricci::OneConeAtlasResult result = ricci::testing::genus8_fit_atlas();
+  ASSERT_TRUE(result.intrinsic);
+  const ricci::Mesh& mesh = result.problem.mesh;
+  const Eigen::VectorXd K =
+      ricci::vertex_curvature(mesh, result.flow.lengths, ricci::Geometry::euclidean);
+  const double chi = 2.0 - 2.0 * 8;
+  EXPECT_NEAR(K.sum(), 2.0 * M_PI * chi, 1e-9);
+  EXPECT_NEAR(K[result.problem.cone], 2.0 * M_PI * chi, 1e-9);
+  Eigen::VectorXd flat = K;
+  flat[result.problem.cone] = 0.0;
+  EXPECT_LT(flat.cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT(std::abs(ricci::gauss_bonnet_residual(mesh, result.flow.lengths,
+                                                  ricci::Geometry::euclidean)),
+            1e-9);
+  EXPECT_EQ(result.atlas.layout.flipped_faces, 0);
+  EXPECT_LT(result.relative_transition_residual(), 1e-9);
 }
 
 }  // namespace

@@ -229,5 +229,27 @@ TEST(CentralVertex, MinimisesTheLargestDistanceOnAStripAndAGenusSlab) {
   EXPECT_THROW((void)central_vertex(strip, Eigen::VectorXd::Ones(3)), InvalidInputError);
 }
 
+TEST(SpreadVertices, FarthestPointSamplesOfAStrip) {
+  // A 40 x 4 strip from its middle: the two ends next (x = 0 and 40, either order), then
+  // near the quarter points (graph distances on the grid: within 2.5); all distinct, and no
+  // more samples than vertices.
+  const Mesh strip = make_planar_grid(40, 4, 40.0, 4.0);
+  const VertexHandle middle = central_vertex(strip);
+  const std::vector<VertexHandle> s = spread_vertices(strip, middle, {}, 5);
+  ASSERT_EQ(s.size(), 5u);
+  EXPECT_EQ(s[0], middle);
+  EXPECT_NEAR(std::abs(strip.point(s[1])[0] - strip.point(s[2])[0]), 40.0, 1e-12);
+  for (int k : {3, 4}) {
+    const double x = strip.point(s[static_cast<size_t>(k)])[0];
+    EXPECT_NEAR(std::min(std::abs(x - 10.0), std::abs(x - 30.0)), 0.0, 2.5) << k;
+  }
+  for (size_t i = 0; i < s.size(); ++i) {
+    for (size_t j = i + 1; j < s.size(); ++j) EXPECT_NE(s[i], s[j]);
+  }
+  const Mesh grid = make_planar_grid(1, 1, 1.0, 1.0);
+  EXPECT_EQ(spread_vertices(grid, VertexHandle(0), {}, 10).size(), grid.n_vertices());
+  EXPECT_THROW((void)spread_vertices(strip, VertexHandle(-1)), InvalidInputError);
+}
+
 }  // namespace
 }  // namespace ricci
