@@ -139,6 +139,7 @@ nlohmann::json refinement_json(const spline::FittedSurface& fitted,
                       {"projection_rms_relative", r.projection_rms / fitted.bbox_diagonal},
                       {"projection_max_relative", r.projection_max / fitted.bbox_diagonal},
                       {"vertices_over_tolerance", r.vertices_over_tolerance}});
+    if (!r.error.empty()) rounds.back()["error"] = r.error;
   }
   return {{"max_rounds", options.refinement_rounds},
           {"fold_rounds", options.fold_rounds},

@@ -73,7 +73,7 @@ std::vector<Eigen::Vector2d> to_local(const BivariatePolynomial& p,
                                       const std::vector<Eigen::Vector2d>& points) {
   std::vector<Eigen::Vector2d> local;
   local.reserve(points.size());
-  for (const Eigen::Vector2d& u : points) local.push_back((u - p.origin) / p.scale);
+  for (const Eigen::Vector2d& u : points) local.push_back(p.axes * (u - p.origin) / p.scale);
   return local;
 }
 
@@ -163,7 +163,12 @@ BivariatePolynomial polynomial_from_control_points(const KnotCloud& c0, const Kn
   const Eigen::Vector2d& b = c1.knots[0];
   const Eigen::Vector2d& c = c2.knots[0];
   p.origin = (a + b + c) / 3.0;
-  p.scale = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  Eigen::Matrix2d edges;
+  edges << b - a, c - a;
+  p.axes = edges.inverse();
+  if (!p.axes.allFinite()) {
+    throw ricci::SolverError("polynomial from control points: degenerate knot triangle");
+  }
   // Row beta: blossoms of all monomials at beta's arguments (the B-patch collocation matrix).
   const std::vector<Eigen::Vector3i> betas = multi_indices(n);
   Eigen::MatrixXd matrix(count, count);

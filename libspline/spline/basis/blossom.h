@@ -18,14 +18,15 @@
 
 namespace spline {
 
-/// p(u) = sum_{a + b <= degree} c_{a,b} X^a Y^b, X = (x - origin.x)/scale, Y = (y - origin.y)/scale,
-/// with vector coefficients (one column per component). The local frame keeps fits on triangles
-/// far from the origin well conditioned.
+/// p(u) = sum_{a + b <= degree} c_{a,b} X^a Y^b, (X, Y) = axes (u - origin) / scale, with vector
+/// coefficients (one column per component). The local frame keeps fits on triangles far from the
+/// origin, or thin ones (axes: an affine frame of the triangle), well conditioned.
 struct BivariatePolynomial {
   int degree = 0;
   Eigen::MatrixXd coefficients;  ///< monomial_count(degree) rows (monomial_index order), k columns
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   double scale = 1.0;
+  Eigen::Matrix2d axes = Eigen::Matrix2d::Identity();  ///< invertible
 };
 
 /// Number of monomials of degree <= n: (n + 1)(n + 2) / 2.
@@ -63,8 +64,10 @@ struct BivariatePolynomial {
 
 /// The degree-n polynomial whose control points on the triangle (c0, c1, c2) are the given rows
 /// (multi_indices order): inverse of triangle_control_points (the blossom values at the DMS knot
-/// sets determine the polynomial when the knot-net conditions hold). Local frame: the centroid of
-/// the triangle's vertices and its longest edge.
+/// sets determine the polynomial when the knot-net conditions hold). Local frame: the affine one
+/// taking the triangle's vertices (t_{0,0}, t_{1,0}, t_{2,0}) to (0, 0), (1, 0), (0, 1), moved to
+/// their centroid, so that the system's conditioning does not depend on the triangle's shape (a
+/// sliver of aspect 1e-5 in a frame of its longest edge made it singular to rounding).
 /// \throw ricci::InvalidInputError on a row count other than (n + 1)(n + 2)/2;
 ///        ricci::SolverError when the knot configuration makes the system singular.
 [[nodiscard]] BivariatePolynomial polynomial_from_control_points(const KnotCloud& c0,

@@ -824,19 +824,29 @@ constexpr double kGoalRefineDistance = 2.5;
 constexpr double kGoalCheckShare = 0.8;
 
 // The next round on `best`'s domain refined around `where` (the followed boundary and the cone
-// kept), its summary added to out.refinement.
-std::pair<FittedSurface, Round> refined_round(const ricci::Mesh& dense, ScanFitOptions& scan,
-                                              const FitSurfaceOptions& options, StageClock& clock,
-                                              const Round& best,
-                                              const std::vector<Eigen::Vector3d>& where,
-                                              FittedSurface& out) {
+// kept), its summary added to out.refinement. A round whose atlas or fit fails (turbine.off,
+// genus 11: an intrinsic edge of length 0 on a refined domain) is recorded with its error and
+// none returned: the rounds so far stand.
+std::optional<std::pair<FittedSurface, Round>> refined_round(
+    const ricci::Mesh& dense, ScanFitOptions& scan, const FitSurfaceOptions& options,
+    StageClock& clock, const Round& best, const std::vector<Eigen::Vector3d>& where,
+    FittedSurface& out) {
   clock.begin("refine");
+  std::optional<ricci::Mesh> previous = scan.domain;
   scan.domain = refine_domain(best.domain, dense, where);
   scan.boundary_follow.max_rounds = 0;  // the refined domain keeps the followed boundary
   if (needs_singularity(out.input)) scan.atlas.singular_vertex = out.atlas.chosen_vertex;
-  auto next = next_round(dense, scan, options, clock, out);
-  out.refinement.push_back(round_summary(next.first, next.second, options));
-  return next;
+  try {
+    auto next = next_round(dense, scan, options, clock, out);
+    out.refinement.push_back(round_summary(next.first, next.second, options));
+    return next;
+  } catch (const ricci::Error& e) {
+    scan.domain = std::move(previous);
+    RefinementRound failed;
+    failed.error = e.what();
+    out.refinement.push_back(std::move(failed));
+    return std::nullopt;
+  }
 }
 
 // The RMS goal on the first round (`best`, `out`): when its RMS (projection) exceeds
@@ -861,8 +871,8 @@ bool refine_to_rms_goal(const ricci::Mesh& dense, const FitSurfaceOptions& optio
       where.push_back(ricci::to_eigen(dense.point(dense.vertex_handle(static_cast<int>(v)))));
   }
   if (where.empty()) return true;
-  adopt_round(refined_round(dense, scan, options, clock, best, where, out), out, best,
-              &superseded);
+  auto next = refined_round(dense, scan, options, clock, best, where, out);
+  if (next) adopt_round(std::move(*next), out, best, &superseded);
   return true;
 }
 
@@ -1007,8 +1017,8 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     const std::vector<Eigen::Vector3d> where = refinement_points(dense, options, out, best);
     if (where.empty()) break;
     auto next = refined_round(dense, scan, options, clock, best, where, out);
-    if (!better(next.first, next.second, out, best, options)) break;
-    adopt_round(std::move(next), out, best, &superseded);
+    if (!next || !better(next->first, next->second, out, best, options)) break;
+    adopt_round(std::move(*next), out, best, &superseded);
     refined = true;
   }
 

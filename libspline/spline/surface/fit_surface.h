@@ -118,6 +118,9 @@ struct RefinementRound {
   int folds = 0;  ///< Tessellation edges over 90 degrees.
   double projection_rms = 0.0, projection_max = 0.0;  ///< As FittedSurface's.
   int vertices_over_tolerance = -1;                   ///< -1 without a tolerance.
+  /// A refinement round that failed (its atlas or fit threw): the error, the other figures
+  /// zero; the rounds before it are delivered. Empty otherwise.
+  std::string error;
 };
 
 /// Wall-clock or CPU seconds by stage, in the order run, then "total".

@@ -104,6 +104,26 @@ TEST(Blossom, ControlPointsOfATriangleDetermineThePolynomial) {
   }
 }
 
+TEST(Blossom, ControlPointsOfASliverDetermineThePolynomial) {
+  // turbine.off's (genus 11) face next to its cone, in its own frame: edges of 3e-16, height
+  // 4.7e-21 (aspect 1.5e-5). In a frame of its longest edge the cubic's system was singular to
+  // rounding; the triangle's affine frame makes it as well conditioned as an equilateral one.
+  std::mt19937 rng(4);
+  const Eigen::Vector2d a(3.0266047945132405e-16, 0.0), b(3.0263196015008438e-16,
+                                                             4.6559958505361001e-21),
+      c(0.0, 0.0);
+  const std::vector<Eigen::Vector2d> ring_a = {b, c}, ring_b = {c, a}, ring_c = {a, b};
+  for (int n = 1; n <= 5; ++n) {
+    const KnotCloud ca = make_knot_cloud(n, 0, a, ring_a, false);
+    const KnotCloud cb = make_knot_cloud(n, 1, b, ring_b, false);
+    const KnotCloud cc = make_knot_cloud(n, 2, c, ring_c, false);
+    const Eigen::MatrixXd control = Eigen::MatrixXd::NullaryExpr(
+        multi_index_count(n), 3, [&]() { return std::uniform_real_distribution<double>(-1, 1)(rng); });
+    const BivariatePolynomial p = polynomial_from_control_points(ca, cb, cc, control);
+    EXPECT_LT((triangle_control_points(p, ca, cb, cc) - control).norm(), 1e-9) << "degree " << n;
+  }
+}
+
 TEST(Blossom, RejectsBadInput) {
   EXPECT_THROW(monomial(3, 1, 3), ricci::InvalidInputError);
   const BivariatePolynomial p = monomial(1, 1, 2);
