@@ -13,5 +13,9 @@ endfunction()
 
 if(MSP_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  # Eigen takes glibc's malloc as aligned only without __SANITIZE_ADDRESS__: the uninstrumented
+  # CGAL translation units (libricci/CMakeLists.txt) would allocate with malloc what instrumented
+  # ones free with Eigen's handmade aligned_free. One allocator for every translation unit.
+  add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=0)
   add_link_options(-fsanitize=address,undefined)
 endif()
