@@ -4,11 +4,16 @@
 
 namespace ricci {
 
+Eigen::MatrixX3d vertex_positions(const Mesh& mesh) {
+  Eigen::MatrixX3d x(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  for (const auto v : mesh.vertices()) x.row(v.idx()) = to_eigen(mesh.point(v)).transpose();
+  return x;
+}
+
 VertexFaceArrays to_arrays(const Mesh& mesh) {
   VertexFaceArrays arrays;
-  arrays.V.resize(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  arrays.V = vertex_positions(mesh);
   arrays.F.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
-  for (const auto v : mesh.vertices()) arrays.V.row(v.idx()) = to_eigen(mesh.point(v)).transpose();
   for (const auto f : mesh.faces()) {
     int k = 0;
     for (const auto v : mesh.fv_range(f)) arrays.F(f.idx(), k++) = v.idx();

@@ -4,6 +4,9 @@
 
 namespace ricci {
 
+/// #V by 3 positions, in the mesh's own vertex order.
+[[nodiscard]] Eigen::MatrixX3d vertex_positions(const Mesh& mesh);
+
 /// #V by 3 positions and #F by 3 vertex indices, both in the mesh's own index order.
 [[nodiscard]] VertexFaceArrays to_arrays(const Mesh& mesh);
 

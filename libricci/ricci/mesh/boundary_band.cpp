@@ -8,6 +8,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "ricci/mesh/arrays.h"
 #include "ricci/mesh/boundary_loops.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/soup_distance.h"
@@ -24,12 +25,6 @@ std::vector<Loop> vertex_loops(const Mesh& mesh) {
     for (auto h : halfedges) loops.back().push_back(mesh.from_vertex_handle(h).idx());
   }
   return loops;
-}
-
-Eigen::MatrixX3d positions_of(const Mesh& mesh) {
-  Eigen::MatrixX3d x(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
-  for (auto v : mesh.vertices()) x.row(v.idx()) = to_eigen(mesh.point(v)).transpose();
-  return x;
 }
 
 std::vector<std::array<int, 2>> loop_segments(const Loop& loop) {
@@ -284,11 +279,6 @@ bool to_mesh(const FaceList& list, Mesh& out) {
   return true;
 }
 
-int euler_characteristic(const Mesh& m) {
-  return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) +
-         static_cast<int>(m.n_faces());
-}
-
 // The dense loop that most of `loop`'s vertices are nearest to.
 int followed_loop(const Eigen::MatrixX3d& x, const Loop& loop, const SegmentSoupDistance& tree,
                   const std::vector<int>& segment_loop, int loop_count) {
@@ -309,7 +299,7 @@ BoundaryBandResult rebuild_boundary_bands(Mesh& coarse, const Mesh& dense,
   const std::vector<Loop> targets = vertex_loops(dense);
   const std::vector<Loop> loops = vertex_loops(coarse);
   if (!(options.rebuild_above > 0.0) || targets.empty() || loops.empty()) return result;
-  const Eigen::MatrixX3d dense_x = positions_of(dense), x = positions_of(coarse);
+  const Eigen::MatrixX3d dense_x = vertex_positions(dense), x = vertex_positions(coarse);
   const double diagonal = (dense_x.colwise().maxCoeff() - dense_x.colwise().minCoeff()).norm();
   std::vector<std::array<int, 2>> segments;
   std::vector<int> segment_loop;

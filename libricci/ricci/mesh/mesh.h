@@ -34,6 +34,12 @@ struct VertexFaceArrays {
 inline Eigen::Vector3d to_eigen(const OpenMesh::Vec3d& p) { return {p[0], p[1], p[2]}; }
 inline OpenMesh::Vec3d to_openmesh(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 
+/// V - E + F of the mesh as stored (unreferenced vertices count).
+inline int euler_characteristic(const Mesh& mesh) {
+  return static_cast<int>(mesh.n_vertices()) - static_cast<int>(mesh.n_edges()) +
+         static_cast<int>(mesh.n_faces());
+}
+
 /// Angle in [0, pi] between two vectors (normals, corner edges). atan2 of |a x b| and a . b stays
 /// accurate for tiny angles, where acos of the normalised dot product does not.
 inline double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {

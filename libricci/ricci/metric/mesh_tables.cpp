@@ -59,7 +59,7 @@ MeshTables build_mesh_tables(const Mesh& mesh) {
     t.is_boundary_vertex[v.idx()] = mesh.is_boundary(v) ? 1 : 0;
   }
   t.boundary_loops = collect_boundary_loops(mesh);
-  t.euler_characteristic = nv - static_cast<int>(mesh.n_edges()) + static_cast<int>(mesh.n_faces());
+  t.euler_characteristic = euler_characteristic(mesh);
   return t;
 }
 

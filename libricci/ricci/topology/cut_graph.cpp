@@ -263,8 +263,7 @@ CutGraph compute_cut_graph(const Mesh& mesh, VertexHandle root, const Eigen::Vec
   g.root = root;
   g.boundary_loops = find_boundary_loops(mesh);
   g.boundary_loop_count = static_cast<int>(g.boundary_loops.size());
-  g.euler_characteristic = static_cast<int>(mesh.n_vertices()) - static_cast<int>(mesh.n_edges()) +
-                           static_cast<int>(mesh.n_faces());
+  g.euler_characteristic = euler_characteristic(mesh);
   const int twice_genus = 2 - g.euler_characteristic - g.boundary_loop_count;
   if (twice_genus < 0 || twice_genus % 2 != 0) {
     throw TopologyError("cut graph: Euler characteristic " +

@@ -140,8 +140,7 @@ SlicedMesh slice_along(const Mesh& mesh, const std::vector<char>& is_cut_edge) {
     s.cut_sides.push_back(sides);
   }
   s.boundary_loop_count = static_cast<int>(find_boundary_loops(s.mesh).size());
-  s.euler_characteristic = static_cast<int>(s.mesh.n_vertices()) -
-                           static_cast<int>(s.mesh.n_edges()) + static_cast<int>(s.mesh.n_faces());
+  s.euler_characteristic = euler_characteristic(s.mesh);
   s.component_count = count_components(s.mesh);
   return s;
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/SparseCholesky>
 
+#include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/metric/subdivide.h"
@@ -19,12 +20,6 @@ using Sparse = Eigen::SparseMatrix<double>;
 
 // Relative mismatch of the control-point count that triggers a second simplification.
 constexpr double kCountTolerance = 0.02;
-
-Eigen::MatrixX3d positions(const ricci::Mesh& mesh) {
-  Eigen::MatrixX3d x(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
-  for (auto v : mesh.vertices()) x.row(v.idx()) = ricci::to_eigen(mesh.point(v)).transpose();
-  return x;
-}
 
 // Uniform umbrella Laplacian: (L X)_i = X_i - mean of the neighbours of i.
 Sparse umbrella_laplacian(const ricci::Mesh& mesh) {
@@ -150,7 +145,7 @@ LoopFitResult fit_loop_surface(const ricci::Mesh& dense, const LoopFitOptions& o
   const LoopSurface surface(result.control, surface_options);
   result.seconds_surface = clock.lap();
 
-  const Eigen::MatrixX3d points = positions(dense);
+  const Eigen::MatrixX3d points = ricci::vertex_positions(dense);
   auto locations = loop_parameters(surface, points);
   LoopSolve solve;
   LoopProjection projection;

@@ -35,11 +35,6 @@ Mesh toothed_disk(int rings, int sectors, double height) {
   return disk;
 }
 
-int euler_characteristic(const Mesh& m) {
-  return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) +
-         static_cast<int>(m.n_faces());
-}
-
 // The smallest z component of a face's unit normal, and the flattest shape (twice the area
 // over the longest edge squared).
 std::array<double, 2> worst_faces(const Mesh& mesh) {

@@ -23,11 +23,6 @@ double signed_volume(const ricci::Mesh& mesh) {
   return volume;
 }
 
-int euler_characteristic(const ricci::Mesh& mesh) {
-  return static_cast<int>(mesh.n_vertices()) - static_cast<int>(mesh.n_edges()) +
-         static_cast<int>(mesh.n_faces());
-}
-
 TEST(BuildMesh, TetrahedronKeepsItsFacesAndOrientation) {
   const auto result = ricci::build_mesh_with_report(tetrahedron());
   EXPECT_EQ(result.mesh.n_vertices(), 4u);

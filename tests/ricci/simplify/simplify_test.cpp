@@ -14,10 +14,6 @@ ricci::Mesh read_test_mesh(const std::string& relative) {
   return ricci::read_mesh(msp_test::test_mesh(relative));
 }
 
-int euler_characteristic(const ricci::Mesh& m) {
-  return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) + static_cast<int>(m.n_faces());
-}
-
 // Open scans keep a slightly worse corner at the boundary, where remeshing cannot relax freely.
 void expect_simplified_with_same_topology(const std::string& model, int target, double min_angle = 5.0) {
   ricci::Mesh dense = read_test_mesh(model);

@@ -29,10 +29,6 @@ double total_area(const Mesh& mesh) {
   return area;
 }
 
-int euler_characteristic(const Mesh& m) {
-  return static_cast<int>(m.n_vertices()) - static_cast<int>(m.n_edges()) + static_cast<int>(m.n_faces());
-}
-
 Mesh read_test_mesh(const std::string& relative) {
   return ricci::read_mesh(msp_test::test_mesh(relative));
 }
