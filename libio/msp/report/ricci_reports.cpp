@@ -156,6 +156,10 @@ nlohmann::json atlas_report_json(const std::string& path, const ricci::Mesh& mes
           {"transition_residual", r.relative_transition_residual()},
           {"transition_residual_absolute",
            std::max(r.atlas.max_transition_residual, r.atlas.max_side_pairing_residual)},
+          {"transition_pieces_unresolved", r.atlas.unresolved_transition_pieces},
+          {"transition_residual_unresolved",
+           r.atlas.max_unresolved_transition_residual /
+               std::max(r.atlas.domain_diameter, 1e-300)},
           {"flipped_faces", r.atlas.layout.flipped_faces},
           {"layout_length_error", r.atlas.layout.max_relative_length_error},
           {"domain_length_error", r.atlas.domain_max_relative_length_error},

@@ -110,38 +110,12 @@ void add_cut_path_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, doubl
   }
 }
 
-// A chart places a face faithfully when the face is counter-clockwise there and its edges have
-// their metric lengths to this relative accuracy. Near a cone of 2 pi (2g - 1) at genus 8 the
-// flat metric shrinks faces to 1e-13 of the central chart's coordinates, whose rounding then
-// flips or collapses them; such a face's neighbourhood needs a chart in its own frame. The
-// bound is tight because the spline's knot clouds move between charts by rigid motions: two
-// charts placing a face differently by d (relative) give two surfaces d apart (1e-6 left gaps
-// of 6e-5 between the charts of a genus-8 domain with control points of size 1; 1e-9: < 1e-7).
-constexpr double kFaithfulLength = 1e-9;
-
-/// Whether `chart` (row `row`) places face `face` faithfully (kFaithfulLength).
-bool places_faithfully(const Mesh& mesh, const Eigen::VectorXd& lengths, const Chart& chart,
-                       int row, int face) {
-  const auto hs = face_halfedges(mesh, FaceHandle(face));
-  Eigen::Matrix<double, 3, 2> p;
-  for (int k = 0; k < 3; ++k) p.row(k) = chart.positions.row(chart.corners(row, k));
-  // Halfedge k runs from corner k + 2 to corner k.
-  for (int k = 0; k < 3; ++k) {
-    const double l = lengths[mesh.edge_handle(hs[k]).idx()];
-    const double d = (p.row(k) - p.row((k + 2) % 3)).norm();
-    if (!(std::abs(d - l) <= kFaithfulLength * l)) return false;
-  }
-  const Eigen::Vector2d u = (p.row(1) - p.row(0)).transpose();
-  const Eigen::Vector2d v = (p.row(2) - p.row(0)).transpose();
-  return u.x() * v.y() - u.y() * v.x() > 0.0;
-}
-
 /// Whether `chart` holds every face of `faces` faithfully.
 bool holds_faithfully(const Mesh& mesh, const Eigen::VectorXd& lengths, const Chart& chart,
                       const std::vector<int>& faces) {
   for (int f : faces) {
     const int row = chart.slot(f);
-    if (row < 0 || !places_faithfully(mesh, lengths, chart, row, f)) return false;
+    if (row < 0 || !detail::places_faithfully(mesh, lengths, chart, row, f)) return false;
   }
   return true;
 }
@@ -209,7 +183,8 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
   // (atlas.charts grows below: no reference into it is kept.)
   std::vector<char> in_central(mesh.n_faces(), 0), copies(mesh.n_vertices(), 0);
   for (int f : atlas.charts[0].faces) {
-    in_central[static_cast<size_t>(f)] = places_faithfully(mesh, lengths, atlas.charts[0], f, f);
+    in_central[static_cast<size_t>(f)] =
+        detail::places_faithfully(mesh, lengths, atlas.charts[0], f, f);
   }
   for (int v : atlas.charts[0].to_original_vertex) {
     char& count = copies[static_cast<size_t>(v)];
@@ -346,7 +321,7 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
   const double glue = options.glue_tolerance * lengths.mean();
   add_cut_path_charts(mesh, lengths, glue, atlas);
   assign_neighbourhood_charts(mesh, lengths, glue, options.glue_tolerance, atlas);
-  detail::compute_transitions(mesh, atlas);
+  detail::compute_transitions(mesh, lengths, atlas);
   detail::compute_side_pairings(mesh, atlas);
   atlas.canonical = canonical_basis(atlas.polygon.word);
   atlas.loop_holonomy = loop_holonomies(mesh, atlas);

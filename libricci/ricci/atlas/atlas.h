@@ -94,7 +94,12 @@ struct AffineAtlas {
   /// Same edges, absolute error |d - l| (the floor is the rounding of the chart coordinates,
   /// about 1e-16 times domain_diameter, which dominates the relative error of tiny edges).
   double domain_max_absolute_length_error = 0.0;
+  /// Over the transition pieces with a face both charts place faithfully (fitted on those
+  /// faces); pieces with none (faces next to a large cone, below the rounding of both charts'
+  /// coordinates, which no neighbourhood chart relies on) are counted apart.
   double max_transition_residual = 0.0;
+  int unresolved_transition_pieces = 0;
+  double max_unresolved_transition_residual = 0.0;  ///< over those pieces, all their faces
   double max_side_pairing_residual = 0.0;
 
   /// Canonical generators a1 b1 ... ag bg as words in the cut graph's loops (holes capped);

@@ -174,6 +174,23 @@ Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
   return to_chart(d, parent);
 }
 
+bool places_faithfully(const Mesh& mesh, const Eigen::VectorXd& lengths, const Chart& chart,
+                       int row, int face) {
+  constexpr double kFaithfulLength = 1e-9;
+  const auto hs = face_halfedges(mesh, FaceHandle(face));
+  Eigen::Matrix<double, 3, 2> p;
+  for (int k = 0; k < 3; ++k) p.row(k) = chart.positions.row(chart.corners(row, k));
+  // Halfedge k runs from corner k + 2 to corner k.
+  for (int k = 0; k < 3; ++k) {
+    const double l = lengths[mesh.edge_handle(hs[k]).idx()];
+    const double d = (p.row(k) - p.row((k + 2) % 3)).norm();
+    if (!(std::abs(d - l) <= kFaithfulLength * l)) return false;
+  }
+  const Eigen::Vector2d u = (p.row(1) - p.row(0)).transpose();
+  const Eigen::Vector2d v = (p.row(2) - p.row(0)).transpose();
+  return u.x() * v.y() - u.y() * v.x() > 0.0;
+}
+
 std::vector<int> face_neighbourhood(const Mesh& mesh, int face,
                                     const std::vector<char>& in_domain) {
   std::vector<int> faces;

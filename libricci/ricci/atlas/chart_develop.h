@@ -32,9 +32,20 @@ namespace ricci::detail {
 [[nodiscard]] bool holds_as_one_piece(const Mesh& mesh, const Chart& chart,
                                       const std::vector<int>& neighbourhood);
 
+/// Whether `chart` (row `row`) places `face` faithfully: counter-clockwise, with edges of their
+/// metric `lengths` to a relative 1e-9. Near a cone of 2 pi (2g - 1) at genus 8 and beyond the
+/// flat metric shrinks faces far below the rounding of a chart's coordinates, which then flips
+/// or collapses them; the spline needs every face's neighbourhood in a chart placing it
+/// faithfully, because its knot clouds move between charts by rigid motions (two charts placing
+/// a face differently by d, relative, give two surfaces d apart).
+[[nodiscard]] bool places_faithfully(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                                     const Chart& chart, int row, int face);
+
 /// Fills atlas.transitions, atlas.face_transitions and atlas.max_transition_residual: one
-/// rigid motion per connected piece of every pair of overlapping charts (Kabsch fit).
-void compute_transitions(const Mesh& mesh, AffineAtlas& atlas);
+/// rigid motion per connected piece of every pair of overlapping charts (Kabsch fit), fitted and
+/// measured on the piece's faces that both charts place faithfully; a piece with none is fitted
+/// on all its faces and counted in atlas.unresolved_transition_pieces instead.
+void compute_transitions(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atlas);
 
 /// Fills atlas.side_pairings and atlas.max_side_pairing_residual from the central chart.
 void compute_side_pairings(const Mesh& mesh, AffineAtlas& atlas);

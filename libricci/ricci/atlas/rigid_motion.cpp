@@ -28,23 +28,57 @@ RigidMotion2 RigidMotion2::after(const RigidMotion2& other) const {
   return c;
 }
 
+namespace {
+
+void check_counts(Eigen::Index from, Eigen::Index to) {
+  if (from != to || from == 0) {
+    throw InvalidInputError("rigid motion fit: " + std::to_string(from) + " and " +
+                            std::to_string(to) + " points");
+  }
+}
+
+// The angle maximising trace(R^T H), H the cross-covariance of the centred sets.
+double kabsch_angle(const Eigen::Matrix2d& h) {
+  return std::atan2(h(0, 1) - h(1, 0), h(0, 0) + h(1, 1));
+}
+
+}  // namespace
+
 RigidMotion2 fit_rigid_motion(const Eigen::MatrixX2d& from, const Eigen::MatrixX2d& to,
                               double* residual) {
-  if (from.rows() != to.rows() || from.rows() == 0) {
-    throw InvalidInputError("rigid motion fit: " + std::to_string(from.rows()) + " and " +
-                            std::to_string(to.rows()) + " points");
-  }
+  check_counts(from.rows(), to.rows());
   const Eigen::RowVector2d cf = from.colwise().mean(), ct = to.colwise().mean();
-  // Cross-covariance of the centred sets; the optimal angle maximises trace(R^T H).
-  const Eigen::Matrix2d h = (from.rowwise() - cf).transpose() * (to.rowwise() - ct);
   RigidMotion2 m;
-  m.angle = std::atan2(h(0, 1) - h(1, 0), h(0, 0) + h(1, 1));
+  const Eigen::Matrix2d h = (from.rowwise() - cf).transpose() * (to.rowwise() - ct);
+  m.angle = kabsch_angle(h);
   m.translation = ct.transpose() - m.rotation() * cf.transpose();
   if (residual) {
     *residual = 0.0;
     for (Eigen::Index i = 0; i < from.rows(); ++i) {
       *residual =
           std::max(*residual, (m.apply(from.row(i).transpose()) - to.row(i).transpose()).norm());
+    }
+  }
+  return m;
+}
+
+RigidMotion2 fit_rigid_motion(const Eigen::Vector2d& from_base, const Eigen::MatrixX2d& from_offsets,
+                              const Eigen::Vector2d& to_base, const Eigen::MatrixX2d& to_offsets,
+                              double* residual) {
+  check_counts(from_offsets.rows(), to_offsets.rows());
+  const Eigen::RowVector2d cf = from_offsets.colwise().mean(), ct = to_offsets.colwise().mean();
+  const Eigen::MatrixX2d from_centred = from_offsets.rowwise() - cf;
+  const Eigen::MatrixX2d to_centred = to_offsets.rowwise() - ct;
+  RigidMotion2 m;
+  const Eigen::Matrix2d h = from_centred.transpose() * to_centred;
+  m.angle = kabsch_angle(h);
+  const Eigen::Matrix2d r = m.rotation();
+  m.translation = to_base + ct.transpose() - r * (from_base + cf.transpose());
+  if (residual) {
+    *residual = 0.0;
+    for (Eigen::Index i = 0; i < from_centred.rows(); ++i) {
+      *residual = std::max(
+          *residual, (r * from_centred.row(i).transpose() - to_centred.row(i).transpose()).norm());
     }
   }
   return m;

@@ -26,4 +26,15 @@ struct RigidMotion2 {
 [[nodiscard]] RigidMotion2 fit_rigid_motion(const Eigen::MatrixX2d& from,
                                             const Eigen::MatrixX2d& to, double* residual = nullptr);
 
+/// The same fit for points given as a base plus offsets (from_i = from_base + from_offsets.row(i),
+/// likewise `to`) whose offsets are known to a finer absolute accuracy than the bases (the
+/// double-double differences of a layout): the rotation and the residual come from the offsets
+/// alone, so a cluster far smaller than the rounding of its coordinates keeps its angle.
+/// \pre from_offsets.rows() == to_offsets.rows() >= 1. \throw InvalidInputError otherwise.
+[[nodiscard]] RigidMotion2 fit_rigid_motion(const Eigen::Vector2d& from_base,
+                                            const Eigen::MatrixX2d& from_offsets,
+                                            const Eigen::Vector2d& to_base,
+                                            const Eigen::MatrixX2d& to_offsets,
+                                            double* residual = nullptr);
+
 }  // namespace ricci

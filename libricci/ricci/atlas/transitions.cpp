@@ -29,9 +29,68 @@ bool glued(const Mesh& mesh, const Chart& chart, int f, int k, int g) {
   return f_from == g_to && f_to == g_from;
 }
 
+/// The pairs sorted and deduplicated, as two lists.
+std::pair<std::vector<int>, std::vector<int>> unzip_unique(std::vector<std::pair<int, int>> pairs) {
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::pair<std::vector<int>, std::vector<int>> lists;
+  for (const auto& [a, b] : pairs) {
+    lists.first.push_back(a);
+    lists.second.push_back(b);
+  }
+  return lists;
+}
+
+/// Below this extent relative to its coordinates' magnitude, a point set's double positions lose
+/// more than ~1e-12 of its angle: its motions are fitted on the chart's precise offsets.
+constexpr double kResolvedExtent = 1e-4;
+
+/// Chart points by chart vertex: the plain positions, and a base (the first point) with offsets
+/// from it, the central chart's from the layout's double-double differences.
+struct ChartPoints {
+  Eigen::MatrixX2d positions;
+  Eigen::Vector2d base;
+  Eigen::MatrixX2d offsets;
+  [[nodiscard]] bool resolved() const {
+    const double extent = offsets.rowwise().norm().maxCoeff();
+    const double magnitude = positions.rowwise().norm().maxCoeff();
+    return extent >= kResolvedExtent * magnitude;
+  }
+};
+
+ChartPoints chart_points(const AffineAtlas& atlas, int chart, const std::vector<int>& ids) {
+  const Chart& c = atlas.charts[static_cast<size_t>(chart)];
+  ChartPoints p;
+  p.positions.resize(static_cast<Eigen::Index>(ids.size()), 2);
+  p.offsets.resize(p.positions.rows(), 2);
+  for (size_t i = 0; i < ids.size(); ++i)
+    p.positions.row(static_cast<Eigen::Index>(i)) = c.positions.row(ids[i]);
+  p.base = p.positions.row(0).transpose();
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    if (chart == 0) {
+      p.offsets.row(row) = atlas.layout.edge_vector(ids[0], ids[i]).transpose();
+    } else {
+      p.offsets.row(row) = p.positions.row(row) - p.positions.row(0);
+    }
+  }
+  return p;
+}
+
+/// The rigid motion taking chart a's vertices `from` to chart b's `to` (paired by index): on
+/// the positions where both sets are resolved in doubles, otherwise on the precise offsets (the
+/// faces next to a large cone, far smaller than the rounding of their coordinates).
+RigidMotion2 fit_chart_motion(const AffineAtlas& atlas, int a, const std::vector<int>& from,
+                              int b, const std::vector<int>& to, double* residual) {
+  const ChartPoints pa = chart_points(atlas, a, from), pb = chart_points(atlas, b, to);
+  if (pa.resolved() && pb.resolved()) return fit_rigid_motion(pa.positions, pb.positions, residual);
+  return fit_rigid_motion(pa.base, pa.offsets, pb.base, pb.offsets, residual);
+}
+
 /// Splits the faces shared by charts a and b into pieces glued in both, and fits one rigid
 /// motion per piece.
-void fit_pair(const Mesh& mesh, AffineAtlas& atlas, int a, int b, const std::vector<int>& faces) {
+void fit_pair(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atlas, int a, int b,
+              const std::vector<int>& faces) {
   const Chart& ca = atlas.charts[a];
   const Chart& cb = atlas.charts[b];
   DisjointSets sets(faces.size());
@@ -53,26 +112,35 @@ void fit_pair(const Mesh& mesh, AffineAtlas& atlas, int a, int b, const std::vec
     pieces[sets.find(static_cast<int>(i))].push_back(faces[i]);
   }
   for (auto& [root, piece] : pieces) {
-    std::vector<std::pair<int, int>> pairs;
+    std::vector<int> fitted;  // the faces both charts place faithfully, else all
     for (int f : piece) {
+      if (places_faithfully(mesh, lengths, ca, ca.slot(f), f) &&
+          places_faithfully(mesh, lengths, cb, cb.slot(f), f)) {
+        fitted.push_back(f);
+      }
+    }
+    const bool resolved = !fitted.empty();
+    if (!resolved) fitted = piece;
+    std::vector<std::pair<int, int>> pairs;
+    for (int f : fitted) {
       for (int k = 0; k < 3; ++k)
         pairs.push_back({ca.corners(ca.slot(f), k), cb.corners(cb.slot(f), k)});
-    }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    Eigen::MatrixX2d from(pairs.size(), 2), to(pairs.size(), 2);
-    for (size_t i = 0; i < pairs.size(); ++i) {
-      from.row(static_cast<Eigen::Index>(i)) = ca.positions.row(pairs[i].first);
-      to.row(static_cast<Eigen::Index>(i)) = cb.positions.row(pairs[i].second);
     }
     Transition t;
     t.chart_a = a;
     t.chart_b = b;
-    t.motion = fit_rigid_motion(from, to, &t.residual);
+    const auto [from, to] = unzip_unique(std::move(pairs));
+    t.motion = fit_chart_motion(atlas, a, from, b, to, &t.residual);
     t.faces = std::move(piece);
     const int index = static_cast<int>(atlas.transitions.size());
     for (int f : t.faces) atlas.face_transitions[f].push_back(index);
-    atlas.max_transition_residual = std::max(atlas.max_transition_residual, t.residual);
+    if (resolved) {
+      atlas.max_transition_residual = std::max(atlas.max_transition_residual, t.residual);
+    } else {
+      ++atlas.unresolved_transition_pieces;
+      atlas.max_unresolved_transition_residual =
+          std::max(atlas.max_unresolved_transition_residual, t.residual);
+    }
     atlas.transitions.push_back(std::move(t));
   }
 }
@@ -122,7 +190,7 @@ std::vector<std::vector<HalfedgeHandle>> cut_arcs(const Mesh& mesh, const CutGra
 
 }  // namespace
 
-void compute_transitions(const Mesh& mesh, AffineAtlas& atlas) {
+void compute_transitions(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atlas) {
   std::vector<std::vector<int>> charts_of_face(mesh.n_faces());
   for (size_t c = 0; c < atlas.charts.size(); ++c) {
     for (int f : atlas.charts[c].faces) charts_of_face[f].push_back(static_cast<int>(c));
@@ -137,12 +205,14 @@ void compute_transitions(const Mesh& mesh, AffineAtlas& atlas) {
   atlas.transitions.clear();
   atlas.face_transitions.assign(mesh.n_faces(), {});
   atlas.max_transition_residual = 0.0;
-  for (const auto& [pair, faces] : shared) fit_pair(mesh, atlas, pair.first, pair.second, faces);
+  atlas.unresolved_transition_pieces = 0;
+  atlas.max_unresolved_transition_residual = 0.0;
+  for (const auto& [pair, faces] : shared)
+    fit_pair(mesh, lengths, atlas, pair.first, pair.second, faces);
 }
 
 void compute_side_pairings(const Mesh& mesh, AffineAtlas& atlas) {
   const SlicedMesh& s = atlas.sliced;
-  const Eigen::MatrixX2d& x = atlas.layout.positions;
   std::vector<int> loop_of_edge(mesh.n_edges(), -1);
   for (size_t i = 0; i < atlas.cut.loops.size(); ++i) {
     loop_of_edge[mesh.edge_handle(atlas.cut.loops[i].generator).idx()] = static_cast<int>(i);
@@ -161,14 +231,8 @@ void compute_side_pairings(const Mesh& mesh, AffineAtlas& atlas) {
       if (loop_of_edge[mesh.edge_handle(h).idx()] >= 0)
         side.loop = loop_of_edge[mesh.edge_handle(h).idx()];
     }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    Eigen::MatrixX2d from(pairs.size(), 2), to(pairs.size(), 2);
-    for (size_t i = 0; i < pairs.size(); ++i) {
-      from.row(static_cast<Eigen::Index>(i)) = x.row(pairs[i].first);
-      to.row(static_cast<Eigen::Index>(i)) = x.row(pairs[i].second);
-    }
-    side.motion = fit_rigid_motion(from, to, &side.residual);
+    const auto [from, to] = unzip_unique(std::move(pairs));
+    side.motion = fit_chart_motion(atlas, 0, from, 0, to, &side.residual);
     side.halfedges = std::move(arc);
     atlas.max_side_pairing_residual = std::max(atlas.max_side_pairing_residual, side.residual);
     atlas.side_pairings.push_back(std::move(side));

@@ -172,6 +172,37 @@ TEST(Atlas, RigidMotionFitRecoversAMotion) {
   EXPECT_LT(id.translation.norm(), 1e-14);
 }
 
+// A cluster 1e-13 wide at coordinates of size 10 (the faces next to a large cone in a chart of
+// the whole domain): its double positions round at 1e-15, a hundredth of its width, so the fit
+// on them misses the angle; on offsets known to ~1e-30 (a layout's double-double differences)
+// the angle and the residual are exact.
+TEST(Atlas, RigidMotionFitOnOffsetsKeepsTheAngleOfATinyCluster) {
+  RigidMotion2 m;
+  m.angle = 0.7;
+  m.translation = Eigen::Vector2d(1.0, -2.0);
+  const Eigen::Vector2d base(7.3, -6.1);
+  Eigen::MatrixX2d offsets(4, 2);
+  offsets << 0, 0, 1, 0, 0.3, 0.8, -0.5, 0.6;
+  offsets *= 1e-13;
+  const Eigen::Matrix2d r = m.rotation();
+  const Eigen::Vector2d to_base = m.apply(base);
+  const Eigen::MatrixX2d to_offsets = offsets * r.transpose();
+  Eigen::MatrixX2d from(4, 2), to(4, 2);
+  for (int i = 0; i < 4; ++i) {
+    from.row(i) = base.transpose() + offsets.row(i);
+    to.row(i) = to_base.transpose() + to_offsets.row(i);
+  }
+  double rounded = 0.0, precise = 1.0;
+  const RigidMotion2 on_positions = fit_rigid_motion(from, to, &rounded);
+  const RigidMotion2 on_offsets = fit_rigid_motion(base, offsets, to_base, to_offsets, &precise);
+  EXPECT_GT(std::abs(on_positions.angle - m.angle), 1e-4);  // the premise
+  EXPECT_NEAR(on_offsets.angle, m.angle, 1e-12);
+  EXPECT_LT((on_offsets.translation - m.translation).norm(), 1e-13);
+  EXPECT_LT(precise, 1e-25);
+  EXPECT_THROW((void)fit_rigid_motion(base, offsets, to_base, Eigen::MatrixX2d(3, 2)),
+               InvalidInputError);
+}
+
 TEST(Atlas, QueriesRejectWhatTheChartsDoNotHold) {
   const Mesh torus = make_flat_torus_grid(8, 8, 1.0, 1.0);
   const AffineAtlas atlas =
