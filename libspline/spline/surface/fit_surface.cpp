@@ -553,6 +553,35 @@ struct Attempt {
   Superseded superseded;
 };
 
+// The fold-free round the fold rounds' RMS limits refused with the lowest RMS within
+// FitSurfaceOptions::fold_free_rms, if any: delivered rather than a round that folds.
+using FoldFree = std::optional<std::pair<FittedSurface, Round>>;
+
+bool within_fold_free_rms(const FittedSurface& s, const FitSurfaceOptions& options) {
+  return s.surface_dihedral.over_90_deg == 0 &&
+         s.projection_rms <= options.fold_free_rms * s.bbox_diagonal;
+}
+
+// `next` (a refused round) into `fold_free` when it does not fold and is within the RMS, with a
+// lower RMS than the round kept there.
+void keep_if_fold_free(std::pair<FittedSurface, Round>&& next, const FitSurfaceOptions& options,
+                       FoldFree& fold_free) {
+  if (!within_fold_free_rms(next.first, options)) return;
+  if (fold_free && !(next.first.projection_rms < fold_free->first.projection_rms)) return;
+  fold_free = std::move(next);
+}
+
+// `out`, delivered (capped), folds: the fold-free round kept aside is capped in turn and
+// delivered instead when capped it still does not fold and stays within the RMS.
+void deliver_fold_free(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                       FoldFree& fold_free, Round& best, StageClock& clock, FittedSurface& out) {
+  if (!fold_free || out.surface_dihedral.over_90_deg == 0) return;
+  deliver_round(dense, options, fold_free->second, clock, fold_free->first);
+  if (within_fold_free_rms(fold_free->first, options))
+    adopt_round(std::move(*fold_free), out, best);
+  fold_free.reset();
+}
+
 // The largest normal jump across the spline's seams and the patches' rims, in degrees.
 double seam_jump_deg(const FittedSurface& s) {
   return std::max(s.edge_normal_jump_deg, s.fill_normal_jump_deg);
@@ -715,7 +744,8 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
 // scan.fit.face_smoothing are left as the last round set them).
 void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& options,
                        int taper_rings, ScanFitOptions& scan, Round& best,
-                       Superseded& superseded, StageClock& clock, FittedSurface& out) {
+                       Superseded& superseded, FoldFree& fold_free, StageClock& clock,
+                       FittedSurface& out) {
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
   // The refit on the same space was measured on closed inputs; open ones fit the whole scan
@@ -759,8 +789,12 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
       next = next_round(dense, scan, options, clock, out);
     }
     out.refinement.push_back(round_summary(next.first, next.second, options));
-    // More smoothing would only raise the RMS.
-    if (next.first.projection_rms > (at_input_folds ? crease_limit : rms_limit)) break;
+    // More smoothing would only raise the RMS. A refused round without folds may still be
+    // delivered (fold_free_rms).
+    if (next.first.projection_rms > (at_input_folds ? crease_limit : rms_limit)) {
+      keep_if_fold_free(std::move(next), options, fold_free);
+      break;
+    }
     if (!better(next.first, next.second, out, best, options)) {
       if (++without_gain >= kFoldRoundsWithoutGain) break;
       continue;
@@ -776,18 +810,19 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
 // femur.off (a jagged scan) 19 folds stepped, 0 tapered; camel.off 0 stepped, 2 tapered.
 void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
                      ScanFitOptions& scan, Round& best, Superseded& superseded,
-                     StageClock& clock, FittedSurface& out) {
+                     FoldFree& fold_free, StageClock& clock, FittedSurface& out) {
   if (out.surface_dihedral.over_90_deg == 0) return;
   const bool closed = out.input.boundary_loops == 0;
   std::optional<Attempt> start;
   if (closed) start = Attempt{out, best, {}};
-  fold_round_series(dense, options, 0, scan, best, superseded, clock, out);
+  fold_round_series(dense, options, 0, scan, best, superseded, fold_free, clock, out);
   if (!start || out.surface_dihedral.over_90_deg == 0) return;
   Attempt stepped{std::move(out), std::move(best), {}};
   take_history(start->out, stepped.out);
   out = std::move(start->out);
   best = std::move(start->round);
-  fold_round_series(dense, options, kFoldTaperRings, scan, best, start->superseded, clock, out);
+  fold_round_series(dense, options, kFoldTaperRings, scan, best, start->superseded, fold_free,
+                    clock, out);
   if (better(out, best, stepped.out, stepped.round, options)) {
     for (auto& s : start->superseded) superseded.push_back(std::move(s));
     return;
@@ -944,6 +979,8 @@ void check_options(const FitSurfaceOptions& o,
           "in [0, 1) (a fraction of the diagonal; 0: no hole capped)");
   require(o.fold_rms_goal >= 0.0 && o.fold_rms_goal < 1.0, "fold_rms_goal",
           "in [0, 1) (a fraction of the diagonal)");
+  require(o.fold_free_rms >= 0.0 && o.fold_free_rms < 1.0, "fold_free_rms",
+          "in [0, 1) (a fraction of the diagonal; 0: off)");
   require(o.rms_goal >= 0.0 && o.rms_goal < 1.0, "rms_goal",
           "in [0, 1) (a fraction of the diagonal; 0: none)");
 }
@@ -1000,12 +1037,13 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   // on as without them (refinement, fold rounds), and an early attempt left with folds is
   // delivered instead if it is better.
   std::optional<Attempt> early;
+  FoldFree fold_free;
   bool delivered = false, refined = false;
   if (out.input.boundary_loops == 0 && options.tolerance == 0.0 &&
       options.refinement_rounds > 0 && options.fold_rounds > 0 &&
       out.surface_dihedral.over_90_deg > 0) {
     Attempt first{out, best, {}};
-    run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+    run_fold_rounds(dense, options, scan, best, superseded, fold_free, clock, out);
     const bool unfolded = out.surface_dihedral.over_90_deg == 0;
     if (unfolded) {
       // Capped, the surface must still not fold (else the refinement is tried).
@@ -1031,7 +1069,8 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   }
 
   // Without a refined round they would repeat the early attempt's rounds exactly.
-  if (!early || refined) run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+  if (!early || refined)
+    run_fold_rounds(dense, options, scan, best, superseded, fold_free, clock, out);
   if (early && better(early->out, early->round, out, best, options)) {
     // The fold rounds on the first round did better than the refinement and its fold rounds.
     take_history(early->out, out);
@@ -1046,6 +1085,7 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
                                        : std::vector<char>{};
     refit_folded_boundary(dense, options, band, scan, best, clock, out);
     deliver_best_round(dense, options, superseded, best, clock, out);
+    deliver_fold_free(dense, options, fold_free, best, clock, out);
   }
   if (single_round) out.refinement.push_back(round_summary(out, best, options));
 
