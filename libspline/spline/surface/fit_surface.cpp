@@ -738,6 +738,13 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
   return next.projection_rms < out.projection_rms;
 }
 
+// `floor` into `face_smoothing` (grown to its size): the larger of the two by face.
+void raise_floor(const std::vector<double>& floor, std::vector<double>& face_smoothing) {
+  face_smoothing.resize(floor.size(), 0.0);
+  for (std::size_t f = 0; f < floor.size(); ++f)
+    face_smoothing[f] = std::max(face_smoothing[f], floor[f]);
+}
+
 // Fold rounds: the faces around the folds left fit again with stronger fairing (the same
 // space, so the domain's face indices stay), a round kept when it folds less; the replaced
 // rounds go to `superseded`. Open inputs fit the whole scan again (scan.domain and
@@ -774,11 +781,8 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
     FoldSmoothingOptions floor_options;
     floor_options.level = level;
     floor_options.taper_rings = taper_rings;
-    const std::vector<double> floor =
-        fold_smoothing_floor(out.surface.domain, faces_with_folds(out), floor_options);
-    face_smoothing.resize(floor.size(), 0.0);
-    for (std::size_t f = 0; f < floor.size(); ++f)
-      face_smoothing[f] = std::max(face_smoothing[f], floor[f]);
+    raise_floor(fold_smoothing_floor(out.surface.domain, faces_with_folds(out), floor_options),
+                face_smoothing);
     std::pair<FittedSurface, Round> next;
     if (closed) {
       next = refit_round(dense, options, face_smoothing, best, clock, out);
@@ -797,6 +801,10 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
     }
     if (!better(next.first, next.second, out, best, options)) {
       if (++without_gain >= kFoldRoundsWithoutGain) break;
+      // The folds it made elsewhere are smoothed too in the next round.
+      raise_floor(fold_smoothing_floor(out.surface.domain, faces_with_folds(next.first),
+                                       floor_options),
+                  face_smoothing);
       continue;
     }
     without_gain = 0;
