@@ -387,6 +387,20 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   return result;
 }
 
+FitResult fit_control_points(const ManifoldSplineSpace& space,
+                             const std::vector<DomainPoint>& setup_parameters,
+                             const std::vector<DomainPoint>& parameters,
+                             const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
+                             const FitOptions& options) {
+  const ricci::Stopwatch start;
+  check_sizes(space, parameters, points, initial);
+  const FitSetup setup = make_fit_setup(space, initial, options, setup_parameters);
+  const double setup_seconds = start.seconds();
+  FitResult result = fit_with_setup(space, setup, parameters, points, initial, initial, options);
+  result.seconds_assemble += setup_seconds;
+  return result;
+}
+
 Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& start,
                              const Eigen::Vector3d& target, int iterations) {
   const ManifoldSplineSpace& space = *spline.space;
@@ -716,6 +730,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   if (options.constrained_fit && options.fair_r >= 0) fit_options.constraint_r = options.fair_r;
   // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
   const FitSetup setup = prepare_fit(*space, parameters, data, initial, fit_options);
+  result.setup_parameters = parameters;
   result.fit = fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options);
   result.timings.fit = t.seconds();
 

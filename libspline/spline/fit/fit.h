@@ -92,6 +92,21 @@ struct FitResult {
                                            const Eigen::MatrixX3d& initial,
                                            const FitOptions& options = {});
 
+/// fit_control_points with the thin-plate and anchor weights set up from `setup_parameters`
+/// rather than `parameters`: their scale (the count of points in the domain) and the faces
+/// FitOptions::sparse_smoothing raises (those reached by few points) follow setup_parameters.
+/// fit_scan sets them up once, before its parameter corrections
+/// (ScanFitResult::setup_parameters); a refit of its data with the corrected parameters passes
+/// them here and smooths every face as the fit it repeats did. The two may differ in size
+/// (fit_scan appends missed boundary samples after the setup).
+/// \throw as fit_control_points.
+[[nodiscard]] FitResult fit_control_points(const ManifoldSplineSpace& space,
+                                           const std::vector<DomainPoint>& setup_parameters,
+                                           const std::vector<DomainPoint>& parameters,
+                                           const Eigen::MatrixX3d& points,
+                                           const Eigen::MatrixX3d& initial,
+                                           const FitOptions& options);
+
 /// The closest point of the spline to `target`, by Gauss-Newton steps on |F(u) - target|^2 from
 /// `start`, moving between faces through the neighbourhood charts (stops at the hole's rim).
 struct Projection {
@@ -239,6 +254,9 @@ struct ScanFitResult {
   Eigen::MatrixX3d data_points;
   std::vector<DomainPoint> data_parameters;
   FitOptions fit_options;
+  /// The parameters the fit's thin-plate weights were set up from (those of the first fit,
+  /// before the corrections; fit_control_points' setup_parameters for a refit).
+  std::vector<DomainPoint> setup_parameters;
 };
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the

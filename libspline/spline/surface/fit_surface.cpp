@@ -348,6 +348,7 @@ struct Round {
   std::vector<double> vertex_distance;
   Eigen::MatrixX3d data_points;  // fit_scan's, for a refit on the same space
   std::vector<DomainPoint> data_parameters;
+  std::vector<DomainPoint> setup_parameters;  // fit_scan's, for the refit's thin-plate weights
   FitOptions fit;
   double fit_rms_at_parameters = 0.0;  // fit_scan's FitResult::rms_at_parameters
 };
@@ -405,6 +406,7 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
   round.domain = std::move(fitted.domain);
   round.data_points = std::move(fitted.data_points);
   round.data_parameters = std::move(fitted.data_parameters);
+  round.setup_parameters = std::move(fitted.setup_parameters);
   round.fit = std::move(fitted.fit_options);
   round.fit_rms_at_parameters = fitted.fit.rms_at_parameters;
   take_scan(std::move(fitted), out);
@@ -471,7 +473,11 @@ bool correct_smoothed_parameters(const ManifoldSpline& spline,
 // A fold round: out's spline fitted again on its own space (the same domain, atlas and
 // parameters as `best`), each face smoothed at least face_smoothing[f], the parameters on those
 // faces corrected and the fit run again; measured as fit_round measures. No atlas, space or
-// parameters of the whole scan are computed again.
+// parameters of the whole scan are computed again. The thin-plate weights are set up from
+// fit_scan's setup parameters, as its own fit's were: with the corrected parameters instead, the
+// faces sparse_smoothing raises change all over the surface, and a refit without any floor
+// moved armadillo.obj's control points by up to 0.6% of the diagonal (1e-9 with them), folding
+// faces 12 rings from any fold it was meant to remove.
 std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
                                             const FitSurfaceOptions& options,
                                             const std::vector<double>& face_smoothing,
@@ -495,15 +501,17 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   round.domain = best.domain;
   round.data_points = best.data_points;
   round.data_parameters = best.data_parameters;
+  round.setup_parameters = best.setup_parameters;
   round.fit = best.fit;
-  FitResult refit = fit_control_points(*space, round.data_parameters, round.data_points,
-                                       initial, fit);
+  FitResult refit = fit_control_points(*space, round.setup_parameters, round.data_parameters,
+                                       round.data_points, initial, fit);
   next.surface.spline.space = space;
   next.surface.spline.control_points = refit.control_points;
   // The parameter correction (as fit_scan's) of the points on the faces smoothed more, where
   // the surface moved, then the fit again: without it the foot points' error adds to the RMS.
   if (correct_smoothed_parameters(next.surface.spline, face_smoothing, round)) {
-    refit = fit_control_points(*space, round.data_parameters, round.data_points, initial, fit);
+    refit = fit_control_points(*space, round.setup_parameters, round.data_parameters,
+                               round.data_points, initial, fit);
     next.surface.spline.control_points = refit.control_points;
   }
   next.fit_constraint_residual = refit.max_constraint_residual;
@@ -544,6 +552,35 @@ struct Attempt {
   Round round;
   Superseded superseded;
 };
+
+// The fold-free round the fold rounds' RMS limits refused with the lowest RMS within
+// FitSurfaceOptions::fold_free_rms, if any: delivered rather than a round that folds.
+using FoldFree = std::optional<std::pair<FittedSurface, Round>>;
+
+bool within_fold_free_rms(const FittedSurface& s, const FitSurfaceOptions& options) {
+  return s.surface_dihedral.over_90_deg == 0 &&
+         s.projection_rms <= options.fold_free_rms * s.bbox_diagonal;
+}
+
+// `next` (a refused round) into `fold_free` when it does not fold and is within the RMS, with a
+// lower RMS than the round kept there.
+void keep_if_fold_free(std::pair<FittedSurface, Round>&& next, const FitSurfaceOptions& options,
+                       FoldFree& fold_free) {
+  if (!within_fold_free_rms(next.first, options)) return;
+  if (fold_free && !(next.first.projection_rms < fold_free->first.projection_rms)) return;
+  fold_free = std::move(next);
+}
+
+// `out`, delivered (capped), folds: the fold-free round kept aside is capped in turn and
+// delivered instead when capped it still does not fold and stays within the RMS.
+void deliver_fold_free(const ricci::Mesh& dense, const FitSurfaceOptions& options,
+                       FoldFree& fold_free, Round& best, StageClock& clock, FittedSurface& out) {
+  if (!fold_free || out.surface_dihedral.over_90_deg == 0) return;
+  deliver_round(dense, options, fold_free->second, clock, fold_free->first);
+  if (within_fold_free_rms(fold_free->first, options))
+    adopt_round(std::move(*fold_free), out, best);
+  fold_free.reset();
+}
 
 // The largest normal jump across the spline's seams and the patches' rims, in degrees.
 double seam_jump_deg(const FittedSurface& s) {
@@ -701,13 +738,21 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
   return next.projection_rms < out.projection_rms;
 }
 
+// `floor` into `face_smoothing` (grown to its size): the larger of the two by face.
+void raise_floor(const std::vector<double>& floor, std::vector<double>& face_smoothing) {
+  face_smoothing.resize(floor.size(), 0.0);
+  for (std::size_t f = 0; f < floor.size(); ++f)
+    face_smoothing[f] = std::max(face_smoothing[f], floor[f]);
+}
+
 // Fold rounds: the faces around the folds left fit again with stronger fairing (the same
 // space, so the domain's face indices stay), a round kept when it folds less; the replaced
 // rounds go to `superseded`. Open inputs fit the whole scan again (scan.domain and
 // scan.fit.face_smoothing are left as the last round set them).
 void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& options,
                        int taper_rings, ScanFitOptions& scan, Round& best,
-                       Superseded& superseded, StageClock& clock, FittedSurface& out) {
+                       Superseded& superseded, FoldFree& fold_free, StageClock& clock,
+                       FittedSurface& out) {
   std::vector<double> face_smoothing;
   double level = options.fold_smoothing;
   // The refit on the same space was measured on closed inputs; open ones fit the whole scan
@@ -736,11 +781,8 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
     FoldSmoothingOptions floor_options;
     floor_options.level = level;
     floor_options.taper_rings = taper_rings;
-    const std::vector<double> floor =
-        fold_smoothing_floor(out.surface.domain, faces_with_folds(out), floor_options);
-    face_smoothing.resize(floor.size(), 0.0);
-    for (std::size_t f = 0; f < floor.size(); ++f)
-      face_smoothing[f] = std::max(face_smoothing[f], floor[f]);
+    raise_floor(fold_smoothing_floor(out.surface.domain, faces_with_folds(out), floor_options),
+                face_smoothing);
     std::pair<FittedSurface, Round> next;
     if (closed) {
       next = refit_round(dense, options, face_smoothing, best, clock, out);
@@ -751,10 +793,18 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
       next = next_round(dense, scan, options, clock, out);
     }
     out.refinement.push_back(round_summary(next.first, next.second, options));
-    // More smoothing would only raise the RMS.
-    if (next.first.projection_rms > (at_input_folds ? crease_limit : rms_limit)) break;
+    // More smoothing would only raise the RMS. A refused round without folds may still be
+    // delivered (fold_free_rms).
+    if (next.first.projection_rms > (at_input_folds ? crease_limit : rms_limit)) {
+      keep_if_fold_free(std::move(next), options, fold_free);
+      break;
+    }
     if (!better(next.first, next.second, out, best, options)) {
       if (++without_gain >= kFoldRoundsWithoutGain) break;
+      // The folds it made elsewhere are smoothed too in the next round.
+      raise_floor(fold_smoothing_floor(out.surface.domain, faces_with_folds(next.first),
+                                       floor_options),
+                  face_smoothing);
       continue;
     }
     without_gain = 0;
@@ -768,18 +818,19 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
 // femur.off (a jagged scan) 19 folds stepped, 0 tapered; camel.off 0 stepped, 2 tapered.
 void run_fold_rounds(const ricci::Mesh& dense, const FitSurfaceOptions& options,
                      ScanFitOptions& scan, Round& best, Superseded& superseded,
-                     StageClock& clock, FittedSurface& out) {
+                     FoldFree& fold_free, StageClock& clock, FittedSurface& out) {
   if (out.surface_dihedral.over_90_deg == 0) return;
   const bool closed = out.input.boundary_loops == 0;
   std::optional<Attempt> start;
   if (closed) start = Attempt{out, best, {}};
-  fold_round_series(dense, options, 0, scan, best, superseded, clock, out);
+  fold_round_series(dense, options, 0, scan, best, superseded, fold_free, clock, out);
   if (!start || out.surface_dihedral.over_90_deg == 0) return;
   Attempt stepped{std::move(out), std::move(best), {}};
   take_history(start->out, stepped.out);
   out = std::move(start->out);
   best = std::move(start->round);
-  fold_round_series(dense, options, kFoldTaperRings, scan, best, start->superseded, clock, out);
+  fold_round_series(dense, options, kFoldTaperRings, scan, best, start->superseded, fold_free,
+                    clock, out);
   if (better(out, best, stepped.out, stepped.round, options)) {
     for (auto& s : start->superseded) superseded.push_back(std::move(s));
     return;
@@ -936,6 +987,8 @@ void check_options(const FitSurfaceOptions& o,
           "in [0, 1) (a fraction of the diagonal; 0: no hole capped)");
   require(o.fold_rms_goal >= 0.0 && o.fold_rms_goal < 1.0, "fold_rms_goal",
           "in [0, 1) (a fraction of the diagonal)");
+  require(o.fold_free_rms >= 0.0 && o.fold_free_rms < 1.0, "fold_free_rms",
+          "in [0, 1) (a fraction of the diagonal; 0: off)");
   require(o.rms_goal >= 0.0 && o.rms_goal < 1.0, "rms_goal",
           "in [0, 1) (a fraction of the diagonal; 0: none)");
 }
@@ -992,12 +1045,13 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   // on as without them (refinement, fold rounds), and an early attempt left with folds is
   // delivered instead if it is better.
   std::optional<Attempt> early;
+  FoldFree fold_free;
   bool delivered = false, refined = false;
   if (out.input.boundary_loops == 0 && options.tolerance == 0.0 &&
       options.refinement_rounds > 0 && options.fold_rounds > 0 &&
       out.surface_dihedral.over_90_deg > 0) {
     Attempt first{out, best, {}};
-    run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+    run_fold_rounds(dense, options, scan, best, superseded, fold_free, clock, out);
     const bool unfolded = out.surface_dihedral.over_90_deg == 0;
     if (unfolded) {
       // Capped, the surface must still not fold (else the refinement is tried).
@@ -1023,7 +1077,8 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   }
 
   // Without a refined round they would repeat the early attempt's rounds exactly.
-  if (!early || refined) run_fold_rounds(dense, options, scan, best, superseded, clock, out);
+  if (!early || refined)
+    run_fold_rounds(dense, options, scan, best, superseded, fold_free, clock, out);
   if (early && better(early->out, early->round, out, best, options)) {
     // The fold rounds on the first round did better than the refinement and its fold rounds.
     take_history(early->out, out);
@@ -1038,6 +1093,7 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
                                        : std::vector<char>{};
     refit_folded_boundary(dense, options, band, scan, best, clock, out);
     deliver_best_round(dense, options, superseded, best, clock, out);
+    deliver_fold_free(dense, options, fold_free, best, clock, out);
   }
   if (single_round) out.refinement.push_back(round_summary(out, best, options));
 

@@ -89,6 +89,13 @@ struct FitSurfaceOptions {
   /// Closed inputs: RMS (projection, fraction of the input's bounding-box diagonal) the fold
   /// rounds may always reach, below the 0.2% asked of smooth scans; 0: the growth factor alone.
   double fold_rms_goal = 0.0019;
+  /// The delivery rule between folds and RMS (issue 15's acceptance: no fold, RMS below 0.2% of
+  /// the diagonal on a smooth scan): a fold round that leaves no fold but is refused by the
+  /// limits above is kept aside when its RMS (projection) is within this fraction of the
+  /// diagonal, and when the round otherwise delivered folds (capped), the fold-free one with the
+  /// lowest RMS is capped and delivered instead if it still does not fold and stays within it.
+  /// 0: off (a folded round may be delivered whatever the fold-free ones' RMS).
+  double fold_free_rms = 0.002;
   /// Measures of the delivered surface against the input (coverage tolerance, threads).
   ScanDistanceOptions measure;
   /// Denser domain around the cone (levels 0: off; ricci/singularity/one_cone.h).
@@ -102,8 +109,8 @@ struct FitSurfaceOptions {
 /// density_refine_levels in [0, 6], density_refine_turn_deg in (0, 180), cone_refinement.levels
 /// in [0, 4], refinement_rounds in [0, 8], tolerance in [0, 1), max_surface_deviation in
 /// [0, 10], fold_rounds in [0, 8], fold_smoothing in (0, 1e6), fold_rms_growth >= 1,
-/// crease_fold_rms_growth >= 1, fold_rms_goal and rms_goal in [0, 1), small_hole_diameter in
-/// [0, 1). `name`
+/// crease_fold_rms_growth >= 1, fold_rms_goal, fold_free_rms and rms_goal in [0, 1),
+/// small_hole_diameter in [0, 1). `name`
 /// spells a field (given as "domain_faces", "cone_refinement", ...) the way the caller's user
 /// knows it, e.g. msp fit's
 /// "--domain-faces" (default: the field's own name).

@@ -374,5 +374,32 @@ TEST(FitSurfaceFoldRounds, RunBeforeTheRefinementAndSkipIt) {
   EXPECT_LT(r.fit_rms, 0.002 * r.bbox_diagonal);
 }
 
+// The delivery rule between folds and RMS (FitSurfaceOptions::fold_free_rms): with the fold
+// rounds' RMS limits at their tightest (no growth, no goal) the plate's fold rounds, which raise
+// the RMS, are refused, and without the rule its first fit, which folds at the rim, is
+// delivered. With it, the refused round that leaves no fold within the acceptance RMS is
+// delivered instead: no fold, RMS still within 0.2% of the diagonal.
+TEST(FitSurfaceFoldRounds, AFoldFreeRoundWithinTheAcceptanceBeatsAFoldedOne) {
+  FitSurfaceOptions options;
+  options.refinement_rounds = 0;
+  options.fold_rms_growth = 1.0;
+  options.fold_rms_goal = 0.0;
+  options.fold_free_rms = 0.0;
+  const FittedSurface folded = fit_surface(plate(0.25), options);
+  ASSERT_GE(folded.refinement.size(), 2u);
+  EXPECT_GT(folded.surface_dihedral.over_90_deg, 0);
+  options.fold_free_rms = FitSurfaceOptions{}.fold_free_rms;
+  const FittedSurface r = fit_surface(plate(0.25), options);
+  EXPECT_EQ(r.surface_dihedral.over_90_deg, 0);
+  EXPECT_TRUE(r.watertight);
+  EXPECT_GT(r.projection_rms, folded.projection_rms);  // error traded for the folds
+  EXPECT_LT(r.projection_rms, 0.002 * r.bbox_diagonal);
+  EXPECT_LT(r.fit_rms, 0.002 * r.bbox_diagonal);
+  // The same rounds were run; only the delivery differs.
+  ASSERT_EQ(r.refinement.size(), folded.refinement.size());
+  for (std::size_t k = 0; k < r.refinement.size(); ++k)
+    EXPECT_EQ(r.refinement[k].folds, folded.refinement[k].folds);
+}
+
 }  // namespace
 }  // namespace spline
