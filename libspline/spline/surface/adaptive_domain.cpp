@@ -410,22 +410,32 @@ ricci::Mesh split_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
     normals.row(i) = ricci::to_eigen(refined.normal(v)).transpose();
   }
   const auto hits = ricci::closest_points(dense, moved, normals, 2.0 * mean_edge_length(refined));
-  // First every new vertex onto its closest scan point; then, with farthest_point, the chosen
-  // vertices on to the farthest scan vertices, a move that turns a face falling back to the
-  // first placement.
-  std::vector<Eigen::Vector3d> targets;
-  for (auto v : refined.vertices()) targets.push_back(ricci::to_eigen(refined.point(v)));
+  // Targets by vertex: the old vertices stay, the new ones go to their closest scan points;
+  // with farthest_point, the vertices nearest to the flagged faces' farthest scan vertices go
+  // there instead, checked against the scan's normals.
+  std::vector<Eigen::Vector3d> closest;
+  for (auto v : refined.vertices()) closest.push_back(ricci::to_eigen(refined.point(v)));
   for (Eigen::Index i = 0; i < added; ++i)
-    targets[static_cast<std::size_t>(first_new + i)] = hits[static_cast<std::size_t>(i)].point;
-  const std::vector<Eigen::Vector3d> parent = face_normals(refined);
-  move_to(refined, targets, parent);
-  std::vector<char> at_farthest(targets.size(), 0);
-  if (placement == SplitPlacement::farthest_point) {
-    for (auto v : refined.vertices())
-      targets[static_cast<std::size_t>(v.idx())] = ricci::to_eigen(refined.point(v));
+    closest[static_cast<std::size_t>(first_new + i)] = hits[static_cast<std::size_t>(i)].point;
+  std::vector<Eigen::Vector3d> farthest = closest;
+  std::vector<char> at_farthest(closest.size(), 0);
+  if (placement == SplitPlacement::closest_point) {
+    move_to(refined, closest, face_normals(refined));
+  } else {
     place_at_farthest(domain, refined, ricci::to_arrays(dense).V, refine,
-                      static_cast<int>(first_new), targets, at_farthest);
-    move_to(refined, targets, scan_facing_normals(refined, dense));
+                      static_cast<int>(first_new), farthest, at_farthest);
+    const std::vector<Eigen::Vector3d> reference = scan_facing_normals(refined, dense);
+    const std::vector<ricci::Mesh::Point> before(refined.points(),
+                                                 refined.points() + refined.n_vertices());
+    move_to(refined, farthest, reference);
+    // The new vertices an undone move left on their edge: their closest scan point instead.
+    std::vector<Eigen::Vector3d> retry;
+    for (auto v : refined.vertices()) {
+      const auto i = static_cast<std::size_t>(v.idx());
+      const bool left = v.idx() >= first_new && refined.point(v) == before[i];
+      retry.push_back(left ? closest[i] : ricci::to_eigen(refined.point(v)));
+    }
+    move_to(refined, retry, reference);
   }
   refined.release_vertex_normals();
   refined.release_face_normals();
@@ -433,7 +443,7 @@ ricci::Mesh split_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
     pinned->resize(refined.n_vertices(), 0);
     for (auto v : refined.vertices()) {
       const auto i = static_cast<std::size_t>(v.idx());
-      if (at_farthest[i] && ricci::to_eigen(refined.point(v)) == targets[i]) (*pinned)[i] = 1;
+      if (at_farthest[i] && ricci::to_eigen(refined.point(v)) == farthest[i]) (*pinned)[i] = 1;
     }
   }
   return refined;
