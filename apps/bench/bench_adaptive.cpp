@@ -1,7 +1,6 @@
 // msp-bench adaptive [--rms F] [--from N] [--base-share F] [--max-turn D] [--thickness E]
-// [--by-turn] [--by-residual] [--relax N] [--adaptive-only] [paths...]: the adaptive domain (msp
-// fit
-// --adaptive-domain) against the uniform one. For each model and each domain, fit_surface on a
+// [--by-turn] [--by-residual] [--relax N] [--closest] [--adaptive-only] [paths...]: the adaptive
+// domain (msp fit --adaptive-domain) against the uniform one. For each model and each domain, fit_surface on a
 // ladder of domain targets (400 up, x1.25) until the delivered surface's RMS over every
 // input vertex falls below F (0.1% of the diagonal): per step the domain faces, control points,
 // RMS and max over the diagonal, folds and seconds (and as a multiple of one CHOLMOD solve of
@@ -9,7 +8,8 @@
 // between the two steps around it) and their ratio. Refinement and fold rounds are off: the
 // domains alone are compared. --from starts both ladders at another target; --base-share,
 // --max-turn, --thickness, --by-turn (split by normal turn, not by the scan's deviation),
-// --by-residual (by what a local quadric misses of the scan) and --relax set the adaptive
+// --by-residual (by what a local quadric misses of the scan), --relax and --closest (split
+// vertices on the closest scan point only, SplitPlacement::closest_point) set the adaptive
 // domain's sizing (AdaptiveDomainOptions); --adaptive-only skips the uniform ladder.
 #include <cmath>
 #include <cstdio>
@@ -109,6 +109,8 @@ int run_adaptive_benchmark(int argc, char** argv) {
       run.sizing.split_by = spline::AdaptiveDomainOptions::SplitBy::normal_turn;
     } else if (std::strcmp(argv[i], "--by-residual") == 0) {
       run.sizing.split_by = spline::AdaptiveDomainOptions::SplitBy::quadric_residual;
+    } else if (std::strcmp(argv[i], "--closest") == 0) {
+      run.sizing.placement = spline::SplitPlacement::closest_point;
     } else if (std::strcmp(argv[i], "--adaptive-only") == 0) {
       run.uniform = false;
     } else {

@@ -67,7 +67,7 @@ const Benchmark kBenchmarks[] = {
     {"adaptive", msp::bench::run_adaptive_benchmark,
      "issue 15: control points for 0.1% RMS, adaptive vs uniform domain (venus, horse) [--rms F]\n"
      "      [--from N] [--base-share F] [--max-turn D] [--thickness E] [--by-turn]\n"
-     "      [--by-residual] [--relax N] [--adaptive-only]"},
+     "      [--by-residual] [--relax N] [--closest] [--adaptive-only]"},
     {"check-glb", msp::bench::run_check_glb,
      "OUT.glb SCAN [--json]: the written surface against the scan, both ways (rms, max, coverage, folds)"},
 };

@@ -232,7 +232,8 @@ void undo_turning_moves(ricci::Mesh& mesh, const std::vector<Eigen::Vector3d>& b
 // neighbours' mean within its tangent plane, then onto the scan (oriented closest point); a
 // vertex whose move turns a face by more than 60 degrees stays. Evens out the red-green
 // closures' obtuse halves and the 4:1 size steps while the grading stays.
-void relax(ricci::Mesh& mesh, const ricci::Mesh& dense, int iterations) {
+void relax(ricci::Mesh& mesh, const ricci::Mesh& dense, int iterations,
+           const std::vector<char>& pinned) {
   const double search = 2.0 * mean_edge_length(mesh);
   for (int it = 0; it < iterations; ++it) {
     mesh.request_vertex_normals();
@@ -250,7 +251,7 @@ void relax(ricci::Mesh& mesh, const ricci::Mesh& dense, int iterations) {
         ++count;
       }
       Eigen::Vector3d d = Eigen::Vector3d::Zero();
-      if (!mesh.is_boundary(v) && count > 0) {
+      if (!mesh.is_boundary(v) && !pinned[static_cast<std::size_t>(v.idx())] && count > 0) {
         d = 0.5 * (mean / count - p);
         d -= d.dot(nv) * nv;
       }
@@ -261,7 +262,7 @@ void relax(ricci::Mesh& mesh, const ricci::Mesh& dense, int iterations) {
     const std::vector<Eigen::Vector3d> before = face_normals(mesh);
     const std::vector<ricci::Mesh::Point> old(mesh.points(), mesh.points() + mesh.n_vertices());
     for (auto v : mesh.vertices()) {
-      if (mesh.is_boundary(v)) continue;
+      if (mesh.is_boundary(v) || pinned[static_cast<std::size_t>(v.idx())]) continue;
       const Eigen::Vector3d& q = hits[static_cast<std::size_t>(v.idx())].point;
       mesh.set_point(v, ricci::Mesh::Point(q.x(), q.y(), q.z()));
     }
@@ -269,6 +270,183 @@ void relax(ricci::Mesh& mesh, const ricci::Mesh& dense, int iterations) {
     mesh.release_vertex_normals();
     mesh.release_face_normals();
   }
+}
+
+// A new vertex's move onto the scan is undone only where it turns a face over (90 degrees or
+// more) or flattens it: smaller turns are what the splits are for on curved parts.
+constexpr double kMinSplitMoveCos = 1e-3;
+
+// For each face flagged in `refine`, the scan vertex farthest from it among those whose closest
+// face of `domain` it is (face -1 where none is).
+struct FarthestPoint {
+  int vertex = -1;           // index into the scan's vertices
+  double distance = -1.0;    // to the face
+  Eigen::Vector3d foot;      // its closest point on the face
+};
+
+std::vector<FarthestPoint> farthest_scan_vertices(const ricci::Mesh& domain,
+                                                  const Eigen::MatrixX3d& points,
+                                                  const std::vector<char>& refine) {
+  std::vector<FarthestPoint> out(domain.n_faces());
+  const std::vector<ricci::SurfacePoint> hits = ricci::closest_points(domain, points);
+  for (std::size_t k = 0; k < hits.size(); ++k) {
+    const int f = hits[k].face;
+    if (f < 0 || !refine[static_cast<std::size_t>(f)]) continue;
+    FarthestPoint& far = out[static_cast<std::size_t>(f)];
+    if (hits[k].distance <= far.distance) continue;
+    far = {static_cast<int>(k), hits[k].distance, hits[k].point};
+  }
+  return out;
+}
+
+// The midpoint vertex of `refined` (index >= first_new) on the edge between old vertices a and
+// b: the new vertex adjacent to both (invalid when the edge was not split).
+ricci::VertexHandle edge_midpoint(const ricci::Mesh& refined, ricci::VertexHandle a,
+                                  ricci::VertexHandle b, int first_new) {
+  for (auto w : refined.vv_range(a)) {
+    if (w.idx() < first_new) continue;
+    for (auto x : refined.vv_range(w))
+      if (x == b) return w;
+  }
+  return ricci::VertexHandle();
+}
+
+// The interior vertex of `refined` among flagged face f's corners and edge midpoints nearest
+// to `foot` (invalid when all are on the boundary).
+ricci::VertexHandle nearest_split_vertex(const ricci::Mesh& domain, const ricci::Mesh& refined,
+                                         ricci::FaceHandle f, const Eigen::Vector3d& foot,
+                                         int first_new) {
+  ricci::VertexHandle best;
+  double best_d = 0.0;
+  const auto consider = [&](ricci::VertexHandle v) {
+    if (!v.is_valid() || refined.is_boundary(v)) return;
+    const double d = (ricci::to_eigen(refined.point(v)) - foot).norm();
+    if (!best.is_valid() || d < best_d) best = v, best_d = d;
+  };
+  for (auto h : domain.fh_range(f)) {
+    const auto a = domain.from_vertex_handle(h), b = domain.to_vertex_handle(h);
+    consider(refined.vertex_handle(a.idx()));
+    consider(edge_midpoint(refined, a, b, first_new));
+  }
+  return best;
+}
+
+// `targets` (by vertex of `refined`) with, for each flagged face of `domain`, the vertex among
+// its corners and midpoints nearest to the foot of its farthest scan vertex set to that scan
+// vertex (and flagged in `placed`); where two faces pick one vertex, the farther scan vertex
+// wins.
+void place_at_farthest(const ricci::Mesh& domain, const ricci::Mesh& refined,
+                       const Eigen::MatrixX3d& points, const std::vector<char>& refine,
+                       int first_new, std::vector<Eigen::Vector3d>& targets,
+                       std::vector<char>& placed) {
+  const std::vector<FarthestPoint> farthest = farthest_scan_vertices(domain, points, refine);
+  std::vector<double> claimed(targets.size(), -1.0);
+  for (auto f : domain.faces()) {
+    const FarthestPoint& far = farthest[static_cast<std::size_t>(f.idx())];
+    if (far.vertex < 0) continue;
+    const auto v = nearest_split_vertex(domain, refined, f, far.foot, first_new);
+    if (!v.is_valid()) continue;
+    const auto i = static_cast<std::size_t>(v.idx());
+    if (far.distance <= claimed[i]) continue;
+    claimed[i] = far.distance;
+    targets[i] = points.row(far.vertex).transpose();
+    placed[i] = 1;
+  }
+}
+
+// The reference normals the split moves are checked against: for each face of `mesh`, the
+// normal of the scan's face closest to its centroid where the face agrees with it (within 90
+// degrees), else the face's own. A farthest-point move may swing a face across a part thinner
+// than the face; checked against its own normal alone, it could end facing against the scan.
+std::vector<Eigen::Vector3d> scan_facing_normals(const ricci::Mesh& mesh,
+                                                 const ricci::Mesh& dense) {
+  std::vector<Eigen::Vector3d> normals = face_normals(mesh);
+  Eigen::MatrixX3d centroids(static_cast<Eigen::Index>(mesh.n_faces()), 3);
+  for (auto f : mesh.faces())
+    centroids.row(f.idx()) = ricci::to_eigen(mesh.calc_face_centroid(f)).transpose();
+  const std::vector<ricci::SurfacePoint> hits = ricci::closest_points(dense, centroids);
+  for (std::size_t f = 0; f < normals.size(); ++f) {
+    if (hits[f].face < 0) continue;
+    const Eigen::Vector3d n = unit_normal(dense, dense.face_handle(hits[f].face));
+    if (n.dot(normals[f]) > 0.0) normals[f] = n;
+  }
+  return normals;
+}
+
+// The interior vertices of `mesh` moved to `targets` (by vertex); the moves that turn a face
+// from `reference` (unit normals by face) by 90 degrees or more, or flatten it, are undone.
+// Next to a boundary the closest scan point of a midpoint over a notch of the scan's boundary
+// lies on that boundary, in line with the domain's boundary edge: such a face would be flat.
+void move_to(ricci::Mesh& mesh, const std::vector<Eigen::Vector3d>& targets,
+             const std::vector<Eigen::Vector3d>& reference) {
+  const std::vector<ricci::Mesh::Point> old(mesh.points(), mesh.points() + mesh.n_vertices());
+  for (auto v : mesh.vertices()) {
+    if (mesh.is_boundary(v)) continue;  // the boundary stays on the followed curve
+    const Eigen::Vector3d& p = targets[static_cast<std::size_t>(v.idx())];
+    mesh.set_point(v, ricci::Mesh::Point(p.x(), p.y(), p.z()));
+  }
+  undo_turning_moves(mesh, reference, old, kMinSplitMoveCos, true);
+}
+
+// split_domain_faces; with `pinned`, also flags (by vertex of the result, appended to) the
+// vertices that went onto a farthest scan vertex and stayed there.
+ricci::Mesh split_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
+                        const std::vector<char>& refine, SplitPlacement placement,
+                        std::vector<char>* pinned) {
+  ricci::Mesh refined = ricci::subdivide_midpoint_locally(domain, refine);
+  const auto first_new = static_cast<Eigen::Index>(domain.n_vertices());
+  const auto added = static_cast<Eigen::Index>(refined.n_vertices()) - first_new;
+  if (added <= 0) {
+    if (pinned != nullptr) pinned->resize(refined.n_vertices(), 0);
+    return refined;
+  }
+  refined.request_vertex_normals();
+  refined.request_face_normals();
+  refined.update_normals();
+  Eigen::MatrixX3d moved(added, 3), normals(added, 3);
+  for (Eigen::Index i = 0; i < added; ++i) {
+    const auto v = refined.vertex_handle(static_cast<int>(first_new + i));
+    moved.row(i) = ricci::to_eigen(refined.point(v)).transpose();
+    normals.row(i) = ricci::to_eigen(refined.normal(v)).transpose();
+  }
+  const auto hits = ricci::closest_points(dense, moved, normals, 2.0 * mean_edge_length(refined));
+  // Targets by vertex: the old vertices stay, the new ones go to their closest scan points;
+  // with farthest_point, the vertices nearest to the flagged faces' farthest scan vertices go
+  // there instead, checked against the scan's normals.
+  std::vector<Eigen::Vector3d> closest;
+  for (auto v : refined.vertices()) closest.push_back(ricci::to_eigen(refined.point(v)));
+  for (Eigen::Index i = 0; i < added; ++i)
+    closest[static_cast<std::size_t>(first_new + i)] = hits[static_cast<std::size_t>(i)].point;
+  std::vector<Eigen::Vector3d> farthest = closest;
+  std::vector<char> at_farthest(closest.size(), 0);
+  if (placement == SplitPlacement::closest_point) {
+    move_to(refined, closest, face_normals(refined));
+  } else {
+    place_at_farthest(domain, refined, ricci::to_arrays(dense).V, refine,
+                      static_cast<int>(first_new), farthest, at_farthest);
+    const std::vector<Eigen::Vector3d> reference = scan_facing_normals(refined, dense);
+    const std::vector<ricci::Mesh::Point> before(refined.points(),
+                                                 refined.points() + refined.n_vertices());
+    move_to(refined, farthest, reference);
+    // The new vertices an undone move left on their edge: their closest scan point instead.
+    std::vector<Eigen::Vector3d> retry;
+    for (auto v : refined.vertices()) {
+      const auto i = static_cast<std::size_t>(v.idx());
+      const bool left = v.idx() >= first_new && refined.point(v) == before[i];
+      retry.push_back(left ? closest[i] : ricci::to_eigen(refined.point(v)));
+    }
+    move_to(refined, retry, reference);
+  }
+  refined.release_vertex_normals();
+  refined.release_face_normals();
+  if (pinned != nullptr) {
+    pinned->resize(refined.n_vertices(), 0);
+    for (auto v : refined.vertices()) {
+      const auto i = static_cast<std::size_t>(v.idx());
+      if (at_farthest[i] && ricci::to_eigen(refined.point(v)) == farthest[i]) (*pinned)[i] = 1;
+    }
+  }
+  return refined;
 }
 
 ricci::Mesh uniform_base(const ricci::Mesh& dense, int faces) {
@@ -283,15 +461,17 @@ AdaptiveDomain split_to(const ricci::Mesh& dense, ricci::Mesh base, int target,
   AdaptiveDomain out;
   out.mesh = std::move(base);
   out.base_faces = static_cast<int>(out.mesh.n_faces());
+  std::vector<char> pinned;  // vertices on a farthest scan vertex: the relaxation keeps them
   for (int level = 0; level < o.max_levels; ++level) {
     const int budget = target - static_cast<int>(out.mesh.n_faces());
     std::vector<char> refine;
     const int flagged = flag_faces(sizing_scores(out.mesh, dense, o), budget, refine);
     out.split_faces.push_back(flagged);
     if (flagged == 0) break;
-    out.mesh = split_domain_faces(out.mesh, dense, refine);
+    out.mesh = split_faces(out.mesh, dense, refine, o.placement, &pinned);
   }
-  relax(out.mesh, dense, o.relax_iterations);
+  pinned.resize(out.mesh.n_vertices(), 0);
+  relax(out.mesh, dense, o.relax_iterations, pinned);
   return out;
 }
 
@@ -317,41 +497,9 @@ AdaptiveDomain adaptive_domain(const ricci::Mesh& dense, const AdaptiveDomainOpt
   return out;
 }
 
-// A new vertex's move onto the scan is undone only where it turns a face over (90 degrees or
-// more) or flattens it: smaller turns are what the splits are for on curved parts.
-constexpr double kMinSplitMoveCos = 1e-3;
-
 ricci::Mesh split_domain_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
-                               const std::vector<char>& refine) {
-  ricci::Mesh refined = ricci::subdivide_midpoint_locally(domain, refine);
-  const auto first_new = static_cast<Eigen::Index>(domain.n_vertices());
-  const auto added = static_cast<Eigen::Index>(refined.n_vertices()) - first_new;
-  if (added <= 0) return refined;
-  refined.request_vertex_normals();
-  refined.request_face_normals();
-  refined.update_normals();
-  Eigen::MatrixX3d moved(added, 3), normals(added, 3);
-  for (Eigen::Index i = 0; i < added; ++i) {
-    const auto v = refined.vertex_handle(static_cast<int>(first_new + i));
-    moved.row(i) = ricci::to_eigen(refined.point(v)).transpose();
-    normals.row(i) = ricci::to_eigen(refined.normal(v)).transpose();
-  }
-  const auto hits = ricci::closest_points(dense, moved, normals, 2.0 * mean_edge_length(refined));
-  const std::vector<Eigen::Vector3d> before = face_normals(refined);
-  const std::vector<ricci::Mesh::Point> old(refined.points(),
-                                            refined.points() + refined.n_vertices());
-  for (Eigen::Index i = 0; i < added; ++i) {
-    const auto v = refined.vertex_handle(static_cast<int>(first_new + i));
-    if (refined.is_boundary(v)) continue;  // the boundary stays on the followed curve
-    const Eigen::Vector3d& p = hits[static_cast<std::size_t>(i)].point;
-    refined.set_point(v, ricci::Mesh::Point(p.x(), p.y(), p.z()));
-  }
-  // Next to a boundary the closest scan point of a midpoint over a notch of the scan's boundary
-  // lies on that boundary, in line with the domain's boundary edge: such a face would be flat.
-  undo_turning_moves(refined, before, old, kMinSplitMoveCos, true);
-  refined.release_vertex_normals();
-  refined.release_face_normals();
-  return refined;
+                               const std::vector<char>& refine, SplitPlacement placement) {
+  return split_faces(domain, dense, refine, placement, nullptr);
 }
 
 }  // namespace spline

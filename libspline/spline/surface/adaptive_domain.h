@@ -10,6 +10,20 @@
 
 namespace spline {
 
+/// Where split_domain_faces puts its new interior vertices.
+enum class SplitPlacement {
+  /// Each on the closest point of the scan on a face facing the same way (within two edge
+  /// lengths).
+  closest_point,
+  /// The same, then for each flagged face the vertex among its corners and new midpoints
+  /// nearest to the foot of its farthest scan vertex (of the scan vertices whose closest
+  /// domain face it is) goes onto that scan vertex, unless that turns a face by 90 degrees or
+  /// more from the scan's normal: the domain reaches tips and soles a coarse base cut across,
+  /// which a closest point within two edge lengths does not (adaptive_domain's relaxation
+  /// keeps these vertices).
+  farthest_point,
+};
+
 struct AdaptiveDomainOptions {
   /// The total is aimed at the face count of the uniform domain (ricci::simplify_mesh) of this
   /// target, which the remeshing overshoots on thin parts (reached within ~10%).
@@ -35,6 +49,8 @@ struct AdaptiveDomainOptions {
   /// neighbours' mean in its tangent plane, then onto the scan (evens out the red-green
   /// closures' obtuse halves and the 4:1 size steps).
   int relax_iterations = 2;
+  /// Where the splits put their new vertices (split_domain_faces).
+  SplitPlacement placement = SplitPlacement::farthest_point;
 };
 
 struct AdaptiveDomain {
@@ -57,11 +73,12 @@ struct AdaptiveDomain {
                                              const AdaptiveDomainOptions& options = {});
 
 /// `domain` with the faces flagged in `refine` (by face index) split 1-to-4 and their
-/// neighbours closed red-green (ricci::subdivide_midpoint_locally); each new interior vertex
-/// moved to the closest point of `dense` on a face facing the same way (within two edge
-/// lengths), so the finer domain follows the scan. Boundary midpoints stay on their edges.
+/// neighbours closed red-green (ricci::subdivide_midpoint_locally); the new interior vertices
+/// are moved onto `dense` as `placement` says, so the finer domain follows the scan. Boundary
+/// midpoints stay on their edges. A move that turns a face over (or flattens it) is undone.
 /// \throw ricci::InvalidInputError if `refine` has the wrong size.
-[[nodiscard]] ricci::Mesh split_domain_faces(const ricci::Mesh& domain, const ricci::Mesh& dense,
-                                             const std::vector<char>& refine);
+[[nodiscard]] ricci::Mesh split_domain_faces(
+    const ricci::Mesh& domain, const ricci::Mesh& dense, const std::vector<char>& refine,
+    SplitPlacement placement = SplitPlacement::closest_point);
 
 }  // namespace spline

@@ -123,6 +123,25 @@ int domain_singular_vertex(const ricci::Mesh& dense, const FitSurfaceOptions& op
   return nearest_interior_vertex(simplified, point);
 }
 
+// The adaptive domain's cone, chosen as the atlas would (least area distortion), with its star
+// split once (split_domain_faces, farthest placement): the cone goes where the surface is
+// flattest, where the adaptive domain is coarsest, and its star is the hole the fill patch
+// covers (genus 0) or the first ring of the charts.
+int split_cone_star(const ricci::Mesh& dense, ScanFitOptions& scan) {
+  ricci::SingularityOptions choice = scan.atlas.choice;
+  choice.flow = scan.atlas.flow;
+  choice.flow.tolerance = std::max(scan.atlas.flow.tolerance, scan.atlas.choice.flow.tolerance);
+  choice.valence = scan.atlas.valence;
+  choice.keep_metric = scan.atlas.keep_metric;
+  ricci::Mesh& domain = *scan.domain;
+  const int cone = ricci::choose_singularity(domain, choice).vertex;
+  if (cone < 0) return -1;
+  std::vector<char> star(domain.n_faces(), 0);
+  for (auto f : domain.vf_range(domain.vertex_handle(cone))) star[static_cast<std::size_t>(f.idx())] = 1;
+  domain = split_domain_faces(domain, dense, star, SplitPlacement::farthest_point);
+  return cone;  // split_domain_faces keeps the old vertices' indices
+}
+
 void check_domain_size(const ricci::Mesh& dense, const ricci::SurfaceTopology& input,
                        const FitSurfaceOptions& options) {
   const int minimum = minimum_domain_faces(input.genus);
@@ -1014,6 +1033,8 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     out.domain_base_faces = domain.base_faces;
     out.domain_split_faces = std::move(domain.split_faces);
     scan.domain = std::move(domain.mesh);
+    if (needs_singularity(out.input) && options.singular_vertex < 0)
+      scan.atlas.singular_vertex = split_cone_star(dense, scan);
   }
   if (options.singular_vertex >= 0) {
     clock.begin("singularity");

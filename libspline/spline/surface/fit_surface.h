@@ -29,8 +29,9 @@ struct FitSurfaceOptions {
   /// Weight of the fit's thin-plate energy (FitOptions::smoothing, dimensionless).
   double smoothing = FitOptions{}.smoothing;
   /// Closed inputs: the domain's density follows the shape (adaptive_domain: splits where the
-  /// scan departs from the domain or a part is thin), domain_faces its target; false (default), or
-  /// open inputs: one edge length (fit_scan's simplification).
+  /// scan departs from the domain or a part is thin), domain_faces its target, and the star of
+  /// the automatically chosen cone split once (the cone goes where the domain is coarsest);
+  /// false (default), or open inputs: one edge length (fit_scan's simplification).
   bool adaptive_domain = false;
   /// The adaptive domain's sizing (its target_faces is replaced by domain_faces).
   AdaptiveDomainOptions sizing;
