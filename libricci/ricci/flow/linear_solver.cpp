@@ -56,6 +56,12 @@ struct SymmetricFactorization::Impl {
   // Nonzeros of L predicted by the last analysis that ordered afresh, of this factorisation or
   // of the one whose ordering it took (CHOLMOD only).
   double fresh_fill = 0.0;
+  LinearWork work;
+
+  void count_solve(Eigen::Index columns) {
+    ++work.back_substitutions;
+    work.right_hand_sides += static_cast<int>(columns);
+  }
 
   // The lower triangle of A(g, g).
   Sparse permuted(const Sparse& lower) const {
@@ -141,7 +147,10 @@ Eigen::VectorXi SymmetricFactorization::ordering() const {
 
 double SymmetricFactorization::fill() const { return impl_->fresh_fill; }
 
+LinearWork SymmetricFactorization::work() const { return impl_->work; }
+
 bool SymmetricFactorization::factorize(const Sparse& lower) {
+  ++impl_->work.factorizations;
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
       impl_->eigen_ldlt.factorize(lower);
@@ -163,6 +172,7 @@ bool SymmetricFactorization::factorize(const Sparse& lower) {
 }
 
 Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const {
+  impl_->count_solve(1);
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
       return impl_->eigen_ldlt.solve(rhs);
@@ -180,6 +190,7 @@ Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const 
 }
 
 Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs) const {
+  impl_->count_solve(rhs.cols());
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
       return impl_->eigen_ldlt.solve(rhs);

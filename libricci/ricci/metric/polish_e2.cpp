@@ -84,23 +84,29 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
   // flow's kind: CHOLMOD supernodal on large meshes, Eigen below 20k unknowns).
   std::unique_ptr<SymmetricFactorization> own;
   bool own_failed = false;
+  PolishE2Result result;
   const auto solve = [&](const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
     // A step solved to 1e-6 leaves a defect 1e-6 of the flow's (~1e-10): below the floor.
-    if (nearby.factorization &&
-        solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6)) {
-      return true;
+    if (nearby.factorization) {
+      const LinearWork before = nearby.factorization->work();
+      const bool solved =
+          solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6);
+      result.linear_work += nearby.factorization->work() - before;
+      if (solved) return true;
     }
     if (!own && !own_failed) {
       own = std::make_unique<SymmetricFactorization>(
           resolve_linear_solver(LinearSolver::automatic, lower.rows()));
       own->analyze(lower);
       own_failed = !own->factorize(lower);
+      result.linear_work += own->work();  // its factorisation
     }
     if (own_failed) return false;
+    const LinearWork before = own->work();
     x = own->solve(rhs);
+    result.linear_work += own->work() - before;
     return true;
   };
-  PolishE2Result result;
   result.lengths = lengths;
   result.error_before = result.error_after = static_cast<double>(r.cwiseAbs().maxCoeff());
   for (int it = 1; it <= max_iterations && result.error_after > 0.0; ++it) {

@@ -144,6 +144,7 @@ class LinearModel {
 
   double scored(int p) const { return cache_.count(p) ? cache_.at(p) : kInfinity; }
   int solves() const { return solves_; }
+  LinearWork work() const { return solver_.work(); }
   const std::map<int, double>& cache() const { return cache_; }
 
  private:
@@ -300,19 +301,33 @@ std::vector<SingularityScore> sorted_scores(const std::map<int, double>& cache) 
 
 }  // namespace
 
-std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const SingularityOptions& options) {
+std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const SingularityOptions& options,
+                                                 LinearWork* work) {
   LinearModel model(mesh);
   const std::vector<int> pool = interior_vertices(mesh);
   const int count = ranked_count(static_cast<int>(pool.size()), static_cast<int>(mesh.n_vertices()), options);
   (void)model.score(spread_sample(VertexGraph(mesh), pool, count));
+  if (work) *work += model.work();
   return sorted_scores(model.cache());
 }
 
-double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options) {
+namespace {
+
+// one_cone_area_distortion, adding the flow's linear work to `work`.
+double flow_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options,
+                            LinearWork& work) {
   OneConeProblem problem = prepare_one_cone(mesh, vertex, options.valence, false);
   FlowResult result = solve_one_cone_flow(problem, options.flow, options.keep_metric);
+  work += result.linear_work;
   if (!result.converged()) return kInfinity;
   return measure_distortion(problem.mesh, result.lengths).area_distortion;
+}
+
+}  // namespace
+
+double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options) {
+  LinearWork work;
+  return flow_area_distortion(mesh, vertex, options, work);
 }
 
 int verified_count(int vertices, const SingularityOptions& options) {
@@ -324,7 +339,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   const Stopwatch start;
   SingularityChoice choice;
   if (!needs_singular_vertex(mesh)) {
-    choice.area_distortion = one_cone_area_distortion(mesh, -1, options);
+    choice.area_distortion = flow_area_distortion(mesh, -1, options, choice.linear_work);
     choice.flows_run = 1;
     choice.seconds = start.seconds();
     return choice;
@@ -359,7 +374,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   std::set<int> checked;
   auto verify = [&](int v) {
     if (budget <= 0 || !checked.insert(v).second) return;
-    choice.verified.push_back({v, one_cone_area_distortion(mesh, v, options)});
+    choice.verified.push_back({v, flow_area_distortion(mesh, v, options, choice.linear_work)});
     ++choice.flows_run;
     --budget;
   };
@@ -412,6 +427,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   }
   choice.predicted_area_distortion = model.score({choice.vertex})[0];
   choice.linear_solves = model.solves();
+  choice.linear_work += model.work();
   choice.seconds = start.seconds();
   return choice;
 }
