@@ -94,10 +94,8 @@ class LinearModel {
       throw SolverError("singularity ranking: Laplacian factorisation failed");
     }
     cone_ = 2.0 * M_PI * surface_topology(mesh).euler_characteristic;
-    Eigen::VectorXd base_rhs = -angle_defects(mesh);
-    base_rhs.array() += cone_ / n_;  // with the cone's mean removed, the rhs sums to 0
-    u0_ = solver_.solve(base_rhs);
-    ++solves_;
+    base_rhs_ = -angle_defects(mesh);
+    base_rhs_.array() += cone_ / n_;  // with the cone's mean removed, the rhs sums to 0
     faces_.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
     log_area_.resize(static_cast<Eigen::Index>(mesh.n_faces()));
     for (auto f : mesh.faces()) {
@@ -109,7 +107,8 @@ class LinearModel {
     log_total_ = peak + std::log((log_area_.array() - peak).exp().sum());
   }
 
-  // Predicted area distortion of a cone at each vertex (cached).
+  // Predicted area distortion of a cone at each vertex (cached). The model's own solution
+  // u0 (the mesh's curvature alone) rides in the first block as an extra, last column.
   std::vector<double> score(const std::vector<int>& vertices) {
     std::vector<int> todo;
     for (int p : vertices) {
@@ -122,10 +121,14 @@ class LinearModel {
     const size_t block = blocks > 0 ? (todo.size() + blocks - 1) / blocks : most;
     for (size_t start = 0; start < todo.size(); start += block) {
       const size_t count = std::min<size_t>(block, todo.size() - start);
-      Eigen::MatrixXd rhs = Eigen::MatrixXd::Constant(n_, static_cast<Eigen::Index>(count), -1.0 / n_);
+      const bool with_u0 = u0_.size() == 0;
+      const auto columns = static_cast<Eigen::Index>(count + (with_u0 ? 1 : 0));
+      Eigen::MatrixXd rhs = Eigen::MatrixXd::Constant(n_, columns, -1.0 / n_);
       for (size_t j = 0; j < count; ++j) rhs(todo[start + j], static_cast<Eigen::Index>(j)) += 1.0;
+      if (with_u0) rhs.col(columns - 1) = base_rhs_;
       const Eigen::MatrixXd green = solver_.solve_columns(rhs);
-      solves_ += static_cast<int>(count);
+      if (with_u0) u0_ = green.col(columns - 1);
+      solves_ += static_cast<int>(columns);
       // Each column's score on one thread (the same sums on any number of threads).
       std::vector<double> scores(count);
       const int workers = std::min(requested_threads(0), static_cast<int>(count));
@@ -165,7 +168,7 @@ class LinearModel {
   int n_;
   SymmetricFactorization solver_;
   double cone_ = 0, log_total_ = 0;
-  Eigen::VectorXd u0_, log_area_;
+  Eigen::VectorXd base_rhs_, u0_, log_area_;
   Eigen::MatrixX3i faces_;
   std::map<int, double> cache_;
   int solves_ = 0;
