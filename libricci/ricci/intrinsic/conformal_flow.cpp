@@ -164,8 +164,11 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     const bool try_nearby =
         factored_last && last_step_full && error < options.nearby_factorization_below;
     const LinearWork nearby_before = try_nearby ? factored_last->work() : LinearWork{};
-    const bool reused =
-        try_nearby && solve_with_nearby_factorization(*factored_last, lower, rhs, reduced);
+    // An inexact Newton step: a relative residual eta adds eta * error to the next error,
+    // below Newton's own error^2 while eta <= error (Dembo-Eisenstat-Steihaug forcing term).
+    const double forcing = std::clamp(1e-2 * error, 1e-12, 1e-6);
+    const bool reused = try_nearby && solve_with_nearby_factorization(*factored_last, lower, rhs,
+                                                                      reduced, forcing);
     if (try_nearby) result.linear_work += factored_last->work() - nearby_before;
     result.timings.solve += clock.seconds();
     if (!reused) {
