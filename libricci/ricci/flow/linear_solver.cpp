@@ -1,6 +1,7 @@
 #include "ricci/flow/linear_solver.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
@@ -219,6 +220,10 @@ bool solve_with_nearby_factorization(const SymmetricFactorization& nearby, const
     // stop when it stalls; an inexact step with relative residual 1e-8 still converges fast.
     if (norm <= relative_tolerance * rhs.norm()) return true;
     if (!(norm < 0.3 * previous)) return norm <= std::max(1e-8, relative_tolerance) * rhs.norm();
+    // At this rate the steps left (11 - i are checked) cannot reach even the stalled bound:
+    // stop now rather than after them (the caller factorises).
+    const double reachable = std::max(1e-8, relative_tolerance) * rhs.norm();
+    if (i >= 1 && std::log(reachable / norm) / std::log(norm / previous) > 11 - i) return false;
     previous = norm;
     x += nearby.solve(residual);
   }
