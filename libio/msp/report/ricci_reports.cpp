@@ -53,6 +53,13 @@ nlohmann::json generators_json(const ricci::Uniformization& u) {
   return list;
 }
 
+nlohmann::json linear_work_json(const ricci::LinearWork& w) {
+  return {{"factorizations", w.factorizations},
+          {"back_substitutions", w.back_substitutions},
+          {"right_hand_sides", w.right_hand_sides},
+          {"solves", w.solves()}};
+}
+
 }  // namespace
 
 nlohmann::ordered_json mesh_info_json(const std::string& path, const ricci::MeshDiagnosis& d) {
@@ -130,6 +137,7 @@ std::string polygon_word_text(const ricci::FundamentalPolygon& polygon) {
 nlohmann::json atlas_report_json(const std::string& path, const ricci::Mesh& mesh,
                                  const ricci::OneConeAtlasResult& r) {
   const auto& t = r.timings;
+  const auto& work = r.linear_work;
   return {{"mesh", path},
           {"vertices", mesh.n_vertices()},
           {"faces", mesh.n_faces()},
@@ -145,6 +153,12 @@ nlohmann::json atlas_report_json(const std::string& path, const ricci::Mesh& mes
           {"polished", r.polished},
           {"flows_for_choice", r.flows_for_choice},
           {"solves_for_choice", r.solves_for_choice},
+          {"linear_solves", work.total().solves()},
+          {"linear_work",
+           {{"choice", linear_work_json(work.choice)},
+            {"flow", linear_work_json(work.flow)},
+            {"polish", linear_work_json(work.polish)},
+            {"total", linear_work_json(work.total())}}},
           {"newton_iterations", r.flow.iterations},
           {"metric", r.intrinsic ? "intrinsic-delaunay" : ricci::to_string(r.flow.metric.scheme)},
           {"intrinsic_flips", r.intrinsic_flips},
@@ -189,7 +203,15 @@ nlohmann::json atlas_report_json(const std::string& path, const ricci::Mesh& mes
             {"flow", t.flow},
             {"polish", t.polish},
             {"atlas", t.atlas},
-            {"distortion", t.distortion}}}};
+            {"distortion", t.distortion}}},
+          {"cpu_seconds", t.cpu_total},
+          {"cpu_stage_seconds",
+           {{"choice", t.cpu_choice},
+            {"valence", t.cpu_valence},
+            {"flow", t.cpu_flow},
+            {"polish", t.cpu_polish},
+            {"atlas", t.cpu_atlas},
+            {"distortion", t.cpu_distortion}}}};
 }
 
 std::string generator_name(size_t i) {

@@ -44,6 +44,8 @@ FlowResult flow_by_continuation(const MeshTables& tables, const CirclePackingMet
     FlowResult result = flow(tables, stage_metric, target, stage_options);
     const int iterations = total.iterations + result.iterations;
     const int factorizations = total.factorizations + result.factorizations;
+    LinearWork work = total.linear_work;
+    work += result.linear_work;
     FlowTimings timings = total.timings;
     add_timings(timings, result.timings);
     std::vector<BrokenTrial> broken = total.broken_faces;
@@ -51,6 +53,7 @@ FlowResult flow_by_continuation(const MeshTables& tables, const CirclePackingMet
     total = std::move(result);
     total.iterations = iterations;
     total.factorizations = factorizations;
+    total.linear_work = work;
     total.timings = timings;
     total.broken_faces = std::move(broken);
     if (!total.converged()) {

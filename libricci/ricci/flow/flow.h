@@ -120,6 +120,8 @@ struct FlowResult {
   int iterations = 0;
   /// Numeric factorisations of the Hessian (Newton reuses one near the answer).
   int factorizations = 0;
+  /// Factorisations and back-substitutions of the run (the last one, in fall-back mode).
+  LinearWork linear_work;
   double max_error = 0;
   /// The factorisation actually used (after any fallback).
   LinearSolver solver = LinearSolver::automatic;

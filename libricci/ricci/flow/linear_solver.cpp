@@ -1,6 +1,7 @@
 #include "ricci/flow/linear_solver.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
@@ -56,6 +57,12 @@ struct SymmetricFactorization::Impl {
   // Nonzeros of L predicted by the last analysis that ordered afresh, of this factorisation or
   // of the one whose ordering it took (CHOLMOD only).
   double fresh_fill = 0.0;
+  LinearWork work;
+
+  void count_solve(Eigen::Index columns) {
+    ++work.back_substitutions;
+    work.right_hand_sides += static_cast<int>(columns);
+  }
 
   // The lower triangle of A(g, g).
   Sparse permuted(const Sparse& lower) const {
@@ -141,7 +148,10 @@ Eigen::VectorXi SymmetricFactorization::ordering() const {
 
 double SymmetricFactorization::fill() const { return impl_->fresh_fill; }
 
+LinearWork SymmetricFactorization::work() const { return impl_->work; }
+
 bool SymmetricFactorization::factorize(const Sparse& lower) {
+  ++impl_->work.factorizations;
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
       impl_->eigen_ldlt.factorize(lower);
@@ -163,6 +173,7 @@ bool SymmetricFactorization::factorize(const Sparse& lower) {
 }
 
 Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const {
+  impl_->count_solve(1);
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
       return impl_->eigen_ldlt.solve(rhs);
@@ -180,6 +191,7 @@ Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const 
 }
 
 Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs) const {
+  impl_->count_solve(rhs.cols());
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
       return impl_->eigen_ldlt.solve(rhs);
@@ -208,6 +220,10 @@ bool solve_with_nearby_factorization(const SymmetricFactorization& nearby, const
     // stop when it stalls; an inexact step with relative residual 1e-8 still converges fast.
     if (norm <= relative_tolerance * rhs.norm()) return true;
     if (!(norm < 0.3 * previous)) return norm <= std::max(1e-8, relative_tolerance) * rhs.norm();
+    // At this rate the steps left (11 - i are checked) cannot reach even the stalled bound:
+    // stop now rather than after them (the caller factorises).
+    const double reachable = std::max(1e-8, relative_tolerance) * rhs.norm();
+    if (i >= 1 && std::log(reachable / norm) / std::log(norm / previous) > 11 - i) return false;
     previous = norm;
     x += nearby.solve(residual);
   }

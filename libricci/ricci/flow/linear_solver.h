@@ -25,6 +25,28 @@ std::string to_string(LinearSolver solver);
 /// LDLT below 20k unknowns, CHOLMOD supernodal above (msp-bench solvers measures both).
 [[nodiscard]] LinearSolver resolve_linear_solver(LinearSolver kind, Eigen::Index unknowns);
 
+/// Linear-system work, counted in passes over a sparse factor: numeric factorisations and
+/// back-substitutions (a blocked back-substitution of several right-hand sides is one pass).
+struct LinearWork {
+  int factorizations = 0;      ///< numeric factorisations tried (failed ones too)
+  int back_substitutions = 0;  ///< passes over a factor: a blocked solve counts once
+  int right_hand_sides = 0;    ///< columns solved for, over all passes
+  /// factorizations + back_substitutions: the work in solves of the matrix's size.
+  [[nodiscard]] int solves() const { return factorizations + back_substitutions; }
+  LinearWork& operator+=(const LinearWork& other) {
+    factorizations += other.factorizations;
+    back_substitutions += other.back_substitutions;
+    right_hand_sides += other.right_hand_sides;
+    return *this;
+  }
+  friend LinearWork operator-(LinearWork a, const LinearWork& b) {
+    a.factorizations -= b.factorizations;
+    a.back_substitutions -= b.back_substitutions;
+    a.right_hand_sides -= b.right_hand_sides;
+    return a;
+  }
+};
+
 /// A factorisation of a symmetric matrix given by its lower triangle (compressed columns).
 /// While one exists, the process' OpenBLAS runs on one thread (serial_blas.h).
 class SymmetricFactorization {
@@ -57,6 +79,8 @@ class SymmetricFactorization {
   [[nodiscard]] Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& rhs) const;
 
   LinearSolver kind() const { return kind_; }
+  /// The factorisations and back-substitutions this object has done.
+  [[nodiscard]] LinearWork work() const;
 
  private:
   struct Impl;
@@ -68,7 +92,8 @@ class SymmetricFactorization {
 /// earlier Newton step's, same size): x += F⁻¹(rhs - H x), a stationary iteration converging at
 /// rate ‖I - F⁻¹H‖. F's pattern may differ from H's (flips). Returns false when it is not fast
 /// (then factorise H): each step must cut the residual by 0.3, and it must end below
-/// relative_tolerance ‖rhs‖ (1e-8 when rounding stalls it first).
+/// relative_tolerance ‖rhs‖ (1e-8 when rounding stalls it first); it stops early when, at
+/// the rate observed, its 12 steps cannot reach that.
 /// \pre `nearby` holds a successful factorisation.
 [[nodiscard]] bool solve_with_nearby_factorization(const SymmetricFactorization& nearby,
                                                    const Eigen::SparseMatrix<double>& lower,

@@ -33,8 +33,8 @@ class NewtonSystem {
  public:
   // The symbolic analysis comes from `cache` when it has one for this pattern.
   NewtonSystem(LinearSolver kind, const Eigen::SparseMatrix<double>& pattern,
-               FactorizationCache* cache, FlowTimings& timings)
-      : timings_(timings) {
+               FactorizationCache* cache, FlowTimings& timings, LinearWork& work)
+      : timings_(timings), work_(work) {
     FactorizationCache own;
     factorization_ = (cache ? *cache : own).get(kind, pattern, timings_.analysis);
   }
@@ -50,7 +50,9 @@ class NewtonSystem {
                      Eigen::VectorXd& x) {
     if (!factored_) return false;
     const Stopwatch t0;
+    const LinearWork before = factorization_->work();
     const bool ok = solve_with_nearby_factorization(*factorization_, H, rhs, x);
+    work_ += factorization_->work() - before;
     timings_.solve += t0.seconds();
     return ok;
   }
@@ -81,6 +83,14 @@ class NewtonSystem {
  private:
   bool try_solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs,
                  Eigen::VectorXd& x) {
+    const LinearWork before = factorization_->work();
+    const bool ok = factorize_and_solve(H, rhs, x);
+    work_ += factorization_->work() - before;
+    return ok;
+  }
+
+  bool factorize_and_solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs,
+                           Eigen::VectorXd& x) {
     Stopwatch t0;
     const bool ok = factorization_->factorize(H);
     timings_.factorization += t0.seconds();
@@ -104,6 +114,7 @@ class NewtonSystem {
 
   std::shared_ptr<SymmetricFactorization> factorization_;
   FlowTimings& timings_;
+  LinearWork& work_;
   bool factored_ = false;  // the factorisation holds a (possibly older) Hessian
   int refinements_ = 2;
   int factorizations_ = 0;
@@ -231,7 +242,8 @@ void run_newton(const FlowRun& run, FlowState& state, FlowResult& result) {
   // E2 gauge: H·1 = 0 (scaling all radii keeps every angle), so pin vertex 0 and solve the
   // reduced system; its dropped equation holds because Σ(K̄ - K) = 0 by Gauss-Bonnet.
   HessianAssembler assembler(t, euclidean ? 0 : -1);
-  NewtonSystem system(o.solver, assembler.matrix(), o.factorization_cache.get(), result.timings);
+  NewtonSystem system(o.solver, assembler.matrix(), o.factorization_cache.get(), result.timings,
+                      result.linear_work);
   const int n = assembler.num_unknowns();
 
   FlowState trial;

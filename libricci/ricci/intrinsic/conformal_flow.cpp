@@ -161,25 +161,34 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     }
     Eigen::VectorXd reduced;
     clock.restart();
-    const bool reused = factored_last && last_step_full &&
-                        error < options.nearby_factorization_below &&
-                        solve_with_nearby_factorization(*factored_last, lower, rhs, reduced);
+    const bool try_nearby =
+        factored_last && last_step_full && error < options.nearby_factorization_below;
+    const LinearWork nearby_before = try_nearby ? factored_last->work() : LinearWork{};
+    // An inexact Newton step: a relative residual eta adds eta * error to the next error,
+    // below Newton's own error^2 while eta <= error (Dembo-Eisenstat-Steihaug forcing term).
+    const double forcing = std::clamp(1e-2 * error, 1e-12, 1e-6);
+    const bool reused = try_nearby && solve_with_nearby_factorization(*factored_last, lower, rhs,
+                                                                      reduced, forcing);
+    if (try_nearby) result.linear_work += factored_last->work() - nearby_before;
     result.timings.solve += clock.seconds();
     if (!reused) {
       factored_last.reset();  // at most one factor alive besides the cache's
       const std::shared_ptr<SymmetricFactorization> factorization =
           cache.get(result.solver, lower, result.timings.analysis);
       clock.restart();
+      const LinearWork before = factorization->work();
       const bool factored = factorization->factorize(lower);
       result.timings.factorization += clock.seconds();
       ++result.factorizations;
       if (!factored) {
+        result.linear_work += factorization->work() - before;
         reason = "the cotangent Laplacian did not factorise";
         return FlowStatus::stalled;
       }
       factored_last = factorization;
       clock.restart();
       reduced = factorization->solve(rhs);
+      result.linear_work += factorization->work() - before;
       result.timings.solve += clock.seconds();
     }
     Eigen::VectorXd direction = Eigen::VectorXd::Zero(n);
@@ -294,6 +303,7 @@ FlowResult to_flow_result(const IntrinsicFlowResult& r) {
   flow.error_history = r.error_history;
   flow.iterations = r.iterations;
   flow.factorizations = r.factorizations;
+  flow.linear_work = r.linear_work;
   flow.max_error = r.max_error;
   flow.solver = r.solver;
   flow.timings = r.timings;

@@ -80,6 +80,7 @@ struct IntrinsicFlowResult {
   /// to `triangulation`; point_tracking.h replays it to carry points between the two.
   std::vector<int> flip_log;
   int factorizations = 0;
+  LinearWork linear_work;  ///< factorisations and back-substitutions (linear_solver.h)
   double max_error = 0;
   LinearSolver solver = LinearSolver::automatic;
   FlowTimings timings;
@@ -105,7 +106,7 @@ struct IntrinsicFlowResult {
     const IntrinsicFlowOptions& options = {});
 
 /// The result's figures (status, message, u, curvature, target, history, iterations,
-/// factorisations, error, solver, timings) as a FlowResult, whose metric and lengths stay empty
+/// factorisations, linear work, error, solver, timings) as a FlowResult, whose metric and lengths stay empty
 /// (the lengths belong to the flipped triangulation: to_mesh).
 [[nodiscard]] FlowResult to_flow_result(const IntrinsicFlowResult& result);
 

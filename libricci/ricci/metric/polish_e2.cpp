@@ -1,6 +1,7 @@
 #include "ricci/metric/polish_e2.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -13,6 +14,7 @@
 #include "ricci/flow/linear_solver.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/metric/mesh_tables.h"
+#include "ricci/util/parallel.h"
 
 namespace ricci {
 namespace {
@@ -33,26 +35,38 @@ bool angles_l(const long double l[3], long double theta[3]) {
 }
 
 // Residual K - target in long double (and, when `edge_weights`, the cotangent Laplacian's
-// weight of each edge: the sum of 0.5 cot of the corners facing it).
+// weight of each edge: the sum of 0.5 cot of the corners facing it). The corner angles (long
+// double atan2, most of a polish step) are computed face-parallel, then summed per vertex and
+// edge in face order: the same sums on any number of threads.
 VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::VectorXd& target,
                     Eigen::VectorXd* edge_weights) {
+  const auto faces = static_cast<size_t>(t.num_faces());
+  std::vector<std::array<long double, 3>> theta(faces);
+  std::vector<char> broken(faces, 0);
+  parallel_for(faces, 0, [&](size_t f) {
+    const int face = static_cast<int>(f);
+    const long double l[3] = {lengths[t.face_edges(face, 0)], lengths[t.face_edges(face, 1)],
+                              lengths[t.face_edges(face, 2)]};
+    broken[f] = angles_l(l, theta[f].data()) ? 0 : 1;
+  });
+  const auto first_broken = std::find(broken.begin(), broken.end(), 1);
+  if (first_broken != broken.end()) {
+    throw InvalidInputError("polish_e2_lengths: face " +
+                            std::to_string(first_broken - broken.begin()) +
+                            " violates the triangle inequality");
+  }
   VectorL r(t.num_vertices());
   for (int v = 0; v < t.num_vertices(); ++v) {
     r[v] = (t.is_boundary_vertex[v] ? kPi : 2.0L * kPi) - static_cast<long double>(target[v]);
   }
   if (edge_weights) *edge_weights = Eigen::VectorXd::Zero(t.num_edges());
   for (int f = 0; f < t.num_faces(); ++f) {
-    const long double l[3] = {lengths[t.face_edges(f, 0)], lengths[t.face_edges(f, 1)],
-                              lengths[t.face_edges(f, 2)]};
-    long double theta[3];
-    if (!angles_l(l, theta)) {
-      throw InvalidInputError("polish_e2_lengths: face " + std::to_string(f) +
-                              " violates the triangle inequality");
-    }
-    for (int k = 0; k < 3; ++k) r[t.face_vertices(f, k)] -= theta[k];
+    const std::array<long double, 3>& angles = theta[static_cast<size_t>(f)];
+    for (int k = 0; k < 3; ++k) r[t.face_vertices(f, k)] -= angles[static_cast<size_t>(k)];
     if (!edge_weights) continue;
     for (int k = 0; k < 3; ++k) {
-      (*edge_weights)[t.face_edges(f, k)] += 0.5 / std::tan(static_cast<double>(theta[k]));
+      (*edge_weights)[t.face_edges(f, k)] +=
+          0.5 / std::tan(static_cast<double>(angles[static_cast<size_t>(k)]));
     }
   }
   return r;
@@ -84,23 +98,29 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
   // flow's kind: CHOLMOD supernodal on large meshes, Eigen below 20k unknowns).
   std::unique_ptr<SymmetricFactorization> own;
   bool own_failed = false;
+  PolishE2Result result;
   const auto solve = [&](const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
     // A step solved to 1e-6 leaves a defect 1e-6 of the flow's (~1e-10): below the floor.
-    if (nearby.factorization &&
-        solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6)) {
-      return true;
+    if (nearby.factorization) {
+      const LinearWork before = nearby.factorization->work();
+      const bool solved =
+          solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6);
+      result.linear_work += nearby.factorization->work() - before;
+      if (solved) return true;
     }
     if (!own && !own_failed) {
       own = std::make_unique<SymmetricFactorization>(
           resolve_linear_solver(LinearSolver::automatic, lower.rows()));
       own->analyze(lower);
       own_failed = !own->factorize(lower);
+      result.linear_work += own->work();  // its factorisation
     }
     if (own_failed) return false;
+    const LinearWork before = own->work();
     x = own->solve(rhs);
+    result.linear_work += own->work() - before;
     return true;
   };
-  PolishE2Result result;
   result.lengths = lengths;
   result.error_before = result.error_after = static_cast<double>(r.cwiseAbs().maxCoeff());
   for (int it = 1; it <= max_iterations && result.error_after > 0.0; ++it) {

@@ -18,6 +18,8 @@ struct PolishE2Result {
   /// max |K - K̄| evaluated in long double before and after, and the steps taken.
   double error_before = 0.0, error_after = 0.0;
   int iterations = 0;
+  /// Factorisations and back-substitutions spent (on the nearby factorisation and its own).
+  LinearWork linear_work;
 };
 
 /// A factorisation of a cotangent Laplacian near the one at the lengths being polished (the

@@ -14,6 +14,16 @@
 namespace ricci {
 namespace {
 
+// Wall-clock and CPU seconds of a stage.
+struct StageClock {
+  Stopwatch wall;
+  CpuStopwatch cpu;
+  void restart() {
+    wall.restart();
+    cpu.restart();
+  }
+};
+
 // The cut graph's root: the cone, else an interior vertex (genus 1) or vertex 0 (open).
 VertexHandle atlas_root(const OneConeProblem& problem) {
   if (problem.cone >= 0) return problem.mesh.vertex_handle(problem.cone);
@@ -62,7 +72,7 @@ void map_problem_to_input(OneConeAtlasResult& result) {
 // Clean-up, valence modification and cone refinement: fills result's problem and timings.
 void prepare_problem(const Mesh& mesh, const OneConeAtlasOptions& options,
                      OneConeAtlasResult& result, const std::function<void(const char*)>& report) {
-  Stopwatch t;
+  StageClock t;
   Mesh cleaned;
   const Mesh* surface = &mesh;  // no copy of the input unless it is cleaned up
   if (options.collapse_short_edges || options.flip_flat_edges) {
@@ -70,14 +80,15 @@ void prepare_problem(const Mesh& mesh, const OneConeAtlasOptions& options,
     cleaned = clean_up_surface(mesh, options, result);
     surface = &cleaned;
   }
-  result.timings.flips = t.seconds();
+  result.timings.flips = t.wall.seconds();
 
   report("valence modification");
   t.restart();
   result.problem = prepare_one_cone(*surface, input_to_cleaned(result, result.chosen_vertex), options.valence);
   map_problem_to_input(result);
   result.cone_refinement = refine_around_cone(result.problem, options.cone_refinement);
-  result.timings.valence = t.seconds();
+  result.timings.valence = t.wall.seconds();
+  result.timings.cpu_valence = t.cpu.seconds();
 }
 
 // prepare_problem, then the flow: the cone-ring metrics first (single cones), then, when
@@ -86,7 +97,7 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
                        const std::function<void(const char*)>& report, bool fall_back) {
   prepare_problem(mesh, options, result, report);
   report("Ricci flow");
-  Stopwatch t;
+  StageClock t;
   result.flow = FlowResult();
   if (result.problem.kind == OneConeKind::SingleCone && !options.cone_ring_metrics.empty()) {
     result.flow = solve_cone_ring_flow(result.problem, options.cone_ring_metrics, options.flow, options.continuation);
@@ -96,7 +107,8 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
     result.flow = solve_one_cone_flow(result.problem, options.flow, options.keep_metric);
     result.flow.failed_attempts.insert(result.flow.failed_attempts.begin(), failures.begin(), failures.end());
   }
-  result.timings.flow = t.seconds();
+  result.timings.flow = t.wall.seconds();
+  result.timings.cpu_flow = t.cpu.seconds();
 }
 
 // A flow that stalled this close to the target only met the rounding floor of double
@@ -139,9 +151,10 @@ void solve_and_polish(const Mesh& mesh, const OneConeAtlasOptions& options,
                       OneConeAtlasResult& result, const std::function<void(const char*)>& report,
                       bool fall_back) {
   prepare_and_solve(mesh, options, result, report, fall_back);
-  Stopwatch polish;
+  StageClock polish;
   polish_lengths(options, result);
-  result.timings.polish = polish.seconds();
+  result.timings.polish = polish.wall.seconds();
+  result.timings.cpu_polish = polish.cpu.seconds();
 }
 
 bool intrinsic_applies(const OneConeProblem& problem) {
@@ -154,7 +167,7 @@ bool intrinsic_applies(const OneConeProblem& problem) {
 void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& result,
                      const std::function<void(const char*)>& report) {
   report("intrinsic Delaunay flow");
-  Stopwatch t;
+  StageClock t;
   IntrinsicFlowOptions settings = options.intrinsic;
   settings.tolerance = options.flow.tolerance;
   settings.solver = options.flow.solver;
@@ -165,8 +178,9 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       intrinsic_conformal_flow(result.problem.mesh, result.problem.targets, settings);
   FlowResult flow = to_flow_result(r);
   flow.failed_attempts = failures;
+  flow.linear_work += result.flow.linear_work;  // an earlier flow's, replaced here
   result.intrinsic_flips = r.flips;
-  double polish_seconds = 0.0;
+  double polish_seconds = 0.0, polish_cpu = 0.0;
   // A flow stopped at its rounding floor is finished by the long-double polish.
   const bool near = r.converged() || r.max_error < settings.freeze_connectivity_below;
   if (near && !is_simplicial(r.triangulation)) {
@@ -182,13 +196,14 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
     // 1.4e-13 gave 1e-9 relative error on its shortest edge).
     if (!r.converged() || std::isfinite(options.polish_threshold)) {
-      const Stopwatch polish;
+      const StageClock polish;
       const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
       result.polish =
           polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature, 6,
                             nearby);
       result.polished = true;
-      polish_seconds = polish.seconds();
+      polish_seconds = polish.wall.seconds();
+      polish_cpu = polish.cpu.seconds();
       if (result.polish.error_after <= settings.tolerance) {
         domain.lengths = result.polish.lengths;
         flow.status = FlowStatus::converged;
@@ -206,28 +221,85 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   }
   result.flow = std::move(flow);
   result.timings.polish += polish_seconds;
-  result.timings.flow += t.seconds() - polish_seconds;
+  result.timings.cpu_polish += polish_cpu;
+  result.timings.flow += t.wall.seconds() - polish_seconds;
+  result.timings.cpu_flow += t.cpu.seconds() - polish_cpu;
 }
 
+// Flows whose attempt was thrown away: their failures, seconds and linear work.
+struct Discarded {
+  std::vector<std::string> failures;
+  double seconds = 0.0, cpu_seconds = 0.0;
+  LinearWork work;
+
+  // The attempt's flow and polish costs (its failures are the caller's to take).
+  void add_costs(const OneConeAtlasResult& attempt) {
+    seconds += attempt.timings.flow;
+    cpu_seconds += attempt.timings.cpu_flow;
+    work += attempt.flow.linear_work;
+    work += attempt.polish.linear_work;
+  }
+};
+
 // The intrinsic flow on a fresh copy of `result`'s problem: `result` becomes it when it
-// converges; otherwise its failures join `failures` and its seconds `failed_seconds`. Returns
-// whether it ran (the problem suits it).
+// converges; otherwise its failures and costs join `discarded`. Returns whether it ran (the
+// problem suits it).
 bool try_intrinsic(const Mesh& mesh, const OneConeAtlasOptions& options,
                    const std::function<void(const char*)>& report, OneConeAtlasResult& result,
-                   std::vector<std::string>& failures, double& failed_seconds) {
+                   Discarded& discarded) {
   OneConeAtlasResult attempt = result;
   prepare_problem(mesh, options, attempt, report);
   if (!intrinsic_applies(attempt.problem)) return false;
-  attempt.flow.failed_attempts = failures;
+  attempt.flow.failed_attempts = discarded.failures;
   solve_intrinsic(options, attempt, report);
   if (attempt.flow.converged()) {
     result = std::move(attempt);
   } else {
-    failures = attempt.flow.failed_attempts;
-    failures.push_back(attempt.flow.message);
-    failed_seconds += attempt.timings.flow;
+    discarded.failures = attempt.flow.failed_attempts;
+    discarded.failures.push_back(attempt.flow.message);
+    discarded.add_costs(attempt);
   }
   return true;
+}
+
+// The automatic singularity (choose_singularity; the linear model's best where only the
+// intrinsic flow runs or no candidate converges with fixed connectivity): fills result's
+// chosen vertex, choice figures and timings. Returns whether the fixed-connectivity flows
+// failed at every candidate.
+bool choose_vertex(const Mesh& mesh, const OneConeAtlasOptions& options, bool intrinsic_only,
+                   OneConeAtlasResult& result) {
+  StageClock t;
+  SingularityOptions choice = options.choice;
+  choice.flow = options.flow;
+  // Comparing distortions needs no more than 1e-8 (the verifying flows stop earlier).
+  choice.flow.tolerance = std::max(options.flow.tolerance, options.choice.flow.tolerance);
+  choice.valence = options.valence;
+  // The plain inversive-distance flow the route replaces fails at most candidates of a
+  // marching-cubes or CAD mesh: rank them with the default metrics instead.
+  choice.keep_metric = options.keep_metric && !takes_inversive_distance_route(mesh, options);
+  bool fixed_failed = false;
+  if (intrinsic_only) {
+    result.chosen_vertex = rank_singularities(mesh, choice, &result.linear_work.choice).front().vertex;
+  } else {
+    try {
+      SingularityChoice chosen = choose_singularity(mesh, choice);
+      result.chosen_vertex = chosen.vertex;
+      result.flows_for_choice = chosen.flows_run;
+      result.solves_for_choice = chosen.linear_solves;
+      result.linear_work.choice = chosen.linear_work;
+    } catch (const SolverError& error) {
+      if (options.route == FlowRoute::fixed_connectivity) throw;
+      // No candidate converged with fixed connectivity: the intrinsic flow converges at any
+      // vertex; take the linear model's best.
+      result.chosen_vertex =
+          rank_singularities(mesh, choice, &result.linear_work.choice).front().vertex;
+      result.flow.failed_attempts.push_back(error.what());
+      fixed_failed = true;
+    }
+  }
+  result.timings.choice = t.wall.seconds();
+  result.timings.cpu_choice = t.cpu.seconds();
+  return fixed_failed;
 }
 
 }  // namespace
@@ -268,7 +340,7 @@ double OneConeAtlasResult::relative_transition_residual() const {
 }
 
 OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
-  const Stopwatch start;
+  const StageClock start;
   const std::function<void(const char*)> report = [&](const char* stage) {
     if (options.progress) options.progress(stage);
   };
@@ -282,40 +354,12 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   bool intrinsic_tried = false;
   if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
     report("choosing the singular vertex");
-    Stopwatch t;
-    SingularityOptions choice = options.choice;
-    choice.flow = options.flow;
-    // Comparing distortions needs no more than 1e-8 (the verifying flows stop earlier).
-    choice.flow.tolerance = std::max(options.flow.tolerance, options.choice.flow.tolerance);
-    choice.valence = options.valence;
-    // The plain inversive-distance flow the route replaces fails at most candidates of a
-    // marching-cubes or CAD mesh: rank them with the default metrics instead.
-    choice.keep_metric = options.keep_metric && !takes_inversive_distance_route(mesh, options);
-    if (intrinsic_only) {
-      result.chosen_vertex = rank_singularities(mesh, choice).front().vertex;
-    } else {
-      try {
-        SingularityChoice chosen = choose_singularity(mesh, choice);
-        result.chosen_vertex = chosen.vertex;
-        result.flows_for_choice = chosen.flows_run;
-        result.solves_for_choice = chosen.linear_solves;
-      } catch (const SolverError& error) {
-        if (options.route == FlowRoute::fixed_connectivity) throw;
-        // No candidate converged with fixed connectivity: the intrinsic flow converges at any
-        // vertex; take the linear model's best.
-        result.chosen_vertex = rank_singularities(mesh, choice).front().vertex;
-        result.flow.failed_attempts.push_back(error.what());
-        fixed_failed = true;
-      }
-    }
-    result.timings.choice = t.seconds();
+    fixed_failed = choose_vertex(mesh, options, intrinsic_only, result);
   }
 
-  // Failures of flows whose attempt was thrown away, and their seconds.
-  std::vector<std::string> failures;
-  double failed_flow_seconds = 0.0;
+  Discarded discarded;
   if (!intrinsic_only && !fixed_failed && takes_intrinsic_flow_first(mesh, options)) {
-    intrinsic_tried = try_intrinsic(mesh, options, report, result, failures, failed_flow_seconds);
+    intrinsic_tried = try_intrinsic(mesh, options, report, result, discarded);
   }
   if (result.flow.converged()) {
     // The intrinsic flow ran first and won.
@@ -332,14 +376,13 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       result = std::move(attempt);
       result.flow.metric_name = "inversive-distance route (" + result.flow.metric_name + ")";
     } else {
-      failures.insert(failures.end(), attempt.flow.failed_attempts.begin(),
-                      attempt.flow.failed_attempts.end());
-      failed_flow_seconds += attempt.timings.flow;
+      discarded.failures.insert(discarded.failures.end(), attempt.flow.failed_attempts.begin(),
+                                attempt.flow.failed_attempts.end());
+      discarded.add_costs(attempt);
       if (options.route == FlowRoute::automatic && options.intrinsic_before_fixed &&
           !intrinsic_tried) {
         // Next in conformality: the intrinsic flow (vertex scaling), before the circle packings.
-        intrinsic_tried =
-            try_intrinsic(mesh, options, report, result, failures, failed_flow_seconds);
+        intrinsic_tried = try_intrinsic(mesh, options, report, result, discarded);
       }
       if (!result.flow.converged()) solve_and_polish(mesh, options, result, report, true);
     }
@@ -347,25 +390,31 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
     solve_and_polish(mesh, options, result, report, true);
   }
   // The thrown-away attempts' failures come first, in the order they ran.
-  if (!failures.empty()) {
+  if (!discarded.failures.empty()) {
     std::vector<std::string>& listed = result.flow.failed_attempts;
     std::vector<std::string> earlier;
-    for (const std::string& f : failures) {
+    for (const std::string& f : discarded.failures) {
       if (std::find(listed.begin(), listed.end(), f) == listed.end()) earlier.push_back(f);
     }
     listed.insert(listed.begin(), earlier.begin(), earlier.end());
   }
-  result.timings.flow += failed_flow_seconds;
+  result.timings.flow += discarded.seconds;
+  result.timings.cpu_flow += discarded.cpu_seconds;
   if (!result.flow.converged() && options.route == FlowRoute::automatic && !fixed_failed &&
       !intrinsic_tried && intrinsic_applies(result.problem)) {
     solve_intrinsic(options, result, report);
   }
   if (!result.flow.converged()) throw SolverError(result.flow.message);
 
+  result.linear_work.flow = discarded.work;
+  result.linear_work.flow += result.flow.linear_work;
+  result.linear_work.polish = result.polish.linear_work;
+
   report("cut graph, layout and atlas");
-  Stopwatch t;
+  StageClock t;
   result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths, atlas_root(result.problem), options.atlas);
-  result.timings.atlas = t.seconds();
+  result.timings.atlas = t.wall.seconds();
+  result.timings.cpu_atlas = t.cpu.seconds();
 
   report("distortion");
   t.restart();
@@ -374,8 +423,10 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   DistortionOptions measure;
   measure.skip_degenerate = result.intrinsic;
   result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths, measure);
-  result.timings.distortion = t.seconds();
-  result.timings.total = start.seconds();
+  result.timings.distortion = t.wall.seconds();
+  result.timings.cpu_distortion = t.cpu.seconds();
+  result.timings.total = start.wall.seconds();
+  result.timings.cpu_total = start.cpu.seconds();
   return result;
 }
 

@@ -80,9 +80,24 @@ struct OneConeAtlasOptions {
   std::function<void(const std::string& stage)> progress;
 };
 
-/// Wall-clock seconds of each stage.
+/// Seconds of each stage: wall clock, and the process' CPU time (all threads) beside it.
 struct OneConeAtlasTimings {
   double choice = 0, flips = 0, valence = 0, flow = 0, polish = 0, atlas = 0, distortion = 0, total = 0;
+  double cpu_choice = 0, cpu_valence = 0, cpu_flow = 0, cpu_polish = 0, cpu_atlas = 0,
+         cpu_distortion = 0, cpu_total = 0;
+};
+
+/// Linear-system work of each stage (flow/linear_solver.h: numeric factorisations and passes
+/// over a factor, a blocked back-substitution counting once), thrown-away attempts included.
+/// The clean-up, valence, atlas and distortion stages solve no linear system.
+struct OneConeAtlasLinearWork {
+  LinearWork choice, flow, polish;
+  [[nodiscard]] LinearWork total() const {
+    LinearWork sum = choice;
+    sum += flow;
+    sum += polish;
+    return sum;
+  }
 };
 
 struct OneConeAtlasResult {
@@ -115,6 +130,7 @@ struct OneConeAtlasResult {
   int solves_for_choice = 0;    ///< Its linear model's back-substitutions (0 when given).
   ConeRefinement cone_refinement;  ///< What options.cone_refinement did.
   OneConeAtlasTimings timings;
+  OneConeAtlasLinearWork linear_work;
   /// max transition (and side pairing) residual divided by the domain diameter.
   [[nodiscard]] double relative_transition_residual() const;
 };

@@ -94,10 +94,8 @@ class LinearModel {
       throw SolverError("singularity ranking: Laplacian factorisation failed");
     }
     cone_ = 2.0 * M_PI * surface_topology(mesh).euler_characteristic;
-    Eigen::VectorXd base_rhs = -angle_defects(mesh);
-    base_rhs.array() += cone_ / n_;  // with the cone's mean removed, the rhs sums to 0
-    u0_ = solver_.solve(base_rhs);
-    ++solves_;
+    base_rhs_ = -angle_defects(mesh);
+    base_rhs_.array() += cone_ / n_;  // with the cone's mean removed, the rhs sums to 0
     faces_.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
     log_area_.resize(static_cast<Eigen::Index>(mesh.n_faces()));
     for (auto f : mesh.faces()) {
@@ -109,7 +107,8 @@ class LinearModel {
     log_total_ = peak + std::log((log_area_.array() - peak).exp().sum());
   }
 
-  // Predicted area distortion of a cone at each vertex (cached).
+  // Predicted area distortion of a cone at each vertex (cached). The model's own solution
+  // u0 (the mesh's curvature alone) rides in the first block as an extra, last column.
   std::vector<double> score(const std::vector<int>& vertices) {
     std::vector<int> todo;
     for (int p : vertices) {
@@ -122,10 +121,14 @@ class LinearModel {
     const size_t block = blocks > 0 ? (todo.size() + blocks - 1) / blocks : most;
     for (size_t start = 0; start < todo.size(); start += block) {
       const size_t count = std::min<size_t>(block, todo.size() - start);
-      Eigen::MatrixXd rhs = Eigen::MatrixXd::Constant(n_, static_cast<Eigen::Index>(count), -1.0 / n_);
+      const bool with_u0 = u0_.size() == 0;
+      const auto columns = static_cast<Eigen::Index>(count + (with_u0 ? 1 : 0));
+      Eigen::MatrixXd rhs = Eigen::MatrixXd::Constant(n_, columns, -1.0 / n_);
       for (size_t j = 0; j < count; ++j) rhs(todo[start + j], static_cast<Eigen::Index>(j)) += 1.0;
+      if (with_u0) rhs.col(columns - 1) = base_rhs_;
       const Eigen::MatrixXd green = solver_.solve_columns(rhs);
-      solves_ += static_cast<int>(count);
+      if (with_u0) u0_ = green.col(columns - 1);
+      solves_ += static_cast<int>(columns);
       // Each column's score on one thread (the same sums on any number of threads).
       std::vector<double> scores(count);
       const int workers = std::min(requested_threads(0), static_cast<int>(count));
@@ -144,6 +147,7 @@ class LinearModel {
 
   double scored(int p) const { return cache_.count(p) ? cache_.at(p) : kInfinity; }
   int solves() const { return solves_; }
+  LinearWork work() const { return solver_.work(); }
   const std::map<int, double>& cache() const { return cache_; }
 
  private:
@@ -164,7 +168,7 @@ class LinearModel {
   int n_;
   SymmetricFactorization solver_;
   double cone_ = 0, log_total_ = 0;
-  Eigen::VectorXd u0_, log_area_;
+  Eigen::VectorXd base_rhs_, u0_, log_area_;
   Eigen::MatrixX3i faces_;
   std::map<int, double> cache_;
   int solves_ = 0;
@@ -300,19 +304,33 @@ std::vector<SingularityScore> sorted_scores(const std::map<int, double>& cache) 
 
 }  // namespace
 
-std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const SingularityOptions& options) {
+std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const SingularityOptions& options,
+                                                 LinearWork* work) {
   LinearModel model(mesh);
   const std::vector<int> pool = interior_vertices(mesh);
   const int count = ranked_count(static_cast<int>(pool.size()), static_cast<int>(mesh.n_vertices()), options);
   (void)model.score(spread_sample(VertexGraph(mesh), pool, count));
+  if (work) *work += model.work();
   return sorted_scores(model.cache());
 }
 
-double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options) {
+namespace {
+
+// one_cone_area_distortion, adding the flow's linear work to `work`.
+double flow_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options,
+                            LinearWork& work) {
   OneConeProblem problem = prepare_one_cone(mesh, vertex, options.valence, false);
   FlowResult result = solve_one_cone_flow(problem, options.flow, options.keep_metric);
+  work += result.linear_work;
   if (!result.converged()) return kInfinity;
   return measure_distortion(problem.mesh, result.lengths).area_distortion;
+}
+
+}  // namespace
+
+double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options) {
+  LinearWork work;
+  return flow_area_distortion(mesh, vertex, options, work);
 }
 
 int verified_count(int vertices, const SingularityOptions& options) {
@@ -324,7 +342,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   const Stopwatch start;
   SingularityChoice choice;
   if (!needs_singular_vertex(mesh)) {
-    choice.area_distortion = one_cone_area_distortion(mesh, -1, options);
+    choice.area_distortion = flow_area_distortion(mesh, -1, options, choice.linear_work);
     choice.flows_run = 1;
     choice.seconds = start.seconds();
     return choice;
@@ -359,7 +377,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   std::set<int> checked;
   auto verify = [&](int v) {
     if (budget <= 0 || !checked.insert(v).second) return;
-    choice.verified.push_back({v, one_cone_area_distortion(mesh, v, options)});
+    choice.verified.push_back({v, flow_area_distortion(mesh, v, options, choice.linear_work)});
     ++choice.flows_run;
     --budget;
   };
@@ -412,6 +430,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   }
   choice.predicted_area_distortion = model.score({choice.vertex})[0];
   choice.linear_solves = model.solves();
+  choice.linear_work += model.work();
   choice.seconds = start.seconds();
   return choice;
 }

@@ -67,7 +67,10 @@ struct SingularityChoice {
   std::vector<SingularityScore> verified;  ///< every vertex checked with a full flow
   int flows_run = 0;
   int ranked = 0;         ///< vertices the linear model scored
-  int linear_solves = 0;  ///< back-substitutions with the Laplacian's factorisation
+  int linear_solves = 0;  ///< right-hand sides solved with the Laplacian's factorisation
+  /// The linear model's factorisation and (blocked) back-substitutions, with the verifying
+  /// flows' own.
+  LinearWork linear_work;
   double seconds = 0.0;
 };
 
@@ -80,10 +83,11 @@ struct SingularityChoice {
 [[nodiscard]] int verified_count(int vertices, const SingularityOptions& options);
 
 /// Predicted area distortion of the first, spread sample of vertices (every interior vertex
-/// up to options' ranking budget), by the linearised model, best first.
+/// up to options' ranking budget), by the linearised model, best first; its factorisation and
+/// back-substitutions are added to `work` when given.
 /// \throw SolverError when the Laplacian cannot be factorised.
 [[nodiscard]] std::vector<SingularityScore> rank_singularities(
-    const Mesh& mesh, const SingularityOptions& options = {});
+    const Mesh& mesh, const SingularityOptions& options = {}, LinearWork* work = nullptr);
 
 /// The chosen vertex. \pre a connected closed or open 2-manifold.
 /// \throw SolverError when no verified candidate converges; as flow().

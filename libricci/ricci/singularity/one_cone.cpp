@@ -224,6 +224,12 @@ namespace {
 
 // Runs the flow with each metric of one_cone_metric_order until one converges; failed runs are
 // appended to `failures`.
+// `next` replaces `result`, the attempt before it: its linear work counts the attempts' sum.
+void take_over(FlowResult& result, FlowResult next) {
+  next.linear_work += result.linear_work;
+  result = std::move(next);
+}
+
 FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& caller_options,
                        std::vector<std::string>& failures) {
   FlowResult result;
@@ -246,15 +252,15 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& caller_
       // instead of paying three factorisations for it.
       FlowOptions one_shot = options;
       one_shot.give_up_on_short_first_step = true;
-      result = flow(tables, initial, problem.targets, one_shot);
+      take_over(result, flow(tables, initial, problem.targets, one_shot));
       result.metric_name = name.substr(0, name.size() - 2);
       if (result.converged()) return result;
       failures.push_back(name + to_string(result.status));
       // The same metric with the cone reached in stages: genus2_100k refined to 1.6M faces
       // stalls at error 3 in one go (Newton's first steps are cut to 1/2048 by the line search)
       // and converges in kConeContinuationStages stages.
-      result = flow_by_continuation(tables, initial, problem.targets, options,
-                                    ContinuationOptions{kConeContinuationStages});
+      take_over(result, flow_by_continuation(tables, initial, problem.targets, options,
+                                             ContinuationOptions{kConeContinuationStages}));
       result.metric_name = name.substr(0, name.size() - 2) + ", by continuation";
       if (result.converged()) return result;
       failures.push_back(name + "by continuation: " + to_string(result.status));
@@ -266,7 +272,7 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& caller_
     FlowOptions attempt = options;
     attempt.scheme = scheme;
     attempt.radii = radii;
-    result = flow(problem.mesh, problem.targets, attempt);
+    take_over(result, flow(problem.mesh, problem.targets, attempt));
     result.metric_name = to_string(scheme) + "/" + radius_name(radii);
     if (result.converged()) break;
     failures.push_back(to_string(scheme) + "/" + radius_name(radii) + ": " + to_string(result.status));
@@ -325,7 +331,7 @@ FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector
       const CirclePackingMetric initial = cone_ring_metric(tables, lengths, problem.cone, rule);
       // Mixing clamped and free weights in one face can break it before the flow starts: the
       // continuation's first curvature evaluation throws InvalidInputError then.
-      result = flow_by_continuation(tables, initial, problem.targets, shared, continuation);
+      take_over(result, flow_by_continuation(tables, initial, problem.targets, shared, continuation));
       result.metric_name = to_string(rule);
       if (result.converged()) break;
       failures.push_back(to_string(rule) + ": " + result.message);
@@ -353,7 +359,11 @@ FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions&
     other.targets = std::move(targets);
     failures.push_back("failed with every metric; trying the boundary target: " + name);
     FlowResult next = try_metrics(other, options, failures);
-    if (next.converged()) result = std::move(next);
+    if (next.converged()) {
+      take_over(result, std::move(next));
+    } else {
+      result.linear_work += next.linear_work;
+    }
   }
   result.failed_attempts.insert(result.failed_attempts.begin(), failures.begin(), failures.end());
   return result;

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <optional>
 #include <string>
 #include <unordered_set>
@@ -15,6 +14,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/mesh/small_holes.h"
+#include "ricci/util/stopwatch.h"
 #include "spline/surface/adaptive_domain.h"
 #include "spline/surface/cap_holes.h"
 #include "spline/surface/fold_smoothing.h"
@@ -25,12 +25,6 @@ namespace spline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -44,9 +38,9 @@ class StageClock {
   void begin(const std::string& name) {
     if (!stage_.empty()) {
       add(out_.seconds, stage_, seconds_since(stage_start_));
-      add(out_.cpu_seconds, stage_, process_cpu_seconds() - cpu_start_);
+      add(out_.cpu_seconds, stage_, ricci::process_cpu_seconds() - cpu_start_);
     }
-    cpu_start_ = process_cpu_seconds();
+    cpu_start_ = ricci::process_cpu_seconds();
     stage_ = name;
     stage_start_ = Clock::now();
     if (progress_ && !name.empty()) progress_(name);
@@ -54,7 +48,7 @@ class StageClock {
   void finish() {
     begin("");
     out_.seconds.emplace_back("total", seconds_since(total_start_));
-    out_.cpu_seconds.emplace_back("total", process_cpu_seconds() - cpu_total_);
+    out_.cpu_seconds.emplace_back("total", ricci::process_cpu_seconds() - cpu_total_);
   }
 
  private:
@@ -72,7 +66,7 @@ class StageClock {
   FittedSurface& out_;
   const std::function<void(const std::string&)>& progress_;
   Clock::time_point total_start_ = Clock::now();
-  double cpu_total_ = process_cpu_seconds();
+  double cpu_total_ = ricci::process_cpu_seconds();
   Clock::time_point stage_start_ = total_start_;
   double cpu_start_ = cpu_total_;
   std::string stage_;

@@ -110,6 +110,33 @@ TEST(OneConeAtlas, AutomaticChoiceRunsFewFlows) {
   EXPECT_LT(r.flow.max_error, 1e-9);
 }
 
+// The run's linear work, stage by stage: the choice's linear model is one factorisation and
+// its verifying flows each at least one more; the flow's factorisations are its Newton
+// factorisations, each followed by a back-substitution; the total is the stages' sum.
+TEST(OneConeAtlas, LinearWorkCountsEveryStage) {
+  ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
+  const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh);
+  const ricci::OneConeAtlasLinearWork& work = r.linear_work;
+  ASSERT_GT(r.flows_for_choice, 0);
+  EXPECT_GE(work.choice.factorizations, 1 + r.flows_for_choice);
+  EXPECT_GE(work.choice.right_hand_sides, r.solves_for_choice);
+  EXPECT_EQ(work.flow.factorizations, r.flow.factorizations);
+  EXPECT_GE(work.flow.back_substitutions, work.flow.factorizations);
+  EXPECT_GE(work.flow.factorizations, 1);
+  EXPECT_EQ(work.polish.factorizations + work.polish.back_substitutions > 0, r.polished);
+  const ricci::LinearWork total = work.total();
+  EXPECT_EQ(total.factorizations,
+            work.choice.factorizations + work.flow.factorizations + work.polish.factorizations);
+  EXPECT_EQ(total.solves(), total.factorizations + total.back_substitutions);
+
+  // A given vertex: no choice, no work for it.
+  ricci::OneConeAtlasOptions given;
+  given.singular_vertex = r.chosen_vertex;
+  const ricci::OneConeAtlasResult fixed = ricci::build_one_cone_atlas(mesh, given);
+  EXPECT_EQ(fixed.linear_work.choice.solves(), 0);
+  EXPECT_EQ(fixed.linear_work.flow.factorizations, fixed.flow.factorizations);
+}
+
 }  // namespace
 
 namespace {

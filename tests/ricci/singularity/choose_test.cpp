@@ -98,6 +98,11 @@ TEST(ChooseSingularity, LargeMeshesRunNoVerifyingFlow) {
   EXPECT_GE(choice.vertex, 0);
   EXPECT_LT(choice.ranked, static_cast<int>(mesh.n_vertices()) / 4);
   EXPECT_EQ(choice.linear_solves, choice.ranked + 1);
+  // Without flows the choice is the linear model's one factorisation and its blocked
+  // back-substitutions, every right-hand side counted once.
+  EXPECT_EQ(choice.linear_work.factorizations, 1);
+  EXPECT_EQ(choice.linear_work.right_hand_sides, choice.linear_solves);
+  EXPECT_LT(choice.linear_work.back_substitutions, choice.linear_solves);
   // The zoom search improves on the spread sample it starts from.
   const std::vector<ricci::SingularityScore> sample = ricci::rank_singularities(mesh, options);
   EXPECT_EQ(static_cast<int>(sample.size()), options.min_ranked_vertices);
