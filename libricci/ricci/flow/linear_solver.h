@@ -88,6 +88,22 @@ class SymmetricFactorization {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Adds to `total`, when it goes out of scope, the work `factorization` did since it was made:
+/// one caller's share of a factorisation that others use too.
+class LinearWorkMeter {
+ public:
+  LinearWorkMeter(const SymmetricFactorization& factorization, LinearWork& total)
+      : factorization_(factorization), total_(total), before_(factorization.work()) {}
+  ~LinearWorkMeter() { total_ += factorization_.work() - before_; }
+  LinearWorkMeter(const LinearWorkMeter&) = delete;
+  LinearWorkMeter& operator=(const LinearWorkMeter&) = delete;
+
+ private:
+  const SymmetricFactorization& factorization_;
+  LinearWork& total_;
+  LinearWork before_;
+};
+
 /// Solves H x = rhs (H by its lower triangle) with the factorisation of a nearby matrix F (an
 /// earlier Newton step's, same size): x += F⁻¹(rhs - H x), a stationary iteration converging at
 /// rate ‖I - F⁻¹H‖. F's pattern may differ from H's (flips). Returns false when it is not fast

@@ -50,9 +50,8 @@ class NewtonSystem {
                      Eigen::VectorXd& x) {
     if (!factored_) return false;
     const Stopwatch t0;
-    const LinearWork before = factorization_->work();
+    const LinearWorkMeter meter(*factorization_, work_);
     const bool ok = solve_with_nearby_factorization(*factorization_, H, rhs, x);
-    work_ += factorization_->work() - before;
     timings_.solve += t0.seconds();
     return ok;
   }
@@ -83,14 +82,7 @@ class NewtonSystem {
  private:
   bool try_solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs,
                  Eigen::VectorXd& x) {
-    const LinearWork before = factorization_->work();
-    const bool ok = factorize_and_solve(H, rhs, x);
-    work_ += factorization_->work() - before;
-    return ok;
-  }
-
-  bool factorize_and_solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& rhs,
-                           Eigen::VectorXd& x) {
+    const LinearWorkMeter meter(*factorization_, work_);
     Stopwatch t0;
     const bool ok = factorization_->factorize(H);
     timings_.factorization += t0.seconds();

@@ -163,32 +163,31 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     clock.restart();
     const bool try_nearby =
         factored_last && last_step_full && error < options.nearby_factorization_below;
-    const LinearWork nearby_before = try_nearby ? factored_last->work() : LinearWork{};
     // An inexact Newton step: a relative residual eta adds eta * error to the next error,
     // below Newton's own error^2 while eta <= error (Dembo-Eisenstat-Steihaug forcing term).
     const double forcing = std::clamp(1e-2 * error, 1e-12, 1e-6);
-    const bool reused = try_nearby && solve_with_nearby_factorization(*factored_last, lower, rhs,
-                                                                      reduced, forcing);
-    if (try_nearby) result.linear_work += factored_last->work() - nearby_before;
+    bool reused = false;
+    if (try_nearby) {
+      const LinearWorkMeter meter(*factored_last, result.linear_work);
+      reused = solve_with_nearby_factorization(*factored_last, lower, rhs, reduced, forcing);
+    }
     result.timings.solve += clock.seconds();
     if (!reused) {
       factored_last.reset();  // at most one factor alive besides the cache's
       const std::shared_ptr<SymmetricFactorization> factorization =
           cache.get(result.solver, lower, result.timings.analysis);
+      const LinearWorkMeter meter(*factorization, result.linear_work);
       clock.restart();
-      const LinearWork before = factorization->work();
       const bool factored = factorization->factorize(lower);
       result.timings.factorization += clock.seconds();
       ++result.factorizations;
       if (!factored) {
-        result.linear_work += factorization->work() - before;
         reason = "the cotangent Laplacian did not factorise";
         return FlowStatus::stalled;
       }
       factored_last = factorization;
       clock.restart();
       reduced = factorization->solve(rhs);
-      result.linear_work += factorization->work() - before;
       result.timings.solve += clock.seconds();
     }
     Eigen::VectorXd direction = Eigen::VectorXd::Zero(n);

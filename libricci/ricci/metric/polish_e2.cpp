@@ -102,11 +102,8 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
   const auto solve = [&](const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
     // A step solved to 1e-6 leaves a defect 1e-6 of the flow's (~1e-10): below the floor.
     if (nearby.factorization) {
-      const LinearWork before = nearby.factorization->work();
-      const bool solved =
-          solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6);
-      result.linear_work += nearby.factorization->work() - before;
-      if (solved) return true;
+      const LinearWorkMeter meter(*nearby.factorization, result.linear_work);
+      if (solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6)) return true;
     }
     if (!own && !own_failed) {
       own = std::make_unique<SymmetricFactorization>(
@@ -116,9 +113,8 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
       result.linear_work += own->work();  // its factorisation
     }
     if (own_failed) return false;
-    const LinearWork before = own->work();
+    const LinearWorkMeter meter(*own, result.linear_work);
     x = own->solve(rhs);
-    result.linear_work += own->work() - before;
     return true;
   };
   result.lengths = lengths;
