@@ -14,16 +14,6 @@
 namespace ricci {
 namespace {
 
-// Wall-clock and CPU seconds of a stage.
-struct StageClock {
-  Stopwatch wall;
-  CpuStopwatch cpu;
-  void restart() {
-    wall.restart();
-    cpu.restart();
-  }
-};
-
 // The cut graph's root: the cone, else an interior vertex (genus 1) or vertex 0 (open).
 VertexHandle atlas_root(const OneConeProblem& problem) {
   if (problem.cone >= 0) return problem.mesh.vertex_handle(problem.cone);
@@ -72,7 +62,7 @@ void map_problem_to_input(OneConeAtlasResult& result) {
 // Clean-up, valence modification and cone refinement: fills result's problem and timings.
 void prepare_problem(const Mesh& mesh, const OneConeAtlasOptions& options,
                      OneConeAtlasResult& result, const std::function<void(const char*)>& report) {
-  StageClock t;
+  StageTimer t;
   Mesh cleaned;
   const Mesh* surface = &mesh;  // no copy of the input unless it is cleaned up
   if (options.collapse_short_edges || options.flip_flat_edges) {
@@ -97,7 +87,7 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
                        const std::function<void(const char*)>& report, bool fall_back) {
   prepare_problem(mesh, options, result, report);
   report("Ricci flow");
-  StageClock t;
+  StageTimer t;
   result.flow = FlowResult();
   if (result.problem.kind == OneConeKind::SingleCone && !options.cone_ring_metrics.empty()) {
     result.flow = solve_cone_ring_flow(result.problem, options.cone_ring_metrics, options.flow, options.continuation);
@@ -151,7 +141,7 @@ void solve_and_polish(const Mesh& mesh, const OneConeAtlasOptions& options,
                       OneConeAtlasResult& result, const std::function<void(const char*)>& report,
                       bool fall_back) {
   prepare_and_solve(mesh, options, result, report, fall_back);
-  StageClock polish;
+  StageTimer polish;
   polish_lengths(options, result);
   result.timings.polish = polish.wall.seconds();
   result.timings.cpu_polish = polish.cpu.seconds();
@@ -167,7 +157,7 @@ bool intrinsic_applies(const OneConeProblem& problem) {
 void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& result,
                      const std::function<void(const char*)>& report) {
   report("intrinsic Delaunay flow");
-  StageClock t;
+  StageTimer t;
   IntrinsicFlowOptions settings = options.intrinsic;
   settings.tolerance = options.flow.tolerance;
   settings.solver = options.flow.solver;
@@ -196,7 +186,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
     // 1.4e-13 gave 1e-9 relative error on its shortest edge).
     if (!r.converged() || std::isfinite(options.polish_threshold)) {
-      const StageClock polish;
+      const StageTimer polish;
       const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
       result.polish =
           polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature, 6,
@@ -268,15 +258,8 @@ bool try_intrinsic(const Mesh& mesh, const OneConeAtlasOptions& options,
 // failed at every candidate.
 bool choose_vertex(const Mesh& mesh, const OneConeAtlasOptions& options, bool intrinsic_only,
                    OneConeAtlasResult& result) {
-  StageClock t;
-  SingularityOptions choice = options.choice;
-  choice.flow = options.flow;
-  // Comparing distortions needs no more than 1e-8 (the verifying flows stop earlier).
-  choice.flow.tolerance = std::max(options.flow.tolerance, options.choice.flow.tolerance);
-  choice.valence = options.valence;
-  // The plain inversive-distance flow the route replaces fails at most candidates of a
-  // marching-cubes or CAD mesh: rank them with the default metrics instead.
-  choice.keep_metric = options.keep_metric && !takes_inversive_distance_route(mesh, options);
+  StageTimer t;
+  const SingularityOptions choice = singularity_options(mesh, options);
   bool fixed_failed = false;
   if (intrinsic_only) {
     result.chosen_vertex = rank_singularities(mesh, choice, &result.linear_work.choice).front().vertex;
@@ -339,8 +322,20 @@ double OneConeAtlasResult::relative_transition_residual() const {
   return atlas.domain_diameter > 0 ? residual / atlas.domain_diameter : residual;
 }
 
+SingularityOptions singularity_options(const Mesh& mesh, const OneConeAtlasOptions& options) {
+  SingularityOptions choice = options.choice;
+  choice.flow = options.flow;
+  // Comparing distortions needs no more than 1e-8 (the verifying flows stop earlier).
+  choice.flow.tolerance = std::max(options.flow.tolerance, options.choice.flow.tolerance);
+  choice.valence = options.valence;
+  // The plain inversive-distance flow the route replaces fails at most candidates of a
+  // marching-cubes or CAD mesh: rank them with the default metrics instead.
+  choice.keep_metric = options.keep_metric && !takes_inversive_distance_route(mesh, options);
+  return choice;
+}
+
 OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
-  const StageClock start;
+  const StageTimer start;
   const std::function<void(const char*)> report = [&](const char* stage) {
     if (options.progress) options.progress(stage);
   };
@@ -411,7 +406,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   result.linear_work.polish = result.polish.linear_work;
 
   report("cut graph, layout and atlas");
-  StageClock t;
+  StageTimer t;
   result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths, atlas_root(result.problem), options.atlas);
   result.timings.atlas = t.wall.seconds();
   result.timings.cpu_atlas = t.cpu.seconds();

@@ -150,6 +150,12 @@ struct OneConeAtlasResult {
 /// intrinsic flow when takes_intrinsic_flow_first).
 [[nodiscard]] bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options);
 
+/// The settings build_one_cone_atlas chooses the automatic singularity of `mesh` with:
+/// options.choice with the atlas's flow (its tolerance no tighter than the choice's), valence
+/// and metric (default metrics when the inversive-distance route would replace the asked one).
+[[nodiscard]] SingularityOptions singularity_options(const Mesh& mesh,
+                                                     const OneConeAtlasOptions& options);
+
 /// \pre a connected, oriented 2-manifold triangle mesh.
 /// \throw InvalidInputError / TopologyError for bad input; InfeasibleTargetError for a target
 ///        the theory forbids; SolverError when the flow does not converge (its message names the

@@ -53,4 +53,14 @@ class CpuStopwatch {
   double start_;
 };
 
+/// A stage's wall and CPU seconds together.
+struct StageTimer {
+  Stopwatch wall;
+  CpuStopwatch cpu;
+  void restart() {
+    wall.restart();
+    cpu.restart();
+  }
+};
+
 }  // namespace ricci

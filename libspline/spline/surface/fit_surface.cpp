@@ -1,7 +1,6 @@
 #include "spline/surface/fit_surface.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -24,12 +23,6 @@
 namespace spline {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // Wall-clock and CPU seconds of consecutive stages: a stage ends when the next one begins.
 class StageClock {
  public:
@@ -37,18 +30,17 @@ class StageClock {
       : out_(out), progress_(options.progress) {}
   void begin(const std::string& name) {
     if (!stage_.empty()) {
-      add(out_.seconds, stage_, seconds_since(stage_start_));
-      add(out_.cpu_seconds, stage_, ricci::process_cpu_seconds() - cpu_start_);
+      add(out_.seconds, stage_, stage_timer_.wall.seconds());
+      add(out_.cpu_seconds, stage_, stage_timer_.cpu.seconds());
     }
-    cpu_start_ = ricci::process_cpu_seconds();
+    stage_timer_.restart();
     stage_ = name;
-    stage_start_ = Clock::now();
     if (progress_ && !name.empty()) progress_(name);
   }
   void finish() {
     begin("");
-    out_.seconds.emplace_back("total", seconds_since(total_start_));
-    out_.cpu_seconds.emplace_back("total", ricci::process_cpu_seconds() - cpu_total_);
+    out_.seconds.emplace_back("total", total_.wall.seconds());
+    out_.cpu_seconds.emplace_back("total", total_.cpu.seconds());
   }
 
  private:
@@ -65,10 +57,7 @@ class StageClock {
 
   FittedSurface& out_;
   const std::function<void(const std::string&)>& progress_;
-  Clock::time_point total_start_ = Clock::now();
-  double cpu_total_ = ricci::process_cpu_seconds();
-  Clock::time_point stage_start_ = total_start_;
-  double cpu_start_ = cpu_total_;
+  ricci::StageTimer total_, stage_timer_;
   std::string stage_;
 };
 
@@ -122,13 +111,9 @@ int domain_singular_vertex(const ricci::Mesh& dense, const FitSurfaceOptions& op
 // flattest, where the adaptive domain is coarsest, and its star is the hole the fill patch
 // covers (genus 0) or the first ring of the charts.
 int split_cone_star(const ricci::Mesh& dense, ScanFitOptions& scan) {
-  ricci::SingularityOptions choice = scan.atlas.choice;
-  choice.flow = scan.atlas.flow;
-  choice.flow.tolerance = std::max(scan.atlas.flow.tolerance, scan.atlas.choice.flow.tolerance);
-  choice.valence = scan.atlas.valence;
-  choice.keep_metric = scan.atlas.keep_metric;
   ricci::Mesh& domain = *scan.domain;
-  const int cone = ricci::choose_singularity(domain, choice).vertex;
+  const int cone =
+      ricci::choose_singularity(domain, ricci::singularity_options(domain, scan.atlas)).vertex;
   if (cone < 0) return -1;
   std::vector<char> star(domain.n_faces(), 0);
   for (auto f : domain.vf_range(domain.vertex_handle(cone))) star[static_cast<std::size_t>(f.idx())] = 1;
