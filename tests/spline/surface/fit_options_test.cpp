@@ -46,6 +46,10 @@ TEST(CheckOptions, DefaultsPassAndEachRangeIsEnforced) {
   EXPECT_NE(with([](auto& o) { o.fold_rms_goal = -1e-3; }), "");
   EXPECT_NE(with([](auto& o) { o.fold_rms_goal = 1.0; }), "");
   EXPECT_EQ(with([](auto& o) { o.fold_rms_goal = 0.0; }), "");
+  EXPECT_NE(with([](auto& o) { o.fold_free_rms = -1e-3; }), "");
+  EXPECT_NE(with([](auto& o) { o.fold_free_rms = 1.0; }), "");
+  EXPECT_NE(with([](auto& o) { o.fold_free_rms = std::nan(""); }), "");
+  EXPECT_EQ(with([](auto& o) { o.fold_free_rms = 0.0; }), "");
   EXPECT_NE(with([](auto& o) { o.crease_fold_rms_growth = 0.5; }), "");
 }
 
