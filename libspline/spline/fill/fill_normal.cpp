@@ -26,17 +26,27 @@ struct ThinPlatePoints {
   std::vector<int> starts{0};         ///< point p's entries: [starts[p], starts[p + 1])
 };
 
+// `candidates`: triangles whose functions may reach triangle k, ascending (nullptr: the space's
+// own search per point).
 ThinPlatePoints thin_plate_points(const PlanarDmsSpace& space, int k, double weight,
-                                  const std::vector<QuadraturePoint>& rule) {
+                                  const std::vector<QuadraturePoint>& rule,
+                                  const std::vector<int>* candidates) {
   const double factors[3] = {1.0, std::sqrt(2.0), 1.0};
   const auto& t = space.triangulation();
   const Eigen::Vector3i v = t.triangles[static_cast<std::size_t>(k)];
   const Eigen::Vector2d a = t.positions[v[0]], b = t.positions[v[1]], c = t.positions[v[2]];
   const double area = 0.5 * std::abs(ricci::cross2d(b - a, c - a));
   ThinPlatePoints points;
+  std::vector<BasisSample> basis;
   for (const auto& q : rule) {
     const double root = std::sqrt(weight * area * q.weight);
-    const auto basis = space.evaluate_basis(q.bary[0] * a + q.bary[1] * b + q.bary[2] * c);
+    const Eigen::Vector2d u = q.bary[0] * a + q.bary[1] * b + q.bary[2] * c;
+    if (candidates != nullptr) {
+      basis.clear();
+      space.evaluate_basis_of(u, *candidates, TieBreak{}, BasisDerivatives::second, basis);
+    } else {
+      basis = space.evaluate_basis(u);
+    }
     // Near the grid's outer rim functions are missing: there the spline reproduces no affine
     // map, so an affine patch would pay thin-plate energy and bend to avoid it (measured: a
     // planar hole's parametric patch tilted 6 degrees). Those points are left out.
@@ -52,6 +62,23 @@ ThinPlatePoints thin_plate_points(const PlanarDmsSpace& space, int k, double wei
     points.starts.push_back(static_cast<int>(points.functions.size()));
   }
   return points;
+}
+
+// The triangles sharing a vertex with triangle k (k too), ascending: every triangle whose
+// functions reach into k. A vertex's knots lie within half the smallest inradius of its
+// triangles, less than its distance to the edges opposite it in them (over twice the inradius),
+// so the clouds' hull of a triangle J meets k only near a vertex J shares with k.
+std::vector<int> vertex_star_triangles(const PlanarTriangulation& t,
+                                       const std::vector<std::vector<int>>& stars, int k) {
+  std::vector<int> result;
+  const Eigen::Vector3i& corners = t.triangles[static_cast<std::size_t>(k)];
+  for (int corner = 0; corner < 3; ++corner) {
+    const auto& star = stars[static_cast<std::size_t>(corners[corner])];
+    result.insert(result.end(), star.begin(), star.end());
+  }
+  std::sort(result.begin(), result.end());
+  result.erase(std::unique(result.begin(), result.end()), result.end());
+  return result;
 }
 
 // The upper block triangle of a symmetric matrix whose unknowns come in groups of `size` (a
@@ -173,7 +200,7 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
   const auto rule = thin_plate_rule();
   std::vector<ThinPlatePoints> per_triangle(static_cast<std::size_t>(space.triangle_count()));
   parallel_for(per_triangle.size(), 0, [&](std::size_t k) {
-    per_triangle[k] = thin_plate_points(space, static_cast<int>(k), weight, rule);
+    per_triangle[k] = thin_plate_points(space, static_cast<int>(k), weight, rule, nullptr);
   });
   for (const ThinPlatePoints& points : per_triangle) {
     for (std::size_t p = 0; p + 1 < points.starts.size(); ++p) {
@@ -192,6 +219,13 @@ Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight) {
   const int size = space.functions_per_triangle();
   const int triangles = space.triangle_count();
   BlockRows blocks(triangles, size);
+  const PlanarTriangulation& t = space.triangulation();
+  std::vector<std::vector<int>> stars(t.positions.size());
+  for (int k = 0; k < triangles; ++k) {
+    const Eigen::Vector3i& corners = t.triangles[static_cast<std::size_t>(k)];
+    for (int corner = 0; corner < 3; ++corner)
+      stars[static_cast<std::size_t>(corners[corner])].push_back(k);
+  }
   // Chunks of triangles: their points evaluated in parallel, then added by block row, each
   // worker owning the rows of its residue class, in triangle and point order. So the sums do
   // not depend on the number of threads.
@@ -200,7 +234,9 @@ Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight) {
   for (int first = 0; first < triangles; first += kChunk) {
     const int count = std::min(kChunk, triangles - first);
     parallel_for(static_cast<std::size_t>(count), 0, [&](std::size_t k) {
-      chunk[k] = thin_plate_points(space, first + static_cast<int>(k), weight, rule);
+      const int triangle = first + static_cast<int>(k);
+      const std::vector<int> candidates = vertex_star_triangles(t, stars, triangle);
+      chunk[k] = thin_plate_points(space, triangle, weight, rule, &candidates);
     });
     const int workers = parallel_thread_count(0, static_cast<std::size_t>(count) * rule.size());
     run_workers(workers, [&](int worker) {
