@@ -114,11 +114,11 @@ void SymmetricFactorization::analyze(const Sparse& lower) {
   }
 }
 
-void SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi& ordering,
+bool SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi& ordering,
                                      double fill) {
   if (kind_ != LinearSolver::cholmod_supernodal || ordering.size() != lower.rows()) {
     analyze(lower);
-    return;
+    return false;
   }
   // given * b = b(ordering): its indices are the inverse of `ordering`.
   impl_->given = Permutation(ordering).inverse();
@@ -132,7 +132,11 @@ void SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi&
   common.method[0].ordering = method;
   // A pattern too far from the ordering's: order afresh.
   impl_->fresh_fill = fill;
-  if (fill > 0 && given_fill > 1.1 * fill) analyze(lower);
+  if (fill > 0 && given_fill > 1.1 * fill) {
+    analyze(lower);
+    return false;
+  }
+  return true;
 }
 
 Eigen::VectorXi SymmetricFactorization::ordering() const {
@@ -251,7 +255,7 @@ std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kin
   // ordering is most of an analysis on large meshes.
   Eigen::VectorXi ordering;
   double fill = 0.0;
-  if (factorization_ && factorization_->kind() == resolved &&
+  if (factorization_ && factorization_->kind() == resolved && orderings_rejected_ == 0 &&
       lower.rows() == static_cast<Eigen::Index>(outer_.size()) - 1) {
     ordering = factorization_->ordering();
     fill = factorization_->fill();
@@ -259,8 +263,7 @@ std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kin
   factorization_.reset();  // its factor goes before the new one is made
   factorization_ = std::make_shared<SymmetricFactorization>(resolved);
   if (ordering.size() > 0) {
-    factorization_->analyze(lower, ordering, fill);
-    ++orderings_reused_;
+    ++(factorization_->analyze(lower, ordering, fill) ? orderings_reused_ : orderings_rejected_);
   } else {
     factorization_->analyze(lower);
   }
