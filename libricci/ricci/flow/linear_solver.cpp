@@ -98,6 +98,7 @@ SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
 SymmetricFactorization::~SymmetricFactorization() = default;
 
 void SymmetricFactorization::analyze(const Sparse& lower) {
+  const SerialOpenMpScope serial_openmp;
   impl_->given = Permutation();
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
@@ -116,6 +117,7 @@ void SymmetricFactorization::analyze(const Sparse& lower) {
 
 bool SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi& ordering,
                                      double fill) {
+  const SerialOpenMpScope serial_openmp;
   if (kind_ != LinearSolver::cholmod_supernodal || ordering.size() != lower.rows()) {
     analyze(lower);
     return false;
@@ -155,6 +157,7 @@ double SymmetricFactorization::fill() const { return impl_->fresh_fill; }
 LinearWork SymmetricFactorization::work() const { return impl_->work; }
 
 bool SymmetricFactorization::factorize(const Sparse& lower) {
+  const SerialOpenMpScope serial_openmp;
   ++impl_->work.factorizations;
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
@@ -177,6 +180,7 @@ bool SymmetricFactorization::factorize(const Sparse& lower) {
 }
 
 Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const {
+  const SerialOpenMpScope serial_openmp;
   impl_->count_solve(1);
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
@@ -195,6 +199,7 @@ Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const 
 }
 
 Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs) const {
+  const SerialOpenMpScope serial_openmp;
   impl_->count_solve(rhs.cols());
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
