@@ -38,7 +38,8 @@ int run_intrinsic_benchmark(int argc, char** argv);  // bench_intrinsic.cpp
 Eigen::SparseMatrix<double> regularised_cotangent_laplacian(const ricci::Mesh& mesh);  // bench_one_cone.cpp
 /// Best of 3 CHOLMOD supernodal analyse + factorise + solve of `L`, wall seconds (that run's CPU
 /// seconds in `cpu_seconds` when given).
-double one_cholesky_seconds(const Eigen::SparseMatrix<double>& L, double* cpu_seconds = nullptr);  // bench_one_cone.cpp
+double one_cholesky_seconds(const Eigen::SparseMatrix<double>& L,
+                            double* cpu_seconds = nullptr);  // bench_one_cone.cpp
 int run_uniformize_benchmark(int argc, char** argv);  // bench_uniformize.cpp
 /// The delivered .glb measured against its scan from outside (issue 15's checker).
 int run_check_glb(int argc, char** argv);  // bench_check_glb.cpp

@@ -333,8 +333,9 @@ double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityO
 
 int zoom_sample_count(int vertices, const SingularityOptions& options) {
   const double share = 0.4 * options.ranking_work / std::max(vertices, 1);
-  return static_cast<int>(std::clamp(std::round(share), static_cast<double>(options.min_zoom_samples),
-                                     static_cast<double>(std::max(options.min_zoom_samples, options.max_zoom_samples))));
+  const double low = options.min_zoom_samples;
+  const double high = std::max(options.min_zoom_samples, options.max_zoom_samples);
+  return static_cast<int>(std::clamp(std::round(share), low, high));
 }
 
 int verified_count(int vertices, const SingularityOptions& options) {

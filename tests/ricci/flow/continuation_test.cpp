@@ -102,7 +102,8 @@ Eigen::SparseMatrix<double> grid_matrix(int n, const std::vector<int>& label) {
   };
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
-      t.emplace_back(label[static_cast<size_t>(i * n + j)], label[static_cast<size_t>(i * n + j)], 1.0);
+      const int v = label[static_cast<size_t>(i * n + j)];
+      t.emplace_back(v, v, 1.0);
       if (j + 1 < n) add(i * n + j, i * n + j + 1);
       if (i + 1 < n) add(i * n + j, (i + 1) * n + j);
     }
@@ -121,7 +122,9 @@ TEST(FactorizationCache, StopsOfferingTheOrderingOnceRejected) {
   const int n = 40;
   std::vector<int> identity(static_cast<size_t>(n * n)), shuffled(identity.size());
   std::iota(identity.begin(), identity.end(), 0);
-  for (size_t k = 0; k < shuffled.size(); ++k) shuffled[k] = static_cast<int>((k * 613) % shuffled.size());
+  for (size_t k = 0; k < shuffled.size(); ++k) {
+    shuffled[k] = static_cast<int>((k * 613) % shuffled.size());  // 613 is prime to 1600
+  }
   const Eigen::SparseMatrix<double> grid = grid_matrix(n, identity);
   Eigen::SparseMatrix<double> grid_and_edge = grid;
   grid_and_edge.insert(n + 1, 0) = -0.5;  // a diagonal of the first square (a flip)
