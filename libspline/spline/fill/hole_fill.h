@@ -80,6 +80,10 @@ struct FindRimsOptions {
   /// (max_normal_step_deg; given to find_rims as a function). A smooth fit turns by ~1 degree.
   double max_cone_rim_normal_step_deg = 20.0;
   int max_cone_layers = 3;  ///< cap on those extra layers
+  /// Layers taken after the last layer whose rim had such a face (within the caps): the spline
+  /// on the faces a ring past a fold or a scale jump still carries it (the basis functions'
+  /// supports reach a ring), so the rim is moved one ring away from them. 0: none.
+  int cone_margin_layers = 0;
   /// The first this many of those layers are taken whatever the rim's faces (still within the
   /// caps): for a retry on a bigger hole when a patch cannot meet the rim (msp fit does when a
   /// cone patch flips).

@@ -404,9 +404,10 @@ double worst_scale_ratio(const std::vector<double>& chart_scale, const ricci::Me
 
 // Extra layers of the cone hole (FindRimsOptions::max_cone_rim_scale_ratio and
 // max_cone_rim_normal_step_deg): while a face on its rim is badly conditioned or folded (and
-// for the first extra_cone_layers layers), every kept face touching a vertex of its rim joins it
-// face by face (grow_face_by_face keeps every hole a disk apart from the others); a layer that
-// would cover more than max_cone_cover_fraction of the domain is undone and the growth stops.
+// for the first extra_cone_layers layers, and cone_margin_layers more after the last poor one),
+// every kept face touching a vertex of its rim joins it face by face (grow_face_by_face keeps
+// every hole a disk apart from the others); a layer that would cover more than
+// max_cone_cover_fraction of the domain is undone and the growth stops.
 void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
                                     const std::vector<char>& domain,
                                     const std::vector<double>& chart_scale,
@@ -417,6 +418,7 @@ void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, c
   if (!by_scale && !by_folds && options.extra_cone_layers <= 0) return;
   const int cone = kind_rank(Rim::Kind::cone_hole);
   const auto domain_faces = std::count(domain.begin(), domain.end(), 1);
+  int margin = 0;  // layers taken since the rim last had a poor face
   for (int layer = 0; layer < options.max_cone_layers; ++layer) {
     bool poor = false;
     std::vector<char> on_rim(mesh.n_vertices(), 0);
@@ -429,7 +431,11 @@ void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, c
               worst_scale_ratio(chart_scale, mesh, f) > options.max_cone_rim_scale_ratio) ||
              (by_folds && normal_step_deg(f) > options.max_cone_rim_normal_step_deg);
     }
-    if (!poor && layer >= options.extra_cone_layers) return;
+    if (poor || layer < options.extra_cone_layers) {
+      margin = 0;
+    } else if (layer == 0 || margin++ >= options.cone_margin_layers) {
+      return;  // a hole that was never poor gets no margin
+    }
     std::vector<int> candidates;
     for (auto v : mesh.vertices()) {
       if (!on_rim[v.idx()]) continue;

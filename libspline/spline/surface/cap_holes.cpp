@@ -83,6 +83,7 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
     rim_options.cone_rim_vertices_to_cover = to_cover;
     rim_options.max_cone_layers = options.cone_hole.max_layers;
     rim_options.max_cone_cover_fraction = options.cone_hole.max_cover_fraction;
+    rim_options.cone_margin_layers = options.cone_hole.margin_layers;
     rim_options.boundary_faces = collar_faces;
     return find_rims(surface.domain, in_domain, space.atlas().in_domain, rim_options, merge,
                      scale, normal_step);
@@ -164,6 +165,11 @@ ConeHoleLimits cone_hole_limits(int genus) {
     limits.max_layers = 8;
     limits.max_cover_fraction = 0.25;
     limits.vertex_rounds = 2;
+  }
+  if (genus >= 8) {
+    limits.max_layers = 12;
+    limits.max_cover_fraction = 0.5;
+    limits.margin_layers = 1;
   }
   return limits;
 }

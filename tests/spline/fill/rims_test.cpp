@@ -388,6 +388,47 @@ TEST(Rims, ConeHoleGrowsPastFolds) {
   EXPECT_EQ(excluded[0].covered_faces, plain[0].covered_faces);
 }
 
+// FindRimsOptions::cone_margin_layers (msp fit from genus 8): after the last layer whose rim
+// folds, one more layer, so that no rim face shares a vertex with a folded face; the hole
+// stays closable and contains the one grown without the margin. A hole that never folds gets
+// no margin.
+TEST(Rims, ConeHoleTakesAMarginLayerPastTheLastFold) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  const auto domain = g.domain_without({{{0, 0}}, {{0, 1}}, {{1, 0}}, {{1, 1}}});
+  const auto ring = rings_around(g.mesh, domain);
+  const auto step = [&ring](int face) { return ring[face] <= 3 ? 90.0 : 1.0; };
+  FindRimsOptions options;
+  options.max_cone_layers = 12;
+  const auto grown = find_rims(g.mesh, domain, domain, options, {}, {}, step);
+  FindRimsOptions margin = options;
+  margin.cone_margin_layers = 1;
+  const auto wider = find_rims(g.mesh, domain, domain, margin, {}, {}, step);
+  ASSERT_EQ(grown.size(), 1u);
+  ASSERT_EQ(wider.size(), 1u);
+  expect_closable(g.mesh, domain, wider, 1, "cone hole with a margin");
+  EXPECT_GT(wider[0].covered_faces.size(), grown[0].covered_faces.size());
+  EXPECT_TRUE(std::includes(wider[0].covered_faces.begin(), wider[0].covered_faces.end(),
+                            grown[0].covered_faces.begin(), grown[0].covered_faces.end()));
+  const auto touches_fold = [&](const std::vector<Rim>& rims) {
+    for (const RimEdge& e : rims[0].edges) {
+      for (auto v : g.mesh.fv_range(g.mesh.face_handle(e.face))) {
+        for (auto f : g.mesh.vf_range(v)) {
+          if (domain[f.idx()] && step(f.idx()) > options.max_cone_rim_normal_step_deg)
+            return true;
+        }
+      }
+    }
+    return false;
+  };
+  EXPECT_TRUE(touches_fold(grown));  // without the margin the rim lies next to the folds
+  EXPECT_FALSE(touches_fold(wider));
+  const auto smooth = [](int) { return 1.0; };
+  const auto plain = find_rims(g.mesh, domain, domain, options);
+  const auto unfolded = find_rims(g.mesh, domain, domain, margin, {}, {}, smooth);
+  ASSERT_EQ(unfolded.size(), 1u);
+  EXPECT_EQ(unfolded[0].covered_faces, plain[0].covered_faces);
+}
+
 // FindRimsOptions::cone_rim_vertices_to_cover (msp fit's retry where a cone patch's seam is
 // worst at a few rim vertices): every face around the chosen rim vertices joins the cone hole,
 // the vertices leave the rim (inside the hole now), nothing else is covered, and the hole stays
