@@ -251,6 +251,17 @@ Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight) {
   return blocks.symmetric();
 }
 
+NormalEquations normal_equations(const System& system, const PlanarDmsSpace& space,
+                                 double thin_plate) {
+  Sparse a(system.next_row(), space.function_count());
+  a.setFromTriplets(system.entries.begin(), system.entries.end());
+  Eigen::MatrixX3d b(system.next_row(), 3);
+  for (int i = 0; i < system.next_row(); ++i) b.row(i) = system.targets[i].transpose();
+  NormalEquations result{a.transpose() * a, a.transpose() * b};
+  if (thin_plate > 0.0) result.matrix += thin_plate_normal(space, thin_plate);
+  return result;
+}
+
 // Factorisations of more flops than this use both BLAS threads (solve_normal_equations).
 constexpr double kParallelBlasFlops = 3e10;
 
@@ -272,6 +283,9 @@ Eigen::MatrixXd solve_normal_equations(const Sparse& normal, const Eigen::Matrix
   // block.off, a 40-edge cone rim, 188k unknowns: 18.5 s -> 13.4 s).
   std::optional<ricci::SerialBlasScope> serial;
   if (solver.cholmod().fl < kParallelBlasFlops) serial.emplace();
+  // CHOLMOD's own OpenMP loops on this thread, as in ricci's SymmetricFactorization
+  // (serial_blas.h says why).
+  const ricci::SerialOpenMpScope serial_openmp;
   solver.factorize(normal);
   if (solver.info() != Eigen::Success) {
     throw ricci::SolverError("fill_rim: the normal equations of the " + what +

@@ -73,6 +73,16 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
 [[nodiscard]] Eigen::SparseMatrix<double> thin_plate_normal(const PlanarDmsSpace& space,
                                                             double weight);
 
+/// The normal equations of `system`'s rows plus weight * the thin-plate energy
+/// (thin_plate_normal; weight 0: none): A^T A + weight T, function_count() square, and A^T b
+/// (one column per right-hand side).
+struct NormalEquations {
+  Eigen::SparseMatrix<double> matrix;
+  Eigen::MatrixX3d rhs;
+};
+[[nodiscard]] NormalEquations normal_equations(const System& system, const PlanarDmsSpace& space,
+                                               double thin_plate);
+
 /// Solves normal * x = rhs (symmetric positive definite, both triangles stored; each column of
 /// rhs a right-hand side) by a supernodal Cholesky factorisation (AMD ordering) and one step of
 /// iterative refinement.

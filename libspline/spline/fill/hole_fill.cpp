@@ -52,13 +52,7 @@ double bounding_diagonal(const ricci::Mesh& mesh) {
 Eigen::MatrixX3d solve(const System& system, const PlanarDmsSpace& space, double thin_plate,
                        const Eigen::Vector3d& anchor_value, const Rim& rim) {
   const int functions = space.function_count();
-  Eigen::SparseMatrix<double> a(system.next_row(), functions);
-  a.setFromTriplets(system.entries.begin(), system.entries.end());
-  Eigen::MatrixX3d b(system.next_row(), 3);
-  for (int i = 0; i < system.next_row(); ++i) b.row(i) = system.targets[i].transpose();
-  Eigen::SparseMatrix<double> normal = a.transpose() * a;
-  if (thin_plate > 0.0) normal += fill_detail::thin_plate_normal(space, thin_plate);
-  Eigen::MatrixX3d rhs = a.transpose() * b;
+  auto [normal, rhs] = fill_detail::normal_equations(system, space, thin_plate);
   // A tiny anchor towards the mean value keeps functions that reach nothing determined and
   // moves with the data.
   const double anchor = 1e-12 * normal.diagonal().sum() / functions;

@@ -52,13 +52,7 @@ Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent,
                                const PlanarDmsSpace& space, double thin_plate,
                                const Eigen::MatrixX3d& anchor_value, const Rim& rim) {
   const int functions = space.function_count();
-  Eigen::SparseMatrix<double> a(scalar.next_row(), functions);
-  a.setFromTriplets(scalar.entries.begin(), scalar.entries.end());
-  Eigen::MatrixX3d b(scalar.next_row(), 3);
-  for (int i = 0; i < scalar.next_row(); ++i) b.row(i) = scalar.targets[i].transpose();
-  Eigen::SparseMatrix<double> block = a.transpose() * a;
-  if (thin_plate > 0.0) block += thin_plate_normal(space, thin_plate);
-  const Eigen::MatrixX3d block_rhs = a.transpose() * b;
+  const auto [block, block_rhs] = normal_equations(scalar, space, thin_plate);
 
   Eigen::SparseMatrix<double> t(tangent.rows, 3 * functions);
   t.setFromTriplets(tangent.entries.begin(), tangent.entries.end());
