@@ -297,6 +297,25 @@ Eigen::Vector2d line_step(const Eigen::Vector3d& r, const Eigen::Vector3d& du,
   return -(slope / curvature) * e;
 }
 
+// The distance's gradient in the parameter plane, |J^T r| (the same in every chart: the
+// transitions are rigid).
+double parameter_gradient(const Eigen::Vector3d& r, const Eigen::Vector3d& du,
+                          const Eigen::Vector3d& dv) {
+  return Eigen::Vector2d(r.dot(du), r.dot(dv)).norm();
+}
+
+// Whether a trial point at squared distance `d` (gradient `g`) is taken from one at `best`
+// (gradient `g0`): when it is nearer, or, at the rounding floor of the squared distance (the
+// difference below what rounding the positions of magnitude `size` makes of it), when a full
+// Newton step halves the gradient. A foot point close to the target (distance 1e-3 of the
+// diagonal) has a squared distance flat to rounding while its residual is still 1e-7 off normal.
+bool nearer_or_more_normal(double d, double best, double g, double g0, bool full_step,
+                           double size) {
+  if (d < best) return true;
+  const double floor = 8.0 * std::numeric_limits<double>::epsilon() * size * std::sqrt(best);
+  return full_step && d <= best + floor && g < 0.5 * g0;
+}
+
 }  // namespace
 
 struct ClosestPointIndex::Data {
@@ -375,8 +394,10 @@ struct ClosestPointIndex::Data {
         const DomainPoint next = walk(point, u0 + f * step);
         const SurfaceJet trial = surface.spline.evaluate(next);
         const double d = (trial.position - q).squaredNorm();
-        if (d < best) {
-          moved = d < best * (1.0 - 1e-15) ||
+        const double g = parameter_gradient(trial.position - q, trial.du, trial.dv);
+        const double g0 = parameter_gradient(jet.position - q, jet.du, jet.dv);
+        if (nearer_or_more_normal(d, best, g, g0, f == 1.0, scale + q.norm())) {
+          moved = d < best * (1.0 - 1e-15) || g < 0.5 * g0 ||
                   (trial.position - jet.position).norm() > 1e-15 * scale;
           best = d;
           point = next;
@@ -421,8 +442,13 @@ struct ClosestPointIndex::Data {
         }
         const SplineJet trial = fill.jet(next);
         const double d = (trial.value - q).squaredNorm();
-        if (d < best) {
-          moved = d < best * (1.0 - 1e-15) || (trial.value - jet.value).norm() > 1e-15 * scale;
+        const double g =
+            parameter_gradient(trial.value - q, trial.gradient.col(0), trial.gradient.col(1));
+        const double g0 =
+            parameter_gradient(jet.value - q, jet.gradient.col(0), jet.gradient.col(1));
+        if (nearer_or_more_normal(d, best, g, g0, f == 1.0, scale + q.norm())) {
+          moved = d < best * (1.0 - 1e-15) || g < 0.5 * g0 ||
+                  (trial.value - jet.value).norm() > 1e-15 * scale;
           best = d;
           u = next;
           jet = trial;
