@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "ricci/mesh/errors.h"
 #include "spline/basis/multi_index.h"
+#include "spline/tessellate/parallel_for.h"
 
 namespace spline {
 
@@ -29,12 +31,17 @@ PlanarDmsSpace::PlanarDmsSpace(PlanarTriangulation triangulation, std::vector<Kn
                                      " has another degree or does not start at its vertex");
     }
   }
-  bases_.reserve(triangulation_.triangles.size());
-  for (const Eigen::Vector3i& tri : triangulation_.triangles) {
-    bases_.emplace_back(clouds_[static_cast<std::size_t>(tri[0])],
-                        clouds_[static_cast<std::size_t>(tri[1])],
-                        clouds_[static_cast<std::size_t>(tri[2])]);
-  }
+  // Each triangle's basis into its own slot, in parallel (a cone patch has thousands).
+  const auto& triangles = triangulation_.triangles;
+  std::vector<std::optional<TriangleBasis>> built(triangles.size());
+  parallel_for(triangles.size(), 0, [&](std::size_t k) {
+    const Eigen::Vector3i& tri = triangles[k];
+    built[k].emplace(clouds_[static_cast<std::size_t>(tri[0])],
+                     clouds_[static_cast<std::size_t>(tri[1])],
+                     clouds_[static_cast<std::size_t>(tri[2])]);
+  });
+  bases_.reserve(triangles.size());
+  for (auto& basis : built) bases_.push_back(std::move(*basis));
   build_grid();
 }
 

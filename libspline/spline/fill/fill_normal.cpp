@@ -3,6 +3,7 @@
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 
@@ -113,65 +114,128 @@ class BlockRows {
     return values.data() + slot * area;
   }
 
-  // The matrix with both triangles, entries that stayed exactly zero left out.
-  [[nodiscard]] Sparse symmetric() const;
+  // The matrix with both triangles, entries that stayed exactly zero left out, plus `extra`
+  // (square, of groups * size columns, compressed with ascending rows) when given: its entries
+  // are added as Eigen's sparse sum would (extra + 0 and 0 + block where only one has the entry,
+  // extra + block where both), so the sum is Eigen's to the bit. Block columns in parallel.
+  [[nodiscard]] Sparse symmetric(const Sparse* extra = nullptr) const;
 
  private:
+  // By block column J: the blocks (I, J) above the diagonal, I ascending; by block row: its
+  // blocks ordered by column.
+  struct Index {
+    std::vector<std::vector<const double*>> above;
+    std::vector<std::vector<int>> above_rows;
+    std::vector<std::vector<int>> order;
+  };
+  [[nodiscard]] Index index() const;
+  // One block column's entries, column by column, rows ascending.
+  struct Entries {
+    std::vector<int> rows;
+    std::vector<double> values;
+    std::vector<int> ends;  ///< column b's entries end at ends[b]
+  };
+  [[nodiscard]] Entries block_column(int j, const Index& index, const Sparse* extra) const;
+
   int size_;
   std::vector<std::vector<int>> columns_;
   std::vector<std::vector<double>> values_;
 };
 
-Sparse BlockRows::symmetric() const {
-  const int groups = static_cast<int>(columns_.size());
+BlockRows::Index BlockRows::index() const {
   const std::size_t area = static_cast<std::size_t>(size_) * size_;
-  // By block column J: the blocks (I, J) above the diagonal, I ascending; by block row: its
-  // blocks ordered by column.
-  std::vector<std::vector<const double*>> above(columns_.size());
-  std::vector<std::vector<int>> above_rows(columns_.size());
-  std::vector<std::vector<int>> order(columns_.size());
-  std::size_t blocks = 0;
-  for (int i = 0; i < groups; ++i) {
-    const auto& columns = columns_[static_cast<std::size_t>(i)];
-    auto& o = order[static_cast<std::size_t>(i)];
+  Index index;
+  index.above.resize(columns_.size());
+  index.above_rows.resize(columns_.size());
+  index.order.resize(columns_.size());
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    const auto& columns = columns_[i];
+    auto& o = index.order[i];
     o.resize(columns.size());
     std::iota(o.begin(), o.end(), 0);
     std::sort(o.begin(), o.end(), [&](int x, int y) { return columns[x] < columns[y]; });
     for (int slot : o) {
-      const int j = columns[static_cast<std::size_t>(slot)];
+      const auto j = static_cast<std::size_t>(columns[static_cast<std::size_t>(slot)]);
       if (j == i) continue;
-      above[static_cast<std::size_t>(j)].push_back(values_[static_cast<std::size_t>(i)].data() +
-                                                   static_cast<std::size_t>(slot) * area);
-      above_rows[static_cast<std::size_t>(j)].push_back(i);
+      index.above[j].push_back(values_[i].data() + static_cast<std::size_t>(slot) * area);
+      index.above_rows[j].push_back(static_cast<int>(i));
     }
-    blocks += columns.size();
   }
-  const int n = groups * size_;
+  return index;
+}
+
+BlockRows::Entries BlockRows::block_column(int j, const Index& index, const Sparse* extra) const {
+  const auto g = static_cast<std::size_t>(j);
+  const std::size_t area = static_cast<std::size_t>(size_) * size_;
+  const auto& columns = columns_[g];
+  Entries out;
+  std::size_t expected = (index.above[g].size() + columns.size()) * area;
+  if (extra != nullptr) {
+    const Eigen::Index first = static_cast<Eigen::Index>(j) * size_;
+    expected += static_cast<std::size_t>(extra->outerIndexPtr()[first + size_] -
+                                         extra->outerIndexPtr()[first]);
+  }
+  out.rows.reserve(expected);
+  out.values.reserve(expected);
+  for (int b = 0; b < size_; ++b) {
+    std::optional<Sparse::InnerIterator> other;
+    if (extra != nullptr) other.emplace(*extra, j * size_ + b);
+    // extra's entries above `row` first, then row's sum.
+    const auto put = [&](int row, double value) {
+      for (; other && *other && other->row() < row; ++*other) {
+        out.rows.push_back(static_cast<int>(other->row()));
+        out.values.push_back(other->value() + 0.0);
+      }
+      if (other && *other && other->row() == row) {
+        // A block entry of exactly zero is no entry: Eigen adds its own 0 (+0.0).
+        out.rows.push_back(row);
+        out.values.push_back(other->value() + (value != 0.0 ? value : 0.0));
+        ++*other;
+      } else if (value != 0.0) {
+        out.rows.push_back(row);
+        out.values.push_back(extra != nullptr ? 0.0 + value : value);
+      }
+    };
+    for (std::size_t k = 0; k < index.above[g].size(); ++k) {
+      const double* block = index.above[g][k];
+      const int i = index.above_rows[g][k];
+      for (int a = 0; a < size_; ++a) put(i * size_ + a, block[a * size_ + b]);
+    }
+    for (int slot : index.order[g]) {  // (j, J), J >= j: transposed
+      const double* block = values_[g].data() + static_cast<std::size_t>(slot) * area;
+      const int i = columns[static_cast<std::size_t>(slot)];
+      for (int a = 0; a < size_; ++a)
+        put(i * size_ + a, i == j ? block[a * size_ + b] : block[b * size_ + a]);
+    }
+    put(std::numeric_limits<int>::max(), 0.0);  // the rest of extra's column
+    out.ends.push_back(static_cast<int>(out.rows.size()));
+  }
+  return out;
+}
+
+Sparse BlockRows::symmetric(const Sparse* extra) const {
+  const Index blocks = index();
+  std::vector<Entries> by_group(columns_.size());
+  parallel_for(by_group.size(), 0, [&](std::size_t g) {
+    by_group[g] = block_column(static_cast<int>(g), blocks, extra);
+  });
+  std::vector<std::size_t> first(by_group.size() + 1, 0);
+  for (std::size_t g = 0; g < by_group.size(); ++g)
+    first[g + 1] = first[g] + by_group[g].rows.size();
+  const int n = static_cast<int>(columns_.size()) * size_;
   Sparse matrix(n, n);
-  matrix.reserve(static_cast<Eigen::Index>(2 * blocks * area));
-  for (int j = 0; j < groups; ++j) {
-    const auto& columns = columns_[static_cast<std::size_t>(j)];
-    const double* values = values_[static_cast<std::size_t>(j)].data();
+  matrix.resizeNonZeros(static_cast<Eigen::Index>(first.back()));
+  parallel_for(by_group.size(), 0, [&](std::size_t g) {
+    Entries& in = by_group[g];
+    std::copy(in.rows.begin(), in.rows.end(), matrix.innerIndexPtr() + first[g]);
+    std::copy(in.values.begin(), in.values.end(), matrix.valuePtr() + first[g]);
     for (int b = 0; b < size_; ++b) {
-      const int column = j * size_ + b;
-      matrix.startVec(column);
-      auto put = [&](int row, double value) {
-        if (value != 0.0) matrix.insertBack(row, column) = value;
-      };
-      for (std::size_t k = 0; k < above[static_cast<std::size_t>(j)].size(); ++k) {
-        const double* block = above[static_cast<std::size_t>(j)][k];
-        const int i = above_rows[static_cast<std::size_t>(j)][k];
-        for (int a = 0; a < size_; ++a) put(i * size_ + a, block[a * size_ + b]);
-      }
-      for (int slot : order[static_cast<std::size_t>(j)]) {  // (j, J), J >= j: transposed
-        const double* block = values + static_cast<std::size_t>(slot) * area;
-        const int i = columns[static_cast<std::size_t>(slot)];
-        for (int a = 0; a < size_; ++a)
-          put(i * size_ + a, i == j ? block[a * size_ + b] : block[b * size_ + a]);
-      }
+      const std::size_t column = g * static_cast<std::size_t>(size_) + static_cast<std::size_t>(b);
+      matrix.outerIndexPtr()[column + 1] = static_cast<int>(first[g] + in.ends[b]);
     }
-  }
-  matrix.finalize();
+    in = Entries{};
+  });
+  matrix.outerIndexPtr()[0] = 0;
   return matrix;
 }
 
@@ -224,7 +288,7 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
   }
 }
 
-Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight) {
+Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight, const Sparse* plus) {
   const auto rule = thin_plate_rule();
   const int size = space.functions_per_triangle();
   const int triangles = space.triangle_count();
@@ -258,7 +322,7 @@ Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight) {
       }
     });
   }
-  return blocks.symmetric();
+  return blocks.symmetric(plus);
 }
 
 NormalEquations normal_equations(const System& system, const PlanarDmsSpace& space,
@@ -268,7 +332,10 @@ NormalEquations normal_equations(const System& system, const PlanarDmsSpace& spa
   Eigen::MatrixX3d b(system.next_row(), 3);
   for (int i = 0; i < system.next_row(); ++i) b.row(i) = system.targets[i].transpose();
   NormalEquations result{a.transpose() * a, a.transpose() * b};
-  if (thin_plate > 0.0) result.matrix += thin_plate_normal(space, thin_plate);
+  if (thin_plate > 0.0) {
+    Sparse sum = thin_plate_normal(space, thin_plate, &result.matrix);
+    result.matrix.swap(sum);
+  }
   return result;
 }
 

@@ -69,9 +69,11 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
 /// The Gram matrix R^T R of those rows (R: the rows add_thin_plate_rows adds), function_count()
 /// square, both triangles, without forming R: summed point by point into dense blocks of
 /// triangle pairs, in parallel. Equal to R^T R up to rounding; entries that are exactly zero
-/// are left out.
-[[nodiscard]] Eigen::SparseMatrix<double> thin_plate_normal(const PlanarDmsSpace& space,
-                                                            double weight);
+/// are left out. With `plus` (function_count() square, compressed), returns *plus + R^T R,
+/// entry for entry as Eigen's sparse sum would give it.
+[[nodiscard]] Eigen::SparseMatrix<double> thin_plate_normal(
+    const PlanarDmsSpace& space, double weight,
+    const Eigen::SparseMatrix<double>* plus = nullptr);
 
 /// The normal equations of `system`'s rows plus weight * the thin-plate energy
 /// (thin_plate_normal; weight 0: none): A^T A + weight T, function_count() square, and A^T b

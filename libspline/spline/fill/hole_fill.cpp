@@ -12,6 +12,7 @@
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/fill_system.h"
 #include "spline/fill/patch_domain.h"
+#include "spline/tessellate/parallel_for.h"
 
 namespace spline {
 namespace {
@@ -63,16 +64,16 @@ Eigen::MatrixX3d solve(const System& system, const PlanarDmsSpace& space, double
   return fill_detail::solve_normal_equations(normal, rhs, rim_name(rim));
 }
 
-// Surface samples of every rim edge at t = i / q, i = 0..q.
+// Surface samples of every rim edge at t = i / q, i = 0..q (in parallel, each into its slot).
 std::vector<std::vector<RimSample>> sample_edges(const ManifoldSpline& spline, const Rim& rim,
                                                  int q) {
-  std::vector<std::vector<RimSample>> samples;
-  for (const RimEdge& e : rim.edges) {
-    std::vector<RimSample> row;
-    for (int i = 0; i <= q; ++i)
-      row.push_back(fill_detail::sample_rim(spline, e, static_cast<double>(i) / q));
-    samples.push_back(std::move(row));
-  }
+  const std::size_t per_edge = static_cast<std::size_t>(q) + 1;
+  std::vector<std::vector<RimSample>> samples(rim.edges.size(), std::vector<RimSample>(per_edge));
+  parallel_for(rim.edges.size() * per_edge, 0, [&](std::size_t k) {
+    const std::size_t e = k / per_edge, i = k % per_edge;
+    samples[e][i] =
+        fill_detail::sample_rim(spline, rim.edges[e], static_cast<double>(i) / q);
+  });
   return samples;
 }
 
@@ -223,10 +224,16 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
   System system;
   double mean_height = 0.0;
   const Eigen::Vector2d ex = Eigen::Vector2d::UnitX(), ey = Eigen::Vector2d::UnitY();
+  // The basis at every boundary point (t = 1 is the next edge's t = 0), in parallel.
+  std::vector<std::vector<BasisSample>> bases(static_cast<std::size_t>(m) * q);
+  parallel_for(bases.size(), 0, [&](std::size_t k) {
+    const auto per_edge = static_cast<std::size_t>(q);
+    bases[k] = space.evaluate_basis(fill.boundary_points[k / per_edge][k % per_edge]);
+  });
   for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < q; ++i) {  // t = 1 is the next edge's t = 0
+    for (int i = 0; i < q; ++i) {
       const RimSample& s = samples[j][i];
-      const auto basis = space.evaluate_basis(fill.boundary_points[j][i]);
+      const auto& basis = bases[static_cast<std::size_t>(j * q + i)];
       const double height = (s.jet.position - fill.origin).dot(fill.normal);
       // G1: P_x = e1 + h_x n and P_y = e2 + h_y n orthogonal to the surface's normal.
       const double nn = s.jet.normal.dot(fill.normal);

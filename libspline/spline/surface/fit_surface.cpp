@@ -302,10 +302,16 @@ void measure_surface(FittedSurface& out, bool folds_only) {
     out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
     return;
   }
-  out.topology = check_watertight(t.triangles, t.positions);
+  // Independent measures of the tessellation, two at once.
+  run_workers(2, [&](int worker) {
+    if (worker == 0) {
+      out.topology = check_watertight(t.triangles, t.positions);
+      out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
+    } else {
+      out.float_topology = float_welded_topology(t);
+    }
+  });
   const int expected_loops = expected_boundary_loops(out);
-  out.float_topology = float_welded_topology(t);
-  out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
   out.watertight = out.topology.matches(out.input.genus, expected_loops) &&
                    out.float_topology.matches(out.input.genus, expected_loops);
   out.edge_normal_jump_deg = max_edge_normal_jump_deg(out.surface.spline, out.surface.domain, 1,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -203,8 +204,14 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
       (scan_positions.colwise().maxCoeff() - scan_positions.colwise().minCoeff()).norm();
   report.coverage_tolerance = options.coverage_tolerance * report.bbox_diagonal;
 
-  const ricci::TriangleSoupDistance surface(surface_positions, surface_triangles);
-  const ricci::TriangleSoupDistance scan(scan_positions, scan_triangles);
+  // The two search trees are independent: built at once, one per thread.
+  std::optional<ricci::TriangleSoupDistance> trees[2];
+  run_workers(options.threads == 1 ? 1 : 2, [&](int k) {
+    if (k == 0 || options.threads == 1) trees[0].emplace(surface_positions, surface_triangles);
+    if (k == 1 || options.threads == 1) trees[1].emplace(scan_positions, scan_triangles);
+  });
+  const ricci::TriangleSoupDistance& surface = *trees[0];
+  const ricci::TriangleSoupDistance& scan = *trees[1];
 
   // Every scan vertex to the surface.
   const std::vector<ricci::SoupHit> fit_hits =

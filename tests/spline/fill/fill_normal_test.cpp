@@ -54,6 +54,37 @@ TEST(ThinPlateNormal, EqualsTheGramMatrixOfTheRows) {
   EXPECT_EQ((Eigen::MatrixXd(blocks) - Eigen::MatrixXd(transpose)).cwiseAbs().maxCoeff(), 0.0);
 }
 
+// normal_equations adds the rim rows' Gram matrix inside the block assembly: the same pattern
+// and the same bits as Eigen's sparse sum, including entries only one side has, a stored zero
+// of the rows and entries outside the thin plate's pattern.
+TEST(ThinPlateNormal, AddsAMatrixAsEigensSumWould) {
+  const auto space = heptagon_space();
+  const int n = space->function_count();
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n; i += 3) {
+    entries.emplace_back(i, i, 0.5 + 1e-3 * i);
+    entries.emplace_back(i, n - 1 - i, -0.25);  // far off the thin plate's band
+    entries.emplace_back(n - 1 - i, i, -0.25);
+  }
+  entries.emplace_back(1, 2, 0.0);  // a stored zero
+  entries.emplace_back(2, 1, 0.0);
+  Eigen::SparseMatrix<double> plus(n, n);
+  plus.setFromTriplets(entries.begin(), entries.end());
+  const double weight = 0.37;
+  const Eigen::SparseMatrix<double> merged = thin_plate_normal(*space, weight, &plus);
+  Eigen::SparseMatrix<double> expected = plus;
+  expected += thin_plate_normal(*space, weight);
+  ASSERT_TRUE(merged.isCompressed());
+  ASSERT_EQ(merged.nonZeros(), expected.nonZeros());
+  for (int k = 0; k <= n; ++k)
+    ASSERT_EQ(merged.outerIndexPtr()[k], expected.outerIndexPtr()[k]) << "column " << k;
+  for (Eigen::Index e = 0; e < merged.nonZeros(); ++e) {
+    ASSERT_EQ(merged.innerIndexPtr()[e], expected.innerIndexPtr()[e]) << "entry " << e;
+    ASSERT_EQ(std::signbit(merged.valuePtr()[e]), std::signbit(expected.valuePtr()[e]));
+    ASSERT_EQ(merged.valuePtr()[e], expected.valuePtr()[e]) << "entry " << e;
+  }
+}
+
 // The thin plate measures bending: an affine map has none, a quadratic a definite amount
 // (2 |f_xx|^2 + ... per unit area). Points just inside a missing function's support kept an
 // affine map's energy at 7e-5 of x^2's.
