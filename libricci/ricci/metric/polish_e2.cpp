@@ -122,6 +122,7 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
     result.error_after = error;
     result.iterations = it;
     result.lengths = current.cast<double>();
+    result.lengths_low = (current - result.lengths.cast<long double>()).cast<double>();
   }
   return result;
 }
