@@ -226,11 +226,13 @@ constexpr double kNeedleRetryError = 1e-8;
 // soon as the face is reached and the magnification bucket is 0. With it, a face's free vertex is
 // placed when the face comes off the queue, from the edge it was entered by, and the entries whose
 // base edge d is much shorter than the sides l placing the vertex (l/d >= 2, a needle entered by
-// its short edge) wait: such a placement magnifies the base's absolute error by l/d, through a run
-// of needles that compounds, and where two runs meet the layout misses by far more than rounding
-// (the inversive-distance metric of marching-cubes genus2_100k: 0.46 of an edge, 2.2e-8 with
-// needles last). A face is entered again by each placed edge; the first entry off the queue wins.
-// Returns the number of faces reached.
+// its short edge) wait: such a placement multiplies the rounding of the corner angle at the short
+// edge by l/d (when directions were taken from positions, it multiplied the base's whole error
+// and compounded along runs of needles: the inversive-distance metric of marching-cubes
+// genus2_100k missed by 0.46 of an edge, 2.2e-8 with needles last). A face is entered again by
+// each placed edge; the first entry off the queue wins. Each face's halfedges get their
+// directions when its free vertex is placed (develop_directions). Returns the number of faces
+// reached.
 size_t grow_layout(const Mesh& mesh, const LongLengths& lengths, const std::vector<double>& size,
                    bool needles_last, LayoutE2Result& result) {
   const int n = static_cast<int>(mesh.n_vertices());
