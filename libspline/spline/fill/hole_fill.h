@@ -253,9 +253,10 @@ struct SeamReport {
 };
 
 /// Normal-angle jump (degrees) and position gap between the surrounding spline (evaluated on
-/// the rim edge inside its domain face, one-sided) and the patch, at samples_per_edge + 1
-/// samples per rim edge (t = i / samples_per_edge). Normals are compared with their orientation
-/// (a flipped patch reports ~180 degrees).
+/// the rim edge inside its domain face, one-sided) and the patch, at the rim parameters of
+/// fill_detail::rim_edge_parameters (t = i / samples_per_edge, graded towards the rim's
+/// vertices); the RMS gap and `samples` count the uniform ones. Normals are compared with their
+/// orientation (a flipped patch reports ~180 degrees).
 /// \throw ricci::InvalidInputError when samples_per_edge < 1.
 [[nodiscard]] SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill,
                                       int samples_per_edge = 100);

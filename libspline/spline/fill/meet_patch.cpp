@@ -33,12 +33,12 @@ struct Sample {
 std::vector<Sample> rim_samples(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
                                 int per_edge) {
   std::vector<Sample> samples;
+  const std::vector<double> parameters = fill_detail::rim_edge_parameters(per_edge);
   for (const HoleFill& fill : fills) {
     if (!fill.g1) continue;  // a positions-only patch has no normals worth meeting
     for (int j = 0; j < static_cast<int>(fill.rim.edges.size()); ++j) {
       const RimEdge& edge = fill.rim.edges[j];
-      for (int i = 0; i <= per_edge; ++i) {
-        const double t = static_cast<double>(i) / per_edge;
+      for (const double t : parameters) {
         Sample s;
         s.basis = rim_basis(*spline.space, edge, t);
         const SurfaceJet jet =

@@ -8,7 +8,10 @@
 // little, all rims in one least-squares problem:
 //   rows n_P . D_d S(c + dc) = 0 for the chart's two axes d (S's tangent plane contains the
 //     patch's normal n_P: the surface meets the fixed patch tangentially), scaled by 1 / |D_d S|
-//     (so a row is the sine of the angle it removes), at samples_per_edge samples per rim edge;
+//     (so a row is the sine of the angle it removes), at fill_detail::rim_edge_parameters
+//     (samples_per_edge per rim edge, graded towards its vertices: a function whose support
+//     meets the rim only within a vertex's knot cloud, between uniform samples, would otherwise
+//     move unseen and pleat the surface there);
 //   rows S(c + dc) = S(c) at the same samples (the rim, where patch and surface are welded,
 //     stays in place);
 //   change_weight * |dc| / h for every moved control point (h: the rims' mean 3D edge length):

@@ -290,4 +290,24 @@ RimSample sample_rim(const ManifoldSpline& spline, const RimEdge& edge, double t
   return sample;
 }
 
+std::vector<double> rim_edge_parameters(int per_edge) {
+  const double step = 1.0 / per_edge;
+  const double fine = step / kRimEndRefinement;
+  std::vector<double> t;
+  for (int i = 0; i <= per_edge; ++i) t.push_back(static_cast<double>(i) * step);
+  const int near_end = std::min(kRimEndIntervals, per_edge) * kRimEndRefinement;
+  for (int i = 1; i < near_end; ++i) {
+    if (i % kRimEndRefinement == 0) continue;  // on the uniform grid already
+    t.push_back(static_cast<double>(i) * fine);
+    t.push_back(1.0 - static_cast<double>(i) * fine);
+  }
+  for (int k = 1; k <= kRimEndSamples; ++k) {
+    t.push_back(std::ldexp(fine, -k));
+    t.push_back(1.0 - std::ldexp(fine, -k));
+  }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
 }  // namespace spline::fill_detail

@@ -73,4 +73,14 @@ struct RimSample {
 };
 [[nodiscard]] RimSample sample_rim(const ManifoldSpline& spline, const RimEdge& edge, double t);
 
+/// Where a rim edge is sampled to meet or measure a seam: t = i / per_edge (i = 0..per_edge);
+/// in the kRimEndIntervals intervals next to each end kRimEndRefinement times as densely; and
+/// in the first and last of those finer intervals kRimEndSamples more, halving towards the end.
+/// Next to a rim vertex the surface's normal can turn within its knot cloud, over a sliver far
+/// narrower than 1 / per_edge. Sorted ascending, no repeats. \pre per_edge >= 1.
+inline constexpr int kRimEndIntervals = 4;
+inline constexpr int kRimEndRefinement = 8;
+inline constexpr int kRimEndSamples = 12;
+[[nodiscard]] std::vector<double> rim_edge_parameters(int per_edge);
+
 }  // namespace spline::fill_detail

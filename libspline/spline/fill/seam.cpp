@@ -21,9 +21,9 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
   const int m = static_cast<int>(fill.rim.edges.size());
   report.edge_normal_jump_deg.assign(static_cast<std::size_t>(m), 0.0);
   std::vector<double>& per_edge = report.edge_normal_jump_deg;
+  const std::vector<double> parameters = fill_detail::rim_edge_parameters(samples_per_edge);
   for (int j = 0; j < m; ++j) {
-    for (int i = 0; i <= samples_per_edge; ++i) {
-      const double t = static_cast<double>(i) / samples_per_edge;
+    for (const double t : parameters) {
       const auto s = fill_detail::sample_rim(spline, fill.rim.edges[j], t);
       const PatchPoint p = fill.evaluate(fill.parameter(j, t));
       const double angle = ricci::angle_between(s.jet.normal, p.normal);
@@ -32,6 +32,9 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
           std::max(per_edge[static_cast<std::size_t>(j)], angle * 180.0 / M_PI);
       const double gap = (p.position - s.jet.position).norm() / fill.diagonal;
       report.max_position_gap = std::max(report.max_position_gap, gap);
+      // The RMS weighs the rim evenly: the samples on the uniform grid only.
+      const double on_grid = t * samples_per_edge;
+      if (on_grid != std::nearbyint(on_grid)) continue;
       sum_squares += gap * gap;
       ++report.samples;
     }

