@@ -34,7 +34,7 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
       report.max_position_gap = std::max(report.max_position_gap, gap);
       // The RMS weighs the rim evenly: the samples on the uniform grid only.
       const double on_grid = t * samples_per_edge;
-      if (on_grid != std::nearbyint(on_grid)) continue;
+      if (std::abs(on_grid - std::nearbyint(on_grid)) > 1e-9) continue;
       sum_squares += gap * gap;
       ++report.samples;
     }
