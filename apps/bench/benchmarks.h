@@ -15,7 +15,7 @@ std::string shared_models();
 
 /// Seconds of one CHOLMOD supernodal analyse + factorise + solve of the mesh's cotangent
 /// Laplacian (best of 3): the unit the benchmarks' ratios divide by (bench_one_cone.cpp).
-double cotangent_cholesky_seconds(const ricci::Mesh& mesh);
+double cotangent_cholesky_seconds(const ricci::Mesh& mesh, double* cpu_seconds = nullptr);
 
 int run_flow_benchmark(int argc, char** argv);  // bench_flow.cpp
 int run_flow_case(int argc, char** argv);       // bench_flow.cpp
@@ -40,8 +40,10 @@ int run_intrinsic_benchmark(int argc, char** argv);  // bench_intrinsic.cpp
 
 /// Lower triangle of the mesh's cotangent Laplacian plus 1e-8 times its mean diagonal (SPD).
 Eigen::SparseMatrix<double> regularised_cotangent_laplacian(const ricci::Mesh& mesh);  // bench_one_cone.cpp
-/// Best of 3 CHOLMOD supernodal analyse + factorise + solve of `L`, seconds.
-double one_cholesky_seconds(const Eigen::SparseMatrix<double>& L);  // bench_one_cone.cpp
+/// Best of 3 CHOLMOD supernodal analyse + factorise + solve of `L`, wall seconds (that run's CPU
+/// seconds in `cpu_seconds` when given).
+double one_cholesky_seconds(const Eigen::SparseMatrix<double>& L,
+                            double* cpu_seconds = nullptr);  // bench_one_cone.cpp
 int run_uniformize_benchmark(int argc, char** argv);  // bench_uniformize.cpp
 /// The delivered .glb measured against its scan from outside (issue 15's checker).
 int run_check_glb(int argc, char** argv);  // bench_check_glb.cpp

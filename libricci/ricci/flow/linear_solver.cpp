@@ -98,6 +98,7 @@ SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
 SymmetricFactorization::~SymmetricFactorization() = default;
 
 void SymmetricFactorization::analyze(const Sparse& lower) {
+  const SerialOpenMpScope serial_openmp;
   impl_->given = Permutation();
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
@@ -114,11 +115,12 @@ void SymmetricFactorization::analyze(const Sparse& lower) {
   }
 }
 
-void SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi& ordering,
+bool SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi& ordering,
                                      double fill) {
+  const SerialOpenMpScope serial_openmp;
   if (kind_ != LinearSolver::cholmod_supernodal || ordering.size() != lower.rows()) {
     analyze(lower);
-    return;
+    return false;
   }
   // given * b = b(ordering): its indices are the inverse of `ordering`.
   impl_->given = Permutation(ordering).inverse();
@@ -132,7 +134,11 @@ void SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi&
   common.method[0].ordering = method;
   // A pattern too far from the ordering's: order afresh.
   impl_->fresh_fill = fill;
-  if (fill > 0 && given_fill > 1.1 * fill) analyze(lower);
+  if (fill > 0 && given_fill > 1.1 * fill) {
+    analyze(lower);
+    return false;
+  }
+  return true;
 }
 
 Eigen::VectorXi SymmetricFactorization::ordering() const {
@@ -151,6 +157,7 @@ double SymmetricFactorization::fill() const { return impl_->fresh_fill; }
 LinearWork SymmetricFactorization::work() const { return impl_->work; }
 
 bool SymmetricFactorization::factorize(const Sparse& lower) {
+  const SerialOpenMpScope serial_openmp;
   ++impl_->work.factorizations;
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
@@ -173,6 +180,7 @@ bool SymmetricFactorization::factorize(const Sparse& lower) {
 }
 
 Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const {
+  const SerialOpenMpScope serial_openmp;
   impl_->count_solve(1);
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
@@ -191,6 +199,7 @@ Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& rhs) const 
 }
 
 Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs) const {
+  const SerialOpenMpScope serial_openmp;
   impl_->count_solve(rhs.cols());
   switch (kind_) {
     case LinearSolver::eigen_ldlt:
@@ -251,7 +260,7 @@ std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kin
   // ordering is most of an analysis on large meshes.
   Eigen::VectorXi ordering;
   double fill = 0.0;
-  if (factorization_ && factorization_->kind() == resolved &&
+  if (factorization_ && factorization_->kind() == resolved && orderings_rejected_ == 0 &&
       lower.rows() == static_cast<Eigen::Index>(outer_.size()) - 1) {
     ordering = factorization_->ordering();
     fill = factorization_->fill();
@@ -259,8 +268,7 @@ std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kin
   factorization_.reset();  // its factor goes before the new one is made
   factorization_ = std::make_shared<SymmetricFactorization>(resolved);
   if (ordering.size() > 0) {
-    factorization_->analyze(lower, ordering, fill);
-    ++orderings_reused_;
+    ++(factorization_->analyze(lower, ordering, fill) ? orderings_reused_ : orderings_rejected_);
   } else {
     factorization_->analyze(lower);
   }

@@ -62,8 +62,9 @@ class SymmetricFactorization {
   /// matrix of this size whose pattern differs a little, e.g. by flips), which spares the
   /// ordering (most of an analysis on large meshes). Orders afresh when the factor
   /// would have over 1.1 times `fill` nonzeros (the other's fill(); 0: no check), when the
-  /// ordering's size differs, and for the kinds other than cholmod_supernodal.
-  void analyze(const Eigen::SparseMatrix<double>& lower, const Eigen::VectorXi& ordering,
+  /// ordering's size differs, and for the kinds other than cholmod_supernodal. Returns whether
+  /// the given ordering was kept.
+  bool analyze(const Eigen::SparseMatrix<double>& lower, const Eigen::VectorXi& ordering,
                double fill);
   /// The analysed fill-reducing ordering (L L^T = A(p, p)); empty except for
   /// cholmod_supernodal.
@@ -118,7 +119,10 @@ class LinearWorkMeter {
 
 /// A factorisation kept across solves whose matrices share one sparsity pattern (the stages of
 /// a continuation, retries of a flow on one mesh): the symbolic analysis (ordering, elimination
-/// tree, supernodes) runs once. One user at a time; not thread-safe.
+/// tree, supernodes) runs once. A new pattern of the same size is analysed with the cached
+/// factorisation's ordering until one such analysis has rejected it (its fill too large: the
+/// pattern drifts away, as under a flow's flips, and each rejection costs a symbolic analysis
+/// on top of the fresh one). One user at a time; not thread-safe.
 class FactorizationCache {
  public:
   /// A factorisation of `kind` (resolved by size) analysed for `lower`'s pattern: the cached
@@ -130,13 +134,15 @@ class FactorizationCache {
   /// Analyses done and analyses saved so far.
   int analyses() const { return analyses_; }
   int reuses() const { return reuses_; }
-  /// Analyses that took the cached factorisation's ordering.
+  /// Analyses that took the cached factorisation's ordering, and those that tried and ordered
+  /// afresh (at most one: no analysis tries after it).
   int orderings_reused() const { return orderings_reused_; }
+  int orderings_rejected() const { return orderings_rejected_; }
 
  private:
   std::shared_ptr<SymmetricFactorization> factorization_;
   std::vector<int> outer_, inner_;
-  int analyses_ = 0, reuses_ = 0, orderings_reused_ = 0;
+  int analyses_ = 0, reuses_ = 0, orderings_reused_ = 0, orderings_rejected_ = 0;
 };
 
 }  // namespace ricci

@@ -5,9 +5,10 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
-#include <set>
+#include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "ricci/mesh/errors.h"
 #include "ricci/metric/geometry.h"
@@ -222,13 +223,18 @@ int euler_characteristic(const IntrinsicTriangulation& tri) {
 }
 
 bool is_simplicial(const IntrinsicTriangulation& tri) {
-  std::set<std::pair<int, int>> pairs;
+  // Each edge's ends, smaller first, as one sortable key; a repeated key is a double edge.
+  std::vector<std::uint64_t> pairs;
+  pairs.reserve(static_cast<size_t>(tri.edge_count()));
   for (int e = 0; e < tri.edge_count(); ++e) {
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
     const int a = tri.tail[static_cast<size_t>(h)], b = tri.head(h);
-    if (a == b || !pairs.emplace(std::min(a, b), std::max(a, b)).second) return false;
+    if (a == b) return false;
+    pairs.push_back((static_cast<std::uint64_t>(std::min(a, b)) << 32) |
+                    static_cast<std::uint32_t>(std::max(a, b)));
   }
-  return true;
+  std::sort(pairs.begin(), pairs.end());
+  return std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end();
 }
 
 IntrinsicMesh to_mesh(const IntrinsicTriangulation& tri, const Eigen::VectorXd& u,

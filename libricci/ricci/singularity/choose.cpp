@@ -30,8 +30,6 @@ constexpr double kBlockDoubles = 1.3e7;
 int block_columns(int vertices) {
   return std::clamp(static_cast<int>(kBlockDoubles / std::max(vertices, 1)), 1, kBlockColumns);
 }
-// Vertices scored per level of the linear zoom search.
-constexpr int kZoomSamples = 24;
 
 double cot_at(const Mesh& mesh, HalfedgeHandle h) {
   // Cotangent of the corner opposite halfedge h (inside h's face).
@@ -271,7 +269,7 @@ int ranked_count(int interior, int vertices, const SingularityOptions& options) 
 // and the radius shrinks threefold, down to two rings (the real flows' one-ring descent, when
 // the budget has flows, or the smoothness of the distortion in the cone's position takes over).
 void zoom_search(const Mesh& mesh, const VertexGraph& graph, LinearModel& model, int centre,
-                 int radius) {
+                 int radius, int samples) {
   while (radius >= 2) {
     std::vector<int> ball;
     for (const auto& ring : rings_around(graph, centre, radius)) {
@@ -279,7 +277,7 @@ void zoom_search(const Mesh& mesh, const VertexGraph& graph, LinearModel& model,
         if (!mesh.is_boundary(mesh.vertex_handle(v))) ball.push_back(v);
       }
     }
-    const std::vector<int> sample = spread_sample(graph, ball, kZoomSamples);
+    const std::vector<int> sample = spread_sample(graph, ball, samples);
     const std::vector<double> scores = model.score(sample);
     double best = model.scored(centre);
     for (size_t i = 0; i < sample.size(); ++i) {
@@ -333,6 +331,13 @@ double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityO
   return flow_area_distortion(mesh, vertex, options, work);
 }
 
+int zoom_sample_count(int vertices, const SingularityOptions& options) {
+  const double share = 0.4 * options.ranking_work / std::max(vertices, 1);
+  const double low = options.min_zoom_samples;
+  const double high = std::max(options.min_zoom_samples, options.max_zoom_samples);
+  return static_cast<int>(std::clamp(std::round(share), low, high));
+}
+
 int verified_count(int vertices, const SingularityOptions& options) {
   const double v = std::max(vertices, 1);
   return static_cast<int>(std::min<double>(options.max_verified_flows, std::floor(options.verification_work / (v * v))));
@@ -366,7 +371,8 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
         std::max(1, options.linear_search_starts));
     const std::vector<SingularityScore> sampled = sorted_scores(model.cache());
     for (int i = 0; i < std::min<int>(starts, static_cast<int>(sampled.size())); ++i) {
-      zoom_search(mesh, graph, model, sampled[static_cast<size_t>(i)].vertex, radius);
+      zoom_search(mesh, graph, model, sampled[static_cast<size_t>(i)].vertex, radius,
+                  zoom_sample_count(vertices, options));
     }
   }
   const std::vector<SingularityScore> ranked = sorted_scores(model.cache());

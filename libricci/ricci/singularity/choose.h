@@ -30,6 +30,11 @@ struct SingularityOptions {
   /// within the sample spacing is scored, the centre moves to the best, the radius shrinks
   /// threefold, down to two rings.
   int linear_search_starts = 3;
+  /// Vertices each zoom level scores: 0.4 times the first sample's size (about
+  /// 0.4 ranking_work / V), at least min_zoom_samples and at most max_zoom_samples (24 below
+  /// 25k vertices, 12 from 50k, where each costs a column of a blocked solve and its score).
+  int min_zoom_samples = 12;
+  int max_zoom_samples = 24;
   /// Real flows allowed: floor(verification_work / V^2), at most max_verified_flows (about 30
   /// at 5k vertices, 7 at 10k, none above 27.4k).
   double verification_work = 7.5e8;
@@ -78,6 +83,9 @@ struct SingularityChoice {
 /// flow does not converge. The measure leaves out no face (the paper's definition).
 [[nodiscard]] double one_cone_area_distortion(const Mesh& mesh, int vertex,
                                               const SingularityOptions& options = {});
+
+/// Vertices each level of the linear zoom search scores on a mesh of this many vertices.
+[[nodiscard]] int zoom_sample_count(int vertices, const SingularityOptions& options);
 
 /// Real flows the choice may run on a mesh of this many vertices.
 [[nodiscard]] int verified_count(int vertices, const SingularityOptions& options);

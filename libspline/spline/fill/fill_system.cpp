@@ -4,11 +4,9 @@
 #include <cmath>
 
 #include "ricci/mesh/errors.h"
-#include "ricci/util/cross2d.h"
 #include "spline/basis/blossom.h"
 #include "spline/basis/multi_index.h"
 #include "spline/planar/bisect.h"
-#include "spline/tessellate/parallel_for.h"
 
 namespace spline::fill_detail {
 namespace {
@@ -234,56 +232,6 @@ Eigen::MatrixXd identity_control_points(const PlanarDmsSpace& space) {
   identity.coefficients(monomial_index(1, 0), 0) = 1.0;
   identity.coefficients(monomial_index(0, 1), 1) = 1.0;
   return space.control_points_of(identity);
-}
-
-namespace {
-
-// Triangle k's thin-plate rows (three per quadrature point where the partition of unity holds),
-// row numbers counted from 0.
-void thin_plate_rows_of(const PlanarDmsSpace& space, int k, double weight,
-                        const std::vector<QuadraturePoint>& rule, System& rows) {
-  const double factors[3] = {1.0, std::sqrt(2.0), 1.0};
-  const auto& t = space.triangulation();
-  const Eigen::Vector3i v = t.triangles[static_cast<std::size_t>(k)];
-  const Eigen::Vector2d a = t.positions[v[0]], b = t.positions[v[1]], c = t.positions[v[2]];
-  const double area = 0.5 * std::abs(ricci::cross2d(b - a, c - a));
-  for (const auto& q : rule) {
-    const double root = std::sqrt(weight * area * q.weight);
-    const auto basis = space.evaluate_basis(q.bary[0] * a + q.bary[1] * b + q.bary[2] * c);
-    // Near the grid's outer rim functions are missing: there the spline reproduces no affine
-    // map, so an affine patch would pay thin-plate energy and bend to avoid it (measured: a
-    // planar hole's parametric patch tilted 6 degrees). Those points are left out.
-    double sum = 0.0;
-    for (const auto& s : basis) sum += s.jet.value;
-    if (std::abs(sum - 1.0) > 1e-9) continue;
-    for (int r = 0; r < 3; ++r) {
-      const int row = rows.next_row();
-      for (const auto& s : basis) {
-        rows.entries.emplace_back(row, space.function_index(s.triangle, s.beta),
-                                  root * factors[r] * s.jet.hessian[r]);
-      }
-      rows.targets.push_back(Eigen::Vector3d::Zero());
-    }
-  }
-}
-
-}  // namespace
-
-void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight) {
-  const auto rule = thin_plate_rule();
-  // Triangles in parallel (evaluation is thread-safe), appended in triangle order, so the
-  // system is the same as a serial loop's. Measured: 1.5 s of the 5.3 s fill of genus3_100k's
-  // cone hole (msp fit --domain-faces 4000, 57k functions) serially.
-  std::vector<System> per_triangle(static_cast<std::size_t>(space.triangle_count()));
-  parallel_for(per_triangle.size(), 0, [&](std::size_t k) {
-    thin_plate_rows_of(space, static_cast<int>(k), weight, rule, per_triangle[k]);
-  });
-  for (const System& rows : per_triangle) {
-    const int first = system.next_row();
-    for (const auto& e : rows.entries)
-      system.entries.emplace_back(first + e.row(), e.col(), e.value());
-    system.targets.insert(system.targets.end(), rows.targets.begin(), rows.targets.end());
-  }
 }
 
 }  // namespace spline::fill_detail

@@ -63,8 +63,34 @@ struct System {
 
 /// Rows whose sum of squares is weight * the thin-plate energy int |H|^2 (thin_plate_rule) over
 /// the triangles of the space, leaving out the quadrature points where the partition of unity
-/// fails (the grid's outer margin).
+/// fails (the grid's outer margin): three rows per point (f_xx, sqrt 2 f_xy, f_yy).
 void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight);
+
+/// The Gram matrix R^T R of those rows (R: the rows add_thin_plate_rows adds), function_count()
+/// square, both triangles, without forming R: summed point by point into dense blocks of
+/// triangle pairs, in parallel. Equal to R^T R up to rounding; entries that are exactly zero
+/// are left out.
+[[nodiscard]] Eigen::SparseMatrix<double> thin_plate_normal(const PlanarDmsSpace& space,
+                                                            double weight);
+
+/// The normal equations of `system`'s rows plus weight * the thin-plate energy
+/// (thin_plate_normal; weight 0: none): A^T A + weight T, function_count() square, and A^T b
+/// (one column per right-hand side).
+struct NormalEquations {
+  Eigen::SparseMatrix<double> matrix;
+  Eigen::MatrixX3d rhs;
+};
+[[nodiscard]] NormalEquations normal_equations(const System& system, const PlanarDmsSpace& space,
+                                               double thin_plate);
+
+/// Solves normal * x = rhs (symmetric positive definite, both triangles stored; each column of
+/// rhs a right-hand side) by a supernodal Cholesky factorisation (AMD ordering) and one step of
+/// iterative refinement.
+/// \throw ricci::SolverError ("the normal equations of the <what> are not positive definite")
+///        when the factorisation fails, or when the solution is not finite.
+[[nodiscard]] Eigen::MatrixXd solve_normal_equations(const Eigen::SparseMatrix<double>& normal,
+                                                     const Eigen::MatrixXd& rhs,
+                                                     const std::string& what);
 
 /// The control points of the identity map (x, y) -> (x, y) of the space's plane: one row of two
 /// coordinates per function; exact, so a patch built on them is affine where they are.

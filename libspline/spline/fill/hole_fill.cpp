@@ -1,5 +1,4 @@
 // fill_rim: the least-squares G1 patch of hole_fill.h.
-#include <Eigen/CholmodSupport>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
@@ -17,7 +16,6 @@
 namespace spline {
 namespace {
 
-using fill_detail::add_thin_plate_rows;
 using fill_detail::identity_control_points;
 using fill_detail::patch_space;
 using fill_detail::polygon_mean;
@@ -49,14 +47,12 @@ double bounding_diagonal(const ricci::Mesh& mesh) {
   return (hi - lo).norm();
 }
 
-Eigen::MatrixX3d solve(const System& system, int functions, const Eigen::Vector3d& anchor_value,
-                       const Rim& rim) {
-  Eigen::SparseMatrix<double> a(system.next_row(), functions);
-  a.setFromTriplets(system.entries.begin(), system.entries.end());
-  Eigen::MatrixX3d b(system.next_row(), 3);
-  for (int i = 0; i < system.next_row(); ++i) b.row(i) = system.targets[i].transpose();
-  Eigen::SparseMatrix<double> normal = a.transpose() * a;
-  Eigen::MatrixX3d rhs = a.transpose() * b;
+// Solves min |A c - b|^2 + weight * thin-plate energy (the rows of `system` and
+// thin_plate_normal; weight 0: none) for the columns of b.
+Eigen::MatrixX3d solve(const System& system, const PlanarDmsSpace& space, double thin_plate,
+                       const Eigen::Vector3d& anchor_value, const Rim& rim) {
+  const int functions = space.function_count();
+  auto [normal, rhs] = fill_detail::normal_equations(system, space, thin_plate);
   // A tiny anchor towards the mean value keeps functions that reach nothing determined and
   // moves with the data.
   const double anchor = 1e-12 * normal.diagonal().sum() / functions;
@@ -64,19 +60,7 @@ Eigen::MatrixX3d solve(const System& system, int functions, const Eigen::Vector3
     normal.coeffRef(i, i) += anchor;
     rhs.row(i) += anchor * anchor_value.transpose();
   }
-  // Both BLAS threads (see parametric_fill.cpp): genus3_100k's cone hole (msp fit
-  // --domain-faces 4000, 57k functions) 3.2 -> 2.4 s.
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(normal);
-  if (solver.info() != Eigen::Success) {
-    throw ricci::SolverError("fill_rim: the normal equations of the " + rim_name(rim) +
-                             " are not positive definite");
-  }
-  Eigen::MatrixX3d x = solver.solve(rhs);
-  // One step of iterative refinement: the seam weights make the matrix ill-conditioned.
-  x += solver.solve(rhs - normal * x);
-  if (!x.allFinite())
-    throw ricci::SolverError("fill_rim: the patch solve produced non-finite control points");
-  return x;
+  return fill_detail::solve_normal_equations(normal, rhs, rim_name(rim));
 }
 
 // Surface samples of every rim edge at t = i / q, i = 0..q.
@@ -254,10 +238,10 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
   }
   mean_height /= count;
   const double radius = perimeter / (2.0 * M_PI);
-  if (options.smoothing > 0.0)
-    add_thin_plate_rows(system, space, options.smoothing * radius * radius);
   const Eigen::VectorXd heights =
-      solve(system, space.function_count(), Eigen::Vector3d(mean_height, 0, 0), rim).col(0);
+      solve(system, space, options.smoothing * radius * radius,
+            Eigen::Vector3d(mean_height, 0, 0), rim)
+          .col(0);
 
   // The in-plane part: the control points of the identity (exact on D, an affine map).
   const Eigen::MatrixXd plane = identity_control_points(space);
@@ -297,8 +281,8 @@ HoleFill fill_positions(const Rim& rim, const std::vector<std::vector<RimSample>
                  samples[j][i].jet.position, w_position);
     }
   }
-  add_thin_plate_rows(system, space, std::max(options.smoothing, 1e-2) * radius * radius);
-  fill.control_points = solve(system, space.function_count(), fill.origin, rim);
+  fill.control_points =
+      solve(system, space, std::max(options.smoothing, 1e-2) * radius * radius, fill.origin, rim);
   return fill;
 }
 

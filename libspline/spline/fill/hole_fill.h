@@ -80,6 +80,10 @@ struct FindRimsOptions {
   /// (max_normal_step_deg; given to find_rims as a function). A smooth fit turns by ~1 degree.
   double max_cone_rim_normal_step_deg = 20.0;
   int max_cone_layers = 3;  ///< cap on those extra layers
+  /// Layers taken after the last layer whose rim had such a face (within the caps): the spline
+  /// on the faces a ring past a fold or a scale jump still carries it (the basis functions'
+  /// supports reach a ring), so the rim is moved one ring away from them. 0: none.
+  int cone_margin_layers = 0;
   /// The first this many of those layers are taken whatever the rim's faces (still within the
   /// caps): for a retry on a bigger hole when a patch cannot meet the rim (msp fit does when a
   /// cone patch flips).
@@ -87,6 +91,13 @@ struct FindRimsOptions {
   /// ... and on the domain faces the cone hole may cover (a coarse domain, e.g. joint.off's 540
   /// faces, distorted everywhere, would otherwise lose a large part of its spline to the patch).
   double max_cone_cover_fraction = 0.08;
+  /// Further reach of those layers: while its rim stays poor at the caps above, the cone hole
+  /// goes on growing up to this many layers and this fraction of the domain's faces, and keeps
+  /// that growth only when its rim comes clear of poor faces (then with its margin layers)
+  /// within them; otherwise the hole is the one the caps above give. For a sliver band around
+  /// a large cone that ends a little past the caps. 0 layers: no further reach.
+  int cone_reach_layers = 0;
+  double cone_reach_cover_fraction = 0.0;  ///< see cone_reach_layers
   /// Cone hole only, after its layers: the kept faces around these domain vertices (vertices
   /// of its rim) join it face by face, keeping it a disk (the cover fraction does not apply):
   /// where its patch cannot meet the surface (cap_holes passes the ends of the rim edges whose

@@ -1,7 +1,6 @@
 // The parametric G1 patch of hole_fill.h: D the rim laid out on a circle, P = sum c_f N_f with
 // three coordinates, fitted to the surface's position, tangent plane and (softly) a
 // cross-boundary derivative along the rim, plus the thin-plate energy.
-#include <Eigen/CholmodSupport>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <cmath>
@@ -31,31 +30,34 @@ struct TangentRows {
   }
 };
 
-// Solves min |A_s x_c - b_c|^2 (each coordinate c) + |A_t x|^2 for the control points.
-Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent, int functions,
+// The block diagonal matrix with `copies` copies of `block`.
+Eigen::SparseMatrix<double> block_diagonal(const Eigen::SparseMatrix<double>& block, int copies) {
+  const Eigen::Index n = block.rows();
+  Eigen::SparseMatrix<double> result(copies * n, copies * n);
+  result.reserve(copies * block.nonZeros());
+  for (int c = 0; c < copies; ++c) {
+    for (Eigen::Index k = 0; k < n; ++k) {
+      result.startVec(c * n + k);
+      for (Eigen::SparseMatrix<double>::InnerIterator it(block, k); it; ++it)
+        result.insertBack(c * n + it.row(), c * n + k) = it.value();
+    }
+  }
+  result.finalize();
+  return result;
+}
+
+// Solves min |A_s x_c - b_c|^2 + weight * thin-plate energy of x_c (each coordinate c;
+// thin_plate_normal, weight 0: none) + |A_t x|^2 for the control points.
+Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent,
+                               const PlanarDmsSpace& space, double thin_plate,
                                const Eigen::MatrixX3d& anchor_value, const Rim& rim) {
-  Eigen::SparseMatrix<double> a(scalar.next_row(), functions);
-  a.setFromTriplets(scalar.entries.begin(), scalar.entries.end());
-  Eigen::MatrixX3d b(scalar.next_row(), 3);
-  for (int i = 0; i < scalar.next_row(); ++i) b.row(i) = scalar.targets[i].transpose();
-  const Eigen::SparseMatrix<double> block = a.transpose() * a;
-  const Eigen::MatrixX3d block_rhs = a.transpose() * b;
+  const int functions = space.function_count();
+  const auto [block, block_rhs] = normal_equations(scalar, space, thin_plate);
 
   Eigen::SparseMatrix<double> t(tangent.rows, 3 * functions);
   t.setFromTriplets(tangent.entries.begin(), tangent.entries.end());
   Eigen::SparseMatrix<double> normal = t.transpose() * t;
-  std::vector<Eigen::Triplet<double>> diagonal_blocks;
-  diagonal_blocks.reserve(3 * static_cast<std::size_t>(block.nonZeros()));
-  for (int c = 0; c < 3; ++c) {
-    for (int k = 0; k < block.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(block, k); it; ++it)
-        diagonal_blocks.emplace_back(c * functions + it.row(), c * functions + it.col(),
-                                     it.value());
-    }
-  }
-  Eigen::SparseMatrix<double> blocks(3 * functions, 3 * functions);
-  blocks.setFromTriplets(diagonal_blocks.begin(), diagonal_blocks.end());
-  normal += blocks;
+  normal += block_diagonal(block, 3);
   Eigen::VectorXd rhs(3 * functions);
   for (int c = 0; c < 3; ++c) rhs.segment(c * functions, functions) = block_rhs.col(c);
   // A small anchor towards the reference (the affine map best fitting the rim) determines the
@@ -69,19 +71,8 @@ Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent,
       rhs[c * functions + f] += anchor * anchor_value(f, c);
     }
   }
-  // Both BLAS threads, unlike the fits (serial_blas.h): this factorisation's supernodes are
-  // large (a planar grid with 30 unknowns per triangle), and the second thread pays. Measured
-  // (`msp fit` block.off, a 40-edge cone rim, 188k unknowns): 18.5 s -> 13.4 s.
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(normal);
-  if (solver.info() != Eigen::Success) {
-    throw ricci::SolverError("fill_rim: the normal equations of the parametric patch of the " +
-                             rim_name(rim) + " are not positive definite");
-  }
-  Eigen::VectorXd x = solver.solve(rhs);
-  // One step of iterative refinement: the seam weights make the matrix ill-conditioned.
-  x += solver.solve(rhs - normal * x);
-  if (!x.allFinite())
-    throw ricci::SolverError("fill_rim: the patch solve produced non-finite control points");
+  const Eigen::VectorXd x =
+      solve_normal_equations(normal, rhs, "parametric patch of the " + rim_name(rim));
   Eigen::MatrixX3d points(functions, 3);
   for (int c = 0; c < 3; ++c) points.col(c) = x.segment(c * functions, functions);
   return points;
@@ -171,10 +162,9 @@ HoleFill fill_parametric(const Rim& rim, const std::vector<std::vector<RimSample
     }
   }
   const double radius = perimeter / (2.0 * M_PI);
-  if (options.smoothing > 0.0)
-    add_thin_plate_rows(scalar, space, options.smoothing * radius * radius);
-  fill.control_points =
-      solve_coupled(scalar, tangent_rows, space.function_count(), affine_reference(fill, samples, space), rim);
+  fill.control_points = solve_coupled(scalar, tangent_rows, space,
+                                      options.smoothing * radius * radius,
+                                      affine_reference(fill, samples, space), rim);
   return fill;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "ricci/mesh/boundary_loops.h"
@@ -402,34 +403,60 @@ double worst_scale_ratio(const std::vector<double>& chart_scale, const ricci::Me
   return worst;
 }
 
-// Extra layers of the cone hole (FindRimsOptions::max_cone_rim_scale_ratio and
-// max_cone_rim_normal_step_deg): while a face on its rim is badly conditioned or folded (and
-// for the first extra_cone_layers layers), every kept face touching a vertex of its rim joins it
-// face by face (grow_face_by_face keeps every hole a disk apart from the others); a layer that
-// would cover more than max_cone_cover_fraction of the domain is undone and the growth stops.
+// True when a face on the cone hole's rim is badly conditioned or folded
+// (FindRimsOptions::max_cone_rim_scale_ratio, max_cone_rim_normal_step_deg); marks the rim's
+// vertices in on_rim.
+bool cone_rim_is_poor(const Regions& regions, const ricci::Mesh& mesh,
+                      const std::vector<double>& chart_scale,
+                      const std::function<double(int)>& normal_step_deg,
+                      const FindRimsOptions& options, std::vector<char>& on_rim) {
+  const bool by_scale = !chart_scale.empty() && options.max_cone_rim_scale_ratio > 1.0;
+  const int cone = kind_rank(Rim::Kind::cone_hole);
+  bool poor = false;
+  on_rim.assign(mesh.n_vertices(), 0);
+  for (auto h : mesh.halfedges()) {
+    if (!is_rim_halfedge(regions, mesh, h) || rank_of(regions, mesh, h) != cone) continue;
+    on_rim[mesh.from_vertex_handle(h).idx()] = on_rim[mesh.to_vertex_handle(h).idx()] = 1;
+    if (poor) continue;
+    const int f = mesh.face_handle(h).idx();
+    poor = (by_scale &&
+            worst_scale_ratio(chart_scale, mesh, f) > options.max_cone_rim_scale_ratio) ||
+           (normal_step_deg && normal_step_deg(f) > options.max_cone_rim_normal_step_deg);
+  }
+  return poor;
+}
+
+// Extra layers of the cone hole: while its rim is poor (cone_rim_is_poor; and for the first
+// extra_cone_layers layers, and cone_margin_layers more after the last poor one), every kept
+// face touching a vertex of its rim joins it face by face (grow_face_by_face keeps every hole a
+// disk apart from the others); a layer that would cover more than the cover fraction of the
+// domain is undone and the growth stops. Past max_cone_layers / max_cone_cover_fraction the
+// growth goes on within cone_reach_layers / cone_reach_cover_fraction, and is undone back to
+// where those caps stopped it unless the rim comes clear.
 void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, const Loops& loops,
                                     const std::vector<char>& domain,
                                     const std::vector<double>& chart_scale,
                                     const std::function<double(int)>& normal_step_deg,
                                     const FindRimsOptions& options) {
   const bool by_scale = !chart_scale.empty() && options.max_cone_rim_scale_ratio > 1.0;
-  const bool by_folds = static_cast<bool>(normal_step_deg);
-  if (!by_scale && !by_folds && options.extra_cone_layers <= 0) return;
+  if (!by_scale && !normal_step_deg && options.extra_cone_layers <= 0) return;
   const int cone = kind_rank(Rim::Kind::cone_hole);
-  const auto domain_faces = std::count(domain.begin(), domain.end(), 1);
-  for (int layer = 0; layer < options.max_cone_layers; ++layer) {
-    bool poor = false;
-    std::vector<char> on_rim(mesh.n_vertices(), 0);
-    for (auto h : mesh.halfedges()) {
-      if (!is_rim_halfedge(regions, mesh, h) || rank_of(regions, mesh, h) != cone) continue;
-      on_rim[mesh.from_vertex_handle(h).idx()] = on_rim[mesh.to_vertex_handle(h).idx()] = 1;
-      if (poor) continue;
-      const int f = mesh.face_handle(h).idx();
-      poor = (by_scale &&
-              worst_scale_ratio(chart_scale, mesh, f) > options.max_cone_rim_scale_ratio) ||
-             (by_folds && normal_step_deg(f) > options.max_cone_rim_normal_step_deg);
+  const auto domain_faces = static_cast<double>(std::count(domain.begin(), domain.end(), 1));
+  const int layers = std::max(options.max_cone_layers, options.cone_reach_layers);
+  const double fraction =
+      std::max(options.max_cone_cover_fraction, options.cone_reach_cover_fraction);
+  std::optional<Regions> at_caps;  // the hole where the max_cone_* caps stopped it
+  int margin = 0;  // layers since the rim last had a poor face; > 0 at the end: it came clear
+  std::vector<char> on_rim;
+  for (int layer = 0; layer < layers; ++layer) {
+    if (layer == options.max_cone_layers && !at_caps) at_caps = regions;
+    const bool poor =
+        cone_rim_is_poor(regions, mesh, chart_scale, normal_step_deg, options, on_rim);
+    if (poor || layer < options.extra_cone_layers) {
+      margin = 0;
+    } else if (layer == 0 || margin++ >= options.cone_margin_layers) {
+      break;  // a hole that was never poor gets no margin
     }
-    if (!poor && layer >= options.extra_cone_layers) return;
     std::vector<int> candidates;
     for (auto v : mesh.vertices()) {
       if (!on_rim[v.idx()]) continue;
@@ -439,16 +466,19 @@ void grow_cone_hole_while_distorted(Regions& regions, const ricci::Mesh& mesh, c
     }
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    const Regions before = regions;
+    Regions before = regions;
     grow_face_by_face(regions, mesh, loops, candidates);
     std::ptrdiff_t covered = 0;
     for (std::size_t f = 0; f < domain.size(); ++f)
       covered += domain[f] && !regions.kept[f] && regions.rank[f] == cone;
-    if (covered > options.max_cone_cover_fraction * static_cast<double>(domain_faces)) {
-      regions = before;
-      return;
+    if (covered > fraction * domain_faces) {
+      regions = std::move(before);
+      break;
     }
+    if (!at_caps && covered > options.max_cone_cover_fraction * domain_faces)
+      at_caps = std::move(before);
   }
+  if (margin == 0 && at_caps) regions = std::move(*at_caps);
 }
 
 // FindRimsOptions::cone_rim_vertices_to_cover: the kept faces around those vertices join the

@@ -15,6 +15,11 @@ namespace spline {
 struct ConeHoleLimits {
   int max_layers = FindRimsOptions{}.max_cone_layers;
   double max_cover_fraction = FindRimsOptions{}.max_cone_cover_fraction;
+  /// FindRimsOptions::cone_margin_layers
+  int margin_layers = FindRimsOptions{}.cone_margin_layers;
+  int reach_layers = FindRimsOptions{}.cone_reach_layers;  ///< FindRimsOptions::cone_reach_layers
+  /// FindRimsOptions::cone_reach_cover_fraction
+  double reach_cover_fraction = FindRimsOptions{}.cone_reach_cover_fraction;
   /// Retries of a cone patch whose seam misses FillOptions::target_jump_deg (and is no flip):
   /// the faces around the ends of its worst rim edges (those above a quarter of the largest
   /// jump) join the hole (FindRimsOptions::cone_rim_vertices_to_cover); a retry is kept only
@@ -26,7 +31,9 @@ struct ConeHoleLimits {
 /// genus 4 (a cone of 2 pi (2g - 1) >= 14 pi, around which the flat metric scales like
 /// rho^(2g - 2)) 8 layers and a quarter of the domain, since the rings where neighbouring
 /// charts differ in scale by more than max_cone_rim_scale_ratio reach farther, and 2 vertex
-/// rounds.
+/// rounds; from genus 8 (30 pi and more) a reach of 12 layers and half of the domain's faces
+/// (the cone refinement puts more than half of them around the cone), kept only when the rim
+/// comes clear within it, and one margin layer.
 [[nodiscard]] ConeHoleLimits cone_hole_limits(int genus);
 
 struct CapHolesOptions {

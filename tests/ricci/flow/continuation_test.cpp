@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
+#include <numeric>
 #include <string>
+#include <vector>
 
 #include "ricci/flow/continuation.h"
 #include "ricci/flow/linear_solver.h"
@@ -85,6 +88,72 @@ TEST(FactorizationCache, AnalysesAgainForAnotherPattern) {
   ASSERT_TRUE(other->factorize(b));
   const Eigen::Vector3d x = other->solve(Eigen::Vector3d(1, 0, 1));
   EXPECT_LT((b.selfadjointView<Eigen::Lower>() * x - Eigen::Vector3d(1, 0, 1)).norm(), 1e-14);
+}
+
+// The lower triangle of the n x n grid graph's Laplacian plus the identity, its vertices
+// relabelled by `label` (vertex (i, j) becomes label[i n + j]).
+Eigen::SparseMatrix<double> grid_matrix(int n, const std::vector<int>& label) {
+  std::vector<Eigen::Triplet<double>> t;
+  const auto add = [&](int a, int b) {
+    const int x = label[static_cast<size_t>(a)], y = label[static_cast<size_t>(b)];
+    t.emplace_back(std::max(x, y), std::min(x, y), -1.0);
+    t.emplace_back(x, x, 1.0);
+    t.emplace_back(y, y, 1.0);
+  };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const int v = label[static_cast<size_t>(i * n + j)];
+      t.emplace_back(v, v, 1.0);
+      if (j + 1 < n) add(i * n + j, i * n + j + 1);
+      if (i + 1 < n) add(i * n + j, (i + 1) * n + j);
+    }
+  }
+  Eigen::SparseMatrix<double> m(n * n, n * n);
+  m.setFromTriplets(t.begin(), t.end());
+  m.makeCompressed();
+  return m;
+}
+
+// A new pattern of the same size takes the cached ordering when it fits (one more edge), is
+// ordered afresh when it does not (the vertices relabelled: the old ordering is arbitrary for
+// it), and after that rejection the cache no longer tries: every later pattern is ordered
+// afresh. Each factorisation solves its system either way.
+TEST(FactorizationCache, StopsOfferingTheOrderingOnceRejected) {
+  const int n = 40;
+  std::vector<int> identity(static_cast<size_t>(n * n)), shuffled(identity.size());
+  std::iota(identity.begin(), identity.end(), 0);
+  for (size_t k = 0; k < shuffled.size(); ++k) {
+    shuffled[k] = static_cast<int>((k * 613) % shuffled.size());  // 613 is prime to 1600
+  }
+  const Eigen::SparseMatrix<double> grid = grid_matrix(n, identity);
+  Eigen::SparseMatrix<double> grid_and_edge = grid;
+  grid_and_edge.insert(n + 1, 0) = -0.5;  // a diagonal of the first square (a flip)
+  grid_and_edge.coeffRef(0, 0) += 0.5;
+  grid_and_edge.coeffRef(n + 1, n + 1) += 0.5;
+  grid_and_edge.makeCompressed();
+  const Eigen::SparseMatrix<double> relabelled = grid_matrix(n, shuffled);
+  const auto kind = ricci::LinearSolver::cholmod_supernodal;
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n * n, -1.0, 1.0);
+  ricci::FactorizationCache cache;
+  double seconds = 0;
+  const auto solves = [&](const Eigen::SparseMatrix<double>& m) {
+    const auto f = cache.get(kind, m, seconds);
+    if (!f->factorize(m)) return false;
+    const Eigen::VectorXd x = f->solve(rhs);
+    return (m.selfadjointView<Eigen::Lower>() * x - rhs).norm() < 1e-10 * rhs.norm();
+  };
+  EXPECT_TRUE(solves(grid));
+  EXPECT_TRUE(solves(grid_and_edge));
+  EXPECT_EQ(cache.orderings_reused(), 1);
+  EXPECT_EQ(cache.orderings_rejected(), 0);
+  EXPECT_TRUE(solves(relabelled));
+  EXPECT_EQ(cache.orderings_reused(), 1);
+  EXPECT_EQ(cache.orderings_rejected(), 1);
+  EXPECT_TRUE(solves(grid));
+  EXPECT_TRUE(solves(grid_and_edge));
+  EXPECT_EQ(cache.orderings_reused(), 1);
+  EXPECT_EQ(cache.orderings_rejected(), 1);
+  EXPECT_EQ(cache.analyses(), 5);
 }
 
 TEST(Continuation, OneStageIsThePlainFlow) {

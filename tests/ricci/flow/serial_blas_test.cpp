@@ -56,4 +56,32 @@ TEST(SerialBlasScope, OverlappingScopesOnTwoThreadsRestoreOnceBothClose) {
   set(before);
 }
 
+using GetLevels = int (*)();
+using SetLevels = void (*)(int);
+
+// Max-active-levels 0 inside (nested scopes too), the thread's old value after; another
+// thread's value is its own and stays.
+TEST(SerialOpenMpScope, NoActiveLevelInsideAndTheOldValueAfter) {
+  const auto get = reinterpret_cast<GetLevels>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+  const auto set = reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  if (get == nullptr || set == nullptr) GTEST_SKIP() << "no OpenMP runtime in the process";
+  const int before = get();
+  set(3);
+  {
+    const ricci::SerialOpenMpScope outer;
+    EXPECT_EQ(get(), 0);
+    int other_thread = -1;
+    std::thread other([&] { other_thread = get(); });
+    other.join();
+    EXPECT_GT(other_thread, 0);
+    {
+      const ricci::SerialOpenMpScope inner;
+      EXPECT_EQ(get(), 0);
+    }
+    EXPECT_EQ(get(), 0);
+  }
+  EXPECT_EQ(get(), 3);
+  set(before);
+}
+
 }  // namespace

@@ -79,6 +79,25 @@ TEST(ChooseSingularity, WithinFivePercentOfBruteForceOnBundledModel) {
   }
 }
 
+// Each zoom level scores 24 vertices up to 25k vertices and 12 from 50k (0.4 ranking_work / V
+// in between, never rising with V); the bounds are the options'.
+TEST(ChooseSingularity, ZoomLevelsScoreFewerVerticesOnLargeMeshes) {
+  ricci::SingularityOptions options;
+  EXPECT_EQ(ricci::zoom_sample_count(1500, options), options.max_zoom_samples);
+  EXPECT_EQ(ricci::zoom_sample_count(25000, options), 24);
+  EXPECT_EQ(ricci::zoom_sample_count(50000, options), 12);
+  EXPECT_EQ(ricci::zoom_sample_count(800000, options), options.min_zoom_samples);
+  int previous = ricci::zoom_sample_count(1000, options);
+  for (int v = 2000; v <= 100000; v += 1000) {
+    const int count = ricci::zoom_sample_count(v, options);
+    EXPECT_LE(count, previous) << v;
+    EXPECT_GE(count, options.min_zoom_samples) << v;
+    previous = count;
+  }
+  options.ranking_work = 0;
+  EXPECT_EQ(ricci::zoom_sample_count(1000, options), options.min_zoom_samples);
+}
+
 // From a few tens of thousands of vertices the budget has no flow: the choice is the linear
 // model's (one factorisation, a few blocked solves), and its distortion is left to the caller.
 TEST(ChooseSingularity, LargeMeshesRunNoVerifyingFlow) {

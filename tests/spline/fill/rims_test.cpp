@@ -388,6 +388,101 @@ TEST(Rims, ConeHoleGrowsPastFolds) {
   EXPECT_EQ(excluded[0].covered_faces, plain[0].covered_faces);
 }
 
+// FindRimsOptions::cone_margin_layers (msp fit from genus 8): after the last layer whose rim
+// folds, one more layer, so that no rim face shares a vertex with a folded face; the hole
+// stays closable and contains the one grown without the margin. A hole that never folds gets
+// no margin.
+TEST(Rims, ConeHoleTakesAMarginLayerPastTheLastFold) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  const auto domain = g.domain_without({{{0, 0}}, {{0, 1}}, {{1, 0}}, {{1, 1}}});
+  const auto ring = rings_around(g.mesh, domain);
+  const auto step = [&ring](int face) { return ring[face] <= 3 ? 90.0 : 1.0; };
+  FindRimsOptions options;
+  options.max_cone_layers = 12;
+  const auto grown = find_rims(g.mesh, domain, domain, options, {}, {}, step);
+  FindRimsOptions margin = options;
+  margin.cone_margin_layers = 1;
+  const auto wider = find_rims(g.mesh, domain, domain, margin, {}, {}, step);
+  ASSERT_EQ(grown.size(), 1u);
+  ASSERT_EQ(wider.size(), 1u);
+  expect_closable(g.mesh, domain, wider, 1, "cone hole with a margin");
+  EXPECT_GT(wider[0].covered_faces.size(), grown[0].covered_faces.size());
+  EXPECT_TRUE(std::includes(wider[0].covered_faces.begin(), wider[0].covered_faces.end(),
+                            grown[0].covered_faces.begin(), grown[0].covered_faces.end()));
+  const auto touches_fold = [&](const std::vector<Rim>& rims) {
+    for (const RimEdge& e : rims[0].edges) {
+      for (auto v : g.mesh.fv_range(g.mesh.face_handle(e.face))) {
+        for (auto f : g.mesh.vf_range(v)) {
+          if (domain[f.idx()] && step(f.idx()) > options.max_cone_rim_normal_step_deg)
+            return true;
+        }
+      }
+    }
+    return false;
+  };
+  EXPECT_TRUE(touches_fold(grown));  // without the margin the rim lies next to the folds
+  EXPECT_FALSE(touches_fold(wider));
+  const auto smooth = [](int) { return 1.0; };
+  const auto plain = find_rims(g.mesh, domain, domain, options);
+  const auto unfolded = find_rims(g.mesh, domain, domain, margin, {}, {}, smooth);
+  ASSERT_EQ(unfolded.size(), 1u);
+  EXPECT_EQ(unfolded[0].covered_faces, plain[0].covered_faces);
+}
+
+// FindRimsOptions::cone_reach_layers / cone_reach_cover_fraction (msp fit from genus 8): past
+// the caps the cone hole goes on growing, and keeps that growth only when its rim comes clear
+// of folds within the reach; otherwise it is the hole the caps give, face for face.
+TEST(Rims, ConeHoleKeepsItsReachOnlyWhereTheRimComesClear) {
+  const TorusGrid g{48, 24, ricci::make_torus(48, 24, 3.0, 1.0)};
+  const auto domain = g.domain_without({{{0, 0}}, {{0, 1}}, {{1, 0}}, {{1, 1}}});
+  const auto ring = rings_around(g.mesh, domain);
+  const auto band = [&ring](int face) { return ring[face] <= 8 ? 90.0 : 1.0; };
+  const auto everywhere = [](int) { return 90.0; };
+  FindRimsOptions capped;
+  capped.max_cone_layers = 2;  // stops inside the folded band
+  FindRimsOptions reach = capped;
+  reach.cone_reach_layers = 12;
+  reach.cone_reach_cover_fraction = 0.25;
+  FindRimsOptions wide;  // the reach as plain caps
+  wide.max_cone_layers = reach.cone_reach_layers;
+  wide.max_cone_cover_fraction = reach.cone_reach_cover_fraction;
+
+  const auto at_caps = find_rims(g.mesh, domain, domain, capped, {}, {}, band);
+  const auto reached = find_rims(g.mesh, domain, domain, reach, {}, {}, band);
+  const auto plain_wide = find_rims(g.mesh, domain, domain, wide, {}, {}, band);
+  ASSERT_EQ(at_caps.size(), 1u);
+  ASSERT_EQ(reached.size(), 1u);
+  ASSERT_EQ(plain_wide.size(), 1u);
+  expect_closable(g.mesh, domain, reached, 1, "cone hole grown within its reach");
+  bool folds_at_caps = false;
+  for (const RimEdge& e : at_caps[0].edges) folds_at_caps |= band(e.face) > 20.0;
+  EXPECT_TRUE(folds_at_caps);  // the caps stop it on folded faces
+  for (const RimEdge& e : reached[0].edges) EXPECT_LE(band(e.face), 20.0) << ring[e.face];
+  EXPECT_EQ(reached[0].covered_faces, plain_wide[0].covered_faces);
+  EXPECT_GT(reached[0].covered_faces.size(), at_caps[0].covered_faces.size());
+
+  // Folded everywhere: the reach ends on a folded rim and is undone, by layers or by faces.
+  const auto never_clear = find_rims(g.mesh, domain, domain, reach, {}, {}, everywhere);
+  const auto never_clear_caps = find_rims(g.mesh, domain, domain, capped, {}, {}, everywhere);
+  ASSERT_EQ(never_clear.size(), 1u);
+  ASSERT_EQ(never_clear_caps.size(), 1u);
+  EXPECT_EQ(never_clear[0].covered_faces, never_clear_caps[0].covered_faces);
+  FindRimsOptions by_faces = capped;
+  by_faces.max_cone_layers = 12;
+  by_faces.max_cone_cover_fraction = 0.02;
+  FindRimsOptions by_faces_reach = by_faces;
+  by_faces_reach.cone_reach_layers = 12;
+  by_faces_reach.cone_reach_cover_fraction = 0.25;
+  const auto faces_caps = find_rims(g.mesh, domain, domain, by_faces, {}, {}, everywhere);
+  const auto faces_reach = find_rims(g.mesh, domain, domain, by_faces_reach, {}, {}, everywhere);
+  ASSERT_EQ(faces_caps.size(), 1u);
+  ASSERT_EQ(faces_reach.size(), 1u);
+  EXPECT_EQ(faces_reach[0].covered_faces, faces_caps[0].covered_faces);
+  const auto faces_band = find_rims(g.mesh, domain, domain, by_faces_reach, {}, {}, band);
+  ASSERT_EQ(faces_band.size(), 1u);
+  EXPECT_GT(faces_band[0].covered_faces.size(), faces_caps[0].covered_faces.size());
+}
+
 // FindRimsOptions::cone_rim_vertices_to_cover (msp fit's retry where a cone patch's seam is
 // worst at a few rim vertices): every face around the chosen rim vertices joins the cone hole,
 // the vertices leave the rim (inside the hole now), nothing else is covered, and the hole stays

@@ -1,0 +1,302 @@
+// The thin-plate energy of a patch space, as rows or as its Gram matrix assembled point by point
+// in triangle blocks, and the solve of a patch's normal equations.
+#include <Eigen/CholmodSupport>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <optional>
+
+#include "ricci/flow/serial_blas.h"
+#include "ricci/mesh/errors.h"
+#include "ricci/util/cross2d.h"
+#include "spline/fill/fill_system.h"
+#include "spline/tessellate/parallel_for.h"
+
+namespace spline::fill_detail {
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+
+// The thin-plate quadrature points of one triangle where the partition of unity holds, each
+// with its functions (ascending function_index) and their weighted second derivatives
+// sqrt(weight * area * w) (f_xx, sqrt 2 f_xy, f_yy): the three rows of the point, by column.
+struct ThinPlatePoints {
+  std::vector<int> functions;
+  std::vector<Eigen::Vector3d> rows;  ///< beside functions
+  std::vector<int> starts{0};         ///< point p's entries: [starts[p], starts[p + 1])
+};
+
+// `candidates`: triangles whose functions may reach triangle k, ascending (nullptr: the space's
+// own search per point).
+ThinPlatePoints thin_plate_points(const PlanarDmsSpace& space, int k, double weight,
+                                  const std::vector<QuadraturePoint>& rule,
+                                  const std::vector<int>* candidates) {
+  const double factors[3] = {1.0, std::sqrt(2.0), 1.0};
+  const auto& t = space.triangulation();
+  const Eigen::Vector3i v = t.triangles[static_cast<std::size_t>(k)];
+  const Eigen::Vector2d a = t.positions[v[0]], b = t.positions[v[1]], c = t.positions[v[2]];
+  const double area = 0.5 * std::abs(ricci::cross2d(b - a, c - a));
+  ThinPlatePoints points;
+  std::vector<BasisSample> basis;
+  for (const auto& q : rule) {
+    const double root = std::sqrt(weight * area * q.weight);
+    const Eigen::Vector2d u = q.bary[0] * a + q.bary[1] * b + q.bary[2] * c;
+    if (candidates != nullptr) {
+      basis.clear();
+      space.evaluate_basis_of(u, *candidates, TieBreak{}, BasisDerivatives::second, basis);
+    } else {
+      basis = space.evaluate_basis(u);
+    }
+    // Near the grid's outer rim functions are missing: there the spline reproduces no affine
+    // map, so an affine patch would pay thin-plate energy and bend to avoid it (measured: a
+    // planar hole's parametric patch tilted 6 degrees). Those points are left out.
+    double sum = 0.0;
+    for (const auto& s : basis) sum += s.jet.value;
+    if (std::abs(sum - 1.0) > 1e-9) continue;
+    for (const auto& s : basis) {
+      points.functions.push_back(space.function_index(s.triangle, s.beta));
+      points.rows.push_back(root * Eigen::Vector3d(factors[0] * s.jet.hessian[0],
+                                                   factors[1] * s.jet.hessian[1],
+                                                   factors[2] * s.jet.hessian[2]));
+    }
+    points.starts.push_back(static_cast<int>(points.functions.size()));
+  }
+  return points;
+}
+
+// The triangles sharing a vertex with triangle k (k too), ascending: every triangle whose
+// functions reach into k. A vertex's knots lie within half the smallest inradius of its
+// triangles, less than its distance to the edges opposite it in them (over twice the inradius),
+// so the clouds' hull of a triangle J meets k only near a vertex J shares with k.
+std::vector<int> vertex_star_triangles(const PlanarTriangulation& t,
+                                       const std::vector<std::vector<int>>& stars, int k) {
+  std::vector<int> result;
+  const Eigen::Vector3i& corners = t.triangles[static_cast<std::size_t>(k)];
+  for (int corner = 0; corner < 3; ++corner) {
+    const auto& star = stars[static_cast<std::size_t>(corners[corner])];
+    result.insert(result.end(), star.begin(), star.end());
+  }
+  std::sort(result.begin(), result.end());
+  result.erase(std::unique(result.begin(), result.end()), result.end());
+  return result;
+}
+
+// The upper block triangle of a symmetric matrix whose unknowns come in groups of `size` (a
+// triangle's functions): block (I, J), I <= J, dense, entry (I size + a, J size + b) at
+// a size + b. Block rows grow independently, so threads owning disjoint rows may add at once.
+class BlockRows {
+ public:
+  BlockRows(int groups, int size)
+      : size_(size), columns_(static_cast<std::size_t>(groups)), values_(columns_.size()) {}
+
+  // Block (row, column), row <= column, added as zeros when new.
+  double* block(int row, int column) {
+    auto& columns = columns_[static_cast<std::size_t>(row)];
+    auto& values = values_[static_cast<std::size_t>(row)];
+    const std::size_t area = static_cast<std::size_t>(size_) * size_;
+    const auto found = std::find(columns.begin(), columns.end(), column);
+    const std::size_t slot = static_cast<std::size_t>(found - columns.begin());
+    if (found == columns.end()) {
+      columns.push_back(column);
+      values.resize(values.size() + area, 0.0);
+    }
+    return values.data() + slot * area;
+  }
+
+  // The matrix with both triangles, entries that stayed exactly zero left out.
+  [[nodiscard]] Sparse symmetric() const;
+
+ private:
+  int size_;
+  std::vector<std::vector<int>> columns_;
+  std::vector<std::vector<double>> values_;
+};
+
+Sparse BlockRows::symmetric() const {
+  const int groups = static_cast<int>(columns_.size());
+  const std::size_t area = static_cast<std::size_t>(size_) * size_;
+  // By block column J: the blocks (I, J) above the diagonal, I ascending; by block row: its
+  // blocks ordered by column.
+  std::vector<std::vector<const double*>> above(columns_.size());
+  std::vector<std::vector<int>> above_rows(columns_.size());
+  std::vector<std::vector<int>> order(columns_.size());
+  std::size_t blocks = 0;
+  for (int i = 0; i < groups; ++i) {
+    const auto& columns = columns_[static_cast<std::size_t>(i)];
+    auto& o = order[static_cast<std::size_t>(i)];
+    o.resize(columns.size());
+    std::iota(o.begin(), o.end(), 0);
+    std::sort(o.begin(), o.end(), [&](int x, int y) { return columns[x] < columns[y]; });
+    for (int slot : o) {
+      const int j = columns[static_cast<std::size_t>(slot)];
+      if (j == i) continue;
+      above[static_cast<std::size_t>(j)].push_back(values_[static_cast<std::size_t>(i)].data() +
+                                                   static_cast<std::size_t>(slot) * area);
+      above_rows[static_cast<std::size_t>(j)].push_back(i);
+    }
+    blocks += columns.size();
+  }
+  const int n = groups * size_;
+  Sparse matrix(n, n);
+  matrix.reserve(static_cast<Eigen::Index>(2 * blocks * area));
+  for (int j = 0; j < groups; ++j) {
+    const auto& columns = columns_[static_cast<std::size_t>(j)];
+    const double* values = values_[static_cast<std::size_t>(j)].data();
+    for (int b = 0; b < size_; ++b) {
+      const int column = j * size_ + b;
+      matrix.startVec(column);
+      auto put = [&](int row, double value) {
+        if (value != 0.0) matrix.insertBack(row, column) = value;
+      };
+      for (std::size_t k = 0; k < above[static_cast<std::size_t>(j)].size(); ++k) {
+        const double* block = above[static_cast<std::size_t>(j)][k];
+        const int i = above_rows[static_cast<std::size_t>(j)][k];
+        for (int a = 0; a < size_; ++a) put(i * size_ + a, block[a * size_ + b]);
+      }
+      for (int slot : order[static_cast<std::size_t>(j)]) {  // (j, J), J >= j: transposed
+        const double* block = values + static_cast<std::size_t>(slot) * area;
+        const int i = columns[static_cast<std::size_t>(slot)];
+        for (int a = 0; a < size_; ++a)
+          put(i * size_ + a, i == j ? block[a * size_ + b] : block[b * size_ + a]);
+      }
+    }
+  }
+  matrix.finalize();
+  return matrix;
+}
+
+// Adds one point's products rows_f . rows_g to the blocks whose row `owner` accepts: pairs of
+// the point's triangles (runs of its functions, ascending), the diagonal block in full.
+template <class Owner>
+void add_point(const ThinPlatePoints& points, int p, int size, const Owner& owner,
+               BlockRows& blocks) {
+  const int begin = points.starts[static_cast<std::size_t>(p)];
+  const int end = points.starts[static_cast<std::size_t>(p) + 1];
+  for (int r = begin; r < end;) {
+    const int row_group = points.functions[r] / size;
+    int r_end = r;
+    while (r_end < end && points.functions[r_end] / size == row_group) ++r_end;
+    if (owner(row_group)) {
+      for (int c = r; c < end;) {
+        const int column_group = points.functions[c] / size;
+        int c_end = c;
+        while (c_end < end && points.functions[c_end] / size == column_group) ++c_end;
+        double* block = blocks.block(row_group, column_group);
+        for (int x = r; x < r_end; ++x) {
+          double* line = block + (points.functions[x] % size) * size;
+          for (int y = c; y < c_end; ++y)
+            line[points.functions[y] % size] += points.rows[x].dot(points.rows[y]);
+        }
+        c = c_end;
+      }
+    }
+    r = r_end;
+  }
+}
+
+}  // namespace
+
+void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double weight) {
+  const auto rule = thin_plate_rule();
+  std::vector<ThinPlatePoints> per_triangle(static_cast<std::size_t>(space.triangle_count()));
+  parallel_for(per_triangle.size(), 0, [&](std::size_t k) {
+    per_triangle[k] = thin_plate_points(space, static_cast<int>(k), weight, rule, nullptr);
+  });
+  for (const ThinPlatePoints& points : per_triangle) {
+    for (std::size_t p = 0; p + 1 < points.starts.size(); ++p) {
+      for (int r = 0; r < 3; ++r) {
+        const int row = system.next_row();
+        for (int e = points.starts[p]; e < points.starts[p + 1]; ++e)
+          system.entries.emplace_back(row, points.functions[e], points.rows[e][r]);
+        system.targets.push_back(Eigen::Vector3d::Zero());
+      }
+    }
+  }
+}
+
+Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight) {
+  const auto rule = thin_plate_rule();
+  const int size = space.functions_per_triangle();
+  const int triangles = space.triangle_count();
+  BlockRows blocks(triangles, size);
+  const PlanarTriangulation& t = space.triangulation();
+  std::vector<std::vector<int>> stars(t.positions.size());
+  for (int k = 0; k < triangles; ++k) {
+    const Eigen::Vector3i& corners = t.triangles[static_cast<std::size_t>(k)];
+    for (int corner = 0; corner < 3; ++corner)
+      stars[static_cast<std::size_t>(corners[corner])].push_back(k);
+  }
+  // Chunks of triangles: their points evaluated in parallel, then added by block row, each
+  // worker owning the rows of its residue class, in triangle and point order. So the sums do
+  // not depend on the number of threads.
+  constexpr int kChunk = 512;
+  std::vector<ThinPlatePoints> chunk(kChunk);
+  for (int first = 0; first < triangles; first += kChunk) {
+    const int count = std::min(kChunk, triangles - first);
+    parallel_for(static_cast<std::size_t>(count), 0, [&](std::size_t k) {
+      const int triangle = first + static_cast<int>(k);
+      const std::vector<int> candidates = vertex_star_triangles(t, stars, triangle);
+      chunk[k] = thin_plate_points(space, triangle, weight, rule, &candidates);
+    });
+    const int workers = parallel_thread_count(0, static_cast<std::size_t>(count) * rule.size());
+    run_workers(workers, [&](int worker) {
+      const auto owner = [&](int group) { return group % workers == worker; };
+      for (int k = 0; k < count; ++k) {
+        const ThinPlatePoints& points = chunk[static_cast<std::size_t>(k)];
+        for (int p = 0; p + 1 < static_cast<int>(points.starts.size()); ++p)
+          add_point(points, p, size, owner, blocks);
+      }
+    });
+  }
+  return blocks.symmetric();
+}
+
+NormalEquations normal_equations(const System& system, const PlanarDmsSpace& space,
+                                 double thin_plate) {
+  Sparse a(system.next_row(), space.function_count());
+  a.setFromTriplets(system.entries.begin(), system.entries.end());
+  Eigen::MatrixX3d b(system.next_row(), 3);
+  for (int i = 0; i < system.next_row(); ++i) b.row(i) = system.targets[i].transpose();
+  NormalEquations result{a.transpose() * a, a.transpose() * b};
+  if (thin_plate > 0.0) result.matrix += thin_plate_normal(space, thin_plate);
+  return result;
+}
+
+// Factorisations of more flops than this use both BLAS threads (solve_normal_equations).
+constexpr double kParallelBlasFlops = 3e10;
+
+Eigen::MatrixXd solve_normal_equations(const Sparse& normal, const Eigen::MatrixXd& rhs,
+                                       const std::string& what) {
+  Eigen::CholmodSupernodalLLT<Sparse> solver;
+  solver.cholmod().print = 0;
+  // AMD alone orders. CHOLMOD's default also runs METIS when AMD's factor looks costly, as it
+  // does here: genus3_100k's cone patch (57,580 functions, 4.9M nonzeros) took 0.78 s to order
+  // that way against 0.11 s with AMD, to factorise in 0.59 s instead of 0.71 s (one BLAS
+  // thread).
+  solver.cholmod().nmethods = 1;
+  solver.cholmod().method[0].ordering = CHOLMOD_AMD;
+  solver.analyzePattern(normal);
+  // One BLAS thread (serial_blas.h) unless the factorisation is large: OpenBLAS' second thread
+  // spins while it waits, and on a busy machine it cost far more than it saved (genus3_100k's
+  // cone patch, 9e9 flops, load 8 on 2 cores: 3.8 CPU s and 3.9 s wall with two threads, 0.8
+  // and 2.2 s with one). The largest patches gain from it on a quiet machine (`msp fit`
+  // block.off, a 40-edge cone rim, 188k unknowns: 18.5 s -> 13.4 s).
+  std::optional<ricci::SerialBlasScope> serial;
+  if (solver.cholmod().fl < kParallelBlasFlops) serial.emplace();
+  // CHOLMOD's own OpenMP loops on this thread, as in ricci's SymmetricFactorization
+  // (serial_blas.h says why).
+  const ricci::SerialOpenMpScope serial_openmp;
+  solver.factorize(normal);
+  if (solver.info() != Eigen::Success) {
+    throw ricci::SolverError("fill_rim: the normal equations of the " + what +
+                             " are not positive definite");
+  }
+  Eigen::MatrixXd x = solver.solve(rhs);
+  // One step of iterative refinement: the seam weights make the matrix ill-conditioned.
+  x += solver.solve(Eigen::MatrixXd(rhs - normal * x));
+  if (!x.allFinite())
+    throw ricci::SolverError("fill_rim: the patch solve produced non-finite control points");
+  return x;
+}
+
+}  // namespace spline::fill_detail

@@ -1,0 +1,75 @@
+// The patch's thin-plate Gram matrix assembled in triangle blocks (thin_plate_normal) against
+// the Gram matrix of the thin-plate rows it replaces, and the normal-equation solve.
+#include <gtest/gtest.h>
+
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <vector>
+
+#include "ricci/mesh/errors.h"
+#include "spline/fill/fill_system.h"
+
+namespace spline::fill_detail {
+namespace {
+
+// A patch space over a scalloped heptagon, refined around its corners as a cone patch's.
+std::shared_ptr<const PlanarDmsSpace> heptagon_space() {
+  std::vector<Eigen::Vector2d> boundary;
+  for (int j = 0; j < 7; ++j) {
+    const double angle = 2.0 * M_PI * j / 7.0;
+    const double radius = j % 2 == 0 ? 1.0 : 0.8;
+    boundary.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+  }
+  return patch_space(boundary, 0.35, 3, KnotCloudOptions{}, boundary, 4);
+}
+
+Eigen::SparseMatrix<double> row_gram(const PlanarDmsSpace& space, double weight) {
+  System rows;
+  add_thin_plate_rows(rows, space, weight);
+  Eigen::SparseMatrix<double> a(rows.next_row(), space.function_count());
+  a.setFromTriplets(rows.entries.begin(), rows.entries.end());
+  return a.transpose() * a;
+}
+
+TEST(ThinPlateNormal, EqualsTheGramMatrixOfTheRows) {
+  const auto space = heptagon_space();
+  const double weight = 0.37;
+  const Eigen::SparseMatrix<double> blocks = thin_plate_normal(*space, weight);
+  const Eigen::SparseMatrix<double> rows = row_gram(*space, weight);
+  ASSERT_EQ(blocks.rows(), space->function_count());
+  ASSERT_EQ(blocks.cols(), space->function_count());
+  const double scale = Eigen::MatrixXd(rows).cwiseAbs().maxCoeff();
+  ASSERT_GT(scale, 0.0);
+  const Eigen::MatrixXd difference = Eigen::MatrixXd(blocks) - Eigen::MatrixXd(rows);
+  EXPECT_LT(difference.cwiseAbs().maxCoeff(), 1e-12 * scale);
+  // No entry outside the rows' pattern, the same count of nonzeros, exactly symmetric.
+  for (int k = 0; k < blocks.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(blocks, k); it; ++it)
+      EXPECT_NE(rows.coeff(it.row(), it.col()), 0.0) << it.row() << ", " << it.col();
+  }
+  EXPECT_EQ(blocks.nonZeros(), rows.nonZeros());
+  const Eigen::SparseMatrix<double> transpose = blocks.transpose();
+  EXPECT_EQ((Eigen::MatrixXd(blocks) - Eigen::MatrixXd(transpose)).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(SolveNormalEquations, SolvesAndRefusesAnIndefiniteMatrix) {
+  const auto space = heptagon_space();
+  Eigen::SparseMatrix<double> normal = thin_plate_normal(*space, 1.0);
+  for (int i = 0; i < normal.rows(); ++i) normal.coeffRef(i, i) += 1e-3;
+  const Eigen::MatrixXd expected = Eigen::MatrixXd::Random(normal.rows(), 2);
+  const Eigen::MatrixXd rhs = normal * expected;
+  const Eigen::MatrixXd x = solve_normal_equations(normal, rhs, "test patch");
+  EXPECT_LT((normal * x - rhs).norm(), 1e-12 * rhs.norm());
+  EXPECT_LT((x - expected).norm(), 1e-6 * expected.norm());
+  Eigen::SparseMatrix<double> indefinite = normal;
+  indefinite.coeffRef(5, 5) = -1.0;
+  try {
+    (void)solve_normal_equations(indefinite, rhs, "test patch");
+    ADD_FAILURE() << "no throw";
+  } catch (const ricci::SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("normal equations of the test patch"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace spline::fill_detail

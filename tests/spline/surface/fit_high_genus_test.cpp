@@ -1,0 +1,46 @@
+// msp fit's pipeline on closed surfaces of genus 4 and 8 (msp generate's rows of fused tori): one
+// cone of 2 pi (2g - 1), whose patch must neither fold nor show a seam. At genus 8 the valence
+// modification and the cone refinement leave a band of slivers around the 30 pi cone; the cone
+// hole must reach past them (cone_hole_limits' reach) or its patch flips (main before the reach:
+// seam 164 degrees at 12k faces; 1.79 degrees and 24 folds at 2400).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "ricci/mesh/generate.h"
+#include "spline/surface/fit_surface.h"
+
+namespace {
+
+struct HighGenusCase {
+  int genus;
+  int faces;
+  double rms;  ///< the fit's RMS bound, relative to the bounding-box diagonal
+};
+
+class FitSurfaceHighGenus : public ::testing::TestWithParam<HighGenusCase> {};
+
+TEST_P(FitSurfaceHighGenus, OneConeWatertightWithoutFoldsAndASmallSeam) {
+  const HighGenusCase c = GetParam();
+  ricci::GenerateOptions generate;
+  generate.genus = c.genus;
+  generate.target_faces = c.faces;
+  const ricci::Mesh mesh = ricci::generate_surface(generate);
+  const spline::FittedSurface fitted = spline::fit_surface(mesh);
+  EXPECT_EQ(fitted.input.genus, c.genus);
+  EXPECT_TRUE(fitted.watertight);
+  EXPECT_TRUE(fitted.topology.closed(c.genus));
+  EXPECT_EQ(fitted.surface_dihedral.over_90_deg, 0);
+  EXPECT_LT(fitted.fill_normal_jump_deg, 1.0);
+  EXPECT_LT(fitted.edge_normal_jump_deg, 1.0);
+  EXPECT_LT(fitted.fit_rms / fitted.bbox_diagonal, c.rms);
+}
+
+INSTANTIATE_TEST_SUITE_P(Generated, FitSurfaceHighGenus,
+                         ::testing::Values(HighGenusCase{4, 6000, 1e-3},
+                                           HighGenusCase{8, 2400, 2e-3}),
+                         [](const auto& info) {
+                           return "genus" + std::to_string(info.param.genus);
+                         });
+
+}  // namespace
