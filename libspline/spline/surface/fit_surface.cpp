@@ -736,6 +736,32 @@ bool better(const FittedSurface& next, const Round& next_round, const FittedSurf
   return next.projection_rms < out.projection_rms;
 }
 
+// Rings of edge neighbours around an open surface's collar that make up its boundary band for
+// the fold rounds (open_fold_floor).
+constexpr int kFoldFloorBandRings = 1;
+
+// The fold rounds' floor for an open input: `face_smoothing` without the raise on the boundary
+// band (the collar and the faces next to it, faces_near_boundary), except on the faces that
+// folded in this series (`folded`, by face). The band's faces carry the boundary curve's samples,
+// and a floor spread there from folds a ring or two inside pulls the surface's boundary off the
+// scan's: mech-holes-shark.off's zigzag boundary, 0.441% of the diagonal from the scan's before
+// its fold round, ended 0.504% away at a tooth tip the floor had reached.
+std::vector<double> open_fold_floor(const FittedSurface& out,
+                                    const std::vector<double>& face_smoothing,
+                                    const std::vector<char>& folded) {
+  const std::vector<char> band = faces_near_boundary(out, kFoldFloorBandRings);
+  std::vector<double> floor = face_smoothing;
+  for (std::size_t f = 0; f < floor.size() && f < band.size(); ++f)
+    if (band[f] && !(f < folded.size() && folded[f])) floor[f] = 0.0;
+  return floor;
+}
+
+// `flags` into `into` (grown to its size): set where either is.
+void merge_flags(const std::vector<char>& flags, std::vector<char>& into) {
+  into.resize(std::max(into.size(), flags.size()), 0);
+  for (std::size_t f = 0; f < flags.size(); ++f) into[f] |= flags[f];
+}
+
 // `floor` into `face_smoothing` (grown to its size): the larger of the two by face.
 void raise_floor(const std::vector<double>& floor, std::vector<double>& face_smoothing) {
   face_smoothing.resize(floor.size(), 0.0);
@@ -752,6 +778,7 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
                        Superseded& superseded, FoldFree& fold_free, StageClock& clock,
                        FittedSurface& out) {
   std::vector<double> face_smoothing;
+  std::vector<char> folded;  // faces that folded in this series (open inputs' band)
   double level = options.fold_smoothing;
   // The refit on the same space was measured on closed inputs; open ones fit the whole scan
   // again each round (h/rim's boundary measurements). Both may trade folds for error up to the
@@ -769,8 +796,9 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
   const double near_input_fold =
       kFoldNearInputFoldEdges * ricci::median_edge_length(out.surface.domain);
   int without_gain = 0;
-  // Open inputs: the band along the boundary is smoothed too (lion.off's last folds are there,
-  // with the boundary curve pulled); refit_folded_boundary leaves it out.
+  // Open inputs: the band along the boundary is smoothed where it folded (lion.off's last folds
+  // are there, with the boundary curve pulled), nowhere else (open_fold_floor);
+  // refit_folded_boundary leaves it out.
   for (int round = 1; round <= options.fold_rounds && out.surface_dihedral.over_90_deg > 0;
        ++round, level *= kFoldSmoothingStep) {
     clock.begin("refine");
@@ -779,6 +807,7 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
     FoldSmoothingOptions floor_options;
     floor_options.level = level;
     floor_options.taper_rings = taper_rings;
+    merge_flags(faces_with_folds(out), folded);
     raise_floor(fold_smoothing_floor(out.surface.domain, faces_with_folds(out), floor_options),
                 face_smoothing);
     std::pair<FittedSurface, Round> next;
@@ -787,7 +816,7 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
     } else {
       scan.domain = best.domain;
       scan.boundary_follow.max_rounds = 0;
-      scan.fit.face_smoothing = face_smoothing;
+      scan.fit.face_smoothing = open_fold_floor(out, face_smoothing, folded);
       next = next_round(dense, scan, options, clock, out);
     }
     out.refinement.push_back(round_summary(next.first, next.second, options));
@@ -800,6 +829,7 @@ void fold_round_series(const ricci::Mesh& dense, const FitSurfaceOptions& option
     if (!better(next.first, next.second, out, best, options)) {
       if (++without_gain >= kFoldRoundsWithoutGain) break;
       // The folds it made elsewhere are smoothed too in the next round.
+      merge_flags(faces_with_folds(next.first), folded);
       raise_floor(fold_smoothing_floor(out.surface.domain, faces_with_folds(next.first),
                                        floor_options),
                   face_smoothing);
