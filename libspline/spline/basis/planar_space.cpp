@@ -154,7 +154,7 @@ void PlanarDmsSpace::evaluate_basis_of(const Eigen::Vector2d& u, const std::vect
   }
 }
 
-void PlanarDmsSpace::check_rows(const Eigen::MatrixXd& control_points) const {
+void PlanarDmsSpace::check_rows(const Eigen::Ref<const Eigen::MatrixXd>& control_points) const {
   if (control_points.rows() != function_count()) {
     throw ricci::InvalidInputError("planar DMS space: " + std::to_string(control_points.rows()) +
                                    " control points for " + std::to_string(function_count()) +
@@ -162,24 +162,40 @@ void PlanarDmsSpace::check_rows(const Eigen::MatrixXd& control_points) const {
   }
 }
 
-SplineJet PlanarDmsSpace::evaluate(const Eigen::MatrixXd& control_points, const Eigen::Vector2d& u,
-                                   const TieBreak& tie) const {
+SplineJet PlanarDmsSpace::evaluate(const Eigen::Ref<const Eigen::MatrixXd>& control_points,
+                                   const Eigen::Vector2d& u, const TieBreak& tie) const {
   check_rows(control_points);
+  // Per-thread scratch, as in evaluate_basis_of: patches are evaluated point by point.
+  thread_local std::vector<BasisSample> samples;
+  samples.clear();
+  evaluate_basis_of(u, grid_triangles(u), tie, BasisDerivatives::second, samples);
   const Eigen::Index k = control_points.cols();
-  SplineJet out{Eigen::VectorXd::Zero(k), Eigen::MatrixXd::Zero(k, 2), Eigen::MatrixXd::Zero(k, 3)};
-  for (const BasisSample& s : evaluate_basis(u, tie)) {
-    const Eigen::VectorXd c = control_points.row(function_index(s.triangle, s.beta)).transpose();
-    out.value += s.jet.value * c;
-    out.gradient += c * s.jet.gradient.transpose();
-    out.hessian += c * s.jet.hessian.transpose();
-  }
-  return out;
+  if (k == 3) return sum_jets<3>(control_points, samples);
+  return sum_jets<Eigen::Dynamic>(control_points, samples);
 }
 
-Eigen::MatrixXd PlanarDmsSpace::evaluate_directional(const Eigen::MatrixXd& control_points,
-                                                     const Eigen::Vector2d& u,
-                                                     const Eigen::Vector2d& direction,
-                                                     int max_order, const TieBreak& tie) const {
+template <int K>
+SplineJet PlanarDmsSpace::sum_jets(const Eigen::Ref<const Eigen::MatrixXd>& control_points,
+                                   const std::vector<BasisSample>& samples) const {
+  // Fixed-size accumulators for the common K = 3 (a patch in space): no allocation per
+  // sample; the same products summed in the same order as the dynamic case.
+  const Eigen::Index k = control_points.cols();
+  Eigen::Matrix<double, K, 1> value = Eigen::Matrix<double, K, 1>::Zero(k);
+  Eigen::Matrix<double, K, 2> gradient = Eigen::Matrix<double, K, 2>::Zero(k, 2);
+  Eigen::Matrix<double, K, 3> hessian = Eigen::Matrix<double, K, 3>::Zero(k, 3);
+  for (const BasisSample& s : samples) {
+    const Eigen::Matrix<double, K, 1> c =
+        control_points.row(function_index(s.triangle, s.beta)).transpose();
+    value += s.jet.value * c;
+    gradient += c * s.jet.gradient.transpose();
+    hessian += c * s.jet.hessian.transpose();
+  }
+  return SplineJet{value, gradient, hessian};
+}
+
+Eigen::MatrixXd PlanarDmsSpace::evaluate_directional(
+    const Eigen::Ref<const Eigen::MatrixXd>& control_points, const Eigen::Vector2d& u,
+    const Eigen::Vector2d& direction, int max_order, const TieBreak& tie) const {
   check_rows(control_points);
   if (max_order < 0) throw ricci::InvalidInputError("planar DMS space: negative derivative order");
   const std::size_t stride = static_cast<std::size_t>(max_order) + 1;

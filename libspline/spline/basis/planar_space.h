@@ -82,15 +82,13 @@ class PlanarDmsSpace {
 
   /// sum c_{I,beta} N_{I,beta} at u; control_points has function_count() rows, k columns.
   /// \throw ricci::InvalidInputError on a wrong row count.
-  [[nodiscard]] SplineJet evaluate(const Eigen::MatrixXd& control_points, const Eigen::Vector2d& u,
-                                   const TieBreak& tie = {}) const;
+  [[nodiscard]] SplineJet evaluate(const Eigen::Ref<const Eigen::MatrixXd>& control_points,
+                                   const Eigen::Vector2d& u, const TieBreak& tie = {}) const;
 
   /// D_d^k of the spline for k = 0..max_order: (max_order + 1) x k.
-  [[nodiscard]] Eigen::MatrixXd evaluate_directional(const Eigen::MatrixXd& control_points,
-                                                     const Eigen::Vector2d& u,
-                                                     const Eigen::Vector2d& direction,
-                                                     int max_order,
-                                                     const TieBreak& tie = {}) const;
+  [[nodiscard]] Eigen::MatrixXd evaluate_directional(
+      const Eigen::Ref<const Eigen::MatrixXd>& control_points, const Eigen::Vector2d& u,
+      const Eigen::Vector2d& direction, int max_order, const TieBreak& tie = {}) const;
 
   /// Control points reproducing p (degree <= n) on every triangle: function_count() x k.
   [[nodiscard]] Eigen::MatrixXd control_points_of(const BivariatePolynomial& p) const;
@@ -100,7 +98,10 @@ class PlanarDmsSpace {
   // Triangles whose cloud box meets u's grid cell (or a neighbouring one when u is on a cell
   // border), ascending: a superset of candidate_triangles(u).
   [[nodiscard]] std::vector<int> grid_triangles(const Eigen::Vector2d& u) const;
-  void check_rows(const Eigen::MatrixXd& control_points) const;
+  void check_rows(const Eigen::Ref<const Eigen::MatrixXd>& control_points) const;
+  template <int K>
+  [[nodiscard]] SplineJet sum_jets(const Eigen::Ref<const Eigen::MatrixXd>& control_points,
+                                   const std::vector<BasisSample>& samples) const;
 
   PlanarTriangulation triangulation_;
   std::vector<KnotCloud> clouds_;

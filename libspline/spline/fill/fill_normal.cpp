@@ -49,10 +49,20 @@ ThinPlatePoints thin_plate_points(const PlanarDmsSpace& space, int k, double wei
     }
     // Near the grid's outer rim functions are missing: there the spline reproduces no affine
     // map, so an affine patch would pay thin-plate energy and bend to avoid it (measured: a
-    // planar hole's parametric patch tilted 6 degrees). Those points are left out.
+    // planar hole's parametric patch tilted 6 degrees). Those points are left out, and so are
+    // points where the second derivatives do not sum to zero: just inside a missing function's
+    // support its value is below the partition test's rounding while its curvature is not.
     double sum = 0.0;
-    for (const auto& s : basis) sum += s.jet.value;
+    Eigen::Vector3d curvature_sum = Eigen::Vector3d::Zero();
+    double curvature_scale = 0.0;
+    for (const auto& s : basis) {
+      sum += s.jet.value;
+      const Eigen::Vector3d h(s.jet.hessian[0], s.jet.hessian[1], s.jet.hessian[2]);
+      curvature_sum += h;
+      curvature_scale += h.cwiseAbs().sum();
+    }
     if (std::abs(sum - 1.0) > 1e-9) continue;
+    if (curvature_sum.cwiseAbs().maxCoeff() > 1e-9 * curvature_scale) continue;
     for (const auto& s : basis) {
       points.functions.push_back(space.function_index(s.triangle, s.beta));
       points.rows.push_back(root * Eigen::Vector3d(factors[0] * s.jet.hessian[0],

@@ -10,6 +10,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "spline/fill/patch_domain.h"
+#include "spline/tessellate/parallel_for.h"
 
 namespace spline {
 namespace {
@@ -32,24 +33,35 @@ struct Sample {
 
 std::vector<Sample> rim_samples(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
                                 int per_edge) {
-  std::vector<Sample> samples;
   const std::vector<double> parameters = fill_detail::rim_edge_parameters(per_edge);
+  struct At {
+    const HoleFill* fill;
+    int edge;
+    double t;
+  };
+  std::vector<At> where;
   for (const HoleFill& fill : fills) {
     if (!fill.g1) continue;  // a positions-only patch has no normals worth meeting
-    for (int j = 0; j < static_cast<int>(fill.rim.edges.size()); ++j) {
-      const RimEdge& edge = fill.rim.edges[j];
-      for (const double t : parameters) {
-        Sample s;
-        s.basis = rim_basis(*spline.space, edge, t);
-        const SurfaceJet jet =
-            combine(s.basis, spline.control_points, spline.space->chart_of(edge.face));
-        s.derivative[0] = jet.du;
-        s.derivative[1] = jet.dv;
-        s.patch_normal = fill.evaluate(fill.parameter(j, t)).normal;
-        if (!s.patch_normal.isZero()) samples.push_back(std::move(s));
-      }
-    }
+    for (int j = 0; j < static_cast<int>(fill.rim.edges.size()); ++j)
+      for (const double t : parameters) where.push_back({&fill, j, t});
   }
+  // Evaluated in parallel, each into its own slot; kept in order.
+  std::vector<Sample> all(where.size());
+  parallel_for(where.size(), 0, [&](std::size_t k) {
+    const At& at = where[k];
+    const RimEdge& edge = at.fill->rim.edges[static_cast<std::size_t>(at.edge)];
+    Sample& s = all[k];
+    s.basis = rim_basis(*spline.space, edge, at.t);
+    const SurfaceJet jet =
+        combine(s.basis, spline.control_points, spline.space->chart_of(edge.face));
+    s.derivative[0] = jet.du;
+    s.derivative[1] = jet.dv;
+    s.patch_normal = at.fill->evaluate(at.fill->parameter(at.edge, at.t)).normal;
+  });
+  std::vector<Sample> samples;
+  samples.reserve(all.size());
+  for (Sample& s : all)
+    if (!s.patch_normal.isZero()) samples.push_back(std::move(s));
   return samples;
 }
 

@@ -8,6 +8,7 @@
 #include "ricci/mesh/triangulate_region.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/patch_domain.h"
+#include "spline/tessellate/parallel_for.h"
 
 namespace spline {
 
@@ -22,22 +23,28 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
   report.edge_normal_jump_deg.assign(static_cast<std::size_t>(m), 0.0);
   std::vector<double>& per_edge = report.edge_normal_jump_deg;
   const std::vector<double> parameters = fill_detail::rim_edge_parameters(samples_per_edge);
-  for (int j = 0; j < m; ++j) {
-    for (const double t : parameters) {
-      const auto s = fill_detail::sample_rim(spline, fill.rim.edges[j], t);
-      const PatchPoint p = fill.evaluate(fill.parameter(j, t));
-      const double angle = ricci::angle_between(s.jet.normal, p.normal);
-      report.max_normal_jump_deg = std::max(report.max_normal_jump_deg, angle * 180.0 / M_PI);
-      per_edge[static_cast<std::size_t>(j)] =
-          std::max(per_edge[static_cast<std::size_t>(j)], angle * 180.0 / M_PI);
-      const double gap = (p.position - s.jet.position).norm() / fill.diagonal;
-      report.max_position_gap = std::max(report.max_position_gap, gap);
-      // The RMS weighs the rim evenly: the samples on the uniform grid only.
-      const double on_grid = t * samples_per_edge;
-      if (std::abs(on_grid - std::nearbyint(on_grid)) > 1e-9) continue;
-      sum_squares += gap * gap;
-      ++report.samples;
-    }
+  // The samples in parallel (each writes its own angle and gap), the figures summed in order.
+  const std::size_t per_rim_edge = parameters.size();
+  std::vector<double> angle_deg(static_cast<std::size_t>(m) * per_rim_edge);
+  std::vector<double> gap(angle_deg.size());
+  parallel_for(angle_deg.size(), 0, [&](std::size_t k) {
+    const int j = static_cast<int>(k / per_rim_edge);
+    const double t = parameters[k % per_rim_edge];
+    const auto s = fill_detail::sample_rim(spline, fill.rim.edges[static_cast<std::size_t>(j)], t);
+    const PatchPoint p = fill.evaluate(fill.parameter(j, t));
+    angle_deg[k] = ricci::angle_between(s.jet.normal, p.normal) * 180.0 / M_PI;
+    gap[k] = (p.position - s.jet.position).norm() / fill.diagonal;
+  });
+  for (std::size_t k = 0; k < angle_deg.size(); ++k) {
+    const std::size_t j = k / per_rim_edge;
+    report.max_normal_jump_deg = std::max(report.max_normal_jump_deg, angle_deg[k]);
+    per_edge[j] = std::max(per_edge[j], angle_deg[k]);
+    report.max_position_gap = std::max(report.max_position_gap, gap[k]);
+    // The RMS weighs the rim evenly: the samples on the uniform grid only.
+    const double on_grid = parameters[k % per_rim_edge] * samples_per_edge;
+    if (std::abs(on_grid - std::nearbyint(on_grid)) > 1e-9) continue;
+    sum_squares += gap[k] * gap[k];
+    ++report.samples;
   }
   report.rms_position_gap = std::sqrt(sum_squares / std::max(report.samples, 1));
   return report;

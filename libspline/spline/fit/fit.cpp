@@ -116,7 +116,10 @@ Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& spac
   const int m = space.functions_per_face();
   const std::vector<Eigen::Vector3i> betas = multi_indices(space.degree());
   Eigen::MatrixX3d points(space.function_count(), 3);
-  for (int face : space.domain_faces()) {
+  // By face in parallel (each writes its own rows; the chart spaces are built on first use).
+  const std::vector<int>& faces = space.domain_faces();
+  parallel_for(faces.size(), 0, [&](std::size_t i) {
+    const int face = faces[i];
     const int chart = space.chart_of(face);
     const auto clouds = space.face_clouds(chart, face);
     const Eigen::Matrix<double, 3, 2> corners = space.atlas().face_positions(chart, face);
@@ -130,7 +133,7 @@ Eigen::MatrixX3d piecewise_linear_control_points(const ManifoldSplineSpace& spac
       points.row(space.function_index(face, b)) =
           face_point(mesh, face, barycentric_in(corners, mean)).transpose();
     }
-  }
+  });
   return points;
 }
 

@@ -73,7 +73,12 @@ int cone_rim(const std::vector<Rim>& rims) {
 // --refine-rounds 0`: seam 12.6 degrees on the hole reached, 6.4 on the capped one).
 ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in_domain,
                        const CapHolesOptions& options, const RimMergeOptions& merge,
-                       const FillOptions& cone_options) {
+                       const FillOptions& final_options) {
+  // The holes tried are compared by their patches on a uniform grid when the limits say so;
+  // the chosen one alone gets the patch of final_options (below).
+  FillOptions cone_options = final_options;
+  const bool compare_uniform = options.cone_hole.compare_uniform && !options.screening;
+  if (compare_uniform) cone_options.corner_refinement = 1;
   const std::vector<char>& collar_faces = options.collar_faces;
   const auto& space = *surface.spline.space;
   const std::vector<double> scale = chart_scale_by_face(space, surface.domain);
@@ -122,7 +127,7 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
     covered_vertices = to_cover;
     return true;
   };
-  if (chosen_reach) (void)try_rims(0, {}, false);
+  if (chosen_reach && !options.screening) (void)try_rims(0, {}, false);
   for (int extra = 1; extra <= 2 && chosen.cone_fill->max_normal_jump_deg > kFlipped; ++extra) {
     if (!try_rims(extra, {}, chosen_reach)) break;
   }
@@ -130,7 +135,8 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
   // vertex, e.g. fertility's cone rim: 30 degrees at one vertex, below 6 elsewhere): the faces
   // around the ends of the worst rim edges join the hole, up to options.cone_hole.vertex_rounds
   // times, each kept only when the seam drops.
-  for (int round = 0; round < options.cone_hole.vertex_rounds; ++round) {
+  const int vertex_rounds = options.screening ? 0 : options.cone_hole.vertex_rounds;
+  for (int round = 0; round < vertex_rounds; ++round) {
     const HoleFill& fill = *chosen.cone_fill;
     if (!(fill.max_normal_jump_deg > cone_options.target_jump_deg) ||
         fill.max_normal_jump_deg > kFlipped)
@@ -152,11 +158,18 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
         !(chosen.cone_fill->max_normal_jump_deg < before))
       break;
   }
+  if (compare_uniform && final_options.corner_refinement > 1) {
+    HoleFill refined =
+        fill_rim(surface.spline, surface.domain, chosen.rims[chosen.cone], final_options);
+    if (refined.max_normal_jump_deg < chosen.cone_fill->max_normal_jump_deg)
+      chosen.cone_fill = std::move(refined);
+  }
   return chosen;
 }
 
-FillOptions fill_options_for(bool input_boundary) {
+FillOptions fill_options_for(bool input_boundary, bool screening) {
   FillOptions fill_options;
+  if (screening) fill_options.corner_refinement = 1;
   // The punctured sphere's hole is a cone hole in all but name: filled like one (its
   // projection may fold; the patch is laid out on a circle either way). Without the
   // fallback its fold left the only rim of camel.off and knight_decimated.off open.
@@ -181,8 +194,13 @@ ConeHoleLimits cone_hole_limits(int genus) {
     limits.reach_layers = 12;
     limits.reach_cover_fraction = 0.5;
     limits.margin_layers = 1;
+    limits.compare_uniform = true;
   }
   return limits;
+}
+
+bool retries_cone_hole(const ConeHoleLimits& limits) {
+  return limits.vertex_rounds > 0 || limits.reach_layers > 0;
 }
 
 CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options) {
@@ -203,7 +221,8 @@ CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options)
   // input loop keeps its own rim, so the surface keeps the input's boundary loops.
   RimMergeOptions merge;
   merge.boundary_loops = options.fill_boundaries || !options.open_input;
-  ChosenRims chosen = choose_rims(surface, in_domain, options, merge, fill_options_for(false));
+  ChosenRims chosen = choose_rims(surface, in_domain, options, merge,
+                                  fill_options_for(false, options.screening));
   CapHolesReport report;
   surface.fills.clear();
   surface.open_rims.clear();
@@ -238,7 +257,8 @@ CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options)
       surface.fills.push_back(static_cast<int>(r) == chosen.cone
                                   ? std::move(*chosen.cone_fill)
                                   : fill_rim(surface.spline, surface.domain, rim,
-                                             fill_options_for(input_boundary)));
+                                             fill_options_for(input_boundary,
+                                                              options.screening)));
       if (!surface.fills.back().g1) ++report.fallback_fills;
     } catch (const ricci::InvalidInputError& e) {
       // A boundary whose projection folds cannot be capped: left open and reported.

@@ -25,6 +25,11 @@ struct ConeHoleLimits {
   /// jump) join the hole (FindRimsOptions::cone_rim_vertices_to_cover); a retry is kept only
   /// when the seam drops. Each retry costs one fill_rim. 0: none.
   int vertex_rounds = 0;
+  /// The cone holes tried (reach or caps, flip retries, vertex rounds) are compared by their
+  /// patches on a uniform grid (FillOptions::corner_refinement 1), and only the chosen hole is
+  /// filled again with the corner-refined patch (kept when its seam is smaller): one
+  /// corner-refined patch per capping instead of 4-6.
+  bool compare_uniform = false;
 };
 
 /// The limits for the one-cone surface of this genus: FindRimsOptions' up to genus 3; from
@@ -33,7 +38,7 @@ struct ConeHoleLimits {
 /// charts differ in scale by more than max_cone_rim_scale_ratio reach farther, and 2 vertex
 /// rounds; from genus 8 (30 pi and more) a reach of 12 layers and half of the domain's faces
 /// (the cone refinement puts more than half of them around the cone), kept only when the rim
-/// comes clear within it, and one margin layer.
+/// comes clear within it, and one margin layer, the holes compared on uniform grids.
 [[nodiscard]] ConeHoleLimits cone_hole_limits(int genus);
 
 struct CapHolesOptions {
@@ -52,7 +57,17 @@ struct CapHolesOptions {
   /// made and every rim stays open: the surface as a fit round is judged before the delivered
   /// round is capped (fit_surface).
   bool make_patches = true;
+  /// A cheaper capping, to rank fit rounds before the one delivered is capped (fit_surface):
+  /// the cone hole's patch is made once, on the hole the first find_rims gives (within its
+  /// reach), without the comparison with the hole the caps give and without the vertex rounds
+  /// (a patch that flips is still retried), and every patch on a uniform grid
+  /// (FillOptions::corner_refinement 1). One patch per rim instead of 4-6 corner-refined ones.
+  bool screening = false;
 };
+
+/// Whether a capping with these limits retries the cone hole (vertex rounds, a reach), so that
+/// CapHolesOptions::screening is cheaper than it; without retries it differs only by the grid.
+[[nodiscard]] bool retries_cone_hole(const ConeHoleLimits& limits);
 
 struct CapHolesReport {
   std::vector<std::string> failures;  ///< Rims whose fill was refused: "kind: reason".

@@ -351,20 +351,25 @@ struct Round {
   double fit_rms_at_parameters = 0.0;  // fit_scan's FitResult::rms_at_parameters
 };
 
-// The holes of out.surface (its spline as fit_scan left it) found and, with `patches`, capped;
+// How finish_round treats the holes: rims left open (a round judged), capped cheaply
+// (CapHolesOptions::screening: a round ranked for delivery) or capped (the round delivered).
+enum class Caps { open, screened, full };
+
+// The holes of out.surface (its spline as fit_scan left it) found and capped as `caps` says;
 // the tessellation (at `density`, 0: by domain size) and the measures of the surface itself.
-// Without patches the rims stay open and the vertices over them are left out of the projection:
-// rounds judged that way compare with each other, and only the delivered one is capped.
+// With open rims the vertices over them are left out of the projection: rounds judged that way
+// compare with each other, and only the delivered one is capped.
 void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, int density,
-                  bool patches, bool project, StageClock& clock, Round& round,
-                  FittedSurface& out) {
-  clock.begin(patches ? "fill" : "rims");
+                  Caps caps, bool project, StageClock& clock, Round& round, FittedSurface& out) {
+  const bool patches = caps != Caps::open;
+  clock.begin(caps == Caps::full ? "fill" : caps == Caps::screened ? "screen" : "rims");
   CapHolesOptions cap;
   cap.open_input = out.input.boundary_loops > 0;
   cap.fill_boundaries = options.fill_boundaries;
   cap.collar_faces = out.collar_faces;
   cap.cone_hole = cone_hole_limits(out.input.genus);
   cap.make_patches = patches;
+  cap.screening = caps == Caps::screened;
   CapHolesReport capped = cap_holes(out.surface, cap);
   out.fill_failures = std::move(capped.failures);
   out.boundary_rims = capped.boundary_rims;
@@ -408,7 +413,7 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
   round.fit = std::move(fitted.fit_options);
   round.fit_rms_at_parameters = fitted.fit.rms_at_parameters;
   take_scan(std::move(fitted), out);
-  finish_round(dense, options, density, false, project, clock, round, out);
+  finish_round(dense, options, density, Caps::open, project, clock, round, out);
   return round;
 }
 
@@ -419,13 +424,13 @@ void project_round(const ricci::Mesh& dense, StageClock& clock, Round& round,
   round.vertex_distance = measure_projection(dense, round.parameters, {}, out);
 }
 
-// The delivered round capped: its holes filled (the spline moved to meet the patches),
-// tessellated and measured again.
+// The delivered round capped (`caps`: Caps::full, or Caps::screened to rank it): its holes
+// filled (the spline moved to meet the patches), tessellated and measured again.
 void deliver_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, Round& best,
-                   StageClock& clock, FittedSurface& out) {
+                   StageClock& clock, FittedSurface& out, Caps caps = Caps::full) {
   out.surface.fills.clear();
   out.surface.open_rims.clear();
-  finish_round(dense, options, out.tessellation.density, true, true, clock, best, out);
+  finish_round(dense, options, out.tessellation.density, caps, true, clock, best, out);
 }
 
 // A fit round after the first one, on scan.domain, into a surface of the same input.
@@ -516,7 +521,7 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   round.parameters.assign(round.data_parameters.begin(),
                           round.data_parameters.begin() +
                               static_cast<std::ptrdiff_t>(best.parameters.size()));
-  finish_round(dense, options, out.tessellation.density, false, true, clock, round, next);
+  finish_round(dense, options, out.tessellation.density, Caps::open, true, clock, round, next);
   return {std::move(next), std::move(round)};
 }
 
@@ -588,25 +593,58 @@ double seam_jump_deg(const FittedSurface& s) {
 // A seam this smooth or smoother is G1 to the eye (the fit's seam criterion).
 constexpr double kSeamGoalDeg = 1.0;
 
+// Capped `candidate` replaces capped `delivered` when it folds less, or as little with seams
+// under kSeamGoalDeg where delivered's are not.
+bool capped_better(const FittedSurface& candidate, const FittedSurface& delivered) {
+  const int folds = candidate.surface_dihedral.over_90_deg;
+  const int delivered_folds = delivered.surface_dihedral.over_90_deg;
+  const bool smoother =
+      seam_jump_deg(candidate) < kSeamGoalDeg && seam_jump_deg(delivered) >= kSeamGoalDeg;
+  return folds < delivered_folds || (folds == delivered_folds && smoother);
+}
+
+// The round of `superseded` (latest first) whose capped surface beats `delivered`
+// (capped_better), each one against the winner so far, capped as `caps` says; they stop once
+// the winner folds no more than `judged` with seams under the goal. Null when none beats it.
+std::pair<FittedSurface, Round>* best_capped(const ricci::Mesh& dense,
+                                             const FitSurfaceOptions& options, Caps caps,
+                                             int judged, const FittedSurface& delivered,
+                                             Superseded& superseded, StageClock& clock) {
+  std::pair<FittedSurface, Round>* winner = nullptr;
+  for (auto it = superseded.rbegin(); it != superseded.rend(); ++it) {
+    const FittedSurface& bar = winner ? winner->first : delivered;
+    if (bar.surface_dihedral.over_90_deg <= judged && seam_jump_deg(bar) < kSeamGoalDeg) break;
+    deliver_round(dense, options, it->second, clock, it->first, caps);
+    if (capped_better(it->first, bar)) winner = &*it;
+  }
+  return winner;
+}
+
 // deliver_round on `best`; when the capped surface folds more than it did with its holes open,
 // or its seams reach kSeamGoalDeg, the superseded rounds (latest first) are capped too and the
-// one that folds least (then with seams under the goal) is delivered.
+// one that folds least (then with seams under the goal) is delivered. Where a capping retries
+// the cone hole (retries_cone_hole: 4-6 patches, where the screening makes one) the superseded
+// rounds are ranked by the screening capping and only the winner is capped in full, delivered
+// when it still beats `best`'s capping.
 void deliver_best_round(const ricci::Mesh& dense, const FitSurfaceOptions& options,
                         Superseded& superseded, Round& best, StageClock& clock,
                         FittedSurface& out) {
   const int judged = out.surface_dihedral.over_90_deg;
   deliver_round(dense, options, best, clock, out);
-  for (auto it = superseded.rbegin(); it != superseded.rend(); ++it) {
-    if (out.surface_dihedral.over_90_deg <= judged && seam_jump_deg(out) < kSeamGoalDeg) break;
-    deliver_round(dense, options, it->second, clock, it->first);
-    const int folds = it->first.surface_dihedral.over_90_deg;
-    const int delivered = out.surface_dihedral.over_90_deg;
-    const bool smoother = seam_jump_deg(it->first) < kSeamGoalDeg &&
-                          seam_jump_deg(out) >= kSeamGoalDeg;
-    if (folds < delivered || (folds == delivered && smoother)) {
-      adopt_round(std::move(*it), out, best);
-    }
+  const bool screen = retries_cone_hole(cone_hole_limits(out.input.genus));
+  // The spline as fitted, before a screening capping moves it to meet its patches.
+  std::vector<Eigen::MatrixX3d> fitted;
+  if (screen)
+    for (const auto& s : superseded) fitted.push_back(s.first.surface.spline.control_points);
+  auto* winner = best_capped(dense, options, screen ? Caps::screened : Caps::full, judged, out,
+                             superseded, clock);
+  if (winner && screen) {
+    winner->first.surface.spline.control_points =
+        fitted[static_cast<std::size_t>(winner - superseded.data())];
+    deliver_round(dense, options, winner->second, clock, winner->first);
+    if (!capped_better(winner->first, out)) winner = nullptr;
   }
+  if (winner) adopt_round(std::move(*winner), out, best);
   superseded.clear();
 }
 

@@ -6,28 +6,24 @@
 #include <utility>
 
 #include "ricci/mesh/mesh.h"
+#include "spline/tessellate/triangle_sides.h"
 
 namespace spline {
 
 DihedralReport dihedral_angles(const std::vector<std::array<int, 3>>& triangles,
                                const Eigen::MatrixX3d& positions) {
   std::vector<Eigen::Vector3d> normals(triangles.size());
-  // Each directed edge (a, b) with its triangle, sorted so an edge's two sides meet.
-  std::vector<std::pair<std::uint64_t, int>> sides;
-  sides.reserve(3 * triangles.size());
+  std::vector<char> degenerate(triangles.size(), 0);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& tri = triangles[t];
     const Eigen::Vector3d a = positions.row(tri[0]), b = positions.row(tri[1]),
                           c = positions.row(tri[2]);
     normals[t] = (b - a).cross(c - a);
-    if (!(normals[t].norm() > 0.0)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const auto u = static_cast<std::uint64_t>(std::min(tri[k], tri[(k + 1) % 3]));
-      const auto v = static_cast<std::uint64_t>(std::max(tri[k], tri[(k + 1) % 3]));
-      sides.emplace_back(u << 32 | v, static_cast<int>(t));
-    }
+    degenerate[t] = !(normals[t].norm() > 0.0);
   }
-  std::sort(sides.begin(), sides.end());
+  // Each directed edge (a, b) with its triangle, sorted so an edge's two sides meet.
+  const std::vector<std::pair<std::uint64_t, int>> sides =
+      sorted_triangle_sides(triangles, degenerate, static_cast<int>(positions.rows()));
   std::vector<double> angles;
   DihedralReport report;
   for (std::size_t i = 0; i < sides.size();) {

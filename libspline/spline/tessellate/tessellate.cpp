@@ -2,6 +2,7 @@
 
 #include "spline/tessellate/dihedral.h"
 #include "spline/tessellate/parallel_for.h"
+#include "spline/tessellate/triangle_sides.h"
 
 #include <algorithm>
 #include <cmath>
@@ -254,19 +255,26 @@ Eigen::Vector3d triangle_normal(const Tessellation& t, const std::array<int, 3>&
 // would get two split edges (unless it borders a patch), the rest bisected. Returns the reds.
 int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn, int threads) {
   const std::size_t n = t.triangles.size();
-  std::unordered_map<std::uint64_t, std::array<int, 2>> edge_triangles;
-  edge_triangles.reserve(n * 2);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      auto [it, inserted] = edge_triangles.try_emplace(
-          pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]), std::array<int, 2>{-1, -1});
-      it->second[it->second[0] < 0 ? 0 : 1] = static_cast<int>(i);
+  // By edge: its first and last triangle (-1: a single one); across[i][k]: the other one at
+  // triangle i's side k.
+  std::vector<std::array<int, 2>> edge_triangles;
+  std::vector<std::array<int, 3>> across(n, {-1, -1, -1});
+  const auto sides = sorted_triangle_sides(t.triangles, {}, static_cast<int>(t.positions.rows()));
+  for (std::size_t g = 0; g < sides.size();) {
+    std::size_t end = g;
+    while (end < sides.size() && sides[end].first == sides[g].first) ++end;
+    const std::array<int, 2> two{sides[g].second, end - g > 1 ? sides[end - 1].second : -1};
+    edge_triangles.push_back(two);
+    for (std::size_t s = g; s < end; ++s) {
+      const auto i = static_cast<std::size_t>(sides[s].second);
+      for (int k = 0; k < 3; ++k) {
+        if (pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]) == sides[g].first)
+          across[i][k] = two[0] == static_cast<int>(i) ? two[1] : two[0];
+      }
     }
+    g = end;
   }
-  auto neighbour = [&](std::size_t i, int k) {
-    const auto& two = edge_triangles.at(pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]));
-    return two[0] == static_cast<int>(i) ? two[1] : two[0];
-  };
+  auto neighbour = [&](std::size_t i, int k) { return across[i][k]; };
   // A triangle may split 1-to-4 when it is the spline's and no patch triangle borders it.
   std::vector<char> may_split(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -281,7 +289,7 @@ int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn,
   std::vector<Eigen::Vector3d> normal(n);
   for (std::size_t i = 0; i < n; ++i) normal[i] = triangle_normal(t, t.triangles[i]);
   std::vector<char> red(n, 0);
-  for (const auto& [key, two] : edge_triangles) {
+  for (const auto& two : edge_triangles) {
     if (two[1] < 0) continue;
     const auto a = static_cast<std::size_t>(two[0]), b = static_cast<std::size_t>(two[1]);
     if (normal[a].isZero() || normal[b].isZero() || normal[a].dot(normal[b]) >= cos_turn)

@@ -146,6 +146,29 @@ TEST(PlanarDmsSpace, ReproducesVectorPolynomialsInALocalFrame) {
   }
 }
 
+// Three columns (a patch in space, evaluated with fixed-size sums and straight from a MatrixX3d)
+// give the same bits as each column alone through the general path, value and derivatives.
+TEST(PlanarDmsSpace, ThreeColumnsEvaluateAsEachColumnAlone) {
+  const PlanarTriangulation t = perturbed_grid(5, 0.3, 7);
+  const PlanarDmsSpace space = make_space(t, 3);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const Eigen::MatrixX3d control =
+      Eigen::MatrixX3d::NullaryExpr(space.function_count(), 3, [&]() { return unit(rng); });
+  for (int i : inner_triangles(t)) {
+    const Eigen::Vector2d u = random_point_in(t, i, rng);
+    const SplineJet all = space.evaluate(control, u);
+    ASSERT_EQ(all.value.size(), 3);
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::MatrixXd column = control.col(c);
+      const SplineJet one = space.evaluate(column, u);
+      EXPECT_EQ(all.value[c], one.value[0]);
+      EXPECT_EQ(all.gradient.row(c), one.gradient.row(0));
+      EXPECT_EQ(all.hessian.row(c), one.hessian.row(0));
+    }
+  }
+}
+
 // Cloud radius about 1e-6 of the edge length: still a partition of unity, also at points inside
 // the clouds, where the functions vary on the scale of the cloud.
 TEST(PlanarDmsSpace, TinyCloudsKeepPartitionOfUnity) {

@@ -1,6 +1,7 @@
 // cap_holes without patches (CapHolesOptions::make_patches false, how fit_surface judges a fit
 // round before only the delivered one is capped): the rims are those the capping starts from,
-// their faces are skipped, nothing is filled, and the tessellation is open exactly there.
+// their faces are skipped, nothing is filled, and the tessellation is open exactly there; and
+// the screening capping fit_surface ranks rounds by.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -62,6 +63,69 @@ TEST(CapHoles, WithoutPatchesTheRimsStayOpenAndTheirFacesAreSkipped) {
   EXPECT_TRUE(topology.matches(2, 1));
   const Tessellation closed = tessellate_surface(capped, tess, patches);
   EXPECT_TRUE(check_watertight(closed.triangles, closed.positions).matches(2, 0));
+}
+
+// The screening capping (CapHolesOptions::screening, how fit_surface ranks rounds before the one
+// delivered is capped in full): with the genus-8 limits (vertex rounds and a reach) the cone
+// hole keeps the rim the first find_rims gives and gets exactly the uniform-grid patch of
+// fill_rim on it; the surface is closed as the full capping's is.
+TEST(CapHoles, ScreeningMakesOneUniformPatchOnTheFirstRim) {
+  EXPECT_FALSE(retries_cone_hole(cone_hole_limits(3)));
+  EXPECT_TRUE(retries_cone_hole(cone_hole_limits(4)));
+  EXPECT_TRUE(retries_cone_hole(cone_hole_limits(8)));
+  const SplineSurface& fitted = testing::small_surface("genus2.off");
+  CapHolesOptions options;
+  options.cone_hole = cone_hole_limits(8);
+  options.make_patches = false;
+  SplineSurface open = uncapped(fitted);
+  (void)cap_holes(open, options);
+  ASSERT_EQ(open.open_rims.size(), 1u);
+  const Rim& first = open.open_rims[0];
+
+  options.make_patches = true;
+  options.screening = true;
+  SplineSurface screened = uncapped(fitted);
+  const CapHolesReport report = cap_holes(screened, options);
+  EXPECT_TRUE(report.failures.empty());
+  ASSERT_EQ(screened.fills.size(), 1u);
+  const HoleFill& fill = screened.fills[0];
+  ASSERT_LT(fill.max_normal_jump_deg, 90.0);  // no flip, so no retry on a bigger hole
+  EXPECT_EQ(fill.rim.covered_faces, first.covered_faces);
+  FillOptions uniform;
+  uniform.corner_refinement = 1;
+  const HoleFill expected = fill_rim(fitted.spline, fitted.domain, first, uniform);
+  EXPECT_EQ(fill.space->function_count(), expected.space->function_count());
+  EXPECT_EQ(fill.control_points.rows(), expected.control_points.rows());
+  EXPECT_LT((fill.control_points - expected.control_points).cwiseAbs().maxCoeff(), 1e-12);
+
+  TessellationOptions tess;
+  tess.density = 3;
+  std::vector<PatchTessellation> patches;
+  const Tessellation closed = tessellate_surface(screened, tess, patches);
+  EXPECT_TRUE(check_watertight(closed.triangles, closed.positions).matches(2, 0));
+}
+
+// ConeHoleLimits::compare_uniform (from genus 8): the holes tried are compared on uniform grids
+// and the chosen one is filled again with the corner-refined patch, whichever of the two meets
+// the surface better delivered (fill_rim's own choice, or the uniform patch when that is better).
+TEST(CapHoles, ComparedOnUniformGridsTheChosenHoleGetsTheBetterPatch) {
+  const SplineSurface& fitted = testing::small_surface("genus2.off");
+  CapHolesOptions options;
+  options.cone_hole = cone_hole_limits(8);
+  ASSERT_TRUE(options.cone_hole.compare_uniform);
+  EXPECT_FALSE(cone_hole_limits(7).compare_uniform);
+  SplineSurface capped = uncapped(fitted);
+  (void)cap_holes(capped, options);
+  ASSERT_EQ(capped.fills.size(), 1u);
+  const HoleFill& fill = capped.fills[0];
+  FillOptions uniform_options;
+  uniform_options.corner_refinement = 1;
+  const HoleFill uniform = fill_rim(fitted.spline, fitted.domain, fill.rim, uniform_options);
+  const HoleFill full = fill_rim(fitted.spline, fitted.domain, fill.rim);
+  const HoleFill& better =
+      full.max_normal_jump_deg < uniform.max_normal_jump_deg ? full : uniform;
+  ASSERT_EQ(fill.control_points.rows(), better.control_points.rows());
+  EXPECT_LT((fill.control_points - better.control_points).cwiseAbs().maxCoeff(), 1e-12);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // dihedral_angles: the angle between the normals of the two triangles at every interior edge.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -65,6 +66,38 @@ TEST(DihedralAngles, PercentilesOfAClosedCube) {
   EXPECT_NEAR(r.median_deg, 90.0, 1e-9);
   EXPECT_EQ(r.over_60_deg, 12);
   EXPECT_EQ(r.over_90_deg, 0);
+}
+
+// A strip of hinges folded shut, numbered so that neither triangle order nor vertex order
+// follows the strip: every fold edge is listed once, by (smaller, larger) vertex, ascending.
+TEST(DihedralAngles, FoldEdgesAreListedInVertexOrder) {
+  const int hinges = 40;
+  std::vector<int> label(4 * hinges);
+  for (int i = 0; i < 4 * hinges; ++i) label[i] = (37 * i + 11) % (4 * hinges);
+  Eigen::MatrixX3d p(4 * hinges, 3);
+  Triangles triangles;
+  std::vector<std::array<int, 2>> expected;
+  for (int h = hinges - 1; h >= 0; --h) {
+    const double x = 3.0 * h;
+    const int a = label[4 * h], b = label[4 * h + 1], c = label[4 * h + 2], d = label[4 * h + 3];
+    // Hinge along a-b; c and d on the same side: the second triangle folded back onto the first.
+    p.row(a) << x, 0, 0;
+    p.row(b) << x + 1, 0, 0;
+    p.row(c) << x, 1, 0;
+    p.row(d) << x + 0.5, 0.4, 0;
+    triangles.push_back({a, b, c});
+    triangles.push_back({b, a, d});
+    expected.push_back({std::min(a, b), std::max(a, b)});
+  }
+  std::sort(expected.begin(), expected.end());
+  const DihedralReport r = dihedral_angles(triangles, p);
+  EXPECT_EQ(r.edges, hinges);
+  EXPECT_EQ(r.over_90_deg, hinges);
+  ASSERT_EQ(r.fold_edges.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    EXPECT_EQ(r.fold_edges[k][0], expected[k][0]);
+    EXPECT_EQ(r.fold_edges[k][1], expected[k][1]);
+  }
 }
 
 }  // namespace
