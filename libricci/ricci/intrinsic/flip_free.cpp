@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/edge_key.h"
 
 namespace ricci {
 
@@ -14,21 +15,18 @@ std::vector<int> removed_edges(const Mesh& mesh, const IntrinsicTriangulation& t
                             std::to_string(tri.vertex_count) + " vertices, the mesh " +
                             std::to_string(mesh.n_vertices()));
   }
-  // An edge by its ends, smaller first, in one sortable key.
-  const auto key = [](int a, int b) {
-    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
-  };
   std::vector<std::uint64_t> kept;
   kept.reserve(static_cast<size_t>(tri.edge_count()));
   for (int e = 0; e < tri.edge_count(); ++e) {
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    kept.push_back(key(tri.tail[static_cast<size_t>(h)], tri.head(h)));
+    kept.push_back(undirected_edge_key(tri.tail[static_cast<size_t>(h)], tri.head(h)));
   }
   std::sort(kept.begin(), kept.end());
   std::vector<int> removed;
   for (auto e : mesh.edges()) {
     const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
-    const std::uint64_t k = key(mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx());
+    const std::uint64_t k =
+        undirected_edge_key(mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx());
     if (!std::binary_search(kept.begin(), kept.end(), k)) removed.push_back(e.idx());
   }
   return removed;

@@ -12,6 +12,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "ricci/metric/geometry.h"
+#include "ricci/util/edge_key.h"
 #include "ricci/util/parallel.h"
 
 namespace ricci {
@@ -230,8 +231,7 @@ bool is_simplicial(const IntrinsicTriangulation& tri) {
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
     const int a = tri.tail[static_cast<size_t>(h)], b = tri.head(h);
     if (a == b) return false;
-    pairs.push_back((static_cast<std::uint64_t>(std::min(a, b)) << 32) |
-                    static_cast<std::uint32_t>(std::max(a, b)));
+    pairs.push_back(undirected_edge_key(a, b));
   }
   std::sort(pairs.begin(), pairs.end());
   return std::adjacent_find(pairs.begin(), pairs.end()) == pairs.end();

@@ -11,6 +11,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/topology_util.h"
 #include "ricci/mesh/triangulate_polygon.h"
+#include "ricci/util/edge_key.h"
 
 namespace ricci {
 namespace {
@@ -59,12 +60,6 @@ std::vector<std::vector<int>> orient_faces(const PolygonSoup& soup, int& flipped
   return faces;
 }
 
-uint64_t edge_key(int a, int b) {
-  const auto lo = static_cast<uint64_t>(static_cast<uint32_t>(std::min(a, b)));
-  const auto hi = static_cast<uint64_t>(static_cast<uint32_t>(std::max(a, b)));
-  return (lo << 32) | hi;
-}
-
 /// Triangles of all faces; polygons are ear-clipped avoiding diagonals that are already edges.
 std::vector<std::array<int, 3>> triangulate(const PolygonSoup& soup,
                                             const std::vector<std::vector<int>>& faces,
@@ -76,7 +71,7 @@ std::vector<std::array<int, 3>> triangulate(const PolygonSoup& soup,
   if (polygons > 0)
     for (const auto& face : faces)
       for (size_t k = 0; k < face.size(); ++k)
-        edges.insert(edge_key(face[k], face[(k + 1) % face.size()]));
+        edges.insert(undirected_edge_key(face[k], face[(k + 1) % face.size()]));
   std::vector<std::array<int, 3>> triangles;
   triangles.reserve(faces.size());
   std::vector<Eigen::Vector3d> corners;
@@ -88,10 +83,12 @@ std::vector<std::array<int, 3>> triangulate(const PolygonSoup& soup,
     corners.clear();
     for (int v : face) corners.push_back(soup.positions[v]);
     const auto pieces = triangulate_polygon(
-        corners, [&](int i, int j) { return edges.count(edge_key(face[i], face[j])) == 0; });
+        corners,
+        [&](int i, int j) { return edges.count(undirected_edge_key(face[i], face[j])) == 0; });
     for (const auto& t : pieces) {
       triangles.push_back({face[t[0]], face[t[1]], face[t[2]]});
-      for (int k = 0; k < 3; ++k) edges.insert(edge_key(face[t[k]], face[t[(k + 1) % 3]]));
+      for (int k = 0; k < 3; ++k)
+        edges.insert(undirected_edge_key(face[t[k]], face[t[(k + 1) % 3]]));
     }
   }
   return triangles;

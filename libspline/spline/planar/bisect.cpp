@@ -9,14 +9,10 @@
 #include <vector>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/edge_key.h"
 
 namespace spline {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-}
 
 class Bisector {
  public:
@@ -90,7 +86,7 @@ class Bisector {
       const int a = v[(k + 1) % 3], b = v[(k + 2) % 3];
       const long long length =
           std::llround((t_.positions[a] - t_.positions[b]).squaredNorm() / unit_);
-      const std::uint64_t key = edge_key(a, b);
+      const std::uint64_t key = ricci::undirected_edge_key(a, b);
       if (length > best_length || (length == best_length && key < best_key)) {
         best = k;
         best_length = length;
@@ -102,7 +98,7 @@ class Bisector {
   [[nodiscard]] std::uint64_t longest_key(int f) const {
     const int k = longest_corner(f);
     const auto& v = t_.triangles[f];
-    return edge_key(v[(k + 1) % 3], v[(k + 2) % 3]);
+    return ricci::undirected_edge_key(v[(k + 1) % 3], v[(k + 2) % 3]);
   }
   [[nodiscard]] int across(std::uint64_t e, int f) const {
     const auto it = faces_.find(e);
@@ -116,7 +112,7 @@ class Bisector {
     alive_.push_back(1);
     ++alive_count_;
     for (int k = 0; k < 3; ++k) {
-      auto [it, inserted] = faces_.try_emplace(edge_key(tri[k], tri[(k + 1) % 3]),
+      auto [it, inserted] = faces_.try_emplace(ricci::undirected_edge_key(tri[k], tri[(k + 1) % 3]),
                                                std::array<int, 2>{f, -1});
       if (!inserted) it->second[it->second[0] < 0 ? 0 : 1] = f;
     }
@@ -126,7 +122,7 @@ class Bisector {
     --alive_count_;
     const auto& tri = t_.triangles[f];
     for (int k = 0; k < 3; ++k) {
-      auto it = faces_.find(edge_key(tri[k], tri[(k + 1) % 3]));
+      auto it = faces_.find(ricci::undirected_edge_key(tri[k], tri[(k + 1) % 3]));
       if (it->second[0] == f) it->second[0] = -1;
       if (it->second[1] == f) it->second[1] = -1;
       if (it->second[0] < 0 && it->second[1] < 0) faces_.erase(it);

@@ -10,6 +10,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/soup_distance.h"
+#include "ricci/util/edge_key.h"
 #include "spline/tessellate/parallel_for.h"
 
 namespace spline {
@@ -147,14 +148,10 @@ Eigen::MatrixX3d edge_samples(const Eigen::MatrixX3d& positions,
 std::vector<std::array<int, 2>> soup_boundary_edges(
     const std::vector<std::array<int, 3>>& triangles) {
   // Undirected edges sorted, so that an edge's copies are adjacent.
-  const auto key = [](int a, int b) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
-           static_cast<std::uint32_t>(std::max(a, b));
-  };
   std::vector<std::uint64_t> edges;
   edges.reserve(3 * triangles.size());
   for (const auto& t : triangles)
-    for (int k = 0; k < 3; ++k) edges.push_back(key(t[k], t[(k + 1) % 3]));
+    for (int k = 0; k < 3; ++k) edges.push_back(ricci::undirected_edge_key(t[k], t[(k + 1) % 3]));
   std::sort(edges.begin(), edges.end());
   // The keys that occur once (sorted); a closed soup has none and is done.
   std::vector<std::uint64_t> singles;
@@ -172,7 +169,7 @@ std::vector<std::array<int, 2>> soup_boundary_edges(
   for (const auto& t : triangles) {
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
-      if (a != b && single(key(a, b))) out.push_back({a, b});
+      if (a != b && single(ricci::undirected_edge_key(a, b))) out.push_back({a, b});
     }
   }
   return out;

@@ -12,6 +12,7 @@
 
 #include "ricci/mesh/errors.h"
 #include "ricci/topology/slice.h"
+#include "ricci/util/edge_key.h"
 
 namespace spline {
 namespace {
@@ -220,9 +221,9 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
 
 namespace {
 
-std::uint64_t pair_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+// The edge key of triangle i's side k (corner k to corner k + 1).
+std::uint64_t side_key(const Tessellation& t, std::size_t i, int k) {
+  return ricci::undirected_edge_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]);
 }
 
 // Barycentric coordinates in domain face `face` of sample `p`, which lies on that face's
@@ -268,7 +269,7 @@ int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn,
     for (std::size_t s = g; s < end; ++s) {
       const auto i = static_cast<std::size_t>(sides[s].second);
       for (int k = 0; k < 3; ++k) {
-        if (pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]) == sides[g].first)
+        if (side_key(t, i, k) == sides[g].first)
           across[i][k] = two[0] == static_cast<int>(i) ? two[1] : two[0];
       }
     }
@@ -302,7 +303,7 @@ int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn,
   auto split_edges = [&](std::size_t i) {
     int count = 0;
     for (int k = 0; k < 3; ++k)
-      count += midpoint.count(pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3])) > 0;
+      count += midpoint.count(side_key(t, i, k)) > 0;
     return count;
   };
   std::vector<std::size_t> queue;
@@ -313,7 +314,7 @@ int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn,
     const std::size_t i = queue.back();
     queue.pop_back();
     for (int k = 0; k < 3; ++k) {
-      if (!midpoint.emplace(pair_key(t.triangles[i][k], t.triangles[i][(k + 1) % 3]), -1).second)
+      if (!midpoint.emplace(side_key(t, i, k), -1).second)
         continue;
       const int j = neighbour(i, k);
       if (j < 0) continue;
@@ -332,7 +333,7 @@ int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn,
     if (face < 0) continue;
     for (int k = 0; k < 3; ++k) {
       const int a = t.triangles[i][k], b = t.triangles[i][(k + 1) % 3];
-      auto it = midpoint.find(pair_key(a, b));
+      auto it = midpoint.find(ricci::undirected_edge_key(a, b));
       if (it == midpoint.end() || it->second >= 0) continue;
       it->second = static_cast<int>(t.positions.rows() + static_cast<Eigen::Index>(points.size()));
       points.push_back({face, 0.5 * (barycentric_in(t, a, face) + barycentric_in(t, b, face))});
@@ -354,7 +355,7 @@ int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn,
   std::vector<Eigen::Vector2d> new_uvs;
   const auto render_base = static_cast<int>(t.uvs.rows());
   auto render_mid = [&](int ra, int rb, int position) {
-    auto [it, inserted] = render_midpoint.emplace(pair_key(ra, rb), 0);
+    auto [it, inserted] = render_midpoint.emplace(ricci::undirected_edge_key(ra, rb), 0);
     if (inserted) {
       it->second = render_base + static_cast<int>(new_uvs.size());
       new_uvs.push_back(0.5 * (t.uvs.row(ra) + t.uvs.row(rb)).transpose());
@@ -378,7 +379,7 @@ int refine_level(Tessellation& t, const ManifoldSpline& spline, double cos_turn,
     int split = 0;
     for (int k = 0; k < 3; ++k) {
       const int k1 = (k + 1) % 3;
-      auto it = midpoint.find(pair_key(p[k], p[k1]));
+      auto it = midpoint.find(ricci::undirected_edge_key(p[k], p[k1]));
       if (it == midpoint.end()) continue;
       mp[k] = it->second;
       mr[k] = render_mid(r[k], r[k1], mp[k]);

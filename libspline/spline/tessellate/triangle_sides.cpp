@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "ricci/util/edge_key.h"
+
 namespace spline {
 
 std::vector<std::pair<std::uint64_t, int>> sorted_triangle_sides(
@@ -22,9 +24,9 @@ std::vector<std::pair<std::uint64_t, int>> sorted_triangle_sides(
     if (skipped(t)) continue;
     const auto& tri = triangles[t];
     for (int k = 0; k < 3; ++k) {
-      const auto u = static_cast<std::uint64_t>(std::min(tri[k], tri[(k + 1) % 3]));
-      const auto v = static_cast<std::uint64_t>(std::max(tri[k], tri[(k + 1) % 3]));
-      sides[static_cast<std::size_t>(next[u]++)] = {u << 32 | v, static_cast<int>(t)};
+      const auto u = static_cast<std::size_t>(std::min(tri[k], tri[(k + 1) % 3]));
+      sides[static_cast<std::size_t>(next[u]++)] = {
+          ricci::undirected_edge_key(tri[k], tri[(k + 1) % 3]), static_cast<int>(t)};
     }
   }
   // Each vertex's few sides by their larger vertex (and triangle).
