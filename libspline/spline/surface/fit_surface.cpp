@@ -698,6 +698,17 @@ std::vector<Eigen::Vector3d> fold_points(const FittedSurface& out) {
   return points;
 }
 
+// The input's vertices farther than `limit` from the surface of `round`.
+std::vector<Eigen::Vector3d> vertices_farther(const ricci::Mesh& dense, const Round& round,
+                                              double limit) {
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t v = 0; v < round.vertex_distance.size(); ++v) {
+    if (round.vertex_distance[v] > limit)
+      points.push_back(ricci::to_eigen(dense.point(dense.vertex_handle(static_cast<int>(v)))));
+  }
+  return points;
+}
+
 // Where the domain is refined: the folds' midpoints and, with a tolerance, the input vertices
 // farther than it from the surface.
 std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
@@ -705,11 +716,8 @@ std::vector<Eigen::Vector3d> refinement_points(const ricci::Mesh& dense,
                                                const FittedSurface& out, const Round& round) {
   std::vector<Eigen::Vector3d> points = fold_points(out);
   if (options.tolerance > 0.0) {
-    const double limit = options.tolerance * out.bbox_diagonal;
-    for (std::size_t v = 0; v < round.vertex_distance.size(); ++v) {
-      if (round.vertex_distance[v] > limit)
-        points.push_back(ricci::to_eigen(dense.point(dense.vertex_handle(static_cast<int>(v)))));
-    }
+    const auto far = vertices_farther(dense, round, options.tolerance * out.bbox_diagonal);
+    points.insert(points.end(), far.begin(), far.end());
   }
   return points;
 }
@@ -939,6 +947,8 @@ constexpr double kGoalRefineDistance = 2.5;
 // (which the projection can only lower, up to the points fitted that are not input vertices)
 // exceeds this share of the goal: a round well within it costs nothing more.
 constexpr double kGoalCheckShare = 0.8;
+// Refinements toward the RMS goal: each one after the first is kept when it lowers the RMS.
+constexpr int kGoalRefineRounds = 2;
 
 // The next round on `best`'s domain refined around `where` (the followed boundary and the cone
 // kept), its summary added to out.refinement. A round whose atlas or fit fails (turbine.off,
@@ -981,15 +991,18 @@ bool refine_to_rms_goal(const ricci::Mesh& dense, const FitSurfaceOptions& optio
     return false;
   project_round(dense, clock, best, out);
   out.refinement.push_back(round_summary(out, best, options));
-  if (!(out.projection_rms > goal)) return true;
-  std::vector<Eigen::Vector3d> where;
-  for (std::size_t v = 0; v < best.vertex_distance.size(); ++v) {
-    if (best.vertex_distance[v] > kGoalRefineDistance * goal)
-      where.push_back(ricci::to_eigen(dense.point(dense.vertex_handle(static_cast<int>(v)))));
+  for (int round = 1; round <= kGoalRefineRounds && out.projection_rms > goal; ++round) {
+    const std::vector<Eigen::Vector3d> where =
+        vertices_farther(dense, best, kGoalRefineDistance * goal);
+    if (where.empty()) break;
+    auto next = refined_round(dense, scan, options, clock, best, where, out);
+    if (!next) break;
+    if (round > 1 && !(next->first.projection_rms < out.projection_rms)) {
+      scan.domain = best.domain;
+      break;
+    }
+    adopt_round(std::move(*next), out, best, &superseded);
   }
-  if (where.empty()) return true;
-  auto next = refined_round(dense, scan, options, clock, best, where, out);
-  if (next) adopt_round(std::move(*next), out, best, &superseded);
   return true;
 }
 
