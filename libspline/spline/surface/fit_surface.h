@@ -64,11 +64,12 @@ struct FitSurfaceOptions {
   /// round's RMS over its data points (FitResult::rms_at_parameters) passes 0.8 times it, its
   /// RMS over the input's vertices (projection) is measured; when that exceeds it too and
   /// refinement_rounds > 0, the domain is split around the input vertices farther than 2.5 times
-  /// the goal from the surface and the fit starts again on it with the same cone; when that
-  /// round still exceeds the goal it is refined once more the same way, and the finer round is
-  /// kept if its RMS is lower (the fold rounds and refinement follow on the round kept). A
-  /// coarse input's data points are mostly on its flat facets, so rounding its corners does not
-  /// count against the goal.
+  /// the goal from the surface and the fit starts again on it with the same cone (the fold
+  /// rounds and refinement follow on that round). When that round still exceeds the goal and
+  /// the surface delivered from it folds, it is refined once more the same way, the rounds after
+  /// it run again, and the new surface is delivered if it folds less (or as little with seams
+  /// under 1 degree). A coarse input's data points are mostly on its flat facets, so rounding
+  /// its corners does not count against the goal.
   double rms_goal = 0.0019;
   /// Fold rounds, after the refinement: while the surface folds, the domain faces within two
   /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with
