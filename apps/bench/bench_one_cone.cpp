@@ -249,7 +249,7 @@ ricci::Mesh case_mesh(const std::string& path, int levels) {
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
-                      "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings", "seed-face"});
+                      "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings", "seed-face", "save-metric"});
   args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R] "
                             "[--collapse FRACTION] [--flat-flips DEGREES] [--flip-deviation FRACTION] "
                             "[--protect-rings N] [--ring-metric FAR:NEAR:RINGS[:NEEDLE_DEG[:nonnegative]]] "
@@ -349,6 +349,12 @@ int run_one_cone_case(int argc, char** argv) {
     j["edge_error"] = r.atlas.layout.max_relative_length_error;
     j["transition"] = r.relative_transition_residual();
     if (args.has("verbose")) print_diagnostics(r);
+    if (args.has("save-metric")) {
+      const bool low = r.polished && r.polish.lengths == r.flow.lengths;
+      save_flat_metric(*args.get("save-metric"), r.problem.mesh, r.flow.lengths,
+                       low ? r.polish.lengths_low : Eigen::VectorXd(), r.problem.targets.curvature,
+                       r.atlas.cut.root.idx());
+    }
     j["qc_mean"] = r.distortion.quasi_conformal_mean;
     j["qc_max"] = r.distortion.quasi_conformal_max;
     j["qc_p50"] = r.distortion.quasi_conformal_p50;

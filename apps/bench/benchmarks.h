@@ -32,6 +32,10 @@ int run_loop_benchmark(int argc, char** argv);    // bench_loop.cpp
 int run_fill_benchmark(int argc, char** argv);    // bench_fill.cpp
 int run_one_cone_benchmark(int argc, char** argv);  // bench_one_cone.cpp
 int run_one_cone_case(int argc, char** argv);       // bench_one_cone.cpp
+int run_atlas_replay(int argc, char** argv);        // bench_atlas_replay.cpp
+/// Writes the flat metric of a one-cone run for `atlas-replay` (bench_atlas_replay.cpp).
+void save_flat_metric(const std::string& path, const ricci::Mesh& mesh, const Eigen::VectorXd& lengths,
+                      const Eigen::VectorXd& lengths_low, const Eigen::VectorXd& target, int root);
 int run_intrinsic_benchmark(int argc, char** argv);  // bench_intrinsic.cpp
 
 /// Lower triangle of the mesh's cotangent Laplacian plus 1e-8 times its mean diagonal (SPD).

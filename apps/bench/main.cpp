@@ -43,6 +43,8 @@ const Benchmark kBenchmarks[] = {
      "issue 8: whole one-cone pipeline per bench/genus 1-3 mesh vs one Cholesky [--million] [--metric M]"
      " [--high-genus: issue 20's genus 3-11 rows, generated genus 4-10 at 10k and 100k faces]"},
     {"one-cone-one", msp::bench::run_one_cone_case, "one row of 'one-cone' in this process"},
+    {"atlas-replay", msp::bench::run_atlas_replay,
+     "the atlas alone on a metric saved by one-cone-one --save-metric FILE [--polish]"},
     {"intrinsic", msp::bench::run_intrinsic_benchmark,
      "issue 20: one cone by the intrinsic Delaunay flow on genus 4-10 slabs [--faces N,...]"},
     {"topology", msp::bench::run_topology_benchmark,

@@ -89,7 +89,7 @@ bool seed_at(const Mesh& mesh, const AffineAtlas& atlas, int vertex, int& face,
   return false;
 }
 
-void add_cut_path_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue,
+void add_cut_path_charts(const Mesh& mesh, const LongLengths& metric, double glue,
                          AffineAtlas& atlas) {
   for (int i = 0; i < atlas.cut_path_count(); ++i) {
     std::vector<int> vertices = path_vertices(mesh, atlas.cut_path(i));
@@ -103,7 +103,7 @@ void add_cut_path_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, doubl
     Eigen::Matrix<double, 3, 2> seed_positions;
     if (!seed_at(mesh, atlas, middle, seed, seed_positions)) continue;
     const std::vector<int> region = detail::two_ring_faces(mesh, vertices, atlas.in_domain);
-    Chart chart = detail::develop_chart(mesh, lengths, region, seed, seed_positions, glue);
+    Chart chart = detail::develop_chart(mesh, metric, region, seed, seed_positions, glue);
     chart.kind = ChartKind::cut_path;
     chart.source = i;
     atlas.charts.push_back(std::move(chart));
@@ -138,14 +138,14 @@ Eigen::Matrix<double, 3, 2> own_frame_positions(const Mesh& mesh, const Eigen::V
 /// wraps around a handle). The seed is the central chart's placement when the chart developed
 /// from it holds the hood faithfully (transitions near the identity), else the face in its own
 /// frame, with copies glued within `glue_tolerance` of the neighbourhood's mean edge.
-int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue,
-                   double glue_tolerance, int face, const std::vector<int>& hood,
+int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, const LongLengths& metric,
+                   double glue, double glue_tolerance, int face, const std::vector<int>& hood,
                    AffineAtlas& atlas) {
   Eigen::Matrix<double, 3, 2> seed_positions;
   for (int k = 0; k < 3; ++k) {
     seed_positions.row(k) = atlas.charts[0].positions.row(atlas.charts[0].corners(face, k));
   }
-  Chart chart = detail::develop_chart(mesh, lengths, hood, face, seed_positions, glue);
+  Chart chart = detail::develop_chart(mesh, metric, hood, face, seed_positions, glue);
   if (!holds_faithfully(mesh, lengths, chart, hood)) {
     double sum = 0.0;
     int count = 0;
@@ -156,7 +156,7 @@ int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue
       }
     }
     const double local_glue = std::min(glue, glue_tolerance * sum / std::max(count, 1));
-    chart = detail::develop_chart(mesh, lengths, hood, face,
+    chart = detail::develop_chart(mesh, metric, hood, face,
                                   own_frame_positions(mesh, lengths, face), local_glue);
   }
   if (!detail::holds_as_one_piece(mesh, chart, hood)) return -1;
@@ -169,8 +169,9 @@ int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue
 /// Picks, for every domain face, the first chart holding its neighbourhood as one piece and
 /// faithfully (places_faithfully): central, then cut-path charts holding the face, then (built
 /// on demand) vertex charts, then a chart of the face's own neighbourhood.
-void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& lengths, double glue,
-                                 double glue_tolerance, AffineAtlas& atlas) {
+void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                                 const LongLengths& metric, double glue, double glue_tolerance,
+                                 AffineAtlas& atlas) {
   std::vector<std::vector<int>> charts_of_face(mesh.n_faces());
   for (size_t c = 1; c < atlas.charts.size(); ++c) {
     for (int f : atlas.charts[c].faces) charts_of_face[f].push_back(static_cast<int>(c));
@@ -220,7 +221,7 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
         int index = -1;
         if (seed_at(mesh, atlas, v.idx(), seed, seed_positions)) {
           const auto region = detail::two_ring_faces(mesh, {v.idx()}, atlas.in_domain);
-          Chart chart = detail::develop_chart(mesh, lengths, region, seed, seed_positions, glue);
+          Chart chart = detail::develop_chart(mesh, metric, region, seed, seed_positions, glue);
           chart.kind = ChartKind::vertex;
           chart.source = v.idx();
           index = static_cast<int>(atlas.charts.size());
@@ -231,7 +232,7 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
       if (it->second >= 0 && fits(it->second)) found = it->second;
     }
     if (found < 0)
-      found = add_face_chart(mesh, lengths, glue, glue_tolerance, f.idx(), hood, atlas);
+      found = add_face_chart(mesh, lengths, metric, glue, glue_tolerance, f.idx(), hood, atlas);
     atlas.neighbourhood_chart[f.idx()] = found;
     if (found < 0) ++atlas.uncovered_faces;
   }
@@ -296,14 +297,23 @@ Eigen::Vector2d AffineAtlas::map(const Eigen::Vector2d& point, int chart_a, int 
 
 AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
                                VertexHandle root, const AtlasOptions& options) {
+  return build_affine_atlas(mesh, edge_lengths, Eigen::VectorXd(), root, options);
+}
+
+AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                               const Eigen::VectorXd& lengths_low, VertexHandle root,
+                               const AtlasOptions& options) {
   AffineAtlas atlas;
   atlas.cut = compute_cut_graph(mesh, root, edge_lengths);
   const Eigen::VectorXd lengths = checked_edge_lengths(mesh, edge_lengths);
+  const LongLengths metric = long_lengths(lengths, lengths_low);
   atlas.sliced = slice_along(mesh, atlas.cut.is_cut_edge);
   check_disk(atlas.sliced, "atlas");
   atlas.polygon = fundamental_polygon_word(mesh, atlas.cut, atlas.sliced);
-  atlas.layout =
-      layout_e2(atlas.sliced.mesh, sliced_edge_lengths(atlas.sliced, lengths), options.layout);
+  atlas.layout = layout_e2(
+      atlas.sliced.mesh, sliced_edge_lengths(atlas.sliced, lengths),
+      lengths_low.size() == 0 ? Eigen::VectorXd() : sliced_edge_lengths(atlas.sliced, lengths_low),
+      options.layout);
 
   atlas.root_curvature = vertex_curvature(mesh, lengths, root);
   atlas.root_is_cone =
@@ -319,8 +329,8 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
   atlas.domain_diameter = (hi - lo).norm();
 
   const double glue = options.glue_tolerance * lengths.mean();
-  add_cut_path_charts(mesh, lengths, glue, atlas);
-  assign_neighbourhood_charts(mesh, lengths, glue, options.glue_tolerance, atlas);
+  add_cut_path_charts(mesh, metric, glue, atlas);
+  assign_neighbourhood_charts(mesh, lengths, metric, glue, options.glue_tolerance, atlas);
   detail::compute_transitions(mesh, lengths, atlas);
   detail::compute_side_pairings(mesh, atlas);
   atlas.canonical = canonical_basis(atlas.polygon.word);

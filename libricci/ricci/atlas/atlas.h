@@ -144,4 +144,11 @@ struct AffineAtlas {
 [[nodiscard]] AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
                                              VertexHandle root, const AtlasOptions& options = {});
 
+/// As above with the long-double metric edge_lengths + lengths_low (low parts by edge index,
+/// e.g. PolishE2Result::lengths_low; empty for none): the layout and the charts develop it.
+/// \throw also InvalidInputError if lengths_low is neither empty nor of the lengths' size.
+[[nodiscard]] AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                                             const Eigen::VectorXd& lengths_low, VertexHandle root,
+                                             const AtlasOptions& options = {});
+
 }  // namespace ricci

@@ -1,6 +1,7 @@
 #include "ricci/atlas/chart_develop.h"
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 #include <numeric>
 #include <unordered_map>
@@ -52,6 +53,8 @@ struct Development {
   std::unordered_map<int, int> slot;  // original face -> placement order, -1 = in region only
   std::vector<int> order;             // placed faces in placement order
   std::vector<std::array<int, 3>> corners;
+  /// By placed face: the directions of its halfedges (face_halfedges order) in the chart.
+  std::vector<std::array<long double, 3>> directions;
   std::vector<Eigen::Vector2d> positions;
   std::vector<int> original;
 
@@ -69,8 +72,11 @@ struct Development {
   }
 };
 
-/// Breadth-first growth from the seed; every face gets fresh copies of the vertex it adds.
-void grow(const Mesh& mesh, const Eigen::VectorXd& lengths, Development& d) {
+constexpr long double kPiL = 3.141592653589793238462643383279502884L;
+
+/// Breadth-first growth from the seed; every face gets fresh copies of the vertex it adds, at
+/// its metric distance along the direction develop_directions carries across the faces.
+void grow(const Mesh& mesh, const LongLengths& lengths, Development& d) {
   auto length = [&](HalfedgeHandle h) { return lengths[mesh.edge_handle(h).idx()]; };
   for (size_t next = 0; next < d.order.size(); ++next) {
     const auto hs = face_halfedges(mesh, FaceHandle(d.order[next]));
@@ -85,13 +91,21 @@ void grow(const Mesh& mesh, const Eigen::VectorXd& lengths, Development& d) {
       std::array<int, 3> c;
       c[m] = d.corners[next][(k + 2) % 3];  // to(o) = from(hs[k])
       c[(m + 2) % 3] = d.corners[next][k];  // from(o) = to(hs[k])
-      const Eigen::Vector2d p = place_third_vertex(d.positions[c[(m + 2) % 3]], d.positions[c[m]],
-                                                   length(mesh.prev_halfedge_handle(o)),
-                                                   length(mesh.next_halfedge_handle(o)));
+      const long double a_to_b = std::remainder(d.directions[next][k] + kPiL, 2.0L * kPiL);
+      const long double l_aw = length(gs[(m + 2) % 3]);
+      const DevelopedDirections dir = develop_directions(a_to_b, length(o), l_aw, length(gs[(m + 1) % 3]));
+      const Eigen::Vector2d& a = d.positions[c[(m + 2) % 3]];
+      const Eigen::Vector2d p(static_cast<double>(a.x() + l_aw * std::cos(dir.a_to_w)),
+                              static_cast<double>(a.y() + l_aw * std::sin(dir.a_to_w)));
       c[(m + 1) % 3] = d.new_vertex(p, mesh.to_vertex_handle(gs[(m + 1) % 3]).idx());
+      std::array<long double, 3> directions;
+      directions[m] = a_to_b;
+      directions[(m + 1) % 3] = dir.b_to_w;
+      directions[(m + 2) % 3] = std::remainder(dir.a_to_w + kPiL, 2.0L * kPiL);
       it->second = static_cast<int>(d.order.size());
       d.order.push_back(g.idx());
       d.corners.push_back(c);
+      d.directions.push_back(directions);
     }
   }
 }
@@ -154,7 +168,7 @@ Chart to_chart(const Development& d, std::vector<int>& parent) {
 
 }  // namespace
 
-Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
+Chart develop_chart(const Mesh& mesh, const LongLengths& lengths,
                     const std::vector<int>& region, int seed_face,
                     const Eigen::Matrix<double, 3, 2>& seed_positions, double glue_distance) {
   Development d;
@@ -169,6 +183,12 @@ Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
   d.slot[seed_face] = 0;
   d.order.push_back(seed_face);
   d.corners.push_back(seed_corners);
+  std::array<long double, 3> seed_directions;  // halfedge k runs from corner k + 2 to corner k
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::RowVector2d e = seed_positions.row(k) - seed_positions.row((k + 2) % 3);
+    seed_directions[k] = std::atan2(static_cast<long double>(e.y()), static_cast<long double>(e.x()));
+  }
+  d.directions.push_back(seed_directions);
   grow(mesh, lengths, d);
   std::vector<int> parent = glue(mesh, d, glue_distance);
   return to_chart(d, parent);

@@ -15,10 +15,11 @@ namespace ricci::detail {
                                               const std::vector<char>& in_domain);
 
 /// Develops `region` (original faces) into the plane breadth-first from `seed_face`, whose corners
-/// are put at `seed_positions` (row k = corner k). Each face is placed once; copies of a vertex
+/// are put at `seed_positions` (row k = corner k), by directions (layout_e2.h,
+/// develop_directions) in long double. Each face is placed once; copies of a vertex
 /// reached along different routes are glued when they land within `glue_distance` of each
 /// other across a shared edge. \pre seed_face is in region.
-[[nodiscard]] Chart develop_chart(const Mesh& mesh, const Eigen::VectorXd& lengths,
+[[nodiscard]] Chart develop_chart(const Mesh& mesh, const LongLengths& lengths,
                                   const std::vector<int>& region, int seed_face,
                                   const Eigen::Matrix<double, 3, 2>& seed_positions,
                                   double glue_distance);

@@ -15,6 +15,16 @@
 namespace ricci {
 namespace {
 
+constexpr long double kPiL = 3.141592653589793238462643383279502884L;
+
+// Angle opposite `opposite` in the triangle (opposite, b, c), half-angle formula in long double
+// (as corner_angle_from_lengths); clamped to [0, pi] when the triangle inequality fails.
+long double corner_angle_l(long double opposite, long double b, long double c) {
+  const long double s_a = 0.5L * (b + c - opposite), s_b = 0.5L * (opposite + c - b),
+                    s_c = 0.5L * (opposite + b - c), s = 0.5L * (opposite + b + c);
+  return 2.0L * std::atan2(std::sqrt(std::max(0.0L, s_b * s_c)), std::sqrt(std::max(0.0L, s * s_a)));
+}
+
 double length_of(const Mesh& mesh, const Eigen::VectorXd& lengths, HalfedgeHandle h) {
   return lengths[mesh.edge_handle(h).idx()];
 }
@@ -216,12 +226,14 @@ constexpr double kNeedleRetryError = 1e-8;
 // soon as the face is reached and the magnification bucket is 0. With it, a face's free vertex is
 // placed when the face comes off the queue, from the edge it was entered by, and the entries whose
 // base edge d is much shorter than the sides l placing the vertex (l/d >= 2, a needle entered by
-// its short edge) wait: such a placement magnifies the base's absolute error by l/d, through a run
-// of needles that compounds, and where two runs meet the layout misses by far more than rounding
-// (the inversive-distance metric of marching-cubes genus2_100k: 0.46 of an edge, 2.2e-8 with
-// needles last). A face is entered again by each placed edge; the first entry off the queue wins.
-// Returns the number of faces reached.
-size_t grow_layout(const Mesh& mesh, const Eigen::VectorXd& lengths, const std::vector<double>& size,
+// its short edge) wait: such a placement multiplies the rounding of the corner angle at the short
+// edge by l/d (when directions were taken from positions, it multiplied the base's whole error
+// and compounded along runs of needles: the inversive-distance metric of marching-cubes
+// genus2_100k missed by 0.46 of an edge, 2.2e-8 with needles last). A face is entered again by
+// each placed edge; the first entry off the queue wins. Each face's halfedges get their
+// directions when its free vertex is placed (develop_directions). Returns the number of faces
+// reached.
+size_t grow_layout(const Mesh& mesh, const LongLengths& lengths, const std::vector<double>& size,
                    bool needles_last, LayoutE2Result& result) {
   const int n = static_cast<int>(mesh.n_vertices());
   Eigen::MatrixX2d& hi = result.positions;
@@ -229,29 +241,40 @@ size_t grow_layout(const Mesh& mesh, const Eigen::VectorXd& lengths, const std::
   hi = Eigen::MatrixX2d::Zero(n, 2);
   lo = Eigen::MatrixX2d::Zero(n, 2);
   std::vector<char> placed(mesh.n_vertices(), 0);
-  auto place = [&](int w, int from, const Eigen::Vector2d& offset) {
+  // By halfedge: its direction in the chart, set when its face is developed.
+  std::vector<long double> direction(mesh.n_halfedges(), 0.0L);
+  auto place = [&](int w, int from, long double l, long double angle) {
+    const long double offset[2] = {l * std::cos(angle), l * std::sin(angle)};
     for (int k = 0; k < 2; ++k) {
       hi(w, k) = hi(from, k);
       lo(w, k) = lo(from, k);
-      dd_add(hi(w, k), lo(w, k), offset[k]);
+      const double head = static_cast<double>(offset[k]);
+      dd_add(hi(w, k), lo(w, k), head);
+      dd_add(hi(w, k), lo(w, k), static_cast<double>(offset[k] - head));
     }
     placed[w] = 1;
   };
-  auto place_across = [&](HalfedgeHandle o) {  // the free vertex of face(o) from the placed edge o
-    const int w = mesh.to_vertex_handle(mesh.next_halfedge_handle(o)).idx();
-    if (placed[w]) return;
-    const int from = mesh.from_vertex_handle(o).idx(), to = mesh.to_vertex_handle(o).idx();
-    place(w, from,
-          third_vertex_offset(result.edge_vector(from, to), length_of(mesh, lengths, mesh.prev_halfedge_handle(o)),
-                              length_of(mesh, lengths, mesh.next_halfedge_handle(o))));
+  auto length = [&](HalfedgeHandle h) { return lengths[mesh.edge_handle(h).idx()]; };
+  // Develops face(o) from the placed edge o (its direction: the opposite's, turned by pi): sets
+  // its halfedges' directions and places its free vertex.
+  auto place_across = [&](HalfedgeHandle o) {
+    const auto next = mesh.next_halfedge_handle(o), prev = mesh.prev_halfedge_handle(o);
+    const long double a_to_b =
+        std::remainder(direction[mesh.opposite_halfedge_handle(o).idx()] + kPiL, 2.0L * kPiL);
+    const DevelopedDirections d = develop_directions(a_to_b, length(o), length(prev), length(next));
+    direction[o.idx()] = a_to_b;
+    direction[next.idx()] = d.b_to_w;
+    direction[prev.idx()] = std::remainder(d.a_to_w + kPiL, 2.0L * kPiL);
+    const int w = mesh.to_vertex_handle(next).idx();
+    if (!placed[w]) place(w, mesh.from_vertex_handle(o).idx(), length(prev), d.a_to_w);
   };
 
   const FaceHandle seed(result.seed_face);
   const auto h0 = mesh.halfedge_handle(seed);
   const int a = mesh.from_vertex_handle(h0).idx(), b = mesh.to_vertex_handle(h0).idx();
-  const Eigen::Vector2d ab(length_of(mesh, lengths, h0), 0.0);
   placed[a] = 1;
-  place(b, a, ab);
+  place(b, a, length(h0), 0.0L);
+  direction[mesh.opposite_halfedge_handle(h0).idx()] = kPiL;  // h0 along +x
   place_across(h0);
 
   // (scale bucket, magnification bucket, arrival order, face, halfedge it is entered by)
@@ -266,9 +289,8 @@ size_t grow_layout(const Mesh& mesh, const Eigen::VectorXd& lengths, const std::
     entered[g.idx()] = 1;
     int magnification = 0;
     if (needles_last) {
-      const double side = std::max(length_of(mesh, lengths, mesh.prev_halfedge_handle(o)),
-                                   length_of(mesh, lengths, mesh.next_halfedge_handle(o)));
-      magnification = std::max(0, std::ilogb(side / length_of(mesh, lengths, o)));
+      const long double side = std::max(length(mesh.prev_halfedge_handle(o)), length(mesh.next_halfedge_handle(o)));
+      magnification = std::max(0, std::ilogb(static_cast<double>(side / length(o))));
     } else {
       place_across(o);
     }
@@ -282,7 +304,7 @@ size_t grow_layout(const Mesh& mesh, const Eigen::VectorXd& lengths, const std::
     if (done[face]) continue;
     done[face] = 1;
     ++reached;
-    place_across(HalfedgeHandle(entry));
+    if (needles_last) place_across(HalfedgeHandle(entry));  // else developed when entered
     for (auto h : mesh.fh_range(FaceHandle(face))) enter(mesh.opposite_halfedge_handle(h));
   }
   return reached;
@@ -290,10 +312,30 @@ size_t grow_layout(const Mesh& mesh, const Eigen::VectorXd& lengths, const std::
 
 }  // namespace
 
+LongLengths long_lengths(const Eigen::VectorXd& lengths, const Eigen::VectorXd& low) {
+  if (low.size() == 0) return lengths.cast<long double>();
+  if (low.size() != lengths.size()) {
+    throw InvalidInputError("layout: " + std::to_string(low.size()) + " low parts for " +
+                            std::to_string(lengths.size()) + " lengths");
+  }
+  return lengths.cast<long double>() + low.cast<long double>();
+}
+
+DevelopedDirections develop_directions(long double a_to_b, long double l_ab, long double l_aw,
+                                       long double l_bw) {
+  return {a_to_b + corner_angle_l(l_bw, l_ab, l_aw), a_to_b + kPiL - corner_angle_l(l_aw, l_ab, l_bw)};
+}
+
 LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& lengths,
                          const LayoutE2Options& options) {
+  return layout_e2(mesh, lengths, Eigen::VectorXd(), options);
+}
+
+LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                         const Eigen::VectorXd& lengths_low, const LayoutE2Options& options) {
   if (mesh.n_faces() == 0) throw InvalidInputError("layout: mesh has no faces");
   check_lengths(mesh, lengths);
+  const LongLengths metric = long_lengths(lengths, lengths_low);
   LayoutE2Result result;
   const std::vector<double> size = face_sizes(mesh, lengths);
   result.seed_face = options.seed_face >= 0 ? options.seed_face : default_seed(mesh, size);
@@ -301,7 +343,7 @@ LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& lengths,
     throw InvalidInputError("layout: seed face " + std::to_string(result.seed_face) +
                             " is out of range");
   }
-  const size_t reached = grow_layout(mesh, lengths, size, false, result);
+  const size_t reached = grow_layout(mesh, metric, size, false, result);
   if (reached != mesh.n_faces()) {
     throw TopologyError("layout: " + std::to_string(mesh.n_faces() - reached) +
                         " faces cannot be reached from seed face " +
@@ -310,7 +352,7 @@ LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& lengths,
   measure_layout(mesh, lengths, result);
   if (result.max_relative_length_error > kNeedleRetryError) {
     LayoutE2Result retry = result;
-    grow_layout(mesh, lengths, size, true, retry);
+    grow_layout(mesh, metric, size, true, retry);
     measure_layout(mesh, lengths, retry);
     if (retry.max_relative_length_error < result.max_relative_length_error) result = std::move(retry);
   }

@@ -38,8 +38,29 @@ struct LayoutE2Result {
   double max_vertex_angle = 0.0;
 };
 
-/// Places the faces one by one, each new vertex at the intersection of two circles on the left
-/// of the known edge (counter-clockwise faces), in double-double coordinates. Faces are grown
+/// Edge lengths in long double, by edge index: the metric the polish (metric/polish_e2.h) made,
+/// before its rounding to double.
+using LongLengths = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+
+/// `lengths` + `low` (low parts; empty for none) in long double.
+/// \throw InvalidInputError if `low` is neither empty nor of the size of `lengths`.
+[[nodiscard]] LongLengths long_lengths(const Eigen::VectorXd& lengths, const Eigen::VectorXd& low);
+
+/// Directions (angles, radians) of a->w and b->w in the counter-clockwise triangle (a, b, w) with
+/// sides l_ab, l_aw, l_bw, given the direction of a->b: each adds a corner angle (half-angle
+/// formula in long double) to a direction carried from the last face. A development by
+/// directions never takes an edge's direction from its endpoints' positions, which across the
+/// short edge of a needle (l/d up to 6e4 in the intrinsic triangulations at 1.6M faces) would
+/// multiply their rounding by l/d at every needle of a chain.
+struct DevelopedDirections {
+  long double a_to_w = 0, b_to_w = 0;
+};
+[[nodiscard]] DevelopedDirections develop_directions(long double a_to_b, long double l_ab,
+                                                     long double l_aw, long double l_bw);
+
+/// Places the faces one by one, each new vertex at its metric distance from a placed corner
+/// along the direction develop_directions carries across the faces (counter-clockwise faces),
+/// in double-double coordinates. Faces are grown
 /// breadth-first, except that faces below half the median size come first, smallest scale
 /// first (breadth-first among faces within a factor 16 in size):
 /// a vertex is placed through a chain of faces, and where two chains meet the metric's
@@ -51,6 +72,14 @@ struct LayoutE2Result {
 /// \throw InvalidInputError on bad lengths (naming the face), TopologyError if some face cannot
 ///        be reached from the seed across edges.
 [[nodiscard]] LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                                       const LayoutE2Options& options = {});
+
+/// As above with long-double lengths edge_lengths + lengths_low (the polish's metric: at 1.6M
+/// faces its rounding to double alone leaves curvature defects of 2e-11 at needles, which the
+/// layout would multiply by the chart's size). The accuracy fields measure against the doubles.
+/// \throw InvalidInputError also if lengths_low is neither empty nor of the lengths' size.
+[[nodiscard]] LayoutE2Result layout_e2(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                                       const Eigen::VectorXd& lengths_low,
                                        const LayoutE2Options& options = {});
 
 /// Places c so that |c - a| = l_ac, |c - b| = l_bc and (a, b, c) is counter-clockwise: the

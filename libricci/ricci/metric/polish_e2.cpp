@@ -88,12 +88,12 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
   // A uniform du only rescales (E2): du is held at 0 on the nearby factorisation's pinned
   // vertex, or by a gauge of 1 at (0, 0) in a factorisation of its own.
   const int pinned = nearby.factorization ? nearby.pinned : -1;
-  const VectorL base = lengths.cast<long double>();
-  VectorL current = base, u = VectorL::Zero(n);
+  VectorL current = lengths.cast<long double>(), u = VectorL::Zero(n);
   Eigen::VectorXd edge_weights;
   VectorL r = residual_of(t, current, target, &edge_weights);
   const Eigen::SparseMatrix<double> lower =
       reduced_graph_laplacian(t.edge_vertices, edge_weights, n, pinned, 1.0);
+  edge_weights = Eigen::VectorXd();  // (memory: the polish runs beside the flow's factorisation)
   // Without a nearby factorisation, or where it does not converge, the matrix's own (the
   // flow's kind: CHOLMOD supernodal on large meshes, Eigen below 20k unknowns).
   std::unique_ptr<SymmetricFactorization> own;
@@ -130,7 +130,8 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
       if (v != pinned) u[v] -= static_cast<long double>(du[reduced_index(v, pinned)]) * scale;
     }
     for (int e = 0; e < t.num_edges(); ++e) {
-      current[e] = std::exp(0.5L * (u[t.edge_vertices(e, 0)] + u[t.edge_vertices(e, 1)])) * base[e];
+      current[e] = std::exp(0.5L * (u[t.edge_vertices(e, 0)] + u[t.edge_vertices(e, 1)])) *
+                   static_cast<long double>(lengths[e]);
     }
     r = residual_of(t, current, target, nullptr);
     const double error = static_cast<double>(r.cwiseAbs().maxCoeff());
@@ -138,6 +139,7 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
     result.error_after = error;
     result.iterations = it;
     result.lengths = current.cast<double>();
+    result.lengths_low = (current - result.lengths.cast<long double>()).cast<double>();
   }
   return result;
 }

@@ -164,7 +164,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   settings.progress = options.flow.progress;
   std::vector<std::string> failures = result.flow.failed_attempts;
   if (!result.flow.message.empty()) failures.push_back(result.flow.message);
-  const IntrinsicFlowResult r =
+  IntrinsicFlowResult r =
       intrinsic_conformal_flow(result.problem.mesh, result.problem.targets, settings);
   FlowResult flow = to_flow_result(r);
   flow.failed_attempts = failures;
@@ -181,6 +181,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     result.removed_edges =
         static_cast<int>(removed_edges(result.problem.mesh, r.triangulation).size());
     IntrinsicMesh domain = to_mesh(r.triangulation, r.u, to_arrays(result.problem.mesh).V);
+    r.triangulation = IntrinsicTriangulation();  // its tables (~90 MB at 1.6M faces) are done
     // As after the fixed-connectivity flows (polish_lengths): the layout multiplies the
     // leftover defect by the distances it spans, so it goes in long double first, whatever its
     // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
@@ -407,7 +408,12 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
 
   report("cut graph, layout and atlas");
   StageTimer t;
-  result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths, atlas_root(result.problem), options.atlas);
+  // The polish's long-double metric when the flow's lengths are its rounding.
+  const bool long_metric = result.polished && result.polish.lengths_low.size() == result.flow.lengths.size() &&
+                           result.polish.lengths == result.flow.lengths;
+  result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths,
+                                    long_metric ? result.polish.lengths_low : Eigen::VectorXd(),
+                                    atlas_root(result.problem), options.atlas);
   result.timings.atlas = t.wall.seconds();
   result.timings.cpu_atlas = t.cpu.seconds();
 

@@ -65,8 +65,11 @@ struct FitSurfaceOptions {
   /// RMS over the input's vertices (projection) is measured; when that exceeds it too and
   /// refinement_rounds > 0, the domain is split around the input vertices farther than 2.5 times
   /// the goal from the surface and the fit starts again on it with the same cone (the fold
-  /// rounds and refinement follow on that round). A coarse input's data points are mostly on
-  /// its flat facets, so rounding its corners does not count against the goal.
+  /// rounds and refinement follow on that round). When that round still exceeds the goal and
+  /// the surface delivered from it folds, it is refined once more the same way, the rounds after
+  /// it run again, and the new surface is delivered if it folds less (or as little with seams
+  /// under 1 degree). A coarse input's data points are mostly on its flat facets, so rounding
+  /// its corners does not count against the goal.
   double rms_goal = 0.0019;
   /// Fold rounds, after the refinement: while the surface folds, the domain faces within two
   /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "ricci/atlas/rigid_motion.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
@@ -73,6 +75,74 @@ TEST(LayoutE2, FlatTorusFundamentalDomainIsExact) {
   }
   EXPECT_NEAR(area, 12.0, 1e-11);
   EXPECT_LE(layout.max_vertex_angle, 2.0 * M_PI + 1e-12);
+}
+
+// A planar strip of 2n needles (rungs 1e-5 against a spacing of 1, jittered), whose growth
+// crosses a rung, the needles' short edge, every second face: the rounding of a direction taken
+// from the rung's end positions would be multiplied by l/d = 1e5 at each rung.
+Mesh needle_strip(int n, double height) {
+  Mesh mesh;
+  for (int i = 0; i <= n; ++i) {
+    const double x = i + 0.2 * std::sin(1.7 * i);
+    mesh.add_vertex(Mesh::Point(x, 0.0, 0.0));
+    mesh.add_vertex(Mesh::Point(x + 0.1 * std::cos(1.3 * i), height * (1.0 + 0.5 * std::sin(2.3 * i)), 0.0));
+  }
+  for (int i = 0; i < n; ++i) {
+    mesh.add_face(VertexHandle(2 * i), VertexHandle(2 * i + 2), VertexHandle(2 * i + 1));
+    mesh.add_face(VertexHandle(2 * i + 2), VertexHandle(2 * i + 3), VertexHandle(2 * i + 1));
+  }
+  return mesh;
+}
+
+// Residual of the best rigid motion from the layout to the strip's own plane, over its length.
+double strip_residual(const Mesh& strip, const LayoutE2Result& layout, int n) {
+  Eigen::MatrixX2d original(strip.n_vertices(), 2);
+  for (auto v : strip.vertices()) {
+    original.row(v.idx()) = Eigen::RowVector2d(strip.point(v)[0], strip.point(v)[1]);
+  }
+  double residual = 1.0;
+  (void)fit_rigid_motion(layout.positions, original, &residual);
+  return residual / n;
+}
+
+TEST(LayoutE2, AChainOfNeedlesCrossedByTheirShortEdgesKeepsItsDigits) {
+  const int n = 2000;
+  const Mesh strip = needle_strip(n, 1e-5);
+  const Eigen::VectorXd lengths = checked_edge_lengths(strip, {});
+  LayoutE2Options options;
+  options.seed_face = 0;  // the longest path: 4000 faces, 2000 rungs
+  const LayoutE2Result layout = layout_e2(strip, lengths, options);
+  EXPECT_EQ(layout.flipped_faces, 0);
+  // Positions from directions carried across the faces: 2.7e-15 (directions from the rungs'
+  // end positions, as the growth did before: 2.8e-12).
+  EXPECT_LT(layout.max_relative_length_error, 1e-14);
+  // The double lengths themselves are not flat to better than ~1e-16 l/d per needle: the strip
+  // is reproduced to 2.3e-11 of its length (2.9e-10 before).
+  EXPECT_LT(strip_residual(strip, layout, n), 1e-10);
+
+  // Its lengths in long double (hi + lo from the same positions): flat to ~1e-19 l/d; the strip
+  // is reproduced to 4.1e-14 of its length.
+  Eigen::VectorXd hi(strip.n_edges()), lo(strip.n_edges());
+  for (auto e : strip.edges()) {
+    const auto h = strip.halfedge_handle(e, 0);
+    const auto a = strip.point(strip.from_vertex_handle(h)), b = strip.point(strip.to_vertex_handle(h));
+    const long double l = std::hypot(static_cast<long double>(a[0]) - b[0], static_cast<long double>(a[1]) - b[1]);
+    hi[e.idx()] = static_cast<double>(l);
+    lo[e.idx()] = static_cast<double>(l - hi[e.idx()]);
+  }
+  const LayoutE2Result exact = layout_e2(strip, hi, lo, options);
+  EXPECT_EQ(exact.flipped_faces, 0);
+  EXPECT_LT(strip_residual(strip, exact, n), 2e-13);
+  EXPECT_THROW((void)layout_e2(strip, hi, lo.head(3), options), InvalidInputError);
+}
+
+TEST(LayoutE2, DevelopDirectionsTurnsByTheCornerAngles) {
+  // The 3-4-5 triangle a = (0, 0), b = (4, 0), w = (4, 3): a->w at atan(3/4), b->w at pi/2.
+  const DevelopedDirections d = develop_directions(0.0L, 4.0L, 5.0L, 3.0L);
+  EXPECT_NEAR(static_cast<double>(d.a_to_w), std::atan2(3.0, 4.0), 1e-15);
+  EXPECT_NEAR(static_cast<double>(d.b_to_w), M_PI / 2.0, 1e-15);
+  const DevelopedDirections turned = develop_directions(1.0L, 4.0L, 5.0L, 3.0L);
+  EXPECT_NEAR(static_cast<double>(turned.a_to_w - d.a_to_w), 1.0, 1e-15);
 }
 
 TEST(LayoutE2, BadInputThrows) {

@@ -68,6 +68,26 @@ TEST(FitSurfaceRmsGoal, RefinesOnlyAFitAboveTheGoal) {
   EXPECT_GT(rippled, 2 * smooth) << "rippled " << rippled << ", smooth " << smooth;
 }
 
+// A goal the refinement does not reach, on a surface that does not fold: the refined round is
+// delivered as it is, not refined toward the goal again (that retry is for a surface that folds,
+// FitSurfaceHighGenus.genus8).
+TEST(FitSurfaceRmsGoal, RefinesOnceWhenTheSurfaceDoesNotFold) {
+  const ricci::Mesh scan = half_rippled_disk();
+  const FittedSurface plain = fit_surface(scan, small_options(0.0));
+  const double diag = plain.bbox_diagonal;
+  const double goal = 0.25 * plain.projection_rms / diag;
+  const FittedSurface refined = fit_surface(scan, small_options(goal));
+  ASSERT_GE(refined.refinement.size(), 2u);
+  const RefinementRound& first = refined.refinement[1];
+  ASSERT_GT(first.projection_rms / diag, goal);
+  EXPECT_GT(first.domain_faces, refined.refinement[0].domain_faces);
+  EXPECT_EQ(refined.surface_dihedral.over_90_deg, 0);
+  for (std::size_t k = 2; k < refined.refinement.size(); ++k)
+    EXPECT_EQ(refined.refinement[k].domain_faces, first.domain_faces) << k;
+  EXPECT_EQ(refined.surface.spline.space->domain_face_count(), first.domain_faces);
+  EXPECT_TRUE(refined.watertight);
+}
+
 TEST(FitSurfaceRmsGoal, OutOfRangeIsRefused) {
   FitSurfaceOptions options;
   options.rms_goal = -1e-3;
