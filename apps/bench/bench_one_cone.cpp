@@ -290,10 +290,11 @@ int run_one_cone_case(int argc, char** argv) {
   if (args.has("verbose")) {
     options.flow.progress = [](const ricci::FlowProgress& p) {
       std::cerr << "  newton " << p.iteration << ": error " << p.max_error << ", step " << p.step << ", "
-                << p.seconds << " s\n";
+                << p.seconds << " s, " << memory_note() << "\n";
     };
     options.progress = [t = ricci::Stopwatch()](const std::string& stage) {
-      std::cerr << std::fixed << t.seconds() << " s: " << stage << std::defaultfloat << "\n";
+      std::cerr << std::fixed << t.seconds() << " s: " << stage << std::defaultfloat << ", "
+                << memory_note() << "\n";
     };
   }
 

@@ -1,6 +1,8 @@
 #include "bench/child_run.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +11,7 @@
 #include <stdexcept>
 
 #include "bench/benchmarks.h"
+#include "ricci/util/memory.h"
 
 namespace msp::bench {
 
@@ -37,10 +40,29 @@ double peak_rss_mb() {
 }
 }  // namespace
 
+std::string memory_note() {
+  long pages = 0, resident = 0;
+  if (FILE* statm = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(statm, "%ld %ld", &pages, &resident) != 2) resident = 0;
+    std::fclose(statm);
+  }
+  constexpr double kMb = 1024.0 * 1024.0;
+  const auto whole_mb = [](double bytes) { return std::to_string(static_cast<int>(bytes / kMb)); };
+  const double page = static_cast<double>(sysconf(_SC_PAGESIZE));
+  std::string note = "RSS " + whole_mb(static_cast<double>(resident) * page) + " MB";
+#ifdef __GLIBC__
+  const struct mallinfo2 heap = mallinfo2();
+  note += ", allocated " + whole_mb(static_cast<double>(heap.uordblks + heap.hblkhd)) +
+          " MB (mmapped " + whole_mb(static_cast<double>(heap.hblkhd)) + ")";
+#endif
+  return note;
+}
+
 void print_child_row(nlohmann::json& row, const ricci::Mesh& mesh) {
   // The run's own peak, before the reference factorisation (at 1.6M faces its factor and the
   // Laplacian's triplets beside the mesh rise above the pipeline's peak).
   row["peak_mb"] = peak_rss_mb();
+  ricci::release_free_memory();  // the pipeline's freed heap is not the reference's
   double cholesky_cpu = 0.0;
   row["cholesky"] = cotangent_cholesky_seconds(mesh, &cholesky_cpu);
   row["cholesky_cpu"] = cholesky_cpu;

@@ -22,6 +22,10 @@ struct ChildResult {
 /// Runs `command` in a shell and parses its stdout. \throw std::runtime_error when it cannot start.
 [[nodiscard]] ChildResult run_child(const std::string& command);
 
+/// The process's resident memory now and, with glibc, the bytes its allocations hold (the
+/// difference is freed memory the allocator kept): "RSS R MB, allocated A MB (mmapped M)".
+[[nodiscard]] std::string memory_note();
+
 /// A child's row finished and printed: "cholesky" (seconds of one CHOLMOD solve of `mesh`'s
 /// cotangent Laplacian, the unit of the ratios) and "peak_mb" (the process's peak RSS) added to
 /// `row`, which goes to stdout as the child's one line of JSON.

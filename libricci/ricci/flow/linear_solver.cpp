@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 
 #include "ricci/flow/serial_blas.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/util/parallel.h"
 #include "ricci/util/stopwatch.h"
 
 namespace ricci {
@@ -39,7 +41,39 @@ class CholmodSupernodal : public Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lowe
     return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(m_cholmodFactor->Perm),
                                              static_cast<Eigen::Index>(m_cholmodFactor->n));
   }
+
+  // x = A^-1 b for the columns [first, first + count) of b into the same columns of x, on the
+  // calling thread with a CHOLMOD workspace of its own (the factor is only read).
+  void solve_range(const Eigen::MatrixXd& b, Eigen::MatrixXd& x, Eigen::Index first,
+                   Eigen::Index count) const {
+    const SerialOpenMpScope serial_openmp;
+    cholmod_common common;
+    cholmod_start(&common);
+    common.print = 0;
+    cholmod_dense view{};
+    view.nrow = static_cast<size_t>(b.rows());
+    view.ncol = static_cast<size_t>(count);
+    view.nzmax = view.nrow * view.ncol;
+    view.d = view.nrow;
+    view.x = const_cast<double*>(b.data() + first * b.rows());
+    view.xtype = CHOLMOD_REAL;
+    view.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense* solved = cholmod_solve(CHOLMOD_A, m_cholmodFactor, &view, &common);
+    // (b's columns are read by then: x may be b.)
+    if (solved) {
+      x.middleCols(first, count) =
+          Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(solved->x), b.rows(), count);
+      cholmod_free_dense(&solved, &common);
+    } else {
+      x.middleCols(first, count).setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    cholmod_finish(&common);
+  }
 };
+
+// From this many unknowns a blocked back-substitution with several columns splits them over
+// the pool's threads (each pass reads the whole factor; below it the threads cost more).
+constexpr Eigen::Index kSplitColumnsFrom = 200000;
 }  // namespace
 
 struct SymmetricFactorization::Impl {
@@ -212,9 +246,37 @@ Eigen::MatrixXd SymmetricFactorization::solve_columns(const Eigen::MatrixXd& rhs
         const Eigen::MatrixXd y = impl_->cholmod_supernodal.solve(permuted_rhs);
         return impl_->given.transpose() * y;
       }
+      if (splits(rhs)) {
+        Eigen::MatrixXd x(rhs.rows(), rhs.cols());
+        split_solve(rhs, x);
+        return x;
+      }
       return impl_->cholmod_supernodal.solve(rhs);
     default: return impl_->cholmod_simplicial.solve(rhs);
   }
+}
+
+void SymmetricFactorization::solve_columns_in_place(Eigen::MatrixXd& columns) const {
+  if (!splits(columns)) {
+    columns = solve_columns(columns);
+    return;
+  }
+  impl_->count_solve(columns.cols());
+  split_solve(columns, columns);
+}
+
+bool SymmetricFactorization::splits(const Eigen::MatrixXd& rhs) const {
+  return kind_ == LinearSolver::cholmod_supernodal && impl_->given.size() == 0 &&
+         rhs.rows() >= kSplitColumnsFrom && rhs.cols() >= 2;
+}
+
+void SymmetricFactorization::split_solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const {
+  const int workers = static_cast<int>(std::min<Eigen::Index>(requested_threads(0), b.cols()));
+  // Each worker reads and writes its own columns only, so b and x may be one matrix.
+  run_workers(workers, [&](int t) {
+    const Eigen::Index first = b.cols() * t / workers, last = b.cols() * (t + 1) / workers;
+    impl_->cholmod_supernodal.solve_range(b, x, first, last - first);
+  });
 }
 
 bool solve_with_nearby_factorization(const SymmetricFactorization& nearby, const Sparse& lower,

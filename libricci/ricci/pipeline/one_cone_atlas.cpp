@@ -4,11 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 
 #include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/metric/mesh_tables.h"
+#include "ricci/util/edge_key.h"
+#include "ricci/util/memory.h"
 #include "ricci/util/stopwatch.h"
 
 namespace ricci {
@@ -39,7 +44,7 @@ Mesh clean_up_surface(const Mesh& mesh, const OneConeAtlasOptions& options, OneC
     short_edges.keep_vertex = result.chosen_vertex;
     result.short_edges = collapse_short_edges(mesh, short_edges);
     cleaned = result.short_edges.mesh;
-    result.short_edges.mesh = Mesh();  // the problem's mesh is the one kept
+    result.short_edges.mesh.clear();  // the problem's mesh is the one kept
   }
   if (options.flip_flat_edges) {
     FlatFlipOptions flips = options.flat_flips;
@@ -147,6 +152,50 @@ void solve_and_polish(const Mesh& mesh, const OneConeAtlasOptions& options,
   result.timings.cpu_polish = polish.cpu.seconds();
 }
 
+// The mesh of `arrays` with its vertices and faces in their order (edges in the order the
+// faces meet them), without build_mesh's validation: the arrays are a valid mesh's.
+Mesh same_order_mesh(const VertexFaceArrays& arrays) {
+  Mesh mesh;
+  const auto vertices = static_cast<size_t>(arrays.V.rows());
+  const auto faces = static_cast<size_t>(arrays.F.rows());
+  mesh.reserve(vertices, vertices + faces, faces);
+  for (Eigen::Index v = 0; v < arrays.V.rows(); ++v) mesh.add_vertex(to_openmesh(arrays.V.row(v)));
+  for (Eigen::Index f = 0; f < arrays.F.rows(); ++f) {
+    mesh.add_face(mesh.vertex_handle(arrays.F(f, 0)), mesh.vertex_handle(arrays.F(f, 1)),
+                  mesh.vertex_handle(arrays.F(f, 2)));
+  }
+  return mesh;
+}
+
+// The mesh's edges as sorted undirected_edge_key's.
+std::vector<std::uint64_t> sorted_edge_keys(const Mesh& mesh) {
+  std::vector<std::uint64_t> keys;
+  keys.reserve(mesh.n_edges());
+  for (auto e : mesh.edges()) {
+    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
+    keys.push_back(
+        undirected_edge_key(mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()));
+  }
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+// How many of the edges `edges` (sorted_edge_keys of the flow's input) the triangulation lost
+// to flips (removed_edges, without the mesh).
+int removed_edge_count(const std::vector<std::uint64_t>& edges, const IntrinsicTriangulation& tri) {
+  std::vector<std::uint64_t> kept;
+  kept.reserve(static_cast<size_t>(tri.edge_count()));
+  for (int e = 0; e < tri.edge_count(); ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    kept.push_back(undirected_edge_key(tri.tail[static_cast<size_t>(h)], tri.head(h)));
+  }
+  std::sort(kept.begin(), kept.end());
+  std::vector<std::uint64_t> removed;
+  std::set_difference(edges.begin(), edges.end(), kept.begin(), kept.end(),
+                      std::back_inserter(removed));
+  return static_cast<int>(removed.size());
+}
+
 bool intrinsic_applies(const OneConeProblem& problem) {
   return problem.kind == OneConeKind::SingleCone || problem.kind == OneConeKind::FlatTorus;
 }
@@ -158,14 +207,22 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
                      const std::function<void(const char*)>& report) {
   report("intrinsic Delaunay flow");
   StageTimer t;
+  release_free_memory();  // the valence modification's, before the flow's factorisations
   IntrinsicFlowOptions settings = options.intrinsic;
   settings.tolerance = options.flow.tolerance;
   settings.solver = options.flow.solver;
   settings.progress = options.flow.progress;
   std::vector<std::string> failures = result.flow.failed_attempts;
   if (!result.flow.message.empty()) failures.push_back(result.flow.message);
+  IntrinsicTriangulation initial = make_intrinsic_triangulation(
+      result.problem.mesh, mesh_edge_lengths(result.problem.mesh));
+  // The problem's mesh waits as arrays (38 MB against OpenMesh's 136 at 1.6M faces, beside the
+  // flow's factorisation) while the flow and the polish run; it comes back only if they fail.
+  const std::vector<std::uint64_t> problem_edges = sorted_edge_keys(result.problem.mesh);
+  const VertexFaceArrays problem_mesh = to_arrays(result.problem.mesh);
+  result.problem.mesh.clear();  // (assigning an empty Mesh keeps the arrays' capacity)
   IntrinsicFlowResult r =
-      intrinsic_conformal_flow(result.problem.mesh, result.problem.targets, settings);
+      intrinsic_conformal_flow(std::move(initial), result.problem.targets.curvature, settings);
   FlowResult flow = to_flow_result(r);
   flow.failed_attempts = failures;
   flow.linear_work += result.flow.linear_work;  // an earlier flow's, replaced here
@@ -178,15 +235,16 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     flow.message = "the intrinsic Delaunay triangulation has a loop or a double edge "
                    "(not supported by the atlas)";
   } else if (near) {
-    result.removed_edges =
-        static_cast<int>(removed_edges(result.problem.mesh, r.triangulation).size());
-    IntrinsicMesh domain = to_mesh(r.triangulation, r.u, to_arrays(result.problem.mesh).V);
+    result.removed_edges = removed_edge_count(problem_edges, r.triangulation);
+    IntrinsicMesh domain = to_mesh(r.triangulation, r.u, problem_mesh.V);
     r.triangulation = IntrinsicTriangulation();  // its tables (~90 MB at 1.6M faces) are done
+    release_free_memory();  // and the flow's evaluations, before the polish's
     // As after the fixed-connectivity flows (polish_lengths): the layout multiplies the
     // leftover defect by the distances it spans, so it goes in long double first, whatever its
     // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
     // 1.4e-13 gave 1e-9 relative error on its shortest edge).
     if (!r.converged() || std::isfinite(options.polish_threshold)) {
+      report("long-double polish");
       const StageTimer polish;
       const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
       result.polish =
@@ -210,6 +268,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       result.intrinsic = true;
     }
   }
+  if (flow.status != FlowStatus::converged) result.problem.mesh = same_order_mesh(problem_mesh);
   result.flow = std::move(flow);
   result.timings.polish += polish_seconds;
   result.timings.cpu_polish += polish_cpu;
@@ -349,8 +408,10 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   bool fixed_failed = false;  // no candidate vertex converged with the fixed-connectivity flows
   bool intrinsic_tried = false;
   if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
+    release_free_memory();  // what reading the input freed, before the linear model's factor
     report("choosing the singular vertex");
     fixed_failed = choose_vertex(mesh, options, intrinsic_only, result);
+    release_free_memory();  // the linear model's factorisation and blocks, before the flow's
   }
 
   Discarded discarded;
@@ -406,6 +467,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   result.linear_work.flow += result.flow.linear_work;
   result.linear_work.polish = result.polish.linear_work;
 
+  release_free_memory();  // the flow's and the polish's, before the layout's
   report("cut graph, layout and atlas");
   StageTimer t;
   // The polish's long-double metric when the flow's lengths are its rounding.

@@ -124,7 +124,8 @@ class LinearModel {
       Eigen::MatrixXd rhs = Eigen::MatrixXd::Constant(n_, columns, -1.0 / n_);
       for (size_t j = 0; j < count; ++j) rhs(todo[start + j], static_cast<Eigen::Index>(j)) += 1.0;
       if (with_u0) rhs.col(columns - 1) = base_rhs_;
-      const Eigen::MatrixXd green = solver_.solve_columns(rhs);
+      solver_.solve_columns_in_place(rhs);
+      const Eigen::MatrixXd& green = rhs;
       if (with_u0) u0_ = green.col(columns - 1);
       solves_ += static_cast<int>(columns);
       // Each column's score on one thread (the same sums on any number of threads).
