@@ -9,19 +9,24 @@
 
 namespace ricci {
 
+std::vector<std::uint64_t> sorted_edge_keys(const IntrinsicTriangulation& tri) {
+  std::vector<std::uint64_t> keys;
+  keys.reserve(static_cast<size_t>(tri.edge_count()));
+  for (int e = 0; e < tri.edge_count(); ++e) {
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    keys.push_back(undirected_edge_key(tri.tail[static_cast<size_t>(h)], tri.head(h)));
+  }
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
 std::vector<int> removed_edges(const Mesh& mesh, const IntrinsicTriangulation& tri) {
   if (tri.vertex_count != static_cast<int>(mesh.n_vertices())) {
     throw InvalidInputError("removed_edges: the triangulation has " +
                             std::to_string(tri.vertex_count) + " vertices, the mesh " +
                             std::to_string(mesh.n_vertices()));
   }
-  std::vector<std::uint64_t> kept;
-  kept.reserve(static_cast<size_t>(tri.edge_count()));
-  for (int e = 0; e < tri.edge_count(); ++e) {
-    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    kept.push_back(undirected_edge_key(tri.tail[static_cast<size_t>(h)], tri.head(h)));
-  }
-  std::sort(kept.begin(), kept.end());
+  const std::vector<std::uint64_t> kept = sorted_edge_keys(tri);
   std::vector<int> removed;
   for (auto e : mesh.edges()) {
     const HalfedgeHandle h = mesh.halfedge_handle(e, 0);

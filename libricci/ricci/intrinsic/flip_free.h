@@ -4,12 +4,16 @@
 // all keeps is its own Delaunay triangulation for the flat metric, so its faces (triangles in
 // 3D on the surface) carry the metric exactly; a spline domain needs such a mesh, not the
 // flipped triangulation's chords between distant vertices.
+#include <cstdint>
 #include <vector>
 
 #include "ricci/intrinsic/intrinsic_triangulation.h"
 #include "ricci/mesh/mesh.h"
 
 namespace ricci {
+
+/// The triangulation's edges as undirected_edge_key's of their end vertices, sorted.
+[[nodiscard]] std::vector<std::uint64_t> sorted_edge_keys(const IntrinsicTriangulation& tri);
 
 /// Edges of `mesh` (by index) whose two vertices no edge of `tri` joins. Empty when the
 /// triangulation is the mesh's own connectivity.

@@ -183,13 +183,7 @@ std::vector<std::uint64_t> sorted_edge_keys(const Mesh& mesh) {
 // How many of the edges `edges` (sorted_edge_keys of the flow's input) the triangulation lost
 // to flips (removed_edges, without the mesh).
 int removed_edge_count(const std::vector<std::uint64_t>& edges, const IntrinsicTriangulation& tri) {
-  std::vector<std::uint64_t> kept;
-  kept.reserve(static_cast<size_t>(tri.edge_count()));
-  for (int e = 0; e < tri.edge_count(); ++e) {
-    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    kept.push_back(undirected_edge_key(tri.tail[static_cast<size_t>(h)], tri.head(h)));
-  }
-  std::sort(kept.begin(), kept.end());
+  const std::vector<std::uint64_t> kept = sorted_edge_keys(tri);
   std::vector<std::uint64_t> removed;
   std::set_difference(edges.begin(), edges.end(), kept.begin(), kept.end(),
                       std::back_inserter(removed));
