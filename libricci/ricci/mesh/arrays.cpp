@@ -1,6 +1,9 @@
 #include "ricci/mesh/arrays.h"
 
+#include <string>
+
 #include "ricci/mesh/build_mesh.h"
+#include "ricci/mesh/errors.h"
 
 namespace ricci {
 
@@ -19,6 +22,23 @@ VertexFaceArrays to_arrays(const Mesh& mesh) {
     for (const auto v : mesh.fv_range(f)) arrays.F(f.idx(), k++) = v.idx();
   }
   return arrays;
+}
+
+Mesh same_order_mesh(const VertexFaceArrays& arrays) {
+  Mesh mesh;
+  const auto vertices = static_cast<size_t>(arrays.V.rows());
+  const auto faces = static_cast<size_t>(arrays.F.rows());
+  mesh.reserve(vertices, vertices + faces, faces);
+  for (Eigen::Index v = 0; v < arrays.V.rows(); ++v) mesh.add_vertex(to_openmesh(arrays.V.row(v)));
+  for (Eigen::Index f = 0; f < arrays.F.rows(); ++f) {
+    if (!mesh.add_face(mesh.vertex_handle(arrays.F(f, 0)), mesh.vertex_handle(arrays.F(f, 1)),
+                       mesh.vertex_handle(arrays.F(f, 2)))
+             .is_valid()) {
+      throw TopologyError("same_order_mesh: face " + std::to_string(f) +
+                          " would make the mesh non-manifold");
+    }
+  }
+  return mesh;
 }
 
 Mesh from_arrays(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {

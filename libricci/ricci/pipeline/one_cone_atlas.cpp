@@ -152,21 +152,6 @@ void solve_and_polish(const Mesh& mesh, const OneConeAtlasOptions& options,
   result.timings.cpu_polish = polish.cpu.seconds();
 }
 
-// The mesh of `arrays` with its vertices and faces in their order (edges in the order the
-// faces meet them), without build_mesh's validation: the arrays are a valid mesh's.
-Mesh same_order_mesh(const VertexFaceArrays& arrays) {
-  Mesh mesh;
-  const auto vertices = static_cast<size_t>(arrays.V.rows());
-  const auto faces = static_cast<size_t>(arrays.F.rows());
-  mesh.reserve(vertices, vertices + faces, faces);
-  for (Eigen::Index v = 0; v < arrays.V.rows(); ++v) mesh.add_vertex(to_openmesh(arrays.V.row(v)));
-  for (Eigen::Index f = 0; f < arrays.F.rows(); ++f) {
-    mesh.add_face(mesh.vertex_handle(arrays.F(f, 0)), mesh.vertex_handle(arrays.F(f, 1)),
-                  mesh.vertex_handle(arrays.F(f, 2)));
-  }
-  return mesh;
-}
-
 // The mesh's edges as sorted undirected_edge_key's.
 std::vector<std::uint64_t> sorted_edge_keys(const Mesh& mesh) {
   std::vector<std::uint64_t> keys;

@@ -87,4 +87,18 @@ TEST_F(MeshIo, ArraysRoundTrip) {
   EXPECT_THROW((void)ricci::from_arrays(arrays.V, bad), ricci::InvalidInputError);
 }
 
+TEST_F(MeshIo, SameOrderMeshInvertsToArrays) {
+  const ricci::Mesh mesh = awkward_torus();
+  const auto arrays = ricci::to_arrays(mesh);
+  const ricci::Mesh back = ricci::same_order_mesh(arrays);
+  const auto again = ricci::to_arrays(back);
+  EXPECT_EQ(again.V, arrays.V);
+  EXPECT_EQ(again.F, arrays.F);
+  EXPECT_EQ(back.n_edges(), mesh.n_edges());
+  ricci::VertexFaceArrays twice = arrays;  // one face twice: a non-manifold edge
+  twice.F.conservativeResize(arrays.F.rows() + 1, 3);
+  twice.F.row(arrays.F.rows()) = arrays.F.row(0);
+  EXPECT_THROW((void)ricci::same_order_mesh(twice), ricci::TopologyError);
+}
+
 }  // namespace
