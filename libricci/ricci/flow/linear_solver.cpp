@@ -301,6 +301,40 @@ bool solve_with_nearby_factorization(const SymmetricFactorization& nearby, const
   return false;
 }
 
+bool solve_by_preconditioned_cg(const SymmetricFactorization& nearby, const Sparse& lower,
+                                const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
+                                double relative_tolerance, int max_steps) {
+  x = Eigen::VectorXd::Zero(rhs.size());
+  const double goal = relative_tolerance * rhs.norm();
+  Eigen::VectorXd r = rhs;
+  double first = r.norm();
+  if (first <= goal) return true;
+  Eigen::VectorXd z = nearby.solve(r);
+  Eigen::VectorXd p = z;
+  double rz = r.dot(z);
+  for (int step = 1; step <= max_steps; ++step) {
+    const Eigen::VectorXd hp = lower.selfadjointView<Eigen::Lower>() * p;
+    const double php = p.dot(hp);
+    if (!(php > 0) || !(rz > 0)) return false;  // not positive definite (or rounding)
+    const double alpha = rz / php;
+    x += alpha * p;
+    r -= alpha * hp;
+    const double norm = r.norm();
+    if (norm <= goal) return x.allFinite();
+    // At the mean rate so far, the steps left cannot reach the goal: stop now (not before the
+    // third step: the residual of conjugate gradients need not fall at every step).
+    const double rate = std::pow(norm / first, 1.0 / step);
+    if (step >= 3 && (!(rate < 1) || std::log(goal / norm) / std::log(rate) > max_steps - step)) {
+      return false;
+    }
+    z = nearby.solve(r);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  return false;
+}
+
 std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kind,
                                                                 const Sparse& lower,
                                                                 double& analysis_seconds) {

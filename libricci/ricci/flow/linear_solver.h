@@ -128,6 +128,18 @@ class LinearWorkMeter {
                                                    const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
                                                    double relative_tolerance = 1e-12);
 
+/// The same system by conjugate gradients preconditioned with `nearby` (x starts at 0): where
+/// F⁻¹H has eigenvalues in [1 - d, 1 + d] it gains about d / 2 per step where the stationary
+/// iteration gains d, and it converges (more slowly) where d >= 1, e.g. with the factorisation
+/// of an earlier, farther iterate. Returns true when the residual is below relative_tolerance
+/// ‖rhs‖ within max_steps back-substitutions; false when not (x then holds the last iterate),
+/// also as soon as, at the rate observed, the steps left cannot reach it.
+/// \pre `nearby` holds a successful factorisation; H symmetric positive definite.
+[[nodiscard]] bool solve_by_preconditioned_cg(const SymmetricFactorization& nearby,
+                                              const Eigen::SparseMatrix<double>& lower,
+                                              const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
+                                              double relative_tolerance, int max_steps);
+
 /// A factorisation kept across solves whose matrices share one sparsity pattern (the stages of
 /// a continuation, retries of a flow on one mesh): the symbolic analysis (ordering, elimination
 /// tree, supernodes) runs once. A new pattern of the same size is analysed with the cached

@@ -145,6 +145,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
   std::shared_ptr<const SymmetricFactorization>& factored_last = result.laplacian_factorization;
   result.pinned_vertex = pinned;
   bool last_step_full = false;
+  bool factor_stale = false, factored_frozen = false;
   for (int iteration = 0; error > tolerance; ++iteration) {
     if (iteration >= max_iterations) {
       reason = "iteration budget spent";
@@ -165,15 +166,26 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     }
     Eigen::VectorXd reduced;
     clock.restart();
-    const bool try_nearby =
-        factored_last && last_step_full && error < options.nearby_factorization_below;
+    const bool frozen = error < options.freeze_connectivity_below;
+    // Chord steps: the last factorisation preconditions conjugate gradients on this step's
+    // Laplacian, to a forcing term loose far from the answer (Eisenstat-Walker), tight near it.
+    // It is refactorised when a solve on it got slow (stale) or failed, and once when the
+    // connectivity freezes: that factor then serves every remaining step and the polish.
+    const bool near_regime = last_step_full && error < options.nearby_factorization_below;
+    const bool try_nearby = factored_last && !factor_stale && !(frozen && !factored_frozen) &&
+                            (near_regime || options.chord_forcing_cap > 0);
     // An inexact Newton step: a relative residual eta adds eta * error to the next error,
     // below Newton's own error^2 while eta <= error (Dembo-Eisenstat-Steihaug forcing term).
-    const double forcing = std::clamp(1e-2 * error, 1e-12, 1e-6);
+    const double forcing = near_regime ? std::clamp(1e-2 * error, 1e-12, 1e-6)
+                                       : std::clamp(1e-2 * error, 1e-12,
+                                                    std::max(options.chord_forcing_cap, 1e-12));
     bool reused = false;
     if (try_nearby) {
       const LinearWorkMeter meter(*factored_last, result.linear_work);
-      reused = solve_with_nearby_factorization(*factored_last, lower, rhs, reduced, forcing);
+      const int before = factored_last->work().back_substitutions;
+      reused = solve_by_preconditioned_cg(*factored_last, lower, rhs, reduced, forcing,
+                                          options.chord_max_steps);
+      factor_stale = factored_last->work().back_substitutions - before >= options.chord_stale_steps;
     }
     result.timings.solve += clock.seconds();
     if (!reused) {
@@ -191,6 +203,8 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
         return FlowStatus::stalled;
       }
       factored_last = factorization;
+      factor_stale = false;
+      factored_frozen = frozen;
       clock.restart();
       reduced = factorization->solve(rhs);
       result.timings.solve += clock.seconds();

@@ -52,6 +52,17 @@ struct IntrinsicFlowOptions {
   /// factorisation as a preconditioner (solve_with_nearby_factorization) and factorises only
   /// when that does not converge.
   double nearby_factorization_below = 0.05;
+  /// Chord steps (modified Newton): away from the answer too, Newton first solves by
+  /// conjugate gradients preconditioned with the last factorisation
+  /// (solve_by_preconditioned_cg), to relative residual min(1e-2 max |K - K̄|, this cap); 0:
+  /// only below nearby_factorization_below. A solve that fails, or takes chord_stale_steps
+  /// back-substitutions or more, has the next step factorise anew; so does the first step
+  /// with frozen connectivity (that factorisation serves the remaining steps and the polish).
+  /// A cap of 0.1 spared as many factorisations at 100k faces but took the genus-8 flow of
+  /// LargeConeCharts to a triangulation whose layout turned a face over.
+  double chord_forcing_cap = 1e-3;
+  int chord_max_steps = 12;
+  int chord_stale_steps = 6;
   /// Below freeze_connectivity_below, the flow stops (stalled) after this many iterations
   /// without halving max |K - K̄|: the double evaluation's rounding floor (long needles next to
   /// a large cone), which a long-double polish (metric/polish_e2.h) can pass.

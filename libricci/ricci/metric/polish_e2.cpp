@@ -113,7 +113,7 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
     // A step solved to 1e-6 leaves a defect 1e-6 of the flow's (~1e-10): below the floor.
     if (nearby.factorization) {
       const LinearWorkMeter meter(*nearby.factorization, result.linear_work);
-      if (solve_with_nearby_factorization(*nearby.factorization, lower, rhs, x, 1e-6)) return true;
+      if (solve_by_preconditioned_cg(*nearby.factorization, lower, rhs, x, 1e-6, 12)) return true;
     }
     if (!own && !own_failed) {
       own = std::make_unique<SymmetricFactorization>(

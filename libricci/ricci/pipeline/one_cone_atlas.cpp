@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <sstream>
 
 #include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/arrays.h"
@@ -106,6 +107,9 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
   result.timings.cpu_flow = t.cpu.seconds();
 }
 
+// Where the intrinsic flow hands over to the long-double polish (solve_intrinsic).
+constexpr double kPolishHandover = 1e-9;
+
 // A flow that stalled this close to the target only met the rounding floor of double
 // precision (genus3_10k's inversive-distance route stops at 2.5e-10 > 1e-10).
 constexpr double kPolishableError = 1e-8;
@@ -188,7 +192,12 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   StageTimer t;
   release_free_memory();  // the valence modification's, before the flow's factorisations
   IntrinsicFlowOptions settings = options.intrinsic;
-  settings.tolerance = options.flow.tolerance;
+  // The long-double polish below finishes the flow: Newton hands over at kPolishHandover,
+  // where one polish step lands at the rounding floor (its quadratic term ~1e-19), and the
+  // tolerance applies to the polished metric.
+  const double tolerance = options.flow.tolerance;
+  const bool polishes = std::isfinite(options.polish_threshold);
+  settings.tolerance = polishes ? std::max(tolerance, kPolishHandover) : tolerance;
   settings.solver = options.flow.solver;
   settings.progress = options.flow.progress;
   std::vector<std::string> failures = result.flow.failed_attempts;
@@ -222,7 +231,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     // leftover defect by the distances it spans, so it goes in long double first, whatever its
     // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
     // 1.4e-13 gave 1e-9 relative error on its shortest edge).
-    if (!r.converged() || std::isfinite(options.polish_threshold)) {
+    if (!r.converged() || polishes) {
       report("long-double polish");
       const StageTimer polish;
       const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
@@ -232,11 +241,17 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       result.polished = true;
       polish_seconds = polish.wall.seconds();
       polish_cpu = polish.cpu.seconds();
-      if (result.polish.error_after <= settings.tolerance) {
+      if (result.polish.error_after <= tolerance) {
         domain.lengths = result.polish.lengths;
         flow.status = FlowStatus::converged;
         flow.message.clear();
         flow.max_error = result.polish.error_after;
+      } else if (r.max_error > tolerance) {
+        flow.status = FlowStatus::stalled;
+        std::ostringstream message;
+        message << "intrinsic conformal flow: the long-double polish left max |K - K̄| = "
+                << result.polish.error_after << " above the tolerance " << tolerance;
+        flow.message = message.str();
       }
     }
     if (flow.status == FlowStatus::converged) {

@@ -1,9 +1,13 @@
-// SymmetricFactorization's blocked back-substitution split over threads
-// (ricci/flow/linear_solver.h): the same solutions as column by column, to rounding.
+// The linear solver (ricci/flow/linear_solver.h): SymmetricFactorization's blocked
+// back-substitution split over threads gives the same solutions as column by column, to
+// rounding; conjugate gradients preconditioned with a nearby factorisation solve H x = b to the
+// asked relative residual from the factorisation of another matrix of the same size, and refuse
+// when the steps allowed cannot reach it.
 #include "ricci/flow/linear_solver.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace {
@@ -50,6 +54,61 @@ TEST(SymmetricFactorization, BlockedSolveSplitOverThreadsMatchesColumnByColumnAn
     EXPECT_LT((x.col(j) - column).norm(), 1e-12 * column.norm()) << "column " << j;
     EXPECT_LT(relative_residual(lower, x.col(j), b.col(j)), 1e-10) << "column " << j;
   }
+}
+
+// Lower triangle of the weighted path Laplacian on n vertices plus `shift` on the diagonal
+// (weights 1 + amplitude sin(3 i)), symmetric positive definite for shift > 0.
+Eigen::SparseMatrix<double> path_laplacian(int n, double amplitude, double shift) {
+  std::vector<Eigen::Triplet<double>> t;
+  Eigen::VectorXd diagonal = Eigen::VectorXd::Constant(n, shift);
+  for (int i = 0; i + 1 < n; ++i) {
+    const double w = 1.0 + amplitude * std::sin(3.0 * i);
+    t.emplace_back(i + 1, i, -w);
+    diagonal[i] += w;
+    diagonal[i + 1] += w;
+  }
+  for (int i = 0; i < n; ++i) t.emplace_back(i, i, diagonal[i]);
+  Eigen::SparseMatrix<double> lower(n, n);
+  lower.setFromTriplets(t.begin(), t.end());
+  lower.makeCompressed();
+  return lower;
+}
+
+TEST(PreconditionedCg, SolvesToTheAskedResidualWithANearbyFactorization) {
+  const int n = 400;
+  const Eigen::SparseMatrix<double> nearby_matrix = path_laplacian(n, 0.0, 0.01);
+  const Eigen::SparseMatrix<double> lower = path_laplacian(n, 0.5, 0.01);
+  ricci::SymmetricFactorization nearby(ricci::LinearSolver::eigen_llt);
+  nearby.analyze(nearby_matrix);
+  ASSERT_TRUE(nearby.factorize(nearby_matrix));
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::cos(0.1 * i);
+  Eigen::VectorXd x;
+  ASSERT_TRUE(ricci::solve_by_preconditioned_cg(nearby, lower, b, x, 1e-10, 60));
+  const Eigen::VectorXd residual = b - lower.selfadjointView<Eigen::Lower>() * x;
+  EXPECT_LE(residual.norm(), 1e-10 * b.norm());
+  // Against the matrix's own factorisation.
+  ricci::SymmetricFactorization own(ricci::LinearSolver::eigen_llt);
+  own.analyze(lower);
+  ASSERT_TRUE(own.factorize(lower));
+  EXPECT_LT((x - own.solve(b)).cwiseAbs().maxCoeff(), 1e-6 * x.cwiseAbs().maxCoeff());
+  // Each step is one back-substitution with the nearby factorisation; weights off by up to
+  // 50% take more than one, far fewer than n (the unpreconditioned bound).
+  EXPECT_GT(nearby.work().back_substitutions, 1);
+  EXPECT_LT(nearby.work().back_substitutions, 60);
+}
+
+TEST(PreconditionedCg, RefusesWhenTheStepsCannotReachTheResidual) {
+  const int n = 400;
+  const Eigen::SparseMatrix<double> nearby_matrix = path_laplacian(n, 0.0, 0.01);
+  const Eigen::SparseMatrix<double> lower = path_laplacian(n, 0.9, 0.01);
+  ricci::SymmetricFactorization nearby(ricci::LinearSolver::eigen_llt);
+  nearby.analyze(nearby_matrix);
+  ASSERT_TRUE(nearby.factorize(nearby_matrix));
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+  Eigen::VectorXd x;
+  EXPECT_FALSE(ricci::solve_by_preconditioned_cg(nearby, lower, b, x, 1e-14, 3));
+  EXPECT_LE(nearby.work().back_substitutions, 3);
 }
 
 }  // namespace
