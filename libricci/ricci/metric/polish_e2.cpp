@@ -86,7 +86,7 @@ VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::Ve
 
 PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths,
                                  const Eigen::VectorXd& target, int max_iterations,
-                                 NearbyLaplacian nearby) {
+                                 NearbyLaplacian nearby, double good_enough) {
   const MeshTables t = build_mesh_tables(mesh);
   const int n = t.num_vertices();
   if (lengths.size() != t.num_edges() || target.size() != n || n < 2) {
@@ -129,7 +129,7 @@ PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& length
   };
   result.lengths = lengths;
   result.error_before = result.error_after = static_cast<double>(r.cwiseAbs().maxCoeff());
-  for (int it = 1; it <= max_iterations && result.error_after > 0.0; ++it) {
+  for (int it = 1; it <= max_iterations && result.error_after > std::max(good_enough, 0.0); ++it) {
     const long double scale = r.cwiseAbs().maxCoeff();  // keeps the residual's digits in double
     Eigen::VectorXd rhs(lower.rows()), du;
     for (int v = 0; v < n; ++v) {

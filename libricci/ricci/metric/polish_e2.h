@@ -38,13 +38,16 @@ struct NearbyLaplacian {
 /// the angle sum; boundary: pi minus it), each step solving L du = -(K - target) with du
 /// pinned to 0 at one vertex and L the cotangent Laplacian at the given lengths (dK/du),
 /// factored once (or `nearby`'s, see NearbyLaplacian); the residual is evaluated in long
-/// double. Returns the given lengths when a step does not improve.
+/// double. Steps until max |K - K̄| is at most `good_enough` (0: until a step gains nothing,
+/// the evaluation's floor, which costs one step that is thrown away). Returns the given
+/// lengths when a step does not improve.
 /// \pre lengths close to a solution (a converged flow's); target sums to 2 pi chi; a nearby
-///      factorisation has the size of the mesh's vertices minus one.
+///      factorisation has the size of the mesh's vertices minus one; good_enough >= 0.
 /// \throw InvalidInputError on a size mismatch or a face violating the triangle inequality.
 [[nodiscard]] PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths,
                                                const Eigen::VectorXd& target,
                                                int max_iterations = 6,
-                                               NearbyLaplacian nearby = {});
+                                               NearbyLaplacian nearby = {},
+                                               double good_enough = 0.0);
 
 }  // namespace ricci

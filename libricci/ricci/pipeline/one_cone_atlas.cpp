@@ -110,6 +110,12 @@ void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, One
 // Where the intrinsic flow hands over to the long-double polish (solve_intrinsic).
 constexpr double kPolishHandover = 1e-9;
 
+// The defect at which that polish stops (polish_e2_lengths' good_enough): from the handover
+// one step lands near the long-double evaluation's floor (4-9e-15 at 100k faces), and a step
+// from there only measures the floor. Well below the femur's 1.4e-13, which gave 1e-9
+// relative error on its shortest edge.
+constexpr double kPolishGoal = 1e-14;
+
 // A flow that stalled this close to the target only met the rounding floor of double
 // precision (genus3_10k's inversive-distance route stops at 2.5e-10 > 1e-10).
 constexpr double kPolishableError = 1e-8;
@@ -237,7 +243,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
       result.polish =
           polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature, 6,
-                            nearby);
+                            nearby, kPolishGoal);
       result.polished = true;
       polish_seconds = polish.wall.seconds();
       polish_cpu = polish.cpu.seconds();

@@ -124,6 +124,38 @@ TEST(IntrinsicConformalFlow, ChordStepsReachFullNewtonsMetric) {
   EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), 1e-10);
 }
 
+// The long-double polish's goal (polish_e2_lengths' good_enough, the pipeline's kPolishGoal):
+// it stops at the step that reaches it, where without a goal it steps on until a step gains
+// nothing (the evaluation's floor), spending at least one more back-substitution.
+TEST(IntrinsicConformalFlow, PolishStopsOnceGoodEnough) {
+  const ricci::OneConeProblem problem =
+      ricci::prepare_one_cone(ricci::read_mesh(std::string(MSP_TEST_DATA) +
+                                               "/meshes/closed_g2/eight.off"), 0);
+  ricci::IntrinsicFlowOptions options;
+  options.tolerance = 1e-6;  // handed over early: the polish has steps to take
+  const ricci::IntrinsicFlowResult r =
+      ricci::intrinsic_conformal_flow(problem.mesh, problem.targets, options);
+  ASSERT_TRUE(r.converged()) << r.message;
+  ASSERT_GT(r.max_error, 1e-12);
+  const ricci::IntrinsicMesh domain =
+      ricci::to_mesh(r.triangulation, r.u, ricci::to_arrays(problem.mesh).V);
+  const ricci::NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
+  const Eigen::VectorXd& target = problem.targets.curvature;
+  const ricci::PolishE2Result goal =
+      ricci::polish_e2_lengths(domain.mesh, domain.lengths, target, 6, nearby, 1e-12);
+  const ricci::PolishE2Result floor =
+      ricci::polish_e2_lengths(domain.mesh, domain.lengths, target, 6, nearby);
+  EXPECT_LE(goal.error_after, 1e-12);
+  EXPECT_GE(goal.iterations, 1);
+  EXPECT_LE(goal.iterations, floor.iterations);
+  EXPECT_LE(floor.error_after, goal.error_after);
+  EXPECT_GT(floor.linear_work.back_substitutions, goal.linear_work.back_substitutions);
+  // The goal's metric: its curvature, recomputed in double, within the goal and rounding.
+  const Eigen::VectorXd K =
+      ricci::vertex_curvature(domain.mesh, goal.lengths, ricci::Geometry::euclidean);
+  EXPECT_LT((K - target).cwiseAbs().maxCoeff(), 1e-11);
+}
+
 INSTANTIATE_TEST_SUITE_P(Genus, OneConeEveryGenus, ::testing::Values(4, 6));
 
 }  // namespace
