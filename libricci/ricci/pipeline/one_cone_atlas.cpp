@@ -312,14 +312,44 @@ bool try_intrinsic(const Mesh& mesh, const OneConeAtlasOptions& options,
   return true;
 }
 
+// takes_intrinsic_flow_first, takes_inversive_distance_route and singularity_options on the
+// mesh's surface_topology, computed once per build_one_cone_atlas (a pass over the mesh each).
+bool intrinsic_first_on(const SurfaceTopology& topology, const OneConeAtlasOptions& options) {
+  return options.intrinsic_first && options.route == FlowRoute::automatic &&
+         !options.keep_metric && options.flow.geometry == Geometry::euclidean &&
+         options.cone_ring_metrics.empty() && needs_singular_vertex(topology) &&
+         topology.genus >= 2;
+}
+
+bool inversive_route_on(const SurfaceTopology& topology, const OneConeAtlasOptions& options) {
+  const bool asked = !options.keep_metric || options.flow.scheme == Scheme::inversive_distance;
+  return options.inversive_distance_route && asked &&
+         options.flow.geometry == Geometry::euclidean && options.cone_ring_metrics.empty() &&
+         needs_singular_vertex(topology) && topology.genus >= 2;
+}
+
+SingularityOptions singularity_options_on(const SurfaceTopology& topology,
+                                          const OneConeAtlasOptions& options) {
+  SingularityOptions choice = options.choice;
+  choice.flow = options.flow;
+  // Comparing distortions needs no more than 1e-8 (the verifying flows stop earlier).
+  choice.flow.tolerance = std::max(options.flow.tolerance, options.choice.flow.tolerance);
+  choice.valence = options.valence;
+  // The plain inversive-distance flow the route replaces fails at most candidates of a
+  // marching-cubes or CAD mesh: rank them with the default metrics instead.
+  choice.keep_metric = options.keep_metric && !inversive_route_on(topology, options);
+  return choice;
+}
+
 // The automatic singularity (choose_singularity; the linear model's best where only the
 // intrinsic flow runs or no candidate converges with fixed connectivity): fills result's
 // chosen vertex, choice figures and timings. Returns whether the fixed-connectivity flows
 // failed at every candidate.
-bool choose_vertex(const Mesh& mesh, const OneConeAtlasOptions& options, bool intrinsic_only,
+bool choose_vertex(const Mesh& mesh, const SurfaceTopology& topology,
+                   const OneConeAtlasOptions& options, bool intrinsic_only,
                    OneConeAtlasResult& result) {
   StageTimer t;
-  const SingularityOptions choice = singularity_options(mesh, options);
+  const SingularityOptions choice = singularity_options_on(topology, options);
   bool fixed_failed = false;
   if (intrinsic_only) {
     result.chosen_vertex = rank_singularities(mesh, choice, &result.linear_work.choice).front().vertex;
@@ -364,17 +394,11 @@ OneConeAtlasOptions inversive_distance_route(const OneConeAtlasOptions& options)
 }
 
 bool takes_intrinsic_flow_first(const Mesh& mesh, const OneConeAtlasOptions& options) {
-  return options.intrinsic_first && options.route == FlowRoute::automatic &&
-         !options.keep_metric && options.flow.geometry == Geometry::euclidean &&
-         options.cone_ring_metrics.empty() && needs_singular_vertex(mesh) &&
-         surface_topology(mesh).genus >= 2;
+  return intrinsic_first_on(surface_topology(mesh), options);
 }
 
 bool takes_inversive_distance_route(const Mesh& mesh, const OneConeAtlasOptions& options) {
-  const bool asked = !options.keep_metric || options.flow.scheme == Scheme::inversive_distance;
-  return options.inversive_distance_route && asked &&
-         options.flow.geometry == Geometry::euclidean && options.cone_ring_metrics.empty() &&
-         needs_singular_vertex(mesh) && surface_topology(mesh).genus >= 2;
+  return inversive_route_on(surface_topology(mesh), options);
 }
 
 double OneConeAtlasResult::relative_transition_residual() const {
@@ -383,15 +407,7 @@ double OneConeAtlasResult::relative_transition_residual() const {
 }
 
 SingularityOptions singularity_options(const Mesh& mesh, const OneConeAtlasOptions& options) {
-  SingularityOptions choice = options.choice;
-  choice.flow = options.flow;
-  // Comparing distortions needs no more than 1e-8 (the verifying flows stop earlier).
-  choice.flow.tolerance = std::max(options.flow.tolerance, options.choice.flow.tolerance);
-  choice.valence = options.valence;
-  // The plain inversive-distance flow the route replaces fails at most candidates of a
-  // marching-cubes or CAD mesh: rank them with the default metrics instead.
-  choice.keep_metric = options.keep_metric && !takes_inversive_distance_route(mesh, options);
-  return choice;
+  return singularity_options_on(surface_topology(mesh), options);
 }
 
 OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
@@ -401,21 +417,23 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   };
   OneConeAtlasResult result;
   result.chosen_vertex = options.singular_vertex;
+  const SurfaceTopology topology = surface_topology(mesh);
+  const bool needs_cone = needs_singular_vertex(topology);
   const bool intrinsic_only =
       options.route == FlowRoute::intrinsic_delaunay ||
-      (options.route == FlowRoute::automatic && needs_singular_vertex(mesh) &&
-       surface_topology(mesh).genus >= options.intrinsic_from_genus);
+      (options.route == FlowRoute::automatic && needs_cone &&
+       topology.genus >= options.intrinsic_from_genus);
   bool fixed_failed = false;  // no candidate vertex converged with the fixed-connectivity flows
   bool intrinsic_tried = false;
-  if (result.chosen_vertex < 0 && needs_singular_vertex(mesh)) {
+  if (result.chosen_vertex < 0 && needs_cone) {
     release_free_memory();  // what reading the input freed, before the linear model's factor
     report("choosing the singular vertex");
-    fixed_failed = choose_vertex(mesh, options, intrinsic_only, result);
+    fixed_failed = choose_vertex(mesh, topology, options, intrinsic_only, result);
     release_free_memory();  // the linear model's factorisation and blocks, before the flow's
   }
 
   Discarded discarded;
-  if (!intrinsic_only && !fixed_failed && takes_intrinsic_flow_first(mesh, options)) {
+  if (!intrinsic_only && !fixed_failed && intrinsic_first_on(topology, options)) {
     intrinsic_tried = try_intrinsic(mesh, options, report, result, discarded);
   }
   if (result.flow.converged()) {
@@ -426,7 +444,7 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       throw InvalidInputError("the intrinsic Delaunay flow needs a closed surface of genus >= 1");
     }
     solve_intrinsic(options, result, report);
-  } else if (takes_inversive_distance_route(mesh, options)) {
+  } else if (inversive_route_on(topology, options)) {
     OneConeAtlasResult attempt = result;
     solve_and_polish(mesh, inversive_distance_route(options), attempt, report, false);
     if (attempt.flow.converged()) {

@@ -369,9 +369,10 @@ FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions&
   return result;
 }
 
-bool needs_singular_vertex(const Mesh& mesh) {
-  const SurfaceTopology t = surface_topology(mesh);
-  return t.boundary_loops == 0 && t.genus != 1;
+bool needs_singular_vertex(const Mesh& mesh) { return needs_singular_vertex(surface_topology(mesh)); }
+
+bool needs_singular_vertex(const SurfaceTopology& topology) {
+  return topology.boundary_loops == 0 && topology.genus != 1;
 }
 
 namespace {

@@ -16,6 +16,7 @@
 #include "ricci/flow/flow.h"
 #include "ricci/flow/targets.h"
 #include "ricci/mesh/mesh.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/singularity/valence.h"
 
 namespace ricci {
@@ -145,5 +146,7 @@ ConeRefinement refine_around_cone(OneConeProblem& problem, const ConeRefinementO
 
 /// Whether the mesh's topology asks for a singular vertex at all (closed, genus != 1).
 [[nodiscard]] bool needs_singular_vertex(const Mesh& mesh);
+/// The same from the mesh's surface_topology (ricci/mesh/primitives.h), computed once.
+[[nodiscard]] bool needs_singular_vertex(const SurfaceTopology& topology);
 
 }  // namespace ricci
