@@ -215,7 +215,10 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
                    "(not supported by the atlas)";
   } else if (near) {
     result.removed_edges = removed_edge_count(problem_edges, r.triangulation);
-    IntrinsicMesh domain = to_mesh(r.triangulation, r.u, problem_mesh.V);
+    // The polish runs on the triangulation's tables; its mesh (136 MB at 1.6M faces against
+    // the tables' 61) is built after it, once the flow's factorisation is gone.
+    const MeshTables tables = to_mesh_tables(r.triangulation);
+    Eigen::VectorXd lengths = table_edge_lengths(r.triangulation, tables, r.u);
     r.triangulation = IntrinsicTriangulation();  // its tables (~90 MB at 1.6M faces) are done
     release_free_memory();  // and the flow's evaluations, before the polish's
     // As after the fixed-connectivity flows (polish_lengths): the layout multiplies the
@@ -227,23 +230,27 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       const StageTimer polish;
       const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
       result.polish =
-          polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature, 6,
-                            nearby);
+          polish_e2_lengths(tables, lengths, result.problem.targets.curvature, 6, nearby);
       result.polished = true;
       polish_seconds = polish.wall.seconds();
       polish_cpu = polish.cpu.seconds();
       if (result.polish.error_after <= settings.tolerance) {
-        domain.lengths = result.polish.lengths;
+        lengths = result.polish.lengths;
         flow.status = FlowStatus::converged;
         flow.message.clear();
         flow.max_error = result.polish.error_after;
       }
     }
+    r.laplacian_factorization.reset();
     if (flow.status == FlowStatus::converged) {
+      release_free_memory();  // the factorisation, before the mesh
       flow.metric_name = "intrinsic Delaunay flow (vertex scaling, " + std::to_string(r.flips) +
                          " flips)";
-      result.problem.mesh = std::move(domain.mesh);
-      flow.lengths = std::move(domain.lengths);
+      std::vector<int> edge_of;
+      result.problem.mesh = mesh_of_tables(tables, problem_mesh.V, edge_of);
+      flow.lengths = by_mesh_edge(lengths, edge_of);
+      result.polish.lengths = by_mesh_edge(result.polish.lengths, edge_of);
+      result.polish.lengths_low = by_mesh_edge(result.polish.lengths_low, edge_of);
       result.intrinsic = true;
     }
   }
