@@ -191,6 +191,9 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   settings.tolerance = options.flow.tolerance;
   settings.solver = options.flow.solver;
   settings.progress = options.flow.progress;
+  if (static_cast<double>(result.problem.mesh.n_faces()) >= options.polish_floor_from_faces) {
+    settings.floor_plateau_iterations = 0;
+  }
   std::vector<std::string> failures = result.flow.failed_attempts;
   if (!result.flow.message.empty()) failures.push_back(result.flow.message);
   IntrinsicTriangulation initial = make_intrinsic_triangulation(
