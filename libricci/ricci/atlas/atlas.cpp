@@ -8,6 +8,7 @@
 #include "ricci/atlas/chart_develop.h"
 #include "ricci/atlas/holonomy.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/util/parallel.h"
 
 namespace ricci {
 namespace {
@@ -166,6 +167,49 @@ int add_face_chart(const Mesh& mesh, const Eigen::VectorXd& lengths, const LongL
   return static_cast<int>(atlas.charts.size()) - 1;
 }
 
+/// Whether `chart` holds `hood` as one piece and faithfully.
+bool fits_neighbourhood(const Mesh& mesh, const Eigen::VectorXd& lengths, const Chart& chart,
+                        const std::vector<int>& hood) {
+  return detail::holds_as_one_piece(mesh, chart, hood) &&
+         holds_faithfully(mesh, lengths, chart, hood);
+}
+
+/// For every domain face, whether the central chart (atlas.charts[0]) holds its neighbourhood
+/// as one piece and faithfully; face-parallel, each face its own slot (the same answers on any
+/// number of threads). Away from the cut the central chart holds a neighbourhood whose faces
+/// it holds faithfully and whose vertices it has once each: the test without
+/// holds_as_one_piece's search and sort.
+std::vector<char> central_chart_serves(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                                       const AffineAtlas& atlas) {
+  const Chart& central = atlas.charts[0];
+  std::vector<char> in_central(mesh.n_faces(), 0), copies(mesh.n_vertices(), 0);
+  parallel_for(central.faces.size(), 0, [&](size_t i) {
+    const int f = central.faces[i];
+    in_central[static_cast<size_t>(f)] = detail::places_faithfully(mesh, lengths, central, f, f);
+  });
+  for (int v : central.to_original_vertex) {
+    char& count = copies[static_cast<size_t>(v)];
+    count = static_cast<char>(std::min(count + 1, 2));
+  }
+  const auto plainly_central = [&](const std::vector<int>& hood) {
+    for (int g : hood) {
+      if (!in_central[static_cast<size_t>(g)]) return false;
+      for (auto v : mesh.fv_range(FaceHandle(g))) {
+        if (copies[static_cast<size_t>(v.idx())] != 1) return false;
+      }
+    }
+    return true;
+  };
+  std::vector<char> serves(mesh.n_faces(), 0);
+  parallel_for(mesh.n_faces(), 0, [&](size_t f) {
+    if (!atlas.in_domain[f]) return;
+    const std::vector<int> hood =
+        detail::face_neighbourhood(mesh, static_cast<int>(f), atlas.in_domain);
+    serves[f] = plainly_central(hood) || fits_neighbourhood(mesh, lengths, central, hood) ? 1 : 0;
+  });
+  return serves;
+}
+
 /// Picks, for every domain face, the first chart holding its neighbourhood as one piece and
 /// faithfully (places_faithfully): central, then cut-path charts holding the face, then (built
 /// on demand) vertex charts, then a chart of the face's own neighbourhood.
@@ -179,35 +223,19 @@ void assign_neighbourhood_charts(const Mesh& mesh, const Eigen::VectorXd& length
   std::map<int, int> vertex_chart;  // original vertex -> chart index (-1: none possible)
   atlas.neighbourhood_chart.assign(mesh.n_faces(), -1);
   atlas.uncovered_faces = 0;
-  // Away from the cut, the central chart holds a neighbourhood whose faces it holds and whose
-  // vertices it has once each: the test without holds_as_one_piece's search and sort.
+  const std::vector<char> central_serves = central_chart_serves(mesh, lengths, atlas);
   // (atlas.charts grows below: no reference into it is kept.)
-  std::vector<char> in_central(mesh.n_faces(), 0), copies(mesh.n_vertices(), 0);
-  for (int f : atlas.charts[0].faces) {
-    in_central[static_cast<size_t>(f)] =
-        detail::places_faithfully(mesh, lengths, atlas.charts[0], f, f);
-  }
-  for (int v : atlas.charts[0].to_original_vertex) {
-    char& count = copies[static_cast<size_t>(v)];
-    count = static_cast<char>(std::min(count + 1, 2));
-  }
-  const auto plainly_central = [&](const std::vector<int>& hood) {
-    for (int g : hood) {
-      if (!in_central[static_cast<size_t>(g)]) return false;
-      for (auto v : mesh.fv_range(FaceHandle(g))) {
-        if (copies[static_cast<size_t>(v.idx())] != 1) return false;
-      }
-    }
-    return true;
-  };
   for (auto f : mesh.faces()) {
     if (!atlas.in_domain[f.idx()]) continue;
+    if (central_serves[static_cast<size_t>(f.idx())]) {
+      atlas.neighbourhood_chart[f.idx()] = 0;
+      continue;
+    }
     const std::vector<int> hood = detail::face_neighbourhood(mesh, f.idx(), atlas.in_domain);
     const auto fits = [&](int c) {
-      return detail::holds_as_one_piece(mesh, atlas.charts[c], hood) &&
-             holds_faithfully(mesh, lengths, atlas.charts[c], hood);
+      return fits_neighbourhood(mesh, lengths, atlas.charts[static_cast<size_t>(c)], hood);
     };
-    int found = plainly_central(hood) || fits(0) ? 0 : -1;
+    int found = -1;
     for (size_t i = 0; found < 0 && i < charts_of_face[f.idx()].size(); ++i) {
       const int c = charts_of_face[f.idx()][i];
       if (fits(c)) found = c;

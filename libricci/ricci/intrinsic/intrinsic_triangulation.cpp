@@ -244,29 +244,126 @@ IntrinsicMesh to_mesh(const IntrinsicTriangulation& tri, const Eigen::VectorXd& 
         "intrinsic triangulation: positions or scale factors do not match its " +
         std::to_string(tri.vertex_count) + " vertices");
   }
+  const MeshTables tables = to_mesh_tables(tri);
+  IntrinsicMesh out;
+  std::vector<int> edge_of;
+  out.mesh = mesh_of_tables(tables, positions, edge_of);
+  out.lengths = by_mesh_edge(table_edge_lengths(tri, tables, u), edge_of);
+  return out;
+}
+
+namespace {
+
+// OpenMesh's add_face gives a face its last halfedge (from the face's last vertex to its
+// first): the face's halfedges, as build_mesh_tables walks them, start at 3f + this.
+constexpr int kFirstHalfedge = 2;
+
+// Table edge of each of the triangulation's edges: numbered in the order to_mesh's add_face
+// calls meet them (face by face, halfedges 3f, 3f+1, 3f+2).
+std::vector<int> table_edge_numbers(const IntrinsicTriangulation& tri) {
+  std::vector<int> number(static_cast<size_t>(tri.edge_count()), -1);
+  int next = 0;
+  for (size_t h = 0; h < tri.tail.size(); ++h) {
+    int& n = number[static_cast<size_t>(tri.edge[h])];
+    if (n < 0) n = next++;
+  }
+  return number;
+}
+
+}  // namespace
+
+MeshTables to_mesh_tables(const IntrinsicTriangulation& tri) {
   if (!is_simplicial(tri)) {
     throw TopologyError(
         "intrinsic triangulation: a loop or a double edge, not a simplicial complex");
   }
-  IntrinsicMesh out;
-  for (int v = 0; v < tri.vertex_count; ++v)
-    out.mesh.add_vertex(to_openmesh(positions.row(v).transpose()));
-  for (int f = 0; f < tri.face_count(); ++f) {
-    const FaceHandle face = out.mesh.add_face(
-        out.mesh.vertex_handle(static_cast<unsigned>(tri.tail[static_cast<size_t>(3 * f)])),
-        out.mesh.vertex_handle(static_cast<unsigned>(tri.tail[static_cast<size_t>(3 * f + 1)])),
-        out.mesh.vertex_handle(static_cast<unsigned>(tri.tail[static_cast<size_t>(3 * f + 2)])));
-    if (!face.is_valid())
-      throw TopologyError("intrinsic triangulation: face " + std::to_string(f) +
-                          " is not manifold");
+  const std::vector<int> number = table_edge_numbers(tri);
+  MeshTables t;
+  const int faces = tri.face_count();
+  t.face_vertices.resize(faces, 3);
+  t.face_edges.resize(faces, 3);
+  t.edge_vertices.resize(tri.edge_count(), 2);
+  t.valence = Eigen::VectorXi::Zero(tri.vertex_count);
+  for (int f = 0; f < faces; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      // The face's k-th halfedge as the mesh walks it runs from its k-th vertex to the next
+      // and is opposite the vertex k + 2.
+      const int h = 3 * f + (k + kFirstHalfedge) % 3;
+      t.face_vertices(f, k) = tri.tail[static_cast<size_t>(h)];
+      t.face_edges(f, (k + 2) % 3) = number[static_cast<size_t>(tri.edge[static_cast<size_t>(h)])];
+      ++t.valence[tri.tail[static_cast<size_t>(h)]];
+    }
   }
-  out.lengths.resize(static_cast<Eigen::Index>(out.mesh.n_edges()));
+  std::vector<char> seen(static_cast<size_t>(tri.edge_count()), 0);
+  for (size_t h = 0; h < tri.tail.size(); ++h) {
+    const int e = number[static_cast<size_t>(tri.edge[h])];
+    if (seen[static_cast<size_t>(e)]) continue;
+    seen[static_cast<size_t>(e)] = 1;  // its first halfedge, as the mesh's new_edge made it
+    t.edge_vertices(e, 0) = tri.tail[h];
+    t.edge_vertices(e, 1) = tri.head(static_cast<int>(h));
+  }
+  for (int v = 0; v < tri.vertex_count; ++v) {
+    if (t.valence[v] == 0) {
+      throw TopologyError("vertex " + std::to_string(v) + " is isolated (in no face)");
+    }
+  }
+  t.is_boundary_vertex.assign(static_cast<size_t>(tri.vertex_count), 0);
+  t.euler_characteristic = euler_characteristic(tri);
+  return t;
+}
+
+Eigen::VectorXd table_edge_lengths(const IntrinsicTriangulation& tri, const MeshTables& tables,
+                                   const Eigen::VectorXd& u) {
+  if (tables.num_edges() != tri.edge_count() || u.size() != tri.vertex_count) {
+    throw InvalidInputError("intrinsic triangulation: tables or scale factors do not match it");
+  }
+  const std::vector<int> number = table_edge_numbers(tri);
+  Eigen::VectorXd lengths(tri.edge_count());
   for (int e = 0; e < tri.edge_count(); ++e) {
-    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
-    const HalfedgeHandle mh = out.mesh.find_halfedge(
-        out.mesh.vertex_handle(static_cast<unsigned>(tri.tail[static_cast<size_t>(h)])),
-        out.mesh.vertex_handle(static_cast<unsigned>(tri.head(h))));
-    out.lengths[out.mesh.edge_handle(mh).idx()] = std::exp(tri.log_length_at(e, u));
+    lengths[number[static_cast<size_t>(e)]] = std::exp(tri.log_length_at(e, u));
+  }
+  return lengths;
+}
+
+Mesh mesh_of_tables(const MeshTables& tables, const Eigen::MatrixX3d& positions,
+                    std::vector<int>& edge_of) {
+  if (positions.rows() != tables.num_vertices()) {
+    throw InvalidInputError("mesh of tables: the positions do not match its " +
+                            std::to_string(tables.num_vertices()) + " vertices");
+  }
+  Mesh mesh;
+  for (int v = 0; v < tables.num_vertices(); ++v) {
+    mesh.add_vertex(to_openmesh(positions.row(v).transpose()));
+  }
+  for (int f = 0; f < tables.num_faces(); ++f) {
+    // In the triangulation's corner order (to_mesh's), which the tables rotated.
+    VertexHandle corner[3];
+    for (int k = 0; k < 3; ++k) {
+      corner[(k + kFirstHalfedge) % 3] =
+          mesh.vertex_handle(static_cast<unsigned>(tables.face_vertices(f, k)));
+    }
+    if (!mesh.add_face(corner[0], corner[1], corner[2]).is_valid()) {
+      throw TopologyError("mesh of tables: face " + std::to_string(f) + " is not manifold");
+    }
+  }
+  edge_of.assign(static_cast<size_t>(tables.num_edges()), -1);
+  for (int e = 0; e < tables.num_edges(); ++e) {
+    const HalfedgeHandle h = mesh.find_halfedge(
+        mesh.vertex_handle(static_cast<unsigned>(tables.edge_vertices(e, 0))),
+        mesh.vertex_handle(static_cast<unsigned>(tables.edge_vertices(e, 1))));
+    edge_of[static_cast<size_t>(e)] = mesh.edge_handle(h).idx();
+  }
+  return mesh;
+}
+
+Eigen::VectorXd by_mesh_edge(const Eigen::VectorXd& by_table_edge, const std::vector<int>& edge_of) {
+  if (by_table_edge.size() == 0) return by_table_edge;
+  if (static_cast<size_t>(by_table_edge.size()) != edge_of.size()) {
+    throw InvalidInputError("by_mesh_edge: values and edge map differ in size");
+  }
+  Eigen::VectorXd out(by_table_edge.size());
+  for (size_t e = 0; e < edge_of.size(); ++e) {
+    out[edge_of[e]] = by_table_edge[static_cast<Eigen::Index>(e)];
   }
   return out;
 }

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "ricci/mesh/mesh.h"
+#include "ricci/metric/mesh_tables.h"
 
 namespace ricci {
 
@@ -97,5 +98,26 @@ struct IntrinsicMesh {
 /// \throw TopologyError when !is_simplicial(tri); InvalidInputError for a size mismatch.
 [[nodiscard]] IntrinsicMesh to_mesh(const IntrinsicTriangulation& tri, const Eigen::VectorXd& u,
                                     const Eigen::MatrixX3d& positions);
+
+/// to_mesh's mesh as tables (metric/mesh_tables.h), without the mesh: equal to
+/// build_mesh_tables(to_mesh(tri, u, positions).mesh) (faces in the triangulation's order, edges
+/// numbered as that mesh numbers them), for a long-double polish that runs before the mesh is
+/// built (at 1.6M faces the tables are 61 MB, the mesh 136). \throw as to_mesh.
+[[nodiscard]] MeshTables to_mesh_tables(const IntrinsicTriangulation& tri);
+
+/// The lengths at u of the edges of to_mesh_tables(tri), by its edge index.
+[[nodiscard]] Eigen::VectorXd table_edge_lengths(const IntrinsicTriangulation& tri,
+                                                 const MeshTables& tables,
+                                                 const Eigen::VectorXd& u);
+
+/// The mesh of `tables` (to_mesh_tables' or build_mesh_tables' of a closed mesh; vertex
+/// positions from `positions`), and `edge_of`: the mesh's edge index of each table edge.
+/// \throw TopologyError when a face is not manifold; InvalidInputError for a size mismatch.
+[[nodiscard]] Mesh mesh_of_tables(const MeshTables& tables, const Eigen::MatrixX3d& positions,
+                                  std::vector<int>& edge_of);
+
+/// Values by table edge moved to the mesh's edge edge_of[e] (mesh_of_tables); empty stays empty.
+[[nodiscard]] Eigen::VectorXd by_mesh_edge(const Eigen::VectorXd& by_table_edge,
+                                           const std::vector<int>& edge_of);
 
 }  // namespace ricci

@@ -87,7 +87,13 @@ VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::Ve
 PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths,
                                  const Eigen::VectorXd& target, int max_iterations,
                                  NearbyLaplacian nearby, double good_enough) {
-  const MeshTables t = build_mesh_tables(mesh);
+  return polish_e2_lengths(build_mesh_tables(mesh), lengths, target, max_iterations, nearby,
+                           good_enough);
+}
+
+PolishE2Result polish_e2_lengths(const MeshTables& t, const Eigen::VectorXd& lengths,
+                                 const Eigen::VectorXd& target, int max_iterations,
+                                 NearbyLaplacian nearby, double good_enough) {
   const int n = t.num_vertices();
   if (lengths.size() != t.num_edges() || target.size() != n || n < 2) {
     throw InvalidInputError("polish_e2_lengths: lengths or target do not match the mesh");

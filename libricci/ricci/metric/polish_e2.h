@@ -10,6 +10,7 @@
 
 #include "ricci/flow/linear_solver.h"
 #include "ricci/mesh/mesh.h"
+#include "ricci/metric/mesh_tables.h"
 
 namespace ricci {
 
@@ -45,6 +46,16 @@ struct NearbyLaplacian {
 ///      factorisation has the size of the mesh's vertices minus one; good_enough >= 0.
 /// \throw InvalidInputError on a size mismatch or a face violating the triangle inequality.
 [[nodiscard]] PolishE2Result polish_e2_lengths(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                                               const Eigen::VectorXd& target,
+                                               int max_iterations = 6,
+                                               NearbyLaplacian nearby = {},
+                                               double good_enough = 0.0);
+
+/// The same on the mesh's tables (metric/mesh_tables.h; lengths by their edge index), for a
+/// caller that holds the tables and not the mesh (the intrinsic flow's triangulation at 1.6M
+/// faces: to_mesh_tables). The same results as on the mesh whose tables they are.
+[[nodiscard]] PolishE2Result polish_e2_lengths(const MeshTables& tables,
+                                               const Eigen::VectorXd& lengths,
                                                const Eigen::VectorXd& target,
                                                int max_iterations = 6,
                                                NearbyLaplacian nearby = {},

@@ -206,6 +206,9 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   settings.tolerance = polishes ? std::max(tolerance, kPolishHandover) : tolerance;
   settings.solver = options.flow.solver;
   settings.progress = options.flow.progress;
+  if (static_cast<double>(result.problem.mesh.n_faces()) >= options.polish_floor_from_faces) {
+    settings.floor_plateau_iterations = 0;
+  }
   std::vector<std::string> failures = result.flow.failed_attempts;
   if (!result.flow.message.empty()) failures.push_back(result.flow.message);
   IntrinsicTriangulation initial = make_intrinsic_triangulation(
@@ -230,7 +233,10 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
                    "(not supported by the atlas)";
   } else if (near) {
     result.removed_edges = removed_edge_count(problem_edges, r.triangulation);
-    IntrinsicMesh domain = to_mesh(r.triangulation, r.u, problem_mesh.V);
+    // The polish runs on the triangulation's tables; its mesh (136 MB at 1.6M faces against
+    // the tables' 61) is built after it, once the flow's factorisation is gone.
+    const MeshTables tables = to_mesh_tables(r.triangulation);
+    Eigen::VectorXd lengths = table_edge_lengths(r.triangulation, tables, r.u);
     r.triangulation = IntrinsicTriangulation();  // its tables (~90 MB at 1.6M faces) are done
     release_free_memory();  // and the flow's evaluations, before the polish's
     // As after the fixed-connectivity flows (polish_lengths): the layout multiplies the
@@ -242,13 +248,13 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       const StageTimer polish;
       const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
       result.polish =
-          polish_e2_lengths(domain.mesh, domain.lengths, result.problem.targets.curvature, 6,
-                            nearby, kPolishGoal);
+          polish_e2_lengths(tables, lengths, result.problem.targets.curvature, 6, nearby,
+                            kPolishGoal);
       result.polished = true;
       polish_seconds = polish.wall.seconds();
       polish_cpu = polish.cpu.seconds();
       if (result.polish.error_after <= tolerance) {
-        domain.lengths = result.polish.lengths;
+        lengths = result.polish.lengths;
         flow.status = FlowStatus::converged;
         flow.message.clear();
         flow.max_error = result.polish.error_after;
@@ -260,11 +266,16 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
         flow.message = message.str();
       }
     }
+    r.laplacian_factorization.reset();
     if (flow.status == FlowStatus::converged) {
+      release_free_memory();  // the factorisation, before the mesh
       flow.metric_name = "intrinsic Delaunay flow (vertex scaling, " + std::to_string(r.flips) +
                          " flips)";
-      result.problem.mesh = std::move(domain.mesh);
-      flow.lengths = std::move(domain.lengths);
+      std::vector<int> edge_of;
+      result.problem.mesh = mesh_of_tables(tables, problem_mesh.V, edge_of);
+      flow.lengths = by_mesh_edge(lengths, edge_of);
+      result.polish.lengths = by_mesh_edge(result.polish.lengths, edge_of);
+      result.polish.lengths_low = by_mesh_edge(result.polish.lengths_low, edge_of);
       result.intrinsic = true;
     }
   }

@@ -33,6 +33,12 @@ struct OneConeAtlasOptions {
   /// automatic: closed surfaces of this genus or more take the intrinsic flow directly (the
   /// fixed-connectivity flows break triangles under cones of -12 pi and beyond).
   int intrinsic_from_genus = 4;
+  /// From this many faces the intrinsic flow hands a metric below its floor_below (1e-8) to
+  /// the long-double polish at once (IntrinsicFlowOptions::floor_plateau_iterations 0): there
+  /// the double evaluation's floor (~1e-10 at 1.6M faces) meets the tolerance, and the Newton
+  /// steps spent on it gain nothing the polish does not do (docs/design-notes.md, "Memory at
+  /// 1.6M faces by stage"). Smaller meshes keep the flow's own plateau rule.
+  int polish_floor_from_faces = 400000;
   /// Collapse of edges much shorter than the median (mesh/collapse_short_edges.h) before
   /// anything else; the singular vertex is kept. The problem's `input_vertex` maps back.
   bool collapse_short_edges = false;

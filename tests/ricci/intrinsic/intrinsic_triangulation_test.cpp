@@ -10,6 +10,8 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/metric/mesh_tables.h"
+#include "ricci/metric/polish_e2.h"
+#include "ricci/mesh/arrays.h"
 
 namespace {
 
@@ -123,6 +125,50 @@ TEST(IntrinsicTriangulation, DelaunayFlipsKeepGaussBonnetAndLeaveEveryEdgeDelaun
     // Every face's angles sum to pi.
     EXPECT_LT((angles.rowwise().sum().array() - M_PI).abs().maxCoeff(), 1e-13);
   }
+}
+
+// The polish at 1.6M faces runs on to_mesh_tables before the mesh exists: the tables must be
+// the mesh's own (same faces, corner order and edge numbering), the mesh of the tables
+// to_mesh's, and a polish on them the polish on the mesh, bit for bit.
+TEST(IntrinsicTriangulation, MeshTablesAreToMeshsTablesAndPolishTheSame) {
+  const ricci::Mesh mesh =
+      ricci::make_random_perturbed(ricci::make_genus_slab(2, 2, 2), 0.4, 5);
+  IntrinsicTriangulation tri =
+      ricci::make_intrinsic_triangulation(mesh, ricci::mesh_edge_lengths(mesh));
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(tri.vertex_count);
+  for (int v = 0; v < tri.vertex_count; ++v) u[v] = 0.3 * std::sin(1.7 * v);
+  ASSERT_GT(ricci::flip_to_delaunay(tri, u).flips, 0);
+  ASSERT_TRUE(ricci::is_simplicial(tri));
+  const Eigen::MatrixX3d V = ricci::to_arrays(mesh).V;
+  const ricci::IntrinsicMesh built = ricci::to_mesh(tri, u, V);
+  const ricci::MeshTables expected = ricci::build_mesh_tables(built.mesh);
+  const ricci::MeshTables tables = ricci::to_mesh_tables(tri);
+  EXPECT_EQ(tables.face_vertices, expected.face_vertices);
+  EXPECT_EQ(tables.face_edges, expected.face_edges);
+  EXPECT_EQ(tables.edge_vertices, expected.edge_vertices);
+  EXPECT_EQ(tables.valence, expected.valence);
+  EXPECT_EQ(tables.is_boundary_vertex, expected.is_boundary_vertex);
+  EXPECT_EQ(tables.euler_characteristic, -2);
+  const Eigen::VectorXd lengths = ricci::table_edge_lengths(tri, tables, u);
+  std::vector<int> edge_of;
+  const ricci::Mesh again = ricci::mesh_of_tables(tables, V, edge_of);
+  ASSERT_EQ(again.n_edges(), built.mesh.n_edges());
+  EXPECT_EQ(ricci::to_arrays(again).F, ricci::to_arrays(built.mesh).F);
+  EXPECT_EQ(ricci::by_mesh_edge(lengths, edge_of), built.lengths);
+
+  // A target 1e-9 from the curvature of these lengths: both polishes meet it alike.
+  Eigen::MatrixX3d angles;
+  ASSERT_TRUE(ricci::intrinsic_corner_angles(tri, u, angles));
+  Eigen::VectorXd target = ricci::intrinsic_curvature(tri, angles);
+  for (int v = 0; v < tri.vertex_count; ++v) target[v] += 1e-9 * std::cos(0.9 * v);
+  target.array() -= (target.sum() - 2 * M_PI * -2) / tri.vertex_count;  // Gauss-Bonnet
+  const ricci::PolishE2Result on_mesh = ricci::polish_e2_lengths(built.mesh, built.lengths, target);
+  const ricci::PolishE2Result on_tables = ricci::polish_e2_lengths(tables, lengths, target);
+  EXPECT_GT(on_mesh.error_before, 1e-10);
+  EXPECT_LT(on_mesh.error_after, 1e-13);
+  EXPECT_EQ(on_tables.error_after, on_mesh.error_after);
+  EXPECT_EQ(ricci::by_mesh_edge(on_tables.lengths, edge_of), on_mesh.lengths);
+  EXPECT_EQ(ricci::by_mesh_edge(on_tables.lengths_low, edge_of), on_mesh.lengths_low);
 }
 
 }  // namespace

@@ -172,6 +172,39 @@ TEST(OneConeAtlas, PolishRunsOnlyAboveItsThreshold) {
 
 namespace {
 
+// From polish_floor_from_faces the intrinsic flow stops as soon as it is below 1e-8 and the
+// long-double polish finishes the metric (at 1.6M faces double's floor meets the tolerance):
+// here with the size bound lowered to a bundled genus-2 mesh and a tolerance of 1e-13, the
+// hand-over must still give a metric within the tolerance, fewer Newton steps than Newton's own
+// way to it, and the same atlas: rigid transitions, no flipped face, the same distortion.
+TEST(OneConeAtlas, LargeMeshesLeaveTheDoubleFloorToThePolish) {
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  options.flow.tolerance = 1e-13;
+  options.polish_floor_from_faces = std::numeric_limits<int>::max();
+  const ricci::OneConeAtlasResult newton = ricci::build_one_cone_atlas(mesh, options);
+  options.polish_floor_from_faces = 0;
+  const ricci::OneConeAtlasResult handed = ricci::build_one_cone_atlas(mesh, options);
+  ASSERT_TRUE(newton.intrinsic && handed.intrinsic);
+  ASSERT_TRUE(handed.polished);
+  EXPECT_GT(handed.polish.error_before, 1e-13);
+  EXPECT_LT(handed.polish.error_before, 1e-8);
+  EXPECT_LE(handed.polish.error_after, 1e-13);
+  EXPECT_LE(handed.flow.max_error, 1e-13);
+  EXPECT_LT(handed.flow.iterations, newton.flow.iterations);
+  for (const ricci::OneConeAtlasResult* r : {&newton, &handed}) {
+    EXPECT_EQ(r->atlas.layout.flipped_faces, 0);
+    EXPECT_LT(r->relative_transition_residual(), 1e-9);
+  }
+  EXPECT_NEAR(handed.distortion.quasi_conformal_area_mean,
+              newton.distortion.quasi_conformal_area_mean, 1e-9);
+}
+
+}  // namespace
+
+namespace {
+
 // genus3_10k (marching cubes, cone of 10pi at vertex 0): the circle packing with tangent
 // circles near the cone converges on its own once the line search follows the convex Ricci
 // energy (a residual-only search accepted an overshooting first step and the next Hessian was
