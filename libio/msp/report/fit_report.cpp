@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 namespace msp {
 
 namespace {
@@ -25,6 +27,62 @@ nlohmann::json singularities_json(const spline::FittedSurface& fitted,
                              {"removed_star", true}});
   }
   return singularities;
+}
+
+const char* rim_kind_json(spline::Rim::Kind kind) {
+  switch (kind) {
+    case spline::Rim::Kind::cone_hole:
+      return "cone_hole";
+    case spline::Rim::Kind::boundary:
+      return "boundary";
+    case spline::Rim::Kind::excluded:
+      return "excluded";
+  }
+  return "rim";
+}
+
+// Each patch's hole as the domain mesh sees it: how many faces it covers, their share of the
+// domain's area, how far they reach (bounding-box diagonal over the input's) and how much the
+// domain's face normals turn over them (largest angle from their area-weighted mean normal: a
+// flat hole 0, a hole over a pocket or around a corner tens of degrees), and the patch's seam.
+nlohmann::json fill_patches_json(const spline::FittedSurface& fitted, double diag) {
+  const ricci::Mesh& mesh = fitted.surface.domain;
+  const auto face_normal = [&mesh](int f) {
+    Eigen::Vector3d p[3];
+    int k = 0;
+    for (auto v : mesh.fv_range(mesh.face_handle(f))) p[k++] = ricci::to_eigen(mesh.point(v));
+    return Eigen::Vector3d((p[1] - p[0]).cross(p[2] - p[0]) / 2);  // length: the area
+  };
+  double total_area = 0.0;
+  for (auto f : mesh.faces()) total_area += face_normal(f.idx()).norm();
+  nlohmann::json patches = nlohmann::json::array();
+  for (const auto& fill : fitted.surface.fills) {
+    const auto& faces = fill.rim.covered_faces;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    Eigen::AlignedBox3d box;
+    double area = 0.0;
+    for (int f : faces) {
+      mean += face_normal(f);
+      area += face_normal(f).norm();
+      for (auto v : mesh.fv_range(mesh.face_handle(f))) box.extend(ricci::to_eigen(mesh.point(v)));
+    }
+    double spread = 0.0;
+    for (int f : faces) {
+      const Eigen::Vector3d n = face_normal(f);
+      if (n.norm() <= 0.0 || mean.norm() <= 0.0) continue;
+      const double c = std::clamp(n.dot(mean) / (n.norm() * mean.norm()), -1.0, 1.0);
+      spread = std::max(spread, std::acos(c) * 180.0 / M_PI);
+    }
+    patches.push_back({{"kind", rim_kind_json(fill.rim.kind)},
+                       {"covered_faces", faces.size()},
+                       {"rim_edges", fill.rim.edges.size()},
+                       {"area_fraction", total_area > 0.0 ? area / total_area : 0.0},
+                       {"extent_relative", faces.empty() ? 0.0 : box.diagonal().norm() / diag},
+                       {"normal_spread_deg", spread},
+                       {"g1", fill.g1},
+                       {"max_normal_jump_deg", fill.max_normal_jump_deg}});
+  }
+  return patches;
 }
 
 nlohmann::json stage_seconds_json(const spline::StageSeconds& stages) {
@@ -201,6 +259,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"fill_normal_jump_max_deg", fitted.fill_normal_jump_deg},
       {"fill_position_gap_relative", fitted.fill_position_gap},
       {"filled_rims", fitted.surface.fills.size()},
+      {"fill_patches", fill_patches_json(fitted, diag)},
       {"fill_failures", fitted.fill_failures},
       {"fit_points_on_fills", fitted.fit_points_on_fills},
       {"open_rims", fitted.surface.open_rims.size()},
