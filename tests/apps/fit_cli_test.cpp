@@ -200,6 +200,8 @@ TEST(FitCli, GlbCarriesExtrasAndExtraNodes) {
   EXPECT_TRUE(patches[0]["g1"].get<bool>());
   EXPECT_EQ(patches[0]["max_normal_jump_deg"].get<double>(),
             report["fill_normal_jump_max_deg"].get<double>());
+  // genus2's patch meets its rim within a few degrees: no rim edge where it folds back.
+  EXPECT_EQ(patches[0]["rim_edges_over_90_deg"], 0);
   // A smooth model gives a smooth surface: no tessellation edge where it folds back (measured
   // at 400 faces and density 3: between neighbouring triangles 2.6 degrees median, 15.5 at the
   // 99th percentile, 24 at most).

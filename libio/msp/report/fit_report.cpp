@@ -44,7 +44,8 @@ const char* rim_kind_json(spline::Rim::Kind kind) {
 // Each patch's hole as the domain mesh sees it: how many faces it covers, their share of the
 // domain's area, how far they reach (bounding-box diagonal over the input's) and how much the
 // domain's face normals turn over them (largest angle from their area-weighted mean normal: a
-// flat hole 0, a hole over a pocket or around a corner tens of degrees), and the patch's seam.
+// flat hole 0, a hole over a pocket or around a corner tens of degrees), and the patch's seam
+// (largest, and the rim edges where it exceeds 90 degrees: the patch folds back there).
 nlohmann::json fill_patches_json(const spline::FittedSurface& fitted, double diag) {
   const ricci::Mesh& mesh = fitted.surface.domain;
   const auto face_normal = [&mesh](int f) {
@@ -73,6 +74,8 @@ nlohmann::json fill_patches_json(const spline::FittedSurface& fitted, double dia
       const double c = std::clamp(n.dot(mean) / (n.norm() * mean.norm()), -1.0, 1.0);
       spread = std::max(spread, std::acos(c) * 180.0 / M_PI);
     }
+    const auto& jumps = fill.edge_normal_jump_deg;
+    const auto flipped = std::count_if(jumps.begin(), jumps.end(), [](double d) { return d > 90.0; });
     patches.push_back({{"kind", rim_kind_json(fill.rim.kind)},
                        {"covered_faces", faces.size()},
                        {"rim_edges", fill.rim.edges.size()},
@@ -80,7 +83,8 @@ nlohmann::json fill_patches_json(const spline::FittedSurface& fitted, double dia
                        {"extent_relative", faces.empty() ? 0.0 : box.diagonal().norm() / diag},
                        {"normal_spread_deg", spread},
                        {"g1", fill.g1},
-                       {"max_normal_jump_deg", fill.max_normal_jump_deg}});
+                       {"max_normal_jump_deg", fill.max_normal_jump_deg},
+                       {"rim_edges_over_90_deg", flipped}});
   }
   return patches;
 }
