@@ -2,6 +2,7 @@
 // watertight when read back, the report holds the keys, and bad input leaves nothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -202,6 +203,8 @@ TEST(FitCli, GlbCarriesExtrasAndExtraNodes) {
             report["fill_normal_jump_max_deg"].get<double>());
   // genus2's patch meets its rim within a few degrees: no rim edge where it folds back.
   EXPECT_EQ(patches[0]["rim_edges_over_90_deg"], 0);
+  ASSERT_EQ(patches[0]["worst_rim_point"].size(), 3u);
+  for (const auto& x : patches[0]["worst_rim_point"]) EXPECT_TRUE(std::isfinite(x.get<double>()));
   // A smooth model gives a smooth surface: no tessellation edge where it folds back (measured
   // at 400 faces and density 3: between neighbouring triangles 2.6 degrees median, 15.5 at the
   // 99th percentile, 24 at most).
