@@ -2,6 +2,7 @@
 // watertight when read back, the report holds the keys, and bad input leaves nothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -184,6 +185,26 @@ TEST(FitCli, GlbCarriesExtrasAndExtraNodes) {
       << topology.degenerate_triangles;
   EXPECT_EQ(report["filled_rims"], 1);
   EXPECT_EQ(report["open_rims"], 0);
+  // The one patch is the cone hole's: a disk of domain faces, a part of the surface, whose
+  // seam is the report's fill seam.
+  const auto& patches = report["fill_patches"];
+  ASSERT_EQ(patches.size(), 1u);
+  EXPECT_EQ(patches[0]["kind"], "cone_hole");
+  EXPECT_GT(patches[0]["covered_faces"].get<int>(), 0);
+  EXPECT_GE(patches[0]["rim_edges"].get<int>(), 3);
+  EXPECT_GT(patches[0]["area_fraction"].get<double>(), 0.0);
+  EXPECT_LT(patches[0]["area_fraction"].get<double>(), 0.5);
+  EXPECT_GT(patches[0]["extent_relative"].get<double>(), 0.0);
+  EXPECT_LE(patches[0]["extent_relative"].get<double>(), 1.0 + 1e-9);
+  EXPECT_GE(patches[0]["normal_spread_deg"].get<double>(), 0.0);
+  EXPECT_LE(patches[0]["normal_spread_deg"].get<double>(), 180.0);
+  EXPECT_TRUE(patches[0]["g1"].get<bool>());
+  EXPECT_EQ(patches[0]["max_normal_jump_deg"].get<double>(),
+            report["fill_normal_jump_max_deg"].get<double>());
+  // genus2's patch meets its rim within a few degrees: no rim edge where it folds back.
+  EXPECT_EQ(patches[0]["rim_edges_over_90_deg"], 0);
+  ASSERT_EQ(patches[0]["worst_rim_point"].size(), 3u);
+  for (const auto& x : patches[0]["worst_rim_point"]) EXPECT_TRUE(std::isfinite(x.get<double>()));
   // A smooth model gives a smooth surface: no tessellation edge where it folds back (measured
   // at 400 faces and density 3: between neighbouring triangles 2.6 degrees median, 15.5 at the
   // 99th percentile, 24 at most).

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
+
+#include <Eigen/Geometry>
 
 namespace msp {
 
@@ -25,6 +28,90 @@ nlohmann::json singularities_json(const spline::FittedSurface& fitted,
                              {"removed_star", true}});
   }
   return singularities;
+}
+
+const char* rim_kind_json(spline::Rim::Kind kind) {
+  switch (kind) {
+    case spline::Rim::Kind::cone_hole:
+      return "cone_hole";
+    case spline::Rim::Kind::boundary:
+      return "boundary";
+    case spline::Rim::Kind::excluded:
+      return "excluded";
+  }
+  return "rim";
+}
+
+// Twice the area vector of a face of `mesh` (its normal, of length twice its area).
+Eigen::Vector3d area_vector(const ricci::Mesh& mesh, int face) {
+  Eigen::Vector3d p[3];
+  int k = 0;
+  for (auto v : mesh.fv_range(mesh.face_handle(face))) p[k++] = ricci::to_eigen(mesh.point(v));
+  return (p[1] - p[0]).cross(p[2] - p[0]);
+}
+
+// A hole's faces in 3D: their area, bounding box and how far their normals turn from the
+// area-weighted mean (degrees; 0 for a flat hole, tens over a pocket or around a corner).
+struct HoleShape {
+  double area = 0.0;
+  Eigen::AlignedBox3d box;
+  double normal_spread_deg = 0.0;
+};
+
+HoleShape hole_shape(const ricci::Mesh& mesh, const std::vector<int>& faces) {
+  HoleShape shape;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int f : faces) {
+    const Eigen::Vector3d a = area_vector(mesh, f);
+    mean += a;
+    shape.area += a.norm() / 2;
+    for (auto v : mesh.fv_range(mesh.face_handle(f)))
+      shape.box.extend(ricci::to_eigen(mesh.point(v)));
+  }
+  for (int f : faces) {
+    const Eigen::Vector3d n = area_vector(mesh, f);
+    if (n.norm() <= 0.0 || mean.norm() <= 0.0) continue;
+    const double c = std::clamp(n.dot(mean) / (n.norm() * mean.norm()), -1.0, 1.0);
+    shape.normal_spread_deg = std::max(shape.normal_spread_deg, std::acos(c) * 180.0 / M_PI);
+  }
+  return shape;
+}
+
+// Each patch's hole as the domain mesh sees it (covered faces, their share of the domain's
+// area, extent over the input's diagonal, normal spread) and the patch's seam: largest, the rim
+// edges where it exceeds 90 degrees (the patch folds back there), the domain vertex starting
+// the worst rim edge.
+nlohmann::json fill_patches_json(const spline::FittedSurface& fitted, double diag) {
+  const ricci::Mesh& mesh = fitted.surface.domain;
+  double total_area = 0.0;
+  for (auto f : mesh.faces()) total_area += area_vector(mesh, f.idx()).norm() / 2;
+  nlohmann::json patches = nlohmann::json::array();
+  for (const auto& fill : fitted.surface.fills) {
+    const auto& faces = fill.rim.covered_faces;
+    const HoleShape shape = hole_shape(mesh, faces);
+    const auto& jumps = fill.edge_normal_jump_deg;
+    const auto flipped =
+        std::count_if(jumps.begin(), jumps.end(), [](double d) { return d > 90.0; });
+    nlohmann::json worst = nullptr;
+    if (!jumps.empty() && jumps.size() == fill.rim.edges.size()) {
+      const auto j = std::max_element(jumps.begin(), jumps.end()) - jumps.begin();
+      const int v = spline::rim_vertices(fill.rim, mesh)[static_cast<std::size_t>(j)];
+      const Eigen::Vector3d p = ricci::to_eigen(mesh.point(mesh.vertex_handle(v)));
+      worst = {p.x(), p.y(), p.z()};
+    }
+    patches.push_back(
+        {{"kind", rim_kind_json(fill.rim.kind)},
+         {"covered_faces", faces.size()},
+         {"rim_edges", fill.rim.edges.size()},
+         {"area_fraction", total_area > 0.0 ? shape.area / total_area : 0.0},
+         {"extent_relative", faces.empty() ? 0.0 : shape.box.diagonal().norm() / diag},
+         {"normal_spread_deg", shape.normal_spread_deg},
+         {"g1", fill.g1},
+         {"max_normal_jump_deg", fill.max_normal_jump_deg},
+         {"rim_edges_over_90_deg", flipped},
+         {"worst_rim_point", worst}});
+  }
+  return patches;
 }
 
 nlohmann::json stage_seconds_json(const spline::StageSeconds& stages) {
@@ -201,6 +288,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"fill_normal_jump_max_deg", fitted.fill_normal_jump_deg},
       {"fill_position_gap_relative", fitted.fill_position_gap},
       {"filled_rims", fitted.surface.fills.size()},
+      {"fill_patches", fill_patches_json(fitted, diag)},
       {"fill_failures", fitted.fill_failures},
       {"fit_points_on_fills", fitted.fit_points_on_fills},
       {"open_rims", fitted.surface.open_rims.size()},
