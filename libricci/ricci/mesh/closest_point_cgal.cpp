@@ -95,9 +95,11 @@ std::vector<SurfacePoint> closest_points(const Mesh& mesh, const Eigen::MatrixX3
   }
   SurfaceMesh sm = cgal::to_surface_mesh(mesh);  // same face order as `mesh`
   Tree tree(faces(sm).first, faces(sm).second, sm);
-  // Built before the queries, which then only read it: each query writes its own slot.
-  tree.build();
+  // Both trees built before the queries, which then only read them (each writes its own slot).
+  // The hints' search tree first, from the faces in the mesh's order (the AABB build reorders
+  // them): between equally near faces (a point over a shared edge) the hint decides the face.
   tree.accelerate_distance_queries();
+  tree.build();
   std::vector<SurfacePoint> result(static_cast<size_t>(queries.rows()));
   parallel_for(result.size(), 0, [&](std::size_t k) {
     const auto i = static_cast<Eigen::Index>(k);
