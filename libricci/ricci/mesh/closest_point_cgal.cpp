@@ -10,6 +10,7 @@
 #include "ricci/mesh/cgal_convert.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
+#include "ricci/util/parallel.h"
 
 namespace ricci {
 namespace {
@@ -94,9 +95,14 @@ std::vector<SurfacePoint> closest_points(const Mesh& mesh, const Eigen::MatrixX3
   }
   SurfaceMesh sm = cgal::to_surface_mesh(mesh);  // same face order as `mesh`
   Tree tree(faces(sm).first, faces(sm).second, sm);
+  // Both trees built before the queries, which then only read them (each writes its own slot).
+  // The hints' search tree first, from the faces in the mesh's order (the AABB build reorders
+  // them): between equally near faces (a point over a shared edge) the hint decides the face.
   tree.accelerate_distance_queries();
+  tree.build();
   std::vector<SurfacePoint> result(static_cast<size_t>(queries.rows()));
-  for (Eigen::Index i = 0; i < queries.rows(); ++i) {
+  parallel_for(result.size(), 0, [&](std::size_t k) {
+    const auto i = static_cast<Eigen::Index>(k);
     const Eigen::Vector3d q = queries.row(i).transpose();
     auto [closest, face] = tree.closest_point_and_primitive(Point3(q.x(), q.y(), q.z()));
     SurfacePoint& out = result[static_cast<size_t>(i)];
@@ -108,7 +114,7 @@ std::vector<SurfacePoint> closest_points(const Mesh& mesh, const Eigen::MatrixX3
       const SurfacePoint agreeing = nearest_agreeing(mesh, tree, q, n, search_radius);
       if (agreeing.face >= 0) out = agreeing;
     }
-  }
+  });
   return result;
 }
 

@@ -46,7 +46,8 @@ struct SurfacePoint {
   double distance = 0.0;
 };
 
-/// The closest point on `mesh` of every row of `queries` (#Q by 3), by an AABB tree.
+/// The closest point on `mesh` of every row of `queries` (#Q by 3), by an AABB tree; the queries
+/// run on all cores (parallel_for), each into its own slot.
 [[nodiscard]] std::vector<SurfacePoint> closest_points(const Mesh& mesh, const Eigen::MatrixX3d& queries);
 
 /// The same for oriented queries (`normals`: a unit normal per query, or a zero row for none):
