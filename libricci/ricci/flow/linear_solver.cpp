@@ -72,8 +72,9 @@ class CholmodSupernodal : public Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lowe
 };
 
 // From this many unknowns a blocked back-substitution with several columns splits them over
-// the pool's threads (each pass reads the whole factor; below it the threads cost more).
-constexpr Eigen::Index kSplitColumnsFrom = 200000;
+// the pool's threads (each pass reads the whole factor; below it the threads cost more than
+// they spare: docs/design-notes.md, "Split back-substitutions").
+constexpr Eigen::Index kSplitColumnsFrom = 20000;
 }  // namespace
 
 struct SymmetricFactorization::Impl {

@@ -76,7 +76,7 @@ class SymmetricFactorization {
   bool factorize(const Eigen::SparseMatrix<double>& lower);
   /// Solves with the last successful factorisation.
   [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
-  /// Solves for every column of `rhs` at once (blocked back-substitution). From 200k unknowns
+  /// Solves for every column of `rhs` at once (blocked back-substitution). From 20k unknowns
   /// (cholmod_supernodal, natural analysis) the columns are split over the pool's threads
   /// (ricci/util/parallel.h), each solving its share with the same factor.
   [[nodiscard]] Eigen::MatrixXd solve_columns(const Eigen::MatrixXd& rhs) const;

@@ -36,7 +36,7 @@ double relative_residual(const Eigen::SparseMatrix<double>& lower, const Eigen::
 }
 
 TEST(SymmetricFactorization, BlockedSolveSplitOverThreadsMatchesColumnByColumnAndInPlace) {
-  // 212k unknowns: above the size from which the columns are split over the threads.
+  // 212k unknowns: well above the size from which the columns are split over the threads.
   const Eigen::SparseMatrix<double> lower = grid_laplacian(460, 1e-2);
   ricci::SymmetricFactorization solver(ricci::LinearSolver::cholmod_supernodal);
   solver.analyze(lower);
