@@ -20,18 +20,6 @@
 namespace msp::bench {
 namespace {
 
-const char* kind_name(spline::Rim::Kind kind) {
-  switch (kind) {
-    case spline::Rim::Kind::cone_hole:
-      return "cone";
-    case spline::Rim::Kind::boundary:
-      return "boundary";
-    case spline::Rim::Kind::excluded:
-      return "excluded";
-  }
-  return "?";
-}
-
 std::vector<std::string> default_models() {
   std::vector<std::string> models;
   const std::string shared = shared_models();
@@ -119,8 +107,8 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
   std::vector<spline::HoleFill> fills;
   for (const auto& rim : rims) {
     const ricci::Stopwatch t;
-    std::printf("%-28s fit %5.1fs  %-8s %5zu %6zu", name.c_str(), fit_seconds, kind_name(rim.kind),
-                rim.edges.size(), rim.covered_faces.size());
+    std::printf("%-28s fit %5.1fs  %-9s %5zu %6zu", name.c_str(), fit_seconds,
+                spline::rim_kind_id(rim.kind), rim.edges.size(), rim.covered_faces.size());
     try {
       const auto fill = spline::fill_rim(fit.spline, mesh, rim, fill_options);
       std::printf(" %6.2f %9.4f %10.2e %10.2e %6d %s\n", t.seconds(), fill.max_normal_jump_deg,
@@ -223,7 +211,7 @@ int run_fill_benchmark(int argc, char** argv) {
       "[models...]\n\n",
       fit_options.domain_faces, rim_options.grow, fill_options.refinement,
       fill_options.corner_refinement, fill_options.fit_samples_per_edge, fill_options.smoothing);
-  std::printf("%-28s %10s %-8s %5s %6s %6s %9s %10s %10s %6s %s\n", "model", "", "rim", "edges",
+  std::printf("%-28s %10s %-9s %5s %6s %6s %9s %10s %10s %6s %s\n", "model", "", "rim", "edges",
               "cover", "s", "jump_deg", "max_gap", "rms_gap", "tris", "patch");
   for (const auto& path : models) fill_model(path, fit_options, rim_options, fill_options, flags);
   return 0;

@@ -30,18 +30,6 @@ nlohmann::json singularities_json(const spline::FittedSurface& fitted,
   return singularities;
 }
 
-const char* rim_kind_json(spline::Rim::Kind kind) {
-  switch (kind) {
-    case spline::Rim::Kind::cone_hole:
-      return "cone_hole";
-    case spline::Rim::Kind::boundary:
-      return "boundary";
-    case spline::Rim::Kind::excluded:
-      return "excluded";
-  }
-  return "rim";
-}
-
 // Twice the area vector of a face of `mesh` (its normal, of length twice its area).
 Eigen::Vector3d area_vector(const ricci::Mesh& mesh, int face) {
   Eigen::Vector3d p[3];
@@ -100,7 +88,7 @@ nlohmann::json fill_patches_json(const spline::FittedSurface& fitted, double dia
       worst = {p.x(), p.y(), p.z()};
     }
     patches.push_back(
-        {{"kind", rim_kind_json(fill.rim.kind)},
+        {{"kind", spline::rim_kind_id(fill.rim.kind)},
          {"covered_faces", faces.size()},
          {"rim_edges", fill.rim.edges.size()},
          {"area_fraction", total_area > 0.0 ? shape.area / total_area : 0.0},

@@ -20,18 +20,6 @@ std::vector<QuadraturePoint> quadrature_rule() {
           {{b, b, 1 - 2 * b}, wb}, {{b, 1 - 2 * b, b}, wb}, {{1 - 2 * b, b, b}, wb}};
 }
 
-const char* kind_name(Rim::Kind kind) {
-  switch (kind) {
-    case Rim::Kind::cone_hole:
-      return "cone hole";
-    case Rim::Kind::boundary:
-      return "boundary loop";
-    case Rim::Kind::excluded:
-      return "excluded-face hole";
-  }
-  return "rim";
-}
-
 // The rim's mean point and mean normal; the 3D length of every edge (polyline through samples).
 double rim_frame(const std::vector<std::vector<RimSample>>& samples, HoleFill& fill,
                  std::vector<double>& lengths) {
@@ -100,7 +88,7 @@ std::vector<QuadraturePoint> thin_plate_rule() {
 }
 
 std::string rim_name(const Rim& rim) {
-  return std::string(kind_name(rim.kind)) + " of " + std::to_string(rim.edges.size()) +
+  return std::string(rim_kind_description(rim.kind)) + " of " + std::to_string(rim.edges.size()) +
          " edges starting at face " + std::to_string(rim.edges[0].face);
 }
 

@@ -64,6 +64,12 @@ struct Rim {
   std::vector<int> covered_faces;
 };
 
+/// The rim kind's identifier in reports and tables: "cone_hole", "boundary", "excluded" (the
+/// fit report's JSON key `fill_patches[].kind`; stable).
+[[nodiscard]] const char* rim_kind_id(Rim::Kind kind);
+/// The rim kind in words for messages: "cone hole", "boundary loop", "excluded-face hole".
+[[nodiscard]] const char* rim_kind_description(Rim::Kind kind);
+
 struct FindRimsOptions {
   /// Layers of domain faces added to every hole (all domain faces touching a rim vertex, per
   /// layer) before the rims are taken, so that the basis is a partition of unity on the seam;

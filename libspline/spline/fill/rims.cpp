@@ -543,6 +543,30 @@ std::vector<int> covered_inside(const std::vector<char>& domain, const Regions& 
 
 }  // namespace
 
+const char* rim_kind_id(Rim::Kind kind) {
+  switch (kind) {
+    case Rim::Kind::cone_hole:
+      return "cone_hole";
+    case Rim::Kind::boundary:
+      return "boundary";
+    case Rim::Kind::excluded:
+      return "excluded";
+  }
+  return "rim";
+}
+
+const char* rim_kind_description(Rim::Kind kind) {
+  switch (kind) {
+    case Rim::Kind::cone_hole:
+      return "cone hole";
+    case Rim::Kind::boundary:
+      return "boundary loop";
+    case Rim::Kind::excluded:
+      return "excluded-face hole";
+  }
+  return "rim";
+}
+
 Eigen::Vector3d rim_edge_barycentric(const RimEdge& edge, double t) {
   Eigen::Vector3d bary = Eigen::Vector3d::Zero();
   bary[rim_edge_start_corner(edge)] = 1.0 - t;

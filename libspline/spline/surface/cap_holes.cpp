@@ -12,18 +12,6 @@
 namespace spline {
 namespace {
 
-const char* rim_kind_name(Rim::Kind kind) {
-  switch (kind) {
-    case Rim::Kind::cone_hole:
-      return "cone hole";
-    case Rim::Kind::boundary:
-      return "boundary";
-    case Rim::Kind::excluded:
-      return "excluded faces";
-  }
-  return "rim";
-}
-
 // The surface next to the rims moved to meet the patches (spline/fill/meet_patch.h), then the
 // seams measured again; kept only when the largest seam drops (it is a least-squares compromise
 // along the whole rim: where the seam is already small it can grow a little).
@@ -262,7 +250,7 @@ CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options)
       if (!surface.fills.back().g1) ++report.fallback_fills;
     } catch (const ricci::InvalidInputError& e) {
       // A boundary whose projection folds cannot be capped: left open and reported.
-      report.failures.push_back(std::string(rim_kind_name(rim.kind)) + ": " + e.what());
+      report.failures.push_back(std::string(rim_kind_description(rim.kind)) + ": " + e.what());
       surface.open_rims.push_back(std::move(rim));
     }
   }
