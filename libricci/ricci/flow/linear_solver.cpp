@@ -338,7 +338,8 @@ bool solve_by_preconditioned_cg(const SymmetricFactorization& nearby, const Spar
 
 std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kind,
                                                                 const Sparse& lower,
-                                                                double& analysis_seconds) {
+                                                                double& analysis_seconds,
+                                                                OrderingReuse reuse) {
   const LinearSolver resolved = resolve_linear_solver(kind, lower.rows());
   const int columns = static_cast<int>(lower.outerSize());
   const int* outer = lower.outerIndexPtr();
@@ -357,7 +358,9 @@ std::shared_ptr<SymmetricFactorization> FactorizationCache::get(LinearSolver kin
   // ordering is most of an analysis on large meshes.
   Eigen::VectorXi ordering;
   double fill = 0.0;
-  if (factorization_ && factorization_->kind() == resolved && orderings_rejected_ == 0 &&
+  const bool offered = reuse == OrderingReuse::offer ||
+                       (reuse == OrderingReuse::until_rejected && orderings_rejected_ == 0);
+  if (factorization_ && factorization_->kind() == resolved && offered &&
       lower.rows() == static_cast<Eigen::Index>(outer_.size()) - 1) {
     ordering = factorization_->ordering();
     fill = factorization_->fill();

@@ -140,25 +140,35 @@ class LinearWorkMeter {
                                               const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
                                               double relative_tolerance, int max_steps);
 
+/// Whether FactorizationCache::get offers the cached factorisation's ordering to a new pattern
+/// of the same size.
+enum class OrderingReuse {
+  until_rejected,  ///< until one analysis has rejected it (the cache's own rule)
+  offer,           ///< now: the caller knows the pattern is near the cached one
+  skip             ///< not now: the caller knows the pattern has drifted far from it
+};
+
 /// A factorisation kept across solves whose matrices share one sparsity pattern (the stages of
 /// a continuation, retries of a flow on one mesh): the symbolic analysis (ordering, elimination
 /// tree, supernodes) runs once. A new pattern of the same size is analysed with the cached
 /// factorisation's ordering until one such analysis has rejected it (its fill too large: the
 /// pattern drifts away, as under a flow's flips, and each rejection costs a symbolic analysis
-/// on top of the fresh one). One user at a time; not thread-safe.
+/// on top of the fresh one), unless the caller says otherwise (OrderingReuse). One user at a
+/// time; not thread-safe.
 class FactorizationCache {
  public:
   /// A factorisation of `kind` (resolved by size) analysed for `lower`'s pattern: the cached
   /// one when kind and pattern are the ones it was analysed for, otherwise a new analysis that
-  /// replaces the cached one (with its ordering when the size is the same). Adds the time of
-  /// any analysis to `analysis_seconds`.
+  /// replaces the cached one (with its ordering when the size is the same and `reuse` allows).
+  /// Adds the time of any analysis to `analysis_seconds`.
   [[nodiscard]] std::shared_ptr<SymmetricFactorization> get(
-      LinearSolver kind, const Eigen::SparseMatrix<double>& lower, double& analysis_seconds);
+      LinearSolver kind, const Eigen::SparseMatrix<double>& lower, double& analysis_seconds,
+      OrderingReuse reuse = OrderingReuse::until_rejected);
   /// Analyses done and analyses saved so far.
   int analyses() const { return analyses_; }
   int reuses() const { return reuses_; }
   /// Analyses that took the cached factorisation's ordering, and those that tried and ordered
-  /// afresh (at most one: no analysis tries after it).
+  /// afresh (under until_rejected at most one: no analysis tries after it).
   int orderings_reused() const { return orderings_reused_; }
   int orderings_rejected() const { return orderings_rejected_; }
 

@@ -146,6 +146,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
   result.pinned_vertex = pinned;
   bool last_step_full = false;
   bool factor_stale = false, factored_frozen = false;
+  int flips_at_analysis = -1;  // result.flips when the cache last analysed a pattern
   for (int iteration = 0; error > tolerance; ++iteration) {
     if (iteration >= max_iterations) {
       reason = "iteration budget spent";
@@ -191,8 +192,16 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     if (!reused) {
       factored_last.reset();  // at most one factor alive besides the cache's
       release_free_memory();  // the line search's freed evaluations, before the new factor
+      // The last analysis' ordering serves a pattern few flips away (ordering_reuse_flips).
+      const bool near_pattern =
+          flips_at_analysis >= 0 &&
+          result.flips - flips_at_analysis <= options.ordering_reuse_flips * tri.edge_count();
+      const int analyses = cache.analyses();
       const std::shared_ptr<SymmetricFactorization> factorization =
-          cache.get(result.solver, lower, result.timings.analysis);
+          cache.get(result.solver, lower, result.timings.analysis,
+                    near_pattern ? OrderingReuse::offer : OrderingReuse::skip);
+      if (cache.analyses() != analyses) flips_at_analysis = result.flips;
+      result.orderings_reused = cache.orderings_reused();
       const LinearWorkMeter meter(*factorization, result.linear_work);
       clock.restart();
       const bool factored = factorization->factorize(lower);

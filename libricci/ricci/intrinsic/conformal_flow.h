@@ -63,6 +63,12 @@ struct IntrinsicFlowOptions {
   double chord_forcing_cap = 1e-3;
   int chord_max_steps = 12;
   int chord_stale_steps = 6;
+  /// A new Laplacian to factorise is analysed with the last analysis' ordering (sparing the
+  /// fill-reducing ordering, most of an analysis) when at most this fraction of the edges
+  /// flipped since that analysis; otherwise it is ordered afresh (the flips of the first Newton
+  /// steps gather around the cone and leave an old ordering much more fill: docs/design-notes.md,
+  /// "Orderings, flips and distortion on both cores").
+  double ordering_reuse_flips = 1e-3;
   /// Below freeze_connectivity_below, the flow stops (stalled) after this many iterations
   /// without halving max |K - K̄|: the double evaluation's rounding floor (long needles next to
   /// a large cone), which a long-double polish (metric/polish_e2.h) can pass.
@@ -91,6 +97,8 @@ struct IntrinsicFlowResult {
   /// to `triangulation`; point_tracking.h replays it to carry points between the two.
   std::vector<int> flip_log;
   int factorizations = 0;
+  /// Analyses that took the previous analysis' ordering (ordering_reuse_flips).
+  int orderings_reused = 0;
   LinearWork linear_work;  ///< factorisations and back-substitutions (linear_solver.h)
   double max_error = 0;
   LinearSolver solver = LinearSolver::automatic;

@@ -153,6 +153,17 @@ DelaunayFlipResult flip_to_delaunay(IntrinsicTriangulation& tri, const Eigen::Ve
                                     std::vector<int>* flip_log) {
   DelaunayFlipResult result;
   const int edges = tri.edge_count();
+  const auto wants_flip = [&](int e) {
+    return is_flippable(tri, e) && delaunay_measure(tri, e, u) < -margin;
+  };
+  // Every edge's test on the triangulation as given, edge-parallel (it only reads). An edge
+  // reads its two faces alone, which change only when it or an edge of theirs flips (touched):
+  // an untouched edge's test at its turn is this one, so the flips are Lawson's serial
+  // sequence, the same on any number of threads.
+  std::vector<char> flips_first(static_cast<size_t>(edges)), touched(static_cast<size_t>(edges), 0);
+  parallel_for(static_cast<size_t>(edges), 0, [&](size_t e) {
+    flips_first[e] = wants_flip(static_cast<int>(e)) ? 1 : 0;
+  });
   std::vector<int> stack(static_cast<size_t>(edges));
   std::vector<char> queued(static_cast<size_t>(edges), 1);
   for (int e = 0; e < edges; ++e) stack[static_cast<size_t>(e)] = e;
@@ -161,16 +172,20 @@ DelaunayFlipResult flip_to_delaunay(IntrinsicTriangulation& tri, const Eigen::Ve
     const int e = stack.back();
     stack.pop_back();
     queued[static_cast<size_t>(e)] = 0;
-    if (!is_flippable(tri, e) || !(delaunay_measure(tri, e, u) < -margin)) continue;
+    if (!(touched[static_cast<size_t>(e)] ? wants_flip(e) : flips_first[static_cast<size_t>(e)])) {
+      continue;
+    }
     if (result.flips >= budget) return result;
     flip_edge(tri, e);
     ++result.flips;
     if (flip_log) flip_log->push_back(e);
+    touched[static_cast<size_t>(e)] = 1;
     const int h = tri.edge_halfedge[static_cast<size_t>(e)];
     const int t = tri.twin[static_cast<size_t>(h)];
     for (int s : {IntrinsicTriangulation::next(h), IntrinsicTriangulation::prev(h),
                   IntrinsicTriangulation::next(t), IntrinsicTriangulation::prev(t)}) {
       const int f = tri.edge[static_cast<size_t>(s)];
+      touched[static_cast<size_t>(f)] = 1;
       if (!queued[static_cast<size_t>(f)]) {
         queued[static_cast<size_t>(f)] = 1;
         stack.push_back(f);

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/parallel.h"
 
 namespace ricci {
 namespace {
@@ -70,9 +71,58 @@ double percentile(std::vector<double>& values, double q) {
 
 Eigen::VectorXd embedded_lengths(const Mesh& mesh) {
   Eigen::VectorXd lengths(mesh.n_edges());
-  for (auto e : mesh.edges()) lengths[e.idx()] = mesh.calc_edge_length(e);
+  parallel_for(mesh.n_edges(), 0, [&](size_t e) {
+    lengths[static_cast<Eigen::Index>(e)] = mesh.calc_edge_length(EdgeHandle(static_cast<int>(e)));
+  });
   return lengths;
 }
+
+enum class FaceKind : char { measured, excluded, degenerate };
+
+// measure_distortion's figures by face (ratios: three per face), then only the measured faces'
+// in face order (compact()).
+struct FaceFigures {
+  std::vector<FaceKind> kind;
+  std::vector<double> log_surface, log_flat, ratios, qc, area;
+
+  explicit FaceFigures(size_t faces)
+      : kind(faces, FaceKind::excluded), log_surface(faces), log_flat(faces), ratios(3 * faces),
+        qc(faces), area(faces) {}
+
+  // Face f's figures into slot f (face-parallel callers: each face its own slot).
+  void measure(size_t f, const Lengths3& a, const Lengths3& b) {
+    if (!valid_triangle(a) || !valid_triangle(b)) {
+      kind[f] = FaceKind::degenerate;
+      return;
+    }
+    kind[f] = FaceKind::measured;
+    area[f] = heron_area(a);
+    log_surface[f] = std::log(area[f]);
+    log_flat[f] = std::log(heron_area(b));
+    for (size_t k = 0; k < 3; ++k) {
+      const double before = corner_angle(a[k], a[(k + 1) % 3], a[(k + 2) % 3]);
+      const double after = corner_angle(b[k], b[(k + 1) % 3], b[(k + 2) % 3]);
+      ratios[3 * f + k] = after / before;
+    }
+    qc[f] = quasi_conformal(a, b);
+  }
+
+  // Keeps the measured faces' figures, in face order.
+  void compact() {
+    size_t kept = 0;
+    for (size_t f = 0; f < kind.size(); ++f) {
+      if (kind[f] != FaceKind::measured) continue;
+      log_surface[kept] = log_surface[f];
+      log_flat[kept] = log_flat[f];
+      qc[kept] = qc[f];
+      area[kept] = area[f];
+      for (size_t k = 0; k < 3; ++k) ratios[3 * kept + k] = ratios[3 * f + k];
+      ++kept;
+    }
+    for (auto* list : {&log_surface, &log_flat, &qc, &area}) list->resize(kept);
+    ratios.resize(3 * kept);
+  }
+};
 
 }  // namespace
 
@@ -83,29 +133,29 @@ DistortionReport measure_distortion(const Mesh& mesh, const Eigen::VectorXd& len
                             std::to_string(mesh.n_edges()) + " edges");
   }
   const Eigen::VectorXd original = embedded_lengths(mesh);
-  std::vector<double> log_surface, log_flat, ratios, qc;
-  double area_weighted_qc = 0, total_area = 0;
+  // Face-parallel, each face its own slots; the sums below run in face order (the same results
+  // on any number of threads).
+  FaceFigures figures(mesh.n_faces());
+  parallel_for(mesh.n_faces(), 0, [&](size_t f) {
+    if (!options.excluded_faces.empty() && options.excluded_faces[f]) return;
+    const FaceHandle face(static_cast<int>(f));
+    figures.measure(f, face_lengths(mesh, original, face), face_lengths(mesh, lengths, face));
+  });
   int skipped = 0;
-  for (auto f : mesh.faces()) {
-    if (!options.excluded_faces.empty() && options.excluded_faces[f.idx()]) continue;
-    Lengths3 a = face_lengths(mesh, original, f), b = face_lengths(mesh, lengths, f);
-    if (!valid_triangle(a) || !valid_triangle(b)) {
-      if (options.skip_degenerate) {
-        ++skipped;
-        continue;
-      }
-      throw InvalidInputError("distortion: face " + std::to_string(f.idx()) + " is degenerate");
+  for (size_t f = 0; f < figures.kind.size(); ++f) {
+    if (figures.kind[f] != FaceKind::degenerate) continue;
+    if (!options.skip_degenerate) {
+      throw InvalidInputError("distortion: face " + std::to_string(f) + " is degenerate");
     }
-    log_surface.push_back(std::log(heron_area(a)));
-    log_flat.push_back(std::log(heron_area(b)));
-    for (int k = 0; k < 3; ++k) {
-      double before = corner_angle(a[k], a[(k + 1) % 3], a[(k + 2) % 3]);
-      double after = corner_angle(b[k], b[(k + 1) % 3], b[(k + 2) % 3]);
-      ratios.push_back(after / before);
-    }
-    qc.push_back(quasi_conformal(a, b));
-    area_weighted_qc += heron_area(a) * qc.back();
-    total_area += heron_area(a);
+    ++skipped;
+  }
+  figures.compact();
+  std::vector<double>&log_surface = figures.log_surface, &log_flat = figures.log_flat,
+                     &ratios = figures.ratios, &qc = figures.qc;
+  double area_weighted_qc = 0, total_area = 0;
+  for (size_t i = 0; i < qc.size(); ++i) {
+    area_weighted_qc += figures.area[i] * qc[i];
+    total_area += figures.area[i];
   }
   DistortionReport report;
   report.faces = static_cast<int>(log_surface.size());

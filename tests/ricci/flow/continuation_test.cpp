@@ -156,6 +156,47 @@ TEST(FactorizationCache, StopsOfferingTheOrderingOnceRejected) {
   EXPECT_EQ(cache.analyses(), 5);
 }
 
+// The caller's word (OrderingReuse) overrides the cache's rule: `offer` tries the cached
+// ordering after a rejection, `skip` orders afresh a pattern the ordering would fit.
+TEST(FactorizationCache, CallerDecidesWhetherTheOrderingIsOffered) {
+  const int n = 40;
+  std::vector<int> identity(static_cast<size_t>(n * n)), shuffled(identity.size());
+  std::iota(identity.begin(), identity.end(), 0);
+  for (size_t k = 0; k < shuffled.size(); ++k) {
+    shuffled[k] = static_cast<int>((k * 613) % shuffled.size());
+  }
+  const Eigen::SparseMatrix<double> grid = grid_matrix(n, identity);
+  Eigen::SparseMatrix<double> grid_and_edge = grid;
+  grid_and_edge.insert(n + 1, 0) = -0.5;
+  grid_and_edge.coeffRef(0, 0) += 0.5;
+  grid_and_edge.coeffRef(n + 1, n + 1) += 0.5;
+  grid_and_edge.makeCompressed();
+  const Eigen::SparseMatrix<double> relabelled = grid_matrix(n, shuffled);
+  const auto kind = ricci::LinearSolver::cholmod_supernodal;
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n * n, -1.0, 1.0);
+  ricci::FactorizationCache cache;
+  double seconds = 0;
+  const auto solves = [&](const Eigen::SparseMatrix<double>& m, ricci::OrderingReuse reuse) {
+    const auto f = cache.get(kind, m, seconds, reuse);
+    if (!f->factorize(m)) return false;
+    const Eigen::VectorXd x = f->solve(rhs);
+    return (m.selfadjointView<Eigen::Lower>() * x - rhs).norm() < 1e-10 * rhs.norm();
+  };
+  using ricci::OrderingReuse;
+  EXPECT_TRUE(solves(grid, OrderingReuse::until_rejected));
+  EXPECT_TRUE(solves(relabelled, OrderingReuse::until_rejected));
+  EXPECT_EQ(cache.orderings_rejected(), 1);
+  EXPECT_TRUE(solves(grid, OrderingReuse::skip));  // fresh: nothing tried
+  EXPECT_EQ(cache.orderings_reused(), 0);
+  EXPECT_EQ(cache.orderings_rejected(), 1);
+  EXPECT_TRUE(solves(grid_and_edge, OrderingReuse::offer));  // tried after the rejection: fits
+  EXPECT_EQ(cache.orderings_reused(), 1);
+  EXPECT_TRUE(solves(grid, OrderingReuse::skip));
+  EXPECT_EQ(cache.orderings_reused(), 1);
+  EXPECT_EQ(cache.orderings_rejected(), 1);
+  EXPECT_EQ(cache.analyses(), 5);
+}
+
 TEST(Continuation, OneStageIsThePlainFlow) {
   const EightCone eight;
   const ricci::FlowResult one = eight.by_continuation(1);

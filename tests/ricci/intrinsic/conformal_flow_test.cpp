@@ -124,6 +124,31 @@ TEST(IntrinsicConformalFlow, ChordStepsReachFullNewtonsMetric) {
   EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), 1e-10);
 }
 
+// A Laplacian a few flips from the last analysed one is analysed with that analysis' ordering
+// (IntrinsicFlowOptions::ordering_reuse_flips); without the reuse every new pattern is ordered
+// afresh. The metric is the same either way.
+TEST(IntrinsicConformalFlow, FewFlipsKeepTheLastOrdering) {
+  const ricci::OneConeProblem problem =
+      ricci::prepare_one_cone(ricci::read_mesh(std::string(MSP_TEST_DATA) +
+                                               "/meshes/closed_g2/eight.off"), 0);
+  ricci::IntrinsicFlowOptions reuse;
+  reuse.tolerance = 1e-12;
+  reuse.solver = ricci::LinearSolver::cholmod_supernodal;  // (orderings are CHOLMOD's)
+  reuse.chord_forcing_cap = 0;           // a factorisation per step: patterns to compare
+  reuse.nearby_factorization_below = 0;
+  ricci::IntrinsicFlowOptions fresh = reuse;
+  fresh.ordering_reuse_flips = -1;
+  const ricci::IntrinsicFlowResult a = ricci::intrinsic_conformal_flow(problem.mesh, problem.targets, reuse);
+  const ricci::IntrinsicFlowResult b = ricci::intrinsic_conformal_flow(problem.mesh, problem.targets, fresh);
+  ASSERT_TRUE(a.converged()) << a.message;
+  ASSERT_TRUE(b.converged()) << b.message;
+  EXPECT_GE(a.orderings_reused, 1);
+  EXPECT_EQ(b.orderings_reused, 0);
+  EXPECT_LT((recomputed_curvature(a) - problem.targets.curvature).cwiseAbs().maxCoeff(), 1e-12);
+  ASSERT_EQ(a.pinned_vertex, b.pinned_vertex);
+  EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), 1e-10);
+}
+
 // The long-double polish's goal (polish_e2_lengths' good_enough, the pipeline's kPolishGoal):
 // it stops at the step that reaches it, where without a goal it steps on until a step gains
 // nothing (the evaluation's floor), spending at least one more back-substitution.

@@ -127,6 +127,59 @@ TEST(IntrinsicTriangulation, DelaunayFlipsKeepGaussBonnetAndLeaveEveryEdgeDelaun
   }
 }
 
+// Lawson's algorithm as flip_to_delaunay ran it before its first pass went edge-parallel: a
+// stack of every edge, each tested at its turn on the triangulation as it then is.
+std::vector<int> serial_lawson_flips(IntrinsicTriangulation& tri, const Eigen::VectorXd& u) {
+  const int edges = tri.edge_count();
+  std::vector<int> stack(static_cast<size_t>(edges)), log;
+  std::vector<char> queued(static_cast<size_t>(edges), 1);
+  for (int e = 0; e < edges; ++e) stack[static_cast<size_t>(e)] = e;
+  while (!stack.empty()) {
+    const int e = stack.back();
+    stack.pop_back();
+    queued[static_cast<size_t>(e)] = 0;
+    if (!ricci::is_flippable(tri, e) || !(ricci::delaunay_measure(tri, e, u) < -1e-12)) continue;
+    ricci::flip_edge(tri, e);
+    log.push_back(e);
+    const int h = tri.edge_halfedge[static_cast<size_t>(e)];
+    const int t = tri.twin[static_cast<size_t>(h)];
+    for (int s : {IntrinsicTriangulation::next(h), IntrinsicTriangulation::prev(h),
+                  IntrinsicTriangulation::next(t), IntrinsicTriangulation::prev(t)}) {
+      const int f = tri.edge[static_cast<size_t>(s)];
+      if (!queued[static_cast<size_t>(f)]) {
+        queued[static_cast<size_t>(f)] = 1;
+        stack.push_back(f);
+      }
+    }
+  }
+  return log;
+}
+
+// flip_to_delaunay tests every edge first in parallel and again only those whose faces a flip
+// changed: the same flips in the same order as the serial algorithm, hence the same
+// triangulation, under scale factors that cascade flips over the whole surface.
+TEST(IntrinsicTriangulation, ParallelFirstPassKeepsLawsonsSequence) {
+  const ricci::Mesh mesh =
+      ricci::make_random_perturbed(ricci::make_genus_slab(3, 3, 3), 0.4, 7);
+  const IntrinsicTriangulation initial =
+      ricci::make_intrinsic_triangulation(mesh, ricci::mesh_edge_lengths(mesh));
+  ASSERT_GT(initial.edge_count(), 1000);  // split over the threads
+  for (double amplitude : {0.0, 0.5, 2.0}) {
+    Eigen::VectorXd u(initial.vertex_count);
+    for (int v = 0; v < initial.vertex_count; ++v) u[v] = amplitude * std::sin(0.37 * v);
+    IntrinsicTriangulation parallel = initial, serial = initial;
+    std::vector<int> log;
+    ASSERT_TRUE(ricci::flip_to_delaunay(parallel, u, 1e-12, ricci::kMaxFlipsPerEdge, &log).delaunay);
+    const std::vector<int> expected = serial_lawson_flips(serial, u);
+    EXPECT_GT(log.size(), 100u) << amplitude;
+    EXPECT_EQ(log, expected) << amplitude;
+    EXPECT_EQ(parallel.tail, serial.tail);
+    EXPECT_EQ(parallel.twin, serial.twin);
+    EXPECT_EQ(parallel.edge, serial.edge);
+    EXPECT_EQ(parallel.log_length, serial.log_length);
+  }
+}
+
 // The polish at 1.6M faces runs on to_mesh_tables before the mesh exists: the tables must be
 // the mesh's own (same faces, corner order and edge numbering), the mesh of the tables
 // to_mesh's, and a polish on them the polish on the mesh, bit for bit.
