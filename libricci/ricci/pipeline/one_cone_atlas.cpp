@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <iterator>
 #include <sstream>
+#include <utility>
 
 #include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/arrays.h"
@@ -28,6 +29,48 @@ VertexHandle atlas_root(const OneConeProblem& problem) {
   }
   return problem.mesh.vertex_handle(0);
 }
+
+// The input surface as the pipeline holds it: the caller's mesh, kept all along, or one handed
+// over (build_one_cone_atlas(Mesh&&)), which waits as (V, F) arrays once a problem's mesh is
+// made from it (fold: 38 MB against OpenMesh's 126 at 1.6M faces, beside the flow's
+// factorisation), is rebuilt in place in the same vertex and face order only if a later route
+// needs it (a fallback after a failed flow), and is left empty. (OpenMesh meshes have no move
+// constructor: std::move would copy them, so the handed-over mesh is used where it is.)
+class InputSurface {
+ public:
+  static InputSurface kept(const Mesh& mesh) { return InputSurface(&mesh, nullptr); }
+  static InputSurface handed_over(Mesh& mesh) { return InputSurface(&mesh, &mesh); }
+  InputSurface(const InputSurface&) = delete;
+  InputSurface& operator=(const InputSurface&) = delete;
+  ~InputSurface() {
+    if (handed_ != nullptr) handed_->clear();
+  }
+
+  const Mesh& mesh() {
+    if (mesh_ == nullptr) {
+      *handed_ = same_order_mesh(arrays_);
+      arrays_ = VertexFaceArrays();
+      mesh_ = handed_;
+    }
+    return *mesh_;
+  }
+
+  // A handed-over mesh becomes arrays (clear(): assigning an empty Mesh keeps OpenMesh's
+  // arrays' capacity); the caller's kept mesh stays as it is.
+  void fold() {
+    if (handed_ == nullptr || mesh_ == nullptr) return;
+    arrays_ = to_arrays(*handed_);
+    handed_->clear();
+    mesh_ = nullptr;
+  }
+
+ private:
+  InputSurface(const Mesh* mesh, Mesh* handed) : mesh_(mesh), handed_(handed) {}
+
+  const Mesh* mesh_;  // null while folded
+  Mesh* handed_;      // null when kept
+  VertexFaceArrays arrays_;
+};
 
 // Index in the cleaned-up mesh of input vertex `vertex` (-1 stays -1).
 int input_to_cleaned(const OneConeAtlasResult& result, int vertex) {
@@ -65,10 +108,12 @@ void map_problem_to_input(OneConeAtlasResult& result) {
   result.problem.chosen_vertex = result.chosen_vertex;
 }
 
-// Clean-up, valence modification and cone refinement: fills result's problem and timings.
-void prepare_problem(const Mesh& mesh, const OneConeAtlasOptions& options,
+// Clean-up, valence modification and cone refinement: fills result's problem and timings;
+// then the input, which the flow does not read, is folded.
+void prepare_problem(InputSurface& input, const OneConeAtlasOptions& options,
                      OneConeAtlasResult& result, const std::function<void(const char*)>& report) {
   StageTimer t;
+  const Mesh& mesh = input.mesh();
   Mesh cleaned;
   const Mesh* surface = &mesh;  // no copy of the input unless it is cleaned up
   if (options.collapse_short_edges || options.flip_flat_edges) {
@@ -83,15 +128,17 @@ void prepare_problem(const Mesh& mesh, const OneConeAtlasOptions& options,
   result.problem = prepare_one_cone(*surface, input_to_cleaned(result, result.chosen_vertex), options.valence);
   map_problem_to_input(result);
   result.cone_refinement = refine_around_cone(result.problem, options.cone_refinement);
+  input.fold();
   result.timings.valence = t.wall.seconds();
   result.timings.cpu_valence = t.cpu.seconds();
 }
 
 // prepare_problem, then the flow: the cone-ring metrics first (single cones), then, when
 // `fall_back`, solve_one_cone_flow. Fills result's problem, flow and their timings.
-void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, OneConeAtlasResult& result,
-                       const std::function<void(const char*)>& report, bool fall_back) {
-  prepare_problem(mesh, options, result, report);
+void prepare_and_solve(InputSurface& input, const OneConeAtlasOptions& options,
+                       OneConeAtlasResult& result, const std::function<void(const char*)>& report,
+                       bool fall_back) {
+  prepare_problem(input, options, result, report);
   report("Ricci flow");
   StageTimer t;
   result.flow = FlowResult();
@@ -152,10 +199,10 @@ void polish_lengths(const OneConeAtlasOptions& options, OneConeAtlasResult& resu
 
 // prepare_and_solve, then the long-double polish of its lengths (polish_lengths), timed: the
 // layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it closes.
-void solve_and_polish(const Mesh& mesh, const OneConeAtlasOptions& options,
+void solve_and_polish(InputSurface& input, const OneConeAtlasOptions& options,
                       OneConeAtlasResult& result, const std::function<void(const char*)>& report,
                       bool fall_back) {
-  prepare_and_solve(mesh, options, result, report, fall_back);
+  prepare_and_solve(input, options, result, report, fall_back);
   StageTimer polish;
   polish_lengths(options, result);
   result.timings.polish = polish.wall.seconds();
@@ -273,9 +320,9 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
                          " flips)";
       std::vector<int> edge_of;
       result.problem.mesh = mesh_of_tables(tables, problem_mesh.V, edge_of);
-      flow.lengths = by_mesh_edge(lengths, edge_of);
-      result.polish.lengths = by_mesh_edge(result.polish.lengths, edge_of);
-      result.polish.lengths_low = by_mesh_edge(result.polish.lengths_low, edge_of);
+      flow.lengths = by_mesh_edge(std::move(lengths), edge_of);
+      result.polish.lengths = by_mesh_edge(std::move(result.polish.lengths), edge_of);
+      result.polish.lengths_low = by_mesh_edge(std::move(result.polish.lengths_low), edge_of);
       result.intrinsic = true;
     }
   }
@@ -305,11 +352,11 @@ struct Discarded {
 // The intrinsic flow on a fresh copy of `result`'s problem: `result` becomes it when it
 // converges; otherwise its failures and costs join `discarded`. Returns whether it ran (the
 // problem suits it).
-bool try_intrinsic(const Mesh& mesh, const OneConeAtlasOptions& options,
+bool try_intrinsic(InputSurface& input, const OneConeAtlasOptions& options,
                    const std::function<void(const char*)>& report, OneConeAtlasResult& result,
                    Discarded& discarded) {
   OneConeAtlasResult attempt = result;
-  prepare_problem(mesh, options, attempt, report);
+  prepare_problem(input, options, attempt, report);
   if (!intrinsic_applies(attempt.problem)) return false;
   attempt.flow.failed_attempts = discarded.failures;
   solve_intrinsic(options, attempt, report);
@@ -421,14 +468,17 @@ SingularityOptions singularity_options(const Mesh& mesh, const OneConeAtlasOptio
   return singularity_options_on(surface_topology(mesh), options);
 }
 
-OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
+namespace {
+
+// build_one_cone_atlas on the input as held (the caller's mesh or one the pipeline owns).
+OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& options) {
   const StageTimer start;
   const std::function<void(const char*)> report = [&](const char* stage) {
     if (options.progress) options.progress(stage);
   };
   OneConeAtlasResult result;
   result.chosen_vertex = options.singular_vertex;
-  const SurfaceTopology topology = surface_topology(mesh);
+  const SurfaceTopology topology = surface_topology(input.mesh());
   const bool needs_cone = needs_singular_vertex(topology);
   const bool intrinsic_only =
       options.route == FlowRoute::intrinsic_delaunay ||
@@ -439,25 +489,25 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   if (result.chosen_vertex < 0 && needs_cone) {
     release_free_memory();  // what reading the input freed, before the linear model's factor
     report("choosing the singular vertex");
-    fixed_failed = choose_vertex(mesh, topology, options, intrinsic_only, result);
+    fixed_failed = choose_vertex(input.mesh(), topology, options, intrinsic_only, result);
     release_free_memory();  // the linear model's factorisation and blocks, before the flow's
   }
 
   Discarded discarded;
   if (!intrinsic_only && !fixed_failed && intrinsic_first_on(topology, options)) {
-    intrinsic_tried = try_intrinsic(mesh, options, report, result, discarded);
+    intrinsic_tried = try_intrinsic(input, options, report, result, discarded);
   }
   if (result.flow.converged()) {
     // The intrinsic flow ran first and won.
   } else if (intrinsic_only || fixed_failed) {
-    prepare_problem(mesh, options, result, report);
+    prepare_problem(input, options, result, report);
     if (!intrinsic_applies(result.problem)) {
       throw InvalidInputError("the intrinsic Delaunay flow needs a closed surface of genus >= 1");
     }
     solve_intrinsic(options, result, report);
   } else if (inversive_route_on(topology, options)) {
     OneConeAtlasResult attempt = result;
-    solve_and_polish(mesh, inversive_distance_route(options), attempt, report, false);
+    solve_and_polish(input, inversive_distance_route(options), attempt, report, false);
     if (attempt.flow.converged()) {
       result = std::move(attempt);
       result.flow.metric_name = "inversive-distance route (" + result.flow.metric_name + ")";
@@ -468,12 +518,12 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       if (options.route == FlowRoute::automatic && options.intrinsic_before_fixed &&
           !intrinsic_tried) {
         // Next in conformality: the intrinsic flow (vertex scaling), before the circle packings.
-        intrinsic_tried = try_intrinsic(mesh, options, report, result, discarded);
+        intrinsic_tried = try_intrinsic(input, options, report, result, discarded);
       }
-      if (!result.flow.converged()) solve_and_polish(mesh, options, result, report, true);
+      if (!result.flow.converged()) solve_and_polish(input, options, result, report, true);
     }
   } else {
-    solve_and_polish(mesh, options, result, report, true);
+    solve_and_polish(input, options, result, report, true);
   }
   // The thrown-away attempts' failures come first, in the order they ran.
   if (!discarded.failures.empty()) {
@@ -520,6 +570,18 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   result.timings.total = start.wall.seconds();
   result.timings.cpu_total = start.cpu.seconds();
   return result;
+}
+
+}  // namespace
+
+OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
+  InputSurface input = InputSurface::kept(mesh);
+  return build_atlas(input, options);
+}
+
+OneConeAtlasResult build_one_cone_atlas(Mesh&& mesh, const OneConeAtlasOptions& options) {
+  InputSurface input = InputSurface::handed_over(mesh);
+  return build_atlas(input, options);
 }
 
 }  // namespace ricci
