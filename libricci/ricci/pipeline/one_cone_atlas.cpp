@@ -9,7 +9,6 @@
 #include <sstream>
 #include <utility>
 
-#include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
@@ -209,23 +208,31 @@ void solve_and_polish(InputSurface& input, const OneConeAtlasOptions& options,
   result.timings.cpu_polish = polish.cpu.seconds();
 }
 
-// The mesh's edges as sorted undirected_edge_key's.
-std::vector<std::uint64_t> sorted_edge_keys(const Mesh& mesh) {
+// The edges of a closed mesh's faces as sorted undirected_edge_key's, each once (from the face
+// whose halfedge runs from its smaller end).
+std::vector<std::uint64_t> sorted_edge_keys(const Eigen::MatrixX3i& closed_faces) {
   std::vector<std::uint64_t> keys;
-  keys.reserve(mesh.n_edges());
-  for (auto e : mesh.edges()) {
-    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
-    keys.push_back(
-        undirected_edge_key(mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()));
+  keys.reserve(static_cast<size_t>(closed_faces.rows()) * 3 / 2);
+  for (Eigen::Index f = 0; f < closed_faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = closed_faces(f, k), b = closed_faces(f, (k + 1) % 3);
+      if (a < b) keys.push_back(undirected_edge_key(a, b));
+    }
   }
   std::sort(keys.begin(), keys.end());
   return keys;
 }
 
-// How many of the edges `edges` (sorted_edge_keys of the flow's input) the triangulation lost
-// to flips (removed_edges, without the mesh).
-int removed_edge_count(const std::vector<std::uint64_t>& edges, const IntrinsicTriangulation& tri) {
-  const std::vector<std::uint64_t> kept = sorted_edge_keys(tri);
+// How many edges of the flow's input (its closed faces) the flipped triangulation's tables
+// lost (removed_edges, without the mesh).
+int removed_edge_count(const Eigen::MatrixX3i& closed_faces, const MeshTables& flipped) {
+  const std::vector<std::uint64_t> edges = sorted_edge_keys(closed_faces);
+  std::vector<std::uint64_t> kept;
+  kept.reserve(static_cast<size_t>(flipped.num_edges()));
+  for (int e = 0; e < flipped.num_edges(); ++e) {
+    kept.push_back(undirected_edge_key(flipped.edge_vertices(e, 0), flipped.edge_vertices(e, 1)));
+  }
+  std::sort(kept.begin(), kept.end());
   std::vector<std::uint64_t> removed;
   std::set_difference(edges.begin(), edges.end(), kept.begin(), kept.end(),
                       std::back_inserter(removed));
@@ -262,7 +269,6 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       result.problem.mesh, mesh_edge_lengths(result.problem.mesh));
   // The problem's mesh waits as arrays (38 MB against OpenMesh's 136 at 1.6M faces, beside the
   // flow's factorisation) while the flow and the polish run; it comes back only if they fail.
-  const std::vector<std::uint64_t> problem_edges = sorted_edge_keys(result.problem.mesh);
   const VertexFaceArrays problem_mesh = to_arrays(result.problem.mesh);
   result.problem.mesh.clear();  // (assigning an empty Mesh keeps the arrays' capacity)
   IntrinsicFlowResult r =
@@ -279,7 +285,6 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     flow.message = "the intrinsic Delaunay triangulation has a loop or a double edge "
                    "(not supported by the atlas)";
   } else if (near) {
-    result.removed_edges = removed_edge_count(problem_edges, r.triangulation);
     // The polish runs on the triangulation's tables; its mesh (136 MB at 1.6M faces against
     // the tables' 61) is built after it, once the flow's factorisation is gone.
     const MeshTables tables = to_mesh_tables(r.triangulation);
@@ -314,6 +319,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       }
     }
     r.laplacian_factorization.reset();
+    result.removed_edges = removed_edge_count(problem_mesh.F, tables);  // (after the factor)
     if (flow.status == FlowStatus::converged) {
       release_free_memory();  // the factorisation, before the mesh
       flow.metric_name = "intrinsic Delaunay flow (vertex scaling, " + std::to_string(r.flips) +
