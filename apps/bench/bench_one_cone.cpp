@@ -13,6 +13,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -249,15 +250,21 @@ ricci::Mesh case_mesh(const std::string& path, int levels) {
 int run_one_cone_case(int argc, char** argv) {
   Args args(argc, argv, {"verbose"});
   args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
-                      "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings", "seed-face", "save-metric"});
+                      "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings", "seed-face", "save-metric", "write-mesh"});
   args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R] "
                             "[--collapse FRACTION] [--flat-flips DEGREES] [--flip-deviation FRACTION] "
                             "[--protect-rings N] [--ring-metric FAR:NEAR:RINGS[:NEEDLE_DEG[:nonnegative]]] "
-                            "[--continuation STAGES] [--seed-face F] [--verbose]");
+                            "[--continuation STAGES] [--seed-face F] [--verbose] [--write-mesh OUT]");
   const std::string path = args.positionals()[0];
   ricci::Stopwatch t0;
-  const ricci::Mesh mesh = case_mesh(path, args.get_int("levels", 0));
+  ricci::Mesh mesh = case_mesh(path, args.get_int("levels", 0));
   const double read = t0.seconds();
+  if (auto out = args.get("write-mesh")) {  // the row's mesh as a file (msp atlas OUT), no run
+    ricci::write_mesh(mesh, *out);
+    std::cout << nlohmann::json{{"mesh", path}, {"faces", mesh.n_faces()}, {"written", *out}}.dump()
+              << std::endl;
+    return 0;
+  }
 
   ricci::OneConeAtlasOptions options;
   const std::string cone = args.get_or("cone", "auto");
@@ -287,14 +294,20 @@ int run_one_cone_case(int argc, char** argv) {
   }
   options.continuation.stages = args.get_int("continuation", 1);
   if (args.has("ring-metric")) options.cone_ring_metrics = parse_ring_metrics(*args.get("ring-metric"));
+  // The pipeline's resident memory, sampled (its peak, and with --verbose each stage's).
+  std::unique_ptr<RssSampler> sampler;
+  const auto peak_note = [&sampler] {
+    return ", peak since the last line " + std::to_string(static_cast<int>(sampler->window_peak_mb())) +
+           " MB";
+  };
   if (args.has("verbose")) {
-    options.flow.progress = [](const ricci::FlowProgress& p) {
+    options.flow.progress = [peak_note](const ricci::FlowProgress& p) {
       std::cerr << "  newton " << p.iteration << ": error " << p.max_error << ", step " << p.step << ", "
-                << p.seconds << " s, " << memory_note() << "\n";
+                << p.seconds << " s, " << memory_note() << peak_note() << "\n";
     };
-    options.progress = [t = ricci::Stopwatch()](const std::string& stage) {
+    options.progress = [peak_note, t = ricci::Stopwatch()](const std::string& stage) {
       std::cerr << std::fixed << t.seconds() << " s: " << stage << std::defaultfloat << ", "
-                << memory_note() << "\n";
+                << memory_note() << peak_note() << "\n";
     };
   }
 
@@ -302,8 +315,14 @@ int run_one_cone_case(int argc, char** argv) {
   j["mesh"] = path;
   j["faces"] = mesh.n_faces();
   j["read_seconds"] = read;
+  // The reference solve first, so that the process's peak is the larger of the two; the mesh
+  // is then handed over to the pipeline, as msp atlas does.
+  const ReferenceSolve reference = reference_solve(mesh);
   try {
-    const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(mesh, options);
+    sampler = std::make_unique<RssSampler>();
+    const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(std::move(mesh), options);
+    if (args.has("verbose")) std::cerr << "pipeline done, " << memory_note() << peak_note() << "\n";
+    j["pipeline_sampled_peak_mb"] = sampler->stop();
     const auto& t = r.timings;
     const FaceSigns signs = face_signs(r.atlas.layout, r.atlas.sliced.mesh);
     j["status"] = "ok";
@@ -365,7 +384,7 @@ int run_one_cone_case(int argc, char** argv) {
   } catch (const std::exception& e) {
     j["status"] = std::string("failed: ") + e.what();
   }
-  print_child_row(j, mesh);
+  print_row_after_reference(j, reference);
   return 0;
 }
 
@@ -419,7 +438,7 @@ int run_one_cone_benchmark(int argc, char** argv) {
                "(double-double positions); dbl: faces with area\n<= 0 in the plain double chart "
                "coordinates; edge: max relative edge-length error of the\nlayout; trans: transition "
                "residual / domain diameter; QC: quasi-conformal distortion vs the\ninput mesh (mean, mean weighted by 3D area as Crane's tools report it,\nmedian, max over faces); MB: "
-               "peak RSS of the process.\n\n";
+               "peak RSS of the process (the larger of the run's and\nthe reference solve's, which runs first).\n\n";
   std::cout << std::left << std::setw(22) << "mesh" << std::right << std::setw(8) << "faces" << std::setw(6)
             << "cone" << std::setw(5) << "spl" << std::setw(7) << "read" << std::setw(7) << "choice"
             << std::setw(7) << "val" << std::setw(7) << "flow" << std::setw(7) << "atlas" << std::setw(7)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <utility>
 
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
@@ -104,9 +105,11 @@ int run_atlas(int argc, char** argv) {
     };
   }
   const std::string path = args.positionals()[0];
-  const ricci::Mesh mesh = ricci::read_mesh(path);
-  const ricci::OneConeAtlasResult result = ricci::build_one_cone_atlas(mesh, options);
-  nlohmann::json report = atlas_report_json(path, mesh, result);
+  ricci::Mesh mesh = ricci::read_mesh(path);
+  const size_t vertices = mesh.n_vertices(), faces = mesh.n_faces();
+  // Handed over: the pipeline keeps it as arrays while the flow runs (its memory peak).
+  const ricci::OneConeAtlasResult result = ricci::build_one_cone_atlas(std::move(mesh), options);
+  nlohmann::json report = atlas_report_json(path, vertices, faces, result);
   write_pictures(args, path, result, report);
   if (args.has("json")) {
     std::cout << report.dump() << "\n";

@@ -136,11 +136,16 @@ std::string polygon_word_text(const ricci::FundamentalPolygon& polygon) {
 
 nlohmann::json atlas_report_json(const std::string& path, const ricci::Mesh& mesh,
                                  const ricci::OneConeAtlasResult& r) {
+  return atlas_report_json(path, mesh.n_vertices(), mesh.n_faces(), r);
+}
+
+nlohmann::json atlas_report_json(const std::string& path, size_t vertices, size_t faces,
+                                 const ricci::OneConeAtlasResult& r) {
   const auto& t = r.timings;
   const auto& work = r.linear_work;
   return {{"mesh", path},
-          {"vertices", mesh.n_vertices()},
-          {"faces", mesh.n_faces()},
+          {"vertices", vertices},
+          {"faces", faces},
           {"genus", r.problem.genus},
           {"boundary_loops", r.problem.boundary_loops},
           {"kind", ricci::to_string(r.problem.kind)},

@@ -1,6 +1,7 @@
 #pragma once
 // The JSON reports of the libricci calls, under the keys `msp info --json`, `msp flow --json`,
 // `msp atlas --json` and `msp uniformize --json` print; the Python binding returns the same.
+#include <cstddef>
 #include <string>
 
 #include <ricci/flow/flow.h>
@@ -33,6 +34,12 @@ namespace msp {
 /// mesh, counts, genus, kind, singularities, valence modification, polish, flow and atlas
 /// residuals, polygon words, distortion, seconds and stage_seconds of a one-cone atlas.
 [[nodiscard]] nlohmann::json atlas_report_json(const std::string& path, const ricci::Mesh& mesh,
+                                               const ricci::OneConeAtlasResult& result);
+
+/// The same report from the input's vertex and face counts, for an input handed over to the
+/// pipeline (build_one_cone_atlas(Mesh&&)).
+[[nodiscard]] nlohmann::json atlas_report_json(const std::string& path, size_t vertices,
+                                               size_t faces,
                                                const ricci::OneConeAtlasResult& result);
 
 /// "a1", "b1", "a2", ...: the name of canonical generator i.

@@ -347,9 +347,13 @@ Mesh mesh_of_tables(const MeshTables& tables, const Eigen::MatrixX3d& positions,
                             std::to_string(tables.num_vertices()) + " vertices");
   }
   Mesh mesh;
+  const auto vertices = static_cast<size_t>(tables.num_vertices());
+  const auto faces = static_cast<size_t>(tables.num_faces());
+  mesh.reserve(vertices, static_cast<size_t>(tables.num_edges()), faces);
   for (int v = 0; v < tables.num_vertices(); ++v) {
     mesh.add_vertex(to_openmesh(positions.row(v).transpose()));
   }
+  edge_of.assign(static_cast<size_t>(tables.num_edges()), -1);
   for (int f = 0; f < tables.num_faces(); ++f) {
     // In the triangulation's corner order (to_mesh's), which the tables rotated.
     VertexHandle corner[3];
@@ -357,25 +361,37 @@ Mesh mesh_of_tables(const MeshTables& tables, const Eigen::MatrixX3d& positions,
       corner[(k + kFirstHalfedge) % 3] =
           mesh.vertex_handle(static_cast<unsigned>(tables.face_vertices(f, k)));
     }
-    if (!mesh.add_face(corner[0], corner[1], corner[2]).is_valid()) {
+    const FaceHandle face = mesh.add_face(corner[0], corner[1], corner[2]);
+    if (!face.is_valid()) {
       throw TopologyError("mesh of tables: face " + std::to_string(f) + " is not manifold");
     }
-  }
-  edge_of.assign(static_cast<size_t>(tables.num_edges()), -1);
-  for (int e = 0; e < tables.num_edges(); ++e) {
-    const HalfedgeHandle h = mesh.find_halfedge(
-        mesh.vertex_handle(static_cast<unsigned>(tables.edge_vertices(e, 0))),
-        mesh.vertex_handle(static_cast<unsigned>(tables.edge_vertices(e, 1))));
-    edge_of[static_cast<size_t>(e)] = mesh.edge_handle(h).idx();
+    // The face's halfedge from its corner k to the next is the table edge opposite corner k + 2.
+    for (const HalfedgeHandle h : mesh.fh_range(face)) {
+      const int from = mesh.from_vertex_handle(h).idx();
+      const int k = from == tables.face_vertices(f, 0) ? 0 : from == tables.face_vertices(f, 1) ? 1 : 2;
+      edge_of[static_cast<size_t>(tables.face_edges(f, (k + 2) % 3))] = mesh.edge_handle(h).idx();
+    }
   }
   return mesh;
 }
 
-Eigen::VectorXd by_mesh_edge(const Eigen::VectorXd& by_table_edge, const std::vector<int>& edge_of) {
+namespace {
+
+bool is_identity(const std::vector<int>& edge_of) {
+  for (size_t e = 0; e < edge_of.size(); ++e) {
+    if (edge_of[e] != static_cast<int>(e)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Eigen::VectorXd by_mesh_edge(Eigen::VectorXd by_table_edge, const std::vector<int>& edge_of) {
   if (by_table_edge.size() == 0) return by_table_edge;
   if (static_cast<size_t>(by_table_edge.size()) != edge_of.size()) {
     throw InvalidInputError("by_mesh_edge: values and edge map differ in size");
   }
+  if (is_identity(edge_of)) return by_table_edge;  // to_mesh_tables' tables: no move
   Eigen::VectorXd out(by_table_edge.size());
   for (size_t e = 0; e < edge_of.size(); ++e) {
     out[edge_of[e]] = by_table_edge[static_cast<Eigen::Index>(e)];

@@ -116,8 +116,10 @@ struct IntrinsicMesh {
 [[nodiscard]] Mesh mesh_of_tables(const MeshTables& tables, const Eigen::MatrixX3d& positions,
                                   std::vector<int>& edge_of);
 
-/// Values by table edge moved to the mesh's edge edge_of[e] (mesh_of_tables); empty stays empty.
-[[nodiscard]] Eigen::VectorXd by_mesh_edge(const Eigen::VectorXd& by_table_edge,
+/// Values by table edge moved to the mesh's edge edge_of[e] (mesh_of_tables); empty stays empty,
+/// and an identity map (to_mesh_tables' tables) hands the values back as they are.
+/// \throw InvalidInputError when the sizes differ.
+[[nodiscard]] Eigen::VectorXd by_mesh_edge(Eigen::VectorXd by_table_edge,
                                            const std::vector<int>& edge_of);
 
 }  // namespace ricci

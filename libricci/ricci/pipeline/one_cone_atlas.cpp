@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <iterator>
 #include <sstream>
+#include <utility>
 
-#include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/primitives.h"
@@ -28,6 +28,48 @@ VertexHandle atlas_root(const OneConeProblem& problem) {
   }
   return problem.mesh.vertex_handle(0);
 }
+
+// The input surface as the pipeline holds it: the caller's mesh, kept all along, or one handed
+// over (build_one_cone_atlas(Mesh&&)), which waits as (V, F) arrays once a problem's mesh is
+// made from it (fold: 38 MB against OpenMesh's 126 at 1.6M faces, beside the flow's
+// factorisation), is rebuilt in place in the same vertex and face order only if a later route
+// needs it (a fallback after a failed flow), and is left empty. (OpenMesh meshes have no move
+// constructor: std::move would copy them, so the handed-over mesh is used where it is.)
+class InputSurface {
+ public:
+  static InputSurface kept(const Mesh& mesh) { return InputSurface(&mesh, nullptr); }
+  static InputSurface handed_over(Mesh& mesh) { return InputSurface(&mesh, &mesh); }
+  InputSurface(const InputSurface&) = delete;
+  InputSurface& operator=(const InputSurface&) = delete;
+  ~InputSurface() {
+    if (handed_ != nullptr) handed_->clear();
+  }
+
+  const Mesh& mesh() {
+    if (mesh_ == nullptr) {
+      *handed_ = same_order_mesh(arrays_);
+      arrays_ = VertexFaceArrays();
+      mesh_ = handed_;
+    }
+    return *mesh_;
+  }
+
+  // A handed-over mesh becomes arrays (clear(): assigning an empty Mesh keeps OpenMesh's
+  // arrays' capacity); the caller's kept mesh stays as it is.
+  void fold() {
+    if (handed_ == nullptr || mesh_ == nullptr) return;
+    arrays_ = to_arrays(*handed_);
+    handed_->clear();
+    mesh_ = nullptr;
+  }
+
+ private:
+  InputSurface(const Mesh* mesh, Mesh* handed) : mesh_(mesh), handed_(handed) {}
+
+  const Mesh* mesh_;  // null while folded
+  Mesh* handed_;      // null when kept
+  VertexFaceArrays arrays_;
+};
 
 // Index in the cleaned-up mesh of input vertex `vertex` (-1 stays -1).
 int input_to_cleaned(const OneConeAtlasResult& result, int vertex) {
@@ -65,10 +107,12 @@ void map_problem_to_input(OneConeAtlasResult& result) {
   result.problem.chosen_vertex = result.chosen_vertex;
 }
 
-// Clean-up, valence modification and cone refinement: fills result's problem and timings.
-void prepare_problem(const Mesh& mesh, const OneConeAtlasOptions& options,
+// Clean-up, valence modification and cone refinement: fills result's problem and timings;
+// then the input, which the flow does not read, is folded.
+void prepare_problem(InputSurface& input, const OneConeAtlasOptions& options,
                      OneConeAtlasResult& result, const std::function<void(const char*)>& report) {
   StageTimer t;
+  const Mesh& mesh = input.mesh();
   Mesh cleaned;
   const Mesh* surface = &mesh;  // no copy of the input unless it is cleaned up
   if (options.collapse_short_edges || options.flip_flat_edges) {
@@ -83,15 +127,17 @@ void prepare_problem(const Mesh& mesh, const OneConeAtlasOptions& options,
   result.problem = prepare_one_cone(*surface, input_to_cleaned(result, result.chosen_vertex), options.valence);
   map_problem_to_input(result);
   result.cone_refinement = refine_around_cone(result.problem, options.cone_refinement);
+  input.fold();
   result.timings.valence = t.wall.seconds();
   result.timings.cpu_valence = t.cpu.seconds();
 }
 
 // prepare_problem, then the flow: the cone-ring metrics first (single cones), then, when
 // `fall_back`, solve_one_cone_flow. Fills result's problem, flow and their timings.
-void prepare_and_solve(const Mesh& mesh, const OneConeAtlasOptions& options, OneConeAtlasResult& result,
-                       const std::function<void(const char*)>& report, bool fall_back) {
-  prepare_problem(mesh, options, result, report);
+void prepare_and_solve(InputSurface& input, const OneConeAtlasOptions& options,
+                       OneConeAtlasResult& result, const std::function<void(const char*)>& report,
+                       bool fall_back) {
+  prepare_problem(input, options, result, report);
   report("Ricci flow");
   StageTimer t;
   result.flow = FlowResult();
@@ -152,33 +198,41 @@ void polish_lengths(const OneConeAtlasOptions& options, OneConeAtlasResult& resu
 
 // prepare_and_solve, then the long-double polish of its lengths (polish_lengths), timed: the
 // layout multiplies the flow's leftover defect (~1e-12 on hard scans) by the loops it closes.
-void solve_and_polish(const Mesh& mesh, const OneConeAtlasOptions& options,
+void solve_and_polish(InputSurface& input, const OneConeAtlasOptions& options,
                       OneConeAtlasResult& result, const std::function<void(const char*)>& report,
                       bool fall_back) {
-  prepare_and_solve(mesh, options, result, report, fall_back);
+  prepare_and_solve(input, options, result, report, fall_back);
   StageTimer polish;
   polish_lengths(options, result);
   result.timings.polish = polish.wall.seconds();
   result.timings.cpu_polish = polish.cpu.seconds();
 }
 
-// The mesh's edges as sorted undirected_edge_key's.
-std::vector<std::uint64_t> sorted_edge_keys(const Mesh& mesh) {
+// The edges of a closed mesh's faces as sorted undirected_edge_key's, each once (from the face
+// whose halfedge runs from its smaller end).
+std::vector<std::uint64_t> sorted_edge_keys(const Eigen::MatrixX3i& closed_faces) {
   std::vector<std::uint64_t> keys;
-  keys.reserve(mesh.n_edges());
-  for (auto e : mesh.edges()) {
-    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
-    keys.push_back(
-        undirected_edge_key(mesh.from_vertex_handle(h).idx(), mesh.to_vertex_handle(h).idx()));
+  keys.reserve(static_cast<size_t>(closed_faces.rows()) * 3 / 2);
+  for (Eigen::Index f = 0; f < closed_faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = closed_faces(f, k), b = closed_faces(f, (k + 1) % 3);
+      if (a < b) keys.push_back(undirected_edge_key(a, b));
+    }
   }
   std::sort(keys.begin(), keys.end());
   return keys;
 }
 
-// How many of the edges `edges` (sorted_edge_keys of the flow's input) the triangulation lost
-// to flips (removed_edges, without the mesh).
-int removed_edge_count(const std::vector<std::uint64_t>& edges, const IntrinsicTriangulation& tri) {
-  const std::vector<std::uint64_t> kept = sorted_edge_keys(tri);
+// How many edges of the flow's input (its closed faces) the flipped triangulation's tables
+// lost (removed_edges, without the mesh).
+int removed_edge_count(const Eigen::MatrixX3i& closed_faces, const MeshTables& flipped) {
+  const std::vector<std::uint64_t> edges = sorted_edge_keys(closed_faces);
+  std::vector<std::uint64_t> kept;
+  kept.reserve(static_cast<size_t>(flipped.num_edges()));
+  for (int e = 0; e < flipped.num_edges(); ++e) {
+    kept.push_back(undirected_edge_key(flipped.edge_vertices(e, 0), flipped.edge_vertices(e, 1)));
+  }
+  std::sort(kept.begin(), kept.end());
   std::vector<std::uint64_t> removed;
   std::set_difference(edges.begin(), edges.end(), kept.begin(), kept.end(),
                       std::back_inserter(removed));
@@ -215,7 +269,6 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       result.problem.mesh, mesh_edge_lengths(result.problem.mesh));
   // The problem's mesh waits as arrays (38 MB against OpenMesh's 136 at 1.6M faces, beside the
   // flow's factorisation) while the flow and the polish run; it comes back only if they fail.
-  const std::vector<std::uint64_t> problem_edges = sorted_edge_keys(result.problem.mesh);
   const VertexFaceArrays problem_mesh = to_arrays(result.problem.mesh);
   result.problem.mesh.clear();  // (assigning an empty Mesh keeps the arrays' capacity)
   IntrinsicFlowResult r =
@@ -232,7 +285,6 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     flow.message = "the intrinsic Delaunay triangulation has a loop or a double edge "
                    "(not supported by the atlas)";
   } else if (near) {
-    result.removed_edges = removed_edge_count(problem_edges, r.triangulation);
     // The polish runs on the triangulation's tables; its mesh (136 MB at 1.6M faces against
     // the tables' 61) is built after it, once the flow's factorisation is gone.
     const MeshTables tables = to_mesh_tables(r.triangulation);
@@ -267,15 +319,16 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       }
     }
     r.laplacian_factorization.reset();
+    result.removed_edges = removed_edge_count(problem_mesh.F, tables);  // (after the factor)
     if (flow.status == FlowStatus::converged) {
       release_free_memory();  // the factorisation, before the mesh
       flow.metric_name = "intrinsic Delaunay flow (vertex scaling, " + std::to_string(r.flips) +
                          " flips)";
       std::vector<int> edge_of;
       result.problem.mesh = mesh_of_tables(tables, problem_mesh.V, edge_of);
-      flow.lengths = by_mesh_edge(lengths, edge_of);
-      result.polish.lengths = by_mesh_edge(result.polish.lengths, edge_of);
-      result.polish.lengths_low = by_mesh_edge(result.polish.lengths_low, edge_of);
+      flow.lengths = by_mesh_edge(std::move(lengths), edge_of);
+      result.polish.lengths = by_mesh_edge(std::move(result.polish.lengths), edge_of);
+      result.polish.lengths_low = by_mesh_edge(std::move(result.polish.lengths_low), edge_of);
       result.intrinsic = true;
     }
   }
@@ -305,11 +358,11 @@ struct Discarded {
 // The intrinsic flow on a fresh copy of `result`'s problem: `result` becomes it when it
 // converges; otherwise its failures and costs join `discarded`. Returns whether it ran (the
 // problem suits it).
-bool try_intrinsic(const Mesh& mesh, const OneConeAtlasOptions& options,
+bool try_intrinsic(InputSurface& input, const OneConeAtlasOptions& options,
                    const std::function<void(const char*)>& report, OneConeAtlasResult& result,
                    Discarded& discarded) {
   OneConeAtlasResult attempt = result;
-  prepare_problem(mesh, options, attempt, report);
+  prepare_problem(input, options, attempt, report);
   if (!intrinsic_applies(attempt.problem)) return false;
   attempt.flow.failed_attempts = discarded.failures;
   solve_intrinsic(options, attempt, report);
@@ -421,14 +474,17 @@ SingularityOptions singularity_options(const Mesh& mesh, const OneConeAtlasOptio
   return singularity_options_on(surface_topology(mesh), options);
 }
 
-OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
+namespace {
+
+// build_one_cone_atlas on the input as held (the caller's mesh or one the pipeline owns).
+OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& options) {
   const StageTimer start;
   const std::function<void(const char*)> report = [&](const char* stage) {
     if (options.progress) options.progress(stage);
   };
   OneConeAtlasResult result;
   result.chosen_vertex = options.singular_vertex;
-  const SurfaceTopology topology = surface_topology(mesh);
+  const SurfaceTopology topology = surface_topology(input.mesh());
   const bool needs_cone = needs_singular_vertex(topology);
   const bool intrinsic_only =
       options.route == FlowRoute::intrinsic_delaunay ||
@@ -439,25 +495,25 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   if (result.chosen_vertex < 0 && needs_cone) {
     release_free_memory();  // what reading the input freed, before the linear model's factor
     report("choosing the singular vertex");
-    fixed_failed = choose_vertex(mesh, topology, options, intrinsic_only, result);
+    fixed_failed = choose_vertex(input.mesh(), topology, options, intrinsic_only, result);
     release_free_memory();  // the linear model's factorisation and blocks, before the flow's
   }
 
   Discarded discarded;
   if (!intrinsic_only && !fixed_failed && intrinsic_first_on(topology, options)) {
-    intrinsic_tried = try_intrinsic(mesh, options, report, result, discarded);
+    intrinsic_tried = try_intrinsic(input, options, report, result, discarded);
   }
   if (result.flow.converged()) {
     // The intrinsic flow ran first and won.
   } else if (intrinsic_only || fixed_failed) {
-    prepare_problem(mesh, options, result, report);
+    prepare_problem(input, options, result, report);
     if (!intrinsic_applies(result.problem)) {
       throw InvalidInputError("the intrinsic Delaunay flow needs a closed surface of genus >= 1");
     }
     solve_intrinsic(options, result, report);
   } else if (inversive_route_on(topology, options)) {
     OneConeAtlasResult attempt = result;
-    solve_and_polish(mesh, inversive_distance_route(options), attempt, report, false);
+    solve_and_polish(input, inversive_distance_route(options), attempt, report, false);
     if (attempt.flow.converged()) {
       result = std::move(attempt);
       result.flow.metric_name = "inversive-distance route (" + result.flow.metric_name + ")";
@@ -468,12 +524,12 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
       if (options.route == FlowRoute::automatic && options.intrinsic_before_fixed &&
           !intrinsic_tried) {
         // Next in conformality: the intrinsic flow (vertex scaling), before the circle packings.
-        intrinsic_tried = try_intrinsic(mesh, options, report, result, discarded);
+        intrinsic_tried = try_intrinsic(input, options, report, result, discarded);
       }
-      if (!result.flow.converged()) solve_and_polish(mesh, options, result, report, true);
+      if (!result.flow.converged()) solve_and_polish(input, options, result, report, true);
     }
   } else {
-    solve_and_polish(mesh, options, result, report, true);
+    solve_and_polish(input, options, result, report, true);
   }
   // The thrown-away attempts' failures come first, in the order they ran.
   if (!discarded.failures.empty()) {
@@ -520,6 +576,18 @@ OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOpti
   result.timings.total = start.wall.seconds();
   result.timings.cpu_total = start.cpu.seconds();
   return result;
+}
+
+}  // namespace
+
+OneConeAtlasResult build_one_cone_atlas(const Mesh& mesh, const OneConeAtlasOptions& options) {
+  InputSurface input = InputSurface::kept(mesh);
+  return build_atlas(input, options);
+}
+
+OneConeAtlasResult build_one_cone_atlas(Mesh&& mesh, const OneConeAtlasOptions& options) {
+  InputSurface input = InputSurface::handed_over(mesh);
+  return build_atlas(input, options);
 }
 
 }  // namespace ricci

@@ -21,11 +21,13 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Right-hand sides solved together (one blocked back-substitution)...
 constexpr int kBlockColumns = 32;
-// ...at most this many doubles per block: a block lives in about five copies (right-hand
-// sides, CHOLMOD's two workspaces, its solution, Eigen's), 1 GB at 800k vertices and 32
-// columns; 13M doubles keep them near 0.5 GB, below the flow's own peak. Every block passes
-// over the whole factor, so there are as few as the bound allows, of even sizes.
-constexpr double kBlockDoubles = 1.3e7;
+// ...at most this many doubles per block: a block lives in three copies (the right-hand sides
+// solved in place, and for each thread's columns CHOLMOD's workspace and its solution), beside
+// the factor and the input mesh: this is the choice's memory peak at 1.6M faces, which 6.5M
+// doubles (8 columns at 800k vertices, ~150 MB) keep below the flow's (docs/design-notes.md,
+// "The 1.6M-face atlas under 1.2 GB"). Every block passes over the whole factor, so there are
+// as few as the bound allows, of even sizes; below 200k vertices the 32 columns rule.
+constexpr double kBlockDoubles = 6.5e6;
 
 int block_columns(int vertices) {
   return std::clamp(static_cast<int>(kBlockDoubles / std::max(vertices, 1)), 1, kBlockColumns);

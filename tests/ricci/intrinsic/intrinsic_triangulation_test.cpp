@@ -3,6 +3,7 @@
 // flipping to Delaunay keeps Gauss-Bonnet and leaves every edge Delaunay.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -207,6 +208,9 @@ TEST(IntrinsicTriangulation, MeshTablesAreToMeshsTablesAndPolishTheSame) {
   const ricci::Mesh again = ricci::mesh_of_tables(tables, V, edge_of);
   ASSERT_EQ(again.n_edges(), built.mesh.n_edges());
   EXPECT_EQ(ricci::to_arrays(again).F, ricci::to_arrays(built.mesh).F);
+  for (size_t e = 0; e < edge_of.size(); ++e) {
+    ASSERT_EQ(edge_of[e], static_cast<int>(e)) << "to_mesh_tables numbers edges as the mesh";
+  }
   EXPECT_EQ(ricci::by_mesh_edge(lengths, edge_of), built.lengths);
 
   // A target 1e-9 from the curvature of these lengths: both polishes meet it alike.
@@ -222,6 +226,39 @@ TEST(IntrinsicTriangulation, MeshTablesAreToMeshsTablesAndPolishTheSame) {
   EXPECT_EQ(on_tables.error_after, on_mesh.error_after);
   EXPECT_EQ(ricci::by_mesh_edge(on_tables.lengths, edge_of), on_mesh.lengths);
   EXPECT_EQ(ricci::by_mesh_edge(on_tables.lengths_low, edge_of), on_mesh.lengths_low);
+}
+
+// mesh_of_tables on tables whose edges the new mesh numbers otherwise (a mesh after flips,
+// which keep edge indices): edge_of maps each table edge to the new mesh's edge between the
+// same two vertices, and by_mesh_edge moves values along it.
+TEST(IntrinsicTriangulation, MeshOfTablesMapsEveryEdgeToItsEnds) {
+  ricci::Mesh mesh = ricci::make_random_perturbed(ricci::make_genus_slab(2, 2, 2), 0.4, 5);
+  int flips = 0;
+  for (auto e : mesh.edges()) {
+    if (e.idx() % 7 == 0 && mesh.is_flip_ok(e)) {
+      mesh.flip(e);
+      ++flips;
+    }
+  }
+  ASSERT_GT(flips, 5);
+  const ricci::MeshTables tables = ricci::build_mesh_tables(mesh);
+  std::vector<int> edge_of;
+  const ricci::Mesh again = ricci::mesh_of_tables(tables, ricci::to_arrays(mesh).V, edge_of);
+  ASSERT_EQ(edge_of.size(), again.n_edges());
+  Eigen::VectorXd numbers(tables.num_edges());
+  bool identity = true;
+  for (int e = 0; e < tables.num_edges(); ++e) {
+    const int to = edge_of[static_cast<size_t>(e)];
+    identity = identity && to == e;
+    ASSERT_GE(to, 0);
+    const auto h = again.halfedge_handle(again.edge_handle(static_cast<unsigned>(to)), 0);
+    const int a = again.from_vertex_handle(h).idx(), b = again.to_vertex_handle(h).idx();
+    EXPECT_EQ(std::minmax(a, b), std::minmax(tables.edge_vertices(e, 0), tables.edge_vertices(e, 1)));
+    numbers[e] = e;
+  }
+  EXPECT_FALSE(identity);
+  const Eigen::VectorXd moved = ricci::by_mesh_edge(numbers, edge_of);
+  for (int e = 0; e < tables.num_edges(); ++e) EXPECT_EQ(moved[edge_of[static_cast<size_t>(e)]], e);
 }
 
 }  // namespace

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "ricci/mesh/arrays.h"
 #include "ricci/mesh/io.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "test_paths.h"
@@ -437,6 +439,46 @@ TEST(OneConeAtlas, AfterAFailedRouteTheIntrinsicFlowComesBeforeTheCirclePacking)
   EXPECT_EQ(next.flow.metric.scheme, ricci::Scheme::circle_packing);
   EXPECT_GT(next.distortion.quasi_conformal_area_mean,
             best.distortion.quasi_conformal_area_mean + 0.3);
+}
+
+// build_one_cone_atlas(Mesh&&) keeps the input as arrays while the flow runs and rebuilds it
+// for a fallback route (genus3_10k's cone 0 with the route first: it fails, the intrinsic flow
+// follows on the rebuilt input): the atlas is the const-reference call's, bit for bit, and the
+// handed-over mesh is left empty.
+TEST(OneConeAtlas, HandedOverMeshGivesTheKeptMeshsAtlas) {
+  struct HandOver {
+    const char* path;
+    int cone;
+    bool intrinsic_first;
+  };
+  for (const HandOver& c : {HandOver{"models/genus2.off", -1, true},
+                            HandOver{"bench/genus3_10k.obj.gz", 0, false}}) {
+    SCOPED_TRACE(c.path);
+    const ricci::Mesh mesh = ricci::read_mesh(resolve(c.path));
+    ricci::OneConeAtlasOptions options;
+    options.singular_vertex = c.cone;
+    options.intrinsic_first = c.intrinsic_first;
+    const ricci::OneConeAtlasResult kept = ricci::build_one_cone_atlas(mesh, options);
+    ricci::Mesh handed = mesh;
+    const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(std::move(handed), options);
+    EXPECT_EQ(handed.n_vertices(), 0u);  // NOLINT(bugprone-use-after-move): left empty
+    EXPECT_EQ(handed.n_faces(), 0u);
+    EXPECT_EQ(r.chosen_vertex, kept.chosen_vertex);
+    EXPECT_EQ(r.intrinsic, kept.intrinsic);
+    EXPECT_EQ(r.flow.metric_name, kept.flow.metric_name);
+    EXPECT_EQ(r.flow.failed_attempts, kept.flow.failed_attempts);
+    EXPECT_EQ(ricci::to_arrays(r.problem.mesh).F, ricci::to_arrays(kept.problem.mesh).F);
+    EXPECT_TRUE(r.flow.lengths == kept.flow.lengths);
+    EXPECT_EQ(r.relative_transition_residual(), kept.relative_transition_residual());
+    EXPECT_EQ(r.distortion.quasi_conformal_area_mean, kept.distortion.quasi_conformal_area_mean);
+    EXPECT_EQ(r.atlas.layout.flipped_faces, 0);
+    EXPECT_LT(r.relative_transition_residual(), 1e-9);
+    if (!c.intrinsic_first) {  // the fallback ran on the rebuilt input
+      ASSERT_TRUE(r.intrinsic);
+      ASSERT_FALSE(r.flow.failed_attempts.empty());
+      EXPECT_EQ(r.flow.failed_attempts.front().rfind("inversive-distance", 0), 0u);
+    }
+  }
 }
 
 }  // namespace
