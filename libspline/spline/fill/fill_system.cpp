@@ -96,7 +96,7 @@ std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vecto
                                                   double spacing, int degree,
                                                   const KnotCloudOptions& knots,
                                                   const std::vector<Eigen::Vector2d>& corners,
-                                                  int corner_refinement) {
+                                                  const std::vector<int>& refinements) {
   Eigen::Vector2d lo = boundary[0], hi = boundary[0];
   for (const auto& p : boundary) {
     lo = lo.cwiseMin(p);
@@ -104,17 +104,29 @@ std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vecto
   }
   const Eigen::Vector2d margin = Eigen::Vector2d::Constant(2.0 * spacing);
   PlanarTriangulation t = triangle_grid(lo - margin, hi + margin, spacing);
-  if (corner_refinement > 1 && !corners.empty()) {
-    const double fine = spacing / corner_refinement;
+  if (std::any_of(refinements.begin(), refinements.end(), [](int r) { return r > 1; })) {
+    std::vector<double> fine(corners.size());
+    for (std::size_t c = 0; c < corners.size(); ++c) fine[c] = spacing / refinements[c];
     refine_to_size(t, [&](const Eigen::Vector2d& x) {
-      double nearest = INFINITY;
-      for (const auto& c : corners) nearest = std::min(nearest, (x - c).norm());
-      const double size = fine + nearest;
+      // fine + distance from the corner, the smallest over the corners (with one refinement
+      // for all: fine + the nearest corner's distance, to the bit).
+      double size = INFINITY;
+      for (std::size_t c = 0; c < corners.size(); ++c)
+        size = std::min(size, fine[c] + (x - corners[c]).norm());
       return size < spacing ? size : 1e300;  // the grid's own sides elsewhere
     });
   }
   auto clouds = make_knot_clouds(t, degree, knots);
   return std::make_shared<const PlanarDmsSpace>(std::move(t), std::move(clouds));
+}
+
+std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vector2d>& boundary,
+                                                  double spacing, int degree,
+                                                  const KnotCloudOptions& knots,
+                                                  const std::vector<Eigen::Vector2d>& corners,
+                                                  int corner_refinement) {
+  return patch_space(boundary, spacing, degree, knots, corners,
+                     std::vector<int>(corners.size(), corner_refinement));
 }
 
 std::vector<Eigen::Vector2d> layout_on_circle(const std::vector<std::vector<RimSample>>& samples,

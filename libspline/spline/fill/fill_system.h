@@ -37,6 +37,13 @@ struct QuadraturePoint {
     const std::vector<Eigen::Vector2d>& boundary, double spacing, int degree,
     const KnotCloudOptions& knots, const std::vector<Eigen::Vector2d>& corners = {},
     int corner_refinement = 1);
+/// The same with a refinement per corner (refinements[c] for corners[c]): the triangle sides
+/// at a point are the smallest of spacing / refinements[c] + its distance from corners[c].
+/// \pre refinements.size() == corners.size().
+[[nodiscard]] std::shared_ptr<const PlanarDmsSpace> patch_space(
+    const std::vector<Eigen::Vector2d>& boundary, double spacing, int degree,
+    const KnotCloudOptions& knots, const std::vector<Eigen::Vector2d>& corners,
+    const std::vector<int>& refinements);
 
 /// Lays D out on a circle (radius: the rim's 3D length / 2 pi, so D's lengths are about the
 /// surface's): rim edge j becomes the chord corners[j] -> corners[j + 1], clockwise in rim

@@ -26,14 +26,16 @@ using fill_detail::RimSample;
 
 void check_options(const FillOptions& o) {
   const bool ok = o.degree >= 1 && o.degree <= kMaxDmsDegree && o.refinement >= 1 &&
-                  o.corner_refinement >= 1 && o.max_refined_rim_step_deg > 0.0 &&
+                  o.corner_refinement >= 1 && o.mild_corner_refinement >= 1 &&
+                  o.mild_corner_step_deg >= 0.0 && o.max_refined_rim_step_deg > 0.0 &&
                   o.max_boundary_vertices >= 8 && o.samples_per_edge >= 1 &&
                   o.fit_samples_per_edge >= 1 && o.parametric_samples_per_edge >= 1 && o.position_weight > 0.0 &&
                   o.tangent_weight >= 0.0 && o.cross_weight >= 0.0 && o.smoothing >= 0.0 && o.min_normal_cosine > 0.0 &&
                   o.min_normal_cosine < 1.0;
   if (!ok) {
     throw ricci::InvalidInputError(
-        "fill_rim: options out of range (degree 1..7, refinement >= 1, max_boundary_vertices >= "
+        "fill_rim: options out of range (degree 1..7, refinements >= 1, mild_corner_step_deg >= 0, "
+        "max_boundary_vertices >= "
         "8, samples >= 1, position_weight > 0, other weights >= 0, min_normal_cosine in (0, 1))");
   }
 }
@@ -108,6 +110,33 @@ Eigen::Vector3d plane_normal(const std::vector<std::vector<RimSample>>& samples)
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
   if (fitted.dot(average) < 0.0) fitted = -fitted;
   return smallest_cosine(samples, fitted) > smallest_cosine(samples, average) ? fitted : average;
+}
+
+// FillOptions::corner_refinement by rim vertex (vertex j starts edge j): the full refinement
+// where the surface's normal turns by more than mild_corner_step_deg between consecutive rim
+// samples within kCornerSteps samples of the vertex on either edge, mild_corner_refinement (at
+// most the full one) elsewhere.
+constexpr int kCornerSteps = 4;
+std::vector<int> corner_refinements(const std::vector<std::vector<RimSample>>& samples,
+                                    const FillOptions& options) {
+  const int m = static_cast<int>(samples.size());
+  const int q = static_cast<int>(samples[0].size()) - 1;
+  const int steps = std::min(kCornerSteps, q);
+  const double limit = options.mild_corner_step_deg * M_PI / 180.0;
+  const int mild = std::min(options.mild_corner_refinement, options.corner_refinement);
+  std::vector<int> refinements(static_cast<std::size_t>(m));
+  for (int j = 0; j < m; ++j) {
+    const auto& before = samples[static_cast<std::size_t>((j + m - 1) % m)];
+    const auto& after = samples[static_cast<std::size_t>(j)];
+    double largest = 0.0;
+    for (int i = 0; i < steps; ++i) {
+      largest = std::max(largest, ricci::angle_between(after[i].jet.normal, after[i + 1].jet.normal));
+      largest = std::max(largest, ricci::angle_between(before[q - i].jet.normal,
+                                                       before[q - i - 1].jet.normal));
+    }
+    refinements[static_cast<std::size_t>(j)] = largest > limit ? options.corner_refinement : mild;
+  }
+  return refinements;
 }
 
 Eigen::Vector2d hermite(const Eigen::Vector2d& p0, const Eigen::Vector2d& m0,
@@ -212,7 +241,7 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
       std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
   const double h = perimeter / boundary_vertices;
   fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners,
-                           options.corner_refinement);
+                           corner_refinements(samples, options));
   const PlanarDmsSpace& space = *fill.space;
 
   // Weights: the height rows have units of length, the slope rows are scaled by h to match,

@@ -122,5 +122,49 @@ TEST(SolveNormalEquations, SolvesAndRefusesAnIndefiniteMatrix) {
   }
 }
 
+// patch_space with a refinement per corner: one for all gives the single refinement's space to
+// the bit; refining one corner alone adds triangles near it only (between the uniform grid and
+// every corner refined), and the smallest side next to it is spacing / 8.
+TEST(PatchSpace, RefinesEachCornerByItsOwnFactor) {
+  std::vector<Eigen::Vector2d> boundary;
+  for (int j = 0; j < 7; ++j) {
+    const double angle = 2.0 * M_PI * j / 7.0;
+    boundary.emplace_back(std::cos(angle), std::sin(angle));
+  }
+  const double spacing = 0.35;
+  const auto space = [&](const std::vector<int>& refinements) {
+    return patch_space(boundary, spacing, 3, KnotCloudOptions{}, boundary, refinements);
+  };
+  const auto same = space(std::vector<int>(7, 8));
+  const auto single = patch_space(boundary, spacing, 3, KnotCloudOptions{}, boundary, 8);
+  EXPECT_EQ(same->triangulation().positions, single->triangulation().positions);
+  EXPECT_EQ(same->triangulation().triangles, single->triangulation().triangles);
+  std::vector<int> one(7, 1);
+  one[3] = 8;
+  const auto refined_one = space(one);
+  const auto uniform = space(std::vector<int>(7, 1));
+  EXPECT_LT(uniform->triangle_count(), refined_one->triangle_count());
+  EXPECT_LT(refined_one->triangle_count(), same->triangle_count());
+  // Sides: the shortest edge of a triangle with a vertex at a corner.
+  const auto& t = refined_one->triangulation();
+  std::vector<double> shortest(7, INFINITY);
+  for (const Eigen::Vector3i& tri : t.triangles) {
+    for (int c = 0; c < 7; ++c) {
+      for (int k = 0; k < 3; ++k) {
+        if ((t.positions[tri[k]] - boundary[c]).norm() > 0.5 * spacing) continue;
+        for (int e = 0; e < 3; ++e) {
+          const double side = (t.positions[tri[e]] - t.positions[tri[(e + 1) % 3]]).norm();
+          shortest[c] = std::min(shortest[c], side);
+        }
+      }
+    }
+  }
+  EXPECT_LT(shortest[3], 0.25 * spacing);
+  for (int c = 0; c < 7; ++c) {
+    if (c == 3) continue;
+    EXPECT_GT(shortest[c], 0.4 * spacing) << c;
+  }
+}
+
 }  // namespace
 }  // namespace spline::fill_detail
