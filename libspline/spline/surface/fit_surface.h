@@ -211,6 +211,18 @@ struct FittedSurface {
 /// throw on this: the caller decides (msp fit writes its outputs and exits non-zero).
 [[nodiscard]] std::string topology_mismatch(const FittedSurface& fitted);
 
+/// Where the delivered surface folds (fold_places, tessellate/dihedral.h): on the patches, on the
+/// spline next to the cone, elsewhere. "Next to the cone" is within kNearConeHoleRadii times the
+/// cone hole's radius (the farthest 3D distance from the cone to a corner of the faces its patch
+/// covers) of the cone, where the one-cone metric's scale changes fastest; 0 (every spline
+/// fold elsewhere) without a cone or a cone patch.
+inline constexpr double kNearConeHoleRadii = 3.0;
+struct SurfaceFoldPlaces {
+  FoldPlaces places;
+  double near_cone_radius = 0.0;  ///< The radius used, absolute.
+};
+[[nodiscard]] SurfaceFoldPlaces surface_fold_places(const FittedSurface& fitted);
+
 /// Smallest FitSurfaceOptions::domain_faces for a surface of this genus: the domain must hold
 /// the cone's star, the cut graph's 2g loops and a vertex chart around each.
 [[nodiscard]] int minimum_domain_faces(int genus);
