@@ -262,6 +262,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"control_points", space.function_count()},
       {"degree", space.degree()},
       {"fairness", options.fairness},
+      {"fairness_free_faces", fitted.fit_unconstrained_faces},
       {"fit_rms", fitted.fit_rms},
       {"fit_max", fitted.fit_max},
       {"fit_rms_relative", fitted.fit_rms / diag},

@@ -326,6 +326,7 @@ void take_scan(ScanFitResult&& scan, FittedSurface& out) {
   out.surface.spline = std::move(scan.spline);
   out.surface.singular_vertex = problem.cone;
   out.fit_constraint_residual = scan.fit.max_constraint_residual;
+  out.fit_unconstrained_faces = scan.unconstrained_faces;
   out.collar_faces = std::move(scan.collar_faces);
   out.collar_refused = std::move(scan.collar_refused);
   out.boundary_follow = scan.boundary_follow;
@@ -502,6 +503,7 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   next.collar_faces = out.collar_faces;
   next.collar_refused = out.collar_refused;
   next.boundary_follow = out.boundary_follow;
+  next.fit_unconstrained_faces = out.fit_unconstrained_faces;
   const auto& space = out.surface.spline.space;
   FitOptions fit = best.fit;
   fit.face_smoothing = face_smoothing;

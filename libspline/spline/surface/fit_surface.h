@@ -153,6 +153,9 @@ struct FittedSurface {
   int domain_base_faces = 0;
   std::vector<int> domain_split_faces;
   double fit_constraint_residual = 0.0;  ///< Largest |C c| of the constrained fit.
+  /// Domain faces fitted free of the fairing constraints next to the cone
+  /// (ScanFitOptions::free_cone_faces_from_genus).
+  int fit_unconstrained_faces = 0;
   /// Open inputs: by domain face, the ghost faces of the boundary collar (ScanFitResult); why
   /// the collar was dropped, if it was; what follow_boundary did to the domain's boundary.
   std::vector<char> collar_faces;
