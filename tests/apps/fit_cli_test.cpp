@@ -321,6 +321,16 @@ TEST(FitCli, ReportMeasuresTheWrittenGlb) {
     EXPECT_EQ(report["folds"]["count"].get<int>(),
               spline::dihedral_angles(glb.triangles, glb.positions).over_90_deg)
         << input;
+    // Every fold has one place; "next to the cone" is measured from a cone patch, if any.
+    const auto& folds = report["folds"];
+    EXPECT_EQ(folds["on_patches"].get<int>() + folds["on_spline_near_cone"].get<int>() +
+                  folds["on_spline_elsewhere"].get<int>(),
+              folds["count"].get<int>())
+        << input;
+    bool cone_patch = false;
+    for (const auto& patch : report["fill_patches"])
+      cone_patch = cone_patch || patch["kind"] == "cone_hole";
+    EXPECT_EQ(folds["near_cone_radius_relative"].get<double>() > 0.0, cone_patch) << input;
     // And they are good: the surface reaches the scan, its boundary too, nothing sticks out.
     EXPECT_LT(d.fit_rms, 0.005 * diag) << input;
     EXPECT_LT(d.surface_to_scan_max, 0.02 * diag) << input;

@@ -179,7 +179,7 @@ nlohmann::json surface_to_scan_json(const spline::ScanDistanceReport& d, double 
 
 // Where the surface folds: the midpoints of the first fold edges (all of them are counted in
 // surface_dihedral.edges_over_90_deg).
-nlohmann::json folds_json(const spline::FittedSurface& fitted) {
+nlohmann::json folds_json(const spline::FittedSurface& fitted, double diag) {
   constexpr std::size_t kListed = 50;
   const auto& edges = fitted.surface_dihedral.fold_edges;
   const auto& x = fitted.tessellation.positions;
@@ -188,17 +188,15 @@ nlohmann::json folds_json(const spline::FittedSurface& fitted) {
     const Eigen::Vector3d mid = 0.5 * (x.row(edges[i][0]) + x.row(edges[i][1])).transpose();
     points.push_back(point_json(mid));
   }
-  // Folds on the fill patches (both ends on a patch's triangles) and on the spline.
-  const auto& t = fitted.tessellation;
-  std::vector<char> on_patch(static_cast<std::size_t>(x.rows()), 0);
-  for (std::size_t i = 0; i < t.triangles.size(); ++i)
-    if (t.triangle_face[i] < 0)
-      for (int v : t.triangles[i]) on_patch[static_cast<std::size_t>(v)] = 1;
-  int patch_folds = 0;
-  for (const auto& e : edges)
-    patch_folds += on_patch[static_cast<std::size_t>(e[0])] && on_patch[static_cast<std::size_t>(e[1])];
+  // Folds on the fill patches (both ends on a patch's triangles), on the spline next to the
+  // cone and elsewhere on it (spline::surface_fold_places).
+  const spline::SurfaceFoldPlaces where = spline::surface_fold_places(fitted);
   return {{"count", edges.size()},
-          {"on_patches", patch_folds},
+          {"on_patches", where.places.on_patches},
+          {"on_spline_near_cone", where.places.near_cone},
+          {"on_spline_elsewhere", where.places.elsewhere},
+          {"near_cone_radius_relative", where.near_cone_radius / diag},
+          {"spline_cone_distance_median_relative", where.places.median_cone_distance / diag},
           {"listed", points.size()},
           {"points", points}};
 }
@@ -252,6 +250,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"control_points", space.function_count()},
       {"degree", space.degree()},
       {"fairness", options.fairness},
+      {"fairness_free_faces", fitted.fit_unconstrained_faces},
       {"fit_rms", fitted.fit_rms},
       {"fit_max", fitted.fit_max},
       {"fit_rms_relative", fitted.fit_rms / diag},
@@ -262,7 +261,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"coverage",
        {{"fraction", fitted.delivered.coverage},
         {"tolerance_relative", fitted.delivered.coverage_tolerance / diag}}},
-      {"folds", folds_json(fitted)},
+      {"folds", folds_json(fitted, diag)},
       {"refinement", refinement_json(fitted, options)},
       {"projection",
        {{"rms_relative", fitted.projection_rms / diag},

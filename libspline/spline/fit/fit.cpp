@@ -302,6 +302,7 @@ FitSetup make_fit_setup(const ManifoldSplineSpace& space, const Eigen::MatrixX3d
   if (options.constraint_r >= 0) {
     FairOptions fair_options;
     fair_options.r = options.constraint_r;
+    fair_options.active_faces = options.constraint_faces;
     setup.constraints = fairing_constraints(space, fair_options);
   } else {
     setup.constraints.resize(0, space.function_count());
@@ -631,6 +632,34 @@ void refit_missed_boundary(const ManifoldSplineSpace& space, const FitSetup& set
   }
 }
 
+// ScanFitOptions::free_cone_faces_from_genus: by face of the problem's mesh, 0 for a face with a
+// corner within free_cone_rings edges of the cone, 1 elsewhere; empty (every face constrained)
+// below that genus or without a single cone.
+std::vector<char> free_cone_faces(const ricci::OneConeProblem& problem,
+                                  const ScanFitOptions& options) {
+  if (problem.cone < 0 || options.free_cone_faces_from_genus <= 0 ||
+      problem.genus < options.free_cone_faces_from_genus)
+    return {};
+  const ricci::Mesh& mesh = problem.mesh;
+  std::vector<int> ring(mesh.n_vertices(), -1);
+  std::vector<int> queue{problem.cone};
+  ring[static_cast<std::size_t>(problem.cone)] = 0;
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const int v = queue[q];
+    if (ring[static_cast<std::size_t>(v)] >= options.free_cone_rings) continue;
+    for (auto w : mesh.vv_range(mesh.vertex_handle(v))) {
+      if (ring[static_cast<std::size_t>(w.idx())] >= 0) continue;
+      ring[static_cast<std::size_t>(w.idx())] = ring[static_cast<std::size_t>(v)] + 1;
+      queue.push_back(w.idx());
+    }
+  }
+  std::vector<char> constrained(mesh.n_faces(), 1);
+  for (auto f : mesh.faces())
+    for (auto v : mesh.fv_range(f))
+      if (ring[static_cast<std::size_t>(v.idx())] >= 0) constrained[f.idx()] = 0;
+  return constrained;
+}
+
 }  // namespace
 
 ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) {
@@ -730,6 +759,9 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
 
   t = stage("fit");
   FitOptions fit_options = options.fit;
+  fit_options.constraint_faces = free_cone_faces(result.atlas.problem, options);
+  result.unconstrained_faces = static_cast<int>(
+      std::count(fit_options.constraint_faces.begin(), fit_options.constraint_faces.end(), 0));
   if (options.constrained_fit && options.fair_r >= 0) fit_options.constraint_r = options.fair_r;
   // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
   const FitSetup setup = prepare_fit(*space, parameters, data, initial, fit_options);

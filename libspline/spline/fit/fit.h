@@ -64,6 +64,9 @@ struct FitOptions {
   /// w relative to the mean diagonal of the (reduced) normal matrix; lowered automatically when
   /// the factorisation fails.
   double constraint_penalty = 1e6;
+  /// By face of the space's mesh, nonzero: the fairing constraints of constraint_r tie this face
+  /// (FairOptions::active_faces); empty: every face.
+  std::vector<char> constraint_faces;
   int constraint_iterations = 100;
   /// Worker threads of the assembly and of the residuals (the result does not depend on it
   /// beyond rounding of the sum order).
@@ -162,6 +165,18 @@ struct ScanFitOptions {
   /// Gauss-Newton steps of each correction's projection (project_to_spline).
   int correction_iterations = 2;
   FitOptions fit;
+  /// From this genus on (a single cone of angle 2 pi (2g - 1)), the faces with a corner within
+  /// free_cone_rings edges of the cone are fitted free of the fairing constraints
+  /// (FitOptions::constraint_faces): there the one-cone chart is z^(2g - 1) of the surface, its
+  /// faces are slivers whose neighbours' polynomials, blossomed across an edge, predict the face
+  /// badly, and the constrained fit folds the spline (generated genus 10 at 12k faces, first
+  /// round: 126 fold edges next to the cone constrained, 11 free). The spline stays C^(n-1)
+  /// (its basis is); only eq. 14's fairing is dropped there. 0: never.
+  int free_cone_faces_from_genus = 10;
+  /// Vertex rings of the domain (after the cone refinement) around the cone; at genus 10 eight
+  /// rings hold the chart's slivers (median smallest angle 2.7-17 degrees in rings 4-7, 28 in
+  /// ring 8), and freeing 16 let the spline fold farther out (24 -> 50 fold edges there).
+  int free_cone_rings = 8;
   FairOptions fair;  ///< its r is replaced by fair_r
   KnotCloudOptions knots;
   /// The atlas, with the cone's neighbourhood sampled densely (cone_refinement, 2 levels of 6
@@ -236,6 +251,8 @@ struct ScanFitResult {
   FairResult fairing;
   ScanFitTimings timings;
   int corrections = 0;  ///< parameter-correction rounds run
+  /// Faces fitted free of the fairing constraints (ScanFitOptions::free_cone_faces_from_genus).
+  int unconstrained_faces = 0;
   int boundary_refits = 0;  ///< refits after raising missed boundary samples' weight
   /// By face of the domain mesh (atlas.problem.mesh): nonzero on the ghost faces of the
   /// boundary collar (ScanFitOptions::collar), which are fitted but are not the surface; empty

@@ -326,6 +326,7 @@ void take_scan(ScanFitResult&& scan, FittedSurface& out) {
   out.surface.spline = std::move(scan.spline);
   out.surface.singular_vertex = problem.cone;
   out.fit_constraint_residual = scan.fit.max_constraint_residual;
+  out.fit_unconstrained_faces = scan.unconstrained_faces;
   out.collar_faces = std::move(scan.collar_faces);
   out.collar_refused = std::move(scan.collar_refused);
   out.boundary_follow = scan.boundary_follow;
@@ -502,6 +503,7 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   next.collar_faces = out.collar_faces;
   next.collar_refused = out.collar_refused;
   next.boundary_follow = out.boundary_follow;
+  next.fit_unconstrained_faces = out.fit_unconstrained_faces;
   const auto& space = out.surface.spline.space;
   FitOptions fit = best.fit;
   fit.face_smoothing = face_smoothing;
@@ -1235,6 +1237,32 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   out.capped_hole_diameter = holes.largest_diameter;
   measure_delivered(input, options, holes.capped_vertex, out);
   clock.finish();
+  return out;
+}
+
+SurfaceFoldPlaces surface_fold_places(const FittedSurface& fitted) {
+  const Tessellation& t = fitted.tessellation;
+  std::vector<char> on_patch(static_cast<std::size_t>(t.positions.rows()), 0);
+  for (std::size_t i = 0; i < t.triangles.size(); ++i)
+    if (t.triangle_face[i] < 0)
+      for (int v : t.triangles[i]) on_patch[static_cast<std::size_t>(v)] = 1;
+  const ricci::Mesh& domain = fitted.surface.domain;
+  const int cone = fitted.surface.singular_vertex;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double hole_radius = 0.0;
+  if (cone >= 0 && cone < static_cast<int>(domain.n_vertices())) {
+    centre = ricci::to_eigen(domain.point(domain.vertex_handle(cone)));
+    for (const HoleFill& fill : fitted.surface.fills) {
+      if (fill.rim.kind != Rim::Kind::cone_hole) continue;
+      for (int f : fill.rim.covered_faces)
+        for (auto v : domain.fv_range(domain.face_handle(f)))
+          hole_radius = std::max(hole_radius, (ricci::to_eigen(domain.point(v)) - centre).norm());
+    }
+  }
+  SurfaceFoldPlaces out;
+  out.near_cone_radius = kNearConeHoleRadii * hole_radius;
+  out.places = fold_places(fitted.surface_dihedral.fold_edges, t.positions, on_patch, centre,
+                           out.near_cone_radius);
   return out;
 }
 

@@ -153,6 +153,9 @@ struct FittedSurface {
   int domain_base_faces = 0;
   std::vector<int> domain_split_faces;
   double fit_constraint_residual = 0.0;  ///< Largest |C c| of the constrained fit.
+  /// Domain faces fitted free of the fairing constraints next to the cone
+  /// (ScanFitOptions::free_cone_faces_from_genus).
+  int fit_unconstrained_faces = 0;
   /// Open inputs: by domain face, the ghost faces of the boundary collar (ScanFitResult); why
   /// the collar was dropped, if it was; what follow_boundary did to the domain's boundary.
   std::vector<char> collar_faces;
@@ -210,6 +213,18 @@ struct FittedSurface {
 /// (a patch capped a handle: a hole that held one was filled by a disk). fit_surface does not
 /// throw on this: the caller decides (msp fit writes its outputs and exits non-zero).
 [[nodiscard]] std::string topology_mismatch(const FittedSurface& fitted);
+
+/// Where the delivered surface folds (fold_places, tessellate/dihedral.h): on the patches, on the
+/// spline next to the cone, elsewhere. "Next to the cone" is within kNearConeHoleRadii times the
+/// cone hole's radius (the farthest 3D distance from the cone to a corner of the faces its patch
+/// covers) of the cone, where the one-cone metric's scale changes fastest; 0 (every spline
+/// fold elsewhere) without a cone or a cone patch.
+inline constexpr double kNearConeHoleRadii = 3.0;
+struct SurfaceFoldPlaces {
+  FoldPlaces places;
+  double near_cone_radius = 0.0;  ///< The radius used, absolute.
+};
+[[nodiscard]] SurfaceFoldPlaces surface_fold_places(const FittedSurface& fitted);
 
 /// Smallest FitSurfaceOptions::domain_faces for a surface of this genus: the domain must hold
 /// the cone's star, the cut graph's 2g loops and a vertex chart around each.

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <string>
 #include <utility>
 
+#include "ricci/mesh/errors.h"
 #include "ricci/mesh/mesh.h"
 #include "spline/tessellate/triangle_sides.h"
 
@@ -55,6 +58,37 @@ DihedralReport dihedral_angles(const std::vector<std::array<int, 3>>& triangles,
   report.p99_deg = at(0.99);
   report.max_deg = *std::max_element(angles.begin(), angles.end());
   return report;
+}
+
+FoldPlaces fold_places(const std::vector<std::array<int, 2>>& fold_edges,
+                       const Eigen::MatrixX3d& positions, const std::vector<char>& on_patch,
+                       const Eigen::Vector3d& cone, double radius) {
+  const auto n = static_cast<int>(positions.rows());
+  if (static_cast<int>(on_patch.size()) != n || !(radius >= 0.0) || !std::isfinite(radius)) {
+    throw ricci::InvalidInputError("fold_places: " + std::to_string(on_patch.size()) +
+                                   " patch marks for " + std::to_string(n) +
+                                   " positions, radius " + std::to_string(radius));
+  }
+  FoldPlaces places;
+  std::vector<double> distances;
+  for (const auto& e : fold_edges) {
+    if (e[0] < 0 || e[0] >= n || e[1] < 0 || e[1] >= n)
+      throw ricci::InvalidInputError("fold_places: a fold edge's position is out of range");
+    if (on_patch[static_cast<std::size_t>(e[0])] && on_patch[static_cast<std::size_t>(e[1])]) {
+      ++places.on_patches;
+      continue;
+    }
+    const Eigen::Vector3d mid = 0.5 * (positions.row(e[0]) + positions.row(e[1])).transpose();
+    const double d = (mid - cone).norm();
+    distances.push_back(d);
+    ++(d <= radius ? places.near_cone : places.elsewhere);
+  }
+  if (!distances.empty()) {
+    const auto middle = distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2);
+    std::nth_element(distances.begin(), middle, distances.end());
+    places.median_cone_distance = *middle;
+  }
+  return places;
 }
 
 }  // namespace spline

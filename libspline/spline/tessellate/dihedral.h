@@ -23,4 +23,23 @@ struct DihedralReport {
 [[nodiscard]] DihedralReport dihedral_angles(const std::vector<std::array<int, 3>>& triangles,
                                              const Eigen::MatrixX3d& positions);
 
+/// Where a surface's folds lie (issue 20: a fold next to the cone, on its patch or elsewhere).
+struct FoldPlaces {
+  int on_patches = 0;  ///< Both ends on a fill patch's triangles.
+  int near_cone = 0;   ///< On the spline, midpoint within the given radius of the cone.
+  int elsewhere = 0;   ///< On the spline, farther.
+  /// Median distance of the spline's fold midpoints from the cone (0 when none).
+  double median_cone_distance = 0.0;
+};
+
+/// Sorts fold edges (position indices, e.g. DihedralReport::fold_edges) by place: on a patch
+/// when both ends are marked in `on_patch` (by position), else near the cone when the edge's
+/// midpoint lies within `radius` of `cone`, else elsewhere.
+/// \throw ricci::InvalidInputError when on_patch's size is not positions' row count, an index
+///        is out of range or radius is negative or not finite.
+[[nodiscard]] FoldPlaces fold_places(const std::vector<std::array<int, 2>>& fold_edges,
+                                     const Eigen::MatrixX3d& positions,
+                                     const std::vector<char>& on_patch,
+                                     const Eigen::Vector3d& cone, double radius);
+
 }  // namespace spline

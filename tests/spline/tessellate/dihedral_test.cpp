@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "ricci/mesh/errors.h"
 #include "spline/tessellate/dihedral.h"
 
 namespace spline {
@@ -98,6 +99,43 @@ TEST(DihedralAngles, FoldEdgesAreListedInVertexOrder) {
     EXPECT_EQ(r.fold_edges[k][0], expected[k][0]);
     EXPECT_EQ(r.fold_edges[k][1], expected[k][1]);
   }
+}
+
+// Five hinges folded back along the x axis at x = 3h (h = 0..4): the first one's positions on a
+// patch, the others' fold midpoints 3.5, 6.5, 9.5 and 12.5 from a cone at the origin.
+TEST(FoldPlaces, SortsFoldsByPatchAndDistanceFromTheCone) {
+  const int hinges = 5;
+  Eigen::MatrixX3d p(4 * hinges, 3);
+  Triangles triangles;
+  std::vector<char> on_patch(4 * hinges, 0);
+  for (int h = 0; h < hinges; ++h) {
+    const double x = 3.0 * h;
+    p.row(4 * h) << x, 0, 0;
+    p.row(4 * h + 1) << x + 1, 0, 0;
+    p.row(4 * h + 2) << x, 1, 0;
+    p.row(4 * h + 3) << x + 0.5, 0.4, 0;
+    triangles.push_back({4 * h, 4 * h + 1, 4 * h + 2});
+    triangles.push_back({4 * h + 1, 4 * h, 4 * h + 3});
+  }
+  for (int k = 0; k < 4; ++k) on_patch[static_cast<std::size_t>(k)] = 1;
+  const DihedralReport r = dihedral_angles(triangles, p);
+  ASSERT_EQ(r.over_90_deg, hinges);
+  const FoldPlaces places = fold_places(r.fold_edges, p, on_patch, Eigen::Vector3d::Zero(), 7.0);
+  EXPECT_EQ(places.on_patches, 1);
+  EXPECT_EQ(places.near_cone, 2);  // 3.5 and 6.5
+  EXPECT_EQ(places.elsewhere, 2);  // 9.5 and 12.5
+  EXPECT_NEAR(places.median_cone_distance, 9.5, 1e-12);
+  // One end on a patch is not enough: the fold is the spline's.
+  on_patch[0] = 0;
+  on_patch[4] = 1;
+  const FoldPlaces moved = fold_places(r.fold_edges, p, on_patch, Eigen::Vector3d::Zero(), 7.0);
+  EXPECT_EQ(moved.on_patches, 0);
+  EXPECT_EQ(moved.near_cone, 3);
+  EXPECT_THROW((void)fold_places(r.fold_edges, p, std::vector<char>(3, 0),
+                                 Eigen::Vector3d::Zero(), 1.0),
+               ricci::InvalidInputError);
+  EXPECT_THROW((void)fold_places(r.fold_edges, p, on_patch, Eigen::Vector3d::Zero(), -1.0),
+               ricci::InvalidInputError);
 }
 
 }  // namespace
