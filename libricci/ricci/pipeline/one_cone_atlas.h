@@ -163,7 +163,7 @@ struct OneConeAtlasResult {
                                                      const OneConeAtlasOptions& options);
 
 /// The one-cone atlas of `mesh`, which stays the caller's: it is held beside the flow's
-/// factorisation all along (126 MB at 1.6M faces). To spare that memory, pass the mesh by
+/// factorisation all along (about 80 bytes per face). To spare that memory, pass the mesh by
 /// rvalue (below).
 /// \pre a connected, oriented 2-manifold triangle mesh.
 /// \throw InvalidInputError / TopologyError for bad input; InfeasibleTargetError for a target
@@ -173,7 +173,7 @@ struct OneConeAtlasResult {
 
 /// The same atlas, on a mesh handed over to the pipeline (`std::move(mesh)`: it is used in
 /// place, not copied): once the problem's mesh is made from it (valence modification) the
-/// input waits as (V, F) arrays (38 MB at 1.6M faces against 126) while the flow runs, and is
+/// input waits as (V, F) arrays (about a third of the mesh's memory) while the flow runs, and is
 /// rebuilt in the same vertex and face order only if a fallback route needs it. The result is
 /// the const-reference call's whenever that rebuild gives back the same mesh, as for a mesh
 /// read by read_mesh or built face by face without deletions. `mesh` is left empty, also

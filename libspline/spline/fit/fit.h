@@ -169,13 +169,13 @@ struct ScanFitOptions {
   /// free_cone_rings edges of the cone are fitted free of the fairing constraints
   /// (FitOptions::constraint_faces): there the one-cone chart is z^(2g - 1) of the surface, its
   /// faces are slivers whose neighbours' polynomials, blossomed across an edge, predict the face
-  /// badly, and the constrained fit folds the spline (generated genus 10 at 12k faces, first
-  /// round: 126 fold edges next to the cone constrained, 11 free). The spline stays C^(n-1)
-  /// (its basis is); only eq. 14's fairing is dropped there. 0: never.
+  /// badly, and the constrained fit folds the spline there (docs/design-notes.md has the
+  /// figures). The spline stays C^(n-1) (its basis is); only eq. 14's fairing is dropped there.
+  /// 0: never.
   int free_cone_faces_from_genus = 10;
-  /// Vertex rings of the domain (after the cone refinement) around the cone; at genus 10 eight
-  /// rings hold the chart's slivers (median smallest angle 2.7-17 degrees in rings 4-7, 28 in
-  /// ring 8), and freeing 16 let the spline fold farther out (24 -> 50 fold edges there).
+  /// Vertex rings of the domain (after the cone refinement) around the cone whose faces are
+  /// freed: the rings that hold the chart's slivers at genus 10 (more rings let the spline fold
+  /// farther out).
   int free_cone_rings = 8;
   FairOptions fair;  ///< its r is replaced by fair_r
   KnotCloudOptions knots;
