@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <memory>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -114,34 +113,52 @@ Eigen::SparseMatrix<double> grid_matrix(int n, const std::vector<int>& label) {
   return m;
 }
 
-// A new pattern of the same size takes the cached ordering when it fits (one more edge), is
-// ordered afresh when it does not (the vertices relabelled: the old ordering is arbitrary for
-// it), and after that rejection the cache no longer tries: every later pattern is ordered
-// afresh. Each factorisation solves its system either way.
-TEST(FactorizationCache, StopsOfferingTheOrderingOnceRejected) {
-  const int n = 40;
-  std::vector<int> identity(static_cast<size_t>(n * n)), shuffled(identity.size());
-  std::iota(identity.begin(), identity.end(), 0);
-  for (size_t k = 0; k < shuffled.size(); ++k) {
-    shuffled[k] = static_cast<int>((k * 613) % shuffled.size());  // 613 is prime to 1600
+// Three patterns of one size for the cache: the 40 x 40 grid, the grid with one more edge (a
+// diagonal of the first square: a flip, which the grid's ordering fits) and the grid with its
+// vertices relabelled (the grid's ordering is arbitrary for it); a cache, and whether a
+// factorisation from it solves its system.
+class CachedOrdering : public ::testing::Test {
+ protected:
+  static constexpr int n = 40;
+
+  CachedOrdering()
+      : grid(grid_matrix(n, labels(1))), relabelled(grid_matrix(n, labels(613))) {
+    grid_and_edge = grid;
+    grid_and_edge.insert(n + 1, 0) = -0.5;
+    grid_and_edge.coeffRef(0, 0) += 0.5;
+    grid_and_edge.coeffRef(n + 1, n + 1) += 0.5;
+    grid_and_edge.makeCompressed();
   }
-  const Eigen::SparseMatrix<double> grid = grid_matrix(n, identity);
-  Eigen::SparseMatrix<double> grid_and_edge = grid;
-  grid_and_edge.insert(n + 1, 0) = -0.5;  // a diagonal of the first square (a flip)
-  grid_and_edge.coeffRef(0, 0) += 0.5;
-  grid_and_edge.coeffRef(n + 1, n + 1) += 0.5;
-  grid_and_edge.makeCompressed();
-  const Eigen::SparseMatrix<double> relabelled = grid_matrix(n, shuffled);
-  const auto kind = ricci::LinearSolver::cholmod_supernodal;
-  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n * n, -1.0, 1.0);
-  ricci::FactorizationCache cache;
-  double seconds = 0;
-  const auto solves = [&](const Eigen::SparseMatrix<double>& m) {
-    const auto f = cache.get(kind, m, seconds);
+
+  // Vertex k labelled (k * step) mod n^2 (613 is prime to 1600: a permutation).
+  static std::vector<int> labels(size_t step) {
+    std::vector<int> label(static_cast<size_t>(n * n));
+    for (size_t k = 0; k < label.size(); ++k) {
+      label[k] = static_cast<int>((k * step) % label.size());
+    }
+    return label;
+  }
+
+  bool solves(const Eigen::SparseMatrix<double>& m,
+              ricci::OrderingReuse reuse = ricci::OrderingReuse::until_rejected) {
+    const auto f = cache.get(ricci::LinearSolver::cholmod_supernodal, m, seconds, reuse);
     if (!f->factorize(m)) return false;
     const Eigen::VectorXd x = f->solve(rhs);
     return (m.selfadjointView<Eigen::Lower>() * x - rhs).norm() < 1e-10 * rhs.norm();
-  };
+  }
+
+  const Eigen::SparseMatrix<double> grid, relabelled;
+  Eigen::SparseMatrix<double> grid_and_edge;
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n * n, -1.0, 1.0);
+  ricci::FactorizationCache cache;
+  double seconds = 0;
+};
+
+// A new pattern of the same size takes the cached ordering when it fits (one more edge), is
+// ordered afresh when it does not (the vertices relabelled), and after that rejection the
+// cache no longer tries: every later pattern is ordered afresh. Each factorisation solves its
+// system either way.
+TEST_F(CachedOrdering, StopsOfferingTheOrderingOnceRejected) {
   EXPECT_TRUE(solves(grid));
   EXPECT_TRUE(solves(grid_and_edge));
   EXPECT_EQ(cache.orderings_reused(), 1);
@@ -158,30 +175,7 @@ TEST(FactorizationCache, StopsOfferingTheOrderingOnceRejected) {
 
 // The caller's word (OrderingReuse) overrides the cache's rule: `offer` tries the cached
 // ordering after a rejection, `skip` orders afresh a pattern the ordering would fit.
-TEST(FactorizationCache, CallerDecidesWhetherTheOrderingIsOffered) {
-  const int n = 40;
-  std::vector<int> identity(static_cast<size_t>(n * n)), shuffled(identity.size());
-  std::iota(identity.begin(), identity.end(), 0);
-  for (size_t k = 0; k < shuffled.size(); ++k) {
-    shuffled[k] = static_cast<int>((k * 613) % shuffled.size());
-  }
-  const Eigen::SparseMatrix<double> grid = grid_matrix(n, identity);
-  Eigen::SparseMatrix<double> grid_and_edge = grid;
-  grid_and_edge.insert(n + 1, 0) = -0.5;
-  grid_and_edge.coeffRef(0, 0) += 0.5;
-  grid_and_edge.coeffRef(n + 1, n + 1) += 0.5;
-  grid_and_edge.makeCompressed();
-  const Eigen::SparseMatrix<double> relabelled = grid_matrix(n, shuffled);
-  const auto kind = ricci::LinearSolver::cholmod_supernodal;
-  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n * n, -1.0, 1.0);
-  ricci::FactorizationCache cache;
-  double seconds = 0;
-  const auto solves = [&](const Eigen::SparseMatrix<double>& m, ricci::OrderingReuse reuse) {
-    const auto f = cache.get(kind, m, seconds, reuse);
-    if (!f->factorize(m)) return false;
-    const Eigen::VectorXd x = f->solve(rhs);
-    return (m.selfadjointView<Eigen::Lower>() * x - rhs).norm() < 1e-10 * rhs.norm();
-  };
+TEST_F(CachedOrdering, CallerDecidesWhetherTheOrderingIsOffered) {
   using ricci::OrderingReuse;
   EXPECT_TRUE(solves(grid, OrderingReuse::until_rejected));
   EXPECT_TRUE(solves(relabelled, OrderingReuse::until_rejected));

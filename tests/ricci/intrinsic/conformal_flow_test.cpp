@@ -25,6 +25,21 @@ Eigen::VectorXd recomputed_curvature(const ricci::IntrinsicFlowResult& r) {
   return ricci::intrinsic_curvature(r.triangulation, angles);
 }
 
+// The eight (closed genus 2) with its one cone at vertex 0.
+ricci::OneConeProblem eight_cone_at_vertex_0() {
+  return ricci::prepare_one_cone(
+      ricci::read_mesh(std::string(MSP_TEST_DATA) + "/meshes/closed_g2/eight.off"), 0);
+}
+
+// Two flows to `targets` ended at one metric: a's curvature is the target's, and with one
+// pinned vertex the log scale factors agree.
+void expect_same_metric(const ricci::IntrinsicFlowResult& a, const ricci::IntrinsicFlowResult& b,
+                        const ricci::Targets& targets) {
+  EXPECT_LT((recomputed_curvature(a) - targets.curvature).cwiseAbs().maxCoeff(), 1e-12);
+  ASSERT_EQ(a.pinned_vertex, b.pinned_vertex);
+  EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), 1e-10);
+}
+
 TEST(IntrinsicConformalFlow, FlattensABumpyTorus) {
   const ricci::Mesh mesh =
       ricci::make_random_perturbed(ricci::make_torus(40, 12, 2.0, 0.6), 0.3, 3);
@@ -103,9 +118,7 @@ TEST(IntrinsicOneConeAtlas, Genus4OnTheFlippedTriangulation) {
 // factorisation instead of a factorisation per step reach the metric full Newton reaches,
 // with fewer factorisations.
 TEST(IntrinsicConformalFlow, ChordStepsReachFullNewtonsMetric) {
-  const ricci::OneConeProblem problem =
-      ricci::prepare_one_cone(ricci::read_mesh(std::string(MSP_TEST_DATA) +
-                                               "/meshes/closed_g2/eight.off"), 0);
+  const ricci::OneConeProblem problem = eight_cone_at_vertex_0();
   ricci::IntrinsicFlowOptions chord;
   chord.tolerance = 1e-12;
   ricci::IntrinsicFlowOptions full = chord;
@@ -118,19 +131,14 @@ TEST(IntrinsicConformalFlow, ChordStepsReachFullNewtonsMetric) {
   EXPECT_EQ(b.factorizations, b.iterations);
   EXPECT_LT(a.factorizations, b.factorizations);
   EXPECT_GT(a.linear_work.back_substitutions, a.factorizations);
-  EXPECT_LT((recomputed_curvature(a) - problem.targets.curvature).cwiseAbs().maxCoeff(), 1e-12);
-  // One pinned vertex, so one metric: the log scale factors agree.
-  ASSERT_EQ(a.pinned_vertex, b.pinned_vertex);
-  EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), 1e-10);
+  expect_same_metric(a, b, problem.targets);
 }
 
 // A Laplacian a few flips from the last analysed one is analysed with that analysis' ordering
 // (IntrinsicFlowOptions::ordering_reuse_flips); without the reuse every new pattern is ordered
 // afresh. The metric is the same either way.
 TEST(IntrinsicConformalFlow, FewFlipsKeepTheLastOrdering) {
-  const ricci::OneConeProblem problem =
-      ricci::prepare_one_cone(ricci::read_mesh(std::string(MSP_TEST_DATA) +
-                                               "/meshes/closed_g2/eight.off"), 0);
+  const ricci::OneConeProblem problem = eight_cone_at_vertex_0();
   ricci::IntrinsicFlowOptions reuse;
   reuse.tolerance = 1e-12;
   reuse.solver = ricci::LinearSolver::cholmod_supernodal;  // (orderings are CHOLMOD's)
@@ -144,18 +152,14 @@ TEST(IntrinsicConformalFlow, FewFlipsKeepTheLastOrdering) {
   ASSERT_TRUE(b.converged()) << b.message;
   EXPECT_GE(a.orderings_reused, 1);
   EXPECT_EQ(b.orderings_reused, 0);
-  EXPECT_LT((recomputed_curvature(a) - problem.targets.curvature).cwiseAbs().maxCoeff(), 1e-12);
-  ASSERT_EQ(a.pinned_vertex, b.pinned_vertex);
-  EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), 1e-10);
+  expect_same_metric(a, b, problem.targets);
 }
 
 // The long-double polish's goal (polish_e2_lengths' good_enough, the pipeline's kPolishGoal):
 // it stops at the step that reaches it, where without a goal it steps on until a step gains
 // nothing (the evaluation's floor), spending at least one more back-substitution.
 TEST(IntrinsicConformalFlow, PolishStopsOnceGoodEnough) {
-  const ricci::OneConeProblem problem =
-      ricci::prepare_one_cone(ricci::read_mesh(std::string(MSP_TEST_DATA) +
-                                               "/meshes/closed_g2/eight.off"), 0);
+  const ricci::OneConeProblem problem = eight_cone_at_vertex_0();
   ricci::IntrinsicFlowOptions options;
   options.tolerance = 1e-6;  // handed over early: the polish has steps to take
   const ricci::IntrinsicFlowResult r =
