@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -14,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "info_subprocess.h"
+#include "test_paths.h"
 
 namespace {
 
@@ -61,6 +63,29 @@ TEST_F(IntrinsicCli, RefusesANonEuclideanGeometry) {
       {"flow", mesh_, "--metric", "intrinsic-delaunay", "--geometry", "hyperbolic", "--quiet"});
   EXPECT_EQ(r.exit_status, 2);
   EXPECT_NE(r.err.find("euclidean"), std::string::npos) << r.err;
+}
+
+// `msp atlas` hands the mesh it read over to the pipeline (build_one_cone_atlas(Mesh&&)); what
+// the pipeline refuses after that is still one line, exit 1 and nothing on stdout.
+TEST(AtlasCli, RefusesWhatThePipelineRefusesInOneLine) {
+  const std::string genus0 = msp_test::bundled_model("genus0.off");
+  const std::string genus2 = msp_test::bundled_model("genus2.off");
+  const struct {
+    std::vector<std::string> args;
+    const char* keyword;
+  } cases[] = {
+      {{"atlas", genus2, "--singularity", "999999", "--json", "--quiet"}, "out of range"},
+      {{"atlas", genus0, "--metric", "intrinsic-delaunay", "--json", "--quiet"}, "genus >= 1"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.keyword);
+    const auto r = msp_test::run_msp(c.args);
+    EXPECT_EQ(r.exit_status, 1);
+    EXPECT_EQ(msp_test::line_count(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("msp atlas: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.keyword), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
 }
 
 }  // namespace
