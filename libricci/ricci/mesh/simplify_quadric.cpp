@@ -6,8 +6,6 @@
 #include <queue>
 #include <vector>
 
-#include "ricci/util/parallel.h"
-
 namespace ricci {
 namespace {
 
@@ -72,21 +70,12 @@ class Decimator {
     mesh_.request_halfedge_status();
     mesh_.request_face_status();
     quadrics_.assign(mesh_.n_vertices(), Quadric::Zero());
-    // The face planes' quadrics on all cores, then summed at the vertices in face order (the
-    // serial loop's additions, so the same bits).
-    std::vector<Quadric> face_quadrics(mesh_.n_faces());
-    std::vector<char> has_plane(mesh_.n_faces(), 0);  // a degenerate face adds none
-    parallel_for(mesh_.n_faces(), 0, [&](std::size_t i) {
-      const FaceHandle f(static_cast<int>(i));
-      const Eigen::Vector3d n = raw_normal(f, VertexHandle(), Eigen::Vector3d::Zero());
-      if (!(n.norm() > 0.0)) return;
-      face_quadrics[i] = plane_quadric(n.normalized(), point(*mesh_.fv_begin(f)), 1.0);
-      has_plane[i] = 1;
-    });
     for (auto f : mesh_.faces()) {
-      const auto i = static_cast<std::size_t>(f.idx());
-      if (!has_plane[i]) continue;
-      for (auto v : mesh_.fv_range(f)) quadrics_[v.idx()] += face_quadrics[i];
+      const Eigen::Vector3d n = raw_normal(f, VertexHandle(), Eigen::Vector3d::Zero());
+      if (!(n.norm() > 0.0)) continue;
+      const Eigen::Vector3d p = point(*mesh_.fv_begin(f));
+      const Quadric q = plane_quadric(n.normalized(), p, 1.0);
+      for (auto v : mesh_.fv_range(f)) quadrics_[v.idx()] += q;
     }
     for (auto h : mesh_.halfedges()) {
       if (!mesh_.is_boundary(h)) continue;
@@ -102,11 +91,7 @@ class Decimator {
     }
     stamps_.assign(mesh_.n_edges(), 0);
     placements_.resize(mesh_.n_edges());
-    // Every edge's placement on all cores, then queued in edge order as push() would.
-    parallel_for(mesh_.n_edges(), 0, [&](std::size_t i) {
-      placements_[i] = placement(EdgeHandle(static_cast<int>(i)));
-    });
-    for (auto e : mesh_.edges()) enqueue(e);
+    for (auto e : mesh_.edges()) push(e);
   }
 
   int run(int target_faces) {
@@ -146,20 +131,12 @@ class Decimator {
     return (p[1] - p[0]).cross(p[2] - p[0]);
   }
 
-  Placement placement(EdgeHandle e) const {
+  void push(EdgeHandle e) {
     const auto h = mesh_.halfedge_handle(e, 0);
     const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-    return place(quadrics_[a.idx()] + quadrics_[b.idx()], point(a), point(b));
-  }
-
-  // Queues e at its placement's cost (a newer stamp makes the older entries stale).
-  void enqueue(EdgeHandle e) {
-    queue_.push({placements_[e.idx()].cost, e.idx(), ++stamps_[e.idx()]});
-  }
-
-  void push(EdgeHandle e) {
-    placements_[e.idx()] = placement(e);
-    enqueue(e);
+    const Placement p = place(quadrics_[a.idx()] + quadrics_[b.idx()], point(a), point(b));
+    placements_[e.idx()] = p;
+    queue_.push({p.cost, e.idx(), ++stamps_[e.idx()]});
   }
 
   // Link condition, and no remaining face around either end turned by 90 degrees or more (or
