@@ -120,11 +120,14 @@ struct NormalEquations {
 [[nodiscard]] std::vector<Eigen::Vector2d> layout_by_development(
     const std::vector<std::vector<RimSample>>& samples, HoleFill& fill);
 
-/// The parametric G1 patch (parametric_fill.cpp; hole_fill.h says what it solves).
+/// The parametric G1 patch (parametric_fill.cpp; hole_fill.h says what it solves), refined
+/// refinements[j] times at rim vertex j (patch_space).
+/// \pre refinements.size() == the rim's edge count.
 /// \throw ricci::InvalidInputError when the rim has zero length; ricci::SolverError when the
 ///        normal equations cannot be factorised.
 [[nodiscard]] HoleFill fill_parametric(const Rim& rim,
                                        const std::vector<std::vector<RimSample>>& samples,
-                                       const FillOptions& options);
+                                       const FillOptions& options,
+                                       const std::vector<int>& refinements);
 
 }  // namespace spline::fill_detail

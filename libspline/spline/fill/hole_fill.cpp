@@ -355,7 +355,8 @@ HoleFill fill_rim_once(const ManifoldSpline& spline, const ricci::Mesh& domain_m
   };
   auto parametric_fill = [&]() {
     return measured(fill_detail::fill_parametric(
-        rim, sample_edges(spline, rim, options.parametric_samples_per_edge), options));
+        rim, sample_edges(spline, rim, options.parametric_samples_per_edge), options,
+        corner_refinements(samples, options)));
   };
   if (options.method == FillMethod::parametric) return parametric_fill();
   // Boundary loops: the parametric patch only where the caller asks for a cap whatever the

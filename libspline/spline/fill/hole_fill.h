@@ -163,11 +163,11 @@ struct FillOptions {
   /// vertex. A refined patch missing target_jump_deg is compared with the uniform one and the
   /// smaller seam kept. 1: a uniform grid.
   int corner_refinement = 8;
-  /// ... except, in the height-field patch, at rim vertices where the surface's normal turns by
-  /// at most this (degrees) between consecutive rim samples (fit_samples_per_edge) next to the
-  /// vertex: there it is refined mild_corner_refinement times (at most corner_refinement), a
-  /// smaller patch. The parametric and positions-only patches refine every rim vertex
-  /// corner_refinement times.
+  /// ... except, in the height-field and parametric patches, at rim vertices where the
+  /// surface's normal turns by at most this (degrees) between consecutive rim samples
+  /// (fit_samples_per_edge) next to the vertex: there it is refined mild_corner_refinement times
+  /// (at most corner_refinement), a smaller patch. The positions-only patch refines every rim
+  /// vertex corner_refinement times.
   double mild_corner_step_deg = 0.04;
   int mild_corner_refinement = 2;
   /// ... but a rim where the surface's normal turns by more than this (degrees) between samples

@@ -105,7 +105,7 @@ Eigen::MatrixX3d affine_reference(const HoleFill& fill,
 }  // namespace
 
 HoleFill fill_parametric(const Rim& rim, const std::vector<std::vector<RimSample>>& samples,
-                         const FillOptions& options) {
+                         const FillOptions& options, const std::vector<int>& refinements) {
   const int m = static_cast<int>(rim.edges.size());
   const int q = static_cast<int>(samples[0].size()) - 1;
   HoleFill fill;
@@ -116,8 +116,7 @@ HoleFill fill_parametric(const Rim& rim, const std::vector<std::vector<RimSample
   const int boundary_vertices =
       std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
   const double h = perimeter / boundary_vertices;
-  fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners,
-                           options.corner_refinement);
+  fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners, refinements);
   const PlanarDmsSpace& space = *fill.space;
   // An orthonormal frame around the mean normal (informative: P is no height field).
   const Eigen::Vector3d helper =

@@ -305,6 +305,35 @@ TEST(FillRim, MildRimVerticesGetASmallerPatch) {
   }
 }
 
+// The parametric patch takes the same per-vertex refinement: fewer functions than refining
+// every vertex 8 times when the rim vertices are mild, the very patch of a uniform mild
+// refinement when all are, and still G1 to the eye.
+TEST(FillRim, MildRimVerticesGetASmallerParametricPatch) {
+  for (const std::string& path : {msp_test::test_mesh("closed_g2/eight.off")}) {
+    const auto& fit = testing::fitted_scan(path, 1000);
+    const auto& mesh = fit.atlas.problem.mesh;
+    const auto rims = find_rims(*fit.spline.space, mesh);
+    ASSERT_EQ(rims.size(), 1u) << path;
+    FillOptions every_vertex_full;
+    every_vertex_full.method = FillMethod::parametric;
+    every_vertex_full.mild_corner_step_deg = 0.0;
+    FillOptions every_vertex_mild = every_vertex_full;
+    every_vertex_mild.mild_corner_step_deg = 180.0;
+    FillOptions uniform_mild = every_vertex_full;
+    uniform_mild.corner_refinement = every_vertex_mild.mild_corner_refinement;
+    const HoleFill full = fill_rim(fit.spline, mesh, rims[0], every_vertex_full);
+    const HoleFill mild = fill_rim(fit.spline, mesh, rims[0], every_vertex_mild);
+    const HoleFill reference = fill_rim(fit.spline, mesh, rims[0], uniform_mild);
+    EXPECT_LT(mild.space->function_count(), full.space->function_count()) << path;
+    EXPECT_EQ(mild.space->function_count(), reference.space->function_count()) << path;
+    EXPECT_EQ(mild.control_points, reference.control_points) << path;
+    for (const HoleFill* fill : {&full, &mild}) {
+      EXPECT_TRUE(fill->g1) << path;
+      EXPECT_LT(fill->max_normal_jump_deg, 5.0) << path;
+    }
+  }
+}
+
 // On the fitted genus-3 surface the normals along the cone's rim span more than a hemisphere:
 // no height field. The height-field method falls back to a positions-only patch (watertight,
 // not G1, says so); the parametric patch over the developed rim meets the surface with the
