@@ -331,7 +331,8 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   IntrinsicTriangulation initial = make_intrinsic_triangulation(
       result.problem.mesh, mesh_edge_lengths(result.problem.mesh));
   const bool warm = options.warm_start && result.predicted_log_scale.size() > 0 &&
-                    result.problem.kind == OneConeKind::SingleCone;
+                    result.problem.kind == OneConeKind::SingleCone &&
+                    static_cast<double>(result.problem.mesh.n_faces()) < options.warm_start_below_faces;
   const Eigen::VectorXd warm_u =
       warm ? Eigen::VectorXd(options.warm_start_fraction *
                              problem_log_scale(result.problem, result.predicted_log_scale))
@@ -488,7 +489,8 @@ bool choose_vertex(const Mesh& mesh, const SurfaceTopology& topology,
   StageTimer t;
   const SingularityOptions choice = singularity_options_on(topology, options);
   SingularityOptions with_prediction = choice;
-  with_prediction.predict_log_scale = options.warm_start && intrinsic_first_on(topology, options);
+  with_prediction.predict_log_scale = options.warm_start && intrinsic_first_on(topology, options) &&
+                                      static_cast<double>(mesh.n_faces()) < options.warm_start_below_faces;
   bool fixed_failed = false;
   if (intrinsic_only) {
     result.chosen_vertex = rank_singularities(mesh, choice, &result.linear_work.choice).front().vertex;

@@ -88,8 +88,11 @@ struct OneConeAtlasOptions {
   /// vertices) instead of u = 0, with u = 0 as the fallback (intrinsic_conformal_flow's warm
   /// start). The whole prediction overshoots next to the cone, where the linear model's cone
   /// has the input's valence (docs/design-notes.md, "Warm start from the choice").
+  /// Below warm_start_below_faces faces only: at 1.6M faces the first cold step already lands
+  /// where the warm start does, and the warm start costs a factorisation.
   bool warm_start = true;
   double warm_start_fraction = 0.5;
+  int warm_start_below_faces = 400000;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;
 };
