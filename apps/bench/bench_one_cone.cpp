@@ -248,13 +248,13 @@ ricci::Mesh case_mesh(const std::string& path, int levels) {
 }  // namespace
 
 int run_one_cone_case(int argc, char** argv) {
-  Args args(argc, argv, {"verbose"});
-  args.require_known({"levels", "cone", "metric", "radii", "verbose", "cone-margin", "ring-valence", "rings",
+  Args args(argc, argv, {"verbose", "cold-start"});
+  args.require_known({"levels", "cone", "metric", "radii", "verbose", "cold-start", "warm-fraction", "cone-margin", "ring-valence", "rings",
                       "polish-threshold", "flat-flips", "ring-metric", "continuation", "collapse", "flip-deviation", "protect-rings", "seed-face", "save-metric", "write-mesh"});
   args.require_positionals(1, "msp-bench one-cone-one MESH [--levels N] [--cone auto|V] [--metric M] [--radii R] "
                             "[--collapse FRACTION] [--flat-flips DEGREES] [--flip-deviation FRACTION] "
                             "[--protect-rings N] [--ring-metric FAR:NEAR:RINGS[:NEEDLE_DEG[:nonnegative]]] "
-                            "[--continuation STAGES] [--seed-face F] [--verbose] [--write-mesh OUT]");
+                            "[--continuation STAGES] [--seed-face F] [--cold-start] [--warm-fraction F] [--verbose] [--write-mesh OUT]");
   const std::string path = args.positionals()[0];
   ricci::Stopwatch t0;
   ricci::Mesh mesh = case_mesh(path, args.get_int("levels", 0));
@@ -293,6 +293,8 @@ int run_one_cone_case(int argc, char** argv) {
     options.short_edges.relative_length = std::stod(*args.get("collapse"));
   }
   options.continuation.stages = args.get_int("continuation", 1);
+  options.warm_start = !args.has("cold-start");  // the intrinsic flow from u = 0
+  if (args.has("warm-fraction")) options.warm_start_fraction = std::stod(*args.get("warm-fraction"));
   if (args.has("ring-metric")) options.cone_ring_metrics = parse_ring_metrics(*args.get("ring-metric"));
   // The pipeline's resident memory, sampled (its peak, and with --verbose each stage's).
   std::unique_ptr<RssSampler> sampler;
@@ -352,6 +354,8 @@ int run_one_cone_case(int argc, char** argv) {
     j["metric_route"] = r.flow.metric_name;
     j["intrinsic_flips"] = r.intrinsic_flips;
     j["newton"] = r.flow.iterations;
+    j["warm_start"] = ricci::to_string(r.warm_start);
+    j["line_search_trials"] = r.intrinsic_trials;
     j["factorizations"] = r.flow.factorizations;
     const auto& ft = r.flow.timings;
     j["flow_stages"] = {{"setup", ft.setup},         {"evaluation", ft.evaluation},

@@ -82,6 +82,17 @@ struct IntrinsicFlowOptions {
   std::function<void(const FlowProgress&)> progress;
 };
 
+/// How a flow given a warm start (intrinsic_conformal_flow's warm_u) began.
+enum class WarmStart {
+  none,       ///< no warm start given: Newton started at u = 0
+  taken,      ///< Newton started at the warm start and converged from there
+  rejected,   ///< its max |K - K̄| was no lower than at u = 0 (or its evaluation failed)
+  abandoned,  ///< Newton from it stopped far from the answer; the flow restarted at u = 0
+};
+
+/// "none", "taken", "rejected", "abandoned".
+[[nodiscard]] std::string to_string(WarmStart warm);
+
 struct IntrinsicFlowResult {
   /// converged, max_iterations or stalled (the line search found no step).
   FlowStatus status = FlowStatus::stalled;
@@ -93,6 +104,7 @@ struct IntrinsicFlowResult {
   std::vector<double> error_history;  ///< max |K - K̄| before the first iteration and after each
   int iterations = 0;
   int flips = 0;  ///< Ptolemy flips, including those of rejected line-search trials
+  int line_search_trials = 0;  ///< evaluations at trial steps, accepted or not
   /// By flip, in order: the edge flipped (flip_edge) on the way from the initial triangulation
   /// to `triangulation`; point_tracking.h replays it to carry points between the two.
   std::vector<int> flip_log;
@@ -108,6 +120,10 @@ struct IntrinsicFlowResult {
   /// metric/polish_e2.h).
   std::shared_ptr<const SymmetricFactorization> laplacian_factorization;
   int pinned_vertex = -1;  ///< the vertex held at u = 0
+  WarmStart warm_start = WarmStart::none;
+  /// max |K - K̄| at u = 0 on the given triangulation (before any flip) and at the warm start
+  /// (shifted to u = 0 at the pinned vertex); both 0 without a warm start.
+  double cold_start_error = 0.0, warm_start_error = 0.0;
 
   [[nodiscard]] bool converged() const { return status == FlowStatus::converged; }
 };
@@ -122,6 +138,17 @@ struct IntrinsicFlowResult {
 /// Runs the flow from a given triangulation (its log lengths at u = 0). \throw as above.
 [[nodiscard]] IntrinsicFlowResult intrinsic_conformal_flow(
     IntrinsicTriangulation initial, const Eigen::VectorXd& target,
+    const IntrinsicFlowOptions& options = {});
+
+/// Runs the flow from a given triangulation with Newton starting at `warm_u` (log scale
+/// factors by vertex, e.g. the singularity choice's linear prediction) instead of 0: the first
+/// steps, which the line search damps while the cone's neighbourhood flips, are spared. The
+/// warm start is rejected when its max |K - K̄| is not below u = 0's, and abandoned (the flow
+/// restarts at u = 0 on the triangulation reached) when Newton from it stops with
+/// max |K - K̄| >= freeze_connectivity_below; result.warm_start says which.
+/// \throw as above; InvalidInputError when warm_u's size is not the vertex count.
+[[nodiscard]] IntrinsicFlowResult intrinsic_conformal_flow(
+    IntrinsicTriangulation initial, const Eigen::VectorXd& target, const Eigen::VectorXd& warm_u,
     const IntrinsicFlowOptions& options = {});
 
 /// The result's figures (status, message, u, curvature, target, history, iterations,

@@ -239,6 +239,69 @@ int removed_edge_count(const Eigen::MatrixX3i& closed_faces, const MeshTables& f
   return static_cast<int>(removed.size());
 }
 
+// Gauss-Seidel sweeps of problem_log_scale over the vertices the problem added.
+constexpr int kWarmStartSweeps = 10;
+
+// The choice's prediction (by input vertex) on the problem's vertices: an input vertex keeps
+// its value, a vertex added by the valence modification or the cone refinement takes the mean
+// of its neighbours that have one, in breadth-first order from the input's, then
+// kWarmStartSweeps sweeps of the mean of all its neighbours.
+Eigen::VectorXd problem_log_scale(const OneConeProblem& problem, const Eigen::VectorXd& input_u) {
+  const Mesh& mesh = problem.mesh;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
+  std::vector<char> known(mesh.n_vertices(), 0);
+  std::vector<int> added;
+  for (size_t v = 0; v < mesh.n_vertices(); ++v) {
+    const int i = v < problem.input_vertex.size() ? problem.input_vertex[v] : -1;
+    if (i >= 0 && i < input_u.size()) {
+      u[static_cast<Eigen::Index>(v)] = input_u[i];
+      known[v] = 1;
+    } else {
+      added.push_back(static_cast<int>(v));
+    }
+  }
+  const std::vector<int> all_added = added;
+  while (!added.empty()) {
+    std::vector<int> left;
+    std::vector<std::pair<int, double>> filled;
+    for (int v : added) {
+      double sum = 0.0;
+      int count = 0;
+      for (auto w : mesh.vv_range(mesh.vertex_handle(v))) {
+        if (known[static_cast<size_t>(w.idx())]) {
+          sum += u[w.idx()];
+          ++count;
+        }
+      }
+      if (count > 0) {
+        filled.emplace_back(v, sum / count);
+      } else {
+        left.push_back(v);
+      }
+    }
+    if (filled.empty()) break;  // a component without input vertices keeps 0
+    for (const auto& [v, value] : filled) {
+      u[v] = value;
+      known[static_cast<size_t>(v)] = 1;
+    }
+    added = std::move(left);
+  }
+  // The added vertices sit next to the cone, where u bends like a logarithm: a few
+  // Gauss-Seidel sweeps make them the harmonic extension of the input's values.
+  for (int sweep = 0; sweep < kWarmStartSweeps; ++sweep) {
+    for (int v : all_added) {
+      double sum = 0.0;
+      int count = 0;
+      for (auto w : mesh.vv_range(mesh.vertex_handle(v))) {
+        sum += u[w.idx()];
+        ++count;
+      }
+      if (count > 0) u[v] = sum / count;
+    }
+  }
+  return u;
+}
+
 bool intrinsic_applies(const OneConeProblem& problem) {
   return problem.kind == OneConeKind::SingleCone || problem.kind == OneConeKind::FlatTorus;
 }
@@ -267,16 +330,27 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   if (!result.flow.message.empty()) failures.push_back(result.flow.message);
   IntrinsicTriangulation initial = make_intrinsic_triangulation(
       result.problem.mesh, mesh_edge_lengths(result.problem.mesh));
+  const bool warm = options.warm_start && result.predicted_log_scale.size() > 0 &&
+                    result.problem.kind == OneConeKind::SingleCone &&
+                    static_cast<double>(result.problem.mesh.n_faces()) < options.warm_start_below_faces;
+  const Eigen::VectorXd warm_u =
+      warm ? Eigen::VectorXd(options.warm_start_fraction *
+                             problem_log_scale(result.problem, result.predicted_log_scale))
+           : Eigen::VectorXd();
   // The problem's mesh waits as arrays (38 MB against OpenMesh's 136 at 1.6M faces, beside the
   // flow's factorisation) while the flow and the polish run; it comes back only if they fail.
   const VertexFaceArrays problem_mesh = to_arrays(result.problem.mesh);
   result.problem.mesh.clear();  // (assigning an empty Mesh keeps the arrays' capacity)
   IntrinsicFlowResult r =
-      intrinsic_conformal_flow(std::move(initial), result.problem.targets.curvature, settings);
+      warm ? intrinsic_conformal_flow(std::move(initial), result.problem.targets.curvature,
+                                      warm_u, settings)
+           : intrinsic_conformal_flow(std::move(initial), result.problem.targets.curvature, settings);
+  result.warm_start = r.warm_start;
   FlowResult flow = to_flow_result(r);
   flow.failed_attempts = failures;
   flow.linear_work += result.flow.linear_work;  // an earlier flow's, replaced here
   result.intrinsic_flips = r.flips;
+  result.intrinsic_trials = r.line_search_trials;
   double polish_seconds = 0.0, polish_cpu = 0.0;
   // A flow stopped at its rounding floor is finished by the long-double polish.
   const bool near = r.converged() || r.max_error < settings.freeze_connectivity_below;
@@ -414,13 +488,17 @@ bool choose_vertex(const Mesh& mesh, const SurfaceTopology& topology,
                    OneConeAtlasResult& result) {
   StageTimer t;
   const SingularityOptions choice = singularity_options_on(topology, options);
+  SingularityOptions with_prediction = choice;
+  with_prediction.predict_log_scale = options.warm_start && intrinsic_first_on(topology, options) &&
+                                      static_cast<double>(mesh.n_faces()) < options.warm_start_below_faces;
   bool fixed_failed = false;
   if (intrinsic_only) {
     result.chosen_vertex = rank_singularities(mesh, choice, &result.linear_work.choice).front().vertex;
   } else {
     try {
-      SingularityChoice chosen = choose_singularity(mesh, choice);
+      SingularityChoice chosen = choose_singularity(mesh, with_prediction);
       result.chosen_vertex = chosen.vertex;
+      result.predicted_log_scale = std::move(chosen.predicted_log_scale);
       result.flows_for_choice = chosen.flows_run;
       result.solves_for_choice = chosen.linear_solves;
       result.linear_work.choice = chosen.linear_work;

@@ -82,6 +82,17 @@ struct OneConeAtlasOptions {
   /// which run only if it fails too. The atlas is then on the flipped triangulation
   /// (OneConeAtlasResult::intrinsic).
   bool intrinsic_before_fixed = true;
+  /// When the singularity is chosen automatically and the intrinsic flow runs first: Newton
+  /// starts at warm_start_fraction times the choice's linear prediction of the flat metric
+  /// (its log scale factors, SingularityChoice::predicted_log_scale, carried to the problem's
+  /// vertices) instead of u = 0, with u = 0 as the fallback (intrinsic_conformal_flow's warm
+  /// start). The whole prediction overshoots next to the cone, where the linear model's cone
+  /// has the input's valence (docs/design-notes.md, "Warm start from the choice").
+  /// Below warm_start_below_faces faces only: at 1.6M faces the first cold step already lands
+  /// where the warm start does, and the warm start costs a factorisation.
+  bool warm_start = true;
+  double warm_start_fraction = 0.5;
+  int warm_start_below_faces = 400000;
   /// Optional progress: called with a stage name when that stage starts.
   std::function<void(const std::string& stage)> progress;
 };
@@ -118,6 +129,12 @@ struct OneConeAtlasResult {
   /// other faces and edges) and flow.lengths its lengths; flow.metric is empty.
   bool intrinsic = false;
   int intrinsic_flips = 0;  ///< Ptolemy flips the intrinsic flow made (0 when it did not run)
+  int intrinsic_trials = 0;  ///< its line-search evaluations (IntrinsicFlowResult's)
+  /// How the intrinsic flow started (WarmStart::none without the choice's prediction).
+  WarmStart warm_start = WarmStart::none;
+  /// The choice's linear prediction of the flat metric by input vertex (options.warm_start;
+  /// empty when not computed).
+  Eigen::VectorXd predicted_log_scale;
   /// Edges of the mesh the intrinsic flow's final triangulation does not have
   /// (intrinsic/flip_free.h; 0: the mesh is its own Delaunay triangulation for the metric; -1:
   /// the intrinsic flow did not run or did not get near the target).

@@ -146,6 +146,15 @@ class LinearModel {
     return out;
   }
 
+  // The model's log scale factors for a cone at p: u0 + cone G_p (one back-substitution).
+  Eigen::VectorXd log_scale(int p) {
+    Eigen::MatrixXd rhs = base_rhs_ - Eigen::VectorXd::Constant(n_, cone_ / n_);
+    rhs(p, 0) += cone_;
+    solver_.solve_columns_in_place(rhs);
+    ++solves_;
+    return rhs.col(0);
+  }
+
   double scored(int p) const { return cache_.count(p) ? cache_.at(p) : kInfinity; }
   int solves() const { return solves_; }
   LinearWork work() const { return solver_.work(); }
@@ -438,6 +447,7 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
     choice.area_distortion = best.area_distortion;
   }
   choice.predicted_area_distortion = model.score({choice.vertex})[0];
+  if (options.predict_log_scale) choice.predicted_log_scale = model.log_scale(choice.vertex);
   choice.linear_solves = model.solves();
   choice.linear_work += model.work();
   choice.seconds = start.seconds();

@@ -55,6 +55,9 @@ struct SingularityOptions {
   ValenceOptions valence;
   /// Force flow.scheme / flow.radii instead of one_cone_metric_order.
   bool keep_metric = false;
+  /// Also return the linear model's log scale factors for the chosen vertex
+  /// (SingularityChoice::predicted_log_scale; one more back-substitution).
+  bool predict_log_scale = false;
 };
 
 struct SingularityScore {
@@ -69,6 +72,10 @@ struct SingularityChoice {
   double area_distortion = 0.0;
   /// The linear model's prediction for the chosen vertex (0 when no vertex is needed).
   double predicted_area_distortion = 0.0;
+  /// With SingularityOptions::predict_log_scale: the linear model's flat metric for the chosen
+  /// vertex, u = L^+ (K_target - K) by input vertex (zero mean; clamped cotangent weights), a
+  /// warm start for the flow (intrinsic_conformal_flow's warm_u). Empty otherwise.
+  Eigen::VectorXd predicted_log_scale;
   std::vector<SingularityScore> verified;  ///< every vertex checked with a full flow
   int flows_run = 0;
   int ranked = 0;         ///< vertices the linear model scored

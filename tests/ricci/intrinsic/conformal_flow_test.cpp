@@ -188,3 +188,44 @@ TEST(IntrinsicConformalFlow, PolishStopsOnceGoodEnough) {
 INSTANTIATE_TEST_SUITE_P(Genus, OneConeEveryGenus, ::testing::Values(4, 6));
 
 }  // namespace
+
+namespace {
+
+// A warm start (intrinsic_conformal_flow's warm_u) on the way to the answer is taken and ends
+// at the cold start's metric in fewer Newton steps; one farther from the target than u = 0 is
+// rejected (the cold start runs) and ends there too.
+TEST(IntrinsicConformalFlow, WarmStartReachesTheColdStartsMetric) {
+  const ricci::OneConeProblem problem = eight_cone_at_vertex_0();
+  ricci::IntrinsicFlowOptions options;
+  options.tolerance = 1e-12;
+  const ricci::IntrinsicTriangulation initial = ricci::make_intrinsic_triangulation(
+      problem.mesh, ricci::mesh_edge_lengths(problem.mesh));
+  const Eigen::VectorXd& target = problem.targets.curvature;
+  const ricci::IntrinsicFlowResult cold = ricci::intrinsic_conformal_flow(initial, target, options);
+  ASSERT_TRUE(cold.converged()) << cold.message;
+  EXPECT_EQ(cold.warm_start, ricci::WarmStart::none);
+
+  const Eigen::VectorXd halfway = 0.5 * cold.u;
+  const ricci::IntrinsicFlowResult warm =
+      ricci::intrinsic_conformal_flow(initial, target, halfway, options);
+  ASSERT_TRUE(warm.converged()) << warm.message;
+  EXPECT_EQ(warm.warm_start, ricci::WarmStart::taken);
+  EXPECT_LT(warm.warm_start_error, warm.cold_start_error);
+  EXPECT_LT(warm.iterations, cold.iterations);
+  expect_same_metric(warm, cold, problem.targets);
+
+  // Far past the answer (and shifted: the pinned vertex takes it back to 0).
+  const Eigen::VectorXd overshoot = (8.0 * cold.u).array() + 3.0;
+  const ricci::IntrinsicFlowResult rejected =
+      ricci::intrinsic_conformal_flow(initial, target, overshoot, options);
+  ASSERT_TRUE(rejected.converged()) << rejected.message;
+  EXPECT_EQ(rejected.warm_start, ricci::WarmStart::rejected);
+  EXPECT_GE(rejected.warm_start_error, rejected.cold_start_error);
+  EXPECT_EQ(rejected.iterations, cold.iterations);
+  expect_same_metric(rejected, cold, problem.targets);
+
+  EXPECT_THROW((void)ricci::intrinsic_conformal_flow(initial, target, Eigen::VectorXd::Zero(3)),
+               ricci::InvalidInputError);
+}
+
+}  // namespace

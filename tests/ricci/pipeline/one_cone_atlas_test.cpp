@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -479,6 +480,57 @@ TEST(OneConeAtlas, HandedOverMeshGivesTheKeptMeshsAtlas) {
       EXPECT_EQ(r.flow.failed_attempts.front().rfind("inversive-distance", 0), 0u);
     }
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The intrinsic flow started at half the choice's linear prediction (OneConeAtlasOptions::
+// warm_start) reaches the cold start's metric: same cone, the same length on every edge both
+// final triangulations have (they may differ where four vertices are nearly co-circular), the
+// same area-weighted quasi-conformality, rigid transitions, no flipped face.
+TEST(OneConeAtlas, WarmStartFromTheChoiceGivesTheColdStartsAtlas) {
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("bench/genus2_10k.obj.gz"));
+  ricci::OneConeAtlasOptions options;
+  ASSERT_TRUE(ricci::takes_intrinsic_flow_first(mesh, options));
+  const ricci::OneConeAtlasResult warm = ricci::build_one_cone_atlas(mesh, options);
+  options.warm_start = false;
+  const ricci::OneConeAtlasResult cold = ricci::build_one_cone_atlas(mesh, options);
+  ASSERT_TRUE(warm.intrinsic);
+  ASSERT_TRUE(cold.intrinsic);
+  EXPECT_EQ(warm.warm_start, ricci::WarmStart::taken);
+  EXPECT_EQ(cold.warm_start, ricci::WarmStart::none);
+  EXPECT_EQ(warm.predicted_log_scale.size(), static_cast<Eigen::Index>(mesh.n_vertices()));
+  // The model's u has mean zero (to the rounding its 1e-9 diagonal shift amplifies).
+  EXPECT_LT(std::abs(warm.predicted_log_scale.mean()),
+            1e-6 * warm.predicted_log_scale.cwiseAbs().maxCoeff());
+  EXPECT_EQ(warm.chosen_vertex, cold.chosen_vertex);
+  EXPECT_LT(warm.flow.iterations, cold.flow.iterations);
+  std::map<std::pair<int, int>, double> cold_lengths;
+  for (auto e : cold.problem.mesh.edges()) {
+    const auto h = cold.problem.mesh.halfedge_handle(e, 0);
+    const int a = cold.problem.mesh.from_vertex_handle(h).idx();
+    const int b = cold.problem.mesh.to_vertex_handle(h).idx();
+    cold_lengths[{std::min(a, b), std::max(a, b)}] = cold.flow.lengths[e.idx()];
+  }
+  int common = 0;
+  double worst = 0.0;
+  for (auto e : warm.problem.mesh.edges()) {
+    const auto h = warm.problem.mesh.halfedge_handle(e, 0);
+    const int a = warm.problem.mesh.from_vertex_handle(h).idx();
+    const int b = warm.problem.mesh.to_vertex_handle(h).idx();
+    const auto it = cold_lengths.find({std::min(a, b), std::max(a, b)});
+    if (it == cold_lengths.end()) continue;
+    ++common;
+    worst = std::max(worst, std::abs(warm.flow.lengths[e.idx()] / it->second - 1.0));
+  }
+  EXPECT_GT(common, static_cast<int>(0.99 * static_cast<double>(warm.problem.mesh.n_edges())));
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_NEAR(warm.distortion.quasi_conformal_area_mean,
+              cold.distortion.quasi_conformal_area_mean, 1e-6);
+  EXPECT_EQ(warm.atlas.layout.flipped_faces, 0);
+  EXPECT_LT(warm.relative_transition_residual(), 1e-9);
 }
 
 }  // namespace
