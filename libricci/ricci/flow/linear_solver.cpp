@@ -35,6 +35,12 @@ using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int
 // CHOLMOD's supernodal LLT, with the ordering it chose readable.
 class CholmodSupernodal : public Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> {
  public:
+  // Values L stores (supernodal: xsize, padding of merged supernodes included); 0 before an
+  // analysis.
+  double entries() const {
+    return m_cholmodFactor ? static_cast<double>(m_cholmodFactor->xsize) : 0.0;
+  }
+
   // Perm of the analysed factor: L L^T = A(perm, perm); empty before an analysis.
   Eigen::VectorXi ordering() const {
     if (!m_cholmodFactor || !m_cholmodFactor->Perm) return {};
@@ -112,8 +118,10 @@ LinearSolver resolve_linear_solver(LinearSolver kind, Eigen::Index unknowns) {
   return unknowns < 20000 ? LinearSolver::eigen_ldlt : LinearSolver::cholmod_supernodal;
 }
 
-SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
+SymmetricFactorization::SymmetricFactorization(LinearSolver kind,
+                                               Eigen::Index compact_supernodes_from)
     : kind_(kind == LinearSolver::automatic ? LinearSolver::cholmod_supernodal : kind),
+      compact_supernodes_from_(compact_supernodes_from),
       impl_(std::make_unique<Impl>()) {
   // CHOLMOD reports a non-positive-definite matrix on stderr unless told not to; the caller
   // handles the failure (libraries never print).
@@ -132,6 +140,16 @@ SymmetricFactorization::SymmetricFactorization(LinearSolver kind)
 
 SymmetricFactorization::~SymmetricFactorization() = default;
 
+void SymmetricFactorization::relax_supernodes(Eigen::Index unknowns) {
+  // CHOLMOD's defaults, or at most 8 columns merged into supernodes of 4-16 (not 16-48):
+  // measured at 800k unknowns, 80.2M stored values against 86.8M for the same 65.5M nonzeros.
+  const bool compact = unknowns >= compact_supernodes_from_;
+  cholmod_common& common = impl_->cholmod_supernodal.cholmod();
+  common.nrelax[0] = 4;
+  common.nrelax[1] = compact ? 8 : 16;
+  common.nrelax[2] = compact ? 16 : 48;
+}
+
 void SymmetricFactorization::analyze(const Sparse& lower) {
   const SerialOpenMpScope serial_openmp;
   impl_->given = Permutation();
@@ -143,6 +161,7 @@ void SymmetricFactorization::analyze(const Sparse& lower) {
       impl_->eigen_llt.analyzePattern(lower);
       break;
     case LinearSolver::cholmod_supernodal:
+      relax_supernodes(lower.rows());
       impl_->cholmod_supernodal.analyzePattern(lower);
       impl_->fresh_fill = impl_->cholmod_supernodal.cholmod().lnz;
       break;
@@ -163,6 +182,7 @@ bool SymmetricFactorization::analyze(const Sparse& lower, const Eigen::VectorXi&
   const int methods = common.nmethods, method = common.method[0].ordering;
   common.nmethods = 1;
   common.method[0].ordering = CHOLMOD_NATURAL;
+  relax_supernodes(lower.rows());
   impl_->cholmod_supernodal.analyzePattern(impl_->permuted(lower));
   const double given_fill = common.lnz;
   common.nmethods = methods;
@@ -188,6 +208,10 @@ Eigen::VectorXi SymmetricFactorization::ordering() const {
 }
 
 double SymmetricFactorization::fill() const { return impl_->fresh_fill; }
+
+double SymmetricFactorization::factor_entries() const {
+  return kind_ == LinearSolver::cholmod_supernodal ? impl_->cholmod_supernodal.entries() : 0.0;
+}
 
 LinearWork SymmetricFactorization::work() const { return impl_->work; }
 

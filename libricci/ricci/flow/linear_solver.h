@@ -51,7 +51,17 @@ struct LinearWork {
 /// While one exists, the process' OpenBLAS runs on one thread (serial_blas.h).
 class SymmetricFactorization {
  public:
-  explicit SymmetricFactorization(LinearSolver kind);
+  /// Unknowns from which cholmod_supernodal merges fewer supernodes by default (see the
+  /// constructor).
+  static constexpr Eigen::Index kCompactSupernodesFrom = 400000;
+
+  /// A factorisation of `kind` (automatic: cholmod_supernodal). From `compact_supernodes_from`
+  /// unknowns the supernodal analysis relaxes its amalgamation (CHOLMOD's nrelax 4, 8, 16
+  /// columns instead of 4, 16, 48): merged supernodes store fewer explicit zeros, the factor
+  /// has the same nonzeros and is ~8% smaller at 800k unknowns, its factorisation ~10% slower
+  /// (docs/design-notes.md, "Compact supernodes at 1.6M faces"). Results below that size are unchanged.
+  explicit SymmetricFactorization(LinearSolver kind,
+                                  Eigen::Index compact_supernodes_from = kCompactSupernodesFrom);
   ~SymmetricFactorization();
   SymmetricFactorization(const SymmetricFactorization&) = delete;
   SymmetricFactorization& operator=(const SymmetricFactorization&) = delete;
@@ -72,6 +82,9 @@ class SymmetricFactorization {
   /// Nonzeros of the factor predicted by the last analysis that ordered afresh, here or for
   /// the factorisation whose ordering this one took (0 except for cholmod_supernodal).
   [[nodiscard]] double fill() const;
+  /// Numbers the analysed factor stores (cholmod_supernodal: L's values, the explicit zeros of
+  /// merged supernodes included; 0 for the other kinds and before an analysis).
+  [[nodiscard]] double factor_entries() const;
   /// Numeric factorisation. Returns false if it failed (not positive definite, zero pivot).
   bool factorize(const Eigen::SparseMatrix<double>& lower);
   /// Solves with the last successful factorisation.
@@ -96,7 +109,11 @@ class SymmetricFactorization {
   // The columns of b over the pool's threads, their solutions written into x (b may be x).
   void split_solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) const;
 
+  // CHOLMOD's supernode amalgamation for a matrix of this many unknowns.
+  void relax_supernodes(Eigen::Index unknowns);
+
   LinearSolver kind_;
+  Eigen::Index compact_supernodes_from_;
   std::unique_ptr<Impl> impl_;
 };
 

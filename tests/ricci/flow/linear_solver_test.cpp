@@ -1,6 +1,7 @@
 // The linear solver (ricci/flow/linear_solver.h): SymmetricFactorization's blocked
 // back-substitution split over threads gives the same solutions as column by column, to
-// rounding; conjugate gradients preconditioned with a nearby factorisation solve H x = b to the
+// rounding; the compact supernode amalgamation stores fewer values and solves to the same
+// residual; conjugate gradients preconditioned with a nearby factorisation solve H x = b to the
 // asked relative residual from the factorisation of another matrix of the same size, and refuse
 // when the steps allowed cannot reach it.
 #include "ricci/flow/linear_solver.h"
@@ -54,6 +55,36 @@ TEST(SymmetricFactorization, BlockedSolveSplitOverThreadsMatchesColumnByColumnAn
     EXPECT_LT((x.col(j) - column).norm(), 1e-12 * column.norm()) << "column " << j;
     EXPECT_LT(relative_residual(lower, x.col(j), b.col(j)), 1e-10) << "column " << j;
   }
+}
+
+TEST(SymmetricFactorization, CompactSupernodesStoreLessAndSolveToTheSameResidual) {
+  // 40k unknowns: the compact amalgamation asked for from 0 unknowns, against the default
+  // (compact from 400k unknowns) and against a threshold just above this size.
+  const Eigen::SparseMatrix<double> lower = grid_laplacian(200, 1e-3);
+  ricci::SymmetricFactorization standard(ricci::LinearSolver::cholmod_supernodal);
+  ricci::SymmetricFactorization compact(ricci::LinearSolver::cholmod_supernodal, 0);
+  ricci::SymmetricFactorization just_below(ricci::LinearSolver::cholmod_supernodal,
+                                           lower.rows() + 1);
+  for (ricci::SymmetricFactorization* f : {&standard, &compact, &just_below}) {
+    f->analyze(lower);
+    ASSERT_TRUE(f->factorize(lower));
+  }
+  EXPECT_GT(compact.factor_entries(), 0.0);
+  EXPECT_LT(compact.factor_entries(), 0.97 * standard.factor_entries());
+  EXPECT_EQ(just_below.factor_entries(), standard.factor_entries());
+  EXPECT_EQ(compact.fill(), standard.fill());  // the same nonzeros, fewer explicit zeros
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(lower.rows());
+  b(123) = 1.0;
+  b(31000) = -2.0;
+  const Eigen::VectorXd x_standard = standard.solve(b), x_compact = compact.solve(b);
+  EXPECT_LT(relative_residual(lower, x_standard, b), 1e-12);
+  EXPECT_LT(relative_residual(lower, x_compact, b), 1e-12);
+  EXPECT_LT((x_compact - x_standard).norm(), 1e-10 * x_standard.norm());
+  EXPECT_EQ((standard.solve(b) - just_below.solve(b)).cwiseAbs().maxCoeff(), 0.0);
+  // An analysis on another factorisation's ordering (flips) is compacted too.
+  ricci::SymmetricFactorization reused(ricci::LinearSolver::cholmod_supernodal, 0);
+  ASSERT_TRUE(reused.analyze(lower, compact.ordering(), compact.fill()));
+  EXPECT_LT(reused.factor_entries(), 0.97 * standard.factor_entries());
 }
 
 // Lower triangle of the weighted path Laplacian on n vertices plus `shift` on the diagonal
