@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <spline/surface/cap_holes.h>
 
 namespace msp {
 
@@ -251,6 +252,9 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"degree", space.degree()},
       {"fairness", options.fairness},
       {"fairness_free_faces", fitted.fit_unconstrained_faces},
+      {"cone_hole_reach_layers",
+       spline::cone_hole_limits(fitted.input.genus, fitted.fit_unconstrained_faces > 0)
+           .reach_layers},
       {"fit_rms", fitted.fit_rms},
       {"fit_max", fitted.fit_max},
       {"fit_rms_relative", fitted.fit_rms / diag},

@@ -171,7 +171,7 @@ FillOptions fill_options_for(bool input_boundary, bool screening) {
 
 }  // namespace
 
-ConeHoleLimits cone_hole_limits(int genus) {
+ConeHoleLimits cone_hole_limits(int genus, bool fairing_free_cone) {
   ConeHoleLimits limits;
   if (genus >= 4) {
     limits.max_layers = 8;
@@ -184,6 +184,7 @@ ConeHoleLimits cone_hole_limits(int genus) {
     limits.margin_layers = 1;
     limits.compare_uniform = true;
   }
+  if (fairing_free_cone) limits.reach_layers = 0;
   return limits;
 }
 

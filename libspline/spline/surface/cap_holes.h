@@ -39,7 +39,12 @@ struct ConeHoleLimits {
 /// rounds; from genus 8 (30 pi and more) a reach of 12 layers and half of the domain's faces
 /// (the cone refinement puts more than half of them around the cone), kept only when the rim
 /// comes clear within it, and one margin layer, the holes compared on uniform grids.
-[[nodiscard]] ConeHoleLimits cone_hole_limits(int genus);
+/// `fairing_free_cone`: the fit dropped the fairing constraints next to the cone
+/// (ScanFitOptions::free_cone_faces_from_genus, FittedSurface::fit_unconstrained_faces > 0);
+/// then the spline there no longer folds and the hole takes no reach (reach_layers 0), only
+/// the caps, margin layer and vertex rounds: the reach would grow it to half of a small
+/// domain's faces and a third of the surface's area (docs/design-notes.md, turbine).
+[[nodiscard]] ConeHoleLimits cone_hole_limits(int genus, bool fairing_free_cone = false);
 
 struct CapHolesOptions {
   /// The input had boundary loops of its own (then the domain's boundary rims are those loops;

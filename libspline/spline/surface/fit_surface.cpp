@@ -374,7 +374,7 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   cap.open_input = out.input.boundary_loops > 0;
   cap.fill_boundaries = options.fill_boundaries;
   cap.collar_faces = out.collar_faces;
-  cap.cone_hole = cone_hole_limits(out.input.genus);
+  cap.cone_hole = cone_hole_limits(out.input.genus, out.fit_unconstrained_faces > 0);
   cap.make_patches = patches;
   cap.screening = caps == Caps::screened;
   CapHolesReport capped = cap_holes(out.surface, cap);
@@ -639,7 +639,8 @@ void deliver_best_round(const ricci::Mesh& dense, const FitSurfaceOptions& optio
                         FittedSurface& out) {
   const int judged = out.surface_dihedral.over_90_deg;
   deliver_round(dense, options, best, clock, out);
-  const bool screen = retries_cone_hole(cone_hole_limits(out.input.genus));
+  const bool screen =
+      retries_cone_hole(cone_hole_limits(out.input.genus, out.fit_unconstrained_faces > 0));
   // The spline as fitted, before a screening capping moves it to meet its patches.
   std::vector<Eigen::MatrixX3d> fitted;
   if (screen)

@@ -128,5 +128,38 @@ TEST(CapHoles, ComparedOnUniformGridsTheChosenHoleGetsTheBetterPatch) {
   EXPECT_LT((fill.control_points - better.control_points).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+// cone_hole_limits with the fairing dropped next to the cone (fit_surface does it when
+// FittedSurface::fit_unconstrained_faces > 0): the same limits without the reach, so the hole
+// stops at the caps (8 layers, a quarter of the domain); below genus 8 nothing changes.
+TEST(CapHoles, NoReachWhereTheFitDropsTheFairingAtTheCone) {
+  for (int genus : {2, 4, 7, 8, 10, 11}) {
+    const ConeHoleLimits kept = cone_hole_limits(genus);
+    const ConeHoleLimits freed = cone_hole_limits(genus, true);
+    EXPECT_EQ(freed.reach_layers, 0) << genus;
+    EXPECT_EQ(freed.max_layers, kept.max_layers) << genus;
+    EXPECT_EQ(freed.max_cover_fraction, kept.max_cover_fraction) << genus;
+    EXPECT_EQ(freed.margin_layers, kept.margin_layers) << genus;
+    EXPECT_EQ(freed.vertex_rounds, kept.vertex_rounds) << genus;
+    EXPECT_EQ(freed.compare_uniform, kept.compare_uniform) << genus;
+    EXPECT_EQ(retries_cone_hole(freed), genus >= 4) << genus;
+  }
+  EXPECT_GT(cone_hole_limits(10).reach_layers, 0);
+
+  // On a surface the cone hole found without the reach is never larger than with it.
+  const SplineSurface& fitted = testing::small_surface("genus2.off");
+  CapHolesOptions options;
+  options.cone_hole = cone_hole_limits(10, true);
+  options.make_patches = false;
+  SplineSurface open = uncapped(fitted);
+  (void)cap_holes(open, options);
+  ASSERT_EQ(open.open_rims.size(), 1u);
+  EXPECT_EQ(open.open_rims[0].kind, Rim::Kind::cone_hole);
+  SplineSurface reached = uncapped(fitted);
+  options.cone_hole = cone_hole_limits(10);
+  (void)cap_holes(reached, options);
+  ASSERT_EQ(reached.open_rims.size(), 1u);
+  EXPECT_LE(open.open_rims[0].covered_faces.size(), reached.open_rims[0].covered_faces.size());
+}
+
 }  // namespace
 }  // namespace spline
