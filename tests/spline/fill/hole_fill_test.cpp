@@ -7,6 +7,7 @@
 
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "ricci/mesh/errors.h"
@@ -50,6 +51,47 @@ int cone_vertex(const ricci::OneConeAtlasResult& a) {
     if (outside) return v.idx();
   }
   return -1;
+}
+
+// A fitted scan (fill_fixtures.h) whose domain has exactly one rim.
+struct OneRim {
+  std::string path;
+  const ScanFitResult& fit;
+  const ricci::Mesh& mesh;
+  Rim rim;
+};
+
+// fitted_scan(path, faces, cone_levels) and its rim; throws (the test fails) unless the domain
+// has exactly one.
+OneRim one_rim(const std::string& path, int faces = 1000, int cone_levels = -1) {
+  const ScanFitResult& fit = testing::fitted_scan(path, faces, cone_levels);
+  std::vector<Rim> rims = find_rims(*fit.spline.space, fit.atlas.problem.mesh);
+  if (rims.size() != 1)
+    throw std::runtime_error(path + ": " + std::to_string(rims.size()) + " rims, not one");
+  return {path, fit, fit.atlas.problem.mesh, std::move(rims[0])};
+}
+
+struct FullAndMild {
+  HoleFill full, mild;
+};
+
+// The rim filled from `base` refined corner_refinement times at every rim vertex (full) and
+// mild_corner_refinement times at every one (mild): the mild patch has fewer functions and is
+// the very patch of a uniform mild refinement.
+FullAndMild expect_mild_patch_is_uniform_mild(const OneRim& r, const FillOptions& base) {
+  FillOptions every_vertex_full = base;
+  every_vertex_full.mild_corner_step_deg = 0.0;
+  FillOptions every_vertex_mild = base;
+  every_vertex_mild.mild_corner_step_deg = 180.0;
+  FillOptions uniform_mild = base;
+  uniform_mild.corner_refinement = base.mild_corner_refinement;
+  FullAndMild fills{fill_rim(r.fit.spline, r.mesh, r.rim, every_vertex_full),
+                    fill_rim(r.fit.spline, r.mesh, r.rim, every_vertex_mild)};
+  const HoleFill reference = fill_rim(r.fit.spline, r.mesh, r.rim, uniform_mild);
+  EXPECT_LT(fills.mild.space->function_count(), fills.full.space->function_count()) << r.path;
+  EXPECT_EQ(fills.mild.space->function_count(), reference.space->function_count()) << r.path;
+  EXPECT_EQ(fills.mild.control_points, reference.control_points) << r.path;
+  return fills;
 }
 
 TEST(FindRims, ConeHoleIsTheOneRingLink) {
@@ -253,20 +295,17 @@ TEST(FillRim, ParametricPatchReproducesAPlane) {
 TEST(FillRim, MeetsFittedScansWithG1) {
   for (const std::string& path :
        {msp_test::test_mesh("closed_g2/eight.off"), msp_test::bundled_model("genus2.off")}) {
-    const auto& fit = testing::fitted_scan(path, 1000);
-    const auto& mesh = fit.atlas.problem.mesh;
-    const auto rims = find_rims(*fit.spline.space, mesh);
-    ASSERT_EQ(rims.size(), 1u) << path;
-    const HoleFill fill = fill_rim(fit.spline, mesh, rims[0]);
-    EXPECT_EQ(fill.seam_samples, 101 * static_cast<int>(rims[0].edges.size()));
+    const OneRim r = one_rim(path);
+    const HoleFill fill = fill_rim(r.fit.spline, r.mesh, r.rim);
+    EXPECT_EQ(fill.seam_samples, 101 * static_cast<int>(r.rim.edges.size()));
     EXPECT_LT(fill.max_normal_jump_deg, 1.0) << path;
     EXPECT_LT(fill.max_position_gap, 1e-4) << path;
     EXPECT_LT(fill.rms_position_gap, 1e-5) << path;
-    const SeamReport report = measure_seam(fit.spline, fill, 37);
+    const SeamReport report = measure_seam(r.fit.spline, fill, 37);
     EXPECT_LE(report.max_normal_jump_deg, 1.0);
     // By rim edge: one entry per edge, the largest of them the seam's maximum.
-    ASSERT_EQ(fill.edge_normal_jump_deg.size(), rims[0].edges.size());
-    ASSERT_EQ(report.edge_normal_jump_deg.size(), rims[0].edges.size());
+    ASSERT_EQ(fill.edge_normal_jump_deg.size(), r.rim.edges.size());
+    ASSERT_EQ(report.edge_normal_jump_deg.size(), r.rim.edges.size());
     const auto& by_edge = report.edge_normal_jump_deg;
     EXPECT_EQ(*std::max_element(by_edge.begin(), by_edge.end()), report.max_normal_jump_deg);
     const auto& fill_by_edge = fill.edge_normal_jump_deg;
@@ -282,24 +321,10 @@ TEST(FillRim, MeetsFittedScansWithG1) {
 TEST(FillRim, MildRimVerticesGetASmallerPatch) {
   for (const std::string& path :
        {msp_test::test_mesh("closed_g2/eight.off"), msp_test::bundled_model("genus2.off")}) {
-    const auto& fit = testing::fitted_scan(path, 1000);
-    const auto& mesh = fit.atlas.problem.mesh;
-    const auto rims = find_rims(*fit.spline.space, mesh);
-    ASSERT_EQ(rims.size(), 1u) << path;
-    FillOptions every_vertex_full;
-    every_vertex_full.mild_corner_step_deg = 0.0;
-    FillOptions every_vertex_mild;
-    every_vertex_mild.mild_corner_step_deg = 180.0;
-    FillOptions uniform_mild;
-    uniform_mild.corner_refinement = every_vertex_mild.mild_corner_refinement;
-    const HoleFill defaults = fill_rim(fit.spline, mesh, rims[0]);
-    const HoleFill full = fill_rim(fit.spline, mesh, rims[0], every_vertex_full);
-    const HoleFill mild = fill_rim(fit.spline, mesh, rims[0], every_vertex_mild);
-    const HoleFill reference = fill_rim(fit.spline, mesh, rims[0], uniform_mild);
+    const OneRim r = one_rim(path);
+    const auto [full, mild] = expect_mild_patch_is_uniform_mild(r, FillOptions{});
+    const HoleFill defaults = fill_rim(r.fit.spline, r.mesh, r.rim);
     EXPECT_LE(defaults.space->function_count(), full.space->function_count()) << path;
-    EXPECT_LT(mild.space->function_count(), full.space->function_count()) << path;
-    EXPECT_EQ(mild.space->function_count(), reference.space->function_count()) << path;
-    EXPECT_EQ(mild.control_points, reference.control_points) << path;
     for (const HoleFill* fill : {&defaults, &full, &mild})
       EXPECT_LT(fill->max_normal_jump_deg, 1.0) << path;
   }
@@ -310,23 +335,9 @@ TEST(FillRim, MildRimVerticesGetASmallerPatch) {
 // refinement when all are, and still G1 to the eye.
 TEST(FillRim, MildRimVerticesGetASmallerParametricPatch) {
   for (const std::string& path : {msp_test::test_mesh("closed_g2/eight.off")}) {
-    const auto& fit = testing::fitted_scan(path, 1000);
-    const auto& mesh = fit.atlas.problem.mesh;
-    const auto rims = find_rims(*fit.spline.space, mesh);
-    ASSERT_EQ(rims.size(), 1u) << path;
-    FillOptions every_vertex_full;
-    every_vertex_full.method = FillMethod::parametric;
-    every_vertex_full.mild_corner_step_deg = 0.0;
-    FillOptions every_vertex_mild = every_vertex_full;
-    every_vertex_mild.mild_corner_step_deg = 180.0;
-    FillOptions uniform_mild = every_vertex_full;
-    uniform_mild.corner_refinement = every_vertex_mild.mild_corner_refinement;
-    const HoleFill full = fill_rim(fit.spline, mesh, rims[0], every_vertex_full);
-    const HoleFill mild = fill_rim(fit.spline, mesh, rims[0], every_vertex_mild);
-    const HoleFill reference = fill_rim(fit.spline, mesh, rims[0], uniform_mild);
-    EXPECT_LT(mild.space->function_count(), full.space->function_count()) << path;
-    EXPECT_EQ(mild.space->function_count(), reference.space->function_count()) << path;
-    EXPECT_EQ(mild.control_points, reference.control_points) << path;
+    FillOptions parametric;
+    parametric.method = FillMethod::parametric;
+    const auto [full, mild] = expect_mild_patch_is_uniform_mild(one_rim(path), parametric);
     for (const HoleFill* fill : {&full, &mild}) {
       EXPECT_TRUE(fill->g1) << path;
       EXPECT_LT(fill->max_normal_jump_deg, 5.0) << path;
@@ -343,16 +354,13 @@ TEST(FillRim, MildRimVerticesGetASmallerParametricPatch) {
 // domain is not refined around the cone: with the pipeline's refinement the hole is smaller
 // and a height field (0.11 degrees), and this rim is the hard case the fallbacks are for.
 TEST(FillRim, Genus3ConeHoleParametricPatch) {
-  const auto& fit = testing::fitted_scan(msp_test::bundled_model("genus3.off"), 2000, 0);
-  const auto& mesh = fit.atlas.problem.mesh;
-  const auto rims = find_rims(*fit.spline.space, mesh);
-  ASSERT_EQ(rims.size(), 1u);
+  const OneRim r = one_rim(msp_test::bundled_model("genus3.off"), 2000, 0);
   // The rim projects onto a simple polygon that is not star-shaped: a G1 height field all the
   // same, tessellated by ricci::triangulate_region, every triangle facing the plane's side.
   FillOptions options;
   options.method = FillMethod::height_field;
   options.fallback = false;
-  const HoleFill height = fill_rim(fit.spline, mesh, rims[0], options);
+  const HoleFill height = fill_rim(r.fit.spline, r.mesh, r.rim, options);
   EXPECT_TRUE(height.g1);
   EXPECT_LT(height.max_normal_jump_deg, 10.0);
   const PatchTessellation flat = tessellate_fill(height, 4);
@@ -366,7 +374,7 @@ TEST(FillRim, Genus3ConeHoleParametricPatch) {
     EXPECT_GT((b - a).cross(c - a).dot(height.normal), 0.0) << "triangle " << f;
   }
 
-  const HoleFill fill = fill_rim(fit.spline, mesh, rims[0]);  // automatic: the parametric patch
+  const HoleFill fill = fill_rim(r.fit.spline, r.mesh, r.rim);  // automatic: the parametric patch
   EXPECT_TRUE(fill.g1);
   EXPECT_LT(fill.max_normal_jump_deg, 5.0);
   EXPECT_LT(fill.max_position_gap, 1e-3);
@@ -374,7 +382,7 @@ TEST(FillRim, Genus3ConeHoleParametricPatch) {
   const PatchTessellation t = tessellate_fill(fill, 2);
   for (int f = 0; f < t.triangles.rows(); ++f) {
     for (int c = 0; c < 3; ++c)
-      EXPECT_GE(t.triangles(f, c), -2 * static_cast<int>(rims[0].edges.size()));
+      EXPECT_GE(t.triangles(f, c), -2 * static_cast<int>(r.rim.edges.size()));
   }
 }
 
