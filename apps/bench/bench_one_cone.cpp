@@ -268,33 +268,33 @@ int run_one_cone_case(int argc, char** argv) {
 
   ricci::OneConeAtlasOptions options;
   const std::string cone = args.get_or("cone", "auto");
-  options.singular_vertex = cone == "auto" ? -1 : std::stoi(cone);
+  options.singular_vertex = cone == "auto" ? -1 : args.get_int("cone", -1);
   const bool intrinsic = args.get_or("metric", "") == "intrinsic-delaunay";
   if (intrinsic) options.route = ricci::FlowRoute::intrinsic_delaunay;
   if (args.has("metric") && !intrinsic) options.flow.scheme = parse_scheme(*args.get("metric"));
   if (args.has("radii")) options.flow.radii = parse_radii(*args.get("radii"));
   options.keep_metric = (args.has("metric") && !intrinsic) || args.has("radii");
-  if (args.has("polish-threshold")) options.polish_threshold = std::stod(*args.get("polish-threshold"));
+  options.polish_threshold = args.get_double("polish-threshold", options.polish_threshold);
   options.valence.cone_valence_margin = args.get_int("cone-margin", options.valence.cone_valence_margin);
   options.valence.ring_valence = args.get_int("ring-valence", options.valence.ring_valence);
   options.valence.rings = args.get_int("rings", options.valence.rings);
   if (args.has("flat-flips")) {  // degrees between the faces' normals
     options.flip_flat_edges = true;
-    options.flat_flips.max_normal_angle = std::stod(*args.get("flat-flips")) * M_PI / 180.0;
+    options.flat_flips.max_normal_angle = args.get_double("flat-flips", 0.0) * M_PI / 180.0;
   }
   if (args.has("flip-deviation")) {  // fraction of the median edge length
     options.flip_flat_edges = true;
-    options.flat_flips.max_relative_deviation = std::stod(*args.get("flip-deviation"));
+    options.flat_flips.max_relative_deviation = args.get_double("flip-deviation", 0.0);
   }
   options.flat_flips.protected_rings = args.get_int("protect-rings", 0);
   options.atlas.layout.seed_face = args.get_int("seed-face", -1);
   if (args.has("collapse")) {  // edges below this fraction of the median length
     options.collapse_short_edges = true;
-    options.short_edges.relative_length = std::stod(*args.get("collapse"));
+    options.short_edges.relative_length = args.get_double("collapse", 0.0);
   }
   options.continuation.stages = args.get_int("continuation", 1);
   options.warm_start = !args.has("cold-start");  // the intrinsic flow from u = 0
-  if (args.has("warm-fraction")) options.warm_start_fraction = std::stod(*args.get("warm-fraction"));
+  options.warm_start_fraction = args.get_double("warm-fraction", options.warm_start_fraction);
   if (args.has("ring-metric")) options.cone_ring_metrics = parse_ring_metrics(*args.get("ring-metric"));
   // The pipeline's resident memory, sampled (its peak, and with --verbose each stage's).
   std::unique_ptr<RssSampler> sampler;
