@@ -13,12 +13,12 @@
 // domain's sizing (AdaptiveDomainOptions); --adaptive-only skips the uniform ladder.
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
 
 #include "bench/benchmarks.h"
+#include "msp/cli.h"
 #include "ricci/mesh/io.h"
 #include "ricci/util/stopwatch.h"
 #include "spline/surface/fit_surface.h"
@@ -93,25 +93,26 @@ int run_adaptive_benchmark(int argc, char** argv) {
   std::vector<std::string> models;
   for (int i = 0; i < argc; ++i) {
     const bool value = i + 1 < argc;
-    if (std::strcmp(argv[i], "--rms") == 0 && value) {
-      goal = std::atof(argv[++i]);
-    } else if (std::strcmp(argv[i], "--from") == 0 && value) {
-      run.first_target = std::atoi(argv[++i]);
-    } else if (std::strcmp(argv[i], "--base-share") == 0 && value) {
-      run.sizing.base_share = std::atof(argv[++i]);
-    } else if (std::strcmp(argv[i], "--max-turn") == 0 && value) {
-      run.sizing.max_turn_deg = std::atof(argv[++i]);
-    } else if (std::strcmp(argv[i], "--thickness") == 0 && value) {
-      run.sizing.min_thickness_edges = std::atof(argv[++i]);
-    } else if (std::strcmp(argv[i], "--relax") == 0 && value) {
-      run.sizing.relax_iterations = std::atoi(argv[++i]);
-    } else if (std::strcmp(argv[i], "--by-turn") == 0) {
+    const std::string option = argv[i];
+    if (option == "--rms" && value) {
+      goal = parse_double(argv[++i], "option " + option);
+    } else if (option == "--from" && value) {
+      run.first_target = parse_int(argv[++i], "option " + option);
+    } else if (option == "--base-share" && value) {
+      run.sizing.base_share = parse_double(argv[++i], "option " + option);
+    } else if (option == "--max-turn" && value) {
+      run.sizing.max_turn_deg = parse_double(argv[++i], "option " + option);
+    } else if (option == "--thickness" && value) {
+      run.sizing.min_thickness_edges = parse_double(argv[++i], "option " + option);
+    } else if (option == "--relax" && value) {
+      run.sizing.relax_iterations = parse_int(argv[++i], "option " + option);
+    } else if (option == "--by-turn") {
       run.sizing.split_by = spline::AdaptiveDomainOptions::SplitBy::normal_turn;
-    } else if (std::strcmp(argv[i], "--by-residual") == 0) {
+    } else if (option == "--by-residual") {
       run.sizing.split_by = spline::AdaptiveDomainOptions::SplitBy::quadric_residual;
-    } else if (std::strcmp(argv[i], "--closest") == 0) {
+    } else if (option == "--closest") {
       run.sizing.placement = spline::SplitPlacement::closest_point;
-    } else if (std::strcmp(argv[i], "--adaptive-only") == 0) {
+    } else if (option == "--adaptive-only") {
       run.uniform = false;
     } else {
       models.emplace_back(argv[i]);

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "bench/benchmarks.h"
+#include "msp/cli.h"
 #include "spline/basis/planar_space.h"
 #include "spline/knots/knot_cloud.h"
 #include "spline/planar/perturbed_grid.h"
@@ -30,7 +31,7 @@ double microseconds_since(Clock::time_point start) {
 }  // namespace
 
 int run_dms_benchmark(int argc, char** argv) {
-  const int m = argc > 0 ? std::atoi(argv[0]) : 16;
+  const int m = argc > 0 ? parse_int(argv[0], "the grid size") : 16;
   const spline::PlanarTriangulation t = spline::perturbed_grid(m, 0.3, 7);
   std::printf("jittered grid %dx%d, %zu triangles; points uniform in [0.2,0.8]^2; CPU time\n", m, m,
               t.triangles.size());

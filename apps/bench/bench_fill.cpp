@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bench/benchmarks.h"
+#include "msp/cli.h"
 #include "ricci/mesh/io.h"
 #include "ricci/util/stopwatch.h"
 #include "spline/fill/hole_fill.h"
@@ -168,26 +169,26 @@ int run_fill_benchmark(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--faces" && i + 1 < argc)
-      fit_options.domain_faces = std::stoi(argv[++i]);
+      fit_options.domain_faces = parse_int(argv[++i], "option " + arg);
     else if (arg == "--grow" && i + 1 < argc)
-      rim_options.grow = std::stoi(argv[++i]);
+      rim_options.grow = parse_int(argv[++i], "option " + arg);
     else if (arg == "--refinement" && i + 1 < argc)
-      fill_options.refinement = std::stoi(argv[++i]);
+      fill_options.refinement = parse_int(argv[++i], "option " + arg);
     else if (arg == "--corner-refinement" && i + 1 < argc)
-      fill_options.corner_refinement = std::stoi(argv[++i]);
+      fill_options.corner_refinement = parse_int(argv[++i], "option " + arg);
     else if (arg == "--samples" && i + 1 < argc)
-      fill_options.fit_samples_per_edge = std::stoi(argv[++i]);
+      fill_options.fit_samples_per_edge = parse_int(argv[++i], "option " + arg);
     else if (arg == "--method" && i + 1 < argc) {
       const std::string m = argv[++i];
       fill_options.method = m == "height"       ? spline::FillMethod::height_field
                             : m == "parametric" ? spline::FillMethod::parametric
                                                 : spline::FillMethod::automatic;
     } else if (arg == "--cross" && i + 1 < argc)
-      fill_options.cross_weight = std::stod(argv[++i]);
+      fill_options.cross_weight = parse_double(argv[++i], "option " + arg);
     else if (arg == "--tangent" && i + 1 < argc)
-      fill_options.tangent_weight = std::stod(argv[++i]);
+      fill_options.tangent_weight = parse_double(argv[++i], "option " + arg);
     else if (arg == "--max-boundary" && i + 1 < argc)
-      fill_options.max_boundary_vertices = std::stoi(argv[++i]);
+      fill_options.max_boundary_vertices = parse_int(argv[++i], "option " + arg);
     else if (arg == "--per-edge")
       flags.per_edge = true;
     else if (arg == "--surface-steps")
@@ -195,7 +196,7 @@ int run_fill_benchmark(int argc, char** argv) {
     else if (arg == "--fill-boundaries")
       fill_options.fallback_boundary = true;
     else if (arg == "--smoothing" && i + 1 < argc)
-      fill_options.smoothing = std::stod(argv[++i]);
+      fill_options.smoothing = parse_double(argv[++i], "option " + arg);
     else
       models.push_back(arg);
   }

@@ -98,9 +98,7 @@ int run_fit_scale_benchmark(int argc, char** argv) {
   args.require_known({"levels", "displace"});
   const std::string path =
       args.positionals().empty() ? shared_models() + "/closed_g0/venus.off" : args.positionals()[0];
-  std::vector<int> levels;
-  std::stringstream list(args.get_or("levels", "0,1,2"));
-  for (std::string item; std::getline(list, item, ',');) levels.push_back(std::stoi(item));
+  const std::vector<int> levels = parse_int_list(args.get_or("levels", "0,1,2"), "option --levels");
   const std::string displace = args.get_or("displace", "2e-4");
   std::cout << "msp fit (spline::fit_surface, default options) on " << path
             << " refined by midpoint subdivision L times and displaced along the normals by a "

@@ -26,14 +26,6 @@
 namespace msp::bench {
 namespace {
 
-std::vector<int> int_list(const std::string& text) {
-  std::vector<int> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) values.push_back(std::stoi(item));
-  return values;
-}
-
 // The slab of `genus` whose face count is closest to `faces` (faces grow like resolution^2).
 ricci::Mesh slab_of_size(int genus, int faces) {
   const double base = static_cast<double>(ricci::make_genus_slab(genus, 1).n_faces());
@@ -80,8 +72,8 @@ int run_intrinsic_benchmark(int argc, char** argv) {
   args.require_known({"faces", "genera", "track"});
   args.require_positionals(0, "msp-bench intrinsic [--faces N,...] [--genera G,...] [--track]");
   const bool track = args.has("track");
-  const std::vector<int> sizes = int_list(args.get_or("faces", "10000,100000"));
-  const std::vector<int> genera = int_list(args.get_or("genera", "4,6,8,10"));
+  const std::vector<int> sizes = parse_int_list(args.get_or("faces", "10000,100000"), "option --faces");
+  const std::vector<int> genera = parse_int_list(args.get_or("genera", "4,6,8,10"), "option --genera");
   std::cout << "genus  faces  flow_s  atlas_s  newton  factor    flips  residual  flipped  "
                "cholmod_s  flow/cholmod\n";
   for (int faces : sizes) {

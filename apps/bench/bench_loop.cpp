@@ -15,6 +15,7 @@
 #include <spline/baseline/loop_fit.h>
 
 #include "bench/benchmarks.h"
+#include "msp/cli.h"
 #include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
@@ -38,14 +39,6 @@ std::vector<std::string> default_models() {
   return models;
 }
 
-std::vector<int> parse_counts(const std::string& list) {
-  std::vector<int> counts;
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) counts.push_back(std::stoi(item));
-  return counts;
-}
-
 std::string short_name(const std::string& path) {
   const fs::path p(path);
   return (p.parent_path().filename() / p.filename()).string();
@@ -60,11 +53,11 @@ int run_loop_benchmark(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--control" && i + 1 < argc) {
-      counts = parse_counts(argv[++i]);
+      counts = parse_int_list(argv[++i], "option --control");
     } else if (arg == "--smoothness" && i + 1 < argc) {
-      options.smoothness = std::stod(argv[++i]);
+      options.smoothness = parse_double(argv[++i], "option " + arg);
     } else if (arg == "--corrections" && i + 1 < argc) {
-      options.parameter_corrections = std::stoi(argv[++i]);
+      options.parameter_corrections = parse_int(argv[++i], "option " + arg);
     } else if (arg == "--help") {
       std::printf(
           "msp-bench loop-fit [--control 2000,20000] [--smoothness 1e-3] [--corrections 2] "

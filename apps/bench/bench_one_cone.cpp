@@ -213,13 +213,13 @@ std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
     std::string needle;
     std::getline(fields, needle, ':');
     ricci::ConeRingMetric rule;
-    if (!needle.empty()) rule.needle_angle = std::stod(needle) * M_PI / 180.0;
+    if (!needle.empty()) rule.needle_angle = parse_double(needle, "a ring rule's needle angle") * M_PI / 180.0;
     std::string nonnegative;
     std::getline(fields, nonnegative, ':');
     rule.nonnegative_inversive_distance = nonnegative == "nonnegative";
     rule.far = parse_scheme(far);
     rule.near = near == "tangent" ? ricci::Scheme::combinatorial : parse_scheme(near);
-    rule.rings = std::stoi(rings);
+    rule.rings = parse_int(rings, "a ring rule's ring count");
     rules.push_back(rule);
   }
   return rules;
@@ -235,8 +235,8 @@ ricci::Mesh case_mesh(const std::string& path, int levels) {
     std::string genus, faces;
     std::getline(fields, genus, ':');
     std::getline(fields, faces, ':');
-    generate.genus = std::stoi(genus);
-    generate.target_faces = std::stoi(faces);
+    generate.genus = parse_int(genus, "a generated case's genus");
+    generate.target_faces = parse_int(faces, "a generated case's face count");
     mesh = ricci::generate_surface(generate);
   } else {
     mesh = ricci::read_mesh(path);

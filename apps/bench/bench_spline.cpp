@@ -22,6 +22,7 @@
 #include <spline/manifold/manifold_space.h>
 
 #include "bench/benchmarks.h"
+#include "msp/cli.h"
 #include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
@@ -271,19 +272,19 @@ int run_spline_fit_benchmark(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--r" && i + 1 < argc)
-      rs = {std::stoi(argv[++i])};
+      rs = {parse_int(argv[++i], "option " + arg)};
     else if (arg == "--faces" && i + 1 < argc)
-      options.domain_faces = std::stoi(argv[++i]);
+      options.domain_faces = parse_int(argv[++i], "option " + arg);
     else if (arg == "--degree" && i + 1 < argc)
-      options.degree = std::stoi(argv[++i]);
+      options.degree = parse_int(argv[++i], "option " + arg);
     else if (arg == "--lambda" && i + 1 < argc)
-      options.fit.smoothing = std::stod(argv[++i]);
+      options.fit.smoothing = parse_double(argv[++i], "option " + arg);
     else if (arg == "--rim-lambda" && i + 1 < argc)
-      options.fit.rim_smoothing = std::stod(argv[++i]);
+      options.fit.rim_smoothing = parse_double(argv[++i], "option " + arg);
     else if (arg == "--correct-steps" && i + 1 < argc)
-      options.correction_iterations = std::stoi(argv[++i]);
+      options.correction_iterations = parse_int(argv[++i], "option " + arg);
     else if (arg == "--correct" && i + 1 < argc)
-      options.parameter_corrections = std::stoi(argv[++i]);
+      options.parameter_corrections = parse_int(argv[++i], "option " + arg);
     else if (arg == "--breakdown")
       breakdown = true;
     else if (arg == "--project")

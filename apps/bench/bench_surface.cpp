@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bench/benchmarks.h"
+#include "msp/cli.h"
 #include "ricci/mesh/io.h"
 #include "spline/surface/fit_surface.h"
 #include "spline/surface/bezier.h"
@@ -41,11 +42,11 @@ SurfaceArgs parse(int argc, char** argv) {
     if (arg == "--model" && i + 1 < argc) {
       a.model = argv[++i];
     } else if (arg == "--faces" && i + 1 < argc) {
-      a.faces = std::stoi(argv[++i]);
+      a.faces = parse_int(argv[++i], "option " + arg);
     } else if (arg == "--points" && i + 1 < argc) {
-      a.points = std::stoi(argv[++i]);
+      a.points = parse_int(argv[++i], "option " + arg);
     } else if (arg == "--threads" && i + 1 < argc) {
-      a.threads = std::stoi(argv[++i]);
+      a.threads = parse_int(argv[++i], "option " + arg);
     }
   }
   return a;

@@ -250,29 +250,41 @@ std::string Args::get_or(const std::string& name, const std::string& fallback) c
 }
 
 double Args::get_double(const std::string& name, double fallback) const {
-  auto v = get(name);
-  if (!v) return fallback;
-  try {
-    size_t used = 0;
-    double x = std::stod(*v, &used);
-    if (used != v->size()) throw std::invalid_argument("trailing characters");
-    return x;
-  } catch (const std::exception&) {
-    throw UsageError("option --" + name + " expects a number, got '" + *v + "'");
-  }
+  const auto v = get(name);
+  return v ? parse_double(*v, "option --" + name) : fallback;
 }
 
 int Args::get_int(const std::string& name, int fallback) const {
-  auto v = get(name);
-  if (!v) return fallback;
+  const auto v = get(name);
+  return v ? parse_int(*v, "option --" + name) : fallback;
+}
+
+double parse_double(const std::string& text, const std::string& what) {
   try {
     size_t used = 0;
-    int x = std::stoi(*v, &used);
-    if (used != v->size()) throw std::invalid_argument("trailing characters");
-    return x;
+    const double x = std::stod(text, &used);
+    if (used == text.size()) return x;
   } catch (const std::exception&) {
-    throw UsageError("option --" + name + " expects an integer, got '" + *v + "'");
   }
+  throw UsageError(what + " expects a number, got '" + text + "'");
+}
+
+int parse_int(const std::string& text, const std::string& what) {
+  try {
+    size_t used = 0;
+    const int x = std::stoi(text, &used);
+    if (used == text.size()) return x;
+  } catch (const std::exception&) {
+  }
+  throw UsageError(what + " expects an integer, got '" + text + "'");
+}
+
+std::vector<int> parse_int_list(const std::string& text, const std::string& what) {
+  std::vector<int> values;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) values.push_back(parse_int(item, what));
+  if (values.empty()) throw UsageError(what + " expects integers separated by commas, got ''");
+  return values;
 }
 
 void Args::require_known(const std::vector<std::string>& known) const {

@@ -97,6 +97,15 @@ struct CommandSpec {
 [[nodiscard]] OptionSpec tolerance_option(const std::string& fallback);
 [[nodiscard]] OptionSpec singularity_option();  ///< --singularity auto|VERTEX.
 
+/// `text` read whole as a number; `what` names it in the error ("option --faces").
+/// \throw UsageError "WHAT expects a number, got 'TEXT'" for anything else (trailing
+///        characters included).
+[[nodiscard]] double parse_double(const std::string& text, const std::string& what);
+/// `text` read whole as an int. \throw UsageError "WHAT expects an integer, got 'TEXT'".
+[[nodiscard]] int parse_int(const std::string& text, const std::string& what);
+/// A comma-separated list of ints ("1,2,4"), each read by parse_int.
+[[nodiscard]] std::vector<int> parse_int_list(const std::string& text, const std::string& what);
+
 /// Parsed arguments: positionals in order, `--name value` options and `--flag` switches.
 class Args {
  public:

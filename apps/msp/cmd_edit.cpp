@@ -26,23 +26,13 @@ struct Move {
   std::vector<double> values;  // 7 or 4 numbers
 };
 
-double parse_number(const std::string& text, const std::string& option) {
-  try {
-    std::size_t used = 0;
-    const double x = std::stod(text, &used);
-    if (used == text.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError("option --" + option + " expects numbers, got '" + text + "'");
-}
-
 // The moves in command-line order (Args has checked how many values each one has).
 std::vector<Move> moves_of(const Args& args) {
   std::vector<Move> moves;
   for (const auto& occurrence : args.occurrences()) {
     if (occurrence.name != "move-region" && occurrence.name != "move-point") continue;
     Move move{occurrence.name, {}};
-    for (const auto& v : occurrence.values) move.values.push_back(parse_number(v, move.option));
+    for (const auto& v : occurrence.values) move.values.push_back(parse_double(v, "option --" + move.option));
     moves.push_back(move);
   }
   return moves;

@@ -1,6 +1,6 @@
 #pragma once
 // Runs the real msp binary in a subprocess and captures its exit status, stdout and stderr
-// (used by the info_* and models_* tests).
+// (used by the info_*, models_* and bench_cli tests).
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -24,14 +24,14 @@ inline std::string shell_quote(const std::string& text) {
   return quoted + "'";
 }
 
-/// Runs MSP_BINARY with `args`; stderr goes through a temporary file.
-inline ProcessResult run_msp(const std::vector<std::string>& args) {
+/// Runs `binary` with `args`; stderr goes through a temporary file.
+inline ProcessResult run_program(const std::string& binary, const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
   static int counter = 0;
   const fs::path err_path =
       fs::temp_directory_path() /
       ("msp_info_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ".err");
-  std::string command = shell_quote(MSP_BINARY);
+  std::string command = shell_quote(binary);
   for (const auto& arg : args) command += " " + shell_quote(arg);
   command += " 2>" + shell_quote(err_path.string());
   ProcessResult result;
@@ -48,6 +48,11 @@ inline ProcessResult run_msp(const std::vector<std::string>& args) {
   result.err = text.str();
   fs::remove(err_path);
   return result;
+}
+
+/// Runs MSP_BINARY (the msp tool) with `args`.
+inline ProcessResult run_msp(const std::vector<std::string>& args) {
+  return run_program(MSP_BINARY, args);
 }
 
 /// Number of lines of `text` ("a\n" and "a" are one line; "" is none).
