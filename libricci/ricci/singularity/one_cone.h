@@ -132,9 +132,11 @@ struct ConeRingMetric {
 /// (2g - 1) dtheta around: at genus 10 the faces a few rings out are chart slivers (2-17 degree
 /// angles) and the spline folds there. From genus radial_from_genus the refinement then grades
 /// the mesh log-polar: radial_levels rounds split (at the 3D midpoint, joined to the opposite
-/// corners) every edge within radial_rings rings of the cone, off the cone's faces, whose ends' 3D distances rho_a,
-/// rho_b from the cone give a chart ratio (2g - 1) |ln(rho_b / rho_a)| above radial_chart_log,
-/// so the faces' radial and angular chart extents become comparable.
+/// corners) every edge within radial_rings rings of the cone, off the cone's faces, whose ends'
+/// 3D distances rho_a, rho_b from the cone give a chart ratio (2g - 1) |ln(rho_b / rho_a)| above
+/// radial_chart_log, so the faces' radial and angular chart extents become comparable. The
+/// rounds do not always reach that bound (a split can join a vertex close to the cone again).
+/// Off by default (msp fit --cone-grading turns it on); docs/design-notes.md has the figures.
 struct ConeRefinementOptions {
   int levels = 0;  ///< rounds of refinement; 0: off
   int rings = 6;   ///< faces with a corner fewer than this many edges from the cone are split
