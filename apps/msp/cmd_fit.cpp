@@ -73,6 +73,10 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   o.density = args.get_int("density", 0);
   o.density_refine_levels = args.get_int("turn-refinement", o.density_refine_levels);
   o.cone_refinement.levels = args.get_int("cone-refinement", o.cone_refinement.levels);
+  if (const int grading = args.get_int("cone-grading", 0); grading != 0) {
+    o.cone_refinement.radial_from_genus = 2;
+    o.cone_refinement.radial_levels = grading;
+  }
   o.refinement_rounds = args.get_int("refine-rounds", o.refinement_rounds);
   o.fold_rounds = args.get_int("fold-rounds", o.fold_rounds);
   o.adaptive_domain = args.has("adaptive-domain");
@@ -153,6 +157,8 @@ const CommandSpec& fit_command() {
        {"turn-refinement", "LEVELS",
         "split the tessellation where it turns over 60 degrees, 0 to 6 levels (3)"},
        {"cone-refinement", "LEVELS", "1-to-4 splits of the domain around the cone, 0 to 4 (2)"},
+       {"cone-grading", "LEVELS",
+        "rounds of radial splits grading the domain log-polar around the cone, 0 to 4 (0: off)"},
        {"smoothing", "LAMBDA", "weight of the thin-plate energy (1e-4)"},
        {"tolerance", "F",
         "refine the domain where the input is farther than F diagonals from the surface (0)"},

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "ricci/intrinsic/flip_free.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/neighbourhoods.h"
 #include "ricci/mesh/primitives.h"
@@ -442,8 +443,8 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
 
 namespace {
 
-// Faces with a corner fewer than `rings` edges from `cone`.
-std::vector<char> faces_near(const Mesh& mesh, int cone, int rings) {
+// Vertices fewer than `rings` edges from `cone`.
+std::vector<char> vertices_near(const Mesh& mesh, int cone, int rings) {
   std::vector<char> near_vertex(mesh.n_vertices(), 0);
   std::vector<int> frontier{cone};
   near_vertex[static_cast<size_t>(cone)] = 1;
@@ -458,6 +459,12 @@ std::vector<char> faces_near(const Mesh& mesh, int cone, int rings) {
     }
     frontier = std::move(next);
   }
+  return near_vertex;
+}
+
+// Faces with a corner fewer than `rings` edges from `cone`.
+std::vector<char> faces_near(const Mesh& mesh, int cone, int rings) {
+  const std::vector<char> near_vertex = vertices_near(mesh, cone, rings);
   std::vector<char> faces(mesh.n_faces(), 0);
   for (auto f : mesh.faces()) {
     for (auto v : mesh.fv_range(f)) {
@@ -467,9 +474,57 @@ std::vector<char> faces_near(const Mesh& mesh, int cone, int rings) {
   return faces;
 }
 
+// Edges between `near` vertices, off the cone's faces, whose ends' distances from the cone give a chart
+// ratio alpha |ln(rho_b / rho_a)| above `chart_log` (ConeRefinementOptions).
+std::vector<int> radially_long_edges(const Mesh& mesh, int cone, const std::vector<char>& near, double alpha,
+                                     double chart_log) {
+  const Mesh::Point apex = mesh.point(mesh.vertex_handle(static_cast<unsigned>(cone)));
+  std::vector<int> edges;
+  for (auto e : mesh.edges()) {
+    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
+    const VertexHandle a = mesh.from_vertex_handle(h);
+    const VertexHandle b = mesh.to_vertex_handle(h);
+    if (a.idx() == cone || b.idx() == cone || !near[static_cast<size_t>(a.idx())] ||
+        !near[static_cast<size_t>(b.idx())] || mesh.opposite_vh(h).idx() == cone ||
+        mesh.opposite_he_opposite_vh(h).idx() == cone) {
+      continue;  // the cone keeps its valence
+    }
+    const double rho_a = (mesh.point(a) - apex).norm();
+    const double rho_b = (mesh.point(b) - apex).norm();
+    if (rho_a > 0.0 && rho_b > 0.0 && alpha * std::abs(std::log(rho_b / rho_a)) > chart_log) {
+      edges.push_back(e.idx());
+    }
+  }
+  return edges;
+}
+
+// The radial grading of ConeRefinementOptions over the vertices within radial_rings rings of the
+// cone before it (the midpoints join them); returns the number of edges split.
+int grade_radially(OneConeProblem& problem, const ConeRefinementOptions& options) {
+  const double alpha = 2.0 * problem.genus - 1.0;
+  std::vector<char> near = vertices_near(problem.mesh, problem.cone, options.radial_rings);
+  if (options.radial_inner_rings > 0) {
+    const std::vector<char> inner = vertices_near(problem.mesh, problem.cone, options.radial_inner_rings);
+    for (size_t v = 0; v < near.size(); ++v) near[v] = static_cast<char>(near[v] && !inner[v]);
+  }
+  int splits = 0;
+  for (int level = 0; level < options.radial_levels; ++level) {
+    const std::vector<int> edges =
+        radially_long_edges(problem.mesh, problem.cone, near, alpha, options.radial_chart_log);
+    if (edges.empty()) break;
+    splits += split_edges_at_midpoints(problem.mesh, edges);
+    near.resize(problem.mesh.n_vertices(), 1);
+  }
+  return splits;
+}
+
 }  // namespace
 
 ConeRefinement refine_around_cone(OneConeProblem& problem, const ConeRefinementOptions& options) {
+  if (options.radial_levels < 0 || options.radial_rings < 1 || !(options.radial_chart_log > 0.0)) {
+    throw InvalidInputError("radial cone refinement needs radial_levels >= 0, radial_rings >= 1 and "
+                            "radial_chart_log > 0");
+  }
   if (options.levels < 0 || options.rings < 1) {
     throw InvalidInputError("cone refinement needs levels >= 0 and rings >= 1, got " +
                             std::to_string(options.levels) + " and " + std::to_string(options.rings));
@@ -480,6 +535,9 @@ ConeRefinement refine_around_cone(OneConeProblem& problem, const ConeRefinementO
   for (; done.levels < options.levels; ++done.levels) {
     problem.mesh =
         subdivide_midpoint_locally(problem.mesh, faces_near(problem.mesh, problem.cone, options.rings));
+  }
+  if (options.radial_from_genus > 0 && problem.genus >= options.radial_from_genus) {
+    done.radial_splits = grade_radially(problem, options);
   }
   done.added_faces = static_cast<int>(problem.mesh.n_faces()) - faces_before;
   // Midpoint subdivision keeps vertex indices and appends the midpoints.

@@ -126,22 +126,40 @@ struct ConeRingMetric {
 /// levels of 6 rings leave edges of 1/4 of the input's length within ~3 of its edges of the
 /// cone, 1/2 within ~6, so h / rho stays below ~1/6 beyond the innermost rings (the cone's hole
 /// covers those).
+///
+/// The 1-to-4 splits keep each face's radial extent over its distance (dr / rho), and at a cone
+/// of 2 pi (2g - 1) the chart stretches a face radially by (1 + dr / rho)^(2g - 1) against
+/// (2g - 1) dtheta around: at genus 10 the faces a few rings out are chart slivers (2-17 degree
+/// angles) and the spline folds there. From genus radial_from_genus the refinement then grades
+/// the mesh log-polar: radial_levels rounds split (at the 3D midpoint, joined to the opposite
+/// corners) every edge within radial_rings rings of the cone, off the cone's faces, whose ends'
+/// 3D distances rho_a, rho_b from the cone give a chart ratio (2g - 1) |ln(rho_b / rho_a)| above
+/// radial_chart_log, so the faces' radial and angular chart extents become comparable. The
+/// rounds do not always reach that bound (a split can join a vertex close to the cone again).
+/// Off by default (msp fit --cone-grading turns it on); docs/design-notes.md has the figures.
 struct ConeRefinementOptions {
   int levels = 0;  ///< rounds of refinement; 0: off
   int rings = 6;   ///< faces with a corner fewer than this many edges from the cone are split
+  int radial_from_genus = 0;   ///< genus from which the radial grading runs; 0: never
+  int radial_levels = 3;       ///< rounds of radial splits
+  int radial_rings = 16;       ///< edges with both ends fewer than this many rings from the cone
+  int radial_inner_rings = 0;  ///< ... and at least this many (the cone hole's rings); 0: from the cone
+  double radial_chart_log = 1.0;  ///< largest (2g - 1) |ln(rho_b / rho_a)| left unsplit
 };
 
 /// What refine_around_cone did.
 struct ConeRefinement {
   int levels = 0;       ///< rounds applied (0 when off or not a single cone)
   int added_faces = 0;
+  int radial_splits = 0;  ///< edges split by the radial grading (0 below radial_from_genus)
 };
 
 /// Applies ConeRefinementOptions to a single-cone problem (a no-op for other kinds or levels 0):
 /// the mesh is refined (the surface does not move: midpoints lie on the edges), the cone keeps
 /// its vertex index and valence, the added vertices map to input vertex -1 and the targets are
 /// recomputed (flat everywhere but the cone).
-/// \throw InvalidInputError when levels < 0 or rings < 1.
+/// \throw InvalidInputError when levels < 0 or rings < 1, or radial_levels < 0, radial_rings < 1
+/// or radial_chart_log <= 0.
 ConeRefinement refine_around_cone(OneConeProblem& problem, const ConeRefinementOptions& options);
 
 /// Whether the mesh's topology asks for a singular vertex at all (closed, genus != 1).

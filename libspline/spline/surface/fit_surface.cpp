@@ -1160,6 +1160,8 @@ void check_options(const FitSurfaceOptions& o,
           "density_refine_turn_deg", "in (0, 180) degrees");
   require(o.cone_refinement.levels >= 0 && o.cone_refinement.levels <= 4, "cone_refinement",
           "in [0, 4]");
+  require(o.cone_refinement.radial_levels >= 0 && o.cone_refinement.radial_levels <= 4,
+          "cone_grading", "in [0, 4]");
   require(o.refinement_rounds >= 0 && o.refinement_rounds <= 8, "refinement_rounds",
           "in [0, 8]");
   require(o.tolerance >= 0.0 && o.tolerance < 1.0, "tolerance",
