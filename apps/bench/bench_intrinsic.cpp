@@ -72,8 +72,10 @@ int run_intrinsic_benchmark(int argc, char** argv) {
   args.require_known({"faces", "genera", "track"});
   args.require_positionals(0, "msp-bench intrinsic [--faces N,...] [--genera G,...] [--track]");
   const bool track = args.has("track");
-  const std::vector<int> sizes = parse_int_list(args.get_or("faces", "10000,100000"), "option --faces");
-  const std::vector<int> genera = parse_int_list(args.get_or("genera", "4,6,8,10"), "option --genera");
+  const std::vector<int> sizes =
+      parse_int_list(args.get_or("faces", "10000,100000"), "option --faces");
+  const std::vector<int> genera =
+      parse_int_list(args.get_or("genera", "4,6,8,10"), "option --genera");
   std::cout << "genus  faces  flow_s  atlas_s  newton  factor    flips  residual  flipped  "
                "cholmod_s  flow/cholmod\n";
   for (int faces : sizes) {

@@ -213,7 +213,9 @@ std::vector<ricci::ConeRingMetric> parse_ring_metrics(const std::string& text) {
     std::string needle;
     std::getline(fields, needle, ':');
     ricci::ConeRingMetric rule;
-    if (!needle.empty()) rule.needle_angle = parse_double(needle, "a ring rule's needle angle") * M_PI / 180.0;
+    if (!needle.empty()) {
+      rule.needle_angle = parse_double(needle, "a ring rule's needle angle") * M_PI / 180.0;
+    }
     std::string nonnegative;
     std::getline(fields, nonnegative, ':');
     rule.nonnegative_inversive_distance = nonnegative == "nonnegative";

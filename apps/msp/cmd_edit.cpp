@@ -32,7 +32,9 @@ std::vector<Move> moves_of(const Args& args) {
   for (const auto& occurrence : args.occurrences()) {
     if (occurrence.name != "move-region" && occurrence.name != "move-point") continue;
     Move move{occurrence.name, {}};
-    for (const auto& v : occurrence.values) move.values.push_back(parse_double(v, "option --" + move.option));
+    for (const auto& v : occurrence.values) {
+      move.values.push_back(parse_double(v, "option --" + move.option));
+    }
     moves.push_back(move);
   }
   return moves;

@@ -27,7 +27,8 @@ struct BadNumber {
 TEST(BenchCli, BadNumbersGiveOneLineAndExitOne) {
   const std::string mesh = std::string(MSP_SOURCE_DIR) + "/models/genus1.off";
   const std::vector<BadNumber> cases = {
-      {{"one-cone-one", mesh, "--warm-fraction", "abc"}, "--warm-fraction expects a number, got 'abc'"},
+      {{"one-cone-one", mesh, "--warm-fraction", "abc"},
+       "--warm-fraction expects a number, got 'abc'"},
       {{"one-cone-one", mesh, "--cone", "12x"}, "--cone expects an integer, got '12x'"},
       {{"one-cone-one", "generated:4x:1000"}, "genus expects an integer, got '4x'"},
       {{"fill", "--faces", "many"}, "option --faces expects an integer, got 'many'"},

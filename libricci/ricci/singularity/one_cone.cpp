@@ -474,10 +474,10 @@ std::vector<char> faces_near(const Mesh& mesh, int cone, int rings) {
   return faces;
 }
 
-// Edges between `near` vertices, off the cone's faces, whose ends' distances from the cone give a chart
-// ratio alpha |ln(rho_b / rho_a)| above `chart_log` (ConeRefinementOptions).
-std::vector<int> radially_long_edges(const Mesh& mesh, int cone, const std::vector<char>& near, double alpha,
-                                     double chart_log) {
+// Edges between `near` vertices, off the cone's faces, whose ends' distances from the cone give
+// a chart ratio alpha |ln(rho_b / rho_a)| above `chart_log` (ConeRefinementOptions).
+std::vector<int> radially_long_edges(const Mesh& mesh, int cone, const std::vector<char>& near,
+                                     double alpha, double chart_log) {
   const Mesh::Point apex = mesh.point(mesh.vertex_handle(static_cast<unsigned>(cone)));
   std::vector<int> edges;
   for (auto e : mesh.edges()) {
@@ -504,7 +504,8 @@ int grade_radially(OneConeProblem& problem, const ConeRefinementOptions& options
   const double alpha = 2.0 * problem.genus - 1.0;
   std::vector<char> near = vertices_near(problem.mesh, problem.cone, options.radial_rings);
   if (options.radial_inner_rings > 0) {
-    const std::vector<char> inner = vertices_near(problem.mesh, problem.cone, options.radial_inner_rings);
+    const std::vector<char> inner =
+        vertices_near(problem.mesh, problem.cone, options.radial_inner_rings);
     for (size_t v = 0; v < near.size(); ++v) near[v] = static_cast<char>(near[v] && !inner[v]);
   }
   int splits = 0;
@@ -522,8 +523,9 @@ int grade_radially(OneConeProblem& problem, const ConeRefinementOptions& options
 
 ConeRefinement refine_around_cone(OneConeProblem& problem, const ConeRefinementOptions& options) {
   if (options.radial_levels < 0 || options.radial_rings < 1 || !(options.radial_chart_log > 0.0)) {
-    throw InvalidInputError("radial cone refinement needs radial_levels >= 0, radial_rings >= 1 and "
-                            "radial_chart_log > 0");
+    throw InvalidInputError(
+        "radial cone refinement needs radial_levels >= 0, radial_rings >= 1 and "
+        "radial_chart_log > 0");
   }
   if (options.levels < 0 || options.rings < 1) {
     throw InvalidInputError("cone refinement needs levels >= 0 and rings >= 1, got " +

@@ -143,7 +143,8 @@ struct ConeRefinementOptions {
   int radial_from_genus = 0;   ///< genus from which the radial grading runs; 0: never
   int radial_levels = 3;       ///< rounds of radial splits
   int radial_rings = 16;       ///< edges with both ends fewer than this many rings from the cone
-  int radial_inner_rings = 0;  ///< ... and at least this many (the cone hole's rings); 0: from the cone
+  /// ... and at least this many (the cone hole's rings); 0: from the cone
+  int radial_inner_rings = 0;
   double radial_chart_log = 1.0;  ///< largest (2g - 1) |ln(rho_b / rho_a)| left unsplit
 };
 

@@ -99,17 +99,22 @@ std::vector<char> within_rings(const ricci::Mesh& mesh, int cone, int rings) {
 
 // The chart ratios (2g - 1) |ln(rho_b / rho_a)| (rho: 3D distance from the cone) of the edges off
 // the cone's faces whose ends are both `near` (vertices past near's size count as near), sorted.
-std::vector<double> chart_logs(const ricci::OneConeProblem& problem, const std::vector<char>& near) {
+std::vector<double> chart_logs(const ricci::OneConeProblem& problem,
+                               const std::vector<char>& near) {
   const ricci::Mesh& mesh = problem.mesh;
   const auto apex = mesh.point(mesh.vertex_handle(problem.cone));
-  const auto is_near = [&](int v) { return static_cast<size_t>(v) >= near.size() || near[static_cast<size_t>(v)]; };
+  const auto is_near = [&](int v) {
+    return static_cast<size_t>(v) >= near.size() || near[static_cast<size_t>(v)];
+  };
   std::vector<double> logs;
   for (auto e : mesh.edges()) {
     const auto h = mesh.halfedge_handle(e, 0);
     const auto a = mesh.from_vertex_handle(h);
     const auto b = mesh.to_vertex_handle(h);
-    if (a.idx() == problem.cone || b.idx() == problem.cone || mesh.opposite_vh(h).idx() == problem.cone ||
-        mesh.opposite_he_opposite_vh(h).idx() == problem.cone || !is_near(a.idx()) || !is_near(b.idx())) {
+    if (a.idx() == problem.cone || b.idx() == problem.cone ||
+        mesh.opposite_vh(h).idx() == problem.cone ||
+        mesh.opposite_he_opposite_vh(h).idx() == problem.cone || !is_near(a.idx()) ||
+        !is_near(b.idx())) {
       continue;
     }
     const double rho_a = (mesh.point(a) - apex).norm();
@@ -141,8 +146,10 @@ TEST(ConeRefinement, RadialGradingShrinksTheChartRatioNearTheCone) {
   const ricci::ConeRefinement done = ricci::refine_around_cone(graded, options);
 
   EXPECT_GT(done.radial_splits, 0);
-  EXPECT_EQ(done.added_faces, static_cast<int>(graded.mesh.n_faces()) - static_cast<int>(before.mesh.n_faces()));
-  EXPECT_EQ(graded.mesh.n_faces(), plain.mesh.n_faces() + 2 * static_cast<size_t>(done.radial_splits));
+  EXPECT_EQ(done.added_faces,
+            static_cast<int>(graded.mesh.n_faces()) - static_cast<int>(before.mesh.n_faces()));
+  EXPECT_EQ(graded.mesh.n_faces(),
+            plain.mesh.n_faces() + 2 * static_cast<size_t>(done.radial_splits));
   EXPECT_NEAR(total_area(graded.mesh), total_area(before.mesh), 1e-12 * total_area(before.mesh));
   EXPECT_EQ(ricci::surface_topology(graded.mesh).genus, 2);
   EXPECT_EQ(graded.cone, before.cone);
@@ -157,11 +164,13 @@ TEST(ConeRefinement, RadialGradingShrinksTheChartRatioNearTheCone) {
   ASSERT_FALSE(plain_logs.empty());
   ASSERT_FALSE(graded_logs.empty());
   EXPECT_GT(above(plain_logs, options.radial_chart_log), 50);
-  EXPECT_LT(above(graded_logs, options.radial_chart_log), above(plain_logs, options.radial_chart_log) / 5);
+  EXPECT_LT(above(graded_logs, options.radial_chart_log),
+            above(plain_logs, options.radial_chart_log) / 5);
   EXPECT_LT(graded_logs.back(), 0.5 * plain_logs.back());
   ASSERT_EQ(graded.input_vertex.size(), graded.mesh.n_vertices());
-  EXPECT_TRUE(std::all_of(graded.input_vertex.begin() + static_cast<long>(before.input_vertex.size()),
-                          graded.input_vertex.end(), [](int v) { return v == -1; }));
+  const auto first_added =
+      graded.input_vertex.begin() + static_cast<long>(before.input_vertex.size());
+  EXPECT_TRUE(std::all_of(first_added, graded.input_vertex.end(), [](int v) { return v == -1; }));
   EXPECT_NEAR(graded.targets.curvature.sum(), -4 * M_PI, 1e-12);
   // Below radial_from_genus the refinement is the plain one.
   options.radial_from_genus = 3;
