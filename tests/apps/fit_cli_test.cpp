@@ -446,6 +446,14 @@ TEST(FitCli, RefusesBadCommandLines) {
   expect_refused("cone", {{model("genus1.off"), "-o", "{OUT}/x.glb", "--cone-refinement", "9"},
                           "--cone-refinement",
                           2});
+  expect_refused("grading",
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--cone-grading", "7"},
+                  "--cone-grading must be in [0, 4]",
+                  2});
+  expect_refused("grading-number",
+                 {{model("genus1.off"), "-o", "{OUT}/x.glb", "--cone-grading", "two"},
+                  "option --cone-grading expects an integer, got 'two'",
+                  2});
   expect_refused("turns",
                  {{model("genus1.off"), "-o", "{OUT}/x.glb", "--turn-refinement", "7"},
                   "--turn-refinement",
