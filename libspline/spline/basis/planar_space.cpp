@@ -136,13 +136,14 @@ void PlanarDmsSpace::evaluate_basis_of(const Eigen::Vector2d& u, const std::vect
                                        std::vector<BasisSample>& out) const {
   // Per-thread scratch: evaluation is called per point in hot loops, and the DAG state is a few
   // KB (allocating it per call cost as much as a cheap evaluation).
-  thread_local std::vector<Jet> jets, jet_scratch;
-  thread_local std::vector<double> values, value_scratch;
+  thread_local std::vector<Jet> jets;
+  thread_local std::vector<double> values;
+  thread_local SimplexSplineDag::Scratch dag_scratch;
   for (int t : triangles) {
     const TriangleBasis& basis = bases_[static_cast<std::size_t>(t)];
     if (!basis.in_hull(u)) continue;
     if (derivatives == BasisDerivatives::none) {
-      basis.evaluate_values(u, tie, values, value_scratch);
+      basis.evaluate_values(u, tie, values, dag_scratch);
       for (std::size_t i = 0; i < values.size(); ++i) {
         if (values[i] == 0.0) continue;
         BasisSample sample{t, static_cast<int>(i), Jet{}};
@@ -151,7 +152,7 @@ void PlanarDmsSpace::evaluate_basis_of(const Eigen::Vector2d& u, const std::vect
       }
       continue;
     }
-    basis.evaluate(u, tie, jets, jet_scratch);
+    basis.evaluate(u, tie, jets, dag_scratch);
     for (std::size_t i = 0; i < jets.size(); ++i) {
       const Jet& j = jets[i];
       if (j.value != 0.0 || !j.gradient.isZero(0.0) || !j.hessian.isZero(0.0)) {

@@ -56,8 +56,10 @@ class SimplexSplineDag {
   explicit SimplexSplineDag(std::vector<Eigen::Vector2d> knots);
 
   /// Adds M(. | {knots[i] : bit i of mask}) (at least 3 bits) and returns its node id. The node
-  /// is a root: evaluate() gives its Hessian (the Hessians of the other nodes are not needed by
-  /// the recurrence, and are skipped).
+  /// is a root, the next one of evaluate_roots(); evaluate() gives its Hessian (the Hessians of
+  /// the other nodes are not needed by the recurrence, and are skipped).
+  /// \throw ricci::InvalidInputError with fewer than 3 bits, bits past the knots, or too many
+  ///        nodes.
   int add(std::uint32_t mask);
 
   [[nodiscard]] int node_count() const { return static_cast<int>(nodes_.size()); }
@@ -70,15 +72,27 @@ class SimplexSplineDag {
   [[nodiscard]] std::size_t memory_bytes() const;
   [[nodiscard]] const std::vector<Eigen::Vector2d>& knots() const { return knots_; }
 
-  /// Evaluates every node at u: jets[id] is then M and grad M for node id, and the Hessian of M
-  /// for the roots (ids returned by add(); zero for the other nodes).
-  void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& jets) const;
+  /// Reusable storage of evaluate_roots / evaluate_root_values (one per thread).
+  struct Scratch {
+    std::vector<double> values;             // M of every node
+    std::vector<Eigen::Vector2d> gradients;  // grad M, written for the roots and their children
+  };
 
-  /// Values only: values[id] = M(u | X_id) for every node (the same numbers as evaluate()'s;
-  /// 15-20% cheaper: the pass over the nodes, their culling and the base cases' predicates
-  /// dominate, not the derivative arithmetic).
-  void evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie,
-                       std::vector<double>& values) const;
+  /// Jets of the roots at u: roots[i] is M, grad M and its Hessian for the i-th add() call. The
+  /// same numbers, bit for bit, as evaluate() gives for those nodes, computed in three passes:
+  /// values of all nodes not culled by their box, gradients of the roots and their children
+  /// only, Hessians of the roots only.
+  void evaluate_roots(const Eigen::Vector2d& u, const TieBreak& tie, Scratch& scratch,
+                      std::vector<Jet>& roots) const;
+
+  /// Values only of the roots: roots[i] = M(u | X) for the i-th add() call (the numbers of
+  /// evaluate_roots).
+  void evaluate_root_values(const Eigen::Vector2d& u, const TieBreak& tie, Scratch& scratch,
+                            std::vector<double>& roots) const;
+
+  /// Reference evaluation, one pass with a jet per node: jets[id] is then M and grad M for every
+  /// node id, and the Hessian of M for the roots (zero for the other nodes).
+  void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& jets) const;
 
   /// Directional derivatives D_d^k M for k = 0..max_order of every node at u:
   /// table[id * (max_order + 1) + k].
@@ -88,7 +102,8 @@ class SimplexSplineDag {
  private:
   enum class Kind : std::uint8_t { zero, base, recurrence };
   static constexpr std::uint16_t kNoChild = 0xFFFF;
-  // 64 bytes: a degree-5 triangle has ~700 nodes, and a domain thousands of triangles.
+  // 48 bytes (the boxes live apart, in boxes_): a degree-5 triangle has ~700 nodes, and a domain
+  // thousands of triangles.
   struct Node {
     // base: 1/|d| in data[0]. recurrence: lambda_k(u) = g_k.(u - s) for the triple k = a, b, c
     // with g_b = data[0..1], g_c = data[2..3], g_a = -g_b - g_c, and s either end of the edge
@@ -96,18 +111,21 @@ class SimplexSplineDag {
     // u, since the rounding error is eps |g_k| |u - s| and thin triples (two knots of one cloud
     // and a far knot) have large |g_k|.
     double data[4] = {0.0, 0.0, 0.0, 0.0};
-    float box[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // knots' bounding box, rounded outwards
     std::uint16_t child[3] = {kNoChild, kNoChild, kNoChild};  // X \ x_a, X \ x_b, X \ x_c
     std::uint8_t knot[3] = {0, 0, 0};  // base: ccw triangle; recurrence: the triple (a, b, c)
     Kind kind = Kind::zero;
     std::uint8_t degree = 0;
-    bool root = false;  // added by add(): its Hessian is wanted
+    bool root = false;      // added by add(): its Hessian is wanted
+    bool gradient = false;  // a recurrence root or a recurrence child of a root: in gradient_ids_
   };
   struct Triple {
     int a = -1, b = -1, c = -1;
   };
-  // The subset's largest-area knot triple (a < 0: all collinear); also fills node.box.
-  Triple largest_triple(std::uint32_t mask, Node& node) const;
+  // The subset's largest-area knot triple (a < 0: all collinear); also fills box (lo x, lo y,
+  // hi x, hi y: the knots' bounding box rounded outwards).
+  Triple largest_triple(std::uint32_t mask, float box[4]) const;
+  // Appends node and its box to the evaluation arrays.
+  int push_node(const Node& node, const float box[4]);
   // Adds the children X \ x_k and the barycentric gradients of the triple to node.
   void set_recurrence(std::uint32_t mask, Triple triple, Node& node);
   // add() without marking the node a root.
@@ -118,10 +136,15 @@ class SimplexSplineDag {
   // Strictly outside the closed box: u and its perturbation lie outside the knots' hull. u is
   // compared rounded to float (once per pass, not per node): rounding is monotonic and the box
   // corners are floats, so a culled node is outside in double too; a node the float test keeps
-  // but the double test would cull evaluates to exact zeros, as culled ones read.
-  static bool outside(const Node& node, float x, float y) {
-    return x < node.box[0] || y < node.box[1] || x > node.box[2] || y > node.box[3];
+  // but the double test would cull evaluates to exact zeros, as culled ones read. A node's
+  // descendants have boxes inside its own, so they are culled with it.
+  bool outside(std::size_t id, float x, float y) const {
+    const float* b = &boxes_[(id / 4) * 16 + id % 4];
+    return x < b[0] || y < b[4] || x > b[8] || y > b[12];
   }
+  // The values pass of evaluate_roots / evaluate_root_values.
+  void evaluate_all_values(const Eigen::Vector2d& u, const TieBreak& tie,
+                           std::vector<double>& values) const;
 
   // Build-time caches, dropped by release_index(): subset -> node (a direct table up to
   // kDirectIndexKnots knots, a hash map above), |det| of every ascending knot triple (the
@@ -132,6 +155,13 @@ class SimplexSplineDag {
 
   std::vector<Eigen::Vector2d> knots_;
   std::vector<Node> nodes_;
+  // Node boxes by blocks of 4 nodes: lo x[4], lo y[4], hi x[4], hi y[4] (SSE2 compares 4 nodes at
+  // once); the padding of the last block is an empty box (+inf lo, -inf hi).
+  std::vector<float> boxes_;
+  // One bit per node id: base nodes, recurrence nodes (zero nodes are in neither).
+  std::vector<std::uint64_t> base_bits_, recurrence_bits_;
+  std::vector<int> roots_;                   // add() results in call order
+  std::vector<std::uint16_t> gradient_ids_;  // nodes with Node::gradient, in order of marking
   std::unordered_map<std::uint32_t, int> index_;
   std::vector<std::uint16_t> direct_index_;  // mask -> id + 1, 0 when absent
   std::vector<double> areas_, dets_;         // by (x * knots + y) * knots + z

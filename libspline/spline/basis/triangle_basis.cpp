@@ -116,24 +116,20 @@ bool TriangleBasis::in_hull(const Eigen::Vector2d& u) const {
 }
 
 void TriangleBasis::evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,
-                             std::vector<Jet>& scratch) const {
-  dag_.evaluate(u, tie, scratch);
-  out.resize(roots_.size());
-  for (std::size_t i = 0; i < roots_.size(); ++i) {
-    const Jet& m = scratch[static_cast<std::size_t>(roots_[i])];
-    out[i].value = scales_[i] * m.value;
-    out[i].gradient = scales_[i] * m.gradient;
-    out[i].hessian = scales_[i] * m.hessian;
+                             SimplexSplineDag::Scratch& scratch) const {
+  dag_.evaluate_roots(u, tie, scratch, out);  // roots_ in multi_indices(n) order
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i].value = scales_[i] * out[i].value;
+    out[i].gradient = scales_[i] * out[i].gradient;
+    out[i].hessian = scales_[i] * out[i].hessian;
   }
 }
 
 void TriangleBasis::evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie,
-                                    std::vector<double>& out, std::vector<double>& scratch) const {
-  dag_.evaluate_values(u, tie, scratch);
-  out.resize(roots_.size());
-  for (std::size_t i = 0; i < roots_.size(); ++i) {
-    out[i] = scales_[i] * scratch[static_cast<std::size_t>(roots_[i])];
-  }
+                                    std::vector<double>& out,
+                                    SimplexSplineDag::Scratch& scratch) const {
+  dag_.evaluate_root_values(u, tie, scratch, out);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = scales_[i] * out[i];
 }
 
 void TriangleBasis::evaluate_directional(const Eigen::Vector2d& u,

@@ -53,11 +53,11 @@ class TriangleBasis {
 
   /// Jets of all functions at u, in multi_indices(n) order. scratch is reused storage.
   void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,
-                std::vector<Jet>& scratch) const;
+                SimplexSplineDag::Scratch& scratch) const;
 
   /// Values only of all functions at u (the same numbers as evaluate()'s values).
   void evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<double>& out,
-                       std::vector<double>& scratch) const;
+                       SimplexSplineDag::Scratch& scratch) const;
 
   /// D_d^k N for k = 0..max_order of all functions: out[i * (max_order + 1) + k].
   void evaluate_directional(const Eigen::Vector2d& u, const Eigen::Vector2d& direction,

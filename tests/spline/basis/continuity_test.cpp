@@ -187,7 +187,8 @@ TEST(DmsContinuity, BasisGradientsAndHessiansMatchFiniteDifferences) {
         if (distance_to_knot_lines(triangle_knots(space, tri_id), u) < 200 * h) continue;
         ++checked;
         const TriangleBasis& basis = space.triangle_basis(tri_id);
-        std::vector<Jet> jets, scratch;
+        std::vector<Jet> jets;
+        SimplexSplineDag::Scratch scratch;
         basis.evaluate(u, {}, jets, scratch);
         // Relative to the largest derivatives among the triangle's functions at u (a function
         // nearly zero at u still carries the rounding of its neighbours' scale).

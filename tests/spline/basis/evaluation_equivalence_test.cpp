@@ -43,8 +43,9 @@ TEST(EvaluationEquivalence, SharedDagMatchesEachFunctionOnItsOwn) {
     for (std::size_t i : {std::size_t{0}, t.triangles.size() / 2}) {
       const Eigen::Vector3i& tri = t.triangles[i];
       const TriangleBasis basis(clouds[tri[0]], clouds[tri[1]], clouds[tri[2]]);
-      std::vector<Jet> jets, jet_scratch;
-      std::vector<double> values, value_scratch;
+      std::vector<Jet> jets;
+      std::vector<double> values;
+      SimplexSplineDag::Scratch jet_scratch, value_scratch;
       for (const Eigen::Vector2d& u : probe_points(basis, rng)) {
         for (const TieBreak& tie : {TieBreak{}, TieBreak{Eigen::Vector2d(-0.3, 1.0)}}) {
           basis.evaluate(u, tie, jets, jet_scratch);
