@@ -32,7 +32,7 @@ class TriangleBasis {
   [[nodiscard]] int degree() const { return degree_; }
   [[nodiscard]] int size() const { return static_cast<int>(roots_.size()); }
   [[nodiscard]] int node_count() const { return dag_.node_count(); }
-  /// Bytes of evaluation state (about 64 per DAG node: ~9 KB at degree 3, ~44 KB at degree 5).
+  /// Bytes of evaluation state (about 70 per DAG node: ~10 KB at degree 3, ~45 KB at degree 5).
   [[nodiscard]] std::size_t memory_bytes() const;
 
   /// Knot set V_beta^I of the function at position i of multi_indices(n).
