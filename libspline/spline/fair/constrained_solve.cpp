@@ -82,8 +82,43 @@ Sparse reduce_lower(const Sparse& k_lower, const std::vector<int>& cls, int clas
 
 }  // namespace
 
+ReducedConstraints reduce_constraints(const Sparse& c) {
+  ReducedConstraints out;
+  out.rows = c.rows();
+  out.unknowns = c.cols();
+  std::vector<char> merged;
+  out.unknown_class = merge_classes(c, merged, out.classes);
+  const std::vector<int>& cls = out.unknown_class;
+  std::vector<Eigen::Triplet<double>> t;
+  int rows = 0;
+  for (int j = 0; j < c.outerSize(); ++j) {
+    for (Sparse::InnerIterator it(c, j); it; ++it) {
+      if (!merged[it.index()]) t.emplace_back(static_cast<int>(it.index()), cls[j], it.value());
+    }
+  }
+  std::vector<int> row_of(static_cast<std::size_t>(c.rows()), -1);
+  for (int r = 0; r < c.rows(); ++r) {
+    if (!merged[r]) row_of[r] = rows++;
+  }
+  for (auto& e : t) e = Eigen::Triplet<double>(row_of[e.row()], e.col(), e.value());
+  out.c_r.resize(rows, out.classes);
+  out.c_r.setFromTriplets(t.begin(), t.end());
+  if (rows > 0) {
+    const Sparse ctc = Sparse(out.c_r.transpose()) * out.c_r;
+    out.ctc_lower = Sparse(ctc.triangularView<Eigen::Lower>());
+  }
+  return out;
+}
+
 ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::MatrixX3d& b,
                                       const Sparse& c, const Eigen::MatrixX3d& reference,
+                                      const ConstrainedSolveOptions& options) {
+  return solve_constrained(k_lower, b, c, reduce_constraints(c), reference, options);
+}
+
+ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::MatrixX3d& b,
+                                      const Sparse& c, const ReducedConstraints& reduced,
+                                      const Eigen::MatrixX3d& reference,
                                       const ConstrainedSolveOptions& options) {
   const Eigen::Index n = k_lower.rows();
   if (k_lower.cols() != n || b.rows() != n || c.cols() != n ||
@@ -94,10 +129,17 @@ ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::Matrix
                                    std::to_string(c.rows()) + "x" + std::to_string(c.cols()) +
                                    ", reference " + std::to_string(reference.rows()) + " rows");
   }
+  if (reduced.rows != c.rows() || reduced.unknowns != n ||
+      reduced.unknown_class.size() != static_cast<std::size_t>(n)) {
+    throw ricci::InvalidInputError("constrained solve: reduced constraints of a " +
+                                   std::to_string(reduced.rows) + "x" +
+                                   std::to_string(reduced.unknowns) + " C for a " +
+                                   std::to_string(c.rows()) + "x" + std::to_string(c.cols()) +
+                                   " one");
+  }
   ConstrainedSolution out;
-  std::vector<char> merged;
-  int classes = 0;
-  const std::vector<int> cls = merge_classes(c, merged, classes);
+  const std::vector<int>& cls = reduced.unknown_class;
+  const int classes = reduced.classes;
   out.reduced_unknowns = classes;
   // Nothing merged (no constraints: the free fit): P = I, and K_r is K's lower triangle itself,
   // not a rebuild through a million triplets (their sort was 2% of a free fit on the Horse row).
@@ -112,20 +154,8 @@ ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::Matrix
   }
   y0.array().colwise() /= size.array();
 
-  std::vector<Eigen::Triplet<double>> t;
-  int rows = 0;
-  for (int j = 0; j < c.outerSize(); ++j) {
-    for (Sparse::InnerIterator it(c, j); it; ++it) {
-      if (!merged[it.index()]) t.emplace_back(static_cast<int>(it.index()), cls[j], it.value());
-    }
-  }
-  std::vector<int> row_of(static_cast<std::size_t>(c.rows()), -1);
-  for (int r = 0; r < c.rows(); ++r) {
-    if (!merged[r]) row_of[r] = rows++;
-  }
-  for (auto& e : t) e = Eigen::Triplet<double>(row_of[e.row()], e.col(), e.value());
-  Sparse cr(rows, classes);
-  cr.setFromTriplets(t.begin(), t.end());
+  const Sparse& cr = reduced.c_r;
+  const auto rows = static_cast<int>(cr.rows());
   out.merged_rows = static_cast<int>(c.rows()) - rows;
   out.remaining_rows = rows;
 
@@ -144,10 +174,9 @@ ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::Matrix
     }
     e = solver.solve(g);
   } else {
-    const Sparse ctc = Sparse(cr.transpose()) * cr;
     double w = options.penalty * k.diagonal().mean();
     for (int attempt = 0;; ++attempt) {
-      solver.compute(Sparse(k + w * Sparse(ctc.triangularView<Eigen::Lower>())));
+      solver.compute(Sparse(k + w * reduced.ctc_lower));
       if (solver.info() == Eigen::Success) break;
       if (attempt == 3) {
         throw ricci::SolverError("constrained solve: CHOLMOD could not factor K + w C^T C (" +

@@ -20,6 +20,7 @@
 //     that is already optimal gives e = 0 up to rounding of a small right-hand side.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <vector>
 
 namespace spline {
 
@@ -41,6 +42,20 @@ struct ConstrainedSolution {
   double max_residual = 0.0;  ///< max |C x| over all rows of C
 };
 
+/// The part of the solve that depends on C alone: step 1's classes of unknowns (P) and step 2's
+/// C_r = C P with the lower triangle of C_r^T C_r. A fit and its parameter corrections solve
+/// against one C with several K; built once, it gives the same bits as solve_constrained's own.
+struct ReducedConstraints {
+  Eigen::Index rows = 0, unknowns = 0;  ///< Of C.
+  std::vector<int> unknown_class;       ///< Column of P of every unknown (n entries).
+  int classes = 0;                      ///< Columns of P.
+  Eigen::SparseMatrix<double> c_r;      ///< C P without the merged rows.
+  Eigen::SparseMatrix<double> ctc_lower;  ///< Lower triangle of C_r^T C_r (empty without rows).
+};
+
+/// Steps 1 and 2's set-up for the constraint matrix `c` (any size; no rows: P = I).
+[[nodiscard]] ReducedConstraints reduce_constraints(const Eigen::SparseMatrix<double>& c);
+
 /// \param k_lower lower triangle of K (n x n); entries above the diagonal are ignored.
 /// \param reference n x 3 starting point (e.g. the unconstrained data), or empty for zero.
 /// \throw ricci::InvalidInputError on size mismatches; ricci::SolverError when K_r (+ w C^T C)
@@ -48,6 +63,16 @@ struct ConstrainedSolution {
 [[nodiscard]] ConstrainedSolution solve_constrained(const Eigen::SparseMatrix<double>& k_lower,
                                                     const Eigen::MatrixX3d& b,
                                                     const Eigen::SparseMatrix<double>& c,
+                                                    const Eigen::MatrixX3d& reference,
+                                                    const ConstrainedSolveOptions& options = {});
+
+/// solve_constrained with `reduced` = reduce_constraints(c) built beforehand (the same result).
+/// \pre `reduced` was built from `c`.
+/// \throw as solve_constrained; ricci::InvalidInputError also when `reduced`'s sizes are not c's.
+[[nodiscard]] ConstrainedSolution solve_constrained(const Eigen::SparseMatrix<double>& k_lower,
+                                                    const Eigen::MatrixX3d& b,
+                                                    const Eigen::SparseMatrix<double>& c,
+                                                    const ReducedConstraints& reduced,
                                                     const Eigen::MatrixX3d& reference,
                                                     const ConstrainedSolveOptions& options = {});
 

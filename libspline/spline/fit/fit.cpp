@@ -239,6 +239,7 @@ namespace {
 struct FitSetup {
   detail::NormalEquations regulariser;  // thin-plate + anchor; no data rows
   Eigen::SparseMatrix<double> constraints;
+  ReducedConstraints reduced;  // reduce_constraints(constraints), for every solve against them
 };
 
 void check_sizes(const ManifoldSplineSpace& space, const std::vector<DomainPoint>& parameters,
@@ -307,6 +308,7 @@ FitSetup make_fit_setup(const ManifoldSplineSpace& space, const Eigen::MatrixX3d
   } else {
     setup.constraints.resize(0, space.function_count());
   }
+  setup.reduced = reduce_constraints(setup.constraints);
   return setup;
 }
 
@@ -352,7 +354,8 @@ FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup
     }
     try {
       const ConstrainedSolution solution =
-          solve_constrained(normal.lower, normal.rhs, setup.constraints, reference, solve_options);
+          solve_constrained(normal.lower, normal.rhs, setup.constraints, setup.reduced,
+                            reference, solve_options);
       result.control_points = solution.x;
       result.max_constraint_residual = solution.max_residual;
       result.constraint_iterations = solution.iterations;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <exception>
 #include <optional>
 #include <string>
 #include <unordered_set>
@@ -245,31 +248,89 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
   return distance;
 }
 
-// The delivered surface (as a file holds it) against the whole input, both ways; the guard
-// against points of the surface far from the input. The boundary loops capped as small holes
-// (capped_vertex, by input vertex) are left out of the boundary comparison.
-void measure_delivered(const ricci::Mesh& dense, const FitSurfaceOptions& options,
-                       const std::vector<char>& capped_vertex, FittedSurface& out) {
-  const ricci::VertexFaceArrays input = ricci::to_arrays(dense);
-  std::vector<std::array<int, 3>> input_triangles(static_cast<std::size_t>(input.F.rows()));
-  for (Eigen::Index f = 0; f < input.F.rows(); ++f)
-    input_triangles[static_cast<std::size_t>(f)] = {input.F(f, 0), input.F(f, 1), input.F(f, 2)};
-  const TriangleSoup soup = float_welded(out.tessellation);
-  // Patches capping the input's own boundary loops cover what the scan does not have: they are
-  // left out of the surface-to-scan direction (and counted there).
-  ScanDistanceOptions measure = options.measure;
-  if (out.capped_holes > 0) measure.unmeasured_scan_boundary = capped_vertex;
-  const auto& fills = out.surface.fills;
-  const auto& face = out.tessellation.triangle_face;
-  measure.unmeasured_surface_triangles.assign(face.size(), 0);
-  for (std::size_t t = 0; t < face.size(); ++t) {
-    if (face[t] >= 0) continue;
-    const auto& fill = fills[static_cast<std::size_t>(-1 - face[t])];
-    measure.unmeasured_surface_triangles[t] =
-        out.input.boundary_loops > 0 && fill.rim.kind == Rim::Kind::boundary;
+// What the delivered surface is measured against: the input as given (fit_surface's `input`,
+// its small holes not capped) and the holes fit_surface capped in it.
+struct DeliveredTarget {
+  const ricci::Mesh& input;
+  const ricci::SmallHoleCaps& holes;
+};
+
+// A round's tessellation measured against the DeliveredTarget (measure_delivered's figures), or
+// what that measure threw; the order-independent fingerprint of the tessellation it measured.
+struct DeliveredMeasure {
+  ScanDistanceReport report;
+  std::exception_ptr error;
+  std::size_t tessellation = 0;
+};
+
+// FNV-1a over the tessellation's positions, triangles and triangle faces: a DeliveredMeasure is
+// taken only by the tessellation it measured.
+std::size_t fingerprint(const Tessellation& t) {
+  std::uint64_t h = 1469598103934665603ull;
+  // By 8-byte words (the tail by bytes): a pass of a millisecond over a 100k scan's tessellation.
+  const auto mix = [&h](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    std::size_t i = 0;
+    for (; i + 8 <= bytes; i += 8) {
+      std::uint64_t word;
+      std::memcpy(&word, p + i, 8);
+      h = (h ^ word) * 1099511628211ull;
+    }
+    for (; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  mix(t.positions.data(), sizeof(double) * static_cast<std::size_t>(t.positions.size()));
+  mix(t.triangles.data(), sizeof(t.triangles[0]) * t.triangles.size());
+  mix(t.triangle_face.data(), sizeof(int) * t.triangle_face.size());
+  return static_cast<std::size_t>(h);
+}
+
+// The delivered surface (as a file holds it) against the whole input, both ways. The boundary
+// loops capped as small holes are left out of the boundary comparison. Reads out.tessellation,
+// out.surface.fills and out.input alone (finish_round runs it beside measure_surface).
+DeliveredMeasure measure_against_input(const DeliveredTarget& target,
+                                       const FitSurfaceOptions& options, const FittedSurface& out) {
+  DeliveredMeasure result;
+  result.tessellation = fingerprint(out.tessellation);
+  try {
+    const ricci::VertexFaceArrays input = ricci::to_arrays(target.input);
+    std::vector<std::array<int, 3>> input_triangles(static_cast<std::size_t>(input.F.rows()));
+    for (Eigen::Index f = 0; f < input.F.rows(); ++f)
+      input_triangles[static_cast<std::size_t>(f)] = {input.F(f, 0), input.F(f, 1),
+                                                      input.F(f, 2)};
+    const TriangleSoup soup = float_welded(out.tessellation);
+    // Patches capping the input's own boundary loops cover what the scan does not have: they
+    // are left out of the surface-to-scan direction (and counted there).
+    ScanDistanceOptions measure = options.measure;
+    if (target.holes.capped_loops > 0)
+      measure.unmeasured_scan_boundary = target.holes.capped_vertex;
+    const auto& fills = out.surface.fills;
+    const auto& face = out.tessellation.triangle_face;
+    measure.unmeasured_surface_triangles.assign(face.size(), 0);
+    for (std::size_t t = 0; t < face.size(); ++t) {
+      if (face[t] >= 0) continue;
+      const auto& fill = fills[static_cast<std::size_t>(-1 - face[t])];
+      measure.unmeasured_surface_triangles[t] =
+          out.input.boundary_loops > 0 && fill.rim.kind == Rim::Kind::boundary;
+    }
+    result.report = measure_against_scan(soup.positions, soup.triangles, input.V,
+                                         input_triangles, measure);
+  } catch (...) {
+    result.error = std::current_exception();
   }
-  out.delivered = measure_against_scan(soup.positions, soup.triangles, input.V, input_triangles,
-                                       measure);
+  return result;
+}
+
+// The delivered round's measure against the input (`measured`, when finish_round took it for
+// this tessellation; otherwise measured now) into `out`; the guard against points of the
+// surface far from the input.
+void measure_delivered(const DeliveredTarget& target, const FitSurfaceOptions& options,
+                       const std::optional<DeliveredMeasure>& measured, FittedSurface& out) {
+  const DeliveredMeasure measure =
+      measured && measured->tessellation == fingerprint(out.tessellation)
+          ? *measured
+          : measure_against_input(target, options, out);
+  if (measure.error) std::rethrow_exception(measure.error);
+  out.delivered = measure.report;
   out.bbox_diagonal = out.delivered.bbox_diagonal;
   out.fit_rms = out.delivered.fit_rms;
   out.fit_max = out.delivered.fit_max;
@@ -356,6 +417,8 @@ struct Round {
   std::vector<DomainPoint> setup_parameters;  // fit_scan's, for the refit's thin-plate weights
   FitOptions fit;
   double fit_rms_at_parameters = 0.0;  // fit_scan's FitResult::rms_at_parameters
+  // Its capped tessellation measured against the input (finish_round), for measure_delivered.
+  std::optional<DeliveredMeasure> delivered;
 };
 
 // How finish_round treats the holes: rims left open (a round judged), capped cheaply
@@ -365,9 +428,11 @@ enum class Caps { open, screened, full };
 // The holes of out.surface (its spline as fit_scan left it) found and capped as `caps` says;
 // the tessellation (at `density`, 0: by domain size) and the measures of the surface itself.
 // With open rims the vertices over them are left out of the projection: rounds judged that way
-// compare with each other, and only the delivered one is capped.
+// compare with each other, and only the delivered one is capped. With `target` (a round capped
+// in full) the tessellation is also measured against the input, into round.delivered.
 void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, int density,
-                  Caps caps, bool project, StageClock& clock, Round& round, FittedSurface& out) {
+                  Caps caps, bool project, StageClock& clock, Round& round, FittedSurface& out,
+                  const DeliveredTarget* target = nullptr) {
   const bool patches = caps != Caps::open;
   clock.begin(caps == Caps::full ? "fill" : caps == Caps::screened ? "screen" : "rims");
   CapHolesOptions cap;
@@ -398,6 +463,23 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   out.tessellation = tessellate_surface(out.surface, tess, tessellated_patches);
 
   clock.begin("measure");
+  round.delivered.reset();
+  if (target && caps == Caps::full) {
+    // Measured against the input beside the surface's own measures: the round is most often
+    // the one delivered (fit_surface's last stage takes this measure then, Round::delivered).
+    // Both read the tessellation and write other fields of `out`.
+    run_workers(2, [&](int worker) {
+      if (worker == 1) {
+        round.delivered = measure_against_input(*target, options, out);
+        return;
+      }
+      measure_surface(out, false);
+      if (project)
+        round.vertex_distance =
+            measure_projection(dense, round.parameters, tessellated_patches, out);
+    });
+    return;
+  }
   measure_surface(out, !patches);
   if (!patches && out.surface_dihedral.over_90_deg > 0 && options.density_refine_levels > 0)
     take_refined_if_unfolded(options, out);
@@ -433,11 +515,12 @@ void project_round(const ricci::Mesh& dense, StageClock& clock, Round& round,
 
 // The delivered round capped (`caps`: Caps::full, or Caps::screened to rank it): its holes
 // filled (the spline moved to meet the patches), tessellated and measured again.
-void deliver_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, Round& best,
-                   StageClock& clock, FittedSurface& out, Caps caps = Caps::full) {
+void deliver_round(const ricci::Mesh& dense, const DeliveredTarget& target,
+                   const FitSurfaceOptions& options, Round& best, StageClock& clock,
+                   FittedSurface& out, Caps caps = Caps::full) {
   out.surface.fills.clear();
   out.surface.open_rims.clear();
-  finish_round(dense, options, out.tessellation.density, caps, true, clock, best, out);
+  finish_round(dense, options, out.tessellation.density, caps, true, clock, best, out, &target);
 }
 
 // A fit round after the first one, on scan.domain, into a surface of the same input.
@@ -584,10 +667,11 @@ void keep_if_fold_free(std::pair<FittedSurface, Round>&& next, const FitSurfaceO
 
 // `out`, delivered (capped), folds: the fold-free round kept aside is capped in turn and
 // delivered instead when capped it still does not fold and stays within the RMS.
-void deliver_fold_free(const ricci::Mesh& dense, const FitSurfaceOptions& options,
-                       FoldFree& fold_free, Round& best, StageClock& clock, FittedSurface& out) {
+void deliver_fold_free(const ricci::Mesh& dense, const DeliveredTarget& target,
+                       const FitSurfaceOptions& options, FoldFree& fold_free, Round& best,
+                       StageClock& clock, FittedSurface& out) {
   if (!fold_free || out.surface_dihedral.over_90_deg == 0) return;
-  deliver_round(dense, options, fold_free->second, clock, fold_free->first);
+  deliver_round(dense, target, options, fold_free->second, clock, fold_free->first);
   if (within_fold_free_rms(fold_free->first, options))
     adopt_round(std::move(*fold_free), out, best);
   fold_free.reset();
@@ -615,6 +699,7 @@ bool capped_better(const FittedSurface& candidate, const FittedSurface& delivere
 // (capped_better), each one against the winner so far, capped as `caps` says; they stop once
 // the winner folds no more than `judged` with seams under the goal. Null when none beats it.
 std::pair<FittedSurface, Round>* best_capped(const ricci::Mesh& dense,
+                                             const DeliveredTarget& target,
                                              const FitSurfaceOptions& options, Caps caps,
                                              int judged, const FittedSurface& delivered,
                                              Superseded& superseded, StageClock& clock) {
@@ -622,7 +707,7 @@ std::pair<FittedSurface, Round>* best_capped(const ricci::Mesh& dense,
   for (auto it = superseded.rbegin(); it != superseded.rend(); ++it) {
     const FittedSurface& bar = winner ? winner->first : delivered;
     if (bar.surface_dihedral.over_90_deg <= judged && seam_jump_deg(bar) < kSeamGoalDeg) break;
-    deliver_round(dense, options, it->second, clock, it->first, caps);
+    deliver_round(dense, target, options, it->second, clock, it->first, caps);
     if (capped_better(it->first, bar)) winner = &*it;
   }
   return winner;
@@ -634,23 +719,23 @@ std::pair<FittedSurface, Round>* best_capped(const ricci::Mesh& dense,
 // the cone hole (retries_cone_hole: 4-6 patches, where the screening makes one) the superseded
 // rounds are ranked by the screening capping and only the winner is capped in full, delivered
 // when it still beats `best`'s capping.
-void deliver_best_round(const ricci::Mesh& dense, const FitSurfaceOptions& options,
-                        Superseded& superseded, Round& best, StageClock& clock,
-                        FittedSurface& out) {
+void deliver_best_round(const ricci::Mesh& dense, const DeliveredTarget& target,
+                        const FitSurfaceOptions& options, Superseded& superseded, Round& best,
+                        StageClock& clock, FittedSurface& out) {
   const int judged = out.surface_dihedral.over_90_deg;
-  deliver_round(dense, options, best, clock, out);
+  deliver_round(dense, target, options, best, clock, out);
   const bool screen =
       retries_cone_hole(cone_hole_limits(out.input.genus, out.fit_unconstrained_faces > 0));
   // The spline as fitted, before a screening capping moves it to meet its patches.
   std::vector<Eigen::MatrixX3d> fitted;
   if (screen)
     for (const auto& s : superseded) fitted.push_back(s.first.surface.spline.control_points);
-  auto* winner = best_capped(dense, options, screen ? Caps::screened : Caps::full, judged, out,
-                             superseded, clock);
+  auto* winner = best_capped(dense, target, options, screen ? Caps::screened : Caps::full,
+                             judged, out, superseded, clock);
   if (winner && screen) {
     winner->first.surface.spline.control_points =
         fitted[static_cast<std::size_t>(winner - superseded.data())];
-    deliver_round(dense, options, winner->second, clock, winner->first);
+    deliver_round(dense, target, options, winner->second, clock, winner->first);
     if (!capped_better(winner->first, out)) winner = nullptr;
   }
   if (winner) adopt_round(std::move(*winner), out, best);
@@ -1019,9 +1104,9 @@ bool refine_to_rms_goal(const ricci::Mesh& dense, const FitSurfaceOptions& optio
 }
 
 // The rounds after the first (and its RMS goal) and the delivery, on `best` and `out`.
-void refine_and_deliver(const ricci::Mesh& dense, const FitSurfaceOptions& options,
-                        ScanFitOptions& scan, Round& best, Superseded& superseded,
-                        StageClock& clock, FittedSurface& out) {
+void refine_and_deliver(const ricci::Mesh& dense, const DeliveredTarget& target,
+                        const FitSurfaceOptions& options, ScanFitOptions& scan, Round& best,
+                        Superseded& superseded, StageClock& clock, FittedSurface& out) {
   // Refinement: the domain split where the surface folds or misses the input by more than the
   // tolerance, the same cone kept, and the whole fit run again; the best round is delivered.
   // Closed inputs that fold, without a tolerance: the fold rounds run first, on the first
@@ -1042,7 +1127,7 @@ void refine_and_deliver(const ricci::Mesh& dense, const FitSurfaceOptions& optio
     const bool unfolded = out.surface_dihedral.over_90_deg == 0;
     if (unfolded) {
       // Capped, the surface must still not fold (else the refinement is tried).
-      deliver_best_round(dense, options, superseded, best, clock, out);
+      deliver_best_round(dense, target, options, superseded, best, clock, out);
       delivered = out.surface_dihedral.over_90_deg == 0;
     }
     if (!delivered) {
@@ -1079,8 +1164,8 @@ void refine_and_deliver(const ricci::Mesh& dense, const FitSurfaceOptions& optio
                                        ? faces_near_boundary(out, kBoundaryBandRings)
                                        : std::vector<char>{};
     refit_folded_boundary(dense, options, band, scan, best, clock, out);
-    deliver_best_round(dense, options, superseded, best, clock, out);
-    deliver_fold_free(dense, options, fold_free, best, clock, out);
+    deliver_best_round(dense, target, options, superseded, best, clock, out);
+    deliver_fold_free(dense, target, options, fold_free, best, clock, out);
   }
 }
 
@@ -1097,14 +1182,15 @@ struct GoalRetry {
 // such a fit sit where it misses the input, and the fold rounds may not trade more error for
 // them (fold_rms_growth): generated genus 8 at 2400 faces on one layout kept 40 folds at 0.51%
 // RMS after the first refinement, 0 folds at 0.17% after the second.
-void retry_toward_goal(const ricci::Mesh& dense, const FitSurfaceOptions& options,
-                       GoalRetry& retry, StageClock& clock, Round& best, FittedSurface& out) {
+void retry_toward_goal(const ricci::Mesh& dense, const DeliveredTarget& target,
+                       const FitSurfaceOptions& options, GoalRetry& retry, StageClock& clock,
+                       Round& best, FittedSurface& out) {
   Attempt& start = retry.start;
   take_history(start.out, out);
   if (refine_toward_goal(dense, options, retry.scan, start.round, start.superseded, clock,
                          start.out)) {
-    refine_and_deliver(dense, options, retry.scan, start.round, start.superseded, clock,
-                       start.out);
+    refine_and_deliver(dense, target, options, retry.scan, start.round, start.superseded,
+                       clock, start.out);
     if (capped_better(start.out, out)) {
       out = std::move(start.out);
       best = std::move(start.round);
@@ -1230,15 +1316,16 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   std::optional<GoalRetry> retry;
   if (measured && !superseded.empty() && out.projection_rms > options.rms_goal * out.bbox_diagonal)
     retry = GoalRetry{scan, Attempt{out, best, superseded}};
-  refine_and_deliver(dense, options, scan, best, superseded, clock, out);
+  const DeliveredTarget target{input, holes};
+  refine_and_deliver(dense, target, options, scan, best, superseded, clock, out);
   if (retry && out.surface_dihedral.over_90_deg > 0)
-    retry_toward_goal(dense, options, *retry, clock, best, out);
+    retry_toward_goal(dense, target, options, *retry, clock, best, out);
   if (single_round) out.refinement.push_back(round_summary(out, best, options));
 
   clock.begin("measure");
   out.capped_holes = holes.capped_loops;  // on the round delivered
   out.capped_hole_diameter = holes.largest_diameter;
-  measure_delivered(input, options, holes.capped_vertex, out);
+  measure_delivered(target, options, best.delivered, out);
   clock.finish();
   return out;
 }

@@ -308,6 +308,46 @@ TEST(ConstrainedSolve, MatchesADenseNullSpaceSolution) {
   EXPECT_LT((s.x - x).cwiseAbs().maxCoeff(), 1e-9 * x.cwiseAbs().maxCoeff());
 }
 
+// A reduction of C built once (reduce_constraints) serves solves against several K, each giving
+// exactly what solve_constrained builds for itself; a reduction of another C is refused.
+TEST(ConstrainedSolve, ReducedConstraintsServeSeveralMatrices) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const int n = 30;
+  std::vector<Eigen::Triplet<double>> t{{0, 0, 1.0}, {0, 1, -1.0}, {1, 2, 0.3}, {1, 3, -0.9},
+                                        {2, 7, 1.0}, {2, 8, -1.0}, {3, 2, 0.6}, {3, 3, -1.8}};
+  Eigen::SparseMatrix<double> c(4, n);
+  c.setFromTriplets(t.begin(), t.end());
+  const ReducedConstraints reduced = reduce_constraints(c);
+  EXPECT_EQ(reduced.classes, n - 2);
+  EXPECT_EQ(reduced.c_r.rows(), 2);
+  EXPECT_EQ(reduced.ctc_lower.rows(), n - 2);
+  for (int trial = 0; trial < 2; ++trial) {
+    Eigen::MatrixXd a(n + 5, n);
+    for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = unit(rng);
+    const Eigen::MatrixXd k = a.transpose() * a;
+    Eigen::MatrixX3d b(n, 3), reference(n, 3);
+    for (Eigen::Index i = 0; i < b.size(); ++i) b.data()[i] = unit(rng);
+    for (Eigen::Index i = 0; i < reference.size(); ++i) reference.data()[i] = unit(rng);
+    const Eigen::SparseMatrix<double> lower =
+        Eigen::MatrixXd(k.triangularView<Eigen::Lower>()).sparseView();
+    const ConstrainedSolution own = solve_constrained(lower, b, c, reference);
+    const ConstrainedSolution shared = solve_constrained(lower, b, c, reduced, reference);
+    EXPECT_LT(own.max_residual, 1e-10);
+    EXPECT_EQ(shared.iterations, own.iterations);
+    EXPECT_EQ(shared.merged_rows, own.merged_rows);
+    EXPECT_EQ(shared.remaining_rows, own.remaining_rows);
+    EXPECT_EQ(shared.penalty, own.penalty);
+    EXPECT_TRUE((shared.x.array() == own.x.array()).all());
+  }
+  Eigen::SparseMatrix<double> other(3, n);
+  other.setFromTriplets(t.begin(), t.begin() + 4);
+  const Eigen::SparseMatrix<double> identity =
+      Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)).sparseView();
+  EXPECT_THROW((void)solve_constrained(identity, Eigen::MatrixX3d::Zero(n, 3), other, reduced, {}),
+               ricci::InvalidInputError);
+}
+
 // Every row of C is its definition, built pair by pair: for face I, the edge opposite corner k
 // and its neighbour J, and beta with beta_k <= r, +1 at c_{I,beta} and minus the blossom of J's
 // polynomial (as a map of J's control points, in I's neighbourhood chart) at beta's arguments.

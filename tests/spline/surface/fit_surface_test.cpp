@@ -16,6 +16,7 @@
 
 #include "test_paths.h"
 #include "apps/info_subprocess.h"
+#include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
 #include "ricci/mesh/primitives.h"
@@ -228,6 +229,40 @@ INSTANTIATE_TEST_SUITE_P(Scans, FitSurfaceSeams,
                            return name;
                          });
 
+// The delivered figures of a closed input are the measure of the delivered tessellation itself
+// (welded as float, as a file holds it) against the input, whichever round was delivered:
+// fit_surface measures every round it caps in full beside that round's own measures and keeps
+// the figures of the one it delivers.
+void expect_delivered_figures_of_the_tessellation(const FittedSurface& r,
+                                                  const ricci::Mesh& input) {
+  ASSERT_EQ(r.input.boundary_loops, 0);
+  const ricci::VertexFaceArrays scan = ricci::to_arrays(input);
+  std::vector<std::array<int, 3>> scan_triangles;
+  for (Eigen::Index f = 0; f < scan.F.rows(); ++f)
+    scan_triangles.push_back({scan.F(f, 0), scan.F(f, 1), scan.F(f, 2)});
+  const TriangleSoup soup = float_welded(r.tessellation);
+  ScanDistanceOptions measure;
+  measure.unmeasured_surface_triangles.assign(r.tessellation.triangle_face.size(), 0);
+  const ScanDistanceReport expected =
+      measure_against_scan(soup.positions, soup.triangles, scan.V, scan_triangles, measure);
+  EXPECT_EQ(r.fit_rms, expected.fit_rms);
+  EXPECT_EQ(r.fit_max, expected.fit_max);
+  EXPECT_EQ(r.fit_points, expected.scan_points);
+  EXPECT_EQ(r.bbox_diagonal, expected.bbox_diagonal);
+  EXPECT_EQ(r.delivered.surface_points, expected.surface_points);
+  EXPECT_EQ(r.delivered.surface_to_scan_max, expected.surface_to_scan_max);
+  EXPECT_EQ(r.delivered.surface_to_scan_p99, expected.surface_to_scan_p99);
+  EXPECT_EQ(r.delivered.coverage, expected.coverage);
+}
+
+TEST(FitSurface, DeliveredFiguresMeasureTheDeliveredTessellation) {
+  const ricci::Mesh input = ricci::read_mesh(bundled("genus2.off"));
+  const FittedSurface r = fit_surface(input, small_options());
+  expect_delivered_figures_of_the_tessellation(r, input);
+  EXPECT_GT(r.fit_rms, 0.0);
+  EXPECT_LE(r.fit_rms, r.fit_max);
+}
+
 // A closed genus-0 input is punctured by the one-cone pipeline; the puncture is one rim, always
 // capped (without fill_boundaries too): a closed sphere. The knight's puncture is no height
 // field (its rim normals span more than a hemisphere): the parametric patch caps it.
@@ -390,6 +425,9 @@ TEST(FitSurfaceFoldRounds, AFoldFreeRoundWithinTheAcceptanceBeatsAFoldedOne) {
   EXPECT_GT(folded.surface_dihedral.over_90_deg, 0);
   options.fold_free_rms = FitSurfaceOptions{}.fold_free_rms;
   const FittedSurface r = fit_surface(plate(0.25), options);
+  // The round delivered last (the fold-free one, capped after the folded one) is measured.
+  expect_delivered_figures_of_the_tessellation(r, plate(0.25));
+  EXPECT_NE(r.fit_rms, folded.fit_rms);
   EXPECT_EQ(r.surface_dihedral.over_90_deg, 0);
   EXPECT_TRUE(r.watertight);
   EXPECT_GT(r.projection_rms, folded.projection_rms);  // error traded for the folds
