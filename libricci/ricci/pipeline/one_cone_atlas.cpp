@@ -15,6 +15,7 @@
 #include "ricci/metric/mesh_tables.h"
 #include "ricci/util/edge_key.h"
 #include "ricci/util/memory.h"
+#include "ricci/util/parallel.h"
 #include "ricci/util/stopwatch.h"
 
 namespace ricci {
@@ -631,26 +632,32 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
   result.linear_work.polish = result.polish.linear_work;
 
   release_free_memory();  // the flow's and the polish's, before the layout's
-  report("cut graph, layout and atlas");
-  StageTimer t;
+  report("cut graph, layout and atlas; distortion");
+  const StageTimer t;
   // The polish's long-double metric when the flow's lengths are its rounding.
   const bool long_metric = result.polished && result.polish.lengths_low.size() == result.flow.lengths.size() &&
                            result.polish.lengths == result.flow.lengths;
-  result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths,
-                                    long_metric ? result.polish.lengths_low : Eigen::VectorXd(),
-                                    atlas_root(result.problem), options.atlas);
-  result.timings.atlas = t.wall.seconds();
-  result.timings.cpu_atlas = t.cpu.seconds();
-
-  report("distortion");
-  t.restart();
   // The flipped triangulation's faces are not the input's: one may be flat in 3D (three
   // vertices on a line), where the distortion is undefined; those are counted and left out.
   DistortionOptions measure;
   measure.skip_degenerate = result.intrinsic;
-  result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths, measure);
-  result.timings.distortion = t.wall.seconds();
-  result.timings.cpu_distortion = t.cpu.seconds();
+  // The distortion reads only the mesh and the metric: it is measured on a second thread
+  // while the atlas (serial for the most part: cut graph, slicing, the layout's growth) is built.
+  double distortion_seconds = 0.0;
+  run_workers(2, [&](int worker) {
+    if (worker == 1) {
+      const Stopwatch clock;
+      result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths, measure);
+      distortion_seconds = clock.seconds();
+      return;
+    }
+    result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths,
+                                      long_metric ? result.polish.lengths_low : Eigen::VectorXd(),
+                                      atlas_root(result.problem), options.atlas);
+  });
+  result.timings.atlas = t.wall.seconds();
+  result.timings.cpu_atlas = t.cpu.seconds();
+  result.timings.distortion = distortion_seconds;
   result.timings.total = start.wall.seconds();
   result.timings.cpu_total = start.cpu.seconds();
   return result;
