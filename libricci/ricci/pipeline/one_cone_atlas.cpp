@@ -394,9 +394,16 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       }
     }
     r.laplacian_factorization.reset();
-    result.removed_edges = removed_edge_count(problem_mesh.F, tables);  // (after the factor)
-    if (flow.status == FlowStatus::converged) {
-      release_free_memory();  // the factorisation, before the mesh
+    const bool converged = flow.status == FlowStatus::converged;
+    if (converged) release_free_memory();  // the factorisation, before the mesh
+    // The removed edges (after the factor: their sorted keys) are counted on a second thread
+    // while the mesh is built.
+    run_workers(2, [&](int worker) {
+      if (worker == 1) {
+        result.removed_edges = removed_edge_count(problem_mesh.F, tables);
+        return;
+      }
+      if (!converged) return;
       flow.metric_name = "intrinsic Delaunay flow (vertex scaling, " + std::to_string(r.flips) +
                          " flips)";
       std::vector<int> edge_of;
@@ -405,7 +412,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       result.polish.lengths = by_mesh_edge(std::move(result.polish.lengths), edge_of);
       result.polish.lengths_low = by_mesh_edge(std::move(result.polish.lengths_low), edge_of);
       result.intrinsic = true;
-    }
+    });
   }
   if (flow.status != FlowStatus::converged) result.problem.mesh = same_order_mesh(problem_mesh);
   result.flow = std::move(flow);
