@@ -4,8 +4,8 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <queue>
-#include <tuple>
+#include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -216,6 +216,30 @@ void measure_layout(const Mesh& mesh, const Eigen::VectorXd& lengths, LayoutE2Re
 
 namespace {
 
+// Faces waiting to be developed, as (face, halfedge it is entered by), popped in the order of
+// (scale bucket, magnification bucket, arrival).
+class FaceQueue {
+ public:
+  void push(int bucket, int magnification, int face, int entry) {
+    queues_[{bucket, magnification}].emplace_back(face, entry);
+    ++size_;
+  }
+  [[nodiscard]] bool empty() const { return size_ == 0; }
+  // \pre !empty().
+  std::pair<int, int> pop() {
+    auto it = queues_.begin();
+    while (it->second.empty()) it = queues_.erase(it);
+    const std::pair<int, int> front = it->second.front();
+    it->second.pop_front();
+    --size_;
+    return front;
+  }
+
+ private:
+  std::map<std::pair<int, int>, std::deque<std::pair<int, int>>> queues_;
+  size_t size_ = 0;
+};
+
 // Above this relative edge error the growth is run again with needles last (grow_layout).
 constexpr double kNeedleRetryError = 1e-8;
 
@@ -277,10 +301,10 @@ size_t grow_layout(const Mesh& mesh, const LongLengths& lengths, const std::vect
   direction[mesh.opposite_halfedge_handle(h0).idx()] = kPiL;  // h0 along +x
   place_across(h0);
 
-  // (scale bucket, magnification bucket, arrival order, face, halfedge it is entered by)
-  using Entry = std::tuple<int, int, long, int, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  long arrivals = 0;
+  // Entries in (scale bucket, magnification bucket, arrival) order: a first-in first-out queue
+  // per bucket pair (a handful of them), the lowest non-empty one first; the same order as a
+  // priority queue on the triple, without its O(log n) per face.
+  FaceQueue queue;
   const double median = median_size(size);
   std::vector<char> entered(mesh.n_faces(), 0), done(mesh.n_faces(), 0);
   auto enter = [&](HalfedgeHandle o) {  // o: the halfedge of face(o) along an edge already placed
@@ -294,13 +318,12 @@ size_t grow_layout(const Mesh& mesh, const LongLengths& lengths, const std::vect
     } else {
       place_across(o);
     }
-    queue.emplace(size_bucket(size[g.idx()], median), magnification, arrivals++, g.idx(), o.idx());
+    queue.push(size_bucket(size[g.idx()], median), magnification, g.idx(), o.idx());
   };
   enter(h0);
   size_t reached = 0;
   while (!queue.empty()) {
-    const auto [bucket, magnification, arrival, face, entry] = queue.top();
-    queue.pop();
+    const auto [face, entry] = queue.pop();
     if (done[face]) continue;
     done[face] = 1;
     ++reached;

@@ -15,6 +15,7 @@
 #include "ricci/metric/mesh_tables.h"
 #include "ricci/util/edge_key.h"
 #include "ricci/util/memory.h"
+#include "ricci/util/parallel.h"
 #include "ricci/util/stopwatch.h"
 
 namespace ricci {
@@ -393,9 +394,16 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       }
     }
     r.laplacian_factorization.reset();
-    result.removed_edges = removed_edge_count(problem_mesh.F, tables);  // (after the factor)
-    if (flow.status == FlowStatus::converged) {
-      release_free_memory();  // the factorisation, before the mesh
+    const bool converged = flow.status == FlowStatus::converged;
+    if (converged) release_free_memory();  // the factorisation, before the mesh
+    // The removed edges (after the factor: their sorted keys) are counted on a second thread
+    // while the mesh is built.
+    run_workers(2, [&](int worker) {
+      if (worker == 1) {
+        result.removed_edges = removed_edge_count(problem_mesh.F, tables);
+        return;
+      }
+      if (!converged) return;
       flow.metric_name = "intrinsic Delaunay flow (vertex scaling, " + std::to_string(r.flips) +
                          " flips)";
       std::vector<int> edge_of;
@@ -404,7 +412,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       result.polish.lengths = by_mesh_edge(std::move(result.polish.lengths), edge_of);
       result.polish.lengths_low = by_mesh_edge(std::move(result.polish.lengths_low), edge_of);
       result.intrinsic = true;
-    }
+    });
   }
   if (flow.status != FlowStatus::converged) result.problem.mesh = same_order_mesh(problem_mesh);
   result.flow = std::move(flow);
@@ -631,26 +639,32 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
   result.linear_work.polish = result.polish.linear_work;
 
   release_free_memory();  // the flow's and the polish's, before the layout's
-  report("cut graph, layout and atlas");
-  StageTimer t;
+  report("cut graph, layout and atlas; distortion");
+  const StageTimer t;
   // The polish's long-double metric when the flow's lengths are its rounding.
   const bool long_metric = result.polished && result.polish.lengths_low.size() == result.flow.lengths.size() &&
                            result.polish.lengths == result.flow.lengths;
-  result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths,
-                                    long_metric ? result.polish.lengths_low : Eigen::VectorXd(),
-                                    atlas_root(result.problem), options.atlas);
-  result.timings.atlas = t.wall.seconds();
-  result.timings.cpu_atlas = t.cpu.seconds();
-
-  report("distortion");
-  t.restart();
   // The flipped triangulation's faces are not the input's: one may be flat in 3D (three
   // vertices on a line), where the distortion is undefined; those are counted and left out.
   DistortionOptions measure;
   measure.skip_degenerate = result.intrinsic;
-  result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths, measure);
-  result.timings.distortion = t.wall.seconds();
-  result.timings.cpu_distortion = t.cpu.seconds();
+  // The distortion reads only the mesh and the metric: it is measured on a second thread
+  // while the atlas (serial for the most part: cut graph, slicing, the layout's growth) is built.
+  double distortion_seconds = 0.0;
+  run_workers(2, [&](int worker) {
+    if (worker == 1) {
+      const Stopwatch clock;
+      result.distortion = measure_distortion(result.problem.mesh, result.flow.lengths, measure);
+      distortion_seconds = clock.seconds();
+      return;
+    }
+    result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths,
+                                      long_metric ? result.polish.lengths_low : Eigen::VectorXd(),
+                                      atlas_root(result.problem), options.atlas);
+  });
+  result.timings.atlas = t.wall.seconds();
+  result.timings.cpu_atlas = t.cpu.seconds();
+  result.timings.distortion = distortion_seconds;
   result.timings.total = start.wall.seconds();
   result.timings.cpu_total = start.cpu.seconds();
   return result;

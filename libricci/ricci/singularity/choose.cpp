@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -85,26 +87,33 @@ Eigen::VectorXd angle_defects(const Mesh& mesh) {
 // The linearised one-cone model: one factorisation, one back-substitution per candidate.
 class LinearModel {
  public:
-  explicit LinearModel(const Mesh& mesh)
+  // The factorisation (serial CHOLMOD) runs beside the model's per-vertex and per-face data,
+  // which do not need it, on a second thread.
+  LinearModel(const Mesh& mesh, int euler_characteristic)
       : n_(static_cast<int>(mesh.n_vertices())),
-        solver_(resolve_linear_solver(LinearSolver::automatic, n_)) {
-    const Eigen::SparseMatrix<double> L = shifted_laplacian(mesh);
-    solver_.analyze(L);
-    if (!solver_.factorize(L)) {
-      throw SolverError("singularity ranking: Laplacian factorisation failed");
-    }
-    cone_ = 2.0 * M_PI * surface_topology(mesh).euler_characteristic;
-    base_rhs_ = -angle_defects(mesh);
-    base_rhs_.array() += cone_ / n_;  // with the cone's mean removed, the rhs sums to 0
-    faces_.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
-    log_area_.resize(static_cast<Eigen::Index>(mesh.n_faces()));
-    for (auto f : mesh.faces()) {
-      int k = 0;
-      for (auto v : mesh.fv_range(f)) faces_(f.idx(), k++) = v.idx();
-      log_area_[f.idx()] = std::log(std::max(mesh.calc_face_area(f), 1e-300));
-    }
-    const double peak = log_area_.maxCoeff();
-    log_total_ = peak + std::log((log_area_.array() - peak).exp().sum());
+        solver_(resolve_linear_solver(LinearSolver::automatic, n_)),
+        cone_(2.0 * M_PI * euler_characteristic) {
+    bool factored = false;
+    run_workers(2, [&](int t) {
+      if (t == 0) {
+        const Eigen::SparseMatrix<double> L = shifted_laplacian(mesh);
+        solver_.analyze(L);
+        factored = solver_.factorize(L);
+        return;
+      }
+      base_rhs_ = -angle_defects(mesh);
+      base_rhs_.array() += cone_ / n_;  // with the cone's mean removed, the rhs sums to 0
+      faces_.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
+      log_area_.resize(static_cast<Eigen::Index>(mesh.n_faces()));
+      for (auto f : mesh.faces()) {
+        int k = 0;
+        for (auto v : mesh.fv_range(f)) faces_(f.idx(), k++) = v.idx();
+        log_area_[f.idx()] = std::log(std::max(mesh.calc_face_area(f), 1e-300));
+      }
+      const double peak = log_area_.maxCoeff();
+      log_total_ = peak + std::log((log_area_.array() - peak).exp().sum());
+    });
+    if (!factored) throw SolverError("singularity ranking: Laplacian factorisation failed");
   }
 
   // Predicted area distortion of a cone at each vertex (cached). The model's own solution
@@ -269,6 +278,28 @@ std::vector<int> spread_sample(const VertexGraph& graph, const std::vector<int>&
   return sample;
 }
 
+// The linear model and its first spread sample of `count` interior vertices (all of them when
+// there are no more): the sample's breadth-first searches do not need the model and run on a
+// second thread while it is built. An empty pool is the caller's to refuse.
+struct SampledModel {
+  std::optional<LinearModel> model;
+  std::optional<VertexGraph> graph;
+  std::vector<int> pool, sample;
+
+  SampledModel(const Mesh& mesh, const SurfaceTopology& topology,
+               const std::function<int(int interior)>& count) {
+    run_workers(2, [&](int t) {
+      if (t == 0) {
+        model.emplace(mesh, topology.euler_characteristic);
+        return;
+      }
+      graph.emplace(mesh);
+      pool = interior_vertices(mesh);
+      sample = spread_sample(*graph, pool, count(static_cast<int>(pool.size())));
+    });
+  }
+};
+
 int ranked_count(int interior, int vertices, const SingularityOptions& options) {
   const double budget = options.ranking_work / std::max(vertices, 1);
   const int count = static_cast<int>(std::clamp(budget, static_cast<double>(options.min_ranked_vertices),
@@ -316,10 +347,11 @@ std::vector<SingularityScore> sorted_scores(const std::map<int, double>& cache) 
 
 std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const SingularityOptions& options,
                                                  LinearWork* work) {
-  LinearModel model(mesh);
-  const std::vector<int> pool = interior_vertices(mesh);
-  const int count = ranked_count(static_cast<int>(pool.size()), static_cast<int>(mesh.n_vertices()), options);
-  (void)model.score(spread_sample(VertexGraph(mesh), pool, count));
+  const int vertices = static_cast<int>(mesh.n_vertices());
+  SampledModel sampled(mesh, surface_topology(mesh),
+                       [&](int interior) { return ranked_count(interior, vertices, options); });
+  LinearModel& model = *sampled.model;
+  (void)model.score(sampled.sample);
   if (work) *work += model.work();
   return sorted_scores(model.cache());
 }
@@ -358,20 +390,23 @@ int verified_count(int vertices, const SingularityOptions& options) {
 SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions& options) {
   const Stopwatch start;
   SingularityChoice choice;
-  if (!needs_singular_vertex(mesh)) {
+  const SurfaceTopology topology = surface_topology(mesh);
+  if (!needs_singular_vertex(topology)) {
     choice.area_distortion = flow_area_distortion(mesh, -1, options, choice.linear_work);
     choice.flows_run = 1;
     choice.seconds = start.seconds();
     return choice;
   }
   // 1. The linear model on a spread sample, then zoom searches from the best few.
-  LinearModel model(mesh);
-  const std::vector<int> pool = interior_vertices(mesh);
-  if (pool.empty()) throw InvalidInputError("no interior vertex to put the singularity on");
   const int vertices = static_cast<int>(mesh.n_vertices());
+  SampledModel sampled(mesh, topology,
+                       [&](int interior) { return ranked_count(interior, vertices, options); });
+  LinearModel& model = *sampled.model;
+  const std::vector<int>& pool = sampled.pool;
+  if (pool.empty()) throw InvalidInputError("no interior vertex to put the singularity on");
   const int count = ranked_count(static_cast<int>(pool.size()), vertices, options);
-  const VertexGraph graph(mesh);
-  (void)model.score(spread_sample(graph, pool, count));
+  const VertexGraph& graph = *sampled.graph;
+  (void)model.score(sampled.sample);
   if (count < static_cast<int>(pool.size())) {
     // Sample spacing in rings: count disks of radius r cover about count * 3 r^2 vertices.
     const int radius = std::max(
