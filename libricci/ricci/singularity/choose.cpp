@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -278,26 +277,17 @@ std::vector<int> spread_sample(const VertexGraph& graph, const std::vector<int>&
   return sample;
 }
 
-// The linear model and its first spread sample of `count` interior vertices (all of them when
-// there are no more): the sample's breadth-first searches do not need the model and run on a
-// second thread while it is built. An empty pool is the caller's to refuse.
+// The linear model and its first spread sample of ranked_count interior vertices (all of them
+// when there are no more): the sample's breadth-first searches do not need the model and run on
+// a second thread while it is built. An empty pool is the caller's to refuse.
 struct SampledModel {
   std::optional<LinearModel> model;
   std::optional<VertexGraph> graph;
   std::vector<int> pool, sample;
+  int count = 0;  // the sample's size: ranked_count of the pool
 
   SampledModel(const Mesh& mesh, const SurfaceTopology& topology,
-               const std::function<int(int interior)>& count) {
-    run_workers(2, [&](int t) {
-      if (t == 0) {
-        model.emplace(mesh, topology.euler_characteristic);
-        return;
-      }
-      graph.emplace(mesh);
-      pool = interior_vertices(mesh);
-      sample = spread_sample(*graph, pool, count(static_cast<int>(pool.size())));
-    });
-  }
+               const SingularityOptions& options);
 };
 
 int ranked_count(int interior, int vertices, const SingularityOptions& options) {
@@ -305,6 +295,21 @@ int ranked_count(int interior, int vertices, const SingularityOptions& options) 
   const int count = static_cast<int>(std::clamp(budget, static_cast<double>(options.min_ranked_vertices),
                                                 static_cast<double>(options.max_ranked_vertices)));
   return std::min(interior, count);
+}
+
+SampledModel::SampledModel(const Mesh& mesh, const SurfaceTopology& topology,
+                           const SingularityOptions& options) {
+  run_workers(2, [&](int t) {
+    if (t == 0) {
+      model.emplace(mesh, topology.euler_characteristic);
+      return;
+    }
+    graph.emplace(mesh);
+    pool = interior_vertices(mesh);
+    count = ranked_count(static_cast<int>(pool.size()), static_cast<int>(mesh.n_vertices()),
+                         options);
+    sample = spread_sample(*graph, pool, count);
+  });
 }
 
 // Zoom search on the linear model from `centre`: a farthest-point sample of the vertices
@@ -347,9 +352,7 @@ std::vector<SingularityScore> sorted_scores(const std::map<int, double>& cache) 
 
 std::vector<SingularityScore> rank_singularities(const Mesh& mesh, const SingularityOptions& options,
                                                  LinearWork* work) {
-  const int vertices = static_cast<int>(mesh.n_vertices());
-  SampledModel sampled(mesh, surface_topology(mesh),
-                       [&](int interior) { return ranked_count(interior, vertices, options); });
+  SampledModel sampled(mesh, surface_topology(mesh), options);
   LinearModel& model = *sampled.model;
   (void)model.score(sampled.sample);
   if (work) *work += model.work();
@@ -399,12 +402,11 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   }
   // 1. The linear model on a spread sample, then zoom searches from the best few.
   const int vertices = static_cast<int>(mesh.n_vertices());
-  SampledModel sampled(mesh, topology,
-                       [&](int interior) { return ranked_count(interior, vertices, options); });
+  SampledModel sampled(mesh, topology, options);
   LinearModel& model = *sampled.model;
   const std::vector<int>& pool = sampled.pool;
   if (pool.empty()) throw InvalidInputError("no interior vertex to put the singularity on");
-  const int count = ranked_count(static_cast<int>(pool.size()), vertices, options);
+  const int count = sampled.count;
   const VertexGraph& graph = *sampled.graph;
   (void)model.score(sampled.sample);
   if (count < static_cast<int>(pool.size())) {
