@@ -464,27 +464,28 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
 
   clock.begin("measure");
   round.delivered.reset();
-  if (target && caps == Caps::full) {
-    // Measured against the input beside the surface's own measures: the round is most often
-    // the one delivered (fit_surface's last stage takes this measure then, Round::delivered).
-    // Both read the tessellation and write other fields of `out`.
-    run_workers(2, [&](int worker) {
-      if (worker == 1) {
-        round.delivered = measure_against_input(*target, options, out);
-        return;
-      }
-      measure_surface(out, false);
-      if (project)
-        round.vertex_distance =
-            measure_projection(dense, round.parameters, tessellated_patches, out);
-    });
+  const auto measure_round = [&] {
+    measure_surface(out, !patches);
+    if (!patches && out.surface_dihedral.over_90_deg > 0 && options.density_refine_levels > 0)
+      take_refined_if_unfolded(options, out);
+    if (project)
+      round.vertex_distance =
+          measure_projection(dense, round.parameters, tessellated_patches, out);
+  };
+  if (!target || caps != Caps::full) {
+    measure_round();
     return;
   }
-  measure_surface(out, !patches);
-  if (!patches && out.surface_dihedral.over_90_deg > 0 && options.density_refine_levels > 0)
-    take_refined_if_unfolded(options, out);
-  if (project)
-    round.vertex_distance = measure_projection(dense, round.parameters, tessellated_patches, out);
+  // Measured against the input beside the surface's own measures (patches: the tessellation
+  // stays): the round is most often the one delivered (fit_surface's last stage takes this
+  // measure then, Round::delivered). Both read the tessellation and write other fields of `out`.
+  run_workers(2, [&](int worker) {
+    if (worker == 1) {
+      round.delivered = measure_against_input(*target, options, out);
+      return;
+    }
+    measure_round();
+  });
 }
 
 // One whole fit: fit_scan, then finish_round without patches (fit_surface caps the delivered
