@@ -53,6 +53,13 @@ float float_below(double x) {
   return below;
 }
 
+// A recurrence node's barycentric gradients (g_a, g_b, g_c) of its triple from its data:
+// g_b = data[0..1], g_c = data[2..3], g_a = -g_b - g_c (SimplexSplineDag::Node).
+std::array<Eigen::Vector2d, 3> triple_gradients(const double (&data)[4]) {
+  const Eigen::Vector2d g_b(data[0], data[1]), g_c(data[2], data[3]);
+  return {Eigen::Vector2d(-g_b - g_c), g_b, g_c};
+}
+
 }  // namespace
 
 SimplexSplineDag::SimplexSplineDag(std::vector<Eigen::Vector2d> knots) : knots_(std::move(knots)) {
@@ -321,8 +328,7 @@ void SimplexSplineDag::evaluate(const Eigen::Vector2d& u, const TieBreak& tie,
       if (state.in_base(node)) jet.value = node.data[0];
       continue;
     }
-    const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
-    const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+    const std::array<Eigen::Vector2d, 3> g = triple_gradients(node.data);
     double hxx = 0.0, hxy = 0.0, hyy = 0.0;
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
@@ -373,8 +379,7 @@ void SimplexSplineDag::evaluate_all_values(const Eigen::Vector2d& u, const TieBr
       const std::size_t id = 64 * word + static_cast<std::size_t>(__builtin_ctzll(bits));
       const Node& node = nodes_[id];
       // The operations of evaluate()'s value, in its order: the same bits.
-      const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
-      const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+      const std::array<Eigen::Vector2d, 3> g = triple_gradients(node.data);
       double value = 0.0;
       for (int k = 0; k < 3; ++k) {
         if (node.child[k] == kNoChild) continue;
@@ -406,8 +411,7 @@ void SimplexSplineDag::evaluate_roots(const Eigen::Vector2d& u, const TieBreak& 
   scratch.gradients.resize(nodes_.size());
   for (const std::uint16_t id : gradient_ids_) {
     const Node& node = nodes_[id];
-    const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
-    const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+    const std::array<Eigen::Vector2d, 3> g = triple_gradients(node.data);
     Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
@@ -426,8 +430,7 @@ void SimplexSplineDag::evaluate_roots(const Eigen::Vector2d& u, const TieBreak& 
     jet.value = values[id];
     if (node.kind != Kind::recurrence) continue;
     jet.gradient = scratch.gradients[id];
-    const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
-    const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
+    const std::array<Eigen::Vector2d, 3> g = triple_gradients(node.data);
     double hxx = 0.0, hxy = 0.0, hyy = 0.0;
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
@@ -460,9 +463,8 @@ void SimplexSplineDag::evaluate_directional(const Eigen::Vector2d& u,
       if (state.in_base(node)) out[0] = node.data[0];
       continue;
     }
-    const Eigen::Vector2d g_b(node.data[0], node.data[1]), g_c(node.data[2], node.data[3]);
-    const Eigen::Vector2d g[3] = {-g_b - g_c, g_b, g_c};
-    const double mb = g_b.dot(direction), mc = g_c.dot(direction);
+    const std::array<Eigen::Vector2d, 3> g = triple_gradients(node.data);
+    const double mb = g[1].dot(direction), mc = g[2].dot(direction);
     const double mu[3] = {-mb - mc, mb, mc};
     for (int k = 0; k < 3; ++k) {
       if (node.child[k] == kNoChild) continue;
