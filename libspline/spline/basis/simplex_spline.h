@@ -63,6 +63,8 @@ class SimplexSplineDag {
   int add(std::uint32_t mask);
 
   [[nodiscard]] int node_count() const { return static_cast<int>(nodes_.size()); }
+  /// Node ids returned by add(), in call order (the roots of evaluate_roots()).
+  [[nodiscard]] const std::vector<int>& roots() const { return roots_; }
 
   /// Drops the subset -> node map once all roots are added (it is as large as the nodes). Later
   /// add() calls stay correct but no longer share the nodes built before.

@@ -86,7 +86,7 @@ TriangleBasis::TriangleBasis(const KnotCloud& cloud0, const KnotCloud& cloud1,
     }
     masks_.push_back(mask);
     scales_.push_back(d);
-    roots_.push_back(dag_.add(mask));
+    (void)dag_.add(mask);  // root i of the DAG: function i
   }
   dag_.release_index();
   hull_ = convex_hull(knots);
@@ -94,7 +94,7 @@ TriangleBasis::TriangleBasis(const KnotCloud& cloud0, const KnotCloud& cloud1,
 
 std::size_t TriangleBasis::memory_bytes() const {
   return sizeof(*this) + dag_.memory_bytes() + masks_.capacity() * sizeof(std::uint32_t) +
-         roots_.capacity() * sizeof(int) + scales_.capacity() * sizeof(double);
+         scales_.capacity() * sizeof(double);
 }
 
 std::vector<Eigen::Vector2d> TriangleBasis::knot_set(int i) const {
@@ -117,7 +117,7 @@ bool TriangleBasis::in_hull(const Eigen::Vector2d& u) const {
 
 void TriangleBasis::evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,
                              SimplexSplineDag::Scratch& scratch) const {
-  dag_.evaluate_roots(u, tie, scratch, out);  // roots_ in multi_indices(n) order
+  dag_.evaluate_roots(u, tie, scratch, out);  // roots in multi_indices(n) order
   for (std::size_t i = 0; i < out.size(); ++i) {
     out[i].value = scales_[i] * out[i].value;
     out[i].gradient = scales_[i] * out[i].gradient;
@@ -138,10 +138,11 @@ void TriangleBasis::evaluate_directional(const Eigen::Vector2d& u,
                                          std::vector<double>& scratch) const {
   dag_.evaluate_directional(u, direction, max_order, tie, scratch);
   const std::size_t stride = static_cast<std::size_t>(max_order) + 1;
-  out.resize(roots_.size() * stride);
-  for (std::size_t i = 0; i < roots_.size(); ++i) {
+  const std::vector<int>& roots = dag_.roots();
+  out.resize(roots.size() * stride);
+  for (std::size_t i = 0; i < roots.size(); ++i) {
     for (std::size_t k = 0; k < stride; ++k) {
-      out[i * stride + k] = scales_[i] * scratch[static_cast<std::size_t>(roots_[i]) * stride + k];
+      out[i * stride + k] = scales_[i] * scratch[static_cast<std::size_t>(roots[i]) * stride + k];
     }
   }
 }

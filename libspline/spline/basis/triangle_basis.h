@@ -30,7 +30,7 @@ class TriangleBasis {
   TriangleBasis(const KnotCloud& cloud0, const KnotCloud& cloud1, const KnotCloud& cloud2);
 
   [[nodiscard]] int degree() const { return degree_; }
-  [[nodiscard]] int size() const { return static_cast<int>(roots_.size()); }
+  [[nodiscard]] int size() const { return static_cast<int>(dag_.roots().size()); }
   [[nodiscard]] int node_count() const { return dag_.node_count(); }
   /// Bytes of evaluation state (about 70 per DAG node: ~10 KB at degree 3, ~45 KB at degree 5).
   [[nodiscard]] std::size_t memory_bytes() const;
@@ -68,7 +68,6 @@ class TriangleBasis {
   int degree_;
   SimplexSplineDag dag_;
   std::vector<std::uint32_t> masks_;
-  std::vector<int> roots_;
   std::vector<double> scales_;
   Eigen::Vector2d box_min_, box_max_;
   std::vector<Eigen::Vector2d> hull_;  // counter-clockwise hull of all knots
