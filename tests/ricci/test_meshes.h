@@ -77,15 +77,18 @@ inline void jitter(Mesh& mesh, double amount, unsigned seed) {
 }
 
 
-/// The one-cone atlas msp fit builds (cone refinement 2) on a generated genus-8 surface of
-/// about 2400 faces: one cone of curvature 2 pi (2 - 2g) = -28 pi.
-inline OneConeAtlasResult genus8_fit_atlas() {
+/// The one-cone atlas msp fit builds (cone refinement 2) on a generated surface of `genus`
+/// with about `faces` faces: one cone of curvature 2 pi (2 - 2g).
+inline OneConeAtlasResult generated_fit_atlas(int genus, int faces) {
   GenerateOptions generate;
-  generate.genus = 8;
-  generate.target_faces = 2400;
+  generate.genus = genus;
+  generate.target_faces = faces;
   OneConeAtlasOptions options;
   options.cone_refinement.levels = 2;
   return build_one_cone_atlas(generate_surface(generate), options);
 }
+
+/// generated_fit_atlas at genus 8, about 2400 faces: one cone of curvature -28 pi.
+inline OneConeAtlasResult genus8_fit_atlas() { return generated_fit_atlas(8, 2400); }
 
 }  // namespace ricci::testing
