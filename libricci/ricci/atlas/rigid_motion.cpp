@@ -67,11 +67,20 @@ RigidMotion2 fit_rigid_motion(const Eigen::Vector2d& from_base, const Eigen::Mat
                               double* residual) {
   check_counts(from_offsets.rows(), to_offsets.rows());
   const Eigen::RowVector2d cf = from_offsets.colwise().mean(), ct = to_offsets.colwise().mean();
+  const Eigen::Matrix2d h =
+      (from_offsets.rowwise() - cf).transpose() * (to_offsets.rowwise() - ct);
+  return fit_rigid_motion(kabsch_angle(h), from_base, from_offsets, to_base, to_offsets, residual);
+}
+
+RigidMotion2 fit_rigid_motion(double angle, const Eigen::Vector2d& from_base,
+                              const Eigen::MatrixX2d& from_offsets, const Eigen::Vector2d& to_base,
+                              const Eigen::MatrixX2d& to_offsets, double* residual) {
+  check_counts(from_offsets.rows(), to_offsets.rows());
+  const Eigen::RowVector2d cf = from_offsets.colwise().mean(), ct = to_offsets.colwise().mean();
   const Eigen::MatrixX2d from_centred = from_offsets.rowwise() - cf;
   const Eigen::MatrixX2d to_centred = to_offsets.rowwise() - ct;
   RigidMotion2 m;
-  const Eigen::Matrix2d h = from_centred.transpose() * to_centred;
-  m.angle = kabsch_angle(h);
+  m.angle = angle;
   const Eigen::Matrix2d r = m.rotation();
   m.translation = to_base + ct.transpose() - r * (from_base + cf.transpose());
   if (residual) {

@@ -37,4 +37,14 @@ struct RigidMotion2 {
                                             const Eigen::MatrixX2d& to_offsets,
                                             double* residual = nullptr);
 
+/// The same fit with the rotation given (e.g. from a layout's developed edge directions, which
+/// keep an angle where even the offsets are below their rounding): the translation and the
+/// residual from the offsets, as above.
+/// \pre from_offsets.rows() == to_offsets.rows() >= 1. \throw InvalidInputError otherwise.
+[[nodiscard]] RigidMotion2 fit_rigid_motion(double angle, const Eigen::Vector2d& from_base,
+                                            const Eigen::MatrixX2d& from_offsets,
+                                            const Eigen::Vector2d& to_base,
+                                            const Eigen::MatrixX2d& to_offsets,
+                                            double* residual = nullptr);
+
 }  // namespace ricci

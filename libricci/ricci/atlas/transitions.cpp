@@ -1,5 +1,6 @@
 // Transition maps between overlapping charts and the side pairings of the cut graph's arcs.
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "ricci/atlas/chart_develop.h"
@@ -51,12 +52,18 @@ struct ChartPoints {
   Eigen::MatrixX2d positions;
   Eigen::Vector2d base;
   Eigen::MatrixX2d offsets;
-  [[nodiscard]] bool resolved() const {
+  /// The set's extent over its coordinates' magnitude.
+  [[nodiscard]] double relative_extent() const {
     const double extent = offsets.rowwise().norm().maxCoeff();
     const double magnitude = positions.rowwise().norm().maxCoeff();
-    return extent >= kResolvedExtent * magnitude;
+    return magnitude > 0.0 ? extent / magnitude : 1.0;
   }
+  [[nodiscard]] bool resolved() const { return relative_extent() >= kResolvedExtent; }
 };
+
+/// Below this relative extent even the double-double offsets (~1e-32 of the magnitude) give an
+/// angle worse than the layout's developed directions (~1e-16): side pairings take those.
+constexpr double kDirectionExtent = 1e-16;
 
 ChartPoints chart_points(const AffineAtlas& atlas, int chart, const std::vector<int>& ids) {
   const Chart& c = atlas.charts[static_cast<size_t>(chart)];
@@ -80,11 +87,14 @@ ChartPoints chart_points(const AffineAtlas& atlas, int chart, const std::vector<
 /// The rigid motion taking chart a's vertices `from` to chart b's `to` (paired by index): on
 /// the positions where both sets are resolved in doubles, otherwise on the precise offsets (the
 /// faces next to a large cone, far smaller than the rounding of their coordinates).
-RigidMotion2 fit_chart_motion(const AffineAtlas& atlas, int a, const std::vector<int>& from,
-                              int b, const std::vector<int>& to, double* residual) {
-  const ChartPoints pa = chart_points(atlas, a, from), pb = chart_points(atlas, b, to);
+RigidMotion2 fit_points_motion(const ChartPoints& pa, const ChartPoints& pb, double* residual) {
   if (pa.resolved() && pb.resolved()) return fit_rigid_motion(pa.positions, pb.positions, residual);
   return fit_rigid_motion(pa.base, pa.offsets, pb.base, pb.offsets, residual);
+}
+
+RigidMotion2 fit_chart_motion(const AffineAtlas& atlas, int a, const std::vector<int>& from,
+                              int b, const std::vector<int>& to, double* residual) {
+  return fit_points_motion(chart_points(atlas, a, from), chart_points(atlas, b, to), residual);
 }
 
 /// Splits the faces shared by charts a and b into pieces glued in both, and fits one rigid
@@ -188,6 +198,23 @@ std::vector<std::vector<HalfedgeHandle>> cut_arcs(const Mesh& mesh, const CutGra
   return arcs;
 }
 
+/// The rotation of an arc's side pairing (the copies on its halfedges' faces to the copies
+/// across) from the central chart's developed directions: for each arc edge, the direction of
+/// its far copy (the opposite halfedge's, turned by pi) minus its near copy's; their circular
+/// mean.
+double developed_angle(const Mesh& mesh, const SlicedMesh& s, const Eigen::VectorXd& directions,
+                       const std::vector<HalfedgeHandle>& arc) {
+  double c = 0.0, sn = 0.0;
+  for (auto h : arc) {
+    const int near = s.from_original_halfedge[h.idx()];
+    const int far = s.from_original_halfedge[mesh.opposite_halfedge_handle(h).idx()];
+    const double angle = directions[far] + M_PI - directions[near];
+    c += std::cos(angle);
+    sn += std::sin(angle);
+  }
+  return std::atan2(sn, c);
+}
+
 }  // namespace
 
 void compute_transitions(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atlas) {
@@ -213,6 +240,7 @@ void compute_transitions(const Mesh& mesh, const Eigen::VectorXd& lengths, Affin
 
 void compute_side_pairings(const Mesh& mesh, AffineAtlas& atlas) {
   const SlicedMesh& s = atlas.sliced;
+  const Eigen::VectorXd& directions = atlas.layout.halfedge_directions;
   std::vector<int> loop_of_edge(mesh.n_edges(), -1);
   for (size_t i = 0; i < atlas.cut.loops.size(); ++i) {
     loop_of_edge[mesh.edge_handle(atlas.cut.loops[i].generator).idx()] = static_cast<int>(i);
@@ -232,7 +260,14 @@ void compute_side_pairings(const Mesh& mesh, AffineAtlas& atlas) {
         side.loop = loop_of_edge[mesh.edge_handle(h).idx()];
     }
     const auto [from, to] = unzip_unique(std::move(pairs));
-    side.motion = fit_chart_motion(atlas, 0, from, 0, to, &side.residual);
+    const ChartPoints pa = chart_points(atlas, 0, from), pb = chart_points(atlas, 0, to);
+    if (std::min(pa.relative_extent(), pb.relative_extent()) < kDirectionExtent &&
+        directions.size() == static_cast<Eigen::Index>(s.mesh.n_halfedges())) {
+      side.motion = fit_rigid_motion(developed_angle(mesh, s, directions, arc), pa.base,
+                                     pa.offsets, pb.base, pb.offsets, &side.residual);
+    } else {
+      side.motion = fit_points_motion(pa, pb, &side.residual);
+    }
     side.halfedges = std::move(arc);
     atlas.max_side_pairing_residual = std::max(atlas.max_side_pairing_residual, side.residual);
     atlas.side_pairings.push_back(std::move(side));

@@ -330,6 +330,10 @@ size_t grow_layout(const Mesh& mesh, const LongLengths& lengths, const std::vect
     if (needles_last) place_across(HalfedgeHandle(entry));  // else developed when entered
     for (auto h : mesh.fh_range(FaceHandle(face))) enter(mesh.opposite_halfedge_handle(h));
   }
+  result.halfedge_directions.resize(static_cast<Eigen::Index>(direction.size()));
+  for (size_t h = 0; h < direction.size(); ++h) {
+    result.halfedge_directions[static_cast<Eigen::Index>(h)] = static_cast<double>(direction[h]);
+  }
   return reached;
 }
 

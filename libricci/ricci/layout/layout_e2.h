@@ -27,6 +27,11 @@ struct LayoutE2Result {
   /// The vector from vertex `from` to vertex `to`, from the double-double positions (relative
   /// accuracy ~1e-16 of its own length however small, when positions_low is filled).
   [[nodiscard]] Eigen::Vector2d edge_vector(int from, int to) const;
+  /// By halfedge (of a face): its direction in the chart (radians, (-pi, pi]) as the growth
+  /// developed it, a sum of corner angles in long double. Unlike edge_vector it does not depend
+  /// on the edge's length: next to a 38 pi cone edges reach 1e-31 of the chart, where even the
+  /// double-double positions no longer give a direction.
+  Eigen::VectorXd halfedge_directions;
   int seed_face = -1;
   /// Smallest signed face area (positive = counter-clockwise, as in the mesh's orientation).
   double min_signed_area = 0.0;

@@ -203,6 +203,28 @@ TEST(Atlas, RigidMotionFitOnOffsetsKeepsTheAngleOfATinyCluster) {
                InvalidInputError);
 }
 
+// With the angle given (a layout's developed directions), the fit takes the translation and
+// the residual from the offsets: exact for the true angle, and the residual shows a wrong one.
+TEST(Atlas, RigidMotionFitWithAGivenAngle) {
+  RigidMotion2 m;
+  m.angle = -2.2;
+  m.translation = Eigen::Vector2d(4.0, 0.5);
+  const Eigen::Vector2d base(-3.1, 8.4);
+  Eigen::MatrixX2d offsets(3, 2);
+  offsets << 0, 0, 1, 0.2, 0.4, 0.9;
+  const Eigen::MatrixX2d to_offsets = offsets * m.rotation().transpose();
+  double residual = 1.0;
+  const RigidMotion2 fit = fit_rigid_motion(m.angle, base, offsets, m.apply(base), to_offsets,
+                                            &residual);
+  EXPECT_EQ(fit.angle, m.angle);
+  EXPECT_LT((fit.translation - m.translation).norm(), 1e-13);
+  EXPECT_LT(residual, 1e-14);
+  (void)fit_rigid_motion(m.angle + 1e-3, base, offsets, m.apply(base), to_offsets, &residual);
+  EXPECT_GT(residual, 1e-4);
+  EXPECT_THROW((void)fit_rigid_motion(0.0, base, offsets, base, Eigen::MatrixX2d(2, 2)),
+               InvalidInputError);
+}
+
 TEST(Atlas, QueriesRejectWhatTheChartsDoNotHold) {
   const Mesh torus = make_flat_torus_grid(8, 8, 1.0, 1.0);
   const AffineAtlas atlas =

@@ -40,6 +40,29 @@ TEST(LayoutE2, PlanarGridIsReproducedUpToARigidMotion) {
   EXPECT_LE(layout.max_vertex_angle, 2.0 * M_PI + 1e-12);
 }
 
+// Every face halfedge's developed direction is the direction of its edge vector, and it does
+// not change when the lengths shrink to 1e-40 (far below the double-double positions' 1e-32 of
+// a chart of size 1, where edge_vector is rounding).
+TEST(LayoutE2, DevelopedDirectionsAreTheEdgeDirectionsAtAnyScale) {
+  const Mesh grid = test::planar_grid(12, 9, 4.0, 3.0);
+  const Eigen::VectorXd lengths = checked_edge_lengths(grid, {});
+  const LayoutE2Result layout = layout_e2(grid, lengths);
+  ASSERT_EQ(layout.halfedge_directions.size(), static_cast<Eigen::Index>(grid.n_halfedges()));
+  int checked = 0;
+  for (auto h : grid.halfedges()) {
+    if (!grid.face_handle(h).is_valid()) continue;
+    const Eigen::Vector2d v = layout.edge_vector(grid.from_vertex_handle(h).idx(),
+                                                 grid.to_vertex_handle(h).idx());
+    const double angle = std::atan2(v.y(), v.x());
+    EXPECT_LT(std::abs(std::remainder(layout.halfedge_directions[h.idx()] - angle, 2 * M_PI)),
+              1e-13);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3 * static_cast<int>(grid.n_faces()));
+  const LayoutE2Result tiny = layout_e2(grid, 1e-40 * lengths);
+  EXPECT_LT((tiny.halfedge_directions - layout.halfedge_directions).cwiseAbs().maxCoeff(), 1e-14);
+}
+
 TEST(LayoutE2, ScalingTheLengthsScalesTheLayout) {
   const Mesh grid = test::planar_grid(8, 8, 1.0, 1.0);
   const Eigen::VectorXd lengths = checked_edge_lengths(grid, {});
