@@ -152,9 +152,10 @@ void PlanarDmsSpace::evaluate_basis_of(const Eigen::Vector2d& u, const std::vect
       }
       continue;
     }
-    basis.evaluate(u, tie, jets, dag_scratch);
+    basis.evaluate(u, tie, jets, dag_scratch, derivatives);
     for (std::size_t i = 0; i < jets.size(); ++i) {
       const Jet& j = jets[i];
+      // (BasisDerivatives::first leaves the Hessians zero.)
       if (j.value != 0.0 || !j.gradient.isZero(0.0) || !j.hessian.isZero(0.0)) {
         out.push_back({t, static_cast<int>(i), j});
       }

@@ -68,7 +68,8 @@ class PlanarDmsSpace {
   [[nodiscard]] std::vector<int> candidate_triangles(const Eigen::Vector2d& u) const;
 
   /// All basis functions with a non-zero value or derivative at u (BasisDerivatives::none:
-  /// with a non-zero value, and the jets hold values only).
+  /// with a non-zero value, and the jets hold values only; first: with a non-zero value or
+  /// gradient, Hessians zero).
   [[nodiscard]] std::vector<BasisSample> evaluate_basis(
       const Eigen::Vector2d& u, const TieBreak& tie = {},
       BasisDerivatives derivatives = BasisDerivatives::second) const;

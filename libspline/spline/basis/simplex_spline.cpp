@@ -400,6 +400,35 @@ void SimplexSplineDag::evaluate_root_values(const Eigen::Vector2d& u, const TieB
   }
 }
 
+Eigen::Vector2d SimplexSplineDag::gradient_from_values(const Node& node,
+                                                       const std::vector<double>& values) const {
+  const std::array<Eigen::Vector2d, 3> g = triple_gradients(node.data);
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    if (node.child[k] == kNoChild) continue;
+    const double child = values[node.child[k]];
+    if (child != 0.0) gradient += g[k] * child;
+  }
+  gradient *= static_cast<double>(node.degree);
+  return gradient;
+}
+
+void SimplexSplineDag::evaluate_root_gradients(const Eigen::Vector2d& u, const TieBreak& tie,
+                                               Scratch& scratch, std::vector<Jet>& roots) const {
+  // evaluate_roots' values pass and, for the roots alone, its gradient pass (the same sums).
+  evaluate_all_values(u, tie, scratch.values);
+  const std::vector<double>& values = scratch.values;
+  roots.resize(roots_.size());
+  for (std::size_t i = 0; i < roots_.size(); ++i) {
+    const std::size_t id = static_cast<std::size_t>(roots_[i]);
+    const Node& node = nodes_[id];
+    Jet& jet = roots[i];
+    jet = Jet{};
+    jet.value = values[id];
+    if (node.kind == Kind::recurrence) jet.gradient = gradient_from_values(node, values);
+  }
+}
+
 void SimplexSplineDag::evaluate_roots(const Eigen::Vector2d& u, const TieBreak& tie,
                                       Scratch& scratch, std::vector<Jet>& roots) const {
   // The recurrence needs values below the roots' children: grad M is n sum_a grad(lambda_a)
@@ -410,16 +439,7 @@ void SimplexSplineDag::evaluate_roots(const Eigen::Vector2d& u, const TieBreak& 
   const std::vector<double>& values = scratch.values;
   scratch.gradients.resize(nodes_.size());
   for (const std::uint16_t id : gradient_ids_) {
-    const Node& node = nodes_[id];
-    const std::array<Eigen::Vector2d, 3> g = triple_gradients(node.data);
-    Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
-    for (int k = 0; k < 3; ++k) {
-      if (node.child[k] == kNoChild) continue;
-      const double child = values[node.child[k]];
-      if (child != 0.0) gradient += g[k] * child;
-    }
-    gradient *= static_cast<double>(node.degree);
-    scratch.gradients[id] = gradient;
+    scratch.gradients[id] = gradient_from_values(nodes_[id], values);
   }
   roots.resize(roots_.size());
   for (std::size_t i = 0; i < roots_.size(); ++i) {

@@ -78,6 +78,7 @@ class SimplexSplineDag {
   struct Scratch {
     std::vector<double> values;             // M of every node
     std::vector<Eigen::Vector2d> gradients;  // grad M, written for the roots and their children
+    std::vector<double> roots;              // for callers of evaluate_root_values
   };
 
   /// Jets of the roots at u: roots[i] is M, grad M and its Hessian for the i-th add() call. The
@@ -86,6 +87,11 @@ class SimplexSplineDag {
   /// only, Hessians of the roots only.
   void evaluate_roots(const Eigen::Vector2d& u, const TieBreak& tie, Scratch& scratch,
                       std::vector<Jet>& roots) const;
+
+  /// Values and gradients of the roots (Hessians left zero): the numbers of evaluate_roots,
+  /// without its Hessian pass and the gradients of the roots' children that pass needs.
+  void evaluate_root_gradients(const Eigen::Vector2d& u, const TieBreak& tie, Scratch& scratch,
+                               std::vector<Jet>& roots) const;
 
   /// Values only of the roots: roots[i] = M(u | X) for the i-th add() call (the numbers of
   /// evaluate_roots).
@@ -147,6 +153,9 @@ class SimplexSplineDag {
   // The values pass of evaluate_roots / evaluate_root_values.
   void evaluate_all_values(const Eigen::Vector2d& u, const TieBreak& tie,
                            std::vector<double>& values) const;
+  // grad M of recurrence node `node` from its children's values (zero children skipped: their
+  // terms are signed zeros added to a sum that starts at +0).
+  Eigen::Vector2d gradient_from_values(const Node& node, const std::vector<double>& values) const;
 
   // Build-time caches, dropped by release_index(): subset -> node (a direct table up to
   // kDirectIndexKnots knots, a hash map above), |det| of every ascending knot triple (the

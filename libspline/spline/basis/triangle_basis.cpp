@@ -116,8 +116,24 @@ bool TriangleBasis::in_hull(const Eigen::Vector2d& u) const {
 }
 
 void TriangleBasis::evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,
-                             SimplexSplineDag::Scratch& scratch) const {
-  dag_.evaluate_roots(u, tie, scratch, out);  // roots in multi_indices(n) order
+                             SimplexSplineDag::Scratch& scratch,
+                             BasisDerivatives derivatives) const {
+  // Roots in multi_indices(n) order.
+  if (derivatives == BasisDerivatives::none) {
+    dag_.evaluate_root_values(u, tie, scratch, scratch.roots);
+    out.assign(scratch.roots.size(), Jet{});
+    for (std::size_t i = 0; i < out.size(); ++i) out[i].value = scales_[i] * scratch.roots[i];
+    return;
+  }
+  if (derivatives == BasisDerivatives::first) {
+    dag_.evaluate_root_gradients(u, tie, scratch, out);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      out[i].value = scales_[i] * out[i].value;
+      out[i].gradient = scales_[i] * out[i].gradient;
+    }
+    return;
+  }
+  dag_.evaluate_roots(u, tie, scratch, out);
   for (std::size_t i = 0; i < out.size(); ++i) {
     out[i].value = scales_[i] * out[i].value;
     out[i].gradient = scales_[i] * out[i].gradient;

@@ -17,8 +17,9 @@
 namespace spline {
 
 /// What an evaluation of basis functions computes: values only (e.g. the rows of a least-squares
-/// fit), or values, gradients and Hessians.
-enum class BasisDerivatives : std::uint8_t { none, second };
+/// fit), values and gradients (positions and tangents), or values, gradients and Hessians. What
+/// is computed has the same bits at every order; what is not is left zero.
+enum class BasisDerivatives : std::uint8_t { none, first, second };
 
 /// The (n + 1)(n + 2)/2 basis functions of one triangle from the clouds of its three vertices,
 /// given in one planar frame (a chart), all evaluated together through one shared DAG.
@@ -51,9 +52,11 @@ class TriangleBasis {
   /// every function of the triangle and all its derivatives vanish.
   [[nodiscard]] bool in_hull(const Eigen::Vector2d& u) const;
 
-  /// Jets of all functions at u, in multi_indices(n) order. scratch is reused storage.
+  /// Jets of all functions at u, in multi_indices(n) order, up to `derivatives` (the rest of
+  /// each jet zero). scratch is reused storage.
   void evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<Jet>& out,
-                SimplexSplineDag::Scratch& scratch) const;
+                SimplexSplineDag::Scratch& scratch,
+                BasisDerivatives derivatives = BasisDerivatives::second) const;
 
   /// Values only of all functions at u (the same numbers as evaluate()'s values).
   void evaluate_values(const Eigen::Vector2d& u, const TieBreak& tie, std::vector<double>& out,

@@ -412,7 +412,9 @@ Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& st
                              const Eigen::Vector3d& target, int iterations) {
   const ManifoldSplineSpace& space = *spline.space;
   DomainPoint point = start;
-  SurfaceJet jet = spline.evaluate(point);
+  // Gauss-Newton needs positions and first derivatives; the last trial, if it is accepted, only
+  // its position (the same bits as the full jet's).
+  SurfaceJet jet = spline.evaluate(point, -1, {}, BasisDerivatives::first);
   for (int it = 0; it < iterations; ++it) {
     const int chart = space.chart_of(point.face);
     Eigen::Matrix<double, 3, 2> j;
@@ -445,7 +447,8 @@ Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& st
       next.barycentric = next.barycentric.cwiseMax(0.0);
       next.barycentric /= next.barycentric.sum();
     }
-    const SurfaceJet trial = spline.evaluate(next);
+    const SurfaceJet trial = spline.evaluate(
+        next, -1, {}, it + 1 < iterations ? BasisDerivatives::first : BasisDerivatives::none);
     if ((trial.position - target).squaredNorm() > (jet.position - target).squaredNorm()) break;
     point = next;
     jet = trial;

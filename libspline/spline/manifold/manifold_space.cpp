@@ -250,6 +250,15 @@ void ManifoldSplineSpace::build_domain(const ricci::Mesh& mesh) {
     domain_faces_.push_back(i);
     for (int k = 0; k < 3; ++k) vertex_faces_[mesh.to_vertex_handle(hs[k]).idx()].push_back(i);
   }
+  // Points are evaluated in their face's neighbourhood chart: its corners there and its row
+  // once, not by a search of the chart's faces per point.
+  home_corners_.assign(static_cast<std::size_t>(faces), Eigen::Matrix<double, 3, 2>::Zero());
+  home_row_.assign(static_cast<std::size_t>(faces), -1);
+  for (int i : domain_faces_) {
+    const int c = atlas_.neighbourhood_chart[i];
+    home_corners_[i] = atlas_.face_positions(c, i);
+    home_row_[i] = atlas_.charts[c].slot(i);
+  }
 }
 
 // Home cloud of v: made in the neighbourhood chart of v's lowest domain face, which holds v's
@@ -451,7 +460,12 @@ bool ManifoldSplineSpace::holds_neighbourhood(int chart_index, int face) const {
 
 Eigen::Vector2d ManifoldSplineSpace::chart_point(int chart, int face,
                                                  const Eigen::Vector3d& bary) const {
+  if (is_home(chart, face)) return home_corners_[face].transpose() * bary;
   return atlas_.face_positions(chart, face).transpose() * bary;
+}
+
+bool ManifoldSplineSpace::is_home(int chart, int face) const {
+  return face >= 0 && face < face_count() && home_row_[face] >= 0 && chart == chart_of(face);
 }
 
 std::array<KnotCloud, 3> ManifoldSplineSpace::face_clouds(int chart, int face) const {
@@ -480,8 +494,16 @@ std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis(
 std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(
     int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie,
     BasisDerivatives derivatives) const {
+  std::vector<ManifoldBasisSample> out;
+  evaluate_basis_at(chart, face, u, tie, derivatives, out);
+  return out;
+}
+
+void ManifoldSplineSpace::evaluate_basis_at(int chart, int face, const Eigen::Vector2d& u,
+                                            const TieBreak& tie, BasisDerivatives derivatives,
+                                            std::vector<ManifoldBasisSample>& out) const {
   const ChartSpace& cs = chart_space(chart);
-  const int row = atlas_.charts[chart].slot(face);
+  const int row = is_home(chart, face) ? home_row_[face] : atlas_.charts[chart].slot(face);
   if (row < 0 || cs.triangle_of_row[row] < 0) {
     throw InvalidInputError("manifold spline: chart " + std::to_string(chart) +
                             " holds no domain " + face_name(face));
@@ -496,12 +518,11 @@ std::vector<ManifoldBasisSample> ManifoldSplineSpace::evaluate_basis_at(
   samples.clear();
   cs.space->evaluate_basis_of(u, around, tie, derivatives, samples);
   const int m = functions_per_face();
-  std::vector<ManifoldBasisSample> out;
+  out.clear();
   out.reserve(samples.size());
   for (const BasisSample& s : samples) {
     out.push_back({domain_index_[cs.face_of_triangle[s.triangle]] * m + s.beta, s.jet});
   }
-  return out;
 }
 
 std::vector<int> ManifoldSplineSpace::reaching_faces(int face) const {
@@ -542,39 +563,51 @@ bool is_partition_of_unity(const std::vector<ManifoldBasisSample>& samples, doub
 }
 
 SurfaceJet combine(const std::vector<ManifoldBasisSample>& samples,
-                   const Eigen::MatrixX3d& control_points, int chart) {
+                   const Eigen::MatrixX3d& control_points, int chart,
+                   BasisDerivatives derivatives) {
   SurfaceJet s;
   s.chart = chart;
+  // The sums of each order are the same at every order (each field its own sum, in the
+  // samples' order), so what a lower order computes has the full evaluation's bits.
   for (const ManifoldBasisSample& b : samples) {
     const Eigen::Vector3d c = control_points.row(b.function).transpose();
     s.position += b.jet.value * c;
+    if (derivatives == BasisDerivatives::none) continue;
     s.du += b.jet.gradient.x() * c;
     s.dv += b.jet.gradient.y() * c;
+    if (derivatives == BasisDerivatives::first) continue;
     s.duu += b.jet.hessian[0] * c;
     s.duv += b.jet.hessian[1] * c;
     s.dvv += b.jet.hessian[2] * c;
   }
+  if (derivatives == BasisDerivatives::none) return s;
   const Eigen::Vector3d n = s.du.cross(s.dv);
   if (n.norm() > 0.0) s.normal = n.normalized();
   return s;
 }
 
-SurfaceJet ManifoldSpline::evaluate(const DomainPoint& point, int chart,
-                                    const TieBreak& tie) const {
+SurfaceJet ManifoldSpline::evaluate(const DomainPoint& point, int chart, const TieBreak& tie,
+                                    BasisDerivatives derivatives) const {
   if (control_points.rows() != space->function_count()) {
     throw InvalidInputError("manifold spline: " + std::to_string(control_points.rows()) +
                             " control points for " + std::to_string(space->function_count()) +
                             " functions");
   }
-  if (chart < 0 && point.face >= 0 && point.face < space->face_count()) {
-    chart = space->chart_of(point.face);
+  if (point.face < 0 || point.face >= space->face_count() || !space->in_domain(point.face)) {
+    throw InvalidInputError("manifold spline: " + face_name(point.face) +
+                            " is not in the spline's domain");
   }
-  return combine(space->evaluate_basis(point, chart, tie), control_points, chart);
+  if (chart < 0) chart = space->chart_of(point.face);
+  return evaluate_at(chart, point.face,
+                     space->chart_point(chart, point.face, point.barycentric), tie, derivatives);
 }
 
 SurfaceJet ManifoldSpline::evaluate_at(int chart, int face, const Eigen::Vector2d& u,
-                                       const TieBreak& tie) const {
-  return combine(space->evaluate_basis_at(chart, face, u, tie), control_points, chart);
+                                       const TieBreak& tie, BasisDerivatives derivatives) const {
+  // Per-thread samples: surfaces are evaluated point by point in hot loops.
+  thread_local std::vector<ManifoldBasisSample> samples;
+  space->evaluate_basis_at(chart, face, u, tie, derivatives, samples);
+  return combine(samples, control_points, chart, derivatives);
 }
 
 }  // namespace spline

@@ -124,6 +124,9 @@ class ManifoldSplineSpace {
   [[nodiscard]] std::vector<ManifoldBasisSample> evaluate_basis_at(
       int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie = {},
       BasisDerivatives derivatives = BasisDerivatives::second) const;
+  /// The same into `out` (replacing its contents): no allocation once `out` has grown.
+  void evaluate_basis_at(int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie,
+                         BasisDerivatives derivatives, std::vector<ManifoldBasisSample>& out) const;
 
   /// Domain faces whose functions can be non-zero on `face` (evaluated in chart_of(face)): the
   /// faces sharing a chart vertex with it there, itself included; ascending. Every sample of
@@ -148,6 +151,8 @@ class ManifoldSplineSpace {
   // counter-clockwise); charts that do not (rounding next to a large cone) leave it out.
   [[nodiscard]] bool same_shape_as_home(int chart, int face) const;
   [[nodiscard]] std::unique_ptr<ChartSpace> build_chart_space(int chart) const;
+  // Whether `chart` is the neighbourhood chart of domain `face` (home_corners_, home_row_).
+  [[nodiscard]] bool is_home(int chart, int face) const;
 
   int degree_ = 0;
   int excluded_faces_ = 0;
@@ -158,6 +163,9 @@ class ManifoldSplineSpace {
   std::vector<std::vector<int>> vertex_faces_;  // by vertex: incident domain faces
   std::vector<KnotCloud> home_clouds_;          // by vertex (empty outside the domain)
   std::vector<int> home_chart_, home_face_;     // by vertex
+  // By face, for domain faces: corners and row in chart_of(face) (row -1 elsewhere).
+  std::vector<Eigen::Matrix<double, 3, 2>> home_corners_;
+  std::vector<int> home_row_;
   mutable std::vector<std::unique_ptr<ChartSpace>> chart_spaces_;
   mutable std::unique_ptr<std::once_flag[]> chart_once_;
 };
@@ -188,11 +196,16 @@ struct ManifoldSpline {
   std::shared_ptr<const ManifoldSplineSpace> space;
   Eigen::MatrixX3d control_points;  ///< space->function_count() rows
 
+  /// The surface at `point` up to `derivatives`: none gives the position alone, first also du,
+  /// dv and the normal, second also duu, duv, dvv (fields not computed stay zero; those computed
+  /// have the same bits at every order).
   /// \throw ricci::InvalidInputError as evaluate_basis, or on a wrong control-point count.
   [[nodiscard]] SurfaceJet evaluate(const DomainPoint& point, int chart = -1,
-                                    const TieBreak& tie = {}) const;
+                                    const TieBreak& tie = {},
+                                    BasisDerivatives derivatives = BasisDerivatives::second) const;
   [[nodiscard]] SurfaceJet evaluate_at(int chart, int face, const Eigen::Vector2d& u,
-                                       const TieBreak& tie = {}) const;
+                                       const TieBreak& tie = {},
+                                       BasisDerivatives derivatives = BasisDerivatives::second) const;
 };
 
 /// Whether the samples' values sum to 1 within `tolerance`: false next to the domain's rim, where
@@ -211,8 +224,10 @@ struct ManifoldSpline {
   return {1.0 - l.x() - l.y(), l.x(), l.y()};
 }
 
-/// Combines basis samples with control points (rows indexed by function) into a surface jet.
+/// Combines basis samples with control points (rows indexed by function) into a surface jet,
+/// up to `derivatives` (as ManifoldSpline::evaluate).
 [[nodiscard]] SurfaceJet combine(const std::vector<ManifoldBasisSample>& samples,
-                                 const Eigen::MatrixX3d& control_points, int chart);
+                                 const Eigen::MatrixX3d& control_points, int chart,
+                                 BasisDerivatives derivatives = BasisDerivatives::second);
 
 }  // namespace spline

@@ -218,7 +218,8 @@ void face_triangles(const SplineSurface& s, int face, int d,
     for (int j = 0; j <= d - i; ++j) {
       bary.emplace_back(static_cast<double>(d - i - j) / d, static_cast<double>(i) / d,
                         static_cast<double>(j) / d);
-      position.push_back(s.spline.evaluate({face, bary.back()}).position);
+      position.push_back(
+          s.spline.evaluate({face, bary.back()}, -1, {}, BasisDerivatives::none).position);
     }
   }
   const auto add = [&](int a, int b, int c) {
@@ -227,7 +228,7 @@ void face_triangles(const SplineSurface& s, int face, int d,
     t.corners << position[a], position[b], position[c];
     t.parameters << bary[a], bary[b], bary[c];
     t.deviation = deviation(t, [&](const Eigen::Vector3d& b) {
-      return s.spline.evaluate({face, b}).position;
+      return s.spline.evaluate({face, b}, -1, {}, BasisDerivatives::none).position;
     });
     out.push_back(t);
   };

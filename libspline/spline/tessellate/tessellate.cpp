@@ -17,14 +17,15 @@
 namespace spline {
 namespace {
 
-// The surface jet at p; where du x dv vanishes (a degenerate control net) the normal is taken a
-// hair inside the face, the limit of the normals around the point.
+// Position and normal at p (first derivatives only); where du x dv vanishes (a degenerate
+// control net) the normal is taken a hair inside the face, the limit of the normals around the
+// point.
 SurfaceJet evaluate_with_normal(const ManifoldSpline& spline, const DomainPoint& p) {
-  SurfaceJet jet = spline.evaluate(p);
+  SurfaceJet jet = spline.evaluate(p, -1, {}, BasisDerivatives::first);
   if (jet.normal.squaredNorm() == 0.0) {
     DomainPoint inside = p;
     inside.barycentric = 0.999 * p.barycentric + Eigen::Vector3d::Constant(0.001 / 3.0);
-    jet.normal = spline.evaluate(inside).normal;
+    jet.normal = spline.evaluate(inside, -1, {}, BasisDerivatives::first).normal;
   }
   return jet;
 }
@@ -494,8 +495,8 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
   }
   std::vector<double> angle(probes.size(), 0.0);
   parallel_for(probes.size(), threads, [&](std::size_t i) {
-    const Eigen::Vector3d na = spline.evaluate(probes[i].a).normal;
-    const Eigen::Vector3d nb = spline.evaluate(probes[i].b).normal;
+    const Eigen::Vector3d na = spline.evaluate(probes[i].a, -1, {}, BasisDerivatives::first).normal;
+    const Eigen::Vector3d nb = spline.evaluate(probes[i].b, -1, {}, BasisDerivatives::first).normal;
     if (na.squaredNorm() == 0 || nb.squaredNorm() == 0) return;
     angle[i] = ricci::angle_between(na, nb) * 180.0 / M_PI;
   });

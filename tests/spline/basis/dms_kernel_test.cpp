@@ -1,6 +1,6 @@
-// The three-pass evaluation of a simplex-spline DAG (SimplexSplineDag::evaluate_roots and
-// evaluate_root_values: values of the unculled nodes with vectorised box culling, gradients of the
-// roots and their children, Hessians of the roots) against the reference one-pass recurrence
+// The three-pass evaluation of a simplex-spline DAG (SimplexSplineDag::evaluate_roots,
+// evaluate_root_gradients and evaluate_root_values: values of the unculled nodes with vectorised
+// box culling, gradients of the roots and their children, Hessians of the roots) against the reference one-pass recurrence
 // (SimplexSplineDag::evaluate, a jet per node) bit for bit, and against a plain recursion written
 // here (no DAG, no culling) to rounding: on random, grid-aligned (collinear triples, points on knot
 // lines and box edges) and clustered knots, degrees 1 to 5, several roots per DAG.
@@ -181,7 +181,7 @@ std::vector<std::uint32_t> root_masks(int n, std::mt19937& rng) {
 
 TEST(DmsKernel, RootsEqualTheReferenceRecurrenceBitForBit) {
   SimplexSplineDag::Scratch scratch;  // shared by DAGs of every size, as a thread's is
-  std::vector<Jet> roots, reference;
+  std::vector<Jet> roots, reference, first;
   std::vector<double> values;
   for (int n = 1; n <= 5; ++n) {
     std::mt19937 rng(100 + n);
@@ -196,13 +196,20 @@ TEST(DmsKernel, RootsEqualTheReferenceRecurrenceBitForBit) {
           dag.evaluate(u, tie, reference);
           dag.evaluate_roots(u, tie, scratch, roots);
           dag.evaluate_root_values(u, tie, scratch, values);
+          dag.evaluate_root_gradients(u, tie, scratch, first);
           ASSERT_EQ(roots.size(), ids.size());
           ASSERT_EQ(values.size(), ids.size());
+          ASSERT_EQ(first.size(), ids.size());
           for (std::size_t i = 0; i < ids.size(); ++i) {
             const Jet& expected = reference[static_cast<std::size_t>(ids[i])];
             ASSERT_TRUE(same_bits(roots[i], expected))
                 << config.name << " n " << n << " root " << i << " at " << u.transpose();
             ASSERT_EQ(bits_of(values[i]), bits_of(expected.value)) << config.name << " n " << n;
+            // Values and gradients: the reference's bits; the Hessian is not computed (+0).
+            Jet without_hessian = expected;
+            without_hessian.hessian.setZero();
+            ASSERT_TRUE(same_bits(first[i], without_hessian))
+                << config.name << " n " << n << " root " << i << " at " << u.transpose();
             non_zero += expected.value != 0.0;
             on_hessian += !expected.hessian.isZero(0.0);
           }
