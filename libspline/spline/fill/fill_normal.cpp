@@ -288,8 +288,10 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
   }
 }
 
-Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight, const Sparse* plus) {
+Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight, const Sparse* plus,
+                         const std::vector<char>* plain) {
   const auto rule = thin_plate_rule();
+  const auto plain_rule = thin_plate_plain_rule();
   const int size = space.functions_per_triangle();
   const int triangles = space.triangle_count();
   BlockRows blocks(triangles, size);
@@ -310,7 +312,9 @@ Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight, const Spars
     parallel_for(static_cast<std::size_t>(count), 0, [&](std::size_t k) {
       const int triangle = first + static_cast<int>(k);
       const std::vector<int> candidates = vertex_star_triangles(t, stars, triangle);
-      chunk[k] = thin_plate_points(space, triangle, weight, rule, &candidates);
+      const bool plain_here = plain != nullptr && (*plain)[static_cast<std::size_t>(triangle)];
+      chunk[k] = thin_plate_points(space, triangle, weight, plain_here ? plain_rule : rule,
+                                   &candidates);
     });
     const int workers = parallel_thread_count(0, static_cast<std::size_t>(count) * rule.size());
     run_workers(workers, [&](int worker) {
@@ -326,14 +330,14 @@ Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight, const Spars
 }
 
 NormalEquations normal_equations(const System& system, const PlanarDmsSpace& space,
-                                 double thin_plate) {
+                                 double thin_plate, const std::vector<char>* plain) {
   Sparse a(system.next_row(), space.function_count());
   a.setFromTriplets(system.entries.begin(), system.entries.end());
   Eigen::MatrixX3d b(system.next_row(), 3);
   for (int i = 0; i < system.next_row(); ++i) b.row(i) = system.targets[i].transpose();
   NormalEquations result{a.transpose() * a, a.transpose() * b};
   if (thin_plate > 0.0) {
-    Sparse sum = thin_plate_normal(space, thin_plate, &result.matrix);
+    Sparse sum = thin_plate_normal(space, thin_plate, &result.matrix, plain);
     result.matrix.swap(sum);
   }
   return result;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "ricci/mesh/errors.h"
 #include "spline/basis/blossom.h"
@@ -87,6 +88,31 @@ std::vector<QuadraturePoint> thin_plate_rule() {
   return rule;
 }
 
+std::vector<QuadraturePoint> thin_plate_plain_rule() {
+  // thin_plate_rule's corner points add to the plain rule's weight (1.3 in all): scaled to it,
+  // both give a polynomial piece the same energy.
+  double total = 0.0;
+  for (const auto& q : thin_plate_rule()) total += q.weight;
+  std::vector<QuadraturePoint> rule = quadrature_rule();
+  for (auto& q : rule) q.weight *= total;
+  return rule;
+}
+
+std::vector<char> plain_rule_triangles(const PlanarDmsSpace& space,
+                                       const std::vector<Eigen::Vector2d>& boundary,
+                                       double distance) {
+  const PlanarTriangulation& t = space.triangulation();
+  std::vector<char> plain(t.triangles.size(), 0);
+  if (distance < 0.0) return plain;
+  const PolygonRegion region(boundary, std::max(distance, 1e-12));
+  for (std::size_t k = 0; k < t.triangles.size(); ++k) {
+    const Eigen::Vector3i& v = t.triangles[k];
+    const Eigen::Vector2d c = (t.positions[v[0]] + t.positions[v[1]] + t.positions[v[2]]) / 3.0;
+    plain[k] = !region.contains(c) && !(region.distance(c, 2.0 * distance) <= distance);
+  }
+  return plain;
+}
+
 std::string rim_name(const Rim& rim) {
   return std::string(rim_kind_description(rim.kind)) + " of " + std::to_string(rim.edges.size()) +
          " edges starting at face " + std::to_string(rim.edges[0].face);
@@ -96,7 +122,8 @@ std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vecto
                                                   double spacing, int degree,
                                                   const KnotCloudOptions& knots,
                                                   const std::vector<Eigen::Vector2d>& corners,
-                                                  const std::vector<int>& refinements) {
+                                                  const std::vector<int>& refinements,
+                                                  double outside_grading) {
   Eigen::Vector2d lo = boundary[0], hi = boundary[0];
   for (const auto& p : boundary) {
     lo = lo.cwiseMin(p);
@@ -107,12 +134,15 @@ std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vecto
   if (std::any_of(refinements.begin(), refinements.end(), [](int r) { return r > 1; })) {
     std::vector<double> fine(corners.size());
     for (std::size_t c = 0; c < corners.size(); ++c) fine[c] = spacing / refinements[c];
+    std::optional<PolygonRegion> region;
+    if (outside_grading != 1.0) region.emplace(boundary, spacing);
     refine_to_size(t, [&](const Eigen::Vector2d& x) {
       // fine + distance from the corner, the smallest over the corners (with one refinement
       // for all: fine + the nearest corner's distance, to the bit).
+      const double grading = region && !region->contains(x) ? outside_grading : 1.0;
       double size = INFINITY;
       for (std::size_t c = 0; c < corners.size(); ++c)
-        size = std::min(size, fine[c] + (x - corners[c]).norm());
+        size = std::min(size, fine[c] + grading * (x - corners[c]).norm());
       return size < spacing ? size : 1e300;  // the grid's own sides elsewhere
     });
   }

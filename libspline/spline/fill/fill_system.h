@@ -25,6 +25,9 @@ struct QuadraturePoint {
 /// a DMS spline can carry spikes within the knot clouds (radius < inradius / 2 around each
 /// vertex) that no point of the plain rule sees, and the fit would leave them in.
 [[nodiscard]] std::vector<QuadraturePoint> thin_plate_rule();
+/// Dunavant's 6-point rule alone, its weights scaled to thin_plate_rule's total (whose corner
+/// points add 0.3 of the area): the same energy for a polynomial piece, without the corners.
+[[nodiscard]] std::vector<QuadraturePoint> thin_plate_plain_rule();
 
 /// "cone hole of 24 edges starting at face 17": names a rim in messages.
 [[nodiscard]] std::string rim_name(const Rim& rim);
@@ -38,12 +41,23 @@ struct QuadraturePoint {
     const KnotCloudOptions& knots, const std::vector<Eigen::Vector2d>& corners = {},
     int corner_refinement = 1);
 /// The same with a refinement per corner (refinements[c] for corners[c]): the triangle sides
-/// at a point are the smallest of spacing / refinements[c] + its distance from corners[c].
-/// \pre refinements.size() == corners.size().
+/// at a point are the smallest of spacing / refinements[c] + its distance from corners[c],
+/// that distance times outside_grading at points outside the closed polygon `boundary` (where
+/// the patch is not evaluated; 1: the same grading everywhere).
+/// \pre refinements.size() == corners.size(), outside_grading >= 1.
 [[nodiscard]] std::shared_ptr<const PlanarDmsSpace> patch_space(
     const std::vector<Eigen::Vector2d>& boundary, double spacing, int degree,
     const KnotCloudOptions& knots, const std::vector<Eigen::Vector2d>& corners,
-    const std::vector<int>& refinements);
+    const std::vector<int>& refinements, double outside_grading = 1.0);
+
+/// By triangle of `space`, nonzero where its thin plate may take thin_plate_plain_rule: its
+/// centroid lies outside the closed polygon `boundary` (D), more than `distance` from it. No
+/// function reaching D is then nonzero there, and D is where the patch is evaluated, so the
+/// spikes inside knot clouds that thin_plate_rule's corner points catch do not matter there.
+/// A negative distance: none.
+[[nodiscard]] std::vector<char> plain_rule_triangles(const PlanarDmsSpace& space,
+                                                     const std::vector<Eigen::Vector2d>& boundary,
+                                                     double distance);
 
 /// Lays D out on a circle (radius: the rim's 3D length / 2 pi, so D's lengths are about the
 /// surface's): rim edge j becomes the chord corners[j] -> corners[j + 1], clockwise in rim
@@ -77,10 +91,11 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
 /// square, both triangles, without forming R: summed point by point into dense blocks of
 /// triangle pairs, in parallel. Equal to R^T R up to rounding; entries that are exactly zero
 /// are left out. With `plus` (function_count() square, compressed), returns *plus + R^T R,
-/// entry for entry as Eigen's sparse sum would give it.
+/// entry for entry as Eigen's sparse sum would give it. With `plain` (by triangle), the
+/// triangles flagged nonzero take thin_plate_plain_rule instead (plain_rule_triangles).
 [[nodiscard]] Eigen::SparseMatrix<double> thin_plate_normal(
     const PlanarDmsSpace& space, double weight,
-    const Eigen::SparseMatrix<double>* plus = nullptr);
+    const Eigen::SparseMatrix<double>* plus = nullptr, const std::vector<char>* plain = nullptr);
 
 /// The normal equations of `system`'s rows plus weight * the thin-plate energy
 /// (thin_plate_normal; weight 0: none): A^T A + weight T, function_count() square, and A^T b
@@ -89,8 +104,10 @@ struct NormalEquations {
   Eigen::SparseMatrix<double> matrix;
   Eigen::MatrixX3d rhs;
 };
+/// `plain`: as thin_plate_normal's.
 [[nodiscard]] NormalEquations normal_equations(const System& system, const PlanarDmsSpace& space,
-                                               double thin_plate);
+                                               double thin_plate,
+                                               const std::vector<char>* plain = nullptr);
 
 /// Solves normal * x = rhs (symmetric positive definite, both triangles stored; each column of
 /// rhs a right-hand side) by a supernodal Cholesky factorisation (AMD ordering) and one step of

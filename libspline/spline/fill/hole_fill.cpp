@@ -28,6 +28,7 @@ void check_options(const FillOptions& o) {
   const bool ok = o.degree >= 1 && o.degree <= kMaxDmsDegree && o.refinement >= 1 &&
                   o.corner_refinement >= 1 && o.mild_corner_refinement >= 1 &&
                   o.mild_corner_step_deg >= 0.0 && o.max_refined_rim_step_deg > 0.0 &&
+                  o.outside_corner_grading >= 1.0 &&
                   o.max_boundary_vertices >= 8 && o.samples_per_edge >= 1 &&
                   o.fit_samples_per_edge >= 1 && o.parametric_samples_per_edge >= 1 && o.position_weight > 0.0 &&
                   o.tangent_weight >= 0.0 && o.cross_weight >= 0.0 && o.smoothing >= 0.0 && o.min_normal_cosine > 0.0 &&
@@ -35,6 +36,7 @@ void check_options(const FillOptions& o) {
   if (!ok) {
     throw ricci::InvalidInputError(
         "fill_rim: options out of range (degree 1..7, refinements >= 1, mild_corner_step_deg >= 0, "
+        "outside_corner_grading >= 1, "
         "max_boundary_vertices >= "
         "8, samples >= 1, position_weight > 0, other weights >= 0, min_normal_cosine in (0, 1))");
   }
@@ -51,11 +53,12 @@ double bounding_diagonal(const ricci::Mesh& mesh) {
 }
 
 // Solves min |A c - b|^2 + weight * thin-plate energy (the rows of `system` and
-// thin_plate_normal; weight 0: none) for the columns of b.
+// thin_plate_normal, `plain` its plain-rule triangles; weight 0: none) for the columns of b.
 Eigen::MatrixX3d solve(const System& system, const PlanarDmsSpace& space, double thin_plate,
-                       const Eigen::Vector3d& anchor_value, const Rim& rim) {
+                       const Eigen::Vector3d& anchor_value, const Rim& rim,
+                       const std::vector<char>* plain = nullptr) {
   const int functions = space.function_count();
-  auto [normal, rhs] = fill_detail::normal_equations(system, space, thin_plate);
+  auto [normal, rhs] = fill_detail::normal_equations(system, space, thin_plate, plain);
   // A tiny anchor towards the mean value keeps functions that reach nothing determined and
   // moves with the data.
   const double anchor = 1e-12 * normal.diagonal().sum() / functions;
@@ -241,8 +244,11 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
       std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
   const double h = perimeter / boundary_vertices;
   fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners,
-                           corner_refinements(samples, options));
+                           corner_refinements(samples, options), options.outside_corner_grading);
   const PlanarDmsSpace& space = *fill.space;
+  const std::vector<char> plain = fill_detail::plain_rule_triangles(
+      space, polygon,
+      options.plain_quadrature_distance < 0.0 ? -1.0 : options.plain_quadrature_distance * h);
 
   // Weights: the height rows have units of length, the slope rows are scaled by h to match,
   // both averaged over the samples; R^2 int |H|^2 (R: D's radius) has the same units. So the
@@ -276,7 +282,7 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
   const double radius = perimeter / (2.0 * M_PI);
   const Eigen::VectorXd heights =
       solve(system, space, options.smoothing * radius * radius,
-            Eigen::Vector3d(mean_height, 0, 0), rim)
+            Eigen::Vector3d(mean_height, 0, 0), rim, &plain)
           .col(0);
 
   // The in-plane part: the control points of the identity (exact on D, an affine map).

@@ -170,6 +170,16 @@ struct FillOptions {
   /// vertex corner_refinement times.
   double mild_corner_step_deg = 0.04;
   int mild_corner_refinement = 2;
+  /// Height-field patch: outside D, where the patch is not evaluated, the corner refinement's
+  /// triangles grow this many times faster with the distance from the rim vertex (>= 1; 1: as
+  /// inside). Fewer triangles, but the patch inside D moves too (fewer small triangles across
+  /// D's boundary).
+  double outside_corner_grading = 1.0;
+  /// Height-field patch: the thin plate of triangles outside D farther than this many grid
+  /// sides (rim length in the plane / boundary vertices) from it takes Dunavant's 6-point rule
+  /// instead of the 42 points with the corner sub-triangles, which catch spikes inside knot
+  /// clouds; no function reaching D is nonzero there. Negative: the 42 points everywhere.
+  double plain_quadrature_distance = 1.0;
   /// ... but a rim where the surface's normal turns by more than this (degrees) between samples
   /// 1/100 of an edge apart (a fold or crease) gets the uniform patch only: the refined one
   /// would follow the fold into the hole.

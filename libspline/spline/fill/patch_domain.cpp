@@ -123,6 +123,77 @@ PlanarTriangulation triangle_grid(const Eigen::Vector2d& lo, const Eigen::Vector
   return t;
 }
 
+PolygonRegion::PolygonRegion(const std::vector<Eigen::Vector2d>& polygon, double cell)
+    : points_(polygon), cell_(cell) {
+  Eigen::Vector2d hi = polygon[0];
+  lo_ = polygon[0];
+  for (const auto& p : polygon) {
+    lo_ = lo_.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  columns_ = static_cast<int>((hi.x() - lo_.x()) / cell_) + 1;
+  rows_ = static_cast<int>((hi.y() - lo_.y()) / cell_) + 1;
+  strips_.resize(static_cast<std::size_t>(rows_));
+  cells_.resize(static_cast<std::size_t>(rows_) * columns_);
+  const int n = static_cast<int>(points_.size());
+  auto column = [&](double x) {
+    return std::clamp(static_cast<int>((x - lo_.x()) / cell_), 0, columns_ - 1);
+  };
+  auto row = [&](double y) {
+    return std::clamp(static_cast<int>((y - lo_.y()) / cell_), 0, rows_ - 1);
+  };
+  for (int e = 0; e < n; ++e) {
+    const Eigen::Vector2d a = points_[e], b = points_[(e + 1) % n];
+    const int r0 = row(std::min(a.y(), b.y())), r1 = row(std::max(a.y(), b.y()));
+    const int c0 = column(std::min(a.x(), b.x())), c1 = column(std::max(a.x(), b.x()));
+    for (int r = r0; r <= r1; ++r) {
+      strips_[static_cast<std::size_t>(r)].push_back(e);
+      for (int c = c0; c <= c1; ++c)
+        cells_[static_cast<std::size_t>(r) * columns_ + c].push_back(e);
+    }
+  }
+}
+
+bool PolygonRegion::contains(const Eigen::Vector2d& p) const {
+  const double y = (p.y() - lo_.y()) / cell_;
+  if (!(y >= 0.0) || y >= rows_) return false;
+  const int n = static_cast<int>(points_.size());
+  bool inside = false;
+  for (int e : strips_[static_cast<std::size_t>(y)]) {
+    const Eigen::Vector2d& a = points_[e];
+    const Eigen::Vector2d& b = points_[(e + 1) % n];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < a.x() + (p.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+      inside = !inside;
+  }
+  return inside;
+}
+
+double PolygonRegion::edge_distance(int e, const Eigen::Vector2d& p) const {
+  const Eigen::Vector2d& a = points_[e];
+  const Eigen::Vector2d& b = points_[(e + 1) % points_.size()];
+  const Eigen::Vector2d d = b - a;
+  const double length = d.squaredNorm();
+  const double s = length > 0.0 ? std::clamp((p - a).dot(d) / length, 0.0, 1.0) : 0.0;
+  return (a + s * d - p).norm();
+}
+
+double PolygonRegion::distance(const Eigen::Vector2d& p, double limit) const {
+  // The cells within `limit` of p: an edge nearer than limit has a point in one of them.
+  const int c0 = static_cast<int>(std::floor((p.x() - limit - lo_.x()) / cell_));
+  const int c1 = static_cast<int>(std::floor((p.x() + limit - lo_.x()) / cell_));
+  const int r0 = static_cast<int>(std::floor((p.y() - limit - lo_.y()) / cell_));
+  const int r1 = static_cast<int>(std::floor((p.y() + limit - lo_.y()) / cell_));
+  double best = limit;
+  for (int r = std::max(r0, 0); r <= std::min(r1, rows_ - 1); ++r) {
+    for (int c = std::max(c0, 0); c <= std::min(c1, columns_ - 1); ++c) {
+      for (int e : cells_[static_cast<std::size_t>(r) * columns_ + c])
+        best = std::min(best, edge_distance(e, p));
+    }
+  }
+  return best;
+}
+
 bool is_simple(const std::vector<Eigen::Vector2d>& polygon) {
   const int m = static_cast<int>(polygon.size());
   auto side = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {

@@ -36,6 +36,27 @@ namespace spline::fill_detail {
 [[nodiscard]] PlanarTriangulation triangle_grid(const Eigen::Vector2d& lo,
                                                 const Eigen::Vector2d& hi, double spacing);
 
+/// A closed polygon with its edges bucketed by cells of a given size, for inside tests and
+/// distances of many points (the patch grid's triangles) in about constant time each.
+class PolygonRegion {
+ public:
+  /// \pre polygon.size() >= 3, cell > 0.
+  PolygonRegion(const std::vector<Eigen::Vector2d>& polygon, double cell);
+  /// Inside the polygon (crossing number: a simple polygon's interior, either orientation).
+  [[nodiscard]] bool contains(const Eigen::Vector2d& p) const;
+  /// The distance from p to the polygon's edges when it is below `limit`, else `limit`.
+  [[nodiscard]] double distance(const Eigen::Vector2d& p, double limit) const;
+
+ private:
+  [[nodiscard]] double edge_distance(int edge, const Eigen::Vector2d& p) const;
+  std::vector<Eigen::Vector2d> points_;
+  Eigen::Vector2d lo_ = Eigen::Vector2d::Zero();
+  double cell_ = 1.0;
+  int columns_ = 0, rows_ = 0;
+  std::vector<std::vector<int>> strips_;  ///< by cell row: the edges whose y range meets it
+  std::vector<std::vector<int>> cells_;   ///< by cell: the edges whose box meets it
+};
+
 /// True when the closed polygon has no two non-adjacent edges meeting.
 [[nodiscard]] bool is_simple(const std::vector<Eigen::Vector2d>& polygon);
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "ricci/mesh/errors.h"
 #include "spline/basis/blossom.h"
 #include "spline/fill/fill_system.h"
+#include "spline/fill/patch_domain.h"
 
 namespace spline::fill_detail {
 namespace {
@@ -164,6 +166,125 @@ TEST(PatchSpace, RefinesEachCornerByItsOwnFactor) {
     if (c == 3) continue;
     EXPECT_GT(shortest[c], 0.4 * spacing) << c;
   }
+}
+
+// The heptagon's boundary of heptagon_space, counter-clockwise.
+std::vector<Eigen::Vector2d> heptagon_boundary() {
+  std::vector<Eigen::Vector2d> boundary;
+  for (int j = 0; j < 7; ++j) {
+    const double angle = 2.0 * M_PI * j / 7.0;
+    const double radius = j % 2 == 0 ? 1.0 : 0.8;
+    boundary.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+  }
+  return boundary;
+}
+
+// The bucketed inside test and distance agree with a scan of every edge, on a scalloped
+// polygon of many points and on points inside, outside and far from it.
+TEST(PolygonRegion, AgreesWithEveryEdgeScanned) {
+  std::vector<Eigen::Vector2d> polygon;
+  for (int k = 0; k < 400; ++k) {
+    const double angle = 2.0 * M_PI * k / 400.0;
+    const double radius = 1.0 + 0.3 * std::sin(7.0 * angle);
+    polygon.emplace_back(radius * std::cos(angle), 0.6 * radius * std::sin(angle));
+  }
+  const PolygonRegion region(polygon, 0.07);
+  int inside = 0;
+  for (int i = 0; i < 60; ++i) {
+    for (int j = 0; j < 60; ++j) {
+      const Eigen::Vector2d p(-1.6 + 3.2 * (i + 0.31) / 60, -1.1 + 2.2 * (j + 0.57) / 60);
+      bool crossing = false;
+      double nearest = INFINITY;
+      for (std::size_t e = 0; e < polygon.size(); ++e) {
+        const Eigen::Vector2d a = polygon[e], b = polygon[(e + 1) % polygon.size()];
+        if ((a.y() > p.y()) != (b.y() > p.y()) &&
+            p.x() < a.x() + (p.y() - a.y()) / (b.y() - a.y()) * (b.x() - a.x()))
+          crossing = !crossing;
+        const double s = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+        nearest = std::min(nearest, (a + s * (b - a) - p).norm());
+      }
+      EXPECT_EQ(region.contains(p), crossing) << p.transpose();
+      EXPECT_NEAR(region.distance(p, 0.25), std::min(nearest, 0.25), 1e-14) << p.transpose();
+      inside += crossing;
+    }
+  }
+  EXPECT_GT(inside, 600);
+  EXPECT_LT(inside, 3000);
+}
+
+// The plain rule on triangles well outside D: only there, and (its weights scaled to the full
+// rule's) it integrates a quadratic's bending (constant curvature, no spikes) as the full rule
+// does, while the matrix differs.
+TEST(ThinPlateNormal, PlainRuleTrianglesLieOutsideAndKeepAQuadraticsEnergy) {
+  const auto space = heptagon_space();
+  const auto boundary = heptagon_boundary();
+  const std::vector<char> plain = plain_rule_triangles(*space, boundary, 0.2);
+  const PolygonRegion region(boundary, 0.1);
+  const auto& t = space->triangulation();
+  int flagged = 0;
+  for (std::size_t k = 0; k < plain.size(); ++k) {
+    if (!plain[k]) continue;
+    ++flagged;
+    const Eigen::Vector3i& v = t.triangles[k];
+    const Eigen::Vector2d c = (t.positions[v[0]] + t.positions[v[1]] + t.positions[v[2]]) / 3.0;
+    EXPECT_FALSE(region.contains(c));
+    EXPECT_GT(region.distance(c, 1.0), 0.2);
+  }
+  EXPECT_GT(flagged, 0);
+  EXPECT_LT(flagged, space->triangle_count());
+  const std::vector<char> none = plain_rule_triangles(*space, boundary, -1.0);
+  EXPECT_EQ(std::count(none.begin(), none.end(), 1), 0);
+
+  // Within 0.35 of D (the grid reaches 0.7 past D's box), every point of the full rule passes
+  // the partition-of-unity test; farther out the full rule's corner points next to the grid's
+  // outer vertices are left out, the plain rule's points less often.
+  const std::vector<char> far = plain_rule_triangles(*space, boundary, 0.35);
+  std::vector<char> band(plain.size(), 0);
+  for (std::size_t k = 0; k < plain.size(); ++k) band[k] = plain[k] && !far[k];
+  EXPECT_GT(std::count(band.begin(), band.end(), 1), 0);
+  const Eigen::SparseMatrix<double> full = thin_plate_normal(*space, 1.0);
+  const Eigen::SparseMatrix<double> mixed = thin_plate_normal(*space, 1.0, nullptr, &band);
+  const Eigen::SparseMatrix<double> unflagged = thin_plate_normal(*space, 1.0, nullptr, &none);
+  EXPECT_EQ((Eigen::MatrixXd(unflagged) - Eigen::MatrixXd(full)).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_GT((Eigen::MatrixXd(mixed) - Eigen::MatrixXd(full)).cwiseAbs().maxCoeff(), 0.0);
+  for (const auto& [a, b] : {std::pair{2, 0}, std::pair{1, 1}, std::pair{0, 2}}) {
+    const Eigen::VectorXd c = space->control_points_of(monomial(a, b, space->degree())).col(0);
+    const double expected = c.dot(full * c);
+    ASSERT_GT(expected, 0.0);
+    EXPECT_NEAR(c.dot(mixed * c), expected, 1e-9 * expected) << "x^" << a << " y^" << b;
+  }
+  // An affine map still has no energy.
+  const Eigen::VectorXd x = space->control_points_of(monomial(1, 0, space->degree())).col(0);
+  const Eigen::VectorXd xx = space->control_points_of(monomial(2, 0, space->degree())).col(0);
+  EXPECT_LT(std::abs(x.dot(mixed * x)), 1e-8 * xx.dot(mixed * xx));
+}
+
+// Grading the corner refinement faster outside D leaves fewer triangles, and every triangle
+// whose centroid is in D still meets the inside size (refinement + distance from a corner).
+TEST(PatchSpace, GradesFasterOutsideTheBoundaryOnly) {
+  const auto boundary = heptagon_boundary();
+  const double spacing = 0.35;
+  const std::vector<int> refinements(7, 8);
+  const auto same = patch_space(boundary, spacing, 3, KnotCloudOptions{}, boundary, refinements);
+  const auto graded =
+      patch_space(boundary, spacing, 3, KnotCloudOptions{}, boundary, refinements, 2.0);
+  EXPECT_LT(graded->triangle_count(), same->triangle_count());
+  const PolygonRegion region(boundary, 0.1);
+  const auto& t = graded->triangulation();
+  int inside = 0;
+  for (const Eigen::Vector3i& v : t.triangles) {
+    const Eigen::Vector2d c = (t.positions[v[0]] + t.positions[v[1]] + t.positions[v[2]]) / 3.0;
+    if (!region.contains(c)) continue;
+    ++inside;
+    double size = INFINITY;
+    for (const auto& corner : boundary) size = std::min(size, spacing / 8 + (c - corner).norm());
+    if (!(size < spacing)) continue;
+    double longest = 0.0;
+    for (int e = 0; e < 3; ++e)
+      longest = std::max(longest, (t.positions[v[e]] - t.positions[v[(e + 1) % 3]]).norm());
+    EXPECT_LE(longest, size) << c.transpose();
+  }
+  EXPECT_GT(inside, 0);
 }
 
 }  // namespace
