@@ -147,6 +147,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
   bool last_step_full = false;
   bool factor_stale = false, factored_frozen = false;
   int flips_at_analysis = -1;  // result.flips when the cache last analysed a pattern
+  int flips_at_factor = -1;    // result.flips when factored_last was made
   for (int iteration = 0; error > tolerance; ++iteration) {
     if (iteration >= max_iterations) {
       reason = "iteration budget spent";
@@ -173,6 +174,12 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     // It is refactorised when a solve on it got slow (stale) or failed, and once when the
     // connectivity freezes: that factor then serves every remaining step and the polish.
     const bool near_regime = last_step_full && error < options.nearby_factorization_below;
+    // A factorisation made a few flips before the freeze serves as the frozen one: the flips
+    // were its last, and it is as near the answer as a new one would be.
+    if (frozen && !factored_frozen && factored_last && !factor_stale &&
+        result.flips - flips_at_factor <= options.frozen_factor_flips * tri.edge_count()) {
+      factored_frozen = true;
+    }
     const bool try_nearby = factored_last && !factor_stale && !(frozen && !factored_frozen) &&
                             (near_regime || options.chord_forcing_cap > 0);
     // An inexact Newton step: a relative residual eta adds eta * error to the next error,
@@ -214,6 +221,7 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
       factored_last = factorization;
       factor_stale = false;
       factored_frozen = frozen;
+      flips_at_factor = result.flips;
       clock.restart();
       reduced = factorization->solve(rhs);
       result.timings.solve += clock.seconds();

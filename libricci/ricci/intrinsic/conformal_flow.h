@@ -63,6 +63,10 @@ struct IntrinsicFlowOptions {
   double chord_forcing_cap = 1e-3;
   int chord_max_steps = 12;
   int chord_stale_steps = 6;
+  /// The first step with frozen connectivity keeps the last factorisation instead (to serve
+  /// the remaining steps and the polish) when it is not stale and at most this fraction of the
+  /// edges flipped since it was made (0: only when nothing flipped; negative: never).
+  double frozen_factor_flips = 1e-3;
   /// A new Laplacian to factorise is analysed with the last analysis' ordering (sparing the
   /// fill-reducing ordering, most of an analysis) when at most this fraction of the edges
   /// flipped since that analysis; otherwise it is ordered afresh (the flips of the first Newton

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -371,6 +373,45 @@ double flow_area_distortion(const Mesh& mesh, int vertex, const SingularityOptio
   return measure_distortion(problem.mesh, result.lengths).area_distortion;
 }
 
+// The flows of the best `count` linear candidates (fewer when fewer are ranked), each on a
+// problem of its own, on options.verification_threads threads: each writes its own slot and
+// the slots are read in rank order, so the scores, the work and any exception (the first
+// candidate's in rank order) are the serial loop's. The flows' progress reports are
+// serialised.
+std::vector<SingularityScore> verify_in_parallel(const Mesh& mesh,
+                                                 const std::vector<SingularityScore>& ranked,
+                                                 int count, const SingularityOptions& options,
+                                                 LinearWork& work) {
+  const size_t n = static_cast<size_t>(std::clamp<int>(count, 0, static_cast<int>(ranked.size())));
+  std::vector<SingularityScore> scores(n);
+  std::vector<LinearWork> works(n);
+  std::vector<std::exception_ptr> errors(n);
+  SingularityOptions each = options;
+  std::mutex reporting;
+  if (options.flow.progress) {
+    each.flow.progress = [&](const FlowProgress& p) {
+      const std::lock_guard<std::mutex> lock(reporting);
+      options.flow.progress(p);
+    };
+  }
+  const int workers =
+      std::min(requested_threads(options.verification_threads), static_cast<int>(n));
+  run_workers(workers, [&](int t) {
+    for (size_t i = static_cast<size_t>(t); i < n; i += static_cast<size_t>(workers)) {
+      try {
+        scores[i] = {ranked[i].vertex, flow_area_distortion(mesh, ranked[i].vertex, each, works[i])};
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  });
+  for (size_t i = 0; i < n; ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+    work += works[i];
+  }
+  return scores;
+}
+
 }  // namespace
 
 double one_cone_area_distortion(const Mesh& mesh, int vertex, const SingularityOptions& options) {
@@ -436,8 +477,13 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
     ++choice.flows_run;
     --budget;
   };
-  for (int i = 0; i < std::min<int>(options.verified_candidates, choice.ranked); ++i) {
-    verify(ranked[static_cast<size_t>(i)].vertex);
+  for (const SingularityScore& s :
+       verify_in_parallel(mesh, ranked, std::min(budget, options.verified_candidates), options,
+                          choice.linear_work)) {
+    checked.insert(s.vertex);
+    choice.verified.push_back(s);
+    ++choice.flows_run;
+    --budget;
   }
   auto score_of = [&](int v) {
     for (const auto& s : choice.verified) {

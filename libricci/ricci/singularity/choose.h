@@ -41,6 +41,9 @@ struct SingularityOptions {
   int max_verified_flows = 400;
   /// The best linear candidates verified with a flow first (within the budget)...
   int verified_candidates = 8;
+  /// ...on this many threads, each flow on a problem of its own (0: the hardware's
+  /// concurrency; the same choice, scores and work on any number).
+  int verification_threads = 0;
   /// ...then greedy descent over one-rings with flows (each step checks a vertex's neighbours
   /// and moves to the best) from the `descent_starts` best verified vertices, while the budget
   /// lasts.

@@ -128,6 +128,29 @@ TEST(ChooseSingularity, LargeMeshesRunNoVerifyingFlow) {
   EXPECT_LE(choice.predicted_area_distortion, sample.front().area_distortion);
 }
 
+// The first verifying flows run on two threads, each on its own problem: the same scores,
+// bit for bit and in the same order, the same descent and the same vertex as on one thread.
+TEST(ChooseSingularity, ParallelVerificationMatchesSerial) {
+  const ricci::Mesh mesh = read_test_mesh("closed_g2/eight_cgal.off");
+  ricci::SingularityOptions serial;
+  serial.verification_threads = 1;
+  ricci::SingularityOptions parallel = serial;
+  parallel.verification_threads = 2;
+  const ricci::SingularityChoice one = ricci::choose_singularity(mesh, serial);
+  const ricci::SingularityChoice two = ricci::choose_singularity(mesh, parallel);
+  ASSERT_GE(one.flows_run, serial.verified_candidates);
+  EXPECT_EQ(two.vertex, one.vertex);
+  EXPECT_EQ(two.area_distortion, one.area_distortion);
+  EXPECT_EQ(two.flows_run, one.flows_run);
+  ASSERT_EQ(two.verified.size(), one.verified.size());
+  for (size_t i = 0; i < one.verified.size(); ++i) {
+    EXPECT_EQ(two.verified[i].vertex, one.verified[i].vertex) << i;
+    EXPECT_EQ(two.verified[i].area_distortion, one.verified[i].area_distortion) << i;
+  }
+  EXPECT_EQ(two.linear_work.factorizations, one.linear_work.factorizations);
+  EXPECT_EQ(two.linear_work.back_substitutions, one.linear_work.back_substitutions);
+}
+
 TEST(ChooseSingularity, GenusOneAndOpenSurfacesNeedNoVertex) {
   auto choice = ricci::choose_singularity(read_test_mesh("closed_g1/knot1.off.gz"));
   EXPECT_EQ(choice.vertex, -1);
