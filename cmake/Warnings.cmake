@@ -12,10 +12,13 @@ function(msp_target_defaults target)
 endfunction()
 
 if(MSP_SANITIZE)
-  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  # float-cast-overflow is not part of GCC's "undefined": a double past the range of int
+  # converted to int (a grid cell of a far point) is undefined behaviour all the same.
+  add_compile_options(-fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer
+                      -fno-sanitize-recover=undefined,float-cast-overflow)
   # Eigen takes glibc's malloc as aligned only without __SANITIZE_ADDRESS__: the uninstrumented
   # CGAL translation units (libricci/CMakeLists.txt) would allocate with malloc what instrumented
   # ones free with Eigen's handmade aligned_free. One allocator for every translation unit.
   add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=0)
-  add_link_options(-fsanitize=address,undefined)
+  add_link_options(-fsanitize=address,undefined,float-cast-overflow)
 endif()

@@ -10,6 +10,15 @@
 #include "spline/tessellate/parallel_for.h"
 
 namespace spline {
+namespace {
+
+// The grid cell of coordinate c (in cells, finite or infinite), clamped to [0, count - 1] in
+// double: converting a far point's cell to int first overflows (undefined behaviour).
+int clamped_cell(double c, int count) {
+  return static_cast<int>(std::clamp(std::floor(c), 0.0, static_cast<double>(count - 1)));
+}
+
+}  // namespace
 
 PlanarDmsSpace::PlanarDmsSpace(PlanarTriangulation triangulation, std::vector<KnotCloud> clouds)
     : triangulation_(std::move(triangulation)), clouds_(std::move(clouds)) {
@@ -87,10 +96,10 @@ std::vector<int> PlanarDmsSpace::grid_triangles(const Eigen::Vector2d& u) const 
   if (cells_.empty() || !u.allFinite()) return result;
   const Eigen::Vector2d g = (u - grid_origin_) / cell_size_;
   // A point on a cell border may belong to a box of the neighbouring cell: look at both.
-  const int x0 = std::clamp(static_cast<int>(std::floor(g.x() - 1e-9)), 0, columns_ - 1);
-  const int x1 = std::clamp(static_cast<int>(std::floor(g.x() + 1e-9)), 0, columns_ - 1);
-  const int y0 = std::clamp(static_cast<int>(std::floor(g.y() - 1e-9)), 0, rows_ - 1);
-  const int y1 = std::clamp(static_cast<int>(std::floor(g.y() + 1e-9)), 0, rows_ - 1);
+  const int x0 = clamped_cell(g.x() - 1e-9, columns_);
+  const int x1 = clamped_cell(g.x() + 1e-9, columns_);
+  const int y0 = clamped_cell(g.y() - 1e-9, rows_);
+  const int y1 = clamped_cell(g.y() + 1e-9, rows_);
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
       for (int t : cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) +

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "ricci/mesh/errors.h"
@@ -243,6 +244,14 @@ TEST(PlanarDmsSpace, EvaluatedFunctionsLieInTheSupportQuery) {
   }
   EXPECT_TRUE(space.evaluate_basis(Eigen::Vector2d(100.0, 100.0)).empty());
   EXPECT_TRUE(space.support(Eigen::Vector2d(100.0, 100.0)).empty());
+  // Points whose grid cell is past the range of int (the cell index is clamped before it is
+  // converted: a sanitized build traps the overflowing conversion) have no functions either.
+  const double huge = std::numeric_limits<double>::max();
+  for (const Eigen::Vector2d& u : {Eigen::Vector2d(1e12, -1e12), Eigen::Vector2d(-huge, huge),
+                                  Eigen::Vector2d(huge, huge), Eigen::Vector2d(0.0, -huge)}) {
+    EXPECT_TRUE(space.evaluate_basis(u).empty()) << u.transpose();
+    EXPECT_TRUE(space.support(u).empty()) << u.transpose();
+  }
 }
 
 // Moving the whole configuration by a rigid motion (or scaling it) moves the functions with it:
