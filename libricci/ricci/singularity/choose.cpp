@@ -399,7 +399,8 @@ std::vector<SingularityScore> verify_in_parallel(const Mesh& mesh,
   run_workers(workers, [&](int t) {
     for (size_t i = static_cast<size_t>(t); i < n; i += static_cast<size_t>(workers)) {
       try {
-        scores[i] = {ranked[i].vertex, flow_area_distortion(mesh, ranked[i].vertex, each, works[i])};
+        scores[i] = {ranked[i].vertex,
+                     flow_area_distortion(mesh, ranked[i].vertex, each, works[i])};
       } catch (...) {
         errors[i] = std::current_exception();
       }

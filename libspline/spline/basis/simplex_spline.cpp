@@ -415,31 +415,29 @@ Eigen::Vector2d SimplexSplineDag::gradient_from_values(const Node& node,
 
 void SimplexSplineDag::evaluate_root_gradients(const Eigen::Vector2d& u, const TieBreak& tie,
                                                Scratch& scratch, std::vector<Jet>& roots) const {
-  // evaluate_roots' values pass and, for the roots alone, its gradient pass (the same sums).
-  evaluate_all_values(u, tie, scratch.values);
-  const std::vector<double>& values = scratch.values;
-  roots.resize(roots_.size());
-  for (std::size_t i = 0; i < roots_.size(); ++i) {
-    const std::size_t id = static_cast<std::size_t>(roots_[i]);
-    const Node& node = nodes_[id];
-    Jet& jet = roots[i];
-    jet = Jet{};
-    jet.value = values[id];
-    if (node.kind == Kind::recurrence) jet.gradient = gradient_from_values(node, values);
-  }
+  evaluate_root_jets(u, tie, scratch, roots, false);
 }
 
 void SimplexSplineDag::evaluate_roots(const Eigen::Vector2d& u, const TieBreak& tie,
                                       Scratch& scratch, std::vector<Jet>& roots) const {
+  evaluate_root_jets(u, tie, scratch, roots, true);
+}
+
+void SimplexSplineDag::evaluate_root_jets(const Eigen::Vector2d& u, const TieBreak& tie,
+                                          Scratch& scratch, std::vector<Jet>& roots,
+                                          bool hessians) const {
   // The recurrence needs values below the roots' children: grad M is n sum_a grad(lambda_a)
   // M(. | X \ x_a), a sum of the children's values, and the Hessian the children's gradients.
   // Every sum is evaluate()'s, term for term: the terms it skips (zero children) add signed
-  // zeros to sums that start at +0, which changes no bit.
+  // zeros to sums that start at +0, which changes no bit. Without Hessians only the roots'
+  // gradients are taken (the same sums).
   evaluate_all_values(u, tie, scratch.values);
   const std::vector<double>& values = scratch.values;
-  scratch.gradients.resize(nodes_.size());
-  for (const std::uint16_t id : gradient_ids_) {
-    scratch.gradients[id] = gradient_from_values(nodes_[id], values);
+  if (hessians) {
+    scratch.gradients.resize(nodes_.size());
+    for (const std::uint16_t id : gradient_ids_) {
+      scratch.gradients[id] = gradient_from_values(nodes_[id], values);
+    }
   }
   roots.resize(roots_.size());
   for (std::size_t i = 0; i < roots_.size(); ++i) {
@@ -449,6 +447,10 @@ void SimplexSplineDag::evaluate_roots(const Eigen::Vector2d& u, const TieBreak& 
     jet = Jet{};
     jet.value = values[id];
     if (node.kind != Kind::recurrence) continue;
+    if (!hessians) {
+      jet.gradient = gradient_from_values(node, values);
+      continue;
+    }
     jet.gradient = scratch.gradients[id];
     const std::array<Eigen::Vector2d, 3> g = triple_gradients(node.data);
     double hxx = 0.0, hxy = 0.0, hyy = 0.0;

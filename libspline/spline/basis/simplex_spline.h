@@ -156,6 +156,9 @@ class SimplexSplineDag {
   // grad M of recurrence node `node` from its children's values (zero children skipped: their
   // terms are signed zeros added to a sum that starts at +0).
   Eigen::Vector2d gradient_from_values(const Node& node, const std::vector<double>& values) const;
+  // evaluate_roots (hessians) and evaluate_root_gradients (not): one routine, the same sums.
+  void evaluate_root_jets(const Eigen::Vector2d& u, const TieBreak& tie, Scratch& scratch,
+                          std::vector<Jet>& roots, bool hessians) const;
 
   // Build-time caches, dropped by release_index(): subset -> node (a direct table up to
   // kDirectIndexKnots knots, a hash map above), |det| of every ascending knot triple (the

@@ -120,24 +120,21 @@ void TriangleBasis::evaluate(const Eigen::Vector2d& u, const TieBreak& tie, std:
                              BasisDerivatives derivatives) const {
   // Roots in multi_indices(n) order.
   if (derivatives == BasisDerivatives::none) {
-    dag_.evaluate_root_values(u, tie, scratch, scratch.roots);
+    evaluate_values(u, tie, scratch.roots, scratch);
     out.assign(scratch.roots.size(), Jet{});
-    for (std::size_t i = 0; i < out.size(); ++i) out[i].value = scales_[i] * scratch.roots[i];
+    for (std::size_t i = 0; i < out.size(); ++i) out[i].value = scratch.roots[i];
     return;
   }
-  if (derivatives == BasisDerivatives::first) {
+  const bool hessians = derivatives == BasisDerivatives::second;
+  if (hessians) {
+    dag_.evaluate_roots(u, tie, scratch, out);
+  } else {
     dag_.evaluate_root_gradients(u, tie, scratch, out);
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      out[i].value = scales_[i] * out[i].value;
-      out[i].gradient = scales_[i] * out[i].gradient;
-    }
-    return;
   }
-  dag_.evaluate_roots(u, tie, scratch, out);
   for (std::size_t i = 0; i < out.size(); ++i) {
     out[i].value = scales_[i] * out[i].value;
     out[i].gradient = scales_[i] * out[i].gradient;
-    out[i].hessian = scales_[i] * out[i].hessian;
+    if (hessians) out[i].hessian = scales_[i] * out[i].hessian;
   }
 }
 

@@ -203,9 +203,9 @@ struct ManifoldSpline {
   [[nodiscard]] SurfaceJet evaluate(const DomainPoint& point, int chart = -1,
                                     const TieBreak& tie = {},
                                     BasisDerivatives derivatives = BasisDerivatives::second) const;
-  [[nodiscard]] SurfaceJet evaluate_at(int chart, int face, const Eigen::Vector2d& u,
-                                       const TieBreak& tie = {},
-                                       BasisDerivatives derivatives = BasisDerivatives::second) const;
+  [[nodiscard]] SurfaceJet evaluate_at(
+      int chart, int face, const Eigen::Vector2d& u, const TieBreak& tie = {},
+      BasisDerivatives derivatives = BasisDerivatives::second) const;
 };
 
 /// Whether the samples' values sum to 1 within `tolerance`: false next to the domain's rim, where
