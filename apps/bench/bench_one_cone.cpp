@@ -30,6 +30,7 @@
 #include "msp/cli.h"
 #include "msp/flow_options.h"
 #include "ricci/util/cross2d.h"
+#include "ricci/util/memory.h"
 #include "ricci/util/stopwatch.h"
 
 namespace msp::bench {
@@ -321,6 +322,7 @@ int run_one_cone_case(int argc, char** argv) {
   j["read_seconds"] = read;
   // The reference solve first, so that the process's peak is the larger of the two; the mesh
   // is then handed over to the pipeline, as msp atlas does.
+  ricci::use_one_malloc_arena(mesh.n_vertices());  // as msp atlas, before any thread allocates
   const ReferenceSolve reference = reference_solve(mesh);
   try {
     sampler = std::make_unique<RssSampler>();

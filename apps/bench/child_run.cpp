@@ -71,7 +71,7 @@ std::string memory_note() {
 ReferenceSolve reference_solve(const ricci::Mesh& mesh) {
   ReferenceSolve reference;
   reference.seconds = cotangent_cholesky_seconds(mesh, &reference.cpu_seconds);
-  ricci::release_free_memory();
+  ricci::release_free_memory(mesh.n_vertices());
   reference.peak_mb = peak_rss_mb();
   return reference;
 }
@@ -144,7 +144,8 @@ void print_child_row(nlohmann::json& row, const ricci::Mesh& mesh) {
   // The run's own peak, before the reference factorisation (at 1.6M faces its factor and the
   // Laplacian's triplets beside the mesh rise above the pipeline's peak).
   row["peak_mb"] = peak_rss_mb();
-  ricci::release_free_memory();  // the pipeline's freed heap is not the reference's
+  // the pipeline's freed heap is not the reference's
+  ricci::release_free_memory(mesh.n_vertices());
   double cholesky_cpu = 0.0;
   row["cholesky"] = cotangent_cholesky_seconds(mesh, &cholesky_cpu);
   row["cholesky_cpu"] = cholesky_cpu;

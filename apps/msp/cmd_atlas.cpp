@@ -9,6 +9,7 @@
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
 #include <ricci/pipeline/one_cone_atlas.h>
+#include <ricci/util/memory.h>
 #include <msp/report/ricci_reports.h>
 #include <nlohmann/json.hpp>
 
@@ -107,6 +108,7 @@ int run_atlas(int argc, char** argv) {
   const std::string path = args.positionals()[0];
   ricci::Mesh mesh = ricci::read_mesh(path);
   const size_t vertices = mesh.n_vertices(), faces = mesh.n_faces();
+  ricci::use_one_malloc_arena(vertices);  // before the pipeline's threads allocate
   // Handed over: the pipeline keeps it as arrays while the flow runs (its memory peak).
   const ricci::OneConeAtlasResult result = ricci::build_one_cone_atlas(std::move(mesh), options);
   nlohmann::json report = atlas_report_json(path, vertices, faces, result);

@@ -198,7 +198,8 @@ FlowStatus newton(IntrinsicFlowResult& result, Evaluation& eval, const Eigen::Ve
     result.timings.solve += clock.seconds();
     if (!reused) {
       factored_last.reset();  // at most one factor alive besides the cache's
-      release_free_memory();  // the line search's freed evaluations, before the new factor
+      // the line search's freed evaluations, before the new factor
+      release_free_memory(static_cast<std::size_t>(n));
       // The last analysis' ordering serves a pattern few flips away (ordering_reuse_flips).
       const bool near_pattern =
           flips_at_analysis >= 0 &&

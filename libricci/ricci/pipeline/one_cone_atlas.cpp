@@ -314,7 +314,8 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
                      const std::function<void(const char*)>& report) {
   report("intrinsic Delaunay flow");
   StageTimer t;
-  release_free_memory();  // the valence modification's, before the flow's factorisations
+  const std::size_t vertices = result.problem.targets.curvature.size();
+  release_free_memory(vertices);  // the valence modification's, before the flow's factors
   IntrinsicFlowOptions settings = options.intrinsic;
   // The long-double polish below finishes the flow: Newton hands over at kPolishHandover,
   // where one polish step lands at the rounding floor (its quadratic term ~1e-19), and the
@@ -365,7 +366,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     const MeshTables tables = to_mesh_tables(r.triangulation);
     Eigen::VectorXd lengths = table_edge_lengths(r.triangulation, tables, r.u);
     r.triangulation = IntrinsicTriangulation();  // its tables (~90 MB at 1.6M faces) are done
-    release_free_memory();  // and the flow's evaluations, before the polish's
+    release_free_memory(vertices);  // and the flow's evaluations, before the polish's
     // As after the fixed-connectivity flows (polish_lengths): the layout multiplies the
     // leftover defect by the distances it spans, so it goes in long double first, whatever its
     // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
@@ -395,7 +396,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     }
     r.laplacian_factorization.reset();
     const bool converged = flow.status == FlowStatus::converged;
-    if (converged) release_free_memory();  // the factorisation, before the mesh
+    if (converged) release_free_memory(vertices);  // the factorisation, before the mesh
     // The removed edges (after the factor: their sorted keys) are counted on a second thread
     // while the mesh is built.
     run_workers(2, [&](int worker) {
@@ -571,6 +572,7 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
   OneConeAtlasResult result;
   result.chosen_vertex = options.singular_vertex;
   const SurfaceTopology topology = surface_topology(input.mesh());
+  const std::size_t vertices = input.mesh().n_vertices();
   const bool needs_cone = needs_singular_vertex(topology);
   const bool intrinsic_only =
       options.route == FlowRoute::intrinsic_delaunay ||
@@ -579,10 +581,10 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
   bool fixed_failed = false;  // no candidate vertex converged with the fixed-connectivity flows
   bool intrinsic_tried = false;
   if (result.chosen_vertex < 0 && needs_cone) {
-    release_free_memory();  // what reading the input freed, before the linear model's factor
+    release_free_memory(vertices);  // what reading the input freed, before the model's factor
     report("choosing the singular vertex");
     fixed_failed = choose_vertex(input.mesh(), topology, options, intrinsic_only, result);
-    release_free_memory();  // the linear model's factorisation and blocks, before the flow's
+    release_free_memory(vertices);  // the linear model's factor and blocks, before the flow's
   }
 
   Discarded discarded;
@@ -638,7 +640,7 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
   result.linear_work.flow += result.flow.linear_work;
   result.linear_work.polish = result.polish.linear_work;
 
-  release_free_memory();  // the flow's and the polish's, before the layout's
+  release_free_memory(vertices);  // the flow's and the polish's, before the layout's
   report("cut graph, layout and atlas; distortion");
   const StageTimer t;
   // The polish's long-double metric when the flow's lengths are its rounding.

@@ -1,14 +1,26 @@
 #include "ricci/util/memory.h"
 
+#include <cstdlib>  // a standard header first: it defines __GLIBC__ with the GNU C library
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 
 namespace ricci {
 
-void release_free_memory() {
+void release_free_memory(std::size_t vertices) {
 #if defined(__GLIBC__)
-  malloc_trim(0);
+  if (vertices >= kReleaseFreeMemoryFromVertices) malloc_trim(0);
+#else
+  (void)vertices;
+#endif
+}
+
+void use_one_malloc_arena(std::size_t vertices) {
+#if defined(__GLIBC__)
+  if (vertices >= kReleaseFreeMemoryFromVertices) mallopt(M_ARENA_MAX, 1);
+#else
+  (void)vertices;
 #endif
 }
 

@@ -5,11 +5,25 @@
 // heap and keeps them when freed; at 1.6M faces the choice's and the flow's per-vertex and
 // per-edge arrays (6-32 MB each) leave hundreds of MB of freed but resident heap, which the
 // next stage's factorisation adds to (docs/design-notes.md, "Memory at 1.6M faces by stage").
+#include <cstddef>
+
 namespace ricci {
 
-/// Gives the allocator's free pages back to the system (glibc: malloc_trim(0)); does nothing
-/// with another C library. Costs a walk of the heap's free lists and, later, the page faults of
-/// reusing that memory: call it between stages, not in loops.
-void release_free_memory();
+/// Gives the allocator's free pages back to the system (glibc: malloc_trim(0)) when a problem
+/// of `vertices` vertices is large enough for it to pay: from kReleaseFreeMemoryFromVertices.
+/// Below, re-faulting the pages costs more time (~8% of a 100k-face atlas) than the memory is
+/// worth. Does nothing with another C library. Call it between stages, not in loops.
+void release_free_memory(std::size_t vertices);
+
+/// The problem size from which release_free_memory trims (800k vertices at 1.6M faces).
+constexpr std::size_t kReleaseFreeMemoryFromVertices = 200000;
+
+/// From kReleaseFreeMemoryFromVertices on, makes every thread allocate from the process's main
+/// heap (glibc: mallopt(M_ARENA_MAX, 1)), so that release_free_memory also returns what worker
+/// threads freed: the top of a thread's own arena stays resident (~200 MB at 1.6M faces).
+/// Below, threads keep their arenas (one heap costs a 100k-face msp fit ~3% in lock waits).
+/// For applications, before the computation's threads allocate: arenas made earlier stay in
+/// use. Does nothing with another C library.
+void use_one_malloc_arena(std::size_t vertices);
 
 }  // namespace ricci

@@ -1,0 +1,51 @@
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+#include <unistd.h>
+
+#include "ricci/util/memory.h"
+
+namespace {
+
+// Resident bytes of this process (Linux: /proc/self/statm).
+long resident_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  long total = 0, resident = 0;
+  statm >> total >> resident;
+  return resident * sysconf(_SC_PAGESIZE);
+}
+
+}  // namespace
+
+// release_free_memory gives freed heap pages back from its problem size on, and not below.
+TEST(ReleaseFreeMemory, ReturnsFreedHeapPagesFromItsProblemSize) {
+#if !defined(__GLIBC__) || !defined(__linux__)
+  GTEST_SKIP() << "malloc_trim and /proc/self/statm: glibc on Linux only";
+#else
+  // 96 MB in 64 KB blocks (below the mmap threshold: on the heap), each followed by a small
+  // block that stays, so that freeing the large ones leaves holes free() cannot trim.
+  void* (*volatile allocate)(std::size_t) = std::malloc;  // not elided with its free
+  constexpr std::size_t kBlock = 64 << 10;
+  constexpr int kBlocks = 1536;
+  std::vector<void*> large, small;
+  for (int i = 0; i < kBlocks; ++i) {
+    large.push_back(allocate(kBlock));
+    std::memset(large.back(), 1, kBlock);
+    small.push_back(allocate(64));
+  }
+  for (void* p : large) std::free(p);
+  const long freed = resident_bytes();
+  ricci::release_free_memory(ricci::kReleaseFreeMemoryFromVertices - 1);
+  const long below = resident_bytes();
+  ricci::release_free_memory(ricci::kReleaseFreeMemoryFromVertices);
+  const long at = resident_bytes();
+  for (void* p : small) std::free(p);
+  constexpr long kMB = 1 << 20;
+  EXPECT_LT(freed - below, 8 * kMB) << "trimmed below the problem size";
+  EXPECT_GT(below - at, 64 * kMB) << "the freed heap stayed resident";
+#endif
+}
