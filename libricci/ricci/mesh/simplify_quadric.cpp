@@ -6,6 +6,8 @@
 #include <queue>
 #include <vector>
 
+#include "ricci/util/parallel.h"
+
 namespace ricci {
 namespace {
 
@@ -91,7 +93,16 @@ class Decimator {
     }
     stamps_.assign(mesh_.n_edges(), 0);
     placements_.resize(mesh_.n_edges());
-    for (auto e : mesh_.edges()) push(e);
+    // The first placements in parallel (each edge its own slot), queued in edge order as push
+    // would: the same heap, so the same collapses.
+    parallel_for(mesh_.n_edges(), 0, [&](std::size_t i) {
+      placements_[i] = placement(mesh_.edge_handle(static_cast<int>(i)));
+    });
+    std::vector<Entry> entries;
+    entries.reserve(4 * mesh_.n_edges());
+    queue_ = std::priority_queue<Entry>(std::less<Entry>(), std::move(entries));
+    for (auto e : mesh_.edges())
+      queue_.push({placements_[e.idx()].cost, e.idx(), ++stamps_[e.idx()]});
   }
 
   int run(int target_faces) {
@@ -131,10 +142,14 @@ class Decimator {
     return (p[1] - p[0]).cross(p[2] - p[0]);
   }
 
-  void push(EdgeHandle e) {
+  Placement placement(EdgeHandle e) const {
     const auto h = mesh_.halfedge_handle(e, 0);
     const auto a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-    const Placement p = place(quadrics_[a.idx()] + quadrics_[b.idx()], point(a), point(b));
+    return place(quadrics_[a.idx()] + quadrics_[b.idx()], point(a), point(b));
+  }
+
+  void push(EdgeHandle e) {
+    const Placement p = placement(e);
     placements_[e.idx()] = p;
     queue_.push({p.cost, e.idx(), ++stamps_[e.idx()]});
   }
