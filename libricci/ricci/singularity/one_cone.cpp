@@ -232,7 +232,7 @@ void take_over(FlowResult& result, FlowResult next) {
 }
 
 FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& caller_options,
-                       std::vector<std::string>& failures) {
+                       int first_metric, std::vector<std::string>& failures) {
   FlowResult result;
   // Every run below is on problem.mesh: one symbolic analysis serves them all.
   FlowOptions options = caller_options;
@@ -269,7 +269,11 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& caller_
       failures.push_back(name + e.what());
     }
   }
-  for (auto [scheme, radii] : one_cone_metric_order(problem.kind)) {
+  const auto order = one_cone_metric_order(problem.kind);
+  const size_t first =
+      static_cast<size_t>(std::clamp<int>(first_metric, 0, static_cast<int>(order.size()) - 1));
+  for (size_t i = first; i < order.size(); ++i) {
+    const auto [scheme, radii] = order[i];
     FlowOptions attempt = options;
     attempt.scheme = scheme;
     attempt.radii = radii;
@@ -346,20 +350,31 @@ FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector
   return result;
 }
 
-FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric) {
+int metric_order_position(OneConeKind kind, const std::string& metric_name) {
+  const auto order = one_cone_metric_order(kind);
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (metric_name == to_string(order[i].first) + "/" + radius_name(order[i].second)) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric,
+                               int first_metric) {
   if (keep_metric) {
     FlowResult result = flow(problem.mesh, problem.targets, options);
     result.metric_name = to_string(options.scheme) + "/" + radius_name(options.radii);
     return result;
   }
   std::vector<std::string> failures;
-  FlowResult result = try_metrics(problem, options, failures);
+  FlowResult result = try_metrics(problem, options, first_metric, failures);
   for (auto& [name, targets] : alternative_boundary_targets(problem)) {
     if (result.converged()) break;
     OneConeProblem other = problem;
     other.targets = std::move(targets);
     failures.push_back("failed with every metric; trying the boundary target: " + name);
-    FlowResult next = try_metrics(other, options, failures);
+    FlowResult next = try_metrics(other, options, first_metric, failures);
     if (next.converged()) {
       take_over(result, std::move(next));
     } else {

@@ -70,9 +70,15 @@ inline constexpr int kMaxHandleSubdivisions = 3;
 /// Runs the flow with the metrics of one_cone_metric_order until one converges (single cones
 /// first try cone_tangent_metric with 3 rings, then that order; the options'
 /// scheme and radii are overridden unless `keep_metric`). The result's failed_attempts lists the
-/// runs that did not converge. Returns the last attempt when none converged.
+/// runs that did not converge. Returns the last attempt when none converged. `first_metric`
+/// skips that many metrics at the head of the order (the last one is always tried; the
+/// singularity choice skips those that failed at every candidate it verified first).
 [[nodiscard]] FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options,
-                                             bool keep_metric = false);
+                                             bool keep_metric = false, int first_metric = 0);
+
+/// Position in one_cone_metric_order(kind) of the metric a solve_one_cone_flow result names
+/// (FlowResult::metric_name); -1 for any other (the cone-tangent start, a continuation).
+[[nodiscard]] int metric_order_position(OneConeKind kind, const std::string& metric_name);
 
 /// A metric that differs near a single cone: `far` (the mesh's inversive distance or Thurston
 /// circle packing, radii by `radii`) on the edges with both ends `rings` or more rings from the

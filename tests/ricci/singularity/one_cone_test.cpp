@@ -183,6 +183,36 @@ TEST(OneCone, GenusZeroRemovesTheStarAndBendsTheNewBoundary) {
   expect_flow_reaches_target(problem);
 }
 
+// first_metric skips the head of the metric order (the singularity choice's descents); the
+// converged metric's position in that order is read back from its name.
+TEST(OneCone, FirstMetricSkipsTheHeadOfTheOrder) {
+  for (auto kind : {ricci::OneConeKind::SingleCone, ricci::OneConeKind::PuncturedSphere}) {
+    EXPECT_EQ(ricci::metric_order_position(kind, "no such metric"), -1);
+  }
+  auto problem = ricci::prepare_one_cone(read_test_mesh("closed_g0/knight_decimated.off"), 7);
+  const auto order = ricci::one_cone_metric_order(problem.kind);
+  ASSERT_GE(order.size(), 3u);
+  const ricci::FlowOptions options = ricci::one_cone_flow_options();
+  const ricci::FlowResult all = ricci::solve_one_cone_flow(problem, options);
+  ASSERT_TRUE(all.converged());
+  const int position = ricci::metric_order_position(problem.kind, all.metric_name);
+  ASSERT_GE(position, 0);
+  ASSERT_EQ(all.failed_attempts.size(), static_cast<size_t>(position));
+  // Starting at the metric that converged: the same metric and lengths, no failed run.
+  const ricci::FlowResult direct = ricci::solve_one_cone_flow(problem, options, false, position);
+  ASSERT_TRUE(direct.converged());
+  EXPECT_EQ(direct.metric_name, all.metric_name);
+  EXPECT_TRUE(direct.failed_attempts.empty());
+  EXPECT_LT(direct.linear_work.factorizations, all.linear_work.factorizations + (position == 0));
+  ASSERT_EQ(direct.lengths.size(), all.lengths.size());
+  EXPECT_LT((direct.lengths - all.lengths).cwiseAbs().maxCoeff(),
+            1e-8 * all.lengths.cwiseAbs().maxCoeff());
+  // Past the end: the last metric of the order is still tried.
+  const ricci::FlowResult last = ricci::solve_one_cone_flow(problem, options, false, 99);
+  EXPECT_EQ(ricci::metric_order_position(problem.kind, last.metric_name),
+            static_cast<int>(order.size()) - 1);
+}
+
 TEST(OneCone, OpenSurfacePushesCurvatureToTheBoundary) {
   auto mesh = read_test_mesh("open/head.off");
   auto problem = ricci::prepare_one_cone(mesh, -1);
