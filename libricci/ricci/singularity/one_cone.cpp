@@ -62,6 +62,11 @@ const char* radius_name(RadiusInit radii) {
   return "unknown";
 }
 
+// A metric's name in results and messages: "scheme/radii" (FlowResult::metric_name).
+std::string metric_label(Scheme scheme, RadiusInit radii) {
+  return to_string(scheme) + "/" + radius_name(radii);
+}
+
 std::vector<int> identity_map(int n, int added) {
   std::vector<int> map(static_cast<size_t>(n + added), -1);
   for (int i = 0; i < n; ++i) map[static_cast<size_t>(i)] = i;
@@ -278,9 +283,9 @@ FlowResult try_metrics(const OneConeProblem& problem, const FlowOptions& caller_
     attempt.scheme = scheme;
     attempt.radii = radii;
     take_over(result, flow(problem.mesh, problem.targets, attempt));
-    result.metric_name = to_string(scheme) + "/" + radius_name(radii);
+    result.metric_name = metric_label(scheme, radii);
     if (result.converged()) break;
-    failures.push_back(to_string(scheme) + "/" + radius_name(radii) + ": " + to_string(result.status));
+    failures.push_back(metric_label(scheme, radii) + ": " + to_string(result.status));
   }
   return result;
 }
@@ -315,7 +320,7 @@ std::vector<std::pair<std::string, Targets>> alternative_boundary_targets(const 
 }  // namespace
 
 std::string to_string(const ConeRingMetric& rule) {
-  return to_string(rule.far) + "/" + radius_name(rule.radii) + ", " +
+  return metric_label(rule.far, rule.radii) + ", " +
          (rule.near == Scheme::combinatorial ? std::string("tangent") : to_string(rule.near)) +
          " within " + std::to_string(rule.rings) + " rings of the cone";
 }
@@ -353,18 +358,18 @@ FlowResult solve_cone_ring_flow(const OneConeProblem& problem, const std::vector
 int metric_order_position(OneConeKind kind, const std::string& metric_name) {
   const auto order = one_cone_metric_order(kind);
   for (size_t i = 0; i < order.size(); ++i) {
-    if (metric_name == to_string(order[i].first) + "/" + radius_name(order[i].second)) {
+    if (metric_name == metric_label(order[i].first, order[i].second)) {
       return static_cast<int>(i);
     }
   }
   return -1;
 }
 
-FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options, bool keep_metric,
-                               int first_metric) {
+FlowResult solve_one_cone_flow(const OneConeProblem& problem, const FlowOptions& options,
+                               bool keep_metric, int first_metric) {
   if (keep_metric) {
     FlowResult result = flow(problem.mesh, problem.targets, options);
-    result.metric_name = to_string(options.scheme) + "/" + radius_name(options.radii);
+    result.metric_name = metric_label(options.scheme, options.radii);
     return result;
   }
   std::vector<std::string> failures;
