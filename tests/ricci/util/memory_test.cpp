@@ -9,6 +9,11 @@
 
 #include "ricci/util/memory.h"
 
+// Defined when AddressSanitizer's runtime is linked in (its allocator ignores malloc_trim),
+// whether or not this file was compiled with it (scripts/sanitize-launcher.sh instruments a
+// few sources and links the whole program with the runtime).
+extern "C" void __asan_init() __attribute__((weak));
+
 namespace {
 
 // Resident bytes of this process (Linux: /proc/self/statm).
@@ -26,6 +31,7 @@ TEST(ReleaseFreeMemory, ReturnsFreedHeapPagesFromItsProblemSize) {
 #if !defined(__GLIBC__) || !defined(__linux__)
   GTEST_SKIP() << "malloc_trim and /proc/self/statm: glibc on Linux only";
 #else
+  if (&__asan_init != nullptr) GTEST_SKIP() << "AddressSanitizer's allocator: no malloc_trim";
   // 96 MB in 64 KB blocks (below the mmap threshold: on the heap), each followed by a small
   // block that stays, so that freeing the large ones leaves holes free() cannot trim.
   void* (*volatile allocate)(std::size_t) = std::malloc;  // not elided with its free
