@@ -320,9 +320,9 @@ int run_one_cone_case(int argc, char** argv) {
   j["mesh"] = path;
   j["faces"] = mesh.n_faces();
   j["read_seconds"] = read;
+  ricci::use_one_malloc_arena(mesh.n_vertices());  // as msp atlas, before any thread allocates
   // The reference solve first, so that the process's peak is the larger of the two; the mesh
   // is then handed over to the pipeline, as msp atlas does.
-  ricci::use_one_malloc_arena(mesh.n_vertices());  // as msp atlas, before any thread allocates
   const ReferenceSolve reference = reference_solve(mesh);
   try {
     sampler = std::make_unique<RssSampler>();

@@ -101,8 +101,7 @@ class Decimator {
     std::vector<Entry> entries;
     entries.reserve(4 * mesh_.n_edges());
     queue_ = std::priority_queue<Entry>(std::less<Entry>(), std::move(entries));
-    for (auto e : mesh_.edges())
-      queue_.push({placements_[e.idx()].cost, e.idx(), ++stamps_[e.idx()]});
+    for (auto e : mesh_.edges()) enqueue(e);
   }
 
   int run(int target_faces) {
@@ -148,10 +147,14 @@ class Decimator {
     return place(quadrics_[a.idx()] + quadrics_[b.idx()], point(a), point(b));
   }
 
+  // Queues edge e at its current placement's cost, a new stamp making older entries stale.
+  void enqueue(EdgeHandle e) {
+    queue_.push({placements_[e.idx()].cost, e.idx(), ++stamps_[e.idx()]});
+  }
+
   void push(EdgeHandle e) {
-    const Placement p = placement(e);
-    placements_[e.idx()] = p;
-    queue_.push({p.cost, e.idx(), ++stamps_[e.idx()]});
+    placements_[e.idx()] = placement(e);
+    enqueue(e);
   }
 
   // Link condition, and no remaining face around either end turned by 90 degrees or more (or

@@ -11,19 +11,20 @@ namespace ricci {
 
 /// Gives the allocator's free pages back to the system (glibc: malloc_trim(0)) when a problem
 /// of `vertices` vertices is large enough for it to pay: from kReleaseFreeMemoryFromVertices.
-/// Below, re-faulting the pages costs more time (~8% of a 100k-face atlas) than the memory is
-/// worth. Does nothing with another C library. Call it between stages, not in loops.
+/// Below, re-faulting the pages costs more time than the memory is worth (figures in
+/// docs/design-notes.md, "The 1.6M-face peak back under 1.2e9 bytes"). Does nothing with
+/// another C library. Call it between stages, not in loops.
 void release_free_memory(std::size_t vertices);
 
-/// The problem size from which release_free_memory trims (800k vertices at 1.6M faces).
+/// The problem size (vertices) from which release_free_memory and use_one_malloc_arena act.
 constexpr std::size_t kReleaseFreeMemoryFromVertices = 200000;
 
 /// From kReleaseFreeMemoryFromVertices on, makes every thread allocate from the process's main
 /// heap (glibc: mallopt(M_ARENA_MAX, 1)), so that release_free_memory also returns what worker
-/// threads freed: the top of a thread's own arena stays resident (~200 MB at 1.6M faces).
-/// Below, threads keep their arenas (one heap costs a 100k-face msp fit ~3% in lock waits).
-/// For applications, before the computation's threads allocate: arenas made earlier stay in
-/// use. Does nothing with another C library.
+/// threads freed (malloc_trim cannot return the top of a thread's own arena). Below, threads
+/// keep their arenas: one shared heap slows smaller, allocation-heavy runs. For applications,
+/// before the computation's threads allocate (arenas made earlier stay in use). Does nothing
+/// with another C library.
 void use_one_malloc_arena(std::size_t vertices);
 
 }  // namespace ricci
