@@ -4,33 +4,26 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/primitives.h>
 #include <nlohmann/json.hpp>
 
 #include "info_subprocess.h"
+#include "scratch_folder.h"
 #include "test_paths.h"
 
 namespace {
 
-namespace fs = std::filesystem;
-
-class IntrinsicCli : public ::testing::Test {
+class IntrinsicCli : public msp_test::ScratchFolderTest {
  protected:
+  IntrinsicCli() : ScratchFolderTest("msp_intrinsic_cli_") {}
   void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("msp_intrinsic_cli_" + std::to_string(::getpid()));
-    fs::create_directories(folder_);
-    mesh_ = (folder_ / "genus4.off").string();
-    ricci::write_mesh(ricci::make_genus_slab(4, 2, 4), mesh_);
+    ScratchFolderTest::SetUp();
+    mesh_ = file("genus4.off", ricci::make_genus_slab(4, 2, 4));
   }
-  void TearDown() override { fs::remove_all(folder_); }
-  fs::path folder_;
   std::string mesh_;
 };
 

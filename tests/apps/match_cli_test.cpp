@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
 
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/primitives.h>
 #include <nlohmann/json.hpp>
 
 #include "info_subprocess.h"
+#include "scratch_folder.h"
 #include "ricci/analysis/analysis_meshes.h"
 #include "ricci/test_meshes.h"
 
@@ -21,20 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class MatchCli : public ::testing::Test {
+class MatchCli : public msp_test::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("msp_match_cli_" + std::to_string(::getpid()));
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-  std::string file(const std::string& name, const ricci::Mesh& mesh) const {
-    const std::string path = (folder_ / name).string();
-    ricci::write_mesh(mesh, path);
-    return path;
-  }
-  std::string path(const std::string& name) const { return (folder_ / name).string(); }
-  fs::path folder_;
+  MatchCli() : ScratchFolderTest("msp_match_cli_") {}
 };
 
 ricci::Mesh plate() {

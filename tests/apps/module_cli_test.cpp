@@ -7,13 +7,13 @@
 #include <fstream>
 #include <sstream>
 
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/primitives.h>
 
 #include "info_subprocess.h"
+#include "scratch_folder.h"
 #include "ricci/analysis/analysis_meshes.h"
 #include "ricci/test_meshes.h"
 
@@ -21,20 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Writes `mesh` to a file in the temporary folder (removed with the fixture's folder).
-class ModuleCli : public ::testing::Test {
+class ModuleCli : public msp_test::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("msp_module_cli_" + std::to_string(::getpid()));
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-  std::string file(const std::string& name, const ricci::Mesh& mesh) const {
-    const std::string path = (folder_ / name).string();
-    ricci::write_mesh(mesh, path);
-    return path;
-  }
-  fs::path folder_;
+  ModuleCli() : ScratchFolderTest("msp_module_cli_") {}
 };
 
 double annulus_module(double r, double R) { return std::log(R / r) / (2 * M_PI); }
