@@ -24,6 +24,8 @@ import sys
 import time
 from pathlib import Path
 
+from ._task import write_json_atomically
+
 MESH_SUFFIXES = (".obj", ".off", ".ply", ".stl")
 FIT_OPTIONS = {
     "domain_faces": int,
@@ -97,14 +99,6 @@ def parse_fit_options(items):
         else:
             options[key] = kind(text)
     return options
-
-
-def write_json_atomically(path, value):
-    temp = f"{path}.tmp.{os.getpid()}"
-    with open(temp, "w", encoding="utf-8") as out:
-        json.dump(value, out, indent=1)
-        out.write("\n")
-    os.replace(temp, path)
 
 
 def error_report(mesh, message, error_type, seconds):
