@@ -177,8 +177,9 @@ bool fits_neighbourhood(const Mesh& mesh, const Eigen::VectorXd& lengths, const 
 /// For every domain face, whether the central chart (atlas.charts[0]) holds its neighbourhood
 /// as one piece and faithfully; face-parallel, each face its own slot (the same answers on any
 /// number of threads). Away from the cut the central chart holds a neighbourhood whose faces
-/// it holds faithfully and whose vertices it has once each: the test without
-/// holds_as_one_piece's search and sort.
+/// it holds faithfully and whose vertices it has once each: that test is per vertex (a face's
+/// neighbourhood is its vertices' domain stars), so only the faces failing it gather their
+/// neighbourhood for holds_as_one_piece's search and sort.
 std::vector<char> central_chart_serves(const Mesh& mesh, const Eigen::VectorXd& lengths,
                                        const AffineAtlas& atlas) {
   const Chart& central = atlas.charts[0];
@@ -191,21 +192,33 @@ std::vector<char> central_chart_serves(const Mesh& mesh, const Eigen::VectorXd& 
     char& count = copies[static_cast<size_t>(v)];
     count = static_cast<char>(std::min(count + 1, 2));
   }
-  const auto plainly_central = [&](const std::vector<int>& hood) {
-    for (int g : hood) {
-      if (!in_central[static_cast<size_t>(g)]) return false;
-      for (auto v : mesh.fv_range(FaceHandle(g))) {
-        if (copies[static_cast<size_t>(v.idx())] != 1) return false;
+  // Whether every domain face around v is faithful in the central chart with each of its
+  // vertices there once (vacuously true without domain faces, as an empty neighbourhood is).
+  std::vector<char> plain(mesh.n_vertices(), 0);
+  parallel_for(mesh.n_vertices(), 0, [&](size_t v) {
+    for (auto g : mesh.vf_range(VertexHandle(static_cast<int>(v)))) {
+      if (!atlas.in_domain[static_cast<size_t>(g.idx())]) continue;
+      if (!in_central[static_cast<size_t>(g.idx())]) return;
+      for (auto w : mesh.fv_range(g)) {
+        if (copies[static_cast<size_t>(w.idx())] != 1) return;
       }
     }
-    return true;
-  };
+    plain[v] = 1;
+  });
   std::vector<char> serves(mesh.n_faces(), 0);
   parallel_for(mesh.n_faces(), 0, [&](size_t f) {
     if (!atlas.in_domain[f]) return;
+    bool plainly_central = true;
+    for (auto v : mesh.fv_range(FaceHandle(static_cast<int>(f)))) {
+      if (!plain[static_cast<size_t>(v.idx())]) plainly_central = false;
+    }
+    if (plainly_central) {
+      serves[f] = 1;
+      return;
+    }
     const std::vector<int> hood =
         detail::face_neighbourhood(mesh, static_cast<int>(f), atlas.in_domain);
-    serves[f] = plainly_central(hood) || fits_neighbourhood(mesh, lengths, central, hood) ? 1 : 0;
+    serves[f] = fits_neighbourhood(mesh, lengths, central, hood) ? 1 : 0;
   });
   return serves;
 }

@@ -371,16 +371,34 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     // leftover defect by the distances it spans, so it goes in long double first, whatever its
     // size: flips of slivers leave edges far shorter than the input's (femur: a defect of
     // 1.4e-13 gave 1e-9 relative error on its shortest edge).
-    if (!r.converged() || polishes) {
+    // The mesh and the removed edges need the connectivity only: below
+    // mesh_beside_polish_below_faces they are built on a second thread beside the polish (and
+    // thrown away if it fails), from there after it, once the factorisation is freed.
+    const bool polish = !r.converged() || polishes;
+    const bool beside = polish && static_cast<double>(tables.num_faces()) <
+                                      static_cast<double>(options.mesh_beside_polish_below_faces);
+    Mesh mesh;
+    std::vector<int> edge_of;
+    const auto build_mesh = [&] { mesh = mesh_of_tables(tables, problem_mesh.V, edge_of); };
+    const auto count_removed = [&] {
+      result.removed_edges = removed_edge_count(problem_mesh.F, tables);
+    };
+    if (polish) {
       report("long-double polish");
-      const StageTimer polish;
-      const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
-      result.polish =
-          polish_e2_lengths(tables, lengths, result.problem.targets.curvature, 6, nearby,
-                            kPolishGoal);
+      run_workers(beside ? 2 : 1, [&](int worker) {
+        if (worker == 1) {
+          build_mesh();
+          count_removed();
+          return;
+        }
+        const StageTimer timer;
+        const NearbyLaplacian nearby{r.laplacian_factorization.get(), r.pinned_vertex};
+        result.polish = polish_e2_lengths(tables, lengths, result.problem.targets.curvature, 6,
+                                          nearby, kPolishGoal);
+        polish_seconds = timer.wall.seconds();
+        polish_cpu = timer.cpu.seconds();
+      });
       result.polished = true;
-      polish_seconds = polish.wall.seconds();
-      polish_cpu = polish.cpu.seconds();
       if (result.polish.error_after <= tolerance) {
         lengths = result.polish.lengths;
         flow.status = FlowStatus::converged;
@@ -397,23 +415,26 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     r.laplacian_factorization.reset();
     const bool converged = flow.status == FlowStatus::converged;
     if (converged) release_free_memory(vertices);  // the factorisation, before the mesh
-    // The removed edges (after the factor: their sorted keys) are counted on a second thread
-    // while the mesh is built.
-    run_workers(2, [&](int worker) {
-      if (worker == 1) {
-        result.removed_edges = removed_edge_count(problem_mesh.F, tables);
-        return;
-      }
-      if (!converged) return;
+    if (!beside) {
+      // The removed edges (after the factor: their sorted keys) are counted on a second
+      // thread while the mesh is built.
+      run_workers(2, [&](int worker) {
+        if (worker == 1) {
+          count_removed();
+        } else if (converged) {
+          build_mesh();
+        }
+      });
+    }
+    if (converged) {
       flow.metric_name = "intrinsic Delaunay flow (vertex scaling, " + std::to_string(r.flips) +
                          " flips)";
-      std::vector<int> edge_of;
-      result.problem.mesh = mesh_of_tables(tables, problem_mesh.V, edge_of);
+      result.problem.mesh = std::move(mesh);
       flow.lengths = by_mesh_edge(std::move(lengths), edge_of);
       result.polish.lengths = by_mesh_edge(std::move(result.polish.lengths), edge_of);
       result.polish.lengths_low = by_mesh_edge(std::move(result.polish.lengths_low), edge_of);
       result.intrinsic = true;
-    });
+    }
   }
   if (flow.status != FlowStatus::converged) result.problem.mesh = same_order_mesh(problem_mesh);
   result.flow = std::move(flow);

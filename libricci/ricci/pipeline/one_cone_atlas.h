@@ -39,6 +39,10 @@ struct OneConeAtlasOptions {
   /// steps spent on it gain nothing the polish does not do (docs/design-notes.md, "Memory at
   /// 1.6M faces by stage"). Smaller meshes keep the flow's own plateau rule.
   int polish_floor_from_faces = 400000;
+  /// Below this many faces the intrinsic flow's mesh is built from its triangulation on a
+  /// second thread while the long-double polish runs (it needs the connectivity only); from
+  /// here on it is built after the polish, once the flow's factorisation is freed (peak memory).
+  int mesh_beside_polish_below_faces = 400000;
   /// Collapse of edges much shorter than the median (mesh/collapse_short_edges.h) before
   /// anything else; the singular vertex is kept. The problem's `input_vertex` maps back.
   bool collapse_short_edges = false;
