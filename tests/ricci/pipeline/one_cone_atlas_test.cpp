@@ -204,6 +204,32 @@ TEST(OneConeAtlas, LargeMeshesLeaveTheDoubleFloorToThePolish) {
               newton.distortion.quasi_conformal_area_mean, 1e-9);
 }
 
+// The intrinsic flow's mesh is built beside the polish (below mesh_beside_polish_below_faces) or
+// after it: the same triangulation, removed-edge count, lengths and atlas either way.
+TEST(OneConeAtlas, MeshBuiltBesideThePolishEqualsTheOneBuiltAfterIt) {
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  options.polish_floor_from_faces = 0;  // the polish runs
+  options.mesh_beside_polish_below_faces = std::numeric_limits<int>::max();
+  const ricci::OneConeAtlasResult beside = ricci::build_one_cone_atlas(mesh, options);
+  options.mesh_beside_polish_below_faces = 0;
+  const ricci::OneConeAtlasResult after = ricci::build_one_cone_atlas(mesh, options);
+  ASSERT_TRUE(beside.intrinsic && after.intrinsic);
+  ASSERT_TRUE(beside.polished && after.polished);
+  EXPECT_GT(beside.removed_edges, 0);
+  EXPECT_EQ(beside.removed_edges, after.removed_edges);
+  ASSERT_EQ(beside.problem.mesh.n_faces(), after.problem.mesh.n_faces());
+  for (const auto f : beside.problem.mesh.faces()) {
+    auto a = beside.problem.mesh.fv_range(f).begin();
+    auto b = after.problem.mesh.fv_range(f).begin();
+    for (int k = 0; k < 3; ++k, ++a, ++b) EXPECT_EQ(a->idx(), b->idx());
+  }
+  EXPECT_EQ(beside.flow.lengths, after.flow.lengths);
+  EXPECT_EQ(beside.relative_transition_residual(), after.relative_transition_residual());
+  EXPECT_EQ(beside.atlas.layout.flipped_faces, 0);
+}
+
 }  // namespace
 
 namespace {
