@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <fstream>
 
-
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/primitives.h>
 #include <nlohmann/json.hpp>

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <sstream>
 
-
 #include <nlohmann/json.hpp>
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/primitives.h>

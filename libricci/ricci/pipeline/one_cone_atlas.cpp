@@ -376,7 +376,7 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     // thrown away if it fails), from there after it, once the factorisation is freed.
     const bool polish = !r.converged() || polishes;
     const bool beside = polish && static_cast<double>(tables.num_faces()) <
-                                      static_cast<double>(options.mesh_beside_polish_below_faces);
+                                      options.mesh_beside_polish_below_faces;
     Mesh mesh;
     std::vector<int> edge_of;
     const auto build_mesh = [&] { mesh = mesh_of_tables(tables, problem_mesh.V, edge_of); };
