@@ -251,11 +251,27 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
 }
 
 // What the delivered surface is measured against: the input as given (fit_surface's `input`,
-// its small holes not capped) and the holes fit_surface capped in it.
+// its small holes not capped), the holes fit_surface capped in it, and the input prepared for
+// measure_against_scan (prepared_input: begun on another thread while the first round is
+// simplified).
 struct DeliveredTarget {
   const ricci::Mesh& input;
   const ricci::SmallHoleCaps& holes;
+  std::shared_future<std::shared_ptr<const PreparedScan>> prepared;
 };
+
+// The input's triangles and search tree for measure_against_scan, built on a thread of its own.
+std::shared_future<std::shared_ptr<const PreparedScan>> prepared_input(const ricci::Mesh& input) {
+  return std::async(std::launch::async, [&input] {
+           const ricci::VertexFaceArrays arrays = ricci::to_arrays(input);
+           std::vector<std::array<int, 3>> triangles(static_cast<std::size_t>(arrays.F.rows()));
+           for (Eigen::Index f = 0; f < arrays.F.rows(); ++f)
+             triangles[static_cast<std::size_t>(f)] = {arrays.F(f, 0), arrays.F(f, 1),
+                                                       arrays.F(f, 2)};
+           return std::make_shared<const PreparedScan>(arrays.V, std::move(triangles));
+         })
+      .share();
+}
 
 // A round's tessellation measured against the DeliveredTarget (measure_delivered's figures), or
 // what that measure threw; the order-independent fingerprint of the tessellation it measured.
@@ -294,11 +310,6 @@ DeliveredMeasure measure_against_input(const DeliveredTarget& target,
   DeliveredMeasure result;
   result.tessellation = fingerprint(out.tessellation);
   try {
-    const ricci::VertexFaceArrays input = ricci::to_arrays(target.input);
-    std::vector<std::array<int, 3>> input_triangles(static_cast<std::size_t>(input.F.rows()));
-    for (Eigen::Index f = 0; f < input.F.rows(); ++f)
-      input_triangles[static_cast<std::size_t>(f)] = {input.F(f, 0), input.F(f, 1),
-                                                      input.F(f, 2)};
     const TriangleSoup soup = float_welded(out.tessellation);
     // Patches capping the input's own boundary loops cover what the scan does not have: they
     // are left out of the surface-to-scan direction (and counted there).
@@ -314,8 +325,8 @@ DeliveredMeasure measure_against_input(const DeliveredTarget& target,
       measure.unmeasured_surface_triangles[t] =
           out.input.boundary_loops > 0 && fill.rim.kind == Rim::Kind::boundary;
     }
-    result.report = measure_against_scan(soup.positions, soup.triangles, input.V,
-                                         input_triangles, measure);
+    result.report =
+        measure_against_scan(soup.positions, soup.triangles, *target.prepared.get(), measure);
   } catch (...) {
     result.error = std::current_exception();
   }
@@ -1369,6 +1380,8 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     if (needs_singularity(out.input)) scan.atlas.singular_vertex = vertex;
   }
   scan.progress = [&clock](const std::string& stage) { clock.begin(stage); };
+  // The input's search tree beside the first round's (serial) simplification.
+  std::shared_future<std::shared_ptr<const PreparedScan>> prepared = prepared_input(input);
   EarlyCaps early_caps;  // joined (if still running) when fit_surface returns or throws
   Round best = fit_round(dense, scan, options, 0, false, clock, out, &early_caps);
   // A round that folds, or is refined by the tolerance, is fitted again before any capping.
@@ -1389,7 +1402,7 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   std::optional<GoalRetry> retry;
   if (measured && !superseded.empty() && out.projection_rms > options.rms_goal * out.bbox_diagonal)
     retry = GoalRetry{scan, Attempt{out, best, superseded}};
-  const DeliveredTarget target{input, holes};
+  const DeliveredTarget target{input, holes, prepared};
   refine_and_deliver(dense, target, options, scan, best, superseded, clock, out);
   if (retry && out.surface_dihedral.over_90_deg > 0)
     retry_toward_goal(dense, target, options, *retry, clock, best, out);
