@@ -461,13 +461,11 @@ FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint
                      const Eigen::MatrixX3d& points, int iterations, int threads) {
   const auto count = static_cast<int>(parameters.size());
   Eigen::VectorXd distance = Eigen::VectorXd::Constant(count, -1.0);  // -1: skipped
-  threads = std::max(1, std::min(threads, std::max(count, 1)));
-  run_workers(threads, [&](int t) {
-    for (int k = t; k < count; k += threads) {
-      if (parameters[k].face < 0 || !spline.space->in_domain(parameters[k].face)) continue;
-      const Eigen::Vector3d p = points.row(k).transpose();
-      distance[k] = project_to_spline(spline, parameters[k], p, iterations).distance;
-    }
+  parallel_for(static_cast<std::size_t>(count), std::max(1, threads), [&](std::size_t i) {
+    const auto k = static_cast<int>(i);
+    if (parameters[i].face < 0 || !spline.space->in_domain(parameters[i].face)) return;
+    const Eigen::Vector3d p = points.row(k).transpose();
+    distance[k] = project_to_spline(spline, parameters[i], p, iterations).distance;
   });
   FitErrors errors;
   double sum = 0.0;
@@ -517,18 +515,16 @@ CorrectedParameters correct_parameters(const ManifoldSpline& spline,
   result.parameters = parameters;
   const auto count = static_cast<int>(parameters.size());
   std::vector<char> moved(parameters.size(), 0);
-  threads = std::max(1, std::min(threads, std::max(count, 1)));
-  run_workers(threads, [&](int t) {
-    for (int k = t; k < count; k += threads) {
-      const DomainPoint& start = parameters[k];
-      if (start.face < 0 || !space.in_domain(start.face)) continue;
-      const Projection p =
-          project_to_spline(spline, start, points.row(k).transpose(), iterations);
-      if (on_domain_rim(space, p.point.face, p.point.barycentric)) continue;
-      if (p.point.face == start.face && p.point.barycentric == start.barycentric) continue;
-      result.parameters[k] = p.point;
-      moved[k] = 1;
-    }
+  parallel_for(static_cast<std::size_t>(count), std::max(1, threads), [&](std::size_t k) {
+    const DomainPoint& start = parameters[k];
+    if (start.face < 0 || !space.in_domain(start.face)) return;
+    const Projection p = project_to_spline(spline, start,
+                                           points.row(static_cast<Eigen::Index>(k)).transpose(),
+                                           iterations);
+    if (on_domain_rim(space, p.point.face, p.point.barycentric)) return;
+    if (p.point.face == start.face && p.point.barycentric == start.barycentric) return;
+    result.parameters[k] = p.point;
+    moved[k] = 1;
   });
   for (char m : moved) result.moved += m;
   return result;

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_set>
@@ -249,11 +251,27 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
 }
 
 // What the delivered surface is measured against: the input as given (fit_surface's `input`,
-// its small holes not capped) and the holes fit_surface capped in it.
+// its small holes not capped), the holes fit_surface capped in it, and the input prepared for
+// measure_against_scan (prepared_input: begun on another thread while the first round is
+// simplified).
 struct DeliveredTarget {
   const ricci::Mesh& input;
   const ricci::SmallHoleCaps& holes;
+  std::shared_future<std::shared_ptr<const PreparedScan>> prepared;
 };
+
+// The input's triangles and search tree for measure_against_scan, built on a thread of its own.
+std::shared_future<std::shared_ptr<const PreparedScan>> prepared_input(const ricci::Mesh& input) {
+  return std::async(std::launch::async, [&input] {
+           const ricci::VertexFaceArrays arrays = ricci::to_arrays(input);
+           std::vector<std::array<int, 3>> triangles(static_cast<std::size_t>(arrays.F.rows()));
+           for (Eigen::Index f = 0; f < arrays.F.rows(); ++f)
+             triangles[static_cast<std::size_t>(f)] = {arrays.F(f, 0), arrays.F(f, 1),
+                                                       arrays.F(f, 2)};
+           return std::make_shared<const PreparedScan>(arrays.V, std::move(triangles));
+         })
+      .share();
+}
 
 // A round's tessellation measured against the DeliveredTarget (measure_delivered's figures), or
 // what that measure threw; the order-independent fingerprint of the tessellation it measured.
@@ -292,11 +310,6 @@ DeliveredMeasure measure_against_input(const DeliveredTarget& target,
   DeliveredMeasure result;
   result.tessellation = fingerprint(out.tessellation);
   try {
-    const ricci::VertexFaceArrays input = ricci::to_arrays(target.input);
-    std::vector<std::array<int, 3>> input_triangles(static_cast<std::size_t>(input.F.rows()));
-    for (Eigen::Index f = 0; f < input.F.rows(); ++f)
-      input_triangles[static_cast<std::size_t>(f)] = {input.F(f, 0), input.F(f, 1),
-                                                      input.F(f, 2)};
     const TriangleSoup soup = float_welded(out.tessellation);
     // Patches capping the input's own boundary loops cover what the scan does not have: they
     // are left out of the surface-to-scan direction (and counted there).
@@ -312,8 +325,8 @@ DeliveredMeasure measure_against_input(const DeliveredTarget& target,
       measure.unmeasured_surface_triangles[t] =
           out.input.boundary_loops > 0 && fill.rim.kind == Rim::Kind::boundary;
     }
-    result.report = measure_against_scan(soup.positions, soup.triangles, input.V,
-                                         input_triangles, measure);
+    result.report =
+        measure_against_scan(soup.positions, soup.triangles, *target.prepared.get(), measure);
   } catch (...) {
     result.error = std::current_exception();
   }
@@ -406,6 +419,8 @@ void take_refined_if_unfolded(const FitSurfaceOptions& options, FittedSurface& o
   out.surface_dihedral = std::move(dihedral);
 }
 
+struct EarlyCaps;
+
 // What one fit round leaves for the refinement: the domain it was built on, the parameters of
 // the input's vertices and the distance of every input vertex to the surface (-1: not measured).
 struct Round {
@@ -417,6 +432,7 @@ struct Round {
   std::vector<DomainPoint> setup_parameters;  // fit_scan's, for the refit's thin-plate weights
   FitOptions fit;
   double fit_rms_at_parameters = 0.0;  // fit_scan's FitResult::rms_at_parameters
+  EarlyCaps* early_caps = nullptr;     // fit_surface's, when this round began one
   // Its capped tessellation measured against the input (finish_round), for measure_delivered.
   std::optional<DeliveredMeasure> delivered;
 };
@@ -424,6 +440,67 @@ struct Round {
 // How finish_round treats the holes: rims left open (a round judged), capped cheaply
 // (CapHolesOptions::screening: a round ranked for delivery) or capped (the round delivered).
 enum class Caps { open, screened, full };
+
+// cap_holes' options for out.surface as fit_surface caps it.
+CapHolesOptions cap_options(const FitSurfaceOptions& options, const FittedSurface& out,
+                            Caps caps) {
+  CapHolesOptions cap;
+  cap.open_input = out.input.boundary_loops > 0;
+  cap.fill_boundaries = options.fill_boundaries;
+  cap.collar_faces = out.collar_faces;
+  cap.cone_hole = cone_hole_limits(out.input.genus, out.fit_unconstrained_faces > 0);
+  cap.make_patches = caps != Caps::open;
+  cap.screening = caps == Caps::screened;
+  return cap;
+}
+
+// The full capping of the first round's surface, begun on a second thread as soon as its spline
+// is fitted, while the main thread judges the round on its open rims (rims, tessellation,
+// folds): that round is most often the one delivered, and the capping's serial stretches (the
+// cone patch's ordering, factorisation and solves, meet_patches) leave the other core to the
+// judging. cap_holes depends on the surface and its options alone, so the round delivered with
+// the same spline takes this result, the one its own capping would give; any other round caps
+// as before (the work here is lost). Nothing else may solve while it runs: the BLAS thread
+// count is the process' (serial_blas.h), so fit_surface waits for it before any refit.
+struct EarlyCaps {
+  std::shared_ptr<const ManifoldSplineSpace> space;
+  Eigen::MatrixX3d control_points;  // the spline capped
+  std::vector<char> collar_faces;
+  std::future<std::pair<SplineSurface, CapHolesReport>> capped;
+
+  void start(const FitSurfaceOptions& options, const FittedSurface& out) {
+    space = out.surface.spline.space;
+    control_points = out.surface.spline.control_points;
+    collar_faces = out.collar_faces;
+    SplineSurface surface = out.surface;
+    surface.fills.clear();  // as deliver_round leaves them
+    surface.open_rims.clear();
+    capped = std::async(std::launch::async, [surface = std::move(surface),
+                                             cap = cap_options(options, out, Caps::full)]() mutable {
+      CapHolesReport report = cap_holes(surface, cap);
+      return std::make_pair(std::move(surface), std::move(report));
+    });
+  }
+
+  // Blocks until the capping is done (its result kept for take).
+  void wait() const {
+    if (capped.valid()) capped.wait();
+  }
+
+  // The capping of `out.surface` if it was begun here (once), else nothing.
+  std::optional<CapHolesReport> take(FittedSurface& out) {
+    const ManifoldSpline& spline = out.surface.spline;
+    if (!capped.valid() || spline.space != space || out.collar_faces != collar_faces ||
+        spline.control_points.rows() != control_points.rows() ||
+        !(spline.control_points.array() == control_points.array()).all()) {
+      wait();
+      return std::nullopt;
+    }
+    auto [surface, report] = capped.get();
+    out.surface = std::move(surface);
+    return std::move(report);
+  }
+};
 
 // The holes of out.surface (its spline as fit_scan left it) found and capped as `caps` says;
 // the tessellation (at `density`, 0: by domain size) and the measures of the surface itself.
@@ -435,14 +512,10 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
                   const DeliveredTarget* target = nullptr) {
   const bool patches = caps != Caps::open;
   clock.begin(caps == Caps::full ? "fill" : caps == Caps::screened ? "screen" : "rims");
-  CapHolesOptions cap;
-  cap.open_input = out.input.boundary_loops > 0;
-  cap.fill_boundaries = options.fill_boundaries;
-  cap.collar_faces = out.collar_faces;
-  cap.cone_hole = cone_hole_limits(out.input.genus, out.fit_unconstrained_faces > 0);
-  cap.make_patches = patches;
-  cap.screening = caps == Caps::screened;
-  CapHolesReport capped = cap_holes(out.surface, cap);
+  std::optional<CapHolesReport> early;
+  if (caps == Caps::full && round.early_caps) early = round.early_caps->take(out);
+  CapHolesReport capped =
+      early ? std::move(*early) : cap_holes(out.surface, cap_options(options, out, caps));
   out.fill_failures = std::move(capped.failures);
   out.boundary_rims = capped.boundary_rims;
   out.fallback_fills = capped.fallback_fills;
@@ -489,10 +562,11 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
 }
 
 // One whole fit: fit_scan, then finish_round without patches (fit_surface caps the delivered
-// round once, deliver_round); `project`: with the projection's measures.
+// round once, deliver_round); `project`: with the projection's measures. With `early_caps`
+// the full capping begins beside finish_round (EarlyCaps).
 Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
                 const FitSurfaceOptions& options, int density, bool project, StageClock& clock,
-                FittedSurface& out) {
+                FittedSurface& out, EarlyCaps* early_caps = nullptr) {
   ScanFitResult fitted = fit_scan(dense, scan);
   Round round;
   round.parameters = std::move(fitted.vertex_parameters);
@@ -503,6 +577,10 @@ Round fit_round(const ricci::Mesh& dense, const ScanFitOptions& scan,
   round.fit = std::move(fitted.fit_options);
   round.fit_rms_at_parameters = fitted.fit.rms_at_parameters;
   take_scan(std::move(fitted), out);
+  if (early_caps) {
+    early_caps->start(options, out);
+    round.early_caps = early_caps;
+  }
   finish_round(dense, options, density, Caps::open, project, clock, round, out);
   return round;
 }
@@ -1099,8 +1177,10 @@ bool refine_to_rms_goal(const ricci::Mesh& dense, const FitSurfaceOptions& optio
     return false;
   project_round(dense, clock, best, out);
   out.refinement.push_back(round_summary(out, best, options));
-  if (out.projection_rms > goal)
+  if (out.projection_rms > goal) {
+    if (best.early_caps) best.early_caps->wait();  // before the refinement's solves
     refine_toward_goal(dense, options, scan, best, superseded, clock, out);
+  }
   return true;
 }
 
@@ -1300,7 +1380,12 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
     if (needs_singularity(out.input)) scan.atlas.singular_vertex = vertex;
   }
   scan.progress = [&clock](const std::string& stage) { clock.begin(stage); };
-  Round best = fit_round(dense, scan, options, 0, false, clock, out);
+  // The input's search tree beside the first round's (serial) simplification.
+  std::shared_future<std::shared_ptr<const PreparedScan>> prepared = prepared_input(input);
+  EarlyCaps early_caps;  // joined (if still running) when fit_surface returns or throws
+  Round best = fit_round(dense, scan, options, 0, false, clock, out, &early_caps);
+  // A round that folds, or is refined by the tolerance, is fitted again before any capping.
+  if (out.surface_dihedral.over_90_deg > 0 || options.tolerance > 0.0) early_caps.wait();
   Superseded superseded;
   const bool measured = refine_to_rms_goal(dense, options, scan, best, superseded, clock, out);
   // A first round without folds and without a tolerance is the only one (nothing to refine):
@@ -1317,7 +1402,7 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   std::optional<GoalRetry> retry;
   if (measured && !superseded.empty() && out.projection_rms > options.rms_goal * out.bbox_diagonal)
     retry = GoalRetry{scan, Attempt{out, best, superseded}};
-  const DeliveredTarget target{input, holes};
+  const DeliveredTarget target{input, holes, prepared};
   refine_and_deliver(dense, target, options, scan, best, superseded, clock, out);
   if (retry && out.surface_dihedral.over_90_deg > 0)
     retry_toward_goal(dense, target, options, *retry, clock, best, out);

@@ -1,12 +1,41 @@
 #pragma once
-// libricci's thread pool (ricci/util/parallel.h) under libspline's names. Spline evaluations are
+// libricci's thread pool (ricci/util/parallel.h) under libspline's names, with libspline's own
+// parallel_for: blocks handed out as the threads ask for them. Spline evaluations are
 // thread-safe (ManifoldSplineSpace caches its chart spaces under once_flags).
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+
 #include "ricci/util/parallel.h"
 
 namespace spline {
 
-using ricci::parallel_for;
 using ricci::parallel_thread_count;
 using ricci::run_workers;
+
+/// Runs body(i) for i in [0, count) on up to `threads` threads (0: the hardware's; fewer for
+/// small loops, parallel_thread_count), in blocks of `block` consecutive items that each thread
+/// takes, in increasing order, when it has finished its previous block. A thread slowed down
+/// (another of our stages beside it, another process) then takes fewer blocks instead of
+/// holding the loop up. Each item must write its own outputs: results do not depend on which
+/// thread ran an item. Rethrows the exception of the lowest-numbered thread that threw.
+template <class Body>
+void parallel_for(std::size_t count, int threads, const Body& body, std::size_t block = 64) {
+  const int n = parallel_thread_count(threads, count);
+  if (n <= 1) {
+    for (std::size_t i = 0; i < count; ++i) body(i);
+    return;
+  }
+  block = std::max<std::size_t>(1, block);
+  std::atomic<std::size_t> next{0};
+  run_workers(n, [&](int) {
+    for (;;) {
+      const std::size_t start = next.fetch_add(block, std::memory_order_relaxed);
+      if (start >= count) return;
+      const std::size_t end = std::min(count, start + block);
+      for (std::size_t i = start; i < end; ++i) body(i);
+    }
+  });
+}
 
 }  // namespace spline

@@ -176,13 +176,13 @@ std::vector<std::array<int, 2>> soup_boundary_edges(
   return out;
 }
 
-ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_positions,
-                                        const std::vector<std::array<int, 3>>& surface_triangles,
-                                        const Eigen::MatrixX3d& scan_positions,
-                                        const std::vector<std::array<int, 3>>& scan_triangles,
-                                        const ScanDistanceOptions& options) {
+namespace {
+
+// The checks of the surface and the options (the scan's: check_indices).
+void check_surface(const Eigen::MatrixX3d& surface_positions,
+                   const std::vector<std::array<int, 3>>& surface_triangles,
+                   const ScanDistanceOptions& options) {
   check_indices(surface_positions, surface_triangles, "surface");
-  check_indices(scan_positions, scan_triangles, "scan");
   if (!(options.coverage_tolerance > 0.0)) {
     throw ricci::InvalidInputError("coverage tolerance must be positive");
   }
@@ -192,6 +192,17 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
                                    std::to_string(unmeasured.size()) + " flags for " +
                                    std::to_string(surface_triangles.size()) + " triangles");
   }
+}
+
+// measure_against_scan with both trees built (the scan's checked).
+ScanDistanceReport measure_with_trees(const Eigen::MatrixX3d& surface_positions,
+                                      const std::vector<std::array<int, 3>>& surface_triangles,
+                                      const ricci::TriangleSoupDistance& surface,
+                                      const Eigen::MatrixX3d& scan_positions,
+                                      const std::vector<std::array<int, 3>>& scan_triangles,
+                                      const ricci::TriangleSoupDistance& scan,
+                                      const ScanDistanceOptions& options) {
+  const std::vector<char>& unmeasured = options.unmeasured_surface_triangles;
   const std::vector<char>& unmeasured_rim = options.unmeasured_scan_boundary;
   if (!unmeasured_rim.empty() &&
       static_cast<Eigen::Index>(unmeasured_rim.size()) != scan_positions.rows()) {
@@ -203,15 +214,6 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
   report.bbox_diagonal =
       (scan_positions.colwise().maxCoeff() - scan_positions.colwise().minCoeff()).norm();
   report.coverage_tolerance = options.coverage_tolerance * report.bbox_diagonal;
-
-  // The two search trees are independent: built at once, one per thread.
-  std::optional<ricci::TriangleSoupDistance> trees[2];
-  run_workers(options.threads == 1 ? 1 : 2, [&](int k) {
-    if (k == 0 || options.threads == 1) trees[0].emplace(surface_positions, surface_triangles);
-    if (k == 1 || options.threads == 1) trees[1].emplace(scan_positions, scan_triangles);
-  });
-  const ricci::TriangleSoupDistance& surface = *trees[0];
-  const ricci::TriangleSoupDistance& scan = *trees[1];
 
   // Every scan vertex to the surface.
   const std::vector<ricci::SoupHit> fit_hits =
@@ -326,6 +328,42 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
         outward ? surface_side.row(worst_out).transpose() : scan_side.row(worst_in).transpose();
   }
   return report;
+}
+
+}  // namespace
+
+PreparedScan::PreparedScan(Eigen::MatrixX3d positions, std::vector<std::array<int, 3>> triangles)
+    : positions_(std::move(positions)), triangles_(std::move(triangles)) {
+  check_indices(positions_, triangles_, "scan");
+  tree_ = std::make_unique<ricci::TriangleSoupDistance>(positions_, triangles_);
+}
+
+PreparedScan::~PreparedScan() = default;
+
+ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_positions,
+                                        const std::vector<std::array<int, 3>>& surface_triangles,
+                                        const Eigen::MatrixX3d& scan_positions,
+                                        const std::vector<std::array<int, 3>>& scan_triangles,
+                                        const ScanDistanceOptions& options) {
+  check_surface(surface_positions, surface_triangles, options);
+  check_indices(scan_positions, scan_triangles, "scan");
+  // The two search trees are independent: built at once, one per thread.
+  std::optional<ricci::TriangleSoupDistance> trees[2];
+  run_workers(options.threads == 1 ? 1 : 2, [&](int k) {
+    if (k == 0 || options.threads == 1) trees[0].emplace(surface_positions, surface_triangles);
+    if (k == 1 || options.threads == 1) trees[1].emplace(scan_positions, scan_triangles);
+  });
+  return measure_with_trees(surface_positions, surface_triangles, *trees[0], scan_positions,
+                            scan_triangles, *trees[1], options);
+}
+
+ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_positions,
+                                        const std::vector<std::array<int, 3>>& surface_triangles,
+                                        const PreparedScan& scan, const ScanDistanceOptions& options) {
+  check_surface(surface_positions, surface_triangles, options);
+  const ricci::TriangleSoupDistance surface(surface_positions, surface_triangles);
+  return measure_with_trees(surface_positions, surface_triangles, surface, scan.positions(),
+                            scan.triangles(), scan.tree(), options);
 }
 
 }  // namespace spline

@@ -5,7 +5,12 @@
 // the share of the scan's area the surface reaches, and the distance between the two boundaries.
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <vector>
+
+namespace ricci {
+class TriangleSoupDistance;
+}
 
 namespace spline {
 
@@ -61,6 +66,35 @@ struct ScanDistanceReport {
     const Eigen::MatrixX3d& surface_positions,
     const std::vector<std::array<int, 3>>& surface_triangles,
     const Eigen::MatrixX3d& scan_positions, const std::vector<std::array<int, 3>>& scan_triangles,
+    const ScanDistanceOptions& options = {});
+
+/// The scan's side of measure_against_scan (its positions, triangles and search tree) built
+/// once, ahead of the surfaces measured against it: on another thread while a fit has not yet
+/// produced a surface, or for several surfaces. Queries are const (several threads may measure).
+class PreparedScan {
+ public:
+  /// \throw ricci::InvalidInputError as measure_against_scan does for the scan.
+  PreparedScan(Eigen::MatrixX3d positions, std::vector<std::array<int, 3>> triangles);
+  ~PreparedScan();
+  PreparedScan(const PreparedScan&) = delete;
+  PreparedScan& operator=(const PreparedScan&) = delete;
+
+  [[nodiscard]] const Eigen::MatrixX3d& positions() const { return positions_; }
+  [[nodiscard]] const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
+  [[nodiscard]] const ricci::TriangleSoupDistance& tree() const { return *tree_; }
+
+ private:
+  Eigen::MatrixX3d positions_;
+  std::vector<std::array<int, 3>> triangles_;
+  std::unique_ptr<ricci::TriangleSoupDistance> tree_;
+};
+
+/// measure_against_scan against a prepared scan: the same report (the same tree), without
+/// building the scan's tree.
+/// \throw ricci::InvalidInputError as measure_against_scan does for the surface and options.
+[[nodiscard]] ScanDistanceReport measure_against_scan(
+    const Eigen::MatrixX3d& surface_positions,
+    const std::vector<std::array<int, 3>>& surface_triangles, const PreparedScan& scan,
     const ScanDistanceOptions& options = {});
 
 /// Edges of exactly one triangle (position indices, in triangle order): the soup's boundary.

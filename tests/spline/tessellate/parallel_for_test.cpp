@@ -2,9 +2,12 @@
 // of the serial loop whatever the thread count, exceptions carried to the caller.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "spline/tessellate/parallel_for.h"
@@ -37,6 +40,27 @@ TEST(ParallelFor, GivesTheSerialLoopsResultOnEveryThreadCount) {
       }
     }
   }
+}
+
+TEST(ParallelFor, AThreadHeldUpLeavesTheRemainingBlocksToTheOthers) {
+  // Item 0 waits until every item outside its own block (0..63) has run: the blocks are handed
+  // out as threads ask for them, so the other thread runs them all. (With blocks dealt out in
+  // advance, half of them would wait behind item 0; the wait gives up after 20 s.)
+  constexpr std::size_t kCount = 1000, kBlock = 64;
+  std::atomic<std::size_t> others{0};
+  bool waited_for_all = false;
+  parallel_for(kCount, 2, [&](std::size_t i) {
+    if (i == 0) {
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (others.load() < kCount - kBlock && std::chrono::steady_clock::now() < give_up)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      waited_for_all = others.load() == kCount - kBlock;
+    } else if (i >= kBlock) {
+      ++others;
+    }
+  });
+  EXPECT_TRUE(waited_for_all);
+  EXPECT_EQ(others.load(), kCount - kBlock);
 }
 
 TEST(ParallelFor, UsesFewerThreadsOnSmallLoops) {

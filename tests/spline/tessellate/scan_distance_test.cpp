@@ -171,6 +171,32 @@ TEST(MeasureAgainstScan, OneThreadOrTwoGiveTheSameReport) {
   EXPECT_NEAR(one.coverage, covered / total, 1e-14);
 }
 
+TEST(MeasureAgainstScan, APreparedScanGivesTheSameReportForEverySurface) {
+  const Grid scan = wavy(40, 0.0);
+  const PreparedScan prepared(scan.positions, scan.triangles);
+  ScanDistanceOptions options;
+  options.coverage_tolerance = 0.002;
+  // Two surfaces against the one prepared scan, each as measured with the scan's own tree.
+  for (const Grid& surface : {wavy(23, 0.003), grid(7, 0.6, 0.01)}) {
+    const ScanDistanceReport own = measure_against_scan(surface.positions, surface.triangles,
+                                                        scan.positions, scan.triangles, options);
+    const ScanDistanceReport shared =
+        measure_against_scan(surface.positions, surface.triangles, prepared, options);
+    EXPECT_GT(own.fit_max, 0.0);
+    EXPECT_EQ(own.bbox_diagonal, shared.bbox_diagonal);
+    EXPECT_EQ(own.coverage, shared.coverage);
+    EXPECT_EQ(own.fit_rms, shared.fit_rms);
+    EXPECT_EQ(own.fit_max_point, shared.fit_max_point);
+    EXPECT_EQ(own.surface_to_scan_p99, shared.surface_to_scan_p99);
+    EXPECT_EQ(own.surface_to_scan_max_point, shared.surface_to_scan_max_point);
+    EXPECT_EQ(own.scan_boundary_edges, shared.scan_boundary_edges);
+    EXPECT_EQ(own.boundary_hausdorff, shared.boundary_hausdorff);
+  }
+  Triangles bad = scan.triangles;
+  bad[0][1] = static_cast<int>(scan.positions.rows());
+  EXPECT_THROW(PreparedScan(scan.positions, bad), ricci::InvalidInputError);
+}
+
 TEST(MeasureAgainstScan, ASurfaceThatStopsShortIsSeenFromTheScan) {
   const Grid scan = grid(10, 1.0, 0.0);
   const Grid half = grid(5, 0.5, 0.0);  // covers x <= 0.5 only
