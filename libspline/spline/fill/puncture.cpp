@@ -79,6 +79,9 @@ PunctureChoice choose_puncture(const ricci::Mesh& mesh,
   if (!(options.distortion_tolerance >= 0.0)) {
     throw ricci::InvalidInputError("the puncture's distortion tolerance must be >= 0");
   }
+  if (!(options.min_spread_gain >= 0.0 && options.min_spread_gain <= 1.0)) {
+    throw ricci::InvalidInputError("the puncture's spread gain must lie in [0, 1]");
+  }
   PunctureChoice out;
   out.choice = ricci::choose_singularity(mesh, singularity);
   out.vertex = out.distortion_vertex = out.choice.vertex;
@@ -90,6 +93,7 @@ PunctureChoice choose_puncture(const ricci::Mesh& mesh,
   for (const auto& s : out.choice.verified) best = std::min(best, s.area_distortion);
   if (!std::isfinite(best)) return out;
   out.candidates = 0;
+  int flattest = -1;
   double chosen_distortion = std::numeric_limits<double>::infinity();
   double chosen_spread = std::numeric_limits<double>::infinity();
   for (const auto& s : out.choice.verified) {
@@ -98,11 +102,16 @@ PunctureChoice choose_puncture(const ricci::Mesh& mesh,
     const double spread = star_normal_spread_deg(mesh, s.vertex, options.rings);
     if (spread < chosen_spread ||
         (spread == chosen_spread && s.area_distortion < chosen_distortion)) {
-      out.vertex = s.vertex;
+      flattest = s.vertex;
       chosen_spread = spread;
       chosen_distortion = s.area_distortion;
     }
   }
+  if (flattest < 0 || !(chosen_spread <= (1.0 - options.min_spread_gain) *
+                                           out.distortion_spread_deg)) {
+    return out;
+  }
+  out.vertex = flattest;
   out.normal_spread_deg = chosen_spread;
   out.area_distortion = chosen_distortion;
   return out;

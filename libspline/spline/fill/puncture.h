@@ -19,6 +19,10 @@ struct PunctureChoiceOptions {
   /// vertex (1: its star; 3, by default: the hole find_rims grows by one layer and the kept
   /// faces along its rim, whose tangent planes the patch meets).
   int rings = 3;
+  /// The flattest candidate replaces the distortion's choice only when its spread is at most
+  /// (1 - this) times that choice's: the spread of a few coarse faces is a rough predictor of
+  /// the seam, and a small gain is not worth the distortion.
+  double min_spread_gain = 0.25;
 };
 
 struct PunctureChoice {
@@ -38,9 +42,10 @@ struct PunctureChoice {
 
 /// choose_singularity(mesh, singularity), then among its verified vertices within the
 /// distortion tolerance of the best, the one of least star_normal_spread_deg (ties: least
-/// distortion). Without verified flows (large meshes) the distortion's choice stands.
+/// distortion) when it gains enough (min_spread_gain). Without verified flows (large meshes)
+/// the distortion's choice stands.
 /// \pre as choose_singularity. \throw as choose_singularity; ricci::InvalidInputError when
-///      options.rings < 1 or options.distortion_tolerance < 0.
+///      options.rings < 1, options.distortion_tolerance < 0 or min_spread_gain outside [0, 1].
 [[nodiscard]] PunctureChoice choose_puncture(const ricci::Mesh& mesh,
                                              const ricci::SingularityOptions& singularity,
                                              const PunctureChoiceOptions& options = {});
