@@ -10,6 +10,7 @@
 
 #include "ricci/mesh/boundary_follow.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/topology/slice.h"
 #include "ricci/util/cross2d.h"
@@ -662,6 +663,24 @@ std::vector<char> free_cone_faces(const ricci::OneConeProblem& problem,
   return constrained;
 }
 
+// A closed genus-0 domain with the automatic singularity: its puncture is chosen here
+// (ScanFitOptions::puncture), not by the atlas.
+bool takes_puncture_choice(const ricci::Mesh& domain, const ScanFitOptions& options) {
+  if (options.atlas.singular_vertex >= 0 || !(options.puncture.distortion_tolerance > 0.0))
+    return false;
+  const ricci::SurfaceTopology topology = ricci::surface_topology(domain);
+  return topology.boundary_loops == 0 && topology.genus == 0;
+}
+
+// The choice's work in the atlas' figures, as if the atlas had made it.
+void record_choice(const ricci::SingularityChoice& choice, ricci::OneConeAtlasResult& atlas) {
+  atlas.flows_for_choice = choice.flows_run;
+  atlas.solves_for_choice = choice.linear_solves;
+  atlas.linear_work.choice = choice.linear_work;
+  atlas.timings.choice = choice.seconds;
+  atlas.timings.total += choice.seconds;
+}
+
 }  // namespace
 
 ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) {
@@ -701,7 +720,16 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
       result.collar_refused = e.what();
     }
   }
-  if (!collared) result.atlas = ricci::build_one_cone_atlas(domain, options.atlas);
+  if (!collared) {
+    ricci::OneConeAtlasOptions atlas = options.atlas;
+    if (takes_puncture_choice(domain, options)) {
+      result.puncture = choose_puncture(domain, ricci::singularity_options(domain, atlas),
+                                        options.puncture);
+      atlas.singular_vertex = result.puncture.vertex;
+    }
+    result.atlas = ricci::build_one_cone_atlas(domain, atlas);
+    if (result.puncture.vertex >= 0) record_choice(result.puncture.choice, result.atlas);
+  }
   result.timings.atlas = t.seconds();
 
   t = stage("space");

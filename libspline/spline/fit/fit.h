@@ -15,6 +15,7 @@
 #include "ricci/mesh/collar.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "spline/fair/fair.h"
+#include "spline/fill/puncture.h"
 #include "spline/fit/boundary_curve.h"
 #include "spline/manifold/manifold_space.h"
 
@@ -192,6 +193,11 @@ struct ScanFitOptions {
     o.intrinsic_first = false;
     return o;
   }();
+  /// Closed genus-0 surfaces with the automatic singularity: the puncture (the removed star
+  /// the fill patch covers) goes to the flattest of the vertices verified within a tolerance
+  /// of the least area distortion (spline/fill/puncture.h). distortion_tolerance 0: the
+  /// distortion's choice, as the atlas makes it.
+  PunctureChoiceOptions puncture;
   /// Open surfaces: ghost rings added outside the simplified domain's boundary loops
   /// (ricci/mesh/collar.h) before the atlas, so the spline has its full basis on every face of
   /// the surface up to the boundary; ScanFitResult::collar_faces says which faces to drop.
@@ -236,6 +242,8 @@ struct ScanFitTimings {
 
 struct ScanFitResult {
   ricci::OneConeAtlasResult atlas;  ///< atlas.problem.mesh is the spline's domain mesh
+  /// The puncture's choice (ScanFitOptions::puncture) when it was made; vertex -1 otherwise.
+  PunctureChoice puncture;
   ManifoldSpline spline;
   /// By input vertex, after the parameter corrections; face -1: not covered by the spline
   /// (closest point of the domain mesh in a hole face, or on the rim of the domain, an edge or a
