@@ -346,9 +346,29 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
                                const AtlasOptions& options) {
   AffineAtlas atlas;
   atlas.cut = compute_cut_graph(mesh, root, edge_lengths);
-  const Eigen::VectorXd lengths = checked_edge_lengths(mesh, edge_lengths);
-  const LongLengths metric = long_lengths(lengths, lengths_low);
   atlas.sliced = slice_along(mesh, atlas.cut.is_cut_edge);
+  complete_affine_atlas(mesh, edge_lengths, lengths_low, options, atlas);
+  return atlas;
+}
+
+void complete_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                           const Eigen::VectorXd& lengths_low, const AtlasOptions& options,
+                           AffineAtlas& atlas) {
+  const VertexHandle root = atlas.cut.root;
+  if (atlas.cut.is_cut_edge.size() != mesh.n_edges() ||
+      atlas.sliced.mesh.n_faces() != mesh.n_faces() || !root.is_valid() ||
+      root.idx() >= static_cast<int>(mesh.n_vertices())) {
+    throw InvalidInputError("atlas: the cut graph or the slicing was not made from this mesh");
+  }
+  const Eigen::VectorXd lengths = checked_edge_lengths(mesh, edge_lengths);
+  // The paths' lengths in this metric (compute_cut_graph's sums, in the same order).
+  for (auto* paths : {&atlas.cut.loops, &atlas.cut.boundary_connectors}) {
+    for (CutPath& path : *paths) {
+      path.length = 0.0;
+      for (auto h : path.halfedges) path.length += lengths[mesh.edge_handle(h).idx()];
+    }
+  }
+  const LongLengths metric = long_lengths(lengths, lengths_low);
   check_disk(atlas.sliced, "atlas");
   atlas.polygon = fundamental_polygon_word(mesh, atlas.cut, atlas.sliced);
   atlas.layout = layout_e2(
@@ -384,7 +404,6 @@ AffineAtlas build_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_len
     atlas.relator_holonomy_angle = std::abs(relator.angle);
     atlas.relator_holonomy_translation = relator.translation.norm();
   }
-  return atlas;
 }
 
 }  // namespace ricci

@@ -151,4 +151,13 @@ struct AffineAtlas {
                                              const Eigen::VectorXd& lengths_low, VertexHandle root,
                                              const AtlasOptions& options = {});
 
+/// Completes `atlas`, whose `cut` and `sliced` were made beforehand (compute_cut_graph rooted
+/// at the root, slice_along its cut edges; e.g. beside the polish, with the unpolished lengths):
+/// only the paths are taken, their lengths measured again with edge_lengths; then as above.
+/// \pre `atlas.cut` and `atlas.sliced` were made from `mesh` (sizes are checked).
+/// \throw InvalidInputError on a size mismatch; as above otherwise.
+void complete_affine_atlas(const Mesh& mesh, const Eigen::VectorXd& edge_lengths,
+                           const Eigen::VectorXd& lengths_low, const AtlasOptions& options,
+                           AffineAtlas& atlas);
+
 }  // namespace ricci

@@ -21,13 +21,14 @@
 namespace ricci {
 namespace {
 
-// The cut graph's root: the cone, else an interior vertex (genus 1) or vertex 0 (open).
-VertexHandle atlas_root(const OneConeProblem& problem) {
-  if (problem.cone >= 0) return problem.mesh.vertex_handle(problem.cone);
-  for (auto v : problem.mesh.vertices()) {
-    if (!problem.mesh.is_boundary(v)) return v;
+// The cut graph's root on the problem's mesh (or one of the same connectivity): the cone, else
+// an interior vertex (genus 1) or vertex 0 (open).
+VertexHandle atlas_root(const OneConeProblem& problem, const Mesh& mesh) {
+  if (problem.cone >= 0) return mesh.vertex_handle(problem.cone);
+  for (auto v : mesh.vertices()) {
+    if (!mesh.is_boundary(v)) return v;
   }
-  return problem.mesh.vertex_handle(0);
+  return mesh.vertex_handle(0);
 }
 
 // The input surface as the pipeline holds it: the caller's mesh, kept all along, or one handed
@@ -383,12 +384,25 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
     const auto count_removed = [&] {
       result.removed_edges = removed_edge_count(problem_mesh.F, tables);
     };
+    // Beside the polish, the atlas' cut graph and slicing too (cut_beside_polish), held in
+    // result.atlas until the atlas stage completes it: the cut graph's shortest paths on the
+    // unpolished lengths, ~1e-12 from the polished ones.
+    const auto cut_and_slice = [&] {
+      try {
+        result.atlas.cut = compute_cut_graph(mesh, atlas_root(result.problem, mesh),
+                                             by_mesh_edge(Eigen::VectorXd(lengths), edge_of));
+        result.atlas.sliced = slice_along(mesh, result.atlas.cut.is_cut_edge);
+      } catch (const std::exception&) {
+        result.atlas = AffineAtlas();  // the atlas stage makes them again and reports it
+      }
+    };
     if (polish) {
       report("long-double polish");
       run_workers(beside ? 2 : 1, [&](int worker) {
         if (worker == 1) {
           build_mesh();
           count_removed();
+          if (options.cut_beside_polish) cut_and_slice();
           return;
         }
         const StageTimer timer;
@@ -436,7 +450,10 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       result.intrinsic = true;
     }
   }
-  if (flow.status != FlowStatus::converged) result.problem.mesh = same_order_mesh(problem_mesh);
+  if (flow.status != FlowStatus::converged) {
+    result.problem.mesh = same_order_mesh(problem_mesh);
+    result.atlas = AffineAtlas();  // a cut made beside a failed polish
+  }
   result.flow = std::move(flow);
   result.timings.polish += polish_seconds;
   result.timings.cpu_polish += polish_cpu;
@@ -671,6 +688,13 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
   // vertices on a line), where the distortion is undefined; those are counted and left out.
   DistortionOptions measure;
   measure.skip_degenerate = result.intrinsic;
+  // The cut graph and slicing made beside the intrinsic flow's polish, when they are there
+  // (same mesh, same root).
+  const bool cut_ready =
+      result.intrinsic && result.atlas.sliced.mesh.n_faces() == result.problem.mesh.n_faces() &&
+      result.atlas.sliced.mesh.n_faces() > 0 &&
+      result.atlas.cut.is_cut_edge.size() == result.problem.mesh.n_edges() &&
+      result.atlas.cut.root == atlas_root(result.problem, result.problem.mesh);
   // The distortion reads only the mesh and the metric: it is measured on a second thread
   // while the atlas (serial for the most part: cut graph, slicing, the layout's growth) is built.
   double distortion_seconds = 0.0;
@@ -681,9 +705,15 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
       distortion_seconds = clock.seconds();
       return;
     }
-    result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths,
-                                      long_metric ? result.polish.lengths_low : Eigen::VectorXd(),
-                                      atlas_root(result.problem), options.atlas);
+    const Eigen::VectorXd low = long_metric ? result.polish.lengths_low : Eigen::VectorXd();
+    if (cut_ready) {
+      complete_affine_atlas(result.problem.mesh, result.flow.lengths, low, options.atlas,
+                            result.atlas);
+    } else {
+      result.atlas = build_affine_atlas(result.problem.mesh, result.flow.lengths, low,
+                                        atlas_root(result.problem, result.problem.mesh),
+                                        options.atlas);
+    }
   });
   result.timings.atlas = t.wall.seconds();
   result.timings.cpu_atlas = t.cpu.seconds();

@@ -43,6 +43,10 @@ struct OneConeAtlasOptions {
   /// second thread while the long-double polish runs (it needs the connectivity only); from
   /// here on it is built after the polish, once the flow's factorisation is freed (peak memory).
   int mesh_beside_polish_below_faces = 400000;
+  /// With that mesh, also the atlas' cut graph and slicing beside the polish: the cut graph's
+  /// shortest paths then follow the unpolished lengths (within ~1e-12 of the polished ones;
+  /// only exact ties could cut differently); the atlas measures its loops with the polished.
+  bool cut_beside_polish = true;
   /// Collapse of edges much shorter than the median (mesh/collapse_short_edges.h) before
   /// anything else; the singular vertex is kept. The problem's `input_vertex` maps back.
   bool collapse_short_edges = false;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ricci/mesh/arrays.h"
+#include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
 #include "ricci/pipeline/one_cone_atlas.h"
 #include "test_paths.h"
@@ -228,6 +229,48 @@ TEST(OneConeAtlas, MeshBuiltBesideThePolishEqualsTheOneBuiltAfterIt) {
   EXPECT_EQ(beside.flow.lengths, after.flow.lengths);
   EXPECT_EQ(beside.relative_transition_residual(), after.relative_transition_residual());
   EXPECT_EQ(beside.atlas.layout.flipped_faces, 0);
+}
+
+// The cut graph and slicing made beside the polish (on the unpolished lengths) cut where the
+// atlas stage cuts on the polished ones: the same loops, loop lengths in the polished metric,
+// layout and transitions; and build_affine_atlas on the result's mesh and lengths agrees.
+TEST(OneConeAtlas, CutBesideThePolishEqualsTheCutAfterIt) {
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  options.polish_floor_from_faces = 0;  // the polish runs
+  options.mesh_beside_polish_below_faces = std::numeric_limits<int>::max();
+  const ricci::OneConeAtlasResult beside = ricci::build_one_cone_atlas(mesh, options);
+  options.cut_beside_polish = false;
+  const ricci::OneConeAtlasResult after = ricci::build_one_cone_atlas(mesh, options);
+  ASSERT_TRUE(beside.intrinsic && beside.polished);
+  const ricci::CutGraph& a = beside.atlas.cut;
+  const ricci::CutGraph& b = after.atlas.cut;
+  EXPECT_EQ(a.root, b.root);
+  EXPECT_EQ(a.is_cut_edge, b.is_cut_edge);
+  ASSERT_EQ(a.loops.size(), 4u);  // genus 2
+  ASSERT_EQ(a.loops.size(), b.loops.size());
+  for (size_t i = 0; i < a.loops.size(); ++i) {
+    EXPECT_EQ(a.loops[i].halfedges, b.loops[i].halfedges);
+    EXPECT_EQ(a.loops[i].length, b.loops[i].length);
+    double sum = 0.0;
+    for (auto h : a.loops[i].halfedges) {
+      sum += beside.flow.lengths[beside.problem.mesh.edge_handle(h).idx()];
+    }
+    EXPECT_EQ(a.loops[i].length, sum);
+  }
+  EXPECT_EQ(beside.atlas.sliced.mesh.n_vertices(), after.atlas.sliced.mesh.n_vertices());
+  EXPECT_EQ(beside.atlas.layout.positions, after.atlas.layout.positions);
+  EXPECT_EQ(beside.atlas.charts.size(), after.atlas.charts.size());
+  EXPECT_EQ(beside.relative_transition_residual(), after.relative_transition_residual());
+  EXPECT_LT(beside.relative_transition_residual(), 1e-9);
+  EXPECT_EQ(beside.atlas.layout.flipped_faces, 0);
+  // A cut or slicing of another mesh is refused.
+  ricci::AffineAtlas wrong;
+  wrong.cut = a;
+  EXPECT_THROW(ricci::complete_affine_atlas(beside.problem.mesh, beside.flow.lengths,
+                                            Eigen::VectorXd(), {}, wrong),
+               ricci::InvalidInputError);
 }
 
 }  // namespace
