@@ -67,10 +67,18 @@ inline bool triangle_angles(Geometry g, const double l[3], double theta[3],
   if (g == Geometry::spherical && !(s < M_PI)) return false;
   const double f[3] = {geometry_sine(g, d[0]), geometry_sine(g, d[1]), geometry_sine(g, d[2])};
   const double fs = geometry_sine(g, s);
+  // In E2 the largest angle is closed from the other two below, so its arc tangent is not
+  // needed when it is known beforehand: opposite a side longer than the others by a relative
+  // 1e-6, its angle exceeds theirs by far more than their rounding (tan²(θ/2) grows by
+  // (d_j / d_k)² > (1 + 2e-6)²), and the closing would pick it. Near ties keep all three.
+  const int longest = l[0] >= l[1] ? (l[0] >= l[2] ? 0 : 2) : (l[1] >= l[2] ? 1 : 2);
+  const bool known = g == Geometry::euclidean &&
+                     l[longest] > (1.0 + 1e-6) * l[(longest + 1) % 3] &&
+                     l[longest] > (1.0 + 1e-6) * l[(longest + 2) % 3];
   for (int k = 0; k < 3; ++k) {
     // tan(θ_k/2) = y/x with x² = f(s) f(s-l_k), y² = f(s-l_a) f(s-l_b).
     const double x2 = fs * f[k], y2 = f[(k + 1) % 3] * f[(k + 2) % 3];
-    theta[k] = 2.0 * std::atan2(std::sqrt(y2), std::sqrt(x2));
+    if (!(known && k == longest)) theta[k] = 2.0 * std::atan2(std::sqrt(y2), std::sqrt(x2));
     if (cosine) cosine[k] = (x2 - y2) / (x2 + y2);
     if (sine) sine[k] = 2.0 * std::sqrt(x2 * y2) / (x2 + y2);
   }
@@ -78,7 +86,9 @@ inline bool triangle_angles(Geometry g, const double l[3], double theta[3],
     // Rounding would make each face's angle sum miss π by a biased ulp; summed over a million
     // faces that drift breaks Σ K = 2πχ at the 1e-10 level. Closing the sum on the largest
     // angle (whose relative accuracy matters least) leaves an unbiased ulp per face.
-    const int big = theta[0] >= theta[1] ? (theta[0] >= theta[2] ? 0 : 2) : (theta[1] >= theta[2] ? 1 : 2);
+    const int big = known ? longest
+                          : theta[0] >= theta[1] ? (theta[0] >= theta[2] ? 0 : 2)
+                                                 : (theta[1] >= theta[2] ? 1 : 2);
     theta[big] = M_PI - (theta[(big + 1) % 3] + theta[(big + 2) % 3]);
   }
   return true;

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
@@ -40,6 +42,50 @@ TEST(TriangleAngles, NeedleAngleIsAccurateWhereAcosIsNot) {
   EXPECT_NEAR(theta[0] / (2 * std::asin(eps / 2)), 1.0, 1e-12);
   EXPECT_NEAR(theta[0] + theta[1] + theta[2], M_PI, 1e-15);
   EXPECT_NEAR(s[0] / std::sin(theta[0]), 1.0, 1e-12);
+}
+
+// The E2 angles with all three arc tangents, closed on the largest computed angle (the
+// formula before the largest one's arc tangent was skipped).
+void reference_e2_angles(const double l[3], double theta[3]) {
+  double d[3];
+  for (int k = 0; k < 3; ++k) {
+    const double a = l[(k + 1) % 3], b = l[(k + 2) % 3];
+    d[k] = 0.5 * ((std::max(a, b) - l[k]) + std::min(a, b));
+  }
+  const double s = 0.5 * (l[0] + l[1] + l[2]);
+  for (int k = 0; k < 3; ++k) {
+    const double x2 = s * d[k], y2 = d[(k + 1) % 3] * d[(k + 2) % 3];
+    theta[k] = 2.0 * std::atan2(std::sqrt(y2), std::sqrt(x2));
+  }
+  const int big = theta[0] >= theta[1] ? (theta[0] >= theta[2] ? 0 : 2)
+                                       : (theta[1] >= theta[2] ? 1 : 2);
+  theta[big] = M_PI - (theta[(big + 1) % 3] + theta[(big + 2) % 3]);
+}
+
+TEST(TriangleAngles, LargestAngleClosedWithoutItsArcTangentIsTheSameBits) {
+  // Random triangles, needles, caps, near-isosceles (the longest side within 1e-6 and 1e-15
+  // of another) and exact ties: the same doubles as with all three arc tangents.
+  std::mt19937_64 random(19);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int compared = 0;
+  for (int i = 0; i < 200000; ++i) {
+    double l[3] = {unit(random), unit(random), unit(random)};
+    switch (i % 5) {
+      case 1: l[0] = l[1] + l[2] * std::pow(10.0, -16.0 * unit(random)); break;  // cap
+      case 2: l[i % 3] = l[(i + 1) % 3] * (1.0 + 2e-6 * (unit(random) - 0.5)); break;
+      case 3: l[i % 3] = l[(i + 1) % 3] * (1.0 + 1e-15 * std::floor(8 * unit(random))); break;
+      case 4: l[0] = l[1] = 1.0 - 1e-9 * unit(random); l[2] *= 1e-8; break;  // needle
+      default: break;
+    }
+    double theta[3], expected[3];
+    if (!triangle_angles(Geometry::euclidean, l, theta)) continue;
+    reference_e2_angles(l, expected);
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(theta[k], expected[k]) << "sides " << l[0] << " " << l[1] << " " << l[2];
+    }
+    ++compared;
+  }
+  EXPECT_GT(compared, 100000);
 }
 
 TEST(TriangleAngles, RejectsTriangleInequalityAndLongSphericalPerimeter) {
