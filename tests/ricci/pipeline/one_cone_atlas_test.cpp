@@ -205,14 +205,23 @@ TEST(OneConeAtlas, LargeMeshesLeaveTheDoubleFloorToThePolish) {
               newton.distortion.quasi_conformal_area_mean, 1e-9);
 }
 
-// The intrinsic flow's mesh is built beside the polish (below mesh_beside_polish_below_faces) or
-// after it: the same triangulation, removed-edge count, lengths and atlas either way.
-TEST(OneConeAtlas, MeshBuiltBesideThePolishEqualsTheOneBuiltAfterIt) {
-  const ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
+namespace {
+// eight.off's options with the cone given, the polish forced and the intrinsic mesh (and cut)
+// built beside it.
+ricci::OneConeAtlasOptions polish_forced_beside() {
   ricci::OneConeAtlasOptions options;
   options.singular_vertex = 0;
   options.polish_floor_from_faces = 0;  // the polish runs
   options.mesh_beside_polish_below_faces = std::numeric_limits<int>::max();
+  return options;
+}
+}  // namespace
+
+// The intrinsic flow's mesh is built beside the polish (below mesh_beside_polish_below_faces) or
+// after it: the same triangulation, removed-edge count, lengths and atlas either way.
+TEST(OneConeAtlas, MeshBuiltBesideThePolishEqualsTheOneBuiltAfterIt) {
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
+  ricci::OneConeAtlasOptions options = polish_forced_beside();
   const ricci::OneConeAtlasResult beside = ricci::build_one_cone_atlas(mesh, options);
   options.mesh_beside_polish_below_faces = 0;
   const ricci::OneConeAtlasResult after = ricci::build_one_cone_atlas(mesh, options);
@@ -236,10 +245,7 @@ TEST(OneConeAtlas, MeshBuiltBesideThePolishEqualsTheOneBuiltAfterIt) {
 // layout and transitions; and build_affine_atlas on the result's mesh and lengths agrees.
 TEST(OneConeAtlas, CutBesideThePolishEqualsTheCutAfterIt) {
   const ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g2/eight.off"));
-  ricci::OneConeAtlasOptions options;
-  options.singular_vertex = 0;
-  options.polish_floor_from_faces = 0;  // the polish runs
-  options.mesh_beside_polish_below_faces = std::numeric_limits<int>::max();
+  ricci::OneConeAtlasOptions options = polish_forced_beside();
   const ricci::OneConeAtlasResult beside = ricci::build_one_cone_atlas(mesh, options);
   options.cut_beside_polish = false;
   const ricci::OneConeAtlasResult after = ricci::build_one_cone_atlas(mesh, options);

@@ -16,6 +16,20 @@
 namespace spline {
 namespace {
 
+// Two reports of the same surface against the same scan agree bit for bit.
+void expect_same_report(const ScanDistanceReport& a, const ScanDistanceReport& b) {
+  EXPECT_EQ(a.bbox_diagonal, b.bbox_diagonal);
+  EXPECT_EQ(a.coverage, b.coverage);
+  EXPECT_EQ(a.fit_rms, b.fit_rms);
+  EXPECT_EQ(a.fit_max, b.fit_max);
+  EXPECT_EQ(a.fit_max_point, b.fit_max_point);
+  EXPECT_EQ(a.surface_to_scan_p99, b.surface_to_scan_p99);
+  EXPECT_EQ(a.surface_to_scan_max, b.surface_to_scan_max);
+  EXPECT_EQ(a.surface_to_scan_max_point, b.surface_to_scan_max_point);
+  EXPECT_EQ(a.scan_boundary_edges, b.scan_boundary_edges);
+  EXPECT_EQ(a.boundary_hausdorff, b.boundary_hausdorff);
+}
+
 using Triangles = std::vector<std::array<int, 3>>;
 
 struct Grid {
@@ -148,13 +162,7 @@ TEST(MeasureAgainstScan, OneThreadOrTwoGiveTheSameReport) {
                                                       scan.positions, scan.triangles, options);
   EXPECT_GT(one.coverage, 0.02);
   EXPECT_LT(one.coverage, 0.98);
-  EXPECT_EQ(one.coverage, two.coverage);
-  EXPECT_EQ(one.fit_rms, two.fit_rms);
-  EXPECT_EQ(one.fit_max, two.fit_max);
-  EXPECT_EQ(one.surface_to_scan_p99, two.surface_to_scan_p99);
-  EXPECT_EQ(one.surface_to_scan_max, two.surface_to_scan_max);
-  EXPECT_EQ(one.surface_to_scan_max_point, two.surface_to_scan_max_point);
-  EXPECT_EQ(one.boundary_hausdorff, two.boundary_hausdorff);
+  expect_same_report(one, two);
   // Coverage by brute force: each scan triangle's four samples against every surface triangle.
   const ricci::TriangleSoupDistance tree(surface.positions, surface.triangles);
   double covered = 0.0, total = 0.0;
@@ -183,14 +191,7 @@ TEST(MeasureAgainstScan, APreparedScanGivesTheSameReportForEverySurface) {
     const ScanDistanceReport shared =
         measure_against_scan(surface.positions, surface.triangles, prepared, options);
     EXPECT_GT(own.fit_max, 0.0);
-    EXPECT_EQ(own.bbox_diagonal, shared.bbox_diagonal);
-    EXPECT_EQ(own.coverage, shared.coverage);
-    EXPECT_EQ(own.fit_rms, shared.fit_rms);
-    EXPECT_EQ(own.fit_max_point, shared.fit_max_point);
-    EXPECT_EQ(own.surface_to_scan_p99, shared.surface_to_scan_p99);
-    EXPECT_EQ(own.surface_to_scan_max_point, shared.surface_to_scan_max_point);
-    EXPECT_EQ(own.scan_boundary_edges, shared.scan_boundary_edges);
-    EXPECT_EQ(own.boundary_hausdorff, shared.boundary_hausdorff);
+    expect_same_report(own, shared);
   }
   Triangles bad = scan.triangles;
   bad[0][1] = static_cast<int>(scan.positions.rows());
