@@ -24,9 +24,19 @@ nlohmann::json singularities_json(const spline::FittedSurface& fitted,
                              {"curvature", K},
                              {"cone_angle", 2 * M_PI - K}});
   } else if (atlas.problem.kind == ricci::OneConeKind::PuncturedSphere) {
-    singularities.push_back({{"domain_vertex", atlas.chosen_vertex},
-                             {"input_vertex", options.singular_vertex},
-                             {"removed_star", true}});
+    nlohmann::json puncture = {{"domain_vertex", atlas.chosen_vertex},
+                               {"input_vertex", options.singular_vertex},
+                               {"removed_star", true}};
+    const spline::PunctureChoice& choice = fitted.puncture;
+    if (choice.vertex >= 0) {  // chosen for flatness among near-least-distortion vertices
+      puncture["flatness_choice"] = {
+          {"normal_spread_deg", choice.normal_spread_deg},
+          {"least_distortion_vertex", choice.distortion_vertex},
+          {"least_distortion_normal_spread_deg", choice.distortion_spread_deg},
+          {"candidates", choice.candidates},
+          {"moved", choice.vertex != choice.distortion_vertex}};
+    }
+    singularities.push_back(std::move(puncture));
   }
   return singularities;
 }

@@ -395,6 +395,7 @@ void measure_surface(FittedSurface& out, bool folds_only) {
 // fit_scan's result split: the spline and its domain into the surface, the atlas kept.
 void take_scan(ScanFitResult&& scan, FittedSurface& out) {
   out.atlas = std::move(scan.atlas);
+  out.puncture = std::move(scan.puncture);
   const auto& problem = out.atlas.problem;
   out.surface.domain = problem.mesh;
   out.surface.spline = std::move(scan.spline);

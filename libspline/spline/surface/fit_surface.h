@@ -149,6 +149,9 @@ struct FittedSurface {
   /// The one-cone atlas the spline is built on (cut loops, charts, flow, cone refinement);
   /// atlas.problem.mesh equals surface.domain.
   ricci::OneConeAtlasResult atlas;
+  /// Closed genus 0 with the automatic singularity: where the puncture went and why
+  /// (ScanFitResult::puncture); vertex -1 otherwise.
+  PunctureChoice puncture;
   /// The adaptive domain (0 and empty without): faces of its uniform base, faces split by level.
   int domain_base_faces = 0;
   std::vector<int> domain_split_faces;

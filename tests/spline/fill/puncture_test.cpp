@@ -9,6 +9,7 @@
 #include "ricci/mesh/io.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/pipeline/one_cone_atlas.h"
+#include "msp/report/fit_report.h"
 #include "ricci/test_meshes.h"
 #include "spline/fit/fit.h"
 #include "spline/surface/fit_surface.h"
@@ -108,6 +109,15 @@ TEST(ChoosePuncture, FitPutsThePunctureWhereThePatchMeetsTheSurface) {
   EXPECT_TRUE(r.watertight);
   EXPECT_EQ(r.fallback_fills, 0);
   EXPECT_LT(r.fill_normal_jump_deg, 0.4);
+  // The report says where the puncture went and why.
+  ASSERT_GE(r.puncture.vertex, 0);
+  EXPECT_EQ(r.atlas.chosen_vertex, r.puncture.vertex);
+  EXPECT_LT(r.puncture.normal_spread_deg, r.puncture.distortion_spread_deg);
+  const nlohmann::json report = msp::fit_report_json("bunny", r, FitSurfaceOptions{});
+  const nlohmann::json& flat = report["singularities"][0]["flatness_choice"];
+  EXPECT_EQ(flat["normal_spread_deg"].get<double>(), r.puncture.normal_spread_deg);
+  EXPECT_EQ(flat["least_distortion_vertex"].get<int>(), r.puncture.distortion_vertex);
+  EXPECT_EQ(flat["moved"].get<bool>(), r.puncture.vertex != r.puncture.distortion_vertex);
 }
 
 }  // namespace
