@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <spline/fill/puncture.h>
 #include <spline/surface/cap_holes.h>
 
 namespace msp {
@@ -59,20 +60,14 @@ struct HoleShape {
 
 HoleShape hole_shape(const ricci::Mesh& mesh, const std::vector<int>& faces) {
   HoleShape shape;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int f : faces) {
     const Eigen::Vector3d a = area_vector(mesh, f);
-    mean += a;
     shape.area += a.norm() / 2;
     for (auto v : mesh.fv_range(mesh.face_handle(f)))
       shape.box.extend(ricci::to_eigen(mesh.point(v)));
   }
-  for (int f : faces) {
-    const Eigen::Vector3d n = area_vector(mesh, f);
-    if (n.norm() <= 0.0 || mean.norm() <= 0.0) continue;
-    const double c = std::clamp(n.dot(mean) / (n.norm() * mean.norm()), -1.0, 1.0);
-    shape.normal_spread_deg = std::max(shape.normal_spread_deg, std::acos(c) * 180.0 / M_PI);
-  }
+  // A boundary loop's patch covers no face: no spread.
+  if (!faces.empty()) shape.normal_spread_deg = spline::faces_normal_spread_deg(mesh, faces);
   return shape;
 }
 

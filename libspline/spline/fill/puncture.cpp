@@ -13,21 +13,20 @@ namespace spline {
 namespace {
 
 // Twice the area vector of a face (its normal, of length twice its area).
-Eigen::Vector3d area_vector(const ricci::Mesh& mesh, ricci::FaceHandle f) {
+Eigen::Vector3d area_vector(const ricci::Mesh& mesh, int face) {
   Eigen::Vector3d p[3];
   int k = 0;
-  for (auto v : mesh.fv_range(f)) p[k++] = ricci::to_eigen(mesh.point(v));
+  for (auto v : mesh.fv_range(mesh.face_handle(face))) p[k++] = ricci::to_eigen(mesh.point(v));
   return (p[1] - p[0]).cross(p[2] - p[0]);
 }
 
 // The faces with a corner within rings - 1 vertex rings of `vertex` (rings = 1: its star).
-std::vector<ricci::FaceHandle> faces_within(const ricci::Mesh& mesh, ricci::VertexHandle vertex,
-                                            int rings) {
+std::vector<int> faces_within(const ricci::Mesh& mesh, ricci::VertexHandle vertex, int rings) {
   std::vector<int> depth(mesh.n_vertices(), -1);
   std::vector<ricci::VertexHandle> front{vertex};
   depth[static_cast<std::size_t>(vertex.idx())] = 0;
   std::vector<char> taken(mesh.n_faces(), 0);
-  std::vector<ricci::FaceHandle> faces;
+  std::vector<int> faces;
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<ricci::VertexHandle> next;
     for (auto v : front) {
@@ -35,7 +34,7 @@ std::vector<ricci::FaceHandle> faces_within(const ricci::Mesh& mesh, ricci::Vert
         char& t = taken[static_cast<std::size_t>(f.idx())];
         if (t) continue;
         t = 1;
-        faces.push_back(f);
+        faces.push_back(f.idx());
       }
       for (auto w : mesh.vv_range(v)) {
         int& d = depth[static_cast<std::size_t>(w.idx())];
@@ -57,7 +56,10 @@ double star_normal_spread_deg(const ricci::Mesh& mesh, int vertex, int rings) {
                                    std::to_string(mesh.n_vertices()) + " vertices)");
   }
   if (rings < 1) throw ricci::InvalidInputError("rings must be at least 1");
-  const auto faces = faces_within(mesh, mesh.vertex_handle(vertex), rings);
+  return faces_normal_spread_deg(mesh, faces_within(mesh, mesh.vertex_handle(vertex), rings));
+}
+
+double faces_normal_spread_deg(const ricci::Mesh& mesh, const std::vector<int>& faces) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (auto f : faces) mean += area_vector(mesh, f);
   if (!(mean.norm() > 0.0)) return 180.0;

@@ -35,6 +35,12 @@ struct PunctureChoice {
   ricci::SingularityChoice choice;  ///< the distortion's choice, as choose_singularity made it
 };
 
+/// The largest angle (degrees) between the normal of one of `faces` and their area-weighted
+/// mean normal: 0 for a flat set; 180 when the mean vanishes (a closed set). Zero-area faces
+/// are skipped. \pre every index is a face of `mesh`.
+[[nodiscard]] double faces_normal_spread_deg(const ricci::Mesh& mesh,
+                                             const std::vector<int>& faces);
+
 /// The largest angle (degrees) between the normal of a face with a corner within rings - 1
 /// vertex rings of `vertex` and the area-weighted mean normal of those faces.
 /// \throw ricci::InvalidInputError when the vertex is out of range or rings < 1.
