@@ -22,3 +22,10 @@ if(MSP_SANITIZE)
   add_compile_definitions(EIGEN_MALLOC_ALREADY_ALIGNED=0)
   add_link_options(-fsanitize=address,undefined,float-cast-overflow)
 endif()
+if(MSP_SANITIZE_THREAD)
+  # Data races between our threads (parallel_for, the stages run beside each other). Libraries
+  # built without it (CHOLMOD, OpenBLAS, libgomp) are invisible to it: races inside their own
+  # threads are not reported.
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer -g)
+  add_link_options(-fsanitize=thread)
+endif()
