@@ -118,15 +118,26 @@ class FaceAccumulator {
 // Data rows, then three thin-plate rows per quadrature point, of one face.
 void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vector<int>& reach,
                      const FaceRowsSpec& spec, const std::vector<DomainPoint>& parameters,
-                     const Eigen::MatrixX3d& points, FaceAccumulator& acc, FaceDataRows& kept,
-                     ReachColumns& local_column) {
+                     const Eigen::MatrixX3d& points, const PointBasisValues* known,
+                     FaceAccumulator& acc, FaceDataRows& kept, ReachColumns& local_column) {
   acc.reset(static_cast<int>(reach.size()) * space.functions_per_face());
   local_column.set(reach);
+  const auto add = [&](int function, double value) {
+    acc.add(local_column(function), value);
+    kept.function.push_back(function);
+    kept.value.push_back(value);
+  };
   for (int k : spec.points) {
-    for (const auto& s : space.evaluate_basis(parameters[k], -1, {}, BasisDerivatives::none)) {
-      acc.add(local_column(s.function), s.jet.value);
-      kept.function.push_back(s.function);
-      kept.value.push_back(s.jet.value);
+    const auto point = static_cast<std::size_t>(k);
+    if (known && known->holds(point, parameters[point])) {
+      const std::size_t block = point / known->block_size;
+      const std::vector<int>& function = known->function[block];
+      const std::vector<double>& value = known->value[block];
+      const int first = known->first[point];
+      for (int e = first; e < first + known->count[point]; ++e) add(function[e], value[e]);
+    } else {
+      for (const auto& s : space.evaluate_basis(parameters[point], -1, {}, BasisDerivatives::none))
+        add(s.function, s.jet.value);
     }
     kept.start.push_back(static_cast<int>(kept.function.size()));
     acc.end_row(points.row(k), true);
@@ -167,7 +178,8 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
                                           const std::vector<FaceRowsSpec>& rows_by_face,
                                           const std::vector<DomainPoint>& parameters,
                                           const Eigen::MatrixX3d& points, double anchor,
-                                          const Eigen::MatrixX3d& initial, int threads) {
+                                          const Eigen::MatrixX3d& initial, int threads,
+                                          const PointBasisValues* known) {
   const int m = space.functions_per_face();
   const int faces = space.domain_face_count();
   const std::vector<std::vector<int>> reach = reach_by_domain_index(space);
@@ -187,7 +199,7 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
       const FaceRowsSpec& spec = rows_by_face[d];
       if (spec.points.empty() && spec.thin_plate_weight <= 0.0) continue;
       const std::vector<int>& r = reach[d];
-      accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, acc,
+      accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, known, acc,
                       kept[d], local_column);
       const int k = acc.columns();
       std::vector<int> global(static_cast<std::size_t>(k));

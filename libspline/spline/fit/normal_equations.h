@@ -8,6 +8,7 @@
 // (msp-bench spline, horse row).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cstddef>
 #include <vector>
 
 #include "spline/manifold/manifold_space.h"
@@ -29,6 +30,26 @@ struct FaceDataRows {
   std::vector<double> value;
 };
 
+/// Basis values a step already evaluated at the points (the parameter correction's projections
+/// end with them), for the assembly to take instead of evaluating them again. Point k's samples,
+/// in ManifoldSplineSpace::evaluate_basis' order in chart_of(face), are entries first[k] ..
+/// first[k] + count[k] - 1 of block k / block_size's function and value arrays (one block per
+/// parallel_for block: each is written by one thread), valid at the parameter at[k] (face -1:
+/// none kept). The assembly takes them only where at[k] equals its own parameter bit for bit.
+struct PointBasisValues {
+  std::size_t block_size = 64;
+  std::vector<DomainPoint> at;
+  std::vector<int> first, count;
+  std::vector<std::vector<int>> function;
+  std::vector<std::vector<double>> value;
+
+  /// Whether point k's values are kept for the parameter p.
+  [[nodiscard]] bool holds(std::size_t k, const DomainPoint& p) const {
+    return k < at.size() && at[k].face >= 0 && at[k].face == p.face &&
+           at[k].barycentric == p.barycentric;
+  }
+};
+
 struct NormalEquations {
   Eigen::SparseMatrix<double> lower;  ///< lower triangle of A^T A (+ anchor on the diagonal)
   Eigen::MatrixX3d rhs;               ///< A^T b (+ anchor * initial)
@@ -37,12 +58,13 @@ struct NormalEquations {
 
 /// Sum over faces (by domain index) of B_I^T B_I and B_I^T targets, plus anchor * I and
 /// anchor * initial. Faces are split between `threads` workers (each with its own accumulator,
-/// summed in a fixed order: the result does not depend on scheduling).
+/// summed in a fixed order: the result does not depend on scheduling). `known`: values already
+/// evaluated at some points (the same bits as evaluating them here), or null.
 /// \throw as ManifoldSplineSpace::evaluate_basis.
 [[nodiscard]] NormalEquations assemble_normal_equations(
     const ManifoldSplineSpace& space, const std::vector<FaceRowsSpec>& rows_by_face,
     const std::vector<DomainPoint>& parameters, const Eigen::MatrixX3d& points, double anchor,
-    const Eigen::MatrixX3d& initial, int threads);
+    const Eigen::MatrixX3d& initial, int threads, const PointBasisValues* known = nullptr);
 
 /// F(u_k) - p_k for every point listed in rows_by_face (others: zero rows), from the kept rows.
 [[nodiscard]] Eigen::MatrixX3d residuals_at_parameters(const NormalEquations& equations,
