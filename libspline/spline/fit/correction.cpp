@@ -40,10 +40,28 @@ SurfaceJet evaluate_keeping(const ManifoldSpline& spline, const DomainPoint& poi
   return combine(samples, spline.control_points, chart, derivatives);
 }
 
+// The kept samples (values and gradients) of point k as evaluate_keeping would give them.
+void take_samples(const detail::PointBasisValues& kept, std::size_t k,
+                  std::vector<ManifoldBasisSample>& samples) {
+  const auto block = static_cast<std::size_t>(kept.block[k]);
+  const std::vector<int>& function = kept.function[block];
+  const std::vector<double>& value = kept.value[block];
+  const std::vector<Eigen::Vector2d>& gradient = kept.gradient[block];
+  samples.resize(static_cast<std::size_t>(kept.count[k]));
+  for (int i = 0; i < kept.count[k]; ++i) {
+    const int e = kept.first[k] + i;
+    ManifoldBasisSample& s = samples[static_cast<std::size_t>(i)];
+    s.function = function[e];
+    s.jet.value = value[e];
+    s.jet.gradient = gradient[e];
+    s.jet.hessian.setZero();
+  }
+}
+
 // project_to_spline; `current` ends with the basis samples at the returned point, `trial` is
-// scratch.
+// scratch. With start_known, `current` holds the start's samples (values and gradients) already.
 Projection project_keeping(const ManifoldSpline& spline, const DomainPoint& start,
-                           const Eigen::Vector3d& target, int iterations,
+                           const Eigen::Vector3d& target, int iterations, bool start_known,
                            std::vector<ManifoldBasisSample>& current,
                            std::vector<ManifoldBasisSample>& trial) {
   const ManifoldSplineSpace& space = *spline.space;
@@ -56,7 +74,11 @@ Projection project_keeping(const ManifoldSpline& spline, const DomainPoint& star
   DomainPoint point = start;
   // Gauss-Newton needs positions and first derivatives; the last trial, if it is accepted, only
   // its position (the same bits as the full jet's).
-  SurfaceJet jet = evaluate_keeping(spline, point, BasisDerivatives::first, current);
+  SurfaceJet jet =
+      start_known
+          ? combine(current, spline.control_points, space.chart_of(point.face),
+                    BasisDerivatives::first)
+          : evaluate_keeping(spline, point, BasisDerivatives::first, current);
   for (int it = 0; it < iterations; ++it) {
     const int chart = space.chart_of(point.face);
     Eigen::Matrix<double, 3, 2> j;
@@ -109,7 +131,7 @@ Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& st
                              const Eigen::Vector3d& target, int iterations) {
   // Per-thread samples: projections run point by point in hot loops.
   thread_local std::vector<ManifoldBasisSample> current, trial;
-  return project_keeping(spline, start, target, iterations, current, trial);
+  return project_keeping(spline, start, target, iterations, false, current, trial);
 }
 
 FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint>& parameters,
@@ -139,7 +161,8 @@ namespace detail {
 CorrectedParameters correct_parameters_keeping(const ManifoldSpline& spline,
                                                const std::vector<DomainPoint>& parameters,
                                                const Eigen::MatrixX3d& points, int iterations,
-                                               int threads, PointBasisValues* kept) {
+                                               int threads, const PointBasisValues* start,
+                                               PointBasisValues* kept) {
   if (static_cast<Eigen::Index>(parameters.size()) != points.rows()) {
     throw ricci::InvalidInputError("correct_parameters: " + std::to_string(parameters.size()) +
                                    " parameters for " + std::to_string(points.rows()) + " points");
@@ -149,10 +172,14 @@ CorrectedParameters correct_parameters_keeping(const ManifoldSpline& spline,
   result.parameters = parameters;
   const auto count = static_cast<int>(parameters.size());
   std::vector<char> moved(parameters.size(), 0);
-  const std::size_t block = kept ? kept->block_size : 64;
+  constexpr std::size_t kBlock = 64;  // parallel_for's blocks: each kept block one thread's
   if (kept) {
-    const std::size_t blocks = (parameters.size() + block - 1) / block;
+    const std::size_t blocks = (parameters.size() + kBlock - 1) / kBlock;
+    *kept = PointBasisValues{};
     kept->at.assign(parameters.size(), DomainPoint{-1, Eigen::Vector3d::Zero()});
+    kept->block.resize(parameters.size());
+    for (std::size_t k = 0; k < parameters.size(); ++k)
+      kept->block[k] = static_cast<int>(k / kBlock);
     kept->first.assign(parameters.size(), 0);
     kept->count.assign(parameters.size(), 0);
     kept->function.assign(blocks, {});
@@ -161,8 +188,8 @@ CorrectedParameters correct_parameters_keeping(const ManifoldSpline& spline,
   // The samples at the point's kept parameter (the start, or the projection's end).
   const auto keep = [&](std::size_t k, const DomainPoint& at,
                         const std::vector<ManifoldBasisSample>& samples) {
-    std::vector<int>& function = kept->function[k / block];
-    std::vector<double>& value = kept->value[k / block];
+    std::vector<int>& function = kept->function[k / kBlock];
+    std::vector<double>& value = kept->value[k / kBlock];
     kept->at[k] = at;
     kept->first[k] = static_cast<int>(function.size());
     kept->count[k] = static_cast<int>(samples.size());
@@ -174,22 +201,24 @@ CorrectedParameters correct_parameters_keeping(const ManifoldSpline& spline,
   parallel_for(
       static_cast<std::size_t>(count), std::max(1, threads),
       [&](std::size_t k) {
-        const DomainPoint& start = parameters[k];
-        if (start.face < 0 || !space.in_domain(start.face)) return;
+        const DomainPoint& from = parameters[k];
+        if (from.face < 0 || !space.in_domain(from.face)) return;
         thread_local std::vector<ManifoldBasisSample> current, trial;
+        const bool known = start && start->holds_gradients(k, from);
+        if (known) take_samples(*start, k, current);
         const Projection p =
-            project_keeping(spline, start, points.row(static_cast<Eigen::Index>(k)).transpose(),
-                            iterations, current, trial);
-        const bool same = p.point.face == start.face && p.point.barycentric == start.barycentric;
+            project_keeping(spline, from, points.row(static_cast<Eigen::Index>(k)).transpose(),
+                            iterations, known, current, trial);
+        const bool same = p.point.face == from.face && p.point.barycentric == from.barycentric;
         if (same || on_domain_rim(space, p.point.face, p.point.barycentric)) {
-          if (kept && same) keep(k, start, current);
+          if (kept && same) keep(k, from, current);
           return;
         }
         result.parameters[k] = p.point;
         moved[k] = 1;
         if (kept) keep(k, p.point, current);
       },
-      block);
+      kBlock);
   for (char m : moved) result.moved += m;
   return result;
 }
@@ -201,7 +230,7 @@ CorrectedParameters correct_parameters(const ManifoldSpline& spline,
                                        const Eigen::MatrixX3d& points, int iterations,
                                        int threads) {
   return detail::correct_parameters_keeping(spline, parameters, points, iterations, threads,
-                                            nullptr);
+                                            nullptr, nullptr);
 }
 
 }  // namespace spline

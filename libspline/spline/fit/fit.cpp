@@ -320,19 +320,21 @@ FitSetup prepare_fit(const ManifoldSplineSpace& space, const std::vector<DomainP
 
 // The fit with a prepared setup. `reference`: the multipliers' starting point (feasible ideally:
 // the previous round's solution converges in fewer updates). `known`: basis values already
-// evaluated at (some of) the parameters, or null.
+// evaluated at (some of) the parameters, or null. `samples`, when not null, receives the basis
+// values and gradients at the parameters (detail::take_data_rows).
 FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup,
                          const std::vector<DomainPoint>& parameters,
                          const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
                          const Eigen::MatrixX3d& reference, const FitOptions& options,
-                         const detail::PointBasisValues* known = nullptr) {
+                         const detail::PointBasisValues* known = nullptr,
+                         detail::PointBasisValues* samples = nullptr) {
   const ricci::Stopwatch start;
   FitResult result;
   result.points = domain_point_count(space, parameters);
   const std::vector<detail::FaceRowsSpec> rows = data_rows(space, parameters);
   const int threads = std::max(1, options.threads);
   detail::NormalEquations normal = detail::assemble_normal_equations(
-      space, rows, parameters, points, 0.0, initial, threads, known);
+      space, rows, parameters, points, 0.0, initial, threads, known, samples != nullptr);
   normal.lower += setup.regulariser.lower;
   normal.rhs += setup.regulariser.rhs;
   result.seconds_assemble = start.seconds();
@@ -377,6 +379,7 @@ FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup
   const Eigen::VectorXd distance = residual.rowwise().norm();
   result.rms_at_parameters = std::sqrt(distance.squaredNorm() / result.points);
   result.max_at_parameters = distance.maxCoeff();
+  if (samples) *samples = detail::take_data_rows(normal, rows, parameters);
   return result;
 }
 
@@ -696,7 +699,11 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
   const FitSetup setup = prepare_fit(*space, parameters, data, initial, fit_options);
   result.setup_parameters = parameters;
-  result.fit = fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options);
+  // The fit keeps its basis samples (with gradients) for the first correction's projections.
+  detail::PointBasisValues start_samples;
+  result.fit =
+      fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options, nullptr,
+                     options.parameter_corrections > 0 ? &start_samples : nullptr);
   result.timings.fit = t.seconds();
 
   result.spline.space = space;
@@ -708,11 +715,12 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
     detail::PointBasisValues known;
     parameters = detail::correct_parameters_keeping(result.spline, parameters, data,
                                                     options.correction_iterations,
-                                                    fit_options.threads, &known)
+                                                    fit_options.threads, &start_samples, &known)
                      .parameters;
+    start_samples = std::move(known);  // values only: a further round evaluates its starts
     pin_boundary(parameters);
     result.fit = fit_with_setup(*space, setup, parameters, data, initial,
-                                result.fit.control_points, fit_options, &known);
+                                result.fit.control_points, fit_options, &start_samples);
     result.spline.control_points = result.fit.control_points;
     ++result.corrections;
   }
