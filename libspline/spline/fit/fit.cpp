@@ -17,6 +17,7 @@
 #include "ricci/util/stopwatch.h"
 #include "spline/basis/multi_index.h"
 #include "spline/fit/boundary_curve.h"
+#include "spline/fit/correction.h"
 #include "spline/fair/constrained_solve.h"
 #include "spline/fit/normal_equations.h"
 #include "spline/tessellate/parallel_for.h"
@@ -36,18 +37,6 @@ Eigen::Vector3d face_point(const ricci::Mesh& mesh, int face, const Eigen::Vecto
   for (int k = 0; k < 3; ++k)
     p += bary[k] * ricci::to_eigen(mesh.point(mesh.to_vertex_handle(hs[k])));
   return p;
-}
-
-
-// True when the point lies on an edge of the domain's rim (an edge whose other face is missing
-// or outside the domain): a projection clamped there is over the hole (or beyond an open
-// boundary), which the spline does not cover (correct_parameters keeps the old parameter).
-bool on_domain_rim(const ManifoldSplineSpace& space, int face, const Eigen::Vector3d& bary) {
-  for (int k = 0; k < 3; ++k) {
-    const int g = space.neighbour(face, k);
-    if ((g < 0 || !space.in_domain(g)) && bary[k] <= 1e-12) return true;
-  }
-  return false;
 }
 
 // True when the basis is no partition of unity at the point (a domain point): within the knot
@@ -288,28 +277,36 @@ FitSetup make_fit_setup(const ManifoldSplineSpace& space, const Eigen::MatrixX3d
                         const FitOptions& options, const std::vector<DomainPoint>& parameters) {
   const int points = domain_point_count(space, parameters);
   FitSetup setup;
-  std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
-  if (options.smoothing > 0.0) {
-    std::vector<int> points_by_face;
-    for (const auto& spec : data_rows(space, parameters))
-      points_by_face.push_back(static_cast<int>(spec.points.size()));
-    const std::vector<double> w =
-        thin_plate_weights(space, initial, options, points, points_by_face);
-    for (std::size_t d = 0; d < rows.size(); ++d) rows[d].thin_plate_weight = w[d];
-  }
-  const double anchor = options.anchor * points / space.function_count();
-  setup.regulariser = detail::assemble_normal_equations(space, rows, {}, Eigen::MatrixX3d(0, 3),
-                                                        anchor, initial,
-                                                        std::max(1, options.threads));
-  if (options.constraint_r >= 0) {
-    FairOptions fair_options;
-    fair_options.r = options.constraint_r;
-    fair_options.active_faces = options.constraint_faces;
-    setup.constraints = fairing_constraints(space, fair_options);
-  } else {
-    setup.constraints.resize(0, space.function_count());
-  }
-  setup.reduced = reduce_constraints(setup.constraints);
+  const auto regulariser = [&] {
+    std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
+    if (options.smoothing > 0.0) {
+      std::vector<int> points_by_face;
+      for (const auto& spec : data_rows(space, parameters))
+        points_by_face.push_back(static_cast<int>(spec.points.size()));
+      const std::vector<double> w =
+          thin_plate_weights(space, initial, options, points, points_by_face);
+      for (std::size_t d = 0; d < rows.size(); ++d) rows[d].thin_plate_weight = w[d];
+    }
+    const double anchor = options.anchor * points / space.function_count();
+    setup.regulariser = detail::assemble_normal_equations(
+        space, rows, {}, Eigen::MatrixX3d(0, 3), anchor, initial, std::max(1, options.threads));
+  };
+  const auto constraints = [&] {
+    if (options.constraint_r >= 0) {
+      FairOptions fair_options;
+      fair_options.r = options.constraint_r;
+      fair_options.active_faces = options.constraint_faces;
+      setup.constraints = fairing_constraints(space, fair_options);
+    } else {
+      setup.constraints.resize(0, space.function_count());
+    }
+    setup.reduced = reduce_constraints(setup.constraints);
+  };
+  // Independent: the constraints (built on one core) beside the regulariser's assembly (h/fit20).
+  run_workers(options.threads > 1 ? 2 : 1, [&](int worker) {
+    if (worker == 0) regulariser();
+    if (worker == 1 || options.threads <= 1) constraints();
+  });
   return setup;
 }
 
@@ -322,18 +319,22 @@ FitSetup prepare_fit(const ManifoldSplineSpace& space, const std::vector<DomainP
 }
 
 // The fit with a prepared setup. `reference`: the multipliers' starting point (feasible ideally:
-// the previous round's solution converges in fewer updates).
+// the previous round's solution converges in fewer updates). `known`: basis values already
+// evaluated at (some of) the parameters, or null. `samples`, when not null, receives the basis
+// values and gradients at the parameters (detail::take_data_rows).
 FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup,
                          const std::vector<DomainPoint>& parameters,
                          const Eigen::MatrixX3d& points, const Eigen::MatrixX3d& initial,
-                         const Eigen::MatrixX3d& reference, const FitOptions& options) {
+                         const Eigen::MatrixX3d& reference, const FitOptions& options,
+                         const detail::PointBasisValues* known = nullptr,
+                         detail::PointBasisValues* samples = nullptr) {
   const ricci::Stopwatch start;
   FitResult result;
   result.points = domain_point_count(space, parameters);
   const std::vector<detail::FaceRowsSpec> rows = data_rows(space, parameters);
   const int threads = std::max(1, options.threads);
   detail::NormalEquations normal = detail::assemble_normal_equations(
-      space, rows, parameters, points, 0.0, initial, threads);
+      space, rows, parameters, points, 0.0, initial, threads, known, samples != nullptr);
   normal.lower += setup.regulariser.lower;
   normal.rhs += setup.regulariser.rhs;
   result.seconds_assemble = start.seconds();
@@ -378,6 +379,7 @@ FitResult fit_with_setup(const ManifoldSplineSpace& space, const FitSetup& setup
   const Eigen::VectorXd distance = residual.rowwise().norm();
   result.rms_at_parameters = std::sqrt(distance.squaredNorm() / result.points);
   result.max_at_parameters = distance.maxCoeff();
+  if (samples) *samples = detail::take_data_rows(normal, rows, parameters);
   return result;
 }
 
@@ -409,77 +411,6 @@ FitResult fit_control_points(const ManifoldSplineSpace& space,
   return result;
 }
 
-Projection project_to_spline(const ManifoldSpline& spline, const DomainPoint& start,
-                             const Eigen::Vector3d& target, int iterations) {
-  const ManifoldSplineSpace& space = *spline.space;
-  DomainPoint point = start;
-  // Gauss-Newton needs positions and first derivatives; the last trial, if it is accepted, only
-  // its position (the same bits as the full jet's).
-  SurfaceJet jet = spline.evaluate(point, -1, {}, BasisDerivatives::first);
-  for (int it = 0; it < iterations; ++it) {
-    const int chart = space.chart_of(point.face);
-    Eigen::Matrix<double, 3, 2> j;
-    j << jet.du, jet.dv;
-    const Eigen::Matrix2d jtj = j.transpose() * j;
-    if (std::abs(jtj.determinant()) < 1e-300) break;
-    const Eigen::Vector2d step = -jtj.ldlt().solve(j.transpose() * (jet.position - target));
-    const Eigen::Vector2d u = space.chart_point(chart, point.face, point.barycentric) + step;
-    // The face of the neighbourhood (glued in this chart) containing u, else stay on the rim.
-    DomainPoint next{-1, Eigen::Vector3d::Zero()};
-    const ricci::Chart& c = space.atlas().charts[chart];
-    // The face and the faces across its edges: one Gauss-Newton step rarely goes further.
-    std::vector<int> candidates{point.face};
-    for (int a = 0; a < 3; ++a) {
-      const int g = space.neighbour(point.face, a);
-      if (g >= 0) candidates.push_back(g);
-    }
-    double best = -1e300;
-    for (int g : candidates) {
-      if (!space.in_domain(g) || c.slot(g) < 0) continue;
-      const Eigen::Vector3d bary = barycentric_in(space.atlas().face_positions(chart, g), u);
-      const double worst = bary.minCoeff();
-      if (worst > best) {
-        best = worst;
-        next = {g, bary};
-      }
-    }
-    if (next.face < 0) break;
-    if (best < 0.0) {  // outside the reachable faces: clamp into the best one
-      next.barycentric = next.barycentric.cwiseMax(0.0);
-      next.barycentric /= next.barycentric.sum();
-    }
-    const SurfaceJet trial = spline.evaluate(
-        next, -1, {}, it + 1 < iterations ? BasisDerivatives::first : BasisDerivatives::none);
-    if ((trial.position - target).squaredNorm() > (jet.position - target).squaredNorm()) break;
-    point = next;
-    jet = trial;
-    if (step.norm() < 1e-12 * space.atlas().domain_diameter) break;
-  }
-  return {point, jet.position, (jet.position - target).norm()};
-}
-
-FitErrors fit_errors(const ManifoldSpline& spline, const std::vector<DomainPoint>& parameters,
-                     const Eigen::MatrixX3d& points, int iterations, int threads) {
-  const auto count = static_cast<int>(parameters.size());
-  Eigen::VectorXd distance = Eigen::VectorXd::Constant(count, -1.0);  // -1: skipped
-  parallel_for(static_cast<std::size_t>(count), std::max(1, threads), [&](std::size_t i) {
-    const auto k = static_cast<int>(i);
-    if (parameters[i].face < 0 || !spline.space->in_domain(parameters[i].face)) return;
-    const Eigen::Vector3d p = points.row(k).transpose();
-    distance[k] = project_to_spline(spline, parameters[i], p, iterations).distance;
-  });
-  FitErrors errors;
-  double sum = 0.0;
-  for (int k = 0; k < count; ++k) {
-    if (distance[k] < 0.0) continue;
-    sum += distance[k] * distance[k];
-    errors.max = std::max(errors.max, distance[k]);
-    ++errors.points;
-  }
-  if (errors.points > 0) errors.rms = std::sqrt(sum / errors.points);
-  return errors;
-}
-
 std::vector<int> domain_rim_rings(const ManifoldSplineSpace& space) {
   std::vector<int> ring(static_cast<std::size_t>(space.domain_face_count()), -1);
   std::vector<int> queue;
@@ -501,34 +432,6 @@ std::vector<int> domain_rim_rings(const ManifoldSplineSpace& space) {
     }
   }
   return ring;
-}
-
-CorrectedParameters correct_parameters(const ManifoldSpline& spline,
-                                       const std::vector<DomainPoint>& parameters,
-                                       const Eigen::MatrixX3d& points, int iterations,
-                                       int threads) {
-  if (static_cast<Eigen::Index>(parameters.size()) != points.rows()) {
-    throw ricci::InvalidInputError("correct_parameters: " + std::to_string(parameters.size()) +
-                                   " parameters for " + std::to_string(points.rows()) + " points");
-  }
-  const ManifoldSplineSpace& space = *spline.space;
-  CorrectedParameters result;
-  result.parameters = parameters;
-  const auto count = static_cast<int>(parameters.size());
-  std::vector<char> moved(parameters.size(), 0);
-  parallel_for(static_cast<std::size_t>(count), std::max(1, threads), [&](std::size_t k) {
-    const DomainPoint& start = parameters[k];
-    if (start.face < 0 || !space.in_domain(start.face)) return;
-    const Projection p = project_to_spline(spline, start,
-                                           points.row(static_cast<Eigen::Index>(k)).transpose(),
-                                           iterations);
-    if (on_domain_rim(space, p.point.face, p.point.barycentric)) return;
-    if (p.point.face == start.face && p.point.barycentric == start.barycentric) return;
-    result.parameters[k] = p.point;
-    moved[k] = 1;
-  });
-  for (char m : moved) result.moved += m;
-  return result;
 }
 
 namespace {
@@ -796,19 +699,28 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
   const FitSetup setup = prepare_fit(*space, parameters, data, initial, fit_options);
   result.setup_parameters = parameters;
-  result.fit = fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options);
+  // The fit keeps its basis samples (with gradients) for the first correction's projections.
+  detail::PointBasisValues start_samples;
+  result.fit =
+      fit_with_setup(*space, setup, parameters, data, initial, initial, fit_options, nullptr,
+                     options.parameter_corrections > 0 ? &start_samples : nullptr);
   result.timings.fit = t.seconds();
 
   result.spline.space = space;
   result.spline.control_points = result.fit.control_points;
   if (options.parameter_corrections > 0) t = stage("correction");
   for (int round = 0; round < options.parameter_corrections; ++round) {
-    parameters = correct_parameters(result.spline, parameters, data,
-                                    options.correction_iterations, fit_options.threads)
+    // The projections end with the basis values at the new parameters: the refit takes them
+    // (a pinned boundary parameter differs from the kept one and is evaluated again).
+    detail::PointBasisValues known;
+    parameters = detail::correct_parameters_keeping(result.spline, parameters, data,
+                                                    options.correction_iterations,
+                                                    fit_options.threads, &start_samples, &known)
                      .parameters;
+    start_samples = std::move(known);  // values only: a further round evaluates its starts
     pin_boundary(parameters);
     result.fit = fit_with_setup(*space, setup, parameters, data, initial,
-                                result.fit.control_points, fit_options);
+                                result.fit.control_points, fit_options, &start_samples);
     result.spline.control_points = result.fit.control_points;
     ++result.corrections;
   }

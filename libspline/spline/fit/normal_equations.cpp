@@ -118,15 +118,34 @@ class FaceAccumulator {
 // Data rows, then three thin-plate rows per quadrature point, of one face.
 void accumulate_face(const ManifoldSplineSpace& space, int face, const std::vector<int>& reach,
                      const FaceRowsSpec& spec, const std::vector<DomainPoint>& parameters,
-                     const Eigen::MatrixX3d& points, FaceAccumulator& acc, FaceDataRows& kept,
+                     const Eigen::MatrixX3d& points, const PointBasisValues* known,
+                     bool keep_gradients, FaceAccumulator& acc, FaceDataRows& kept,
                      ReachColumns& local_column) {
   acc.reset(static_cast<int>(reach.size()) * space.functions_per_face());
   local_column.set(reach);
+  const auto add = [&](int function, double value) {
+    acc.add(local_column(function), value);
+    kept.function.push_back(function);
+    kept.value.push_back(value);
+  };
   for (int k : spec.points) {
-    for (const auto& s : space.evaluate_basis(parameters[k], -1, {}, BasisDerivatives::none)) {
-      acc.add(local_column(s.function), s.jet.value);
-      kept.function.push_back(s.function);
-      kept.value.push_back(s.jet.value);
+    const auto point = static_cast<std::size_t>(k);
+    if (known && !keep_gradients && known->holds(point, parameters[point])) {
+      const auto block = static_cast<std::size_t>(known->block[point]);
+      const std::vector<int>& function = known->function[block];
+      const std::vector<double>& value = known->value[block];
+      const int first = known->first[point];
+      for (int e = first; e < first + known->count[point]; ++e) add(function[e], value[e]);
+    } else if (keep_gradients) {
+      // Values of a first-order evaluation have the bits of a values-only one.
+      for (const auto& s : space.evaluate_basis(parameters[point], -1, {},
+                                                BasisDerivatives::first)) {
+        add(s.function, s.jet.value);
+        kept.gradient.push_back(s.jet.gradient);
+      }
+    } else {
+      for (const auto& s : space.evaluate_basis(parameters[point], -1, {}, BasisDerivatives::none))
+        add(s.function, s.jet.value);
     }
     kept.start.push_back(static_cast<int>(kept.function.size()));
     acc.end_row(points.row(k), true);
@@ -167,7 +186,8 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
                                           const std::vector<FaceRowsSpec>& rows_by_face,
                                           const std::vector<DomainPoint>& parameters,
                                           const Eigen::MatrixX3d& points, double anchor,
-                                          const Eigen::MatrixX3d& initial, int threads) {
+                                          const Eigen::MatrixX3d& initial, int threads,
+                                          const PointBasisValues* known, bool keep_gradients) {
   const int m = space.functions_per_face();
   const int faces = space.domain_face_count();
   const std::vector<std::vector<int>> reach = reach_by_domain_index(space);
@@ -187,8 +207,8 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
       const FaceRowsSpec& spec = rows_by_face[d];
       if (spec.points.empty() && spec.thin_plate_weight <= 0.0) continue;
       const std::vector<int>& r = reach[d];
-      accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, acc,
-                      kept[d], local_column);
+      accumulate_face(space, space.domain_faces()[d], r, spec, parameters, points, known,
+                      keep_gradients, acc, kept[d], local_column);
       const int k = acc.columns();
       std::vector<int> global(static_cast<std::size_t>(k));
       for (int c = 0; c < k; ++c) global[c] = r[c / m] * m + c % m;  // ascending with c
@@ -220,6 +240,34 @@ NormalEquations assemble_normal_equations(const ManifoldSplineSpace& space,
   out.lower.setFromTriplets(all.begin(), all.end());
   out.rhs = rhs[0] + anchor * initial;
   out.data_rows = std::move(kept);
+  return out;
+}
+
+PointBasisValues take_data_rows(NormalEquations& equations,
+                                const std::vector<FaceRowsSpec>& rows_by_face,
+                                const std::vector<DomainPoint>& parameters) {
+  PointBasisValues out;
+  out.at.assign(parameters.size(), DomainPoint{-1, Eigen::Vector3d::Zero()});
+  out.block.assign(parameters.size(), 0);
+  out.first.assign(parameters.size(), 0);
+  out.count.assign(parameters.size(), 0);
+  bool gradients = false;
+  for (std::size_t d = 0; d < rows_by_face.size(); ++d) {
+    FaceDataRows& rows = equations.data_rows[d];
+    const auto& listed = rows_by_face[d].points;
+    for (std::size_t i = 0; i < listed.size(); ++i) {
+      const auto k = static_cast<std::size_t>(listed[i]);
+      out.at[k] = parameters[k];
+      out.block[k] = static_cast<int>(d);
+      out.first[k] = rows.start[i];
+      out.count[k] = rows.start[i + 1] - rows.start[i];
+    }
+    gradients = gradients || !rows.gradient.empty();
+    out.function.push_back(std::move(rows.function));
+    out.value.push_back(std::move(rows.value));
+    out.gradient.push_back(std::move(rows.gradient));
+  }
+  if (!gradients) out.gradient.clear();
   return out;
 }
 

@@ -8,6 +8,7 @@
 // (msp-bench spline, horse row).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cstddef>
 #include <vector>
 
 #include "spline/manifold/manifold_space.h"
@@ -27,6 +28,32 @@ struct FaceDataRows {
   std::vector<int> start{0};
   std::vector<int> function;
   std::vector<double> value;
+  std::vector<Eigen::Vector2d> gradient;  ///< empty unless the assembly was asked to keep them
+};
+
+/// Basis samples a step already evaluated at the points, for a later step to take instead of
+/// evaluating them again: the correction's projections start from the fit's (values and
+/// gradients) and end with the refit's (values). Point k's samples, in
+/// ManifoldSplineSpace::evaluate_basis' order in chart_of(face), are entries first[k] ..
+/// first[k] + count[k] - 1 of block[k]'s arrays (blocks: each written by one thread), valid at
+/// the parameter at[k] (face -1: none kept). gradient is empty when only values were kept.
+/// Callers take them only where at[k] equals their own parameter bit for bit.
+struct PointBasisValues {
+  std::vector<DomainPoint> at;
+  std::vector<int> block, first, count;
+  std::vector<std::vector<int>> function;
+  std::vector<std::vector<double>> value;
+  std::vector<std::vector<Eigen::Vector2d>> gradient;
+
+  /// Whether point k's values are kept for the parameter p.
+  [[nodiscard]] bool holds(std::size_t k, const DomainPoint& p) const {
+    return k < at.size() && at[k].face >= 0 && at[k].face == p.face &&
+           at[k].barycentric == p.barycentric;
+  }
+  /// Whether point k's gradients are kept too.
+  [[nodiscard]] bool holds_gradients(std::size_t k, const DomainPoint& p) const {
+    return holds(k, p) && !gradient.empty();
+  }
 };
 
 struct NormalEquations {
@@ -37,12 +64,21 @@ struct NormalEquations {
 
 /// Sum over faces (by domain index) of B_I^T B_I and B_I^T targets, plus anchor * I and
 /// anchor * initial. Faces are split between `threads` workers (each with its own accumulator,
-/// summed in a fixed order: the result does not depend on scheduling).
+/// summed in a fixed order: the result does not depend on scheduling). `known`: values already
+/// evaluated at some points (the same bits as evaluating them here), or null. keep_gradients:
+/// the data rows also keep the basis gradients (FaceDataRows::gradient).
 /// \throw as ManifoldSplineSpace::evaluate_basis.
 [[nodiscard]] NormalEquations assemble_normal_equations(
     const ManifoldSplineSpace& space, const std::vector<FaceRowsSpec>& rows_by_face,
     const std::vector<DomainPoint>& parameters, const Eigen::MatrixX3d& points, double anchor,
-    const Eigen::MatrixX3d& initial, int threads);
+    const Eigen::MatrixX3d& initial, int threads, const PointBasisValues* known = nullptr,
+    bool keep_gradients = false);
+
+/// The data rows' samples (moved out of `equations`) as PointBasisValues at `parameters`, the
+/// points of rows_by_face; the other points hold none.
+[[nodiscard]] PointBasisValues take_data_rows(NormalEquations& equations,
+                                              const std::vector<FaceRowsSpec>& rows_by_face,
+                                              const std::vector<DomainPoint>& parameters);
 
 /// F(u_k) - p_k for every point listed in rows_by_face (others: zero rows), from the kept rows.
 [[nodiscard]] Eigen::MatrixX3d residuals_at_parameters(const NormalEquations& equations,
