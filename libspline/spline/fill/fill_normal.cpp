@@ -3,6 +3,7 @@
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -288,8 +289,13 @@ void add_thin_plate_rows(System& system, const PlanarDmsSpace& space, double wei
   }
 }
 
-Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight, const Sparse* plus,
-                         const std::vector<char>* plain) {
+namespace {
+
+// thin_plate_normal with `plus` asked for only when the blocks are summed: plus() may still be
+// in the making (on another thread) while the points are evaluated.
+template <class Plus>
+Sparse thin_plate_normal_plus(const PlanarDmsSpace& space, double weight, const Plus& plus,
+                              const std::vector<char>* plain) {
   const auto rule = thin_plate_rule();
   const auto plain_rule = thin_plate_plain_rule();
   const int size = space.functions_per_triangle();
@@ -326,7 +332,14 @@ Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight, const Spars
       }
     });
   }
-  return blocks.symmetric(plus);
+  return blocks.symmetric(plus());
+}
+
+}  // namespace
+
+Sparse thin_plate_normal(const PlanarDmsSpace& space, double weight, const Sparse* plus,
+                         const std::vector<char>* plain) {
+  return thin_plate_normal_plus(space, weight, [plus] { return plus; }, plain);
 }
 
 NormalEquations normal_equations(const System& system, const PlanarDmsSpace& space,
@@ -335,11 +348,22 @@ NormalEquations normal_equations(const System& system, const PlanarDmsSpace& spa
   a.setFromTriplets(system.entries.begin(), system.entries.end());
   Eigen::MatrixX3d b(system.next_row(), 3);
   for (int i = 0; i < system.next_row(); ++i) b.row(i) = system.targets[i].transpose();
-  NormalEquations result{a.transpose() * a, a.transpose() * b};
-  if (thin_plate > 0.0) {
-    Sparse sum = thin_plate_normal(space, thin_plate, &result.matrix, plain);
-    result.matrix.swap(sum);
+  NormalEquations result;
+  result.rhs = a.transpose() * b;
+  if (!(thin_plate > 0.0)) {
+    result.matrix = a.transpose() * a;
+    return result;
   }
+  // A^T A (one core) made while the thin plate's points are evaluated; added at its end.
+  Sparse ata;
+  std::future<void> product = std::async(std::launch::async, [&] { ata = a.transpose() * a; });
+  result.matrix = thin_plate_normal_plus(
+      space, thin_plate,
+      [&product, &ata] {
+        product.get();
+        return &ata;
+      },
+      plain);
   return result;
 }
 

@@ -69,6 +69,76 @@ std::vector<Eigen::Vector2d> set_chords(HoleFill& fill, int q) {
   return polygon;
 }
 
+// Removes the grid's triangles whose centroid lies outside the closed polygon `boundary` farther
+// than `distance` from it, then puts back the triangles around any vertex where the kept ones
+// would touch at a point only (two fans), until none does. Vertex indices stay (the knot clouds
+// are seeded by them; without_unused_vertices drops the unused ones after).
+void trim_grid(PlanarTriangulation& t, const std::vector<Eigen::Vector2d>& boundary,
+               double distance) {
+  const PolygonRegion region(boundary, distance);
+  std::vector<char> kept(t.triangles.size());
+  for (std::size_t k = 0; k < t.triangles.size(); ++k) {
+    const Eigen::Vector3i& v = t.triangles[k];
+    const Eigen::Vector2d c = (t.positions[v[0]] + t.positions[v[1]] + t.positions[v[2]]) / 3.0;
+    kept[k] = region.contains(c) || region.distance(c, 2.0 * distance) <= distance;
+  }
+  std::vector<std::vector<int>> star(t.positions.size());
+  for (std::size_t k = 0; k < t.triangles.size(); ++k) {
+    for (int c = 0; c < 3; ++c) star[static_cast<std::size_t>(t.triangles[k][c])].push_back(k);
+  }
+  // Kept triangles (v, a, b) around v are arcs a -> b; more than one arc whose start is no
+  // arc's end: more than one fan.
+  const auto pinched = [&](std::size_t v) {
+    std::vector<std::pair<int, int>> arcs;
+    for (int k : star[v]) {
+      if (!kept[static_cast<std::size_t>(k)]) continue;
+      const Eigen::Vector3i& tri = t.triangles[static_cast<std::size_t>(k)];
+      const int at = tri[0] == static_cast<int>(v) ? 0 : tri[1] == static_cast<int>(v) ? 1 : 2;
+      arcs.emplace_back(tri[(at + 1) % 3], tri[(at + 2) % 3]);
+    }
+    int starts = 0;
+    for (const auto& arc : arcs) {
+      starts += std::none_of(arcs.begin(), arcs.end(),
+                             [&](const std::pair<int, int>& o) { return o.second == arc.first; });
+    }
+    return starts > 1;
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t v = 0; v < star.size(); ++v) {
+      if (!pinched(v)) continue;
+      for (int k : star[v]) kept[static_cast<std::size_t>(k)] = 1;
+      changed = true;
+    }
+  }
+  std::vector<Eigen::Vector3i> triangles;
+  for (std::size_t k = 0; k < t.triangles.size(); ++k) {
+    if (kept[k]) triangles.push_back(t.triangles[k]);
+  }
+  t.triangles = std::move(triangles);
+}
+
+// The vertices of no triangle and their clouds removed, the others renumbered in order.
+void without_unused_vertices(PlanarTriangulation& t, std::vector<KnotCloud>& clouds) {
+  std::vector<int> index(t.positions.size(), -1);
+  for (const Eigen::Vector3i& tri : t.triangles) {
+    for (int c = 0; c < 3; ++c) index[static_cast<std::size_t>(tri[c])] = 0;
+  }
+  int next = 0;
+  for (std::size_t v = 0; v < index.size(); ++v) {
+    if (index[v] < 0) continue;
+    index[v] = next;
+    t.positions[static_cast<std::size_t>(next)] = t.positions[v];
+    clouds[static_cast<std::size_t>(next)] = std::move(clouds[v]);
+    ++next;
+  }
+  t.positions.resize(static_cast<std::size_t>(next));
+  clouds.resize(static_cast<std::size_t>(next));
+  for (Eigen::Vector3i& tri : t.triangles) {
+    for (int c = 0; c < 3; ++c) tri[c] = index[static_cast<std::size_t>(tri[c])];
+  }
+}
+
 }  // namespace
 
 std::vector<QuadraturePoint> thin_plate_rule() {
@@ -98,6 +168,10 @@ std::vector<QuadraturePoint> thin_plate_plain_rule() {
   return rule;
 }
 
+double grid_keep_distance(const FillOptions& options, double spacing) {
+  return options.grid_margin < 0.0 ? INFINITY : options.grid_margin * spacing;
+}
+
 std::vector<char> plain_rule_triangles(const PlanarDmsSpace& space,
                                        const std::vector<Eigen::Vector2d>& boundary,
                                        double distance) {
@@ -123,7 +197,8 @@ std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vecto
                                                   const KnotCloudOptions& knots,
                                                   const std::vector<Eigen::Vector2d>& corners,
                                                   const std::vector<int>& refinements,
-                                                  double outside_grading) {
+                                                  double outside_grading,
+                                                  double keep_distance) {
   Eigen::Vector2d lo = boundary[0], hi = boundary[0];
   for (const auto& p : boundary) {
     lo = lo.cwiseMin(p);
@@ -131,6 +206,8 @@ std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vecto
   }
   const Eigen::Vector2d margin = Eigen::Vector2d::Constant(2.0 * spacing);
   PlanarTriangulation t = triangle_grid(lo - margin, hi + margin, spacing);
+  const bool trim = std::isfinite(keep_distance) && keep_distance >= 0.0;
+  if (trim) trim_grid(t, boundary, keep_distance);
   if (std::any_of(refinements.begin(), refinements.end(), [](int r) { return r > 1; })) {
     std::vector<double> fine(corners.size());
     for (std::size_t c = 0; c < corners.size(); ++c) fine[c] = spacing / refinements[c];
@@ -147,6 +224,7 @@ std::shared_ptr<const PlanarDmsSpace> patch_space(const std::vector<Eigen::Vecto
     });
   }
   auto clouds = make_knot_clouds(t, degree, knots);
+  if (trim) without_unused_vertices(t, clouds);
   return std::make_shared<const PlanarDmsSpace>(std::move(t), std::move(clouds));
 }
 

@@ -4,6 +4,7 @@
 // over a triangle grid, D laid out on a circle, rim names for messages.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,12 +44,19 @@ struct QuadraturePoint {
 /// The same with a refinement per corner (refinements[c] for corners[c]): the triangle sides
 /// at a point are the smallest of spacing / refinements[c] + its distance from corners[c],
 /// that distance times outside_grading at points outside the closed polygon `boundary` (where
-/// the patch is not evaluated; 1: the same grading everywhere).
+/// the patch is not evaluated; 1: the same grading everywhere). With a finite keep_distance
+/// >= 0, the grid keeps only the triangles whose centroid lies in `boundary` or within
+/// keep_distance of it (before the refinement; plus those a vertex needs to keep one fan).
 /// \pre refinements.size() == corners.size(), outside_grading >= 1.
 [[nodiscard]] std::shared_ptr<const PlanarDmsSpace> patch_space(
     const std::vector<Eigen::Vector2d>& boundary, double spacing, int degree,
     const KnotCloudOptions& knots, const std::vector<Eigen::Vector2d>& corners,
-    const std::vector<int>& refinements, double outside_grading = 1.0);
+    const std::vector<int>& refinements, double outside_grading = 1.0,
+    double keep_distance = INFINITY);
+
+/// patch_space's keep_distance for FillOptions::grid_margin at grid side `spacing` (infinite
+/// when the margin is negative: the whole box).
+[[nodiscard]] double grid_keep_distance(const FillOptions& options, double spacing);
 
 /// By triangle of `space`, nonzero where its thin plate may take thin_plate_plain_rule: its
 /// centroid lies outside the closed polygon `boundary` (D), more than `distance` from it. No

@@ -29,6 +29,7 @@ void check_options(const FillOptions& o) {
                   o.corner_refinement >= 1 && o.mild_corner_refinement >= 1 &&
                   o.mild_corner_step_deg >= 0.0 && o.max_refined_rim_step_deg > 0.0 &&
                   o.outside_corner_grading >= 1.0 &&
+                  (o.grid_margin < 0.0 || o.grid_margin >= 1.0) &&
                   o.max_boundary_vertices >= 8 && o.samples_per_edge >= 1 &&
                   o.fit_samples_per_edge >= 1 && o.parametric_samples_per_edge >= 1 && o.position_weight > 0.0 &&
                   o.tangent_weight >= 0.0 && o.cross_weight >= 0.0 && o.smoothing >= 0.0 && o.min_normal_cosine > 0.0 &&
@@ -36,7 +37,7 @@ void check_options(const FillOptions& o) {
   if (!ok) {
     throw ricci::InvalidInputError(
         "fill_rim: options out of range (degree 1..7, refinements >= 1, mild_corner_step_deg >= 0, "
-        "outside_corner_grading >= 1, "
+        "outside_corner_grading >= 1, grid_margin >= 1 or negative, "
         "max_boundary_vertices >= "
         "8, samples >= 1, position_weight > 0, other weights >= 0, min_normal_cosine in (0, 1))");
   }
@@ -244,7 +245,8 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
       std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
   const double h = perimeter / boundary_vertices;
   fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners,
-                           corner_refinements(samples, options), options.outside_corner_grading);
+                           corner_refinements(samples, options), options.outside_corner_grading,
+                           fill_detail::grid_keep_distance(options, h));
   const PlanarDmsSpace& space = *fill.space;
   const std::vector<char> plain = fill_detail::plain_rule_triangles(
       space, polygon,

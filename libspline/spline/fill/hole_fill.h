@@ -180,6 +180,11 @@ struct FillOptions {
   /// instead of the 42 points with the corner sub-triangles, which catch spikes inside knot
   /// clouds; no function reaching D is nonzero there. Negative: the 42 points everywhere.
   double plain_quadrature_distance = 1.0;
+  /// Height-field and parametric patches: the patch's grid keeps the triangles whose centroid
+  /// lies in D or within this many grid sides of it (>= 1: every function reaching D stays, so
+  /// the partition of unity holds on D), not the whole box of D plus two sides. Fewer
+  /// unknowns; the thin plate then ends there. Negative: the whole box.
+  double grid_margin = 2.0;
   /// ... but a rim where the surface's normal turns by more than this (degrees) between samples
   /// 1/100 of an edge apart (a fold or crease) gets the uniform patch only: the refined one
   /// would follow the fold into the hole.

@@ -116,7 +116,8 @@ HoleFill fill_parametric(const Rim& rim, const std::vector<std::vector<RimSample
   const int boundary_vertices =
       std::max(8, std::min(options.refinement * m, options.max_boundary_vertices));
   const double h = perimeter / boundary_vertices;
-  fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners, refinements);
+  fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners, refinements,
+                           1.0, grid_keep_distance(options, h));
   const PlanarDmsSpace& space = *fill.space;
   // An orthonormal frame around the mean normal (informative: P is no height field).
   const Eigen::Vector3d helper =

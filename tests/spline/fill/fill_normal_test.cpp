@@ -12,6 +12,7 @@
 #include "spline/basis/blossom.h"
 #include "spline/fill/fill_system.h"
 #include "spline/fill/patch_domain.h"
+#include "spline/planar/triangulation.h"
 
 namespace spline::fill_detail {
 namespace {
@@ -285,6 +286,59 @@ TEST(PatchSpace, GradesFasterOutsideTheBoundaryOnly) {
     EXPECT_LE(longest, size) << c.transpose();
   }
   EXPECT_GT(inside, 0);
+}
+
+}  // namespace
+}  // namespace spline::fill_detail
+
+namespace spline::fill_detail {
+namespace {
+
+// An L-shaped D: the box of its boundary holds a square of triangles far from it.
+std::vector<Eigen::Vector2d> l_boundary() {
+  return {{0.0, 0.0}, {3.0, 0.0}, {3.0, 0.6}, {0.6, 0.6}, {0.6, 3.0}, {0.0, 3.0}};
+}
+
+// A grid trimmed to keep_distance around D keeps one fan per vertex, no triangle far from D,
+// and the same basis on D (the same functions with the same values: the clouds there keep
+// their seeds and rings), so the partition of unity holds on D.
+TEST(PatchSpace, TrimmedGridKeepsTheBasisOnTheBoundedRegion) {
+  const auto boundary = l_boundary();
+  const double spacing = 0.2;
+  const std::vector<int> refinements(boundary.size(), 4);
+  const auto box = patch_space(boundary, spacing, 3, KnotCloudOptions{}, boundary, refinements);
+  const auto trimmed = patch_space(boundary, spacing, 3, KnotCloudOptions{}, boundary,
+                                   refinements, 1.0, 2.0 * spacing);
+  EXPECT_LT(trimmed->triangle_count(), 0.8 * box->triangle_count());
+  const auto& t = trimmed->triangulation();
+  EXPECT_NO_THROW((void)vertex_rings(t));
+  const PolygonRegion region(boundary, spacing);
+  for (const Eigen::Vector3i& v : t.triangles) {
+    const Eigen::Vector2d c = (t.positions[v[0]] + t.positions[v[1]] + t.positions[v[2]]) / 3.0;
+    EXPECT_TRUE(region.contains(c) || region.distance(c, 4.0 * spacing) < 3.0 * spacing)
+        << c.transpose();
+  }
+  int points = 0;
+  for (double x = 0.013; x < 3.0; x += 0.0731) {
+    for (double y = 0.017; y < 3.0; y += 0.0797) {
+      const Eigen::Vector2d u(x, y);
+      if (!region.contains(u)) continue;
+      ++points;
+      std::vector<double> a, b;
+      double sum = 0.0;
+      for (const auto& s : box->evaluate_basis(u)) a.push_back(s.jet.value);
+      for (const auto& s : trimmed->evaluate_basis(u)) {
+        b.push_back(s.jet.value);
+        sum += s.jet.value;
+      }
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      ASSERT_EQ(a.size(), b.size()) << u.transpose();
+      for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-12) << u.transpose();
+      EXPECT_NEAR(sum, 1.0, 1e-9) << u.transpose();
+    }
+  }
+  EXPECT_GT(points, 300);
 }
 
 }  // namespace
