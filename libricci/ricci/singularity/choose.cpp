@@ -311,6 +311,7 @@ SampledModel::SampledModel(const Mesh& mesh, const SurfaceTopology& topology,
     count = ranked_count(static_cast<int>(pool.size()), static_cast<int>(mesh.n_vertices()),
                          options);
     sample = spread_sample(*graph, pool, count);
+    if (options.beside_factorization) options.beside_factorization();
   });
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,34 @@ TEST(ChooseSingularity, ParallelVerificationMatchesSerial) {
   }
   EXPECT_EQ(two.linear_work.factorizations, one.linear_work.factorizations);
   EXPECT_EQ(two.linear_work.back_substitutions, one.linear_work.back_substitutions);
+}
+
+// The caller's work beside the model's factorisation runs once, reads the mesh, changes
+// nothing in the choice, and what it throws reaches the caller.
+TEST(ChooseSingularity, WorkBesideTheFactorisationRunsOnceAndChangesNothing) {
+  const ricci::Mesh mesh = ricci::read_mesh(msp_test::bundled_model("genus2.off"));
+  ricci::SingularityOptions plain;
+  plain.verification_work = 0;
+  ricci::SingularityOptions beside = plain;
+  int calls = 0;
+  std::size_t faces_seen = 0;
+  beside.beside_factorization = [&] {
+    ++calls;
+    faces_seen = mesh.n_faces();
+  };
+  const ricci::SingularityChoice one = ricci::choose_singularity(mesh, plain);
+  const ricci::SingularityChoice two = ricci::choose_singularity(mesh, beside);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(faces_seen, mesh.n_faces());
+  EXPECT_EQ(two.vertex, one.vertex);
+  EXPECT_EQ(two.predicted_area_distortion, one.predicted_area_distortion);
+  EXPECT_EQ(two.ranked, one.ranked);
+  EXPECT_EQ(two.linear_solves, one.linear_solves);
+  calls = 0;
+  (void)ricci::rank_singularities(mesh, beside);
+  EXPECT_EQ(calls, 1);
+  beside.beside_factorization = [] { throw std::runtime_error("beside"); };
+  EXPECT_THROW((void)ricci::choose_singularity(mesh, beside), std::runtime_error);
 }
 
 TEST(ChooseSingularity, GenusOneAndOpenSurfacesNeedNoVertex) {
