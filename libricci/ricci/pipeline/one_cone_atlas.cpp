@@ -550,7 +550,9 @@ bool choose_vertex(InputSurface& input, const SurfaceTopology& topology,
   // The problem's preparation checks every face's neighbourhood for thin handles (it needs no
   // cone): beside the model's factorisation.
   choice.beside_factorization = [&input, &mesh] {
-    if (input.non_disk_faces().empty()) input.set_non_disk_faces(non_disk_face_neighbourhoods(mesh));
+    if (input.non_disk_faces().empty()) {
+      input.set_non_disk_faces(non_disk_face_neighbourhoods(mesh));
+    }
   };
   SingularityOptions with_prediction = choice;
   with_prediction.predict_log_scale = options.warm_start && intrinsic_first_on(topology, options) &&
