@@ -1,10 +1,13 @@
 // Transition maps between overlapping charts and the side pairings of the cut graph's arcs.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
+#include <vector>
 
 #include "ricci/atlas/chart_develop.h"
 #include "ricci/mesh/topology_util.h"
+#include "ricci/util/parallel.h"
 
 namespace ricci::detail {
 namespace {
@@ -97,10 +100,18 @@ RigidMotion2 fit_chart_motion(const AffineAtlas& atlas, int a, const std::vector
   return fit_points_motion(chart_points(atlas, a, from), chart_points(atlas, b, to), residual);
 }
 
+/// One fitted overlap piece: its transition, and whether it was fitted on faces both charts
+/// place faithfully (resolved) or on all its faces.
+struct FittedPiece {
+  Transition transition;
+  bool resolved = false;
+};
+
 /// Splits the faces shared by charts a and b into pieces glued in both, and fits one rigid
-/// motion per piece.
-void fit_pair(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atlas, int a, int b,
-              const std::vector<int>& faces) {
+/// motion per piece (reads the atlas only).
+std::vector<FittedPiece> fit_pair(const Mesh& mesh, const Eigen::VectorXd& lengths,
+                                  const AffineAtlas& atlas, int a, int b,
+                                  const std::vector<int>& faces) {
   const Chart& ca = atlas.charts[a];
   const Chart& cb = atlas.charts[b];
   DisjointSets sets(faces.size());
@@ -121,6 +132,7 @@ void fit_pair(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atl
   for (size_t i = 0; i < faces.size(); ++i) {
     pieces[sets.find(static_cast<int>(i))].push_back(faces[i]);
   }
+  std::vector<FittedPiece> fitted_pieces;
   for (auto& [root, piece] : pieces) {
     std::vector<int> fitted;  // the faces both charts place faithfully, else all
     for (int f : piece) {
@@ -129,30 +141,38 @@ void fit_pair(const Mesh& mesh, const Eigen::VectorXd& lengths, AffineAtlas& atl
         fitted.push_back(f);
       }
     }
-    const bool resolved = !fitted.empty();
-    if (!resolved) fitted = piece;
+    FittedPiece out;
+    out.resolved = !fitted.empty();
+    if (!out.resolved) fitted = piece;
     std::vector<std::pair<int, int>> pairs;
     for (int f : fitted) {
       for (int k = 0; k < 3; ++k)
         pairs.push_back({ca.corners(ca.slot(f), k), cb.corners(cb.slot(f), k)});
     }
-    Transition t;
+    Transition& t = out.transition;
     t.chart_a = a;
     t.chart_b = b;
     const auto [from, to] = unzip_unique(std::move(pairs));
     t.motion = fit_chart_motion(atlas, a, from, b, to, &t.residual);
     t.faces = std::move(piece);
-    const int index = static_cast<int>(atlas.transitions.size());
-    for (int f : t.faces) atlas.face_transitions[f].push_back(index);
-    if (resolved) {
-      atlas.max_transition_residual = std::max(atlas.max_transition_residual, t.residual);
-    } else {
-      ++atlas.unresolved_transition_pieces;
-      atlas.max_unresolved_transition_residual =
-          std::max(atlas.max_unresolved_transition_residual, t.residual);
-    }
-    atlas.transitions.push_back(std::move(t));
+    fitted_pieces.push_back(std::move(out));
   }
+  return fitted_pieces;
+}
+
+/// Appends a fitted piece to the atlas' transitions, its faces' lists and the residuals.
+void add_piece(FittedPiece piece, AffineAtlas& atlas) {
+  const Transition& t = piece.transition;
+  const int index = static_cast<int>(atlas.transitions.size());
+  for (int f : t.faces) atlas.face_transitions[f].push_back(index);
+  if (piece.resolved) {
+    atlas.max_transition_residual = std::max(atlas.max_transition_residual, t.residual);
+  } else {
+    ++atlas.unresolved_transition_pieces;
+    atlas.max_unresolved_transition_residual =
+        std::max(atlas.max_unresolved_transition_residual, t.residual);
+  }
+  atlas.transitions.push_back(std::move(piece.transition));
 }
 
 /// Arcs of the cut graph: maximal paths whose inner vertices have cut-degree 2 and are neither
@@ -234,8 +254,25 @@ void compute_transitions(const Mesh& mesh, const Eigen::VectorXd& lengths, Affin
   atlas.max_transition_residual = 0.0;
   atlas.unresolved_transition_pieces = 0;
   atlas.max_unresolved_transition_residual = 0.0;
-  for (const auto& [pair, faces] : shared)
-    fit_pair(mesh, lengths, atlas, pair.first, pair.second, faces);
+  // Each pair's pieces in a slot of its own, the pairs handed out one at a time (a few pairs
+  // of the central chart with the cut-path charts hold most faces), then appended in the map's
+  // order: the same transitions in the same order on any number of threads.
+  std::vector<const std::pair<const std::pair<int, int>, std::vector<int>>*> pairs;
+  pairs.reserve(shared.size());
+  for (const auto& entry : shared) pairs.push_back(&entry);
+  std::vector<std::vector<FittedPiece>> fitted(pairs.size());
+  std::atomic<std::size_t> next{0};
+  const int workers = static_cast<int>(
+      std::min<std::size_t>(static_cast<std::size_t>(requested_threads(0)), pairs.size()));
+  run_workers(workers, [&](int) {
+    for (std::size_t i = next++; i < pairs.size(); i = next++) {
+      const auto& [pair, faces] = *pairs[i];
+      fitted[i] = fit_pair(mesh, lengths, atlas, pair.first, pair.second, faces);
+    }
+  });
+  for (auto& pieces : fitted) {
+    for (FittedPiece& piece : pieces) add_piece(std::move(piece), atlas);
+  }
 }
 
 void compute_side_pairings(const Mesh& mesh, AffineAtlas& atlas) {

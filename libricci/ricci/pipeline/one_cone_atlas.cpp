@@ -11,6 +11,7 @@
 
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
+#include "ricci/mesh/neighbourhoods.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/metric/mesh_tables.h"
 #include "ricci/util/edge_key.h"
@@ -56,6 +57,12 @@ class InputSurface {
     return *mesh_;
   }
 
+  // The input's faces whose neighbourhood is not a disk (non_disk_face_neighbourhoods), once
+  // computed: it needs no cone, so it is made beside the choice's factorisation. Rebuilding the
+  // mesh keeps its face order, and with it the flags.
+  void set_non_disk_faces(std::vector<char> flags) { non_disk_faces_ = std::move(flags); }
+  [[nodiscard]] const std::vector<char>& non_disk_faces() const { return non_disk_faces_; }
+
   // A handed-over mesh becomes arrays (clear(): assigning an empty Mesh keeps OpenMesh's
   // arrays' capacity); the caller's kept mesh stays as it is.
   void fold() {
@@ -71,6 +78,7 @@ class InputSurface {
   const Mesh* mesh_;  // null while folded
   Mesh* handed_;      // null when kept
   VertexFaceArrays arrays_;
+  std::vector<char> non_disk_faces_;
 };
 
 // Index in the cleaned-up mesh of input vertex `vertex` (-1 stays -1).
@@ -126,7 +134,10 @@ void prepare_problem(InputSurface& input, const OneConeAtlasOptions& options,
 
   report("valence modification");
   t.restart();
-  result.problem = prepare_one_cone(*surface, input_to_cleaned(result, result.chosen_vertex), options.valence);
+  const int cone = input_to_cleaned(result, result.chosen_vertex);
+  const bool flagged = surface == &mesh && input.non_disk_faces().size() == mesh.n_faces();
+  result.problem = flagged ? prepare_one_cone(mesh, cone, options.valence, input.non_disk_faces())
+                           : prepare_one_cone(*surface, cone, options.valence);
   map_problem_to_input(result);
   result.cone_refinement = refine_around_cone(result.problem, options.cone_refinement);
   input.fold();
@@ -530,11 +541,19 @@ SingularityOptions singularity_options_on(const SurfaceTopology& topology,
 // intrinsic flow runs or no candidate converges with fixed connectivity): fills result's
 // chosen vertex, choice figures and timings. Returns whether the fixed-connectivity flows
 // failed at every candidate.
-bool choose_vertex(const Mesh& mesh, const SurfaceTopology& topology,
+bool choose_vertex(InputSurface& input, const SurfaceTopology& topology,
                    const OneConeAtlasOptions& options, bool intrinsic_only,
                    OneConeAtlasResult& result) {
   StageTimer t;
-  const SingularityOptions choice = singularity_options_on(topology, options);
+  const Mesh& mesh = input.mesh();
+  SingularityOptions choice = singularity_options_on(topology, options);
+  // The problem's preparation checks every face's neighbourhood for thin handles (it needs no
+  // cone): beside the model's factorisation.
+  choice.beside_factorization = [&input, &mesh] {
+    if (input.non_disk_faces().empty()) {
+      input.set_non_disk_faces(non_disk_face_neighbourhoods(mesh));
+    }
+  };
   SingularityOptions with_prediction = choice;
   with_prediction.predict_log_scale = options.warm_start && intrinsic_first_on(topology, options) &&
                                       static_cast<double>(mesh.n_faces()) < options.warm_start_below_faces;
@@ -621,7 +640,7 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
   if (result.chosen_vertex < 0 && needs_cone) {
     release_free_memory(vertices);  // what reading the input freed, before the model's factor
     report("choosing the singular vertex");
-    fixed_failed = choose_vertex(input.mesh(), topology, options, intrinsic_only, result);
+    fixed_failed = choose_vertex(input, topology, options, intrinsic_only, result);
     release_free_memory(vertices);  // the linear model's factor and blocks, before the flow's
   }
 

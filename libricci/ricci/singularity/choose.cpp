@@ -148,7 +148,17 @@ class LinearModel {
           scores[j] = distortion(u0_ + cone_ * green.col(static_cast<Eigen::Index>(j)));
         }
       });
-      for (size_t j = 0; j < count; ++j) cache_[todo[start + j]] = scores[j];
+      for (size_t j = 0; j < count; ++j) {
+        const int p = todo[start + j];
+        cache_[p] = scores[j];
+        // The best vertex so far, first by score and then by index (sorted_scores' order).
+        if (keep_best_column_ && (best_vertex_ < 0 || scores[j] < best_score_ ||
+                                  (scores[j] == best_score_ && p < best_vertex_))) {
+          best_vertex_ = p;
+          best_score_ = scores[j];
+          best_column_ = green.col(static_cast<Eigen::Index>(j));
+        }
+      }
     }
     std::vector<double> out;
     out.reserve(vertices.size());
@@ -156,8 +166,13 @@ class LinearModel {
     return out;
   }
 
-  // The model's log scale factors for a cone at p: u0 + cone G_p (one back-substitution).
+  // Keeps the Green column of the best-scored vertex, so that log_scale needs no solve there.
+  void keep_best_column() { keep_best_column_ = true; }
+
+  // The model's log scale factors for a cone at p: u0 + cone G_p (one back-substitution, none
+  // for the kept best vertex's column).
   Eigen::VectorXd log_scale(int p) {
+    if (p == best_vertex_ && best_column_.size() == n_) return u0_ + cone_ * best_column_;
     Eigen::MatrixXd rhs = base_rhs_ - Eigen::VectorXd::Constant(n_, cone_ / n_);
     rhs(p, 0) += cone_;
     solver_.solve_columns_in_place(rhs);
@@ -189,6 +204,10 @@ class LinearModel {
   SymmetricFactorization solver_;
   double cone_ = 0, log_total_ = 0;
   Eigen::VectorXd base_rhs_, u0_, log_area_;
+  bool keep_best_column_ = false;
+  int best_vertex_ = -1;
+  double best_score_ = kInfinity;
+  Eigen::VectorXd best_column_;  // G_p of best_vertex_
   Eigen::MatrixX3i faces_;
   std::map<int, double> cache_;
   int solves_ = 0;
@@ -311,6 +330,7 @@ SampledModel::SampledModel(const Mesh& mesh, const SurfaceTopology& topology,
     count = ranked_count(static_cast<int>(pool.size()), static_cast<int>(mesh.n_vertices()),
                          options);
     sample = spread_sample(*graph, pool, count);
+    if (options.beside_factorization) options.beside_factorization();
   });
 }
 
@@ -472,6 +492,8 @@ SingularityChoice choose_singularity(const Mesh& mesh, const SingularityOptions&
   const int vertices = static_cast<int>(mesh.n_vertices());
   SampledModel sampled(mesh, topology, options);
   LinearModel& model = *sampled.model;
+  // The large meshes' choice is the model's best-scored vertex: its prediction is kept.
+  if (options.predict_log_scale) model.keep_best_column();
   const std::vector<int>& pool = sampled.pool;
   if (pool.empty()) throw InvalidInputError("no interior vertex to put the singularity on");
   const int count = sampled.count;

@@ -10,6 +10,7 @@
 // ranking is noisiest) they verify the top candidates and descend over one-rings; from a few
 // tens of thousands of vertices the choice is the linear model's and costs about one
 // factorisation and a few solves.
+#include <functional>
 #include <vector>
 
 #include "ricci/flow/flow.h"
@@ -61,6 +62,11 @@ struct SingularityOptions {
   /// Also return the linear model's log scale factors for the chosen vertex
   /// (SingularityChoice::predicted_log_scale; one more back-substitution).
   bool predict_log_scale = false;
+  /// Optional work of the caller's that needs no cone (e.g. the next stage's analysis of the
+  /// mesh), run once on a second thread while the linear model's Laplacian is factorised, where
+  /// that core would idle; the choice waits for it, and rethrows what it throws. It may read
+  /// the mesh, not change it.
+  std::function<void()> beside_factorization;
 };
 
 struct SingularityScore {

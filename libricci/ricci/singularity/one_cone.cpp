@@ -436,16 +436,19 @@ OneConeProblem prepare_on(const Mesh& mesh, int vertex, const ValenceOptions& va
 
 }  // namespace
 
-OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence,
-                                bool refine_thin_handles) {
-  if (!refine_thin_handles) return prepare_on(mesh, vertex, valence);
+namespace {
+
+// prepare_on after the thin handles' subdivision, `wrapped` being the mesh's
+// non_disk_face_neighbourhoods.
+OneConeProblem prepare_refined(const Mesh& mesh, int vertex, const ValenceOptions& valence,
+                               std::vector<char> wrapped) {
   // Thin handles first: a face whose neighbourhood wraps around one cannot get a chart.
   // Only the faces whose neighbourhood wraps are split (red-green), so the mesh grows by the
   // thin parts alone (a simplified horse's legs), not four-fold.
   Mesh refined;
   int subdivisions = 0;
   while (subdivisions < kMaxHandleSubdivisions) {
-    const std::vector<char> wrapped = non_disk_face_neighbourhoods(subdivisions > 0 ? refined : mesh);
+    if (subdivisions > 0) wrapped = non_disk_face_neighbourhoods(refined);
     if (std::find(wrapped.begin(), wrapped.end(), 1) == wrapped.end()) break;
     refined = subdivide_midpoint_locally(subdivisions > 0 ? refined : mesh, wrapped);
     ++subdivisions;
@@ -459,6 +462,23 @@ OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptio
     if (v >= n) v = -1;
   }
   return problem;
+}
+
+}  // namespace
+
+OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence,
+                                bool refine_thin_handles) {
+  if (!refine_thin_handles) return prepare_on(mesh, vertex, valence);
+  return prepare_refined(mesh, vertex, valence, non_disk_face_neighbourhoods(mesh));
+}
+
+OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex, const ValenceOptions& valence,
+                                const std::vector<char>& non_disk_faces) {
+  if (non_disk_faces.size() != mesh.n_faces()) {
+    throw InvalidInputError("non-disk face flags: " + std::to_string(non_disk_faces.size()) +
+                            " for " + std::to_string(mesh.n_faces()) + " faces");
+  }
+  return prepare_refined(mesh, vertex, valence, non_disk_faces);
 }
 
 namespace {

@@ -55,6 +55,14 @@ inline constexpr int kMaxHandleSubdivisions = 3;
                                               const ValenceOptions& valence = {},
                                               bool refine_thin_handles = true);
 
+/// The same with thin handles refined, given `non_disk_faces` =
+/// non_disk_face_neighbourhoods(mesh) (mesh/neighbourhoods.h), computed earlier (e.g. beside the
+/// singularity choice: it needs no cone). \throw as above; InvalidInputError when its size is not
+/// the mesh's face count.
+[[nodiscard]] OneConeProblem prepare_one_cone(const Mesh& mesh, int vertex,
+                                              const ValenceOptions& valence,
+                                              const std::vector<char>& non_disk_faces);
+
 /// Default flow settings for one-cone problems (scheme and radii are chosen per problem by
 /// solve_one_cone_flow; tolerance 1e-10).
 [[nodiscard]] FlowOptions one_cone_flow_options();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,70 @@ TEST(ChooseSingularity, ParallelVerificationMatchesSerial) {
   }
   EXPECT_EQ(two.linear_work.factorizations, one.linear_work.factorizations);
   EXPECT_EQ(two.linear_work.back_substitutions, one.linear_work.back_substitutions);
+}
+
+// The caller's work beside the model's factorisation runs once, reads the mesh, changes
+// nothing in the choice, and what it throws reaches the caller.
+TEST(ChooseSingularity, WorkBesideTheFactorisationRunsOnceAndChangesNothing) {
+  const ricci::Mesh mesh = ricci::read_mesh(msp_test::bundled_model("genus2.off"));
+  ricci::SingularityOptions plain;
+  plain.verification_work = 0;
+  ricci::SingularityOptions beside = plain;
+  int calls = 0;
+  std::size_t faces_seen = 0;
+  beside.beside_factorization = [&] {
+    ++calls;
+    faces_seen = mesh.n_faces();
+  };
+  const ricci::SingularityChoice one = ricci::choose_singularity(mesh, plain);
+  const ricci::SingularityChoice two = ricci::choose_singularity(mesh, beside);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(faces_seen, mesh.n_faces());
+  EXPECT_EQ(two.vertex, one.vertex);
+  EXPECT_EQ(two.predicted_area_distortion, one.predicted_area_distortion);
+  EXPECT_EQ(two.ranked, one.ranked);
+  EXPECT_EQ(two.linear_solves, one.linear_solves);
+  calls = 0;
+  (void)ricci::rank_singularities(mesh, beside);
+  EXPECT_EQ(calls, 1);
+  beside.beside_factorization = [] { throw std::runtime_error("beside"); };
+  EXPECT_THROW((void)ricci::choose_singularity(mesh, beside), std::runtime_error);
+}
+
+// Without verifying flows the choice is the model's best-scored vertex, whose Green column the
+// scoring solved already: the prediction u = u0 + cone G_p costs no further solve, and it solves
+// the model's equation L u = K_target - K (the clamped cotangent Laplacian, 1e-9 diagonal shift).
+TEST(ChooseSingularity, PredictedLogScaleReusesTheChosenVertexsColumn) {
+  const ricci::Mesh mesh = ricci::read_mesh(msp_test::bundled_model("genus2.off"));
+  ricci::SingularityOptions options;
+  options.verification_work = 0;
+  options.predict_log_scale = true;
+  const ricci::SingularityChoice choice = ricci::choose_singularity(mesh, options);
+  ASSERT_EQ(choice.flows_run, 0);
+  EXPECT_EQ(choice.linear_solves, choice.ranked + 1);  // the scored columns and u0
+  const Eigen::VectorXd& u = choice.predicted_log_scale;
+  ASSERT_EQ(u.size(), static_cast<Eigen::Index>(mesh.n_vertices()));
+  const auto cot = [&](ricci::HalfedgeHandle h) {
+    const auto a = mesh.point(mesh.from_vertex_handle(h));
+    const auto b = mesh.point(mesh.to_vertex_handle(h));
+    const auto c = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+    return OpenMesh::dot(a - c, b - c) / OpenMesh::cross(a - c, b - c).norm();
+  };
+  Eigen::VectorXd lu = Eigen::VectorXd::Zero(u.size()), rhs(u.size());
+  for (auto e : mesh.edges()) {
+    const auto h = mesh.halfedge_handle(e, 0);
+    const double w = std::max(0.5 * (cot(h) + cot(mesh.opposite_halfedge_handle(h))), 1e-6);
+    const int i = mesh.from_vertex_handle(h).idx(), j = mesh.to_vertex_handle(h).idx();
+    lu[i] += w * (u[i] - u[j]);
+    lu[j] += w * (u[j] - u[i]);
+  }
+  for (auto v : mesh.vertices()) {
+    double angles = 0.0;
+    for (auto h : mesh.voh_range(v)) angles += mesh.calc_sector_angle(mesh.prev_halfedge_handle(h));
+    const double target = v.idx() == choice.vertex ? -4.0 * M_PI : 0.0;  // 2 pi chi, genus 2
+    rhs[v.idx()] = target - (2.0 * M_PI - angles);
+  }
+  EXPECT_LT((lu - rhs).cwiseAbs().maxCoeff(), 1e-6 * rhs.cwiseAbs().maxCoeff());
 }
 
 TEST(ChooseSingularity, GenusOneAndOpenSurfacesNeedNoVertex) {

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "ricci/flow/flow.h"
 #include "ricci/metric/curvature.h"
 #include "ricci/metric/mesh_tables.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
+#include "ricci/mesh/neighbourhoods.h"
 #include "ricci/mesh/primitives.h"
 #include "ricci/singularity/one_cone.h"
 #include "test_paths.h"
@@ -37,6 +39,31 @@ TEST(OneCone, GenusTwoGetsOneConeOfCurvatureTwoPiChi) {
   auto r = expect_flow_reaches_target(problem);
   // Cone angle 2*pi - K = 2*pi*(2g - 1).
   EXPECT_NEAR(2 * M_PI - r.curvature[problem.cone], 6 * M_PI, 1e-9);
+}
+
+// The thin-handle flags computed earlier (beside the choice) prepare the problem the function
+// prepares from the mesh alone: with every face wrapped (a tube three edges around) and none.
+TEST(OneCone, GivenNonDiskFacesPrepareTheSameProblem) {
+  const ricci::Mesh thin = ricci::make_torus(24, 3, 2.0, 0.5);
+  const auto own = ricci::prepare_one_cone(thin, 0);
+  const auto given =
+      ricci::prepare_one_cone(thin, 0, {}, ricci::non_disk_face_neighbourhoods(thin));
+  EXPECT_GT(own.subdivisions, 0);
+  EXPECT_EQ(given.subdivisions, own.subdivisions);
+  EXPECT_EQ(given.mesh.n_faces(), own.mesh.n_faces());
+  EXPECT_EQ(given.input_vertex, own.input_vertex);
+  EXPECT_EQ(given.targets.curvature, own.targets.curvature);
+  const auto eight = read_test_mesh("closed_g2/eight.off");
+  const auto cone = ricci::prepare_one_cone(eight, 5);
+  const auto flagged =
+      ricci::prepare_one_cone(eight, 5, {}, ricci::non_disk_face_neighbourhoods(eight));
+  EXPECT_EQ(flagged.subdivisions, 0);
+  EXPECT_EQ(flagged.cone, cone.cone);
+  EXPECT_EQ(flagged.valence_splits, cone.valence_splits);
+  EXPECT_EQ(flagged.mesh.n_faces(), cone.mesh.n_faces());
+  EXPECT_EQ(flagged.targets.curvature, cone.targets.curvature);
+  EXPECT_THROW((void)ricci::prepare_one_cone(eight, 5, {}, std::vector<char>(3, 0)),
+               ricci::InvalidInputError);
 }
 
 TEST(OneCone, GenusThreeConeAngleIsTenPi) {
