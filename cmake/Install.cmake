@@ -23,6 +23,7 @@ set(MSP_PRIVATE_HEADERS
   ricci/mesh/topology_util.h
   spline/fill/fill_system.h
   spline/fill/patch_domain.h
+  spline/fit/correction.h
   spline/fit/normal_equations.h
   spline/io/byte_stream.h
   spline/tessellate/parallel_for.h)
