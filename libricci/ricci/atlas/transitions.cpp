@@ -1,6 +1,5 @@
 // Transition maps between overlapping charts and the side pairings of the cut graph's arcs.
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -261,14 +260,11 @@ void compute_transitions(const Mesh& mesh, const Eigen::VectorXd& lengths, Affin
   pairs.reserve(shared.size());
   for (const auto& entry : shared) pairs.push_back(&entry);
   std::vector<std::vector<FittedPiece>> fitted(pairs.size());
-  std::atomic<std::size_t> next{0};
   const int workers = static_cast<int>(
       std::min<std::size_t>(static_cast<std::size_t>(requested_threads(0)), pairs.size()));
-  run_workers(workers, [&](int) {
-    for (std::size_t i = next++; i < pairs.size(); i = next++) {
-      const auto& [pair, faces] = *pairs[i];
-      fitted[i] = fit_pair(mesh, lengths, atlas, pair.first, pair.second, faces);
-    }
+  run_blocks_on_demand(workers, pairs.size(), 1, [&](std::size_t i) {
+    const auto& [pair, faces] = *pairs[i];
+    fitted[i] = fit_pair(mesh, lengths, atlas, pair.first, pair.second, faces);
   });
   for (auto& pieces : fitted) {
     for (FittedPiece& piece : pieces) add_piece(std::move(piece), atlas);

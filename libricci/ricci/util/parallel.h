@@ -1,9 +1,11 @@
 #pragma once
-// The project's one thread pool: run_workers (a fixed number of workers, each told its index)
-// and parallel_for on top of it (independent items: per-face angles, the choice's scores,
-// tessellation, projections, assembly). Each item writes its own outputs, so results do not
-// depend on the number of threads. libspline uses it as spline::parallel_for.
+// The project's one thread pool: run_workers (a fixed number of workers, each told its index),
+// and on top of it run_blocks_on_demand (blocks taken as the workers ask: libspline's
+// spline::parallel_for, the atlas' chart pairs) and parallel_for (interleaved blocks: per-face
+// angles, the choice's scores). Each item writes its own outputs, so results do not depend on
+// the number of threads.
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <functional>
@@ -48,6 +50,29 @@ inline int parallel_thread_count(int requested, std::size_t work) {
   const int n = requested_threads(requested);
   // Below a few hundred evaluations a thread costs more than it saves.
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(n), 1 + work / 256));
+}
+
+/// Runs body(i) for i in [0, count) on `workers` threads (run_workers; the calling thread alone
+/// when workers <= 1), in blocks of `block` consecutive items that each thread takes, in
+/// increasing order, when it has finished its previous one: a thread slowed down takes fewer
+/// blocks instead of holding the loop up. Each item must write its own outputs. Rethrows as
+/// run_workers.
+template <class Body>
+void run_blocks_on_demand(int workers, std::size_t count, std::size_t block, const Body& body) {
+  if (workers <= 1) {
+    for (std::size_t i = 0; i < count; ++i) body(i);
+    return;
+  }
+  block = std::max<std::size_t>(1, block);
+  std::atomic<std::size_t> next{0};
+  run_workers(workers, [&](int) {
+    for (;;) {
+      const std::size_t start = next.fetch_add(block, std::memory_order_relaxed);
+      if (start >= count) return;
+      const std::size_t end = std::min(count, start + block);
+      for (std::size_t i = start; i < end; ++i) body(i);
+    }
+  });
 }
 
 /// Runs body(i) for i in [0, count) on up to `threads` threads (run_workers), in interleaved

@@ -1,9 +1,7 @@
 #pragma once
-// libricci's thread pool (ricci/util/parallel.h) under libspline's names, with libspline's own
-// parallel_for: blocks handed out as the threads ask for them. Spline evaluations are
-// thread-safe (ManifoldSplineSpace caches its chart spaces under once_flags).
-#include <algorithm>
-#include <atomic>
+// libricci's thread pool (ricci/util/parallel.h) under libspline's names, with libspline's
+// parallel_for: blocks handed out as the threads ask for them (run_blocks_on_demand). Spline
+// evaluations are thread-safe (ManifoldSplineSpace caches its chart spaces under once_flags).
 #include <cstddef>
 
 #include "ricci/util/parallel.h"
@@ -21,21 +19,7 @@ using ricci::run_workers;
 /// thread ran an item. Rethrows the exception of the lowest-numbered thread that threw.
 template <class Body>
 void parallel_for(std::size_t count, int threads, const Body& body, std::size_t block = 64) {
-  const int n = parallel_thread_count(threads, count);
-  if (n <= 1) {
-    for (std::size_t i = 0; i < count; ++i) body(i);
-    return;
-  }
-  block = std::max<std::size_t>(1, block);
-  std::atomic<std::size_t> next{0};
-  run_workers(n, [&](int) {
-    for (;;) {
-      const std::size_t start = next.fetch_add(block, std::memory_order_relaxed);
-      if (start >= count) return;
-      const std::size_t end = std::min(count, start + block);
-      for (std::size_t i = start; i < end; ++i) body(i);
-    }
-  });
+  ricci::run_blocks_on_demand(parallel_thread_count(threads, count), count, block, body);
 }
 
 }  // namespace spline
