@@ -434,10 +434,6 @@ OneConeProblem prepare_on(const Mesh& mesh, int vertex, const ValenceOptions& va
   return problem;
 }
 
-}  // namespace
-
-namespace {
-
 // prepare_on after the thin handles' subdivision, `wrapped` being the mesh's
 // non_disk_face_neighbourhoods.
 OneConeProblem prepare_refined(const Mesh& mesh, int vertex, const ValenceOptions& valence,
