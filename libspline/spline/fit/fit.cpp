@@ -277,36 +277,28 @@ FitSetup make_fit_setup(const ManifoldSplineSpace& space, const Eigen::MatrixX3d
                         const FitOptions& options, const std::vector<DomainPoint>& parameters) {
   const int points = domain_point_count(space, parameters);
   FitSetup setup;
-  const auto regulariser = [&] {
-    std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
-    if (options.smoothing > 0.0) {
-      std::vector<int> points_by_face;
-      for (const auto& spec : data_rows(space, parameters))
-        points_by_face.push_back(static_cast<int>(spec.points.size()));
-      const std::vector<double> w =
-          thin_plate_weights(space, initial, options, points, points_by_face);
-      for (std::size_t d = 0; d < rows.size(); ++d) rows[d].thin_plate_weight = w[d];
-    }
-    const double anchor = options.anchor * points / space.function_count();
-    setup.regulariser = detail::assemble_normal_equations(
-        space, rows, {}, Eigen::MatrixX3d(0, 3), anchor, initial, std::max(1, options.threads));
-  };
-  const auto constraints = [&] {
-    if (options.constraint_r >= 0) {
-      FairOptions fair_options;
-      fair_options.r = options.constraint_r;
-      fair_options.active_faces = options.constraint_faces;
-      setup.constraints = fairing_constraints(space, fair_options);
-    } else {
-      setup.constraints.resize(0, space.function_count());
-    }
-    setup.reduced = reduce_constraints(setup.constraints);
-  };
-  // Independent: the constraints (built on one core) beside the regulariser's assembly (h/fit20).
-  run_workers(options.threads > 1 ? 2 : 1, [&](int worker) {
-    if (worker == 0) regulariser();
-    if (worker == 1 || options.threads <= 1) constraints();
-  });
+  std::vector<detail::FaceRowsSpec> rows(static_cast<std::size_t>(space.domain_face_count()));
+  if (options.smoothing > 0.0) {
+    std::vector<int> points_by_face;
+    for (const auto& spec : data_rows(space, parameters))
+      points_by_face.push_back(static_cast<int>(spec.points.size()));
+    const std::vector<double> w =
+        thin_plate_weights(space, initial, options, points, points_by_face);
+    for (std::size_t d = 0; d < rows.size(); ++d) rows[d].thin_plate_weight = w[d];
+  }
+  const double anchor = options.anchor * points / space.function_count();
+  setup.regulariser = detail::assemble_normal_equations(space, rows, {}, Eigen::MatrixX3d(0, 3),
+                                                        anchor, initial,
+                                                        std::max(1, options.threads));
+  if (options.constraint_r >= 0) {
+    FairOptions fair_options;
+    fair_options.r = options.constraint_r;
+    fair_options.active_faces = options.constraint_faces;
+    setup.constraints = fairing_constraints(space, fair_options);
+  } else {
+    setup.constraints.resize(0, space.function_count());
+  }
+  setup.reduced = reduce_constraints(setup.constraints);
   return setup;
 }
 
