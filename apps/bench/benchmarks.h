@@ -30,6 +30,8 @@ int run_singularity_benchmark(int argc, char** argv);  // bench_singularity.cpp
 int run_topology_benchmark(int argc, char** argv);  // bench_topology.cpp
 int run_loop_benchmark(int argc, char** argv);    // bench_loop.cpp
 int run_fill_benchmark(int argc, char** argv);    // bench_fill.cpp
+/// Issue 19: cap_holes alone on `msp fit --spline` files: seconds, patch unknowns, seam.
+int run_caps_benchmark(int argc, char** argv);  // bench_caps.cpp
 int run_one_cone_benchmark(int argc, char** argv);  // bench_one_cone.cpp
 int run_one_cone_case(int argc, char** argv);       // bench_one_cone.cpp
 int run_atlas_replay(int argc, char** argv);        // bench_atlas_replay.cpp

@@ -39,6 +39,8 @@ const Benchmark kBenchmarks[] = {
      "automatic singularity: solves, flows, s / one Cholesky [--brute: vs one flow per vertex]"},
     {"fill", msp::bench::run_fill_benchmark,
      "hole filling on fitted scans: per rim edges, seconds, max normal jump, position gaps"},
+    {"caps", msp::bench::run_caps_benchmark,
+     "issue 19: cap_holes alone on `msp fit --spline` files: seconds, patch unknowns, seam [--runs N]"},
     {"one-cone", msp::bench::run_one_cone_benchmark,
      "issue 8: whole one-cone pipeline per bench/genus 1-3 mesh vs one Cholesky [--million] [--metric M]"
      " [--high-genus: issue 20's genus 3-11 rows, generated genus 4-10 at 10k and 100k faces]"},

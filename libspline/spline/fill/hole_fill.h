@@ -189,9 +189,9 @@ struct FillOptions {
   /// 1/100 of an edge apart (a fold or crease) gets the uniform patch only: the refined one
   /// would follow the fold into the hole.
   double max_refined_rim_step_deg = 20.0;
-  /// Cap on rim edges * refinement: long boundary loops get a coarser patch (cost grows with the
-  /// square of it).
-  int max_boundary_vertices = 100;
+  /// Cap on rim edges * refinement: long rims (past 21 edges at refinement 3, e.g. the cone
+  /// holes of genus 2 and 3) get a coarser patch (cost grows with the square of it).
+  int max_boundary_vertices = 64;
   /// Samples per rim edge of the seam measurement stored in HoleFill.
   int samples_per_edge = 100;
   /// Samples per rim edge in the least-squares objective (and of D's Hermite boundary curve).
