@@ -434,6 +434,7 @@ struct Round {
   FitOptions fit;
   double fit_rms_at_parameters = 0.0;  // fit_scan's FitResult::rms_at_parameters
   EarlyCaps* early_caps = nullptr;     // fit_surface's, when this round began one
+  ManifoldSpline tessellated;  // the spline the surface's tessellation was sampled on
   // Its capped tessellation measured against the input (finish_round), for measure_delivered.
   std::optional<DeliveredMeasure> delivered;
 };
@@ -513,6 +514,7 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
                   const DeliveredTarget* target = nullptr) {
   const bool patches = caps != Caps::open;
   clock.begin(caps == Caps::full ? "fill" : caps == Caps::screened ? "screen" : "rims");
+  const Tessellation earlier = std::move(out.tessellation);
   std::optional<CapHolesReport> early;
   if (caps == Caps::full && round.early_caps) early = round.early_caps->take(out);
   CapHolesReport capped =
@@ -533,8 +535,14 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   // refinement; the delivered surface is refined where the grid turns sharply.
   tess.refine_levels = patches ? options.density_refine_levels : 0;
   tess.refine_turn_deg = options.density_refine_turn_deg;
+  // The samples of the round's earlier tessellation on the faces the capping left alike.
+  if (round.tessellated.space == out.surface.spline.space && earlier.density == tess.density) {
+    tess.reuse = &earlier;
+    tess.reuse_faces = faces_evaluated_alike(round.tessellated, out.surface.spline);
+  }
   std::vector<PatchTessellation> tessellated_patches;
   out.tessellation = tessellate_surface(out.surface, tess, tessellated_patches);
+  round.tessellated = out.surface.spline;
 
   clock.begin("measure");
   round.delivered.reset();
