@@ -1,6 +1,7 @@
 #include "spline/surface/fit_surface.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -213,24 +214,82 @@ double distance_to_fills(const SplineSurface& surface,
   return best;
 }
 
+// The projections of the input's vertices onto a spline (measure_projection's) taken ahead:
+// `distance` by input vertex (-1: not projected) on `spline`.
+struct ProjectionsAhead {
+  ManifoldSpline spline;
+  std::vector<double> distance;
+};
+
+// The distance of every input vertex whose parameter lies on a face of `surface` not skipped to
+// its spline (project_to_spline from the parameter), -1 for the others. In parallel.
+ProjectionsAhead project_ahead(const ricci::Mesh& dense, const std::vector<DomainPoint>& parameters,
+                               const SplineSurface& surface) {
+  ProjectionsAhead ahead{surface.spline, {}};
+  const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
+  ahead.distance.assign(static_cast<std::size_t>(points.rows()), -1.0);
+  parallel_for(ahead.distance.size(), 0, [&](std::size_t k) {
+    const DomainPoint& start = parameters[k];
+    if (start.face < 0 || surface.skipped_faces[static_cast<std::size_t>(start.face)] ||
+        !surface.spline.space->in_domain(start.face))
+      return;
+    ahead.distance[k] = project_to_spline(surface.spline, start,
+                                          points.row(static_cast<Eigen::Index>(k)).transpose(),
+                                          kProjectionIterations)
+                            .distance;
+  });
+  return ahead;
+}
+
+// By face: whether a projection starting there reads `a` and `b` alike. Each of its
+// `steps` Gauss-Newton steps moves at most to a domain face across an edge
+// (project_to_spline), so every domain face within `steps` such moves must evaluate alike.
+std::vector<char> projections_alike(const ManifoldSpline& a, const ManifoldSpline& b, int steps) {
+  const ManifoldSplineSpace& space = *a.space;
+  std::vector<char> alike = faces_evaluated_alike(a, b);
+  for (int step = 0; step < steps; ++step) {
+    std::vector<char> next = alike;
+    for (int f : space.domain_faces()) {
+      for (int k = 0; k < 3; ++k) {
+        const int g = space.neighbour(f, k);
+        if (g >= 0 && space.in_domain(g) && !alike[static_cast<std::size_t>(g)])
+          next[static_cast<std::size_t>(f)] = 0;
+      }
+    }
+    alike = std::move(next);
+  }
+  return alike;
+}
+
 // Distances of the input's vertices to the exact surface: the spline by closest-point
 // projection from their parameters; vertices whose parameter is outside the tessellated faces
-// (the cone's star, a patch's covered faces) to the nearest patch. In parallel.
+// (the cone's star, a patch's covered faces) to the nearest patch. In parallel. A projection
+// taken `ahead` on a spline that reads as this one where it runs (projections_alike) is kept.
 // Returns the distance of every input vertex (-1: left out).
 std::vector<double> measure_projection(const ricci::Mesh& dense,
                                        const std::vector<DomainPoint>& parameters,
                                        const std::vector<PatchTessellation>& patches,
-                                       FittedSurface& out) {
+                                       FittedSurface& out,
+                                       const ProjectionsAhead* ahead = nullptr) {
   const SplineSurface& surface = out.surface;
   out.fit_points_on_fills = out.projection_points = 0;
   out.projection_max = 0.0;
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
   std::vector<char> on_fill(distance.size(), 0);
+  if (ahead && (ahead->spline.space != surface.spline.space || ahead->distance.size() != distance.size()))
+    ahead = nullptr;
+  const std::vector<char> kept =
+      ahead ? projections_alike(ahead->spline, surface.spline, kProjectionIterations)
+            : std::vector<char>{};
   parallel_for(distance.size(), 0, [&](std::size_t k) {
     const DomainPoint& start = parameters[k];
     const Eigen::Vector3d target = points.row(static_cast<Eigen::Index>(k)).transpose();
     if (start.face >= 0 && !surface.skipped_faces[static_cast<std::size_t>(start.face)]) {
+      if (ahead && ahead->distance[k] >= 0 && kept[static_cast<std::size_t>(start.face)]) {
+        distance[k] = ahead->distance[k];
+        return;
+      }
       distance[k] =
           project_to_spline(surface.spline, start, target, kProjectionIterations).distance;
       return;
@@ -305,8 +364,10 @@ std::size_t fingerprint(const Tessellation& t) {
 // The delivered surface (as a file holds it) against the whole input, both ways. The boundary
 // loops capped as small holes are left out of the boundary comparison. Reads out.tessellation,
 // out.surface.fills and out.input alone (finish_round runs it beside measure_surface).
+// `known`: samples of the surface measured ahead against target.prepared (KnownSampleDistances).
 DeliveredMeasure measure_against_input(const DeliveredTarget& target,
-                                       const FitSurfaceOptions& options, const FittedSurface& out) {
+                                       const FitSurfaceOptions& options, const FittedSurface& out,
+                                       const KnownSampleDistances* known = nullptr) {
   DeliveredMeasure result;
   result.tessellation = fingerprint(out.tessellation);
   try {
@@ -314,6 +375,7 @@ DeliveredMeasure measure_against_input(const DeliveredTarget& target,
     // Patches capping the input's own boundary loops cover what the scan does not have: they
     // are left out of the surface-to-scan direction (and counted there).
     ScanDistanceOptions measure = options.measure;
+    measure.known_samples = known;
     if (target.holes.capped_loops > 0)
       measure.unmeasured_scan_boundary = target.holes.capped_vertex;
     const auto& fills = out.surface.fills;
@@ -489,12 +551,23 @@ struct EarlyCaps {
     if (capped.valid()) capped.wait();
   }
 
+  // Whether the capping begun here (and not taken yet) is the one of `out.surface`.
+  [[nodiscard]] bool holds(const FittedSurface& out) const {
+    const ManifoldSpline& spline = out.surface.spline;
+    return capped.valid() && spline.space == space && out.collar_faces == collar_faces &&
+           spline.control_points.rows() == control_points.rows() &&
+           (spline.control_points.array() == control_points.array()).all();
+  }
+
+  // Whether the capping still runs.
+  [[nodiscard]] bool running() const {
+    return capped.valid() &&
+           capped.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+  }
+
   // The capping of `out.surface` if it was begun here (once), else nothing.
   std::optional<CapHolesReport> take(FittedSurface& out) {
-    const ManifoldSpline& spline = out.surface.spline;
-    if (!capped.valid() || spline.space != space || out.collar_faces != collar_faces ||
-        spline.control_points.rows() != control_points.rows() ||
-        !(spline.control_points.array() == control_points.array()).all()) {
+    if (!holds(out)) {
       wait();
       return std::nullopt;
     }
@@ -503,6 +576,31 @@ struct EarlyCaps {
     return std::move(report);
   }
 };
+
+// What finish_round measures of the delivered round while its capping runs (EarlyCaps), on the
+// surface before the capping: the capping moves only the control points next to the rims
+// (meet_patches) and adds the patches, so most of these are the capped surface's measures,
+// taken where they read the spline alike (projections_alike, the samples by their points).
+struct MeasuredAhead {
+  ProjectionsAhead projections;
+  std::optional<KnownSampleDistances> samples;  // of `earlier`, against the input
+};
+
+// MeasuredAhead of out.surface (its holes still open) and of its tessellation `earlier`. The
+// samples are left out when the input's search tree failed (measure_against_input reports it).
+MeasuredAhead measure_ahead(const ricci::Mesh& dense, const DeliveredTarget& target,
+                            const Round& round, const Tessellation& earlier,
+                            const FittedSurface& out) {
+  MeasuredAhead ahead{project_ahead(dense, round.parameters, out.surface), std::nullopt};
+  if (earlier.triangles.empty()) return ahead;
+  try {
+    const TriangleSoup soup = float_welded(earlier);
+    ahead.samples.emplace(soup.positions, soup.triangles, *target.prepared.get());
+  } catch (const std::exception&) {
+    ahead.samples.reset();
+  }
+  return ahead;
+}
 
 // The holes of out.surface (its spline as fit_scan left it) found and capped as `caps` says;
 // the tessellation (at `density`, 0: by domain size) and the measures of the surface itself.
@@ -516,7 +614,13 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   clock.begin(caps == Caps::full ? "fill" : caps == Caps::screened ? "screen" : "rims");
   const Tessellation earlier = std::move(out.tessellation);
   std::optional<CapHolesReport> early;
-  if (caps == Caps::full && round.early_caps) early = round.early_caps->take(out);
+  std::optional<MeasuredAhead> ahead;
+  if (caps == Caps::full && round.early_caps) {
+    // The capping's wait used for the measures that do not need its patches.
+    if (target && project && round.early_caps->holds(out) && round.early_caps->running())
+      ahead = measure_ahead(dense, *target, round, earlier, out);
+    early = round.early_caps->take(out);
+  }
   CapHolesReport capped =
       early ? std::move(*early) : cap_holes(out.surface, cap_options(options, out, caps));
   out.fill_failures = std::move(capped.failures);
@@ -551,8 +655,8 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
     if (!patches && out.surface_dihedral.over_90_deg > 0 && options.density_refine_levels > 0)
       take_refined_if_unfolded(options, out);
     if (project)
-      round.vertex_distance =
-          measure_projection(dense, round.parameters, tessellated_patches, out);
+      round.vertex_distance = measure_projection(dense, round.parameters, tessellated_patches,
+                                                 out, ahead ? &ahead->projections : nullptr);
   };
   if (!target || caps != Caps::full) {
     measure_round();
@@ -563,7 +667,8 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   // measure then, Round::delivered). Both read the tessellation and write other fields of `out`.
   run_workers(2, [&](int worker) {
     if (worker == 1) {
-      round.delivered = measure_against_input(*target, options, out);
+      round.delivered = measure_against_input(
+          *target, options, out, ahead && ahead->samples ? &*ahead->samples : nullptr);
       return;
     }
     measure_round();
