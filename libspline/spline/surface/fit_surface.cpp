@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -222,13 +223,15 @@ struct ProjectionsAhead {
 };
 
 // The distance of every input vertex whose parameter lies on a face of `surface` not skipped to
-// its spline (project_to_spline from the parameter), -1 for the others. In parallel.
+// its spline (project_to_spline from the parameter), -1 for the others, on `threads` threads
+// until `stop` says to stop (parallel_for_until; the vertices left are -1).
 ProjectionsAhead project_ahead(const ricci::Mesh& dense, const std::vector<DomainPoint>& parameters,
-                               const SplineSurface& surface) {
+                               const SplineSurface& surface, int threads,
+                               const std::function<bool()>& stop) {
   ProjectionsAhead ahead{surface.spline, {}};
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   ahead.distance.assign(static_cast<std::size_t>(points.rows()), -1.0);
-  parallel_for(ahead.distance.size(), 0, [&](std::size_t k) {
+  parallel_for_until(ahead.distance.size(), threads, stop, [&](std::size_t k) {
     const DomainPoint& start = parameters[k];
     if (start.face < 0 || surface.skipped_faces[static_cast<std::size_t>(start.face)] ||
         !surface.spline.space->in_domain(start.face))
@@ -586,16 +589,19 @@ struct MeasuredAhead {
   std::optional<KnownSampleDistances> samples;  // of `earlier`, against the input
 };
 
-// MeasuredAhead of out.surface (its holes still open) and of its tessellation `earlier`. The
-// samples are left out when the input's search tree failed (measure_against_input reports it).
+// MeasuredAhead of out.surface (its holes still open) and of its tessellation `earlier`, on the
+// calling thread alone (the capping's own threads keep the cores they use) until `stop` says
+// the capping is done. The samples are left out when the input's search tree failed
+// (measure_against_input reports it).
 MeasuredAhead measure_ahead(const ricci::Mesh& dense, const DeliveredTarget& target,
                             const Round& round, const Tessellation& earlier,
-                            const FittedSurface& out) {
-  MeasuredAhead ahead{project_ahead(dense, round.parameters, out.surface), std::nullopt};
-  if (earlier.triangles.empty()) return ahead;
+                            const FittedSurface& out, const std::function<bool()>& stop) {
+  MeasuredAhead ahead{project_ahead(dense, round.parameters, out.surface, 1, stop),
+                      std::nullopt};
+  if (earlier.triangles.empty() || stop()) return ahead;
   try {
     const TriangleSoup soup = float_welded(earlier);
-    ahead.samples.emplace(soup.positions, soup.triangles, *target.prepared.get());
+    ahead.samples.emplace(soup.positions, soup.triangles, *target.prepared.get(), 1, stop);
   } catch (const std::exception&) {
     ahead.samples.reset();
   }
@@ -618,7 +624,8 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   if (caps == Caps::full && round.early_caps) {
     // The capping's wait used for the measures that do not need its patches.
     if (target && project && round.early_caps->holds(out) && round.early_caps->running())
-      ahead = measure_ahead(dense, *target, round, earlier, out);
+      ahead = measure_ahead(dense, *target, round, earlier, out,
+                            [&capping = *round.early_caps] { return !capping.running(); });
     early = round.early_caps->take(out);
   }
   CapHolesReport capped =

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <optional>
 #include <unordered_map>
 #include <string>
@@ -231,18 +232,22 @@ struct KnownSampleDistances::Tables {
 namespace {
 
 // The surface-to-scan answers of `samples`: each vertex's hit on the scan, each centroid's
-// distance (searched from its first corner's hit); those `known` holds taken from it.
+// distance (searched from its first corner's hit); those `known` holds taken from it. With
+// `stop`: the vertices measured before it said so (a prefix) and the centroids of theirs.
 struct SampleHits {
   std::vector<ricci::SoupHit> vertices;
   Eigen::VectorXd centroids;
+  std::size_t vertices_done = 0;
+  std::vector<char> centroid_done;
 };
 
 SampleHits surface_to_scan(const SurfaceSamples& samples, const ricci::TriangleSoupDistance& scan,
-                           int threads, const KnownSampleDistances::Tables* known) {
+                           int threads, const KnownSampleDistances::Tables* known,
+                           const std::function<bool()>& stop = {}) {
   using Tables = KnownSampleDistances::Tables;
   SampleHits out;
   out.vertices.resize(static_cast<std::size_t>(samples.vertices.rows()));
-  parallel_for(out.vertices.size(), threads, [&](std::size_t i) {
+  out.vertices_done = parallel_for_until(out.vertices.size(), threads, stop, [&](std::size_t i) {
     const auto row = static_cast<Eigen::Index>(i);
     if (known) {
       const auto it = known->vertices.find(Tables::vertex_key(samples.vertices, row));
@@ -253,10 +258,13 @@ SampleHits surface_to_scan(const SurfaceSamples& samples, const ricci::TriangleS
     }
     out.vertices[i] = scan.closest(samples.vertices.row(row).transpose());
   });
-  out.centroids.resize(samples.centroids.rows());
-  parallel_for(static_cast<std::size_t>(samples.centroids.rows()), threads, [&](std::size_t i) {
+  out.centroids = Eigen::VectorXd::Zero(samples.centroids.rows());
+  out.centroid_done.assign(static_cast<std::size_t>(samples.centroids.rows()), 0);
+  parallel_for_until(out.centroid_done.size(), threads, stop, [&](std::size_t i) {
     const auto row = static_cast<Eigen::Index>(i);
     const int corner = samples.centroid_corner[i];
+    if (static_cast<std::size_t>(corner) >= out.vertices_done) return;
+    out.centroid_done[i] = 1;
     if (known) {
       const auto it =
           known->centroids.find(Tables::centroid_key(samples.centroids, row, samples.vertices, corner));
@@ -417,18 +425,20 @@ PreparedScan::~PreparedScan() = default;
 
 KnownSampleDistances::KnownSampleDistances(const Eigen::MatrixX3d& positions,
                                            const std::vector<std::array<int, 3>>& triangles,
-                                           const PreparedScan& scan, int threads)
+                                           const PreparedScan& scan, int threads,
+                                           const std::function<bool()>& stop)
     : scan_(&scan), tables_(std::make_unique<Tables>()) {
   check_indices(positions, triangles, "surface");
   const SurfaceSamples samples = surface_samples(positions, triangles, {});
-  const SampleHits hits = surface_to_scan(samples, scan.tree(), threads, nullptr);
-  tables_->vertices.reserve(hits.vertices.size());
-  for (std::size_t i = 0; i < hits.vertices.size(); ++i)
+  const SampleHits hits = surface_to_scan(samples, scan.tree(), threads, nullptr, stop);
+  tables_->vertices.reserve(hits.vertices_done);
+  for (std::size_t i = 0; i < hits.vertices_done; ++i)
     tables_->vertices.emplace(Tables::vertex_key(samples.vertices, static_cast<Eigen::Index>(i)),
                               hits.vertices[i]);
   tables_->centroids.reserve(static_cast<std::size_t>(hits.centroids.size()));
   for (Eigen::Index i = 0; i < hits.centroids.size(); ++i)
-    tables_->centroids.emplace(
+    if (hits.centroid_done[static_cast<std::size_t>(i)])
+      tables_->centroids.emplace(
         Tables::centroid_key(samples.centroids, i, samples.vertices,
                              samples.centroid_corner[static_cast<std::size_t>(i)]),
         hits.centroids[i]);

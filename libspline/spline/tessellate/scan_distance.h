@@ -5,6 +5,7 @@
 // the share of the scan's area the surface reaches, and the distance between the two boundaries.
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -113,11 +114,13 @@ class KnownSampleDistances {
  public:
   /// Measures every vertex used by `triangles` and every non-degenerate triangle's centroid
   /// against `scan` on `threads` threads (0: all cores). `scan` must be the one the later
-  /// measure_against_scan runs on.
+  /// measure_against_scan runs on. `stop`, when given, is asked between chunks of samples:
+  /// once it returns true the samples measured so far are all that is known (the time left
+  /// before the surface measured later is there).
   /// \throw ricci::InvalidInputError as measure_against_scan does for the surface.
   KnownSampleDistances(const Eigen::MatrixX3d& positions,
                        const std::vector<std::array<int, 3>>& triangles, const PreparedScan& scan,
-                       int threads = 0);
+                       int threads = 0, const std::function<bool()>& stop = {});
   ~KnownSampleDistances();
   KnownSampleDistances(KnownSampleDistances&&) noexcept;
   KnownSampleDistances& operator=(KnownSampleDistances&&) noexcept;

@@ -232,6 +232,21 @@ TEST(MeasureAgainstScan, SamplesMeasuredAheadGiveTheSameReport) {
     EXPECT_EQ(fresh.surface_points, taken.surface_points);
     EXPECT_GT(fresh.surface_to_scan_max, lift);
   }
+  // Stopped after one chunk of samples (a finer surface: more than one chunk): fewer samples
+  // known, the same report.
+  const Grid fine = wavy(60, 0.003);
+  int chunks = 0;
+  const KnownSampleDistances part(fine.positions, fine.triangles, prepared, 1,
+                                  [&chunks] { return ++chunks > 1; });
+  EXPECT_GT(part.vertex_count(), 0u);
+  EXPECT_LT(part.vertex_count(), static_cast<std::size_t>(fine.positions.rows()));
+  EXPECT_LT(part.centroid_count(), fine.triangles.size());
+  const ScanDistanceReport plain =
+      measure_against_scan(fine.positions, fine.triangles, prepared, options);
+  options.known_samples = &part;
+  expect_same_report(plain,
+                     measure_against_scan(fine.positions, fine.triangles, prepared, options));
+  options.known_samples = nullptr;
   // The same answers need the same scan's tree.
   const PreparedScan other(scan.positions, scan.triangles);
   options.known_samples = &known;
