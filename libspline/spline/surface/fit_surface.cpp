@@ -215,11 +215,13 @@ double distance_to_fills(const SplineSurface& surface,
   return best;
 }
 
-// The projections of the input's vertices onto a spline (measure_projection's) taken ahead:
-// `distance` by input vertex (-1: not projected) on `spline`.
+// Measures of a spline taken ahead, on `spline`: the projections of the input's vertices
+// (measure_projection's; `distance` by input vertex, -1: not projected) and the normal jumps
+// across its domain edges (measure_surface's, edge_normal_jumps_deg by edge; empty: none).
 struct ProjectionsAhead {
   ManifoldSpline spline;
   std::vector<double> distance;
+  std::vector<double> edge_jumps;
 };
 
 // The distance of every input vertex whose parameter lies on a face of `surface` not skipped to
@@ -228,7 +230,7 @@ struct ProjectionsAhead {
 ProjectionsAhead project_ahead(const ricci::Mesh& dense, const std::vector<DomainPoint>& parameters,
                                const SplineSurface& surface, int threads,
                                const std::function<bool()>& stop) {
-  ProjectionsAhead ahead{surface.spline, {}};
+  ProjectionsAhead ahead{surface.spline, {}, {}};
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   ahead.distance.assign(static_cast<std::size_t>(points.rows()), -1.0);
   parallel_for_until(ahead.distance.size(), threads, stop, [&](std::size_t k) {
@@ -426,6 +428,9 @@ void measure_delivered(const DeliveredTarget& target, const FitSurfaceOptions& o
   }
 }
 
+// Samples per domain edge of measure_surface's seam normal jumps.
+constexpr int kSeamSamplesPerEdge = 1;
+
 // Topology and smoothness of the tessellation and the spline's own seams.
 // `folds_only`: the dihedral angles alone (a round judged before its holes are capped, whose
 // topology and seams are measured again once it is delivered).
@@ -435,7 +440,9 @@ int expected_boundary_loops(const FittedSurface& out) {
   return static_cast<int>(out.surface.open_rims.size() - out.fill_failures.size());
 }
 
-void measure_surface(FittedSurface& out, bool folds_only) {
+// `ahead`: the seams' jumps measured on the spline before it was capped (ProjectionsAhead).
+void measure_surface(FittedSurface& out, bool folds_only,
+                     const ProjectionsAhead* ahead = nullptr) {
   const Tessellation& t = out.tessellation;
   if (folds_only) {
     out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
@@ -453,8 +460,14 @@ void measure_surface(FittedSurface& out, bool folds_only) {
   const int expected_loops = expected_boundary_loops(out);
   out.watertight = out.topology.matches(out.input.genus, expected_loops) &&
                    out.float_topology.matches(out.input.genus, expected_loops);
-  out.edge_normal_jump_deg = max_edge_normal_jump_deg(out.surface.spline, out.surface.domain, 1,
-                                                      0, out.surface.skipped_faces);
+  const ManifoldSpline& spline = out.surface.spline;
+  const bool known = ahead && ahead->spline.space == spline.space && !ahead->edge_jumps.empty();
+  const std::vector<double> jumps = edge_normal_jumps_deg(
+      spline, out.surface.domain, kSeamSamplesPerEdge, 0, out.surface.skipped_faces,
+      known ? ahead->edge_jumps : std::vector<double>{},
+      known ? faces_evaluated_alike(ahead->spline, spline) : std::vector<char>{});
+  out.edge_normal_jump_deg =
+      jumps.empty() ? 0.0 : std::max(0.0, *std::max_element(jumps.begin(), jumps.end()));
 }
 
 // fit_scan's result split: the spline and its domain into the surface, the atlas kept.
@@ -598,6 +611,9 @@ MeasuredAhead measure_ahead(const ricci::Mesh& dense, const DeliveredTarget& tar
                             const FittedSurface& out, const std::function<bool()>& stop) {
   MeasuredAhead ahead{project_ahead(dense, round.parameters, out.surface, 1, stop),
                       std::nullopt};
+  if (!stop())
+    ahead.projections.edge_jumps =
+        edge_normal_jumps_deg(out.surface.spline, out.surface.domain, kSeamSamplesPerEdge, 1);
   if (earlier.triangles.empty() || stop()) return ahead;
   try {
     const TriangleSoup soup = float_welded(earlier);
@@ -658,7 +674,7 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   clock.begin("measure");
   round.delivered.reset();
   const auto measure_round = [&] {
-    measure_surface(out, !patches);
+    measure_surface(out, !patches, ahead ? &ahead->projections : nullptr);
     if (!patches && out.surface_dihedral.over_90_deg > 0 && options.density_refine_levels > 0)
       take_refined_if_unfolded(options, out);
     if (project)

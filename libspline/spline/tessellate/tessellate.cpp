@@ -547,6 +547,23 @@ int refine_sharp_turns(Tessellation& t, const ManifoldSpline& spline, double tur
 double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                                 int samples_per_edge, int threads,
                                 const std::vector<char>& skip_faces) {
+  const std::vector<double> jumps =
+      edge_normal_jumps_deg(spline, mesh, samples_per_edge, threads, skip_faces);
+  return std::max(0.0, jumps.empty() ? 0.0 : *std::max_element(jumps.begin(), jumps.end()));
+}
+
+std::vector<double> edge_normal_jumps_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
+                                          int samples_per_edge, int threads,
+                                          const std::vector<char>& skip_faces,
+                                          const std::vector<double>& earlier,
+                                          const std::vector<char>& alike) {
+  if ((!earlier.empty() && earlier.size() != mesh.n_edges()) ||
+      (!earlier.empty() && alike.size() != mesh.n_faces()))
+    throw ricci::InvalidInputError("edge_normal_jumps_deg: earlier angles for " +
+                                   std::to_string(earlier.size()) + " edges and " +
+                                   std::to_string(alike.size()) + " face flags, for " +
+                                   std::to_string(mesh.n_edges()) + " edges and " +
+                                   std::to_string(mesh.n_faces()) + " faces");
   const ManifoldSplineSpace& space = *spline.space;
   auto kept = [&](ricci::FaceHandle f) {
     return f.is_valid() && space.in_domain(f.idx()) &&
@@ -556,11 +573,19 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
     DomainPoint a, b;
   };
   std::vector<Probe> probes;
+  std::vector<int> probe_edge;
+  std::vector<double> jumps(mesh.n_edges(), -1.0);
   const int s = std::max(1, samples_per_edge);
   for (auto e : mesh.edges()) {
     const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
     const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
     if (!kept(f0) || !kept(f1)) continue;
+    jumps[static_cast<std::size_t>(e.idx())] = 0.0;
+    if (!earlier.empty() && earlier[static_cast<std::size_t>(e.idx())] >= 0.0 &&
+        alike[static_cast<std::size_t>(f0.idx())] && alike[static_cast<std::size_t>(f1.idx())]) {
+      jumps[static_cast<std::size_t>(e.idx())] = earlier[static_cast<std::size_t>(e.idx())];
+      continue;
+    }
     // Corner indices of the edge's ends in each face.
     auto corner_of = [&](ricci::FaceHandle f, ricci::VertexHandle v) {
       const auto hs = ricci::face_halfedges(mesh, f);
@@ -574,6 +599,7 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
     for (int i = 0; i < s; ++i) {
       const double t = (i + 0.5) / s;
       probes.push_back({{f0.idx(), edge_bary(a0, b0, t)}, {f1.idx(), edge_bary(a1, b1, t)}});
+      probe_edge.push_back(e.idx());
     }
   }
   std::vector<double> angle(probes.size(), 0.0);
@@ -583,7 +609,11 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
     if (na.squaredNorm() == 0 || nb.squaredNorm() == 0) return;
     angle[i] = ricci::angle_between(na, nb) * 180.0 / M_PI;
   });
-  return angle.empty() ? 0.0 : *std::max_element(angle.begin(), angle.end());
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    double& jump = jumps[static_cast<std::size_t>(probe_edge[i])];
+    jump = std::max(jump, angle[i]);
+  }
+  return jumps;
 }
 
 }  // namespace spline

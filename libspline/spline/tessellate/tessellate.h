@@ -147,4 +147,18 @@ struct WatertightReport {
                                               int samples_per_edge = 4, int threads = 0,
                                               const std::vector<char>& skip_faces = {});
 
+/// The angles max_edge_normal_jump_deg takes the largest of, by domain edge (edge index): the
+/// largest over the edge's samples, -1 for an edge not between two faces kept. An edge's angle
+/// is taken from `earlier` (by edge; empty: none) when it is there (>= 0) and both its faces are
+/// flagged in `alike` (by face: faces_evaluated_alike of the spline `earlier` was measured on
+/// and this one, with the same samples_per_edge): the number it would measure again.
+/// \throw ricci::InvalidInputError for earlier or alike of another size than the mesh's edges
+///        or faces.
+[[nodiscard]] std::vector<double> edge_normal_jumps_deg(const ManifoldSpline& spline,
+                                                        const ricci::Mesh& mesh,
+                                                        int samples_per_edge = 4, int threads = 0,
+                                                        const std::vector<char>& skip_faces = {},
+                                                        const std::vector<double>& earlier = {},
+                                                        const std::vector<char>& alike = {});
+
 }  // namespace spline
