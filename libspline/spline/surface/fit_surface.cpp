@@ -282,7 +282,8 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
   std::vector<char> on_fill(distance.size(), 0);
-  if (ahead && (ahead->spline.space != surface.spline.space || ahead->distance.size() != distance.size()))
+  if (ahead && (ahead->spline.space != surface.spline.space ||
+                ahead->distance.size() != distance.size()))
     ahead = nullptr;
   const std::vector<char> kept =
       ahead ? projections_alike(ahead->spline, surface.spline, kProjectionIterations)

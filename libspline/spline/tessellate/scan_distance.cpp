@@ -266,8 +266,8 @@ SampleHits surface_to_scan(const SurfaceSamples& samples, const ricci::TriangleS
     if (static_cast<std::size_t>(corner) >= out.vertices_done) return;
     out.centroid_done[i] = 1;
     if (known) {
-      const auto it =
-          known->centroids.find(Tables::centroid_key(samples.centroids, row, samples.vertices, corner));
+      const auto it = known->centroids.find(
+          Tables::centroid_key(samples.centroids, row, samples.vertices, corner));
       if (it != known->centroids.end()) {
         out.centroids[row] = it->second;
         return;

@@ -128,8 +128,9 @@ std::vector<char> faces_evaluated_alike(const ManifoldSpline& a, const ManifoldS
   std::vector<char> alike(moved.size(), 0);
   for (int f : space.domain_faces()) {
     const std::vector<int> reaching = space.reaching_faces(f);
-    alike[static_cast<std::size_t>(f)] = std::none_of(
-        reaching.begin(), reaching.end(), [&](int g) { return moved[static_cast<std::size_t>(g)]; });
+    alike[static_cast<std::size_t>(f)] =
+        std::none_of(reaching.begin(), reaching.end(),
+                     [&](int g) { return moved[static_cast<std::size_t>(g)]; });
   }
   return alike;
 }

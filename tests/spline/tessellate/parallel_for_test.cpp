@@ -98,8 +98,9 @@ TEST(ParallelForUntil, StopsBetweenChunksAfterAPrefix) {
     EXPECT_EQ(done, 3000u);
     for (std::size_t i = 0; i < runs.size(); ++i) EXPECT_EQ(runs[i].load(), i < done ? 1 : 0) << i;
     std::vector<std::atomic<int>> all(2500);
-    EXPECT_EQ(parallel_for_until(all.size(), threads, {}, [&](std::size_t i) { all[i] += 1; }, 1000),
-              all.size());
+    EXPECT_EQ(
+        parallel_for_until(all.size(), threads, {}, [&](std::size_t i) { all[i] += 1; }, 1000),
+        all.size());
     EXPECT_EQ(parallel_for_until(all.size(), threads, [] { return false; },
                                  [&](std::size_t i) { all[i] += 1; }, 1000),
               all.size());
