@@ -1,11 +1,13 @@
 #include "spline/surface/fit_surface.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -213,24 +215,87 @@ double distance_to_fills(const SplineSurface& surface,
   return best;
 }
 
+// Measures of a spline taken ahead, on `spline`: the projections of the input's vertices
+// (measure_projection's; `distance` by input vertex, -1: not projected) and the normal jumps
+// across its domain edges (measure_surface's, edge_normal_jumps_deg by edge; empty: none).
+struct ProjectionsAhead {
+  ManifoldSpline spline;
+  std::vector<double> distance;
+  std::vector<double> edge_jumps;
+};
+
+// The distance of every input vertex whose parameter lies on a face of `surface` not skipped to
+// its spline (project_to_spline from the parameter), -1 for the others, on `threads` threads
+// until `stop` says to stop (parallel_for_until; the vertices left are -1).
+ProjectionsAhead project_ahead(const ricci::Mesh& dense, const std::vector<DomainPoint>& parameters,
+                               const SplineSurface& surface, int threads,
+                               const std::function<bool()>& stop) {
+  ProjectionsAhead ahead{surface.spline, {}, {}};
+  const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
+  ahead.distance.assign(static_cast<std::size_t>(points.rows()), -1.0);
+  parallel_for_until(ahead.distance.size(), threads, stop, [&](std::size_t k) {
+    const DomainPoint& start = parameters[k];
+    if (start.face < 0 || surface.skipped_faces[static_cast<std::size_t>(start.face)] ||
+        !surface.spline.space->in_domain(start.face))
+      return;
+    ahead.distance[k] = project_to_spline(surface.spline, start,
+                                          points.row(static_cast<Eigen::Index>(k)).transpose(),
+                                          kProjectionIterations)
+                            .distance;
+  });
+  return ahead;
+}
+
+// By face: whether a projection starting there reads `a` and `b` alike. Each of its
+// `steps` Gauss-Newton steps moves at most to a domain face across an edge
+// (project_to_spline), so every domain face within `steps` such moves must evaluate alike.
+std::vector<char> projections_alike(const ManifoldSpline& a, const ManifoldSpline& b, int steps) {
+  const ManifoldSplineSpace& space = *a.space;
+  std::vector<char> alike = faces_evaluated_alike(a, b);
+  for (int step = 0; step < steps; ++step) {
+    std::vector<char> next = alike;
+    for (int f : space.domain_faces()) {
+      for (int k = 0; k < 3; ++k) {
+        const int g = space.neighbour(f, k);
+        if (g >= 0 && space.in_domain(g) && !alike[static_cast<std::size_t>(g)])
+          next[static_cast<std::size_t>(f)] = 0;
+      }
+    }
+    alike = std::move(next);
+  }
+  return alike;
+}
+
 // Distances of the input's vertices to the exact surface: the spline by closest-point
 // projection from their parameters; vertices whose parameter is outside the tessellated faces
-// (the cone's star, a patch's covered faces) to the nearest patch. In parallel.
+// (the cone's star, a patch's covered faces) to the nearest patch. In parallel. A projection
+// taken `ahead` on a spline that reads as this one where it runs (projections_alike) is kept.
 // Returns the distance of every input vertex (-1: left out).
 std::vector<double> measure_projection(const ricci::Mesh& dense,
                                        const std::vector<DomainPoint>& parameters,
                                        const std::vector<PatchTessellation>& patches,
-                                       FittedSurface& out) {
+                                       FittedSurface& out,
+                                       const ProjectionsAhead* ahead = nullptr) {
   const SplineSurface& surface = out.surface;
   out.fit_points_on_fills = out.projection_points = 0;
   out.projection_max = 0.0;
   const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
   std::vector<char> on_fill(distance.size(), 0);
+  if (ahead && (ahead->spline.space != surface.spline.space ||
+                ahead->distance.size() != distance.size()))
+    ahead = nullptr;
+  const std::vector<char> kept =
+      ahead ? projections_alike(ahead->spline, surface.spline, kProjectionIterations)
+            : std::vector<char>{};
   parallel_for(distance.size(), 0, [&](std::size_t k) {
     const DomainPoint& start = parameters[k];
     const Eigen::Vector3d target = points.row(static_cast<Eigen::Index>(k)).transpose();
     if (start.face >= 0 && !surface.skipped_faces[static_cast<std::size_t>(start.face)]) {
+      if (ahead && ahead->distance[k] >= 0 && kept[static_cast<std::size_t>(start.face)]) {
+        distance[k] = ahead->distance[k];
+        return;
+      }
       distance[k] =
           project_to_spline(surface.spline, start, target, kProjectionIterations).distance;
       return;
@@ -305,8 +370,10 @@ std::size_t fingerprint(const Tessellation& t) {
 // The delivered surface (as a file holds it) against the whole input, both ways. The boundary
 // loops capped as small holes are left out of the boundary comparison. Reads out.tessellation,
 // out.surface.fills and out.input alone (finish_round runs it beside measure_surface).
+// `known`: samples of the surface measured ahead against target.prepared (KnownSampleDistances).
 DeliveredMeasure measure_against_input(const DeliveredTarget& target,
-                                       const FitSurfaceOptions& options, const FittedSurface& out) {
+                                       const FitSurfaceOptions& options, const FittedSurface& out,
+                                       const KnownSampleDistances* known = nullptr) {
   DeliveredMeasure result;
   result.tessellation = fingerprint(out.tessellation);
   try {
@@ -314,6 +381,7 @@ DeliveredMeasure measure_against_input(const DeliveredTarget& target,
     // Patches capping the input's own boundary loops cover what the scan does not have: they
     // are left out of the surface-to-scan direction (and counted there).
     ScanDistanceOptions measure = options.measure;
+    measure.known_samples = known;
     if (target.holes.capped_loops > 0)
       measure.unmeasured_scan_boundary = target.holes.capped_vertex;
     const auto& fills = out.surface.fills;
@@ -361,6 +429,9 @@ void measure_delivered(const DeliveredTarget& target, const FitSurfaceOptions& o
   }
 }
 
+// Samples per domain edge of measure_surface's seam normal jumps.
+constexpr int kSeamSamplesPerEdge = 1;
+
 // Topology and smoothness of the tessellation and the spline's own seams.
 // `folds_only`: the dihedral angles alone (a round judged before its holes are capped, whose
 // topology and seams are measured again once it is delivered).
@@ -370,7 +441,9 @@ int expected_boundary_loops(const FittedSurface& out) {
   return static_cast<int>(out.surface.open_rims.size() - out.fill_failures.size());
 }
 
-void measure_surface(FittedSurface& out, bool folds_only) {
+// `ahead`: the seams' jumps measured on the spline before it was capped (ProjectionsAhead).
+void measure_surface(FittedSurface& out, bool folds_only,
+                     const ProjectionsAhead* ahead = nullptr) {
   const Tessellation& t = out.tessellation;
   if (folds_only) {
     out.surface_dihedral = dihedral_angles(t.triangles, t.positions);
@@ -388,8 +461,14 @@ void measure_surface(FittedSurface& out, bool folds_only) {
   const int expected_loops = expected_boundary_loops(out);
   out.watertight = out.topology.matches(out.input.genus, expected_loops) &&
                    out.float_topology.matches(out.input.genus, expected_loops);
-  out.edge_normal_jump_deg = max_edge_normal_jump_deg(out.surface.spline, out.surface.domain, 1,
-                                                      0, out.surface.skipped_faces);
+  const ManifoldSpline& spline = out.surface.spline;
+  const bool known = ahead && ahead->spline.space == spline.space && !ahead->edge_jumps.empty();
+  const std::vector<double> jumps = edge_normal_jumps_deg(
+      spline, out.surface.domain, kSeamSamplesPerEdge, 0, out.surface.skipped_faces,
+      known ? ahead->edge_jumps : std::vector<double>{},
+      known ? faces_evaluated_alike(ahead->spline, spline) : std::vector<char>{});
+  out.edge_normal_jump_deg =
+      jumps.empty() ? 0.0 : std::max(0.0, *std::max_element(jumps.begin(), jumps.end()));
 }
 
 // fit_scan's result split: the spline and its domain into the surface, the atlas kept.
@@ -434,6 +513,7 @@ struct Round {
   FitOptions fit;
   double fit_rms_at_parameters = 0.0;  // fit_scan's FitResult::rms_at_parameters
   EarlyCaps* early_caps = nullptr;     // fit_surface's, when this round began one
+  ManifoldSpline tessellated;  // the spline the surface's tessellation was sampled on
   // Its capped tessellation measured against the input (finish_round), for measure_delivered.
   std::optional<DeliveredMeasure> delivered;
 };
@@ -488,12 +568,23 @@ struct EarlyCaps {
     if (capped.valid()) capped.wait();
   }
 
+  // Whether the capping begun here (and not taken yet) is the one of `out.surface`.
+  [[nodiscard]] bool holds(const FittedSurface& out) const {
+    const ManifoldSpline& spline = out.surface.spline;
+    return capped.valid() && spline.space == space && out.collar_faces == collar_faces &&
+           spline.control_points.rows() == control_points.rows() &&
+           (spline.control_points.array() == control_points.array()).all();
+  }
+
+  // Whether the capping still runs.
+  [[nodiscard]] bool running() const {
+    return capped.valid() &&
+           capped.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+  }
+
   // The capping of `out.surface` if it was begun here (once), else nothing.
   std::optional<CapHolesReport> take(FittedSurface& out) {
-    const ManifoldSpline& spline = out.surface.spline;
-    if (!capped.valid() || spline.space != space || out.collar_faces != collar_faces ||
-        spline.control_points.rows() != control_points.rows() ||
-        !(spline.control_points.array() == control_points.array()).all()) {
+    if (!holds(out)) {
       wait();
       return std::nullopt;
     }
@@ -502,6 +593,37 @@ struct EarlyCaps {
     return std::move(report);
   }
 };
+
+// What finish_round measures of the delivered round while its capping runs (EarlyCaps), on the
+// surface before the capping: the capping moves only the control points next to the rims
+// (meet_patches) and adds the patches, so most of these are the capped surface's measures,
+// taken where they read the spline alike (projections_alike, the samples by their points).
+struct MeasuredAhead {
+  ProjectionsAhead projections;
+  std::optional<KnownSampleDistances> samples;  // of `earlier`, against the input
+};
+
+// MeasuredAhead of out.surface (its holes still open) and of its tessellation `earlier`, on the
+// calling thread alone (the capping's own threads keep the cores they use) until `stop` says
+// the capping is done. The samples are left out when the input's search tree failed
+// (measure_against_input reports it).
+MeasuredAhead measure_ahead(const ricci::Mesh& dense, const DeliveredTarget& target,
+                            const Round& round, const Tessellation& earlier,
+                            const FittedSurface& out, const std::function<bool()>& stop) {
+  MeasuredAhead ahead{project_ahead(dense, round.parameters, out.surface, 1, stop),
+                      std::nullopt};
+  if (!stop())
+    ahead.projections.edge_jumps =
+        edge_normal_jumps_deg(out.surface.spline, out.surface.domain, kSeamSamplesPerEdge, 1);
+  if (earlier.triangles.empty() || stop()) return ahead;
+  try {
+    const TriangleSoup soup = float_welded(earlier);
+    ahead.samples.emplace(soup.positions, soup.triangles, *target.prepared.get(), 1, stop);
+  } catch (const std::exception&) {
+    ahead.samples.reset();
+  }
+  return ahead;
+}
 
 // The holes of out.surface (its spline as fit_scan left it) found and capped as `caps` says;
 // the tessellation (at `density`, 0: by domain size) and the measures of the surface itself.
@@ -513,8 +635,16 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
                   const DeliveredTarget* target = nullptr) {
   const bool patches = caps != Caps::open;
   clock.begin(caps == Caps::full ? "fill" : caps == Caps::screened ? "screen" : "rims");
+  const Tessellation earlier = std::move(out.tessellation);
   std::optional<CapHolesReport> early;
-  if (caps == Caps::full && round.early_caps) early = round.early_caps->take(out);
+  std::optional<MeasuredAhead> ahead;
+  if (caps == Caps::full && round.early_caps) {
+    // The capping's wait used for the measures that do not need its patches.
+    if (target && project && round.early_caps->holds(out) && round.early_caps->running())
+      ahead = measure_ahead(dense, *target, round, earlier, out,
+                            [&capping = *round.early_caps] { return !capping.running(); });
+    early = round.early_caps->take(out);
+  }
   CapHolesReport capped =
       early ? std::move(*early) : cap_holes(out.surface, cap_options(options, out, caps));
   out.fill_failures = std::move(capped.failures);
@@ -533,18 +663,24 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   // refinement; the delivered surface is refined where the grid turns sharply.
   tess.refine_levels = patches ? options.density_refine_levels : 0;
   tess.refine_turn_deg = options.density_refine_turn_deg;
+  // The samples of the round's earlier tessellation on the faces the capping left alike.
+  if (round.tessellated.space == out.surface.spline.space && earlier.density == tess.density) {
+    tess.reuse = &earlier;
+    tess.reuse_faces = faces_evaluated_alike(round.tessellated, out.surface.spline);
+  }
   std::vector<PatchTessellation> tessellated_patches;
   out.tessellation = tessellate_surface(out.surface, tess, tessellated_patches);
+  round.tessellated = out.surface.spline;
 
   clock.begin("measure");
   round.delivered.reset();
   const auto measure_round = [&] {
-    measure_surface(out, !patches);
+    measure_surface(out, !patches, ahead ? &ahead->projections : nullptr);
     if (!patches && out.surface_dihedral.over_90_deg > 0 && options.density_refine_levels > 0)
       take_refined_if_unfolded(options, out);
     if (project)
-      round.vertex_distance =
-          measure_projection(dense, round.parameters, tessellated_patches, out);
+      round.vertex_distance = measure_projection(dense, round.parameters, tessellated_patches,
+                                                 out, ahead ? &ahead->projections : nullptr);
   };
   if (!target || caps != Caps::full) {
     measure_round();
@@ -555,7 +691,8 @@ void finish_round(const ricci::Mesh& dense, const FitSurfaceOptions& options, in
   // measure then, Round::delivered). Both read the tessellation and write other fields of `out`.
   run_workers(2, [&](int worker) {
     if (worker == 1) {
-      round.delivered = measure_against_input(*target, options, out);
+      round.delivered = measure_against_input(
+          *target, options, out, ahead && ahead->samples ? &*ahead->samples : nullptr);
       return;
     }
     measure_round();

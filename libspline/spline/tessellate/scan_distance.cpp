@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <functional>
 #include <optional>
+#include <unordered_map>
 #include <string>
 #include <utility>
 
@@ -194,6 +197,89 @@ void check_surface(const Eigen::MatrixX3d& surface_positions,
   }
 }
 
+}  // namespace
+
+// Samples by the bits of their points: a vertex by its position, a centroid by its position and
+// its first corner's (the corner's answer is where its search starts).
+struct KnownSampleDistances::Tables {
+  template <std::size_t N>
+  struct Hash {
+    std::size_t operator()(const std::array<std::uint64_t, N>& k) const {
+      std::uint64_t h = 1469598103934665603ull;
+      for (std::uint64_t w : k) h = (h ^ w) * 1099511628211ull;
+      return static_cast<std::size_t>(h ^ (h >> 31));
+    }
+  };
+  using VertexKey = std::array<std::uint64_t, 3>;
+  using CentroidKey = std::array<std::uint64_t, 6>;
+  static VertexKey vertex_key(const Eigen::MatrixX3d& rows, Eigen::Index i) {
+    VertexKey k;
+    for (int c = 0; c < 3; ++c) {
+      const double x = rows(i, c);
+      std::memcpy(&k[static_cast<std::size_t>(c)], &x, sizeof x);
+    }
+    return k;
+  }
+  static CentroidKey centroid_key(const Eigen::MatrixX3d& centroids, Eigen::Index i,
+                                  const Eigen::MatrixX3d& vertices, Eigen::Index corner) {
+    const VertexKey a = vertex_key(centroids, i), b = vertex_key(vertices, corner);
+    return {a[0], a[1], a[2], b[0], b[1], b[2]};
+  }
+  std::unordered_map<VertexKey, ricci::SoupHit, Hash<3>> vertices;
+  std::unordered_map<CentroidKey, double, Hash<6>> centroids;
+};
+
+namespace {
+
+// The surface-to-scan answers of `samples`: each vertex's hit on the scan, each centroid's
+// distance (searched from its first corner's hit); those `known` holds taken from it. With
+// `stop`: the vertices measured before it said so (a prefix) and the centroids of theirs.
+struct SampleHits {
+  std::vector<ricci::SoupHit> vertices;
+  Eigen::VectorXd centroids;
+  std::size_t vertices_done = 0;
+  std::vector<char> centroid_done;
+};
+
+SampleHits surface_to_scan(const SurfaceSamples& samples, const ricci::TriangleSoupDistance& scan,
+                           int threads, const KnownSampleDistances::Tables* known,
+                           const std::function<bool()>& stop = {}) {
+  using Tables = KnownSampleDistances::Tables;
+  SampleHits out;
+  out.vertices.resize(static_cast<std::size_t>(samples.vertices.rows()));
+  out.vertices_done = parallel_for_until(out.vertices.size(), threads, stop, [&](std::size_t i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    if (known) {
+      const auto it = known->vertices.find(Tables::vertex_key(samples.vertices, row));
+      if (it != known->vertices.end()) {
+        out.vertices[i] = it->second;
+        return;
+      }
+    }
+    out.vertices[i] = scan.closest(samples.vertices.row(row).transpose());
+  });
+  out.centroids = Eigen::VectorXd::Zero(samples.centroids.rows());
+  out.centroid_done.assign(static_cast<std::size_t>(samples.centroids.rows()), 0);
+  parallel_for_until(out.centroid_done.size(), threads, stop, [&](std::size_t i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    const int corner = samples.centroid_corner[i];
+    if (static_cast<std::size_t>(corner) >= out.vertices_done) return;
+    out.centroid_done[i] = 1;
+    if (known) {
+      const auto it = known->centroids.find(
+          Tables::centroid_key(samples.centroids, row, samples.vertices, corner));
+      if (it != known->centroids.end()) {
+        out.centroids[row] = it->second;
+        return;
+      }
+    }
+    out.centroids[row] = scan.closest(samples.centroids.row(row).transpose(),
+                                      out.vertices[static_cast<std::size_t>(corner)])
+                             .distance;
+  });
+  return out;
+}
+
 // measure_against_scan with both trees built (the scan's checked).
 ScanDistanceReport measure_with_trees(const Eigen::MatrixX3d& surface_positions,
                                       const std::vector<std::array<int, 3>>& surface_triangles,
@@ -231,15 +317,12 @@ ScanDistanceReport measure_with_trees(const Eigen::MatrixX3d& surface_positions,
   if (samples.vertices.rows() == 0) {
     throw ricci::InvalidInputError("surface: every triangle left out");
   }
-  const std::vector<ricci::SoupHit> vertex_hits =
-      closest_hits(scan, samples.vertices, options.threads);
-  const auto corner_hit = [&](std::size_t i) {
-    return &vertex_hits[static_cast<std::size_t>(samples.centroid_corner[i])];
-  };
+  const KnownSampleDistances* known = options.known_samples;
+  const SampleHits hits =
+      surface_to_scan(samples, scan, options.threads, known ? &known->tables() : nullptr);
   Eigen::VectorXd back(samples.vertices.rows() + samples.centroids.rows());
-  back.head(samples.vertices.rows()) = distances_of(vertex_hits);
-  back.tail(samples.centroids.rows()) =
-      distances_of(closest_hits(scan, samples.centroids, options.threads, corner_hit));
+  back.head(samples.vertices.rows()) = distances_of(hits.vertices);
+  back.tail(samples.centroids.rows()) = hits.centroids;
   report.surface_points = static_cast<int>(back.size());
   report.surface_to_scan_max = back.maxCoeff(&farthest);
   report.surface_to_scan_max_point =
@@ -340,6 +423,34 @@ PreparedScan::PreparedScan(Eigen::MatrixX3d positions, std::vector<std::array<in
 
 PreparedScan::~PreparedScan() = default;
 
+KnownSampleDistances::KnownSampleDistances(const Eigen::MatrixX3d& positions,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const PreparedScan& scan, int threads,
+                                           const std::function<bool()>& stop)
+    : scan_(&scan), tables_(std::make_unique<Tables>()) {
+  check_indices(positions, triangles, "surface");
+  const SurfaceSamples samples = surface_samples(positions, triangles, {});
+  const SampleHits hits = surface_to_scan(samples, scan.tree(), threads, nullptr, stop);
+  tables_->vertices.reserve(hits.vertices_done);
+  for (std::size_t i = 0; i < hits.vertices_done; ++i)
+    tables_->vertices.emplace(Tables::vertex_key(samples.vertices, static_cast<Eigen::Index>(i)),
+                              hits.vertices[i]);
+  tables_->centroids.reserve(static_cast<std::size_t>(hits.centroids.size()));
+  for (Eigen::Index i = 0; i < hits.centroids.size(); ++i)
+    if (hits.centroid_done[static_cast<std::size_t>(i)])
+      tables_->centroids.emplace(
+        Tables::centroid_key(samples.centroids, i, samples.vertices,
+                             samples.centroid_corner[static_cast<std::size_t>(i)]),
+        hits.centroids[i]);
+}
+
+KnownSampleDistances::~KnownSampleDistances() = default;
+KnownSampleDistances::KnownSampleDistances(KnownSampleDistances&&) noexcept = default;
+KnownSampleDistances& KnownSampleDistances::operator=(KnownSampleDistances&&) noexcept = default;
+
+std::size_t KnownSampleDistances::vertex_count() const { return tables_->vertices.size(); }
+std::size_t KnownSampleDistances::centroid_count() const { return tables_->centroids.size(); }
+
 ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_positions,
                                         const std::vector<std::array<int, 3>>& surface_triangles,
                                         const Eigen::MatrixX3d& scan_positions,
@@ -347,6 +458,8 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
                                         const ScanDistanceOptions& options) {
   check_surface(surface_positions, surface_triangles, options);
   check_indices(scan_positions, scan_triangles, "scan");
+  if (options.known_samples)
+    throw ricci::InvalidInputError("known_samples need the prepared scan they were measured on");
   // The two search trees are independent: built at once, one per thread.
   std::optional<ricci::TriangleSoupDistance> trees[2];
   run_workers(options.threads == 1 ? 1 : 2, [&](int k) {
@@ -361,6 +474,8 @@ ScanDistanceReport measure_against_scan(const Eigen::MatrixX3d& surface_position
                                         const std::vector<std::array<int, 3>>& surface_triangles,
                                         const PreparedScan& scan, const ScanDistanceOptions& options) {
   check_surface(surface_positions, surface_triangles, options);
+  if (options.known_samples && &options.known_samples->scan() != &scan)
+    throw ricci::InvalidInputError("known_samples were measured on another prepared scan");
   const ricci::TriangleSoupDistance surface(surface_positions, surface_triangles);
   return measure_with_trees(surface_positions, surface_triangles, surface, scan.positions(),
                             scan.triangles(), scan.tree(), options);

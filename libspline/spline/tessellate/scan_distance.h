@@ -5,6 +5,7 @@
 // the share of the scan's area the surface reaches, and the distance between the two boundaries.
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -13,6 +14,8 @@ class TriangleSoupDistance;
 }
 
 namespace spline {
+
+class KnownSampleDistances;
 
 struct ScanDistanceOptions {
   /// A scan point is covered when the surface passes within this distance, as a fraction of the
@@ -25,6 +28,9 @@ struct ScanDistanceOptions {
   /// By scan vertex, nonzero: a scan boundary edge with both ends flagged is left out of the
   /// boundary comparison (a small hole the surface caps on purpose). Empty: every edge compared.
   std::vector<char> unmeasured_scan_boundary;
+  /// Surface samples measured ahead against the same prepared scan (KnownSampleDistances):
+  /// their distances are taken instead of searched again (the same numbers). Null: none.
+  const KnownSampleDistances* known_samples = nullptr;
 };
 
 /// Distances are absolute (the scan's units); divide by bbox_diagonal for fractions.
@@ -60,8 +66,8 @@ struct ScanDistanceReport {
 /// Measures `surface` (positions, triangles by position index) against the scan (the same).
 /// \throw ricci::InvalidInputError for indices out of range, non-finite positions, an empty
 ///        surface or scan, every surface triangle unmeasured, unmeasured flags of another size
-///        (either kind),
-///        or a coverage tolerance that is not positive.
+///        (either kind), a coverage tolerance that is not positive, or known_samples (they
+///        need a PreparedScan).
 [[nodiscard]] ScanDistanceReport measure_against_scan(
     const Eigen::MatrixX3d& surface_positions,
     const std::vector<std::array<int, 3>>& surface_triangles,
@@ -91,11 +97,47 @@ class PreparedScan {
 
 /// measure_against_scan against a prepared scan: the same report (the same tree), without
 /// building the scan's tree.
-/// \throw ricci::InvalidInputError as measure_against_scan does for the surface and options.
+/// \throw ricci::InvalidInputError as measure_against_scan does for the surface and options,
+///        or for known_samples measured on another prepared scan.
 [[nodiscard]] ScanDistanceReport measure_against_scan(
     const Eigen::MatrixX3d& surface_positions,
     const std::vector<std::array<int, 3>>& surface_triangles, const PreparedScan& scan,
     const ScanDistanceOptions& options = {});
+
+/// The surface-to-scan direction of measure_against_scan (every vertex of a surface, and every
+/// non-degenerate triangle's centroid searched from its first corner's answer) measured ahead,
+/// on a surface that shares most of its samples with the one measured later (a fit's surface
+/// before its holes are capped): ScanDistanceOptions::known_samples. A vertex sample is known by
+/// its position, a centroid by its position and its first corner's, bit for bit, so a known
+/// sample's distance is the one the later measure would find.
+class KnownSampleDistances {
+ public:
+  /// Measures every vertex used by `triangles` and every non-degenerate triangle's centroid
+  /// against `scan` on `threads` threads (0: all cores). `scan` must be the one the later
+  /// measure_against_scan runs on. `stop`, when given, is asked between chunks of samples:
+  /// once it returns true the samples measured so far are all that is known (the time left
+  /// before the surface measured later is there).
+  /// \throw ricci::InvalidInputError as measure_against_scan does for the surface.
+  KnownSampleDistances(const Eigen::MatrixX3d& positions,
+                       const std::vector<std::array<int, 3>>& triangles, const PreparedScan& scan,
+                       int threads = 0, const std::function<bool()>& stop = {});
+  ~KnownSampleDistances();
+  KnownSampleDistances(KnownSampleDistances&&) noexcept;
+  KnownSampleDistances& operator=(KnownSampleDistances&&) noexcept;
+
+  /// The scan this was measured against.
+  [[nodiscard]] const PreparedScan& scan() const { return *scan_; }
+  /// Vertex samples and centroid samples known.
+  [[nodiscard]] std::size_t vertex_count() const;
+  [[nodiscard]] std::size_t centroid_count() const;
+
+  struct Tables;  ///< the samples by their points (scan_distance.cpp)
+  [[nodiscard]] const Tables& tables() const { return *tables_; }
+
+ private:
+  const PreparedScan* scan_ = nullptr;
+  std::unique_ptr<Tables> tables_;
+};
 
 /// Edges of exactly one triangle (position indices, in triangle order): the soup's boundary.
 [[nodiscard]] std::vector<std::array<int, 2>> soup_boundary_edges(

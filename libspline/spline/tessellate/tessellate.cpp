@@ -5,7 +5,10 @@
 #include "spline/tessellate/triangle_sides.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -56,7 +59,81 @@ struct Layout {
   }
 };
 
+// TessellationOptions::reuse's samples on its reuse_faces, by domain point (bit for bit).
+class EarlierSamples {
+ public:
+  EarlierSamples(const TessellationOptions& options, int faces) {
+    const Tessellation* t = options.reuse;
+    if (!t) return;
+    if (options.reuse_faces.size() != static_cast<std::size_t>(faces) ||
+        static_cast<Eigen::Index>(t->parameters.size()) != t->positions.rows() ||
+        t->normals.rows() != t->positions.rows())
+      throw ricci::InvalidInputError("tessellate: reuse_faces has " +
+                                     std::to_string(options.reuse_faces.size()) +
+                                     " entries for " + std::to_string(faces) +
+                                     " faces, or the tessellation reused is inconsistent");
+    rows_.reserve(t->parameters.size());
+    for (std::size_t i = 0; i < t->parameters.size(); ++i) {
+      const DomainPoint& p = t->parameters[i];
+      if (p.face >= 0 && p.face < faces && options.reuse_faces[static_cast<std::size_t>(p.face)])
+        rows_.emplace(key(p), static_cast<Eigen::Index>(i));
+    }
+  }
+  // The earlier sample at p, -1 when there is none to take.
+  [[nodiscard]] Eigen::Index row(const DomainPoint& p) const {
+    if (rows_.empty()) return -1;
+    const auto it = rows_.find(key(p));
+    return it == rows_.end() ? -1 : it->second;
+  }
+
+ private:
+  using Key = std::array<std::uint64_t, 4>;
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      std::uint64_t h = 1469598103934665603ull;
+      for (std::uint64_t w : k) h = (h ^ w) * 1099511628211ull;
+      return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+  };
+  static Key key(const DomainPoint& p) {
+    Key k{static_cast<std::uint64_t>(p.face), 0, 0, 0};
+    std::memcpy(&k[1], p.barycentric.data(), 3 * sizeof(double));
+    return k;
+  }
+  std::unordered_map<Key, Eigen::Index, Hash> rows_;
+};
+
 }  // namespace
+
+std::vector<char> faces_evaluated_alike(const ManifoldSpline& a, const ManifoldSpline& b) {
+  if (!a.space || a.space != b.space)
+    throw ricci::InvalidInputError("faces_evaluated_alike: the splines do not share a space");
+  const ManifoldSplineSpace& space = *a.space;
+  const Eigen::Index n = space.function_count();
+  if (a.control_points.rows() != n || b.control_points.rows() != n)
+    throw ricci::InvalidInputError("faces_evaluated_alike: control points for " +
+                                   std::to_string(n) + " functions expected");
+  // Faces owning a function whose control point differs, bit for bit (0.0 and -0.0 differ:
+  // a sum of zeros keeps the sign).
+  const auto same = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  const int m = space.functions_per_face();
+  std::vector<char> moved(static_cast<std::size_t>(space.face_count()), 0);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (same(a.control_points(i, 0), b.control_points(i, 0)) &&
+        same(a.control_points(i, 1), b.control_points(i, 1)) &&
+        same(a.control_points(i, 2), b.control_points(i, 2)))
+      continue;
+    moved[static_cast<std::size_t>(space.domain_faces()[static_cast<std::size_t>(i / m)])] = 1;
+  }
+  std::vector<char> alike(moved.size(), 0);
+  for (int f : space.domain_faces()) {
+    const std::vector<int> reaching = space.reaching_faces(f);
+    alike[static_cast<std::size_t>(f)] =
+        std::none_of(reaching.begin(), reaching.end(),
+                     [&](int g) { return moved[static_cast<std::size_t>(g)]; });
+  }
+  return alike;
+}
 
 int Tessellation::edge_sample(int face, int corner, int i) const {
   const int next = (corner + 1) % 3, after = (corner + 2) % 3;
@@ -132,7 +209,14 @@ Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
   const auto np = static_cast<Eigen::Index>(params.size());
   out.positions.resize(np, 3);
   out.normals.resize(np, 3);
+  const EarlierSamples earlier(options, nf);
   parallel_for(params.size(), options.threads, [&](std::size_t i) {
+    const Eigen::Index from = earlier.row(params[i]);
+    if (from >= 0) {
+      out.positions.row(static_cast<Eigen::Index>(i)) = options.reuse->positions.row(from);
+      out.normals.row(static_cast<Eigen::Index>(i)) = options.reuse->normals.row(from);
+      return;
+    }
     const SurfaceJet jet = evaluate_with_normal(spline, params[i]);
     out.positions.row(static_cast<Eigen::Index>(i)) = jet.position.transpose();
     out.normals.row(static_cast<Eigen::Index>(i)) = jet.normal.transpose();
@@ -464,6 +548,23 @@ int refine_sharp_turns(Tessellation& t, const ManifoldSpline& spline, double tur
 double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                                 int samples_per_edge, int threads,
                                 const std::vector<char>& skip_faces) {
+  const std::vector<double> jumps =
+      edge_normal_jumps_deg(spline, mesh, samples_per_edge, threads, skip_faces);
+  return std::max(0.0, jumps.empty() ? 0.0 : *std::max_element(jumps.begin(), jumps.end()));
+}
+
+std::vector<double> edge_normal_jumps_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
+                                          int samples_per_edge, int threads,
+                                          const std::vector<char>& skip_faces,
+                                          const std::vector<double>& earlier,
+                                          const std::vector<char>& alike) {
+  if ((!earlier.empty() && earlier.size() != mesh.n_edges()) ||
+      (!earlier.empty() && alike.size() != mesh.n_faces()))
+    throw ricci::InvalidInputError("edge_normal_jumps_deg: earlier angles for " +
+                                   std::to_string(earlier.size()) + " edges and " +
+                                   std::to_string(alike.size()) + " face flags, for " +
+                                   std::to_string(mesh.n_edges()) + " edges and " +
+                                   std::to_string(mesh.n_faces()) + " faces");
   const ManifoldSplineSpace& space = *spline.space;
   auto kept = [&](ricci::FaceHandle f) {
     return f.is_valid() && space.in_domain(f.idx()) &&
@@ -473,11 +574,19 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
     DomainPoint a, b;
   };
   std::vector<Probe> probes;
+  std::vector<int> probe_edge;
+  std::vector<double> jumps(mesh.n_edges(), -1.0);
   const int s = std::max(1, samples_per_edge);
   for (auto e : mesh.edges()) {
     const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
     const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
     if (!kept(f0) || !kept(f1)) continue;
+    jumps[static_cast<std::size_t>(e.idx())] = 0.0;
+    if (!earlier.empty() && earlier[static_cast<std::size_t>(e.idx())] >= 0.0 &&
+        alike[static_cast<std::size_t>(f0.idx())] && alike[static_cast<std::size_t>(f1.idx())]) {
+      jumps[static_cast<std::size_t>(e.idx())] = earlier[static_cast<std::size_t>(e.idx())];
+      continue;
+    }
     // Corner indices of the edge's ends in each face.
     auto corner_of = [&](ricci::FaceHandle f, ricci::VertexHandle v) {
       const auto hs = ricci::face_halfedges(mesh, f);
@@ -491,6 +600,7 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
     for (int i = 0; i < s; ++i) {
       const double t = (i + 0.5) / s;
       probes.push_back({{f0.idx(), edge_bary(a0, b0, t)}, {f1.idx(), edge_bary(a1, b1, t)}});
+      probe_edge.push_back(e.idx());
     }
   }
   std::vector<double> angle(probes.size(), 0.0);
@@ -500,7 +610,11 @@ double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh&
     if (na.squaredNorm() == 0 || nb.squaredNorm() == 0) return;
     angle[i] = ricci::angle_between(na, nb) * 180.0 / M_PI;
   });
-  return angle.empty() ? 0.0 : *std::max_element(angle.begin(), angle.end());
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    double& jump = jumps[static_cast<std::size_t>(probe_edge[i])];
+    jump = std::max(jump, angle[i]);
+  }
+  return jumps;
 }
 
 }  // namespace spline

@@ -17,6 +17,8 @@
 
 namespace spline {
 
+struct Tessellation;
+
 struct TessellationOptions {
   int density = 8;  ///< d >= 1: samples per domain edge - 1; d^2 triangles per domain face.
   int threads = 0;  ///< Evaluation threads; 0 = std::thread::hardware_concurrency().
@@ -27,6 +29,13 @@ struct TessellationOptions {
   /// By face, nonzero: not tessellated (a fill patch covers it, fill/hole_fill.h's
   /// Rim::covered_faces). Empty: every domain face.
   std::vector<char> skip_faces;
+  /// An earlier tessellation whose samples are copied instead of evaluated: a sample at the
+  /// same domain point (face and barycentric coordinates, bit for bit) as one of reuse's, on a
+  /// face flagged in reuse_faces (by face), takes its position and normal. Flag only faces the
+  /// spline evaluates as it did for `reuse` (faces_evaluated_alike): the result is then the
+  /// one a fresh evaluation gives, bit for bit. Null: every sample evaluated.
+  const Tessellation* reuse = nullptr;
+  std::vector<char> reuse_faces;
 };
 
 struct Tessellation {
@@ -68,6 +77,15 @@ struct Tessellation {
 ///        as ManifoldSpline::evaluate.
 [[nodiscard]] Tessellation tessellate(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                                       const TessellationOptions& options = {});
+
+/// By face of `a`'s domain mesh: 1 where `a` and `b` give the same bits at every point of the
+/// face (the default chart's evaluation, as tessellate's): the functions reaching it
+/// (ManifoldSplineSpace::reaching_faces) have the same control points in both. 0 outside the
+/// domain.
+/// \throw ricci::InvalidInputError when the two do not share one space or a control-point
+///        count is not its function count.
+[[nodiscard]] std::vector<char> faces_evaluated_alike(const ManifoldSpline& a,
+                                                      const ManifoldSpline& b);
 
 /// Local refinement where the sampled surface turns sharply, so that a smooth but tightly curved
 /// part (an ear tip, a hoof) is not shown as a fold of the grid: every spline triangle on an edge
@@ -128,5 +146,19 @@ struct WatertightReport {
 [[nodiscard]] double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                                               int samples_per_edge = 4, int threads = 0,
                                               const std::vector<char>& skip_faces = {});
+
+/// The angles max_edge_normal_jump_deg takes the largest of, by domain edge (edge index): the
+/// largest over the edge's samples, -1 for an edge not between two faces kept. An edge's angle
+/// is taken from `earlier` (by edge; empty: none) when it is there (>= 0) and both its faces are
+/// flagged in `alike` (by face: faces_evaluated_alike of the spline `earlier` was measured on
+/// and this one, with the same samples_per_edge): the number it would measure again.
+/// \throw ricci::InvalidInputError for earlier or alike of another size than the mesh's edges
+///        or faces.
+[[nodiscard]] std::vector<double> edge_normal_jumps_deg(const ManifoldSpline& spline,
+                                                        const ricci::Mesh& mesh,
+                                                        int samples_per_edge = 4, int threads = 0,
+                                                        const std::vector<char>& skip_faces = {},
+                                                        const std::vector<double>& earlier = {},
+                                                        const std::vector<char>& alike = {});
 
 }  // namespace spline

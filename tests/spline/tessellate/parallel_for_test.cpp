@@ -87,4 +87,25 @@ TEST(RunWorkers, EveryWorkerRunsOnceAndTheLowestExceptionIsRethrown) {
 }
 
 }  // namespace
+// Chunks run until the stop is asked for; the items run are a prefix, each once.
+TEST(ParallelForUntil, StopsBetweenChunksAfterAPrefix) {
+  for (int threads : {1, 2}) {
+    std::vector<std::atomic<int>> runs(10000);
+    int asked = 0;
+    const std::size_t done = parallel_for_until(
+        runs.size(), threads, [&asked] { return ++asked > 3; },
+        [&](std::size_t i) { runs[i].fetch_add(1); }, 1000);
+    EXPECT_EQ(done, 3000u);
+    for (std::size_t i = 0; i < runs.size(); ++i) EXPECT_EQ(runs[i].load(), i < done ? 1 : 0) << i;
+    std::vector<std::atomic<int>> all(2500);
+    EXPECT_EQ(
+        parallel_for_until(all.size(), threads, {}, [&](std::size_t i) { all[i] += 1; }, 1000),
+        all.size());
+    EXPECT_EQ(parallel_for_until(all.size(), threads, [] { return false; },
+                                 [&](std::size_t i) { all[i] += 1; }, 1000),
+              all.size());
+    for (const auto& a : all) EXPECT_EQ(a.load(), 2);
+  }
+}
+
 }  // namespace spline

@@ -198,6 +198,65 @@ TEST(MeasureAgainstScan, APreparedScanGivesTheSameReportForEverySurface) {
   EXPECT_THROW(PreparedScan(scan.positions, bad), ricci::InvalidInputError);
 }
 
+// Samples measured ahead on a surface that shares most of its points with the one measured
+// later (a patch added, a region moved) give that surface's report bit for bit, whether its
+// farthest point is among the known samples or the new ones.
+TEST(MeasureAgainstScan, SamplesMeasuredAheadGiveTheSameReport) {
+  const Grid scan = wavy(40, 0.0);
+  const PreparedScan prepared(scan.positions, scan.triangles);
+  const Grid before = wavy(23, 0.003);
+  const KnownSampleDistances known(before.positions, before.triangles, prepared, 2);
+  EXPECT_EQ(known.vertex_count(), static_cast<std::size_t>(before.positions.rows()));
+  EXPECT_EQ(known.centroid_count(), before.triangles.size());
+  ScanDistanceOptions options;
+  options.coverage_tolerance = 0.002;
+  for (const double lift : {0.001, 0.05}) {
+    Grid after = before;
+    for (Eigen::Index v = 0; v < after.positions.rows(); ++v)
+      if (after.positions(v, 0) < 0.2 && after.positions(v, 1) < 0.3) after.positions(v, 2) += lift;
+    // A patch over the corner: new vertices and triangles, some triangles left out.
+    const int base = static_cast<int>(after.positions.rows());
+    after.positions.conservativeResize(base + 3, 3);
+    after.positions.row(base) << 1.1, 1.1, 0.02;
+    after.positions.row(base + 1) << 1.2, 1.0, 0.0;
+    after.positions.row(base + 2) << 1.0, 1.2, 0.01;
+    after.triangles.push_back({base, base + 1, base + 2});
+    after.triangles.erase(after.triangles.begin() + 5);
+    const ScanDistanceReport fresh =
+        measure_against_scan(after.positions, after.triangles, prepared, options);
+    options.known_samples = &known;
+    const ScanDistanceReport taken =
+        measure_against_scan(after.positions, after.triangles, prepared, options);
+    options.known_samples = nullptr;
+    expect_same_report(fresh, taken);
+    EXPECT_EQ(fresh.surface_points, taken.surface_points);
+    EXPECT_GT(fresh.surface_to_scan_max, lift);
+  }
+  // Stopped after one chunk of samples (a finer surface: more than one chunk): fewer samples
+  // known, the same report.
+  const Grid fine = wavy(60, 0.003);
+  int chunks = 0;
+  const KnownSampleDistances part(fine.positions, fine.triangles, prepared, 1,
+                                  [&chunks] { return ++chunks > 1; });
+  EXPECT_GT(part.vertex_count(), 0u);
+  EXPECT_LT(part.vertex_count(), static_cast<std::size_t>(fine.positions.rows()));
+  EXPECT_LT(part.centroid_count(), fine.triangles.size());
+  const ScanDistanceReport plain =
+      measure_against_scan(fine.positions, fine.triangles, prepared, options);
+  options.known_samples = &part;
+  expect_same_report(plain,
+                     measure_against_scan(fine.positions, fine.triangles, prepared, options));
+  options.known_samples = nullptr;
+  // The same answers need the same scan's tree.
+  const PreparedScan other(scan.positions, scan.triangles);
+  options.known_samples = &known;
+  EXPECT_THROW((void)measure_against_scan(before.positions, before.triangles, other, options),
+               ricci::InvalidInputError);
+  EXPECT_THROW((void)measure_against_scan(before.positions, before.triangles, scan.positions,
+                                          scan.triangles, options),
+               ricci::InvalidInputError);
+}
+
 TEST(MeasureAgainstScan, ASurfaceThatStopsShortIsSeenFromTheScan) {
   const Grid scan = grid(10, 1.0, 0.0);
   const Grid half = grid(5, 0.5, 0.0);  // covers x <= 0.5 only

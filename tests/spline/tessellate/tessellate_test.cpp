@@ -379,6 +379,98 @@ TEST(Tessellate, SharpTurnsAreRefinedOnTheSurface) {
   EXPECT_THROW(refine_sharp_turns(t, c.spline, 60.0, -1), ricci::InvalidInputError);
 }
 
+// One control point moved: the faces its function reaches evaluate differently, the others
+// alike; a tessellation taking the earlier samples on the alike faces (and on faces skipped
+// before, evaluated now) has the bits of a fresh one.
+TEST(Tessellate, ReusesSamplesOfFacesEvaluatedAlike) {
+  const Case c = make_case("genus2.off");
+  const ManifoldSplineSpace& space = *c.spline.space;
+  ManifoldSpline moved = c.spline;
+  const int face = space.domain_faces()[space.domain_faces().size() / 2];
+  moved.control_points.row(space.function_index(face, 0)) += Eigen::RowVector3d(0.01, 0, 0);
+  const std::vector<char> alike = faces_evaluated_alike(c.spline, moved);
+  ASSERT_EQ(alike.size(), c.mesh->n_faces());
+  int differ = 0;
+  for (int f : space.domain_faces()) {
+    const auto reaching = space.reaching_faces(f);
+    const bool reached = std::binary_search(reaching.begin(), reaching.end(), face);
+    EXPECT_EQ(alike[static_cast<std::size_t>(f)], !reached) << f;
+    differ += reached;
+  }
+  EXPECT_GT(differ, 3);
+  EXPECT_EQ(faces_evaluated_alike(c.spline, c.spline),
+            [&] {
+              std::vector<char> all(c.mesh->n_faces(), 0);
+              for (int f : space.domain_faces()) all[static_cast<std::size_t>(f)] = 1;
+              return all;
+            }());
+
+  TessellationOptions before = options(3, 2);
+  before.skip_faces.assign(c.mesh->n_faces(), 0);
+  before.skip_faces[static_cast<std::size_t>(space.domain_faces().front())] = 1;
+  const Tessellation earlier = tessellate(c.spline, *c.mesh, before);
+  const Tessellation fresh = tessellate(moved, *c.mesh, options(3, 2));
+  TessellationOptions reuse = options(3, 2);
+  reuse.reuse = &earlier;
+  reuse.reuse_faces = alike;
+  const Tessellation reused = tessellate(moved, *c.mesh, reuse);
+  EXPECT_EQ(reused.triangles, fresh.triangles);
+  EXPECT_TRUE((reused.positions.array() == fresh.positions.array()).all());
+  EXPECT_TRUE((reused.normals.array() == fresh.normals.array()).all());
+  EXPECT_FALSE((fresh.positions.array() == tessellate(c.spline, *c.mesh, options(3, 2))
+                                               .positions.array())
+                   .all());
+  // The samples are copied, not evaluated: every face flagged takes the earlier spline's.
+  reuse.reuse_faces.assign(c.mesh->n_faces(), 1);
+  const Tessellation copied = tessellate(moved, *c.mesh, reuse);
+  const Tessellation unmoved = tessellate(c.spline, *c.mesh, options(3, 2));
+  EXPECT_TRUE((copied.positions.array() == unmoved.positions.array()).all());
+  reuse.reuse_faces.pop_back();
+  EXPECT_THROW((void)tessellate(moved, *c.mesh, reuse), ricci::InvalidInputError);
+  ManifoldSpline other = moved;
+  other.space = small_space("genus2.off", 2, 300);
+  other.control_points = piecewise_linear_control_points(*other.space, *c.mesh);
+  EXPECT_THROW((void)faces_evaluated_alike(c.spline, other), ricci::InvalidInputError);
+}
+
+// The seams' jumps by edge: their largest is max_edge_normal_jump_deg; measured again after a
+// control point moved, those of edges between faces evaluated alike are taken from before and
+// the result is the fresh one.
+TEST(Tessellate, EdgeJumpsOfFacesEvaluatedAlikeAreTakenFromBefore) {
+  const Case c = make_case("genus2.off");
+  const ManifoldSplineSpace& space = *c.spline.space;
+  ManifoldSpline moved = c.spline;
+  const int face = space.domain_faces()[space.domain_faces().size() / 3];
+  moved.control_points.row(space.function_index(face, 1)) += Eigen::RowVector3d(0, 0.02, 0.01);
+  const std::vector<double> before = edge_normal_jumps_deg(c.spline, *c.mesh, 2, 2);
+  ASSERT_EQ(before.size(), c.mesh->n_edges());
+  EXPECT_EQ(*std::max_element(before.begin(), before.end()),
+            max_edge_normal_jump_deg(c.spline, *c.mesh, 2, 2));
+  EXPECT_EQ(static_cast<int>(std::count_if(before.begin(), before.end(),
+                                           [](double a) { return a >= 0.0; })),
+            interior_edges(*c.mesh, space));
+  const std::vector<char> alike = faces_evaluated_alike(c.spline, moved);
+  const std::vector<double> fresh = edge_normal_jumps_deg(moved, *c.mesh, 2, 2);
+  EXPECT_EQ(edge_normal_jumps_deg(moved, *c.mesh, 2, 2, {}, before, alike), fresh);
+  // Taken, not measured: earlier angles (made up) come back on the edges between alike faces.
+  std::vector<double> made_up = before;
+  for (double& a : made_up) a = a >= 0.0 ? 7.0 : a;
+  const std::vector<double> taken = edge_normal_jumps_deg(moved, *c.mesh, 2, 2, {}, made_up, alike);
+  int from_before = 0, measured = 0;
+  for (auto e : c.mesh->edges()) {
+    const auto i = static_cast<std::size_t>(e.idx());
+    if (before[i] < 0.0) continue;
+    const bool both = alike[c.mesh->face_handle(c.mesh->halfedge_handle(e, 0)).idx()] &&
+                      alike[c.mesh->face_handle(c.mesh->halfedge_handle(e, 1)).idx()];
+    EXPECT_EQ(taken[i], both ? 7.0 : fresh[i]) << i;
+    (both ? from_before : measured) += 1;
+  }
+  EXPECT_GT(from_before, 0);
+  EXPECT_GT(measured, 0);
+  EXPECT_THROW((void)edge_normal_jumps_deg(moved, *c.mesh, 2, 2, {}, before, {}),
+               ricci::InvalidInputError);
+}
+
 TEST(Tessellate, RefusesBadDensity) {
   const Case c = make_case("genus1.off", 2);
   EXPECT_THROW((void)tessellate(c.spline, *c.mesh, options(0, 1)), ricci::InvalidInputError);
