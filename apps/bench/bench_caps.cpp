@@ -30,6 +30,7 @@ int run_caps_benchmark(int argc, char** argv) {
     std::fprintf(stderr, "usage: msp-bench caps FILE.msp... [--runs N]\n");
     return 2;
   }
+  int failed = 0;
   for (const std::string& path : files) {
     try {
       const spline::SplineSurface saved = spline::load_spline_surface(path);
@@ -57,10 +58,11 @@ int run_caps_benchmark(int argc, char** argv) {
                     surface.fills.size(), triangles, unknowns, report.max_normal_jump_deg);
       }
     } catch (const std::exception& e) {
-      std::printf("%s: %s\n", path.c_str(), e.what());
+      std::fprintf(stderr, "msp-bench caps: %s: %s\n", path.c_str(), e.what());
+      ++failed;
     }
   }
-  return 0;
+  return failed > 0 ? 1 : 0;
 }
 
 }  // namespace msp::bench

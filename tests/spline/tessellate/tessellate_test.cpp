@@ -379,15 +379,22 @@ TEST(Tessellate, SharpTurnsAreRefinedOnTheSurface) {
   EXPECT_THROW(refine_sharp_turns(t, c.spline, 60.0, -1), ricci::InvalidInputError);
 }
 
+// `spline` with the control point of function `k` of domain face `face` moved by `delta`.
+ManifoldSpline with_moved_point(const ManifoldSpline& spline, int face, int k,
+                                const Eigen::RowVector3d& delta) {
+  ManifoldSpline moved = spline;
+  moved.control_points.row(spline.space->function_index(face, k)) += delta;
+  return moved;
+}
+
 // One control point moved: the faces its function reaches evaluate differently, the others
 // alike; a tessellation taking the earlier samples on the alike faces (and on faces skipped
 // before, evaluated now) has the bits of a fresh one.
 TEST(Tessellate, ReusesSamplesOfFacesEvaluatedAlike) {
   const Case c = make_case("genus2.off");
   const ManifoldSplineSpace& space = *c.spline.space;
-  ManifoldSpline moved = c.spline;
   const int face = space.domain_faces()[space.domain_faces().size() / 2];
-  moved.control_points.row(space.function_index(face, 0)) += Eigen::RowVector3d(0.01, 0, 0);
+  const ManifoldSpline moved = with_moved_point(c.spline, face, 0, {0.01, 0, 0});
   const std::vector<char> alike = faces_evaluated_alike(c.spline, moved);
   ASSERT_EQ(alike.size(), c.mesh->n_faces());
   int differ = 0;
@@ -439,9 +446,8 @@ TEST(Tessellate, ReusesSamplesOfFacesEvaluatedAlike) {
 TEST(Tessellate, EdgeJumpsOfFacesEvaluatedAlikeAreTakenFromBefore) {
   const Case c = make_case("genus2.off");
   const ManifoldSplineSpace& space = *c.spline.space;
-  ManifoldSpline moved = c.spline;
   const int face = space.domain_faces()[space.domain_faces().size() / 3];
-  moved.control_points.row(space.function_index(face, 1)) += Eigen::RowVector3d(0, 0.02, 0.01);
+  const ManifoldSpline moved = with_moved_point(c.spline, face, 1, {0, 0.02, 0.01});
   const std::vector<double> before = edge_normal_jumps_deg(c.spline, *c.mesh, 2, 2);
   ASSERT_EQ(before.size(), c.mesh->n_edges());
   EXPECT_EQ(*std::max_element(before.begin(), before.end()),
