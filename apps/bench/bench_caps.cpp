@@ -58,7 +58,7 @@ int run_caps_benchmark(int argc, char** argv) {
                     surface.fills.size(), triangles, unknowns, report.max_normal_jump_deg);
       }
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "msp-bench caps: %s: %s\n", path.c_str(), e.what());
+      std::fprintf(stderr, "msp-bench caps: %s\n", e.what());
       ++failed;
     }
   }
