@@ -231,7 +231,7 @@ ProjectionsAhead project_ahead(const ricci::Mesh& dense, const std::vector<Domai
                                const SplineSurface& surface, int threads,
                                const std::function<bool()>& stop) {
   ProjectionsAhead ahead{surface.spline, {}, {}};
-  const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
+  const Eigen::MatrixX3d points = ricci::vertex_positions(dense);
   ahead.distance.assign(static_cast<std::size_t>(points.rows()), -1.0);
   parallel_for_until(ahead.distance.size(), threads, stop, [&](std::size_t k) {
     const DomainPoint& start = parameters[k];
@@ -279,7 +279,7 @@ std::vector<double> measure_projection(const ricci::Mesh& dense,
   const SplineSurface& surface = out.surface;
   out.fit_points_on_fills = out.projection_points = 0;
   out.projection_max = 0.0;
-  const Eigen::MatrixX3d points = ricci::to_arrays(dense).V;
+  const Eigen::MatrixX3d points = ricci::vertex_positions(dense);
   std::vector<double> distance(static_cast<std::size_t>(points.rows()), -1.0);
   std::vector<char> on_fill(distance.size(), 0);
   if (ahead && (ahead->spline.space != surface.spline.space ||
@@ -463,12 +463,10 @@ void measure_surface(FittedSurface& out, bool folds_only,
                    out.float_topology.matches(out.input.genus, expected_loops);
   const ManifoldSpline& spline = out.surface.spline;
   const bool known = ahead && ahead->spline.space == spline.space && !ahead->edge_jumps.empty();
-  const std::vector<double> jumps = edge_normal_jumps_deg(
+  out.edge_normal_jump_deg = max_edge_normal_jump_deg(
       spline, out.surface.domain, kSeamSamplesPerEdge, 0, out.surface.skipped_faces,
       known ? ahead->edge_jumps : std::vector<double>{},
       known ? faces_evaluated_alike(ahead->spline, spline) : std::vector<char>{});
-  out.edge_normal_jump_deg =
-      jumps.empty() ? 0.0 : std::max(0.0, *std::max_element(jumps.begin(), jumps.end()));
 }
 
 // fit_scan's result split: the spline and its domain into the surface, the atlas kept.
@@ -980,7 +978,7 @@ RefinementRound round_summary(const FittedSurface& out, const Round& round,
 }
 
 double input_diagonal(const ricci::Mesh& dense) {
-  const Eigen::MatrixX3d x = ricci::to_arrays(dense).V;
+  const Eigen::MatrixX3d x = ricci::vertex_positions(dense);
   return x.rows() > 0 ? (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm() : 0.0;
 }
 

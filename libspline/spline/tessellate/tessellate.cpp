@@ -547,9 +547,11 @@ int refine_sharp_turns(Tessellation& t, const ManifoldSpline& spline, double tur
 
 double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                                 int samples_per_edge, int threads,
-                                const std::vector<char>& skip_faces) {
+                                const std::vector<char>& skip_faces,
+                                const std::vector<double>& earlier,
+                                const std::vector<char>& alike) {
   const std::vector<double> jumps =
-      edge_normal_jumps_deg(spline, mesh, samples_per_edge, threads, skip_faces);
+      edge_normal_jumps_deg(spline, mesh, samples_per_edge, threads, skip_faces, earlier, alike);
   return std::max(0.0, jumps.empty() ? 0.0 : *std::max_element(jumps.begin(), jumps.end()));
 }
 
@@ -558,8 +560,7 @@ std::vector<double> edge_normal_jumps_deg(const ManifoldSpline& spline, const ri
                                           const std::vector<char>& skip_faces,
                                           const std::vector<double>& earlier,
                                           const std::vector<char>& alike) {
-  if ((!earlier.empty() && earlier.size() != mesh.n_edges()) ||
-      (!earlier.empty() && alike.size() != mesh.n_faces()))
+  if (!earlier.empty() && (earlier.size() != mesh.n_edges() || alike.size() != mesh.n_faces()))
     throw ricci::InvalidInputError("edge_normal_jumps_deg: earlier angles for " +
                                    std::to_string(earlier.size()) + " edges and " +
                                    std::to_string(alike.size()) + " face flags, for " +

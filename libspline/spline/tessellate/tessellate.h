@@ -142,10 +142,14 @@ struct WatertightReport {
 /// point, over `samples_per_edge` points of every interior domain edge (each face evaluated in
 /// its own neighbourhood chart, derivatives carried to 3D: the frame does not matter). The
 /// spline is C^(n-1), so this measures rounding and the atlas' transitions.
-/// Faces flagged in `skip_faces` (by face, may be empty) are left out like non-domain faces.
+/// Faces flagged in `skip_faces` (by face, may be empty) are left out like non-domain faces;
+/// `earlier` and `alike` reuse angles measured before, as edge_normal_jumps_deg says.
+/// \throw ricci::InvalidInputError as edge_normal_jumps_deg does.
 [[nodiscard]] double max_edge_normal_jump_deg(const ManifoldSpline& spline, const ricci::Mesh& mesh,
                                               int samples_per_edge = 4, int threads = 0,
-                                              const std::vector<char>& skip_faces = {});
+                                              const std::vector<char>& skip_faces = {},
+                                              const std::vector<double>& earlier = {},
+                                              const std::vector<char>& alike = {});
 
 /// The angles max_edge_normal_jump_deg takes the largest of, by domain edge (edge index): the
 /// largest over the edge's samples, -1 for an edge not between two faces kept. An edge's angle
