@@ -15,6 +15,7 @@
 #include <ricci/mesh/io.h>
 #include <ricci/mesh/simplify.h>
 #include <ricci/mesh/simplify_quadric.h>
+#include <ricci/util/hash.h>
 
 #include "bench/benchmarks.h"
 #include "bench/child_run.h"
@@ -31,11 +32,8 @@ double process_cpu_seconds() {
 
 // FNV-1a over the vertex count, every coordinate's bits and every face's vertex indices.
 std::uint64_t mesh_hash(const ricci::Mesh& mesh) {
-  std::uint64_t hash = 1469598103934665603ull;
-  const auto mix = [&hash](const void* data, size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
-  };
+  ricci::Fnv1a hash;
+  const auto mix = [&hash](const void* data, size_t size) { hash.add_bytes(data, size); };
   const std::uint64_t vertices = mesh.n_vertices();
   mix(&vertices, sizeof vertices);
   for (auto v : mesh.vertices()) mix(mesh.point(v).data(), 3 * sizeof(double));
@@ -45,7 +43,7 @@ std::uint64_t mesh_hash(const ricci::Mesh& mesh) {
       mix(&index, sizeof index);
     }
   }
-  return hash;
+  return hash.value();
 }
 
 }  // namespace

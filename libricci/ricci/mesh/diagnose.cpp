@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "ricci/mesh/topology_util.h"
+#include "ricci/util/hash.h"
 
 namespace ricci {
 namespace {
@@ -274,9 +275,9 @@ void count_duplicate_faces(Context& c) {
     if (!c.use_face[f]) continue;
     sorted_a.assign(faces[f].begin(), faces[f].end());
     std::sort(sorted_a.begin(), sorted_a.end());
-    uint64_t hash = 1469598103934665603ULL;
-    for (int v : sorted_a) hash = (hash ^ static_cast<uint32_t>(v)) * 1099511628211ULL;
-    keyed.push_back({hash, static_cast<int>(f)});
+    Fnv1a hash;
+    for (int v : sorted_a) hash.add(static_cast<uint32_t>(v));
+    keyed.push_back({hash.value(), static_cast<int>(f)});
   }
   std::sort(keyed.begin(), keyed.end());
   auto same_set = [&](int f, int g) {

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <functional>
 #include <future>
@@ -20,6 +19,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/simplify.h"
 #include "ricci/mesh/small_holes.h"
+#include "ricci/util/hash.h"
 #include "ricci/util/stopwatch.h"
 #include "spline/surface/adaptive_domain.h"
 #include "spline/surface/cap_holes.h"
@@ -349,22 +349,12 @@ struct DeliveredMeasure {
 // FNV-1a over the tessellation's positions, triangles and triangle faces: a DeliveredMeasure is
 // taken only by the tessellation it measured.
 std::size_t fingerprint(const Tessellation& t) {
-  std::uint64_t h = 1469598103934665603ull;
-  // By 8-byte words (the tail by bytes): a pass of a millisecond over a 100k scan's tessellation.
-  const auto mix = [&h](const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    std::size_t i = 0;
-    for (; i + 8 <= bytes; i += 8) {
-      std::uint64_t word;
-      std::memcpy(&word, p + i, 8);
-      h = (h ^ word) * 1099511628211ull;
-    }
-    for (; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
-  mix(t.positions.data(), sizeof(double) * static_cast<std::size_t>(t.positions.size()));
-  mix(t.triangles.data(), sizeof(t.triangles[0]) * t.triangles.size());
-  mix(t.triangle_face.data(), sizeof(int) * t.triangle_face.size());
-  return static_cast<std::size_t>(h);
+  // By 8-byte words: a pass of a millisecond over a 100k scan's tessellation.
+  ricci::Fnv1a h;
+  h.add_words(t.positions.data(), sizeof(double) * static_cast<std::size_t>(t.positions.size()));
+  h.add_words(t.triangles.data(), sizeof(t.triangles[0]) * t.triangles.size());
+  h.add_words(t.triangle_face.data(), sizeof(int) * t.triangle_face.size());
+  return static_cast<std::size_t>(h.value());
 }
 
 // The delivered surface (as a file holds it) against the whole input, both ways. The boundary

@@ -15,6 +15,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/soup_distance.h"
 #include "ricci/util/edge_key.h"
+#include "ricci/util/hash.h"
 #include "spline/tessellate/parallel_for.h"
 
 namespace spline {
@@ -202,14 +203,6 @@ void check_surface(const Eigen::MatrixX3d& surface_positions,
 // Samples by the bits of their points: a vertex by its position, a centroid by its position and
 // its first corner's (the corner's answer is where its search starts).
 struct KnownSampleDistances::Tables {
-  template <std::size_t N>
-  struct Hash {
-    std::size_t operator()(const std::array<std::uint64_t, N>& k) const {
-      std::uint64_t h = 1469598103934665603ull;
-      for (std::uint64_t w : k) h = (h ^ w) * 1099511628211ull;
-      return static_cast<std::size_t>(h ^ (h >> 31));
-    }
-  };
   using VertexKey = std::array<std::uint64_t, 3>;
   using CentroidKey = std::array<std::uint64_t, 6>;
   static VertexKey vertex_key(const Eigen::MatrixX3d& rows, Eigen::Index i) {
@@ -225,8 +218,8 @@ struct KnownSampleDistances::Tables {
     const VertexKey a = vertex_key(centroids, i), b = vertex_key(vertices, corner);
     return {a[0], a[1], a[2], b[0], b[1], b[2]};
   }
-  std::unordered_map<VertexKey, ricci::SoupHit, Hash<3>> vertices;
-  std::unordered_map<CentroidKey, double, Hash<6>> centroids;
+  std::unordered_map<VertexKey, ricci::SoupHit, ricci::WordsHash> vertices;
+  std::unordered_map<CentroidKey, double, ricci::WordsHash> centroids;
 };
 
 namespace {

@@ -16,6 +16,7 @@
 #include "ricci/mesh/errors.h"
 #include "ricci/topology/slice.h"
 #include "ricci/util/edge_key.h"
+#include "ricci/util/hash.h"
 
 namespace spline {
 namespace {
@@ -88,19 +89,12 @@ class EarlierSamples {
 
  private:
   using Key = std::array<std::uint64_t, 4>;
-  struct Hash {
-    std::size_t operator()(const Key& k) const {
-      std::uint64_t h = 1469598103934665603ull;
-      for (std::uint64_t w : k) h = (h ^ w) * 1099511628211ull;
-      return static_cast<std::size_t>(h ^ (h >> 29));
-    }
-  };
   static Key key(const DomainPoint& p) {
     Key k{static_cast<std::uint64_t>(p.face), 0, 0, 0};
     std::memcpy(&k[1], p.barycentric.data(), 3 * sizeof(double));
     return k;
   }
-  std::unordered_map<Key, Eigen::Index, Hash> rows_;
+  std::unordered_map<Key, Eigen::Index, ricci::WordsHash> rows_;
 };
 
 }  // namespace
