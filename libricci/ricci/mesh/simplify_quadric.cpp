@@ -178,8 +178,9 @@ class Decimator {
     }
     const auto rank = static_cast<std::size_t>(std::max(0LL, removable / 8));
     if (costs.empty() || rank >= costs.size()) return 0.0;
-    std::nth_element(costs.begin(), costs.begin() + static_cast<std::ptrdiff_t>(rank), costs.end());
-    return costs[rank];
+    const auto nth = costs.begin() + static_cast<std::ptrdiff_t>(rank);
+    std::nth_element(costs.begin(), nth, costs.end());
+    return *nth;
   }
 
   // Collapses in cost order over every remaining edge down to target_faces.
@@ -190,8 +191,8 @@ class Decimator {
     for (auto e : mesh_.edges()) {
       if (!mesh_.status(e).deleted()) queue.push(entry(e));
     }
-    faces_ -= collapse(queue, static_cast<int>(faces_ - target_faces), std::numeric_limits<double>::infinity(),
-                       nullptr, 0);
+    const double any = std::numeric_limits<double>::infinity();
+    faces_ -= collapse(queue, static_cast<int>(faces_ - target_faces), any, nullptr, 0);
     mesh_.garbage_collection();
     return static_cast<int>(mesh_.n_faces());
   }
@@ -293,11 +294,13 @@ std::vector<int> slab_regions(const Mesh& mesh, int regions) {
   int axis = 0;
   (high - low).maxCoeff(&axis);
   std::vector<double> coordinate(n);
-  for (auto v : mesh.vertices()) coordinate[static_cast<std::size_t>(v.idx())] = mesh.point(v)[axis];
+  for (auto v : mesh.vertices()) {
+    coordinate[static_cast<std::size_t>(v.idx())] = mesh.point(v)[axis];
+  }
   std::vector<double> sorted = coordinate, cuts;
   for (int r = 1; r < regions; ++r) {
-    const auto nth = sorted.begin() + static_cast<std::ptrdiff_t>(n * static_cast<std::size_t>(r) /
-                                                                  static_cast<std::size_t>(regions));
+    const std::size_t rank = n * static_cast<std::size_t>(r) / static_cast<std::size_t>(regions);
+    const auto nth = sorted.begin() + static_cast<std::ptrdiff_t>(rank);
     std::nth_element(sorted.begin(), nth, sorted.end());
     cuts.push_back(*nth);
   }
