@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <string>
 
+#include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
+#include "ricci/mesh/primitives.h"
 #include "ricci/mesh/simplify.h"
+#include "ricci/mesh/simplify_quadric.h"
+#include "ricci/metric/subdivide.h"
 #include "test_paths.h"
 
 namespace {
@@ -75,6 +79,52 @@ TEST(Simplify, RefusesTinyTargets) {
   options.target_faces = 2;
   EXPECT_THROW((void)ricci::simplify_mesh(read_test_mesh("closed_g2/eight.off"), options),
                ricci::InvalidInputError);
+}
+
+ricci::Mesh decimated(const ricci::Mesh& dense, int target, int regions, int threads) {
+  ricci::Mesh mesh = dense;
+  ricci::QuadricDecimateOptions options;
+  options.regions = regions;
+  options.threads = threads;
+  (void)ricci::quadric_decimate(mesh, target, options);
+  return mesh;
+}
+
+// The regions decimated at once (two threads, cuts locked, one queue at the end) keep what one
+// queue keeps: the topology (genus, boundary loops), a manifold result at the target, and the
+// shape within the bound the own collapse meets against CGAL's.
+TEST(QuadricDecimate, RegionsKeepTopologyAndShapeLikeOneQueue) {
+  for (const char* model : {"closed_g1/kitten_nf20k.off.gz", "open/lion.off.gz"}) {
+    const ricci::Mesh dense = ricci::subdivide_midpoint(read_test_mesh(model));
+    const ricci::SurfaceTopology before = ricci::surface_topology(dense);
+    const ricci::Mesh one = decimated(dense, 2000, 1, 1);
+    for (int regions : {2, 3}) {
+      const ricci::Mesh parts = decimated(dense, 2000, regions, 2);
+      const ricci::SurfaceTopology after = ricci::surface_topology(parts);
+      EXPECT_EQ(after.euler_characteristic, before.euler_characteristic) << model << regions;
+      EXPECT_EQ(after.boundary_loops, before.boundary_loops) << model << regions;
+      EXPECT_NEAR(static_cast<double>(parts.n_faces()), 2000.0, 2.0) << model << regions;
+      for (auto v : parts.vertices()) EXPECT_TRUE(parts.is_manifold(v)) << model << regions;
+      const double a = max_deviation(dense, parts), b = max_deviation(dense, one);
+      EXPECT_LT(a, 1.5 * b + 5e-4) << model << " regions " << regions << ": one queue " << b;
+    }
+  }
+}
+
+// Each region's collapses touch only its own elements, so the result is the same bits whatever
+// the number of threads; the default (regions = 0) keeps one queue below 50,000 faces.
+TEST(QuadricDecimate, RegionsGiveTheSameMeshOnAnyThreadCount) {
+  const ricci::Mesh dense = ricci::subdivide_midpoint(read_test_mesh("closed_g2/cup.off.gz"));
+  const auto same = [](const ricci::Mesh& a, const ricci::Mesh& b) {
+    const ricci::VertexFaceArrays x = ricci::to_arrays(a), y = ricci::to_arrays(b);
+    return x.V.rows() == y.V.rows() && x.F.rows() == y.F.rows() && x.V == y.V && x.F == y.F;
+  };
+  const ricci::Mesh serial = decimated(dense, 3000, 2, 1);
+  EXPECT_TRUE(same(serial, decimated(dense, 3000, 2, 2)));
+  EXPECT_TRUE(same(decimated(dense, 3000, 4, 1), decimated(dense, 3000, 4, 3)));
+  EXPECT_FALSE(same(serial, decimated(dense, 3000, 1, 1)));  // the regions did something
+  const ricci::Mesh small = read_test_mesh("closed_g2/cup.off.gz");
+  EXPECT_TRUE(same(decimated(small, 3000, 0, 2), decimated(small, 3000, 1, 1)));
 }
 
 TEST(ClosestPoints, VerticesProjectOntoThemselvesAndBarycentricsRebuildThePoint) {
