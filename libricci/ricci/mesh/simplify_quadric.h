@@ -21,7 +21,7 @@ namespace ricci {
 struct QuadricDecimateOptions {
   /// Slabs across the longest axis of the bounding box decimated at once, each with one queue
   /// and the vertices at the cuts locked, down to twice the target in all, before one queue
-  /// over the whole mesh takes it to the target. 0: two for inputs of 50,000 faces or more,
+  /// over the whole mesh takes it to the target. 0: two for inputs of 400,000 faces or more,
   /// else one (one queue all the way).
   int regions = 0;
   /// Threads for the regions (0 = hardware concurrency); the result does not depend on it.

@@ -112,7 +112,7 @@ TEST(QuadricDecimate, RegionsKeepTopologyAndShapeLikeOneQueue) {
 }
 
 // Each region's collapses touch only its own elements, so the result is the same bits whatever
-// the number of threads; the default (regions = 0) keeps one queue below 50,000 faces.
+// the number of threads; the default (regions = 0) keeps one queue below 400,000 faces.
 TEST(QuadricDecimate, RegionsGiveTheSameMeshOnAnyThreadCount) {
   const ricci::Mesh dense = ricci::subdivide_midpoint(read_test_mesh("closed_g2/cup.off.gz"));
   const auto same = [](const ricci::Mesh& a, const ricci::Mesh& b) {
