@@ -800,7 +800,6 @@ bool correct_parameters_on(const ManifoldSpline& spline, const std::vector<char>
         faces[static_cast<std::size_t>(face)])
       which.push_back(k);
   }
-
   if (which.empty()) return false;
   std::vector<DomainPoint> parameters(which.size());
   Eigen::MatrixX3d points(static_cast<Eigen::Index>(which.size()), 3);
@@ -858,7 +857,8 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   next.surface.spline.space = space;
   next.surface.spline.control_points = refit.control_points;
   // The parameter correction (as fit_scan's) of the points on the faces smoothed more, where
-  // the surface moved, then the fit again: without it the foot points' error adds to the RMS.
+  // the surface moved (on open inputs also where the refit moved it: kMovedShareOfRms), then
+  // the fit again: without it the foot points' error adds to the RMS.
   std::vector<char> corrected(face_smoothing.size(), 0);
   for (std::size_t f = 0; f < face_smoothing.size(); ++f) corrected[f] = face_smoothing[f] > 0.0;
   if (out.input.boundary_loops > 0) {
