@@ -691,6 +691,7 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   // Correction keeps every point in the domain (correct_parameters), so one setup serves all.
   const FitSetup setup = prepare_fit(*space, parameters, data, initial, fit_options);
   result.setup_parameters = parameters;
+  result.pinned_scan_vertices = boundary.scan_vertices;
   // The fit keeps its basis samples (with gradients) for the first correction's projections.
   detail::PointBasisValues start_samples;
   result.fit =

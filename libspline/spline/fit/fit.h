@@ -282,6 +282,10 @@ struct ScanFitResult {
   /// The parameters the fit's thin-plate weights were set up from (those of the first fit,
   /// before the corrections; fit_control_points' setup_parameters for a refit).
   std::vector<DomainPoint> setup_parameters;
+  /// The input vertices (data points) whose parameter is pinned on the boundary curve; with
+  /// every data point from scan_data_points on (boundary samples), a refit keeps their
+  /// parameters as fit_scan's corrections do.
+  std::vector<int> pinned_scan_vertices;
 };
 
 /// Simplify the scan (ricci::simplify_mesh, same topology), build the one-cone atlas on it, the

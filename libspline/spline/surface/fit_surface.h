@@ -77,10 +77,11 @@ struct FitSurfaceOptions {
   /// round) on the same domain and cone; a round is kept when it folds less (a sharp crease is
   /// rounded, not folded), and they stop after two rounds in a row that do not. On closed
   /// inputs a series that leaves folds is run again from its start with the raised smoothing
-  /// tapered over three more rings (fold_smoothing.h), and the better series is kept. Closed
-  /// inputs without a tolerance run them first on the first fit: when that leaves no fold
-  /// (capped too) the refinement is skipped, otherwise the refinement and its fold rounds
-  /// follow and the better of the two is delivered. 0: none.
+  /// tapered over three more rings (fold_smoothing.h), and the better series is kept. Without
+  /// a tolerance they run first, on the first fit (open inputs: when no fold lies within two
+  /// rings of the boundary): when that leaves no fold (capped too) the refinement is skipped,
+  /// otherwise the refinement and its fold rounds follow and the better of the two is
+  /// delivered. 0: none.
   int fold_rounds = 6;
   double fold_smoothing = 1e-2;
   /// The fold rounds stop at the first whose RMS (projection) exceeds both this factor times
