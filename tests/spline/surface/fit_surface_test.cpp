@@ -409,6 +409,28 @@ TEST(FitSurfaceFoldRounds, RunBeforeTheRefinementAndSkipIt) {
   EXPECT_LT(r.fit_rms, 0.002 * r.bbox_diagonal);
 }
 
+// A thinner plate with a small hole in its top (an open input): its first fit folds at the rim,
+// away from the hole, so the fold rounds run first as on a closed input and refit on the first
+// space (no refinement round) until no fold is left; the boundary still meets the scan's.
+TEST(FitSurfaceFoldRounds, RunFirstOnAnOpenInputFoldedAwayFromItsBoundary) {
+  ricci::Mesh m = plate(0.2);
+  m.request_face_status();
+  m.request_edge_status();
+  m.request_vertex_status();
+  for (auto f : m.faces()) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (auto v : m.fv_range(f)) c += ricci::to_eigen(m.point(v)) / 3.0;
+    if (c.z() > 0.0 && (c.head<2>() - Eigen::Vector2d(0.3, 0.0)).norm() < 0.1) m.delete_face(f);
+  }
+  m.garbage_collection();
+  ASSERT_EQ(ricci::surface_topology(m).boundary_loops, 1);
+  const FittedSurface r = fit_surface(m);
+  expect_fold_rounds_on_the_first_space(r);
+  EXPECT_EQ(r.input.boundary_loops, 1);
+  EXPECT_LT(r.fit_rms, 0.002 * r.bbox_diagonal);
+  EXPECT_LT(r.delivered.boundary_hausdorff, 0.005 * r.bbox_diagonal);
+}
+
 // The delivery rule between folds and RMS (FitSurfaceOptions::fold_free_rms): with the fold
 // rounds' RMS limits at their tightest (no growth, no goal) the plate's fold rounds, which raise
 // the RMS, are refused, and without the rule its first fit, which folds at the rim, is
