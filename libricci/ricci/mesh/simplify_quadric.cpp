@@ -123,12 +123,13 @@ class Decimator {
   // faces) of what is left to remove, and the first epoch where one reaches its share is the last.
   void run_regions(const std::vector<int>& label, int regions_count, int left, int threads) {
     const auto regions = static_cast<std::size_t>(regions_count);
-    region_faces_.assign(regions, 0);
+    // Faces not yet removed with a vertex in each region.
+    std::vector<long long> region_faces(regions, 0);
     for (auto f : mesh_.faces()) {
       for (auto v : mesh_.fv_range(f)) {
         // a face has unlocked vertices of one region at most
         if (label[static_cast<std::size_t>(v.idx())] < 0) continue;
-        ++region_faces_[static_cast<std::size_t>(label[static_cast<std::size_t>(v.idx())])];
+        ++region_faces[static_cast<std::size_t>(label[static_cast<std::size_t>(v.idx())])];
         break;
       }
     }
@@ -146,11 +147,11 @@ class Decimator {
     for (;;) {
       const long long removable = faces_ - left;
       long long faces = 0;
-      for (long long f : region_faces_) faces += f;
+      for (long long f : region_faces) faces += f;
       if (removable <= 0 || faces == 0) return;
       std::vector<int> budget(regions), removed(regions, 0);
       for (std::size_t r = 0; r < regions; ++r) {
-        budget[r] = static_cast<int>(removable * region_faces_[r] / faces);
+        budget[r] = static_cast<int>(removable * region_faces[r] / faces);
       }
       run_blocks_on_demand(workers, regions, 1, [&](std::size_t r) {
         removed[r] = collapse(queues[r], budget[r], bound, &label, static_cast<int>(r));
@@ -159,7 +160,7 @@ class Decimator {
       double lowest = std::numeric_limits<double>::infinity();
       for (std::size_t r = 0; r < regions; ++r) {
         faces_ -= removed[r];
-        region_faces_[r] -= removed[r];
+        region_faces[r] -= removed[r];
         full = full || (budget[r] > 0 && removed[r] >= budget[r]);
         if (!queues[r].empty()) {
           empty = false;
@@ -281,7 +282,6 @@ class Decimator {
   std::vector<std::uint32_t> stamps_;
   std::vector<Placement> placements_;
   long long faces_ = 0;  // faces not yet removed
-  std::vector<long long> region_faces_;  // of them, those with a vertex in each region
 };
 
 // Each vertex's region: slabs of equal vertex counts across the bounding box's longest axis,
