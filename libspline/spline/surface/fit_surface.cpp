@@ -747,28 +747,6 @@ std::pair<FittedSurface, Round> next_round(const ricci::Mesh& dense, const ScanF
   return {std::move(next), std::move(round)};
 }
 
-// By face of the splines' space (`a` and `b` share it): reached by a function whose control
-// point lies farther than `distance` apart in the two (ManifoldSplineSpace::reaching_faces).
-std::vector<char> faces_moved(const ManifoldSpline& a, const ManifoldSpline& b, double distance) {
-  const ManifoldSplineSpace& space = *b.space;
-  const int m = space.functions_per_face();
-  std::vector<char> owner_moved(static_cast<std::size_t>(space.face_count()), 0);
-  for (Eigen::Index i = 0; i < b.control_points.rows(); ++i) {
-    if ((a.control_points.row(i) - b.control_points.row(i)).norm() > distance) {
-      const auto owner = static_cast<std::size_t>(i / m);
-      owner_moved[static_cast<std::size_t>(space.domain_faces()[owner])] = 1;
-    }
-  }
-  std::vector<char> moved(owner_moved.size(), 0);
-  for (int f : space.domain_faces()) {
-    const std::vector<int> reaching = space.reaching_faces(f);
-    moved[static_cast<std::size_t>(f)] = std::any_of(
-        reaching.begin(), reaching.end(),
-        [&](int g) { return owner_moved[static_cast<std::size_t>(g)] != 0; });
-  }
-  return moved;
-}
-
 // An open input's fold round also corrects the parameters on the faces where its first refit
 // moved a control point by more than this share of the projection RMS before it: a whole fit
 // (fit_scan, which these rounds ran before) corrects them all, and with the smoothed faces'
@@ -852,8 +830,8 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   std::vector<char> corrected(face_smoothing.size(), 0);
   for (std::size_t f = 0; f < face_smoothing.size(); ++f) corrected[f] = face_smoothing[f] > 0.0;
   if (out.input.boundary_loops > 0) {
-    const std::vector<char> moved = faces_moved(out.surface.spline, next.surface.spline,
-                                                kMovedShareOfRms * out.projection_rms);
+    const std::vector<char> moved = faces_moved_farther(
+        out.surface.spline, next.surface.spline, kMovedShareOfRms * out.projection_rms);
     for (std::size_t f = 0; f < corrected.size() && f < moved.size(); ++f)
       corrected[f] |= moved[f];
   }

@@ -99,34 +99,60 @@ class EarlierSamples {
 
 }  // namespace
 
-std::vector<char> faces_evaluated_alike(const ManifoldSpline& a, const ManifoldSpline& b) {
+namespace {
+
+// By face of the splines' shared domain mesh: 1 where a function reaching it
+// (ManifoldSplineSpace::reaching_faces) has control points `differ(i)` (by function index) in
+// `a` and `b`; 0 elsewhere and outside the domain. `caller` names the public function in errors.
+template <class Differ>
+std::vector<char> faces_reached_by(const ManifoldSpline& a, const ManifoldSpline& b,
+                                   const char* caller, const Differ& differ) {
   if (!a.space || a.space != b.space)
-    throw ricci::InvalidInputError("faces_evaluated_alike: the splines do not share a space");
+    throw ricci::InvalidInputError(std::string(caller) + ": the splines do not share a space");
   const ManifoldSplineSpace& space = *a.space;
   const Eigen::Index n = space.function_count();
   if (a.control_points.rows() != n || b.control_points.rows() != n)
-    throw ricci::InvalidInputError("faces_evaluated_alike: control points for " +
+    throw ricci::InvalidInputError(std::string(caller) + ": control points for " +
                                    std::to_string(n) + " functions expected");
-  // Faces owning a function whose control point differs, bit for bit (0.0 and -0.0 differ:
-  // a sum of zeros keeps the sign).
-  const auto same = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  // The faces owning a function that differs, then the faces those reach.
   const int m = space.functions_per_face();
-  std::vector<char> moved(static_cast<std::size_t>(space.face_count()), 0);
+  std::vector<char> owner(static_cast<std::size_t>(space.face_count()), 0);
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (same(a.control_points(i, 0), b.control_points(i, 0)) &&
-        same(a.control_points(i, 1), b.control_points(i, 1)) &&
-        same(a.control_points(i, 2), b.control_points(i, 2)))
-      continue;
-    moved[static_cast<std::size_t>(space.domain_faces()[static_cast<std::size_t>(i / m)])] = 1;
+    if (differ(i))
+      owner[static_cast<std::size_t>(space.domain_faces()[static_cast<std::size_t>(i / m)])] = 1;
   }
-  std::vector<char> alike(moved.size(), 0);
+  std::vector<char> reached(owner.size(), 0);
   for (int f : space.domain_faces()) {
     const std::vector<int> reaching = space.reaching_faces(f);
-    alike[static_cast<std::size_t>(f)] =
-        std::none_of(reaching.begin(), reaching.end(),
-                     [&](int g) { return moved[static_cast<std::size_t>(g)]; });
+    reached[static_cast<std::size_t>(f)] =
+        std::any_of(reaching.begin(), reaching.end(),
+                    [&](int g) { return owner[static_cast<std::size_t>(g)] != 0; });
   }
+  return reached;
+}
+
+}  // namespace
+
+std::vector<char> faces_evaluated_alike(const ManifoldSpline& a, const ManifoldSpline& b) {
+  // Bit for bit (0.0 and -0.0 differ: a sum of zeros keeps the sign).
+  const auto same = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  const std::vector<char> reached =
+      faces_reached_by(a, b, "faces_evaluated_alike", [&](Eigen::Index i) {
+        return !(same(a.control_points(i, 0), b.control_points(i, 0)) &&
+                 same(a.control_points(i, 1), b.control_points(i, 1)) &&
+                 same(a.control_points(i, 2), b.control_points(i, 2)));
+      });
+  std::vector<char> alike(reached.size(), 0);
+  for (int f : a.space->domain_faces())
+    alike[static_cast<std::size_t>(f)] = !reached[static_cast<std::size_t>(f)];
   return alike;
+}
+
+std::vector<char> faces_moved_farther(const ManifoldSpline& a, const ManifoldSpline& b,
+                                      double distance) {
+  return faces_reached_by(a, b, "faces_moved_farther", [&](Eigen::Index i) {
+    return (a.control_points.row(i) - b.control_points.row(i)).norm() > distance;
+  });
 }
 
 int Tessellation::edge_sample(int face, int corner, int i) const {

@@ -87,6 +87,14 @@ struct Tessellation {
 [[nodiscard]] std::vector<char> faces_evaluated_alike(const ManifoldSpline& a,
                                                       const ManifoldSpline& b);
 
+/// By face of the splines' shared domain mesh: 1 where a function reaching it
+/// (ManifoldSplineSpace::reaching_faces) has control points farther than `distance` apart in
+/// `a` and `b` (so the surfaces may differ there by about that much), 0 elsewhere and outside
+/// the domain.
+/// \throw ricci::InvalidInputError as faces_evaluated_alike.
+[[nodiscard]] std::vector<char> faces_moved_farther(const ManifoldSpline& a,
+                                                    const ManifoldSpline& b, double distance);
+
 /// Local refinement where the sampled surface turns sharply, so that a smooth but tightly curved
 /// part (an ear tip, a hoof) is not shown as a fold of the grid: every spline triangle on an edge
 /// whose two triangles' normals differ by more than `turn_deg` degrees is split 1-to-4 at its

@@ -440,6 +440,38 @@ TEST(Tessellate, ReusesSamplesOfFacesEvaluatedAlike) {
   EXPECT_THROW((void)faces_evaluated_alike(c.spline, other), ricci::InvalidInputError);
 }
 
+// Two control points moved by 0.01 and 0.03: at a distance below both, the faces either
+// function reaches are flagged (the complement of faces_evaluated_alike on the domain); between
+// the two, only the farther one's; above both, none.
+TEST(Tessellate, FacesMovedFartherThanADistance) {
+  const Case c = make_case("genus2.off");
+  const ManifoldSplineSpace& space = *c.spline.space;
+  const std::vector<int>& domain = space.domain_faces();
+  const int near = domain[domain.size() / 4], far = domain[3 * domain.size() / 4];
+  const ManifoldSpline moved =
+      with_moved_point(with_moved_point(c.spline, near, 0, {0.01, 0, 0}), far, 1, {0, 0, 0.03});
+  const std::vector<char> alike = faces_evaluated_alike(c.spline, moved);
+  const std::vector<char> both = faces_moved_farther(c.spline, moved, 0.005);
+  const std::vector<char> farther = faces_moved_farther(c.spline, moved, 0.02);
+  ASSERT_EQ(both.size(), c.mesh->n_faces());
+  int flagged = 0;
+  for (int f : domain) {
+    const auto reaching = space.reaching_faces(f);
+    const auto reached = [&](int g) {
+      return std::binary_search(reaching.begin(), reaching.end(), g);
+    };
+    EXPECT_EQ(both[static_cast<std::size_t>(f)], !alike[static_cast<std::size_t>(f)]) << f;
+    EXPECT_EQ(farther[static_cast<std::size_t>(f)], reached(far)) << f;
+    flagged += farther[static_cast<std::size_t>(f)];
+  }
+  EXPECT_GT(flagged, 3);
+  const std::vector<char> none(c.mesh->n_faces(), 0);
+  EXPECT_EQ(faces_moved_farther(c.spline, moved, 0.04), none);
+  ManifoldSpline other = moved;
+  other.space = small_space("genus2.off", 2, 300);
+  EXPECT_THROW((void)faces_moved_farther(c.spline, other, 0.0), ricci::InvalidInputError);
+}
+
 // The seams' jumps by edge: their largest is max_edge_normal_jump_deg; measured again after a
 // control point moved, those of edges between faces evaluated alike are taken from before and
 // the result is the fresh one.
