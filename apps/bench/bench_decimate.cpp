@@ -4,7 +4,6 @@
 // msp fit's simplify stage, to N faces) on each mesh: seconds and CPU seconds (best of R runs) and
 // a hash of the result's vertex bits and faces, so that a faster decimation can be checked to
 // collapse exactly the same edges (issue 19).
-#include <time.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -17,6 +16,7 @@
 #include <ricci/mesh/simplify.h>
 #include <ricci/mesh/simplify_quadric.h>
 #include <ricci/util/hash.h>
+#include <ricci/util/stopwatch.h>
 
 #include "bench/benchmarks.h"
 #include "bench/child_run.h"
@@ -24,12 +24,6 @@
 
 namespace msp::bench {
 namespace {
-
-double clock_seconds(clockid_t clock) {
-  timespec t{};
-  clock_gettime(clock, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 // FNV-1a over the vertex count, every coordinate's bits and every face's vertex indices.
 std::uint64_t mesh_hash(const ricci::Mesh& mesh) {
@@ -78,8 +72,8 @@ int run_decimate_benchmark(int argc, char** argv) {
     ricci::Mesh decimated;
     double best = 1e300, wall = 0.0;
     for (int run = 0; run < repeat; ++run) {
-      const double start = clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
-      const double start_wall = clock_seconds(CLOCK_MONOTONIC);
+      const ricci::CpuStopwatch cpu_clock;
+      const ricci::Stopwatch wall_clock;
       if (whole) {
         ricci::SimplifyOptions options;
         options.target_faces = target;
@@ -88,10 +82,10 @@ int run_decimate_benchmark(int argc, char** argv) {
         decimated = input;
         ricci::quadric_decimate(decimated, target, decimate);
       }
-      const double cpu = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - start;
+      const double cpu = cpu_clock.seconds();
       if (cpu < best) {
         best = cpu;
-        wall = clock_seconds(CLOCK_MONOTONIC) - start_wall;
+        wall = wall_clock.seconds();
       }
     }
     const std::string name = case_label(path, levels);
