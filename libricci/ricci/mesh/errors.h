@@ -42,4 +42,11 @@ class SolverError : public Error {
   using Error::Error;
 };
 
+/// A long computation stopped early because its caller asked it to (the cancellation flag it
+/// was given: ricci/util/cancel.h). Nothing it was computing is delivered.
+class Cancelled : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace ricci

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cancel.h"
 #include "spline/basis/blossom.h"
 #include "spline/basis/multi_index.h"
 #include "spline/fill/hole_fill.h"
@@ -55,11 +56,13 @@ double bounding_diagonal(const ricci::Mesh& mesh) {
 
 // Solves min |A c - b|^2 + weight * thin-plate energy (the rows of `system` and
 // thin_plate_normal, `plain` its plain-rule triangles; weight 0: none) for the columns of b.
+// \throw ricci::Cancelled when `cancel` is set before the factorisation.
 Eigen::MatrixX3d solve(const System& system, const PlanarDmsSpace& space, double thin_plate,
                        const Eigen::Vector3d& anchor_value, const Rim& rim,
-                       const std::vector<char>* plain = nullptr) {
+                       const std::atomic<bool>* cancel, const std::vector<char>* plain = nullptr) {
   const int functions = space.function_count();
   auto [normal, rhs] = fill_detail::normal_equations(system, space, thin_plate, plain);
+  ricci::throw_if_cancelled(cancel, "fill_rim");
   // A tiny anchor towards the mean value keeps functions that reach nothing determined and
   // moves with the data.
   const double anchor = 1e-12 * normal.diagonal().sum() / functions;
@@ -247,6 +250,7 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
   fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners,
                            corner_refinements(samples, options), options.outside_corner_grading,
                            fill_detail::grid_keep_distance(options, h));
+  ricci::throw_if_cancelled(options.cancel, "fill_rim");
   const PlanarDmsSpace& space = *fill.space;
   const std::vector<char> plain = fill_detail::plain_rule_triangles(
       space, polygon,
@@ -284,7 +288,7 @@ HoleFill fill_height_field(const Rim& rim, const std::vector<std::vector<RimSamp
   const double radius = perimeter / (2.0 * M_PI);
   const Eigen::VectorXd heights =
       solve(system, space, options.smoothing * radius * radius,
-            Eigen::Vector3d(mean_height, 0, 0), rim, &plain)
+            Eigen::Vector3d(mean_height, 0, 0), rim, options.cancel, &plain)
           .col(0);
 
   // The in-plane part: the control points of the identity (exact on D, an affine map).
@@ -326,7 +330,8 @@ HoleFill fill_positions(const Rim& rim, const std::vector<std::vector<RimSample>
     }
   }
   fill.control_points =
-      solve(system, space, std::max(options.smoothing, 1e-2) * radius * radius, fill.origin, rim);
+      solve(system, space, std::max(options.smoothing, 1e-2) * radius * radius, fill.origin, rim,
+            options.cancel);
   return fill;
 }
 
@@ -362,6 +367,7 @@ HoleFill fill_rim_once(const ManifoldSpline& spline, const ricci::Mesh& domain_m
     return fill;
   };
   auto parametric_fill = [&]() {
+    ricci::throw_if_cancelled(options.cancel, "fill_rim");
     return measured(fill_detail::fill_parametric(
         rim, sample_edges(spline, rim, options.parametric_samples_per_edge), options,
         corner_refinements(samples, options)));
@@ -373,6 +379,7 @@ HoleFill fill_rim_once(const ManifoldSpline& spline, const ricci::Mesh& domain_m
   const bool parametric_allowed =
       rim.kind != Rim::Kind::boundary || !options.require_simple_projection ||
       options.fallback_boundary;
+  ricci::throw_if_cancelled(options.cancel, "fill_rim");
   HoleFill fill;
   try {
     fill = measured(fill_height_field(rim, samples, options));

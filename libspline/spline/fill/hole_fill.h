@@ -18,6 +18,7 @@
 // start vertex (t = 0) to the end vertex (t = 1): rim_edge_barycentric(edge, t). Sample (j, d) is
 // the same surface point as sample (j + 1, 0).
 #include <Eigen/Core>
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -224,6 +225,10 @@ struct FillOptions {
   /// excluded holes are always checked (a fold cannot be filled by a height field).
   bool require_simple_projection = true;
   KnotCloudOptions knots;
+  /// When not null and set, fill_rim stops at its next check (between its patches and their
+  /// stages) and throws ricci::Cancelled: a caller that no longer needs the patch gets its
+  /// thread back (fit_surface's early capping of a round that folds).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// Position, first derivatives in D's coordinates and unit normal (Pu x Pv) of the patch.

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cancel.h"
 #include "spline/basis/multi_index.h"
 #include "spline/fill/fill_system.h"
 
@@ -48,11 +49,14 @@ Eigen::SparseMatrix<double> block_diagonal(const Eigen::SparseMatrix<double>& bl
 
 // Solves min |A_s x_c - b_c|^2 + weight * thin-plate energy of x_c (each coordinate c;
 // thin_plate_normal, weight 0: none) + |A_t x|^2 for the control points.
+// \throw ricci::Cancelled when `cancel` is set before the factorisation.
 Eigen::MatrixX3d solve_coupled(const System& scalar, const TangentRows& tangent,
                                const PlanarDmsSpace& space, double thin_plate,
-                               const Eigen::MatrixX3d& anchor_value, const Rim& rim) {
+                               const Eigen::MatrixX3d& anchor_value, const Rim& rim,
+                               const std::atomic<bool>* cancel) {
   const int functions = space.function_count();
   const auto [block, block_rhs] = normal_equations(scalar, space, thin_plate);
+  ricci::throw_if_cancelled(cancel, "fill_rim");
 
   Eigen::SparseMatrix<double> t(tangent.rows, 3 * functions);
   t.setFromTriplets(tangent.entries.begin(), tangent.entries.end());
@@ -118,6 +122,7 @@ HoleFill fill_parametric(const Rim& rim, const std::vector<std::vector<RimSample
   const double h = perimeter / boundary_vertices;
   fill.space = patch_space(polygon, h, options.degree, options.knots, fill.corners, refinements,
                            1.0, grid_keep_distance(options, h));
+  ricci::throw_if_cancelled(options.cancel, "fill_rim");
   const PlanarDmsSpace& space = *fill.space;
   // An orthonormal frame around the mean normal (informative: P is no height field).
   const Eigen::Vector3d helper =
@@ -164,7 +169,8 @@ HoleFill fill_parametric(const Rim& rim, const std::vector<std::vector<RimSample
   const double radius = perimeter / (2.0 * M_PI);
   fill.control_points = solve_coupled(scalar, tangent_rows, space,
                                       options.smoothing * radius * radius,
-                                      affine_reference(fill, samples, space), rim);
+                                      affine_reference(fill, samples, space), rim,
+                                      options.cancel);
   return fill;
 }
 

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "ricci/mesh/errors.h"
+#include "ricci/util/cancel.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/meet_patch.h"
 #include "spline/fill/rims.h"
@@ -155,9 +156,10 @@ ChosenRims choose_rims(const SplineSurface& surface, const std::vector<char>& in
   return chosen;
 }
 
-FillOptions fill_options_for(bool input_boundary, bool screening) {
+FillOptions fill_options_for(bool input_boundary, const CapHolesOptions& options) {
   FillOptions fill_options;
-  if (screening) fill_options.corner_refinement = 1;
+  if (options.screening) fill_options.corner_refinement = 1;
+  fill_options.cancel = options.cancel;
   // The punctured sphere's hole is a cone hole in all but name: filled like one (its
   // projection may fold; the patch is laid out on a circle either way). Without the
   // fallback its fold left the only rim of camel.off and knight_decimated.off open.
@@ -211,7 +213,7 @@ CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options)
   RimMergeOptions merge;
   merge.boundary_loops = options.fill_boundaries || !options.open_input;
   ChosenRims chosen = choose_rims(surface, in_domain, options, merge,
-                                  fill_options_for(false, options.screening));
+                                  fill_options_for(false, options));
   CapHolesReport report;
   surface.fills.clear();
   surface.open_rims.clear();
@@ -246,8 +248,7 @@ CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options)
       surface.fills.push_back(static_cast<int>(r) == chosen.cone
                                   ? std::move(*chosen.cone_fill)
                                   : fill_rim(surface.spline, surface.domain, rim,
-                                             fill_options_for(input_boundary,
-                                                              options.screening)));
+                                             fill_options_for(input_boundary, options)));
       if (!surface.fills.back().g1) ++report.fallback_fills;
     } catch (const ricci::InvalidInputError& e) {
       // A boundary whose projection folds cannot be capped: left open and reported.
@@ -255,6 +256,7 @@ CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options)
       surface.open_rims.push_back(std::move(rim));
     }
   }
+  ricci::throw_if_cancelled(options.cancel, "cap_holes");
   move_surface_to_patches(surface);
   for (const auto& fill : surface.fills) {
     report.max_normal_jump_deg = std::max(report.max_normal_jump_deg, fill.max_normal_jump_deg);

@@ -2,6 +2,7 @@
 // The hole-filling stage of fit_surface: which rims of a fitted spline are capped by patches
 // (fill/hole_fill.h), with which fill options and retries, and the spline moved to meet the
 // patches (fill/meet_patch.h).
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,9 @@ struct CapHolesOptions {
   /// (a patch that flips is still retried), and every patch on a uniform grid
   /// (FillOptions::corner_refinement 1). One patch per rim instead of 4-6 corner-refined ones.
   bool screening = false;
+  /// When not null and set, cap_holes stops at its next check (FillOptions::cancel) and throws
+  /// ricci::Cancelled, leaving `surface` partly capped.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// Whether a capping with these limits retries the cone hole (vertex rounds, a reach), so that
@@ -92,7 +96,8 @@ struct CapHolesReport {
 /// there is no collar) and surface.spline.
 /// With make_patches false only the rims and skipped_faces are set (open_rims holds every rim).
 /// \pre surface.domain and surface.spline as fit_scan leaves them.
-/// \throw ricci::SolverError when a patch's system cannot be solved; as find_rims.
+/// \throw ricci::SolverError when a patch's system cannot be solved; as find_rims;
+///        ricci::Cancelled when options.cancel is set while it runs.
 [[nodiscard]] CapHolesReport cap_holes(SplineSurface& surface, const CapHolesOptions& options);
 
 }  // namespace spline

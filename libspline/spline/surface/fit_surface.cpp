@@ -1,6 +1,7 @@
 #include "spline/surface/fit_surface.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -533,12 +534,22 @@ CapHolesOptions cap_options(const FitSurfaceOptions& options, const FittedSurfac
 // judging. cap_holes depends on the surface and its options alone, so the round delivered with
 // the same spline takes this result, the one its own capping would give; any other round caps
 // as before (the work here is lost). Nothing else may solve while it runs: the BLAS thread
-// count is the process' (serial_blas.h), so fit_surface waits for it before any refit.
+// count is the process' (serial_blas.h), so fit_surface waits for it before any refit, or
+// cancels it when the round folds (it is then seldom the one delivered; if it is, its capping
+// is made again).
 struct EarlyCaps {
   std::shared_ptr<const ManifoldSplineSpace> space;
   Eigen::MatrixX3d control_points;  // the spline capped
   std::vector<char> collar_faces;
+  std::atomic<bool> stop{false};  // CapHolesOptions::cancel of the capping
   std::future<std::pair<SplineSurface, CapHolesReport>> capped;
+
+  EarlyCaps() = default;
+  EarlyCaps(const EarlyCaps&) = delete;
+  EarlyCaps& operator=(const EarlyCaps&) = delete;
+  // A capping still running when fit_surface returns or throws is no longer wanted: it stops
+  // at its next check, and `capped` joins it.
+  ~EarlyCaps() { stop = true; }
 
   void start(const FitSurfaceOptions& options, const FittedSurface& out) {
     space = out.surface.spline.space;
@@ -547,8 +558,9 @@ struct EarlyCaps {
     SplineSurface surface = out.surface;
     surface.fills.clear();  // as deliver_round leaves them
     surface.open_rims.clear();
-    capped = std::async(std::launch::async, [surface = std::move(surface),
-                                             cap = cap_options(options, out, Caps::full)]() mutable {
+    CapHolesOptions cap = cap_options(options, out, Caps::full);
+    cap.cancel = &stop;
+    capped = std::async(std::launch::async, [surface = std::move(surface), cap]() mutable {
       CapHolesReport report = cap_holes(surface, cap);
       return std::make_pair(std::move(surface), std::move(report));
     });
@@ -557,6 +569,13 @@ struct EarlyCaps {
   // Blocks until the capping is done (its result kept for take).
   void wait() const {
     if (capped.valid()) capped.wait();
+  }
+
+  // Stops the capping at its next check and waits for it to end. take() then caps nothing,
+  // unless the capping had already finished.
+  void cancel() {
+    stop = true;
+    wait();
   }
 
   // Whether the capping begun here (and not taken yet) is the one of `out.surface`.
@@ -573,15 +592,19 @@ struct EarlyCaps {
            capped.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
   }
 
-  // The capping of `out.surface` if it was begun here (once), else nothing.
+  // The capping of `out.surface` if it was begun here (once) and not cancelled, else nothing.
   std::optional<CapHolesReport> take(FittedSurface& out) {
     if (!holds(out)) {
       wait();
       return std::nullopt;
     }
-    auto [surface, report] = capped.get();
-    out.surface = std::move(surface);
-    return std::move(report);
+    try {
+      auto [surface, report] = capped.get();
+      out.surface = std::move(surface);
+      return std::move(report);
+    } catch (const ricci::Cancelled&) {
+      return std::nullopt;
+    }
   }
 };
 
@@ -1559,8 +1582,13 @@ FittedSurface fit_surface(const ricci::Mesh& input, const FitSurfaceOptions& opt
   std::shared_future<std::shared_ptr<const PreparedScan>> prepared = prepared_input(input);
   EarlyCaps early_caps;  // joined (if still running) when fit_surface returns or throws
   Round best = fit_round(dense, scan, options, 0, false, clock, out, &early_caps);
-  // A round that folds, or is refined by the tolerance, is fitted again before any capping.
-  if (out.surface_dihedral.over_90_deg > 0 || options.tolerance > 0.0) early_caps.wait();
+  // A round that folds, or is refined by the tolerance, is fitted again before any capping. One
+  // that folds is seldom delivered: its capping stops.
+  if (out.surface_dihedral.over_90_deg > 0) {
+    early_caps.cancel();
+  } else if (options.tolerance > 0.0) {
+    early_caps.wait();
+  }
   Superseded superseded;
   const bool measured = refine_to_rms_goal(dense, options, scan, best, superseded, clock, out);
   // A first round without folds and without a tolerance is the only one (nothing to refine):

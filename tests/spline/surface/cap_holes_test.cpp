@@ -1,11 +1,13 @@
 // cap_holes without patches (CapHolesOptions::make_patches false, how fit_surface judges a fit
 // round before only the delivered one is capped): the rims are those the capping starts from,
 // their faces are skipped, nothing is filled, and the tessellation is open exactly there; and
-// the screening capping fit_surface ranks rounds by.
+// the screening capping fit_surface ranks rounds by; a capping cancelled by its caller.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <vector>
 
+#include "ricci/mesh/errors.h"
 #include "spline/surface/cap_holes.h"
 #include "spline/surface/surface_fixtures.h"
 #include "spline/surface/tessellate_surface.h"
@@ -63,6 +65,40 @@ TEST(CapHoles, WithoutPatchesTheRimsStayOpenAndTheirFacesAreSkipped) {
   EXPECT_TRUE(topology.matches(2, 1));
   const Tessellation closed = tessellate_surface(capped, tess, patches);
   EXPECT_TRUE(check_watertight(closed.triangles, closed.positions).matches(2, 0));
+}
+
+// CapHolesOptions::cancel (fit_surface's early capping of a round that folds): a capping whose
+// flag is set stops at its first check and throws ricci::Cancelled, and so does fill_rim; with
+// the flag given but clear, the capping is the plain one, bit for bit.
+TEST(CapHoles, ACancelledCappingThrowsAndAClearFlagChangesNothing) {
+  const SplineSurface& fitted = testing::small_surface("genus2.off");
+  std::atomic<bool> stop{true};
+  CapHolesOptions options;
+  options.cancel = &stop;
+  SplineSurface cancelled = uncapped(fitted);
+  EXPECT_THROW((void)cap_holes(cancelled, options), ricci::Cancelled);
+  FillOptions fill;
+  fill.cancel = &stop;
+  CapHolesOptions open;
+  open.make_patches = false;
+  SplineSurface rims = uncapped(fitted);
+  (void)cap_holes(rims, open);
+  ASSERT_EQ(rims.open_rims.size(), 1u);
+  EXPECT_THROW((void)fill_rim(fitted.spline, fitted.domain, rims.open_rims[0], fill),
+               ricci::Cancelled);
+
+  stop = false;
+  SplineSurface flagged = uncapped(fitted);
+  const CapHolesReport flagged_report = cap_holes(flagged, options);
+  SplineSurface plain = uncapped(fitted);
+  const CapHolesReport plain_report = cap_holes(plain, CapHolesOptions{});
+  EXPECT_EQ(flagged_report.max_normal_jump_deg, plain_report.max_normal_jump_deg);
+  ASSERT_EQ(flagged.fills.size(), 1u);
+  ASSERT_EQ(plain.fills.size(), 1u);
+  EXPECT_TRUE((flagged.fills[0].control_points.array() ==
+               plain.fills[0].control_points.array()).all());
+  EXPECT_TRUE((flagged.spline.control_points.array() ==
+               plain.spline.control_points.array()).all());
 }
 
 // The screening capping (CapHolesOptions::screening, how fit_surface ranks rounds before the one
