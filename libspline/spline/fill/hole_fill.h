@@ -283,7 +283,8 @@ struct HoleFill {
 /// \throw ricci::InvalidInputError on bad options, a rim of fewer than 3 edges, or a rim that
 ///        is no height field over any tried plane (a normal too steep, a projection that is
 ///        not simple; the message names the rim and the reason);
-///        ricci::SolverError when the least-squares system cannot be solved.
+///        ricci::SolverError when the least-squares system cannot be solved;
+///        ricci::Cancelled when options.cancel is set while it runs.
 [[nodiscard]] HoleFill fill_rim(const ManifoldSpline& spline, const ricci::Mesh& domain_mesh,
                                 const Rim& rim, const FillOptions& options = {});
 
