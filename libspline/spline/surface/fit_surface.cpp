@@ -778,6 +778,12 @@ std::pair<FittedSurface, Round> next_round(const ricci::Mesh& dense, const ScanF
 // its points).
 constexpr double kMovedShareOfRms = 0.1;
 
+// `flags` into `into` (grown to its size): set where either is.
+void merge_flags(const std::vector<char>& flags, std::vector<char>& into) {
+  into.resize(std::max(into.size(), flags.size()), 0);
+  for (std::size_t f = 0; f < flags.size(); ++f) into[f] |= flags[f];
+}
+
 // The data points whose parameter lies on a face flagged in `faces` moved to their closest
 // points on `spline` (correct_parameters, ScanFitOptions' correction steps), the pinned ones
 // (Round::pinned) left on the boundary curve. Returns whether any point was moved.
@@ -853,10 +859,9 @@ std::pair<FittedSurface, Round> refit_round(const ricci::Mesh& dense,
   std::vector<char> corrected(face_smoothing.size(), 0);
   for (std::size_t f = 0; f < face_smoothing.size(); ++f) corrected[f] = face_smoothing[f] > 0.0;
   if (out.input.boundary_loops > 0) {
-    const std::vector<char> moved = faces_moved_farther(
-        out.surface.spline, next.surface.spline, kMovedShareOfRms * out.projection_rms);
-    for (std::size_t f = 0; f < corrected.size() && f < moved.size(); ++f)
-      corrected[f] |= moved[f];
+    merge_flags(faces_moved_farther(out.surface.spline, next.surface.spline,
+                                    kMovedShareOfRms * out.projection_rms),
+                corrected);
   }
   if (correct_parameters_on(next.surface.spline, corrected, round)) {
     refit = fit_control_points(*space, round.setup_parameters, round.data_parameters,
@@ -1160,12 +1165,6 @@ std::vector<double> open_fold_floor(const FittedSurface& out,
   for (std::size_t f = 0; f < floor.size() && f < band.size(); ++f)
     if (band[f] && !(f < folded.size() && folded[f])) floor[f] = 0.0;
   return floor;
-}
-
-// `flags` into `into` (grown to its size): set where either is.
-void merge_flags(const std::vector<char>& flags, std::vector<char>& into) {
-  into.resize(std::max(into.size(), flags.size()), 0);
-  for (std::size_t f = 0; f < flags.size(); ++f) into[f] |= flags[f];
 }
 
 // `floor` into `face_smoothing` (grown to its size): the larger of the two by face.
