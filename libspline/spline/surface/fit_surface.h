@@ -75,7 +75,8 @@ struct FitSurfaceOptions {
   /// rings of the folds (on open inputs: not within two of the boundary) are fitted again with
   /// at least fold_smoothing (FitOptions::smoothing's unit; three times more each further
   /// round) on the same domain and cone; a round is kept when it folds less (a sharp crease is
-  /// rounded, not folded), and they stop after two rounds in a row that do not. On closed
+  /// rounded, not folded), and they stop after two rounds in a row that do not, or at once
+  /// after a round that leaves as many folds at the same RMS (within 1e-4 of it). On closed
   /// inputs a series that leaves folds is run again from its start with the raised smoothing
   /// tapered over three more rings (fold_smoothing.h), and the better series is kept. Without
   /// a tolerance they run first, on the first fit (open inputs: when no fold lies within two
