@@ -244,6 +244,13 @@ void SimplexSplineDag::set_recurrence(std::uint32_t mask, Triple t, Node& node) 
   node.data[3] = e1.x() / det;
 }
 
+void SimplexSplineDag::reserve(std::size_t nodes) {
+  nodes_.reserve(nodes);
+  boxes_.reserve((nodes + 3) / 4 * 16);
+  base_bits_.reserve((nodes + 63) / 64);
+  recurrence_bits_.reserve((nodes + 63) / 64);
+}
+
 void SimplexSplineDag::release_index() {
   std::unordered_map<std::uint32_t, int>().swap(index_);
   std::vector<std::uint16_t>().swap(direct_index_);

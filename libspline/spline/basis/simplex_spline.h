@@ -66,6 +66,9 @@ class SimplexSplineDag {
   /// Node ids returned by add(), in call order (the roots of evaluate_roots()).
   [[nodiscard]] const std::vector<int>& roots() const { return roots_; }
 
+  /// Room for `nodes` nodes before the evaluation arrays grow again (no effect on results).
+  void reserve(std::size_t nodes);
+
   /// Drops the subset -> node map once all roots are added (it is as large as the nodes). Later
   /// add() calls stay correct but no longer share the nodes built before.
   void release_index();
