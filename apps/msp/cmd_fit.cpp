@@ -9,6 +9,7 @@
 
 #include <ricci/mesh/errors.h>
 #include <ricci/mesh/io.h>
+#include <ricci/util/memory.h>
 #include <spline/basis/multi_index.h>
 #include <spline/io/spline_file.h>
 #include <spline/surface/fit_surface.h>
@@ -208,6 +209,7 @@ int run_fit(int argc, char** argv) {
   try {
     const ricci::Mesh mesh = ricci::read_mesh(path);
     read_seconds = std::chrono::duration<double>(Clock::now() - t).count();
+    ricci::keep_freed_memory(mesh.n_vertices());
     run = spline::fit_surface(mesh, options);
   } catch (...) {
     progress.abort();

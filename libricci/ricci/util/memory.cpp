@@ -24,4 +24,14 @@ void use_one_malloc_arena(std::size_t vertices) {
 #endif
 }
 
+void keep_freed_memory(std::size_t vertices) {
+#if defined(__GLIBC__)
+  if (vertices >= kReleaseFreeMemoryFromVertices) return;
+  mallopt(M_MMAP_THRESHOLD, static_cast<int>(kKeptBlockBytes));
+  mallopt(M_TRIM_THRESHOLD, static_cast<int>(2 * kKeptBlockBytes));
+#else
+  (void)vertices;
+#endif
+}
+
 }  // namespace ricci

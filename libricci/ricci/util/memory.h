@@ -27,4 +27,16 @@ constexpr std::size_t kReleaseFreeMemoryFromVertices = 200000;
 /// with another C library.
 void use_one_malloc_arena(std::size_t vertices);
 
+/// Below kReleaseFreeMemoryFromVertices, keeps freed blocks in the process for the next stage
+/// (glibc: mallopt raises M_MMAP_THRESHOLD to kKeptBlockBytes and M_TRIM_THRESHOLD to twice
+/// that). A fit's stages allocate and free arrays of 1-30 MB; by default glibc maps and unmaps
+/// them, so that each stage faults its pages in again (figures in docs/design-notes.md, "Freed
+/// memory kept below 200k vertices"). From there on it does nothing: peak memory matters more
+/// there (release_free_memory). Process-wide, for applications, once before the computation.
+/// Does nothing with another C library.
+void keep_freed_memory(std::size_t vertices);
+
+/// Largest block keep_freed_memory has the allocator take from its heap rather than map.
+constexpr std::size_t kKeptBlockBytes = std::size_t{256} << 20;
+
 }  // namespace ricci
