@@ -55,3 +55,28 @@ TEST(ReleaseFreeMemory, ReturnsFreedHeapPagesFromItsProblemSize) {
   EXPECT_GT(below - at, 64 * kMB) << "the freed heap stayed resident";
 #endif
 }
+
+// keep_freed_memory leaves a large freed block resident below its problem size (glibc would
+// otherwise have mapped it apart and unmapped it on free), and changes nothing from it on.
+TEST(KeepFreedMemory, KeepsALargeFreedBlockBelowItsProblemSize) {
+#if !defined(__GLIBC__) || !defined(__linux__)
+  GTEST_SKIP() << "mallopt and /proc/self/statm: glibc on Linux only";
+#else
+  if (&__asan_init != nullptr) GTEST_SKIP() << "AddressSanitizer's allocator: no mallopt";
+  void* (*volatile allocate)(std::size_t) = std::malloc;  // not elided with its free
+  constexpr long kMB = 1 << 20;
+  constexpr std::size_t kBlock = 48 << 20;  // above glibc's largest adaptive mmap threshold
+  const auto resident_after_free = [&] {
+    void* p = allocate(kBlock);
+    std::memset(p, 1, kBlock);
+    const long used = resident_bytes();
+    std::free(p);
+    return used - resident_bytes();  // what the free gave back
+  };
+  ricci::keep_freed_memory(ricci::kReleaseFreeMemoryFromVertices);  // does nothing
+  EXPECT_GT(resident_after_free(), 40 * kMB) << "glibc kept a mapped block";
+  ricci::keep_freed_memory(ricci::kReleaseFreeMemoryFromVertices - 1);
+  EXPECT_LT(resident_after_free(), 8 * kMB) << "the freed block went back to the system";
+  ricci::release_free_memory(ricci::kReleaseFreeMemoryFromVertices);  // the test's 48 MB
+#endif
+}
