@@ -71,8 +71,8 @@ TriangleBasis::TriangleBasis(const KnotCloud& cloud0, const KnotCloud& cloud1,
     box_max_ = box_max_.cwiseMax(t);
   }
   // The triangles of a space have DAGs of about one size: room for the last one built on this
-  // thread (and an eighth more) spares the node arrays' regrowth, ~8% of the CPU of a cone
-  // patch's capping (msp-bench caps); release_index trims the rest.
+  // thread (and an eighth more) spares the node arrays' regrowth (docs/design-notes.md, "Node
+  // arrays of the DAGs reserved"); release_index trims the rest.
   thread_local std::size_t last_nodes = 0;
   dag_.reserve(last_nodes + last_nodes / 8);
   for (const Eigen::Vector3i& beta : multi_indices(n)) {
