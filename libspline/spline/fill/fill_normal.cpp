@@ -367,9 +367,6 @@ NormalEquations normal_equations(const System& system, const PlanarDmsSpace& spa
   return result;
 }
 
-// Factorisations of more flops than this use both BLAS threads (solve_normal_equations).
-constexpr double kParallelBlasFlops = 3e10;
-
 Eigen::MatrixXd solve_normal_equations(const Sparse& normal, const Eigen::MatrixXd& rhs,
                                        const std::string& what) {
   Eigen::CholmodSupernodalLLT<Sparse> solver;
@@ -381,13 +378,13 @@ Eigen::MatrixXd solve_normal_equations(const Sparse& normal, const Eigen::Matrix
   solver.cholmod().nmethods = 1;
   solver.cholmod().method[0].ordering = CHOLMOD_AMD;
   solver.analyzePattern(normal);
-  // One BLAS thread (serial_blas.h) unless the factorisation is large: OpenBLAS' second thread
-  // spins while it waits, and on a busy machine it cost far more than it saved (genus3_100k's
-  // cone patch, 9e9 flops, load 8 on 2 cores: 3.8 CPU s and 3.9 s wall with two threads, 0.8
-  // and 2.2 s with one). The largest patches gain from it on a quiet machine (`msp fit`
-  // block.off, a 40-edge cone rim, 188k unknowns: 18.5 s -> 13.4 s).
-  std::optional<ricci::SerialBlasScope> serial;
-  if (solver.cholmod().fl < kParallelBlasFlops) serial.emplace();
+  // One BLAS thread (serial_blas.h), also for the largest patches. OpenBLAS hands each call
+  // over to its second thread and waits for it by sched_yield; next to other busy processes
+  // each such wait lasts their time slices: helmet.off's parametric cone patch beside two
+  // CPU-bound processes spent 67-77 s of wall for 7 s of CPU in its fill with two threads
+  // (docs/design-notes.md, "The fill's BLAS on one thread"). On a quiet machine the second
+  // thread saved ~28% on the largest (block.off's 188k unknowns, 18.5 -> 13.4 s).
+  const ricci::SerialBlasScope serial;
   // CHOLMOD's own OpenMP loops on this thread, as in ricci's SymmetricFactorization
   // (serial_blas.h says why).
   const ricci::SerialOpenMpScope serial_openmp;
