@@ -539,10 +539,12 @@ CapHolesOptions cap_options(const FitSurfaceOptions& options, const FittedSurfac
 // cone patch's ordering, factorisation and solves, meet_patches) leave the other core to the
 // judging. cap_holes depends on the surface and its options alone, so the round delivered with
 // the same spline takes this result, the one its own capping would give; any other round caps
-// as before (the work here is lost). Nothing else may solve while it runs: the BLAS thread
-// count is the process' (serial_blas.h), so fit_surface waits for it before any refit, or
-// cancels it when the round folds (it is then seldom the one delivered; if it is, its capping
-// is made again).
+// as before (the work here is lost). fit_surface waits for it before any refit, or cancels it
+// when the round folds (it is then seldom the one delivered; if it is, its capping is made
+// again). The wait was first for the bits: the patch's factorisation could take OpenBLAS'
+// second thread, whose count is the process' (serial_blas.h). Every factorisation of the
+// library now runs on one BLAS thread, so today the wait only keeps the two off each other's
+// cores.
 struct EarlyCaps {
   std::shared_ptr<const ManifoldSplineSpace> space;
   Eigen::MatrixX3d control_points;  // the spline capped
