@@ -13,8 +13,13 @@
 // whether or not this file was compiled with it (scripts/sanitize-launcher.sh instruments a
 // few sources and links the whole program with the runtime).
 extern "C" void __asan_init() __attribute__((weak));
+// The same for ThreadSanitizer's runtime, whose allocator ignores malloc_trim and mallopt too.
+extern "C" void __tsan_init() __attribute__((weak));
 
 namespace {
+
+// Whether a sanitizer's allocator serves malloc: the glibc tunings under test do not apply.
+bool sanitizer_allocator() { return &__asan_init != nullptr || &__tsan_init != nullptr; }
 
 // Resident bytes of this process (Linux: /proc/self/statm).
 long resident_bytes() {
@@ -31,7 +36,7 @@ TEST(ReleaseFreeMemory, ReturnsFreedHeapPagesFromItsProblemSize) {
 #if !defined(__GLIBC__) || !defined(__linux__)
   GTEST_SKIP() << "malloc_trim and /proc/self/statm: glibc on Linux only";
 #else
-  if (&__asan_init != nullptr) GTEST_SKIP() << "AddressSanitizer's allocator: no malloc_trim";
+  if (sanitizer_allocator()) GTEST_SKIP() << "a sanitizer's allocator: no malloc_trim";
   // 96 MB in 64 KB blocks (below the mmap threshold: on the heap), each followed by a small
   // block that stays, so that freeing the large ones leaves holes free() cannot trim.
   void* (*volatile allocate)(std::size_t) = std::malloc;  // not elided with its free
@@ -62,7 +67,7 @@ TEST(KeepFreedMemory, KeepsALargeFreedBlockBelowItsProblemSize) {
 #if !defined(__GLIBC__) || !defined(__linux__)
   GTEST_SKIP() << "mallopt and /proc/self/statm: glibc on Linux only";
 #else
-  if (&__asan_init != nullptr) GTEST_SKIP() << "AddressSanitizer's allocator: no mallopt";
+  if (sanitizer_allocator()) GTEST_SKIP() << "a sanitizer's allocator: no mallopt";
   void* (*volatile allocate)(std::size_t) = std::malloc;  // not elided with its free
   constexpr long kMB = 1 << 20;
   constexpr std::size_t kBlock = 48 << 20;  // above glibc's largest adaptive mmap threshold
