@@ -163,6 +163,7 @@ ConstrainedSolution solve_constrained(const Sparse& k_lower, const Eigen::Matrix
   const Eigen::MatrixX3d h = -Eigen::MatrixX3d(cr * y0);
   // One BLAS thread: on these factorisations the second only spins (serial_blas.h).
   const ricci::SerialBlasScope serial_blas;
+  const ricci::SerialOpenMpScope serial_openmp;
   Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> solver;
   solver.cholmod().print = 0;  // libraries never print; failures are reported by info()
   Eigen::MatrixX3d e;
