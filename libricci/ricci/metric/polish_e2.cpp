@@ -34,15 +34,16 @@ bool angles_l(const long double l[3], long double theta[3]) {
   return true;
 }
 
-// Faces whose corner angles are computed together: their long-double angles (48 bytes a face)
-// are held for one chunk only, not for the mesh (77 MB at 1.6M faces, beside the flow's
-// factorisation).
-constexpr size_t kAngleChunk = 1 << 13;
+// Faces whose corner angles are computed together: their long-double angles and cotangents (72
+// bytes a face) are held for one chunk only, not for the mesh (115 MB at 1.6M faces, beside the
+// flow's factorisation). A chunk is one parallel_for: 49 at 1.6M faces.
+constexpr size_t kAngleChunk = 1 << 15;
 
 // Residual K - target in long double (and, when `edge_weights`, the cotangent Laplacian's
 // weight of each edge: the sum of 0.5 cot of the corners facing it). The corner angles (long
-// double atan2, most of a polish step) are computed face-parallel a chunk at a time, then summed
-// per vertex and edge in face order: the same sums on any number of threads.
+// double atan2, most of a polish step) and their cotangents are computed face-parallel a chunk
+// at a time, then summed per vertex and edge in face order: the same sums on any number of
+// threads.
 VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::VectorXd& target,
                     Eigen::VectorXd* edge_weights) {
   VectorL r(t.num_vertices());
@@ -52,6 +53,7 @@ VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::Ve
   if (edge_weights) *edge_weights = Eigen::VectorXd::Zero(t.num_edges());
   const auto faces = static_cast<size_t>(t.num_faces());
   std::vector<std::array<long double, 3>> theta(std::min(faces, kAngleChunk));
+  std::vector<std::array<double, 3>> half_cot(edge_weights ? theta.size() : 0);
   std::vector<char> broken(theta.size());
   for (size_t first = 0; first < faces; first += kAngleChunk) {
     const size_t count = std::min(kAngleChunk, faces - first);
@@ -60,6 +62,10 @@ VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::Ve
       const long double l[3] = {lengths[t.face_edges(face, 0)], lengths[t.face_edges(face, 1)],
                                 lengths[t.face_edges(face, 2)]};
       broken[i] = angles_l(l, theta[i].data()) ? 0 : 1;
+      if (!edge_weights || broken[i]) return;
+      for (size_t k = 0; k < 3; ++k) {
+        half_cot[i][k] = 0.5 / std::tan(static_cast<double>(theta[i][k]));
+      }
     });
     const auto end = broken.begin() + static_cast<std::ptrdiff_t>(count);
     const auto first_broken = std::find(broken.begin(), end, 1);
@@ -74,8 +80,7 @@ VectorL residual_of(const MeshTables& t, const VectorL& lengths, const Eigen::Ve
       for (int k = 0; k < 3; ++k) r[t.face_vertices(f, k)] -= angles[static_cast<size_t>(k)];
       if (!edge_weights) continue;
       for (int k = 0; k < 3; ++k) {
-        (*edge_weights)[t.face_edges(f, k)] +=
-            0.5 / std::tan(static_cast<double>(angles[static_cast<size_t>(k)]));
+        (*edge_weights)[t.face_edges(f, k)] += half_cot[i][static_cast<size_t>(k)];
       }
     }
   }
