@@ -508,6 +508,20 @@ bool try_intrinsic(InputSurface& input, const OneConeAtlasOptions& options,
   return true;
 }
 
+// Whether `result`'s flow converged on the tangent circles (the combinatorial metric, last of
+// one_cone_metric_order) where options let the intrinsic flow run instead
+// (OneConeAtlasOptions::intrinsic_before_combinatorial).
+bool took_combinatorial(const OneConeAtlasOptions& options, const OneConeAtlasResult& result) {
+  if (!options.intrinsic_before_combinatorial || options.route != FlowRoute::automatic ||
+      options.keep_metric || options.flow.geometry != Geometry::euclidean ||
+      !options.cone_ring_metrics.empty() || !intrinsic_applies(result.problem)) {
+    return false;
+  }
+  const auto order = one_cone_metric_order(result.problem.kind);
+  const int position = metric_order_position(result.problem.kind, result.flow.metric_name);
+  return position >= 0 && order[static_cast<std::size_t>(position)].first == Scheme::combinatorial;
+}
+
 // takes_intrinsic_flow_first, takes_inversive_distance_route and singularity_options on the
 // mesh's surface_topology, computed once per build_one_cone_atlas (a pass over the mesh each).
 bool intrinsic_first_on(const SurfaceTopology& topology, const OneConeAtlasOptions& options) {
@@ -675,6 +689,35 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
     }
   } else {
     solve_and_polish(input, options, result, report, true);
+  }
+  if (result.flow.converged() && !intrinsic_tried && !result.intrinsic &&
+      took_combinatorial(options, result)) {
+    // Tangent circles ignore the mesh's shape (elk: area-weighted QC 2.28 against the intrinsic
+    // flow's 1.46): the intrinsic flow comes before them, and they are kept only if it fails.
+    const std::string set_aside =
+        result.flow.metric_name + ": converged, set aside for the intrinsic Delaunay flow "
+                                  "(tangent circles ignore the mesh's shape)";
+    Discarded trial = discarded;
+    trial.failures.insert(trial.failures.end(), result.flow.failed_attempts.begin(),
+                          result.flow.failed_attempts.end());
+    trial.failures.push_back(set_aside);
+    const std::size_t listed_before = trial.failures.size();
+    const OneConeAtlasResult combinatorial = result;
+    intrinsic_tried = try_intrinsic(input, options, report, result, trial);
+    if (result.intrinsic && result.flow.converged()) {
+      trial.add_costs(combinatorial);  // its failures are listed in the result's
+      discarded = std::move(trial);
+    } else {
+      // Back to the tangent circles: the intrinsic flow's failures are listed after theirs,
+      // its costs counted with the discarded attempts'.
+      result = combinatorial;
+      std::vector<std::string>& listed = result.flow.failed_attempts;
+      listed.insert(listed.end(),
+                    trial.failures.begin() + static_cast<std::ptrdiff_t>(listed_before),
+                    trial.failures.end());
+      trial.failures = std::move(discarded.failures);
+      discarded = std::move(trial);
+    }
   }
   // The thrown-away attempts' failures come first, in the order they ran.
   if (!discarded.failures.empty()) {

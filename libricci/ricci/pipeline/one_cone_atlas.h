@@ -90,6 +90,12 @@ struct OneConeAtlasOptions {
   /// which run only if it fails too. The atlas is then on the flipped triangulation
   /// (OneConeAtlasResult::intrinsic).
   bool intrinsic_before_fixed = true;
+  /// With route automatic and no metric asked for: when the fixed-connectivity flows converge
+  /// only on the combinatorial metric (tangent circles, last of one_cone_metric_order: it
+  /// ignores the mesh's shape, area-weighted QC 2.28 on elk.off), the intrinsic Delaunay flow
+  /// runs (if not tried yet) and is taken when it converges (QC 1.46 there); the tangent
+  /// circles are listed in flow.failed_attempts as set aside. Genus >= 1 closed surfaces only.
+  bool intrinsic_before_combinatorial = true;
   /// When the singularity is chosen automatically and the intrinsic flow runs first: Newton
   /// starts at warm_start_fraction times the choice's linear prediction of the flat metric
   /// (its log scale factors, SingularityChoice::predicted_log_scale, carried to the problem's

@@ -517,6 +517,35 @@ TEST(OneConeAtlas, AfterAFailedRouteTheIntrinsicFlowComesBeforeTheCirclePacking)
             best.distortion.quasi_conformal_area_mean + 0.3);
 }
 
+// On elk (a flat torus whose thin handle breaks the inversive-distance and circle-packing
+// triangles) the fixed-connectivity flows converge only on tangent circles, which ignore the
+// mesh's shape: by default the intrinsic Delaunay flow runs and wins, far more conformal, and the
+// tangent circles are listed as set aside; without intrinsic_before_combinatorial they are kept.
+TEST(OneConeAtlas, TheIntrinsicFlowComesBeforeTangentCircles) {
+  const ricci::Mesh mesh = ricci::read_mesh(resolve("closed_g1/elk.off"));
+  ricci::OneConeAtlasOptions options;
+  const ricci::OneConeAtlasResult best = ricci::build_one_cone_atlas(mesh, options);
+  ASSERT_TRUE(best.intrinsic) << best.flow.metric_name;
+  EXPECT_EQ(best.problem.kind, ricci::OneConeKind::FlatTorus);
+  ASSERT_FALSE(best.flow.failed_attempts.empty());
+  EXPECT_EQ(best.flow.failed_attempts.back().rfind("combinatorial", 0), 0u)
+      << best.flow.failed_attempts.back();
+  EXPECT_NE(best.flow.failed_attempts.back().find("set aside"), std::string::npos);
+  EXPECT_EQ(best.atlas.layout.flipped_faces, 0);
+  EXPECT_LT(best.relative_transition_residual(), 1e-9);
+  EXPECT_LT(best.flow.max_error, 1e-10);
+
+  options.intrinsic_before_combinatorial = false;
+  const ricci::OneConeAtlasResult tangent = ricci::build_one_cone_atlas(mesh, options);
+  EXPECT_FALSE(tangent.intrinsic);
+  EXPECT_EQ(tangent.flow.metric.scheme, ricci::Scheme::combinatorial) << tangent.flow.metric_name;
+  EXPECT_GT(tangent.distortion.quasi_conformal_area_mean,
+            best.distortion.quasi_conformal_area_mean + 0.5);
+  for (const std::string& failed : tangent.flow.failed_attempts) {
+    EXPECT_EQ(failed.find("set aside"), std::string::npos) << failed;
+  }
+}
+
 // build_one_cone_atlas(Mesh&&) keeps the input as arrays while the flow runs and rebuilds it
 // for a fallback route (genus3_10k's cone 0 with the route first: it fails, the intrinsic flow
 // follows on the rebuilt input): the atlas is the const-reference call's, bit for bit, and the
