@@ -150,17 +150,22 @@ PolishE2Result polish_e2_lengths(const MeshTables& t, const Eigen::VectorXd& len
     for (int v = 0; v < n; ++v) {
       if (v != pinned) u[v] -= static_cast<long double>(du[reduced_index(v, pinned)]) * scale;
     }
-    for (int e = 0; e < t.num_edges(); ++e) {
+    parallel_for(static_cast<size_t>(t.num_edges()), 0, [&](size_t i) {
+      const int e = static_cast<int>(i);
       current[e] = std::exp(0.5L * (u[t.edge_vertices(e, 0)] + u[t.edge_vertices(e, 1)])) *
                    static_cast<long double>(lengths[e]);
-    }
+    });
     r = residual_of(t, current, target, nullptr);
     const double error = static_cast<double>(r.cwiseAbs().maxCoeff());
     if (!(error < result.error_after)) break;
+    // A step that did not halve the defect met the long-double evaluation's floor: it is kept,
+    // and the next one would only measure that floor.
+    const bool at_floor = error > 0.5 * result.error_after;
     result.error_after = error;
     result.iterations = it;
     result.lengths = current.cast<double>();
     result.lengths_low = (current - result.lengths.cast<long double>()).cast<double>();
+    if (at_floor) break;
   }
   return result;
 }

@@ -39,9 +39,9 @@ struct NearbyLaplacian {
 /// the angle sum; boundary: pi minus it), each step solving L du = -(K - target) with du
 /// pinned to 0 at one vertex and L the cotangent Laplacian at the given lengths (dK/du),
 /// factored once (or `nearby`'s, see NearbyLaplacian); the residual is evaluated in long
-/// double. Steps until max |K - K̄| is at most `good_enough` (0: until a step gains nothing,
-/// the evaluation's floor, which costs one step that is thrown away). Returns the given
-/// lengths when a step does not improve.
+/// double. Steps until max |K - K̄| is at most `good_enough`, or until a step fails to halve it
+/// (the evaluation's floor: that step is kept), or one does not improve it (thrown away).
+/// Returns the given lengths when the first step does not improve.
 /// \pre lengths close to a solution (a converged flow's); target sums to 2 pi chi; a nearby
 ///      factorisation has the size of the mesh's vertices minus one; good_enough >= 0.
 /// \throw InvalidInputError on a size mismatch or a face violating the triangle inequality.
