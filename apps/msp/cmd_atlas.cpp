@@ -68,7 +68,7 @@ const CommandSpec& atlas_command() {
       {singularity_option(),
        metric_option("chosen per surface: the most conformal that converges (on genus >= 2 "
                      "intrinsic-delaunay, then the inversive-distance route, then the circle "
-                     "packings)",
+                     "packings; combinatorial only where intrinsic-delaunay fails too)",
                      true),
        radii_option(),
        tolerance_option("1e-10"),

@@ -91,10 +91,11 @@ struct OneConeAtlasOptions {
   /// (OneConeAtlasResult::intrinsic).
   bool intrinsic_before_fixed = true;
   /// With route automatic and no metric asked for: when the fixed-connectivity flows converge
-  /// only on the combinatorial metric (tangent circles, last of one_cone_metric_order: it
-  /// ignores the mesh's shape, area-weighted QC 2.28 on elk.off), the intrinsic Delaunay flow
-  /// runs (if not tried yet) and is taken when it converges (QC 1.46 there); the tangent
-  /// circles are listed in flow.failed_attempts as set aside. Genus >= 1 closed surfaces only.
+  /// only on the combinatorial metric (tangent circles, last of one_cone_metric_order, which
+  /// ignore the mesh's shape), the intrinsic Delaunay flow runs (if not tried yet) and is taken
+  /// when it converges; the tangent circles are then listed in flow.failed_attempts as set
+  /// aside (docs/design-notes.md, "Tangent circles after the intrinsic flow"). Closed surfaces
+  /// of genus >= 1 only (where the intrinsic flow applies).
   bool intrinsic_before_combinatorial = true;
   /// When the singularity is chosen automatically and the intrinsic flow runs first: Newton
   /// starts at warm_start_fraction times the choice's linear prediction of the flat metric
