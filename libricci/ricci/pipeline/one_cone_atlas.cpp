@@ -485,6 +485,11 @@ struct Discarded {
     work += attempt.flow.linear_work;
     work += attempt.polish.linear_work;
   }
+  void add_costs(const Discarded& other) {
+    seconds += other.seconds;
+    cpu_seconds += other.cpu_seconds;
+    work += other.work;
+  }
 };
 
 // The intrinsic flow on a fresh copy of `result`'s problem: `result` becomes it when it
@@ -702,15 +707,16 @@ OneConeAtlasResult build_atlas(InputSurface& input, const OneConeAtlasOptions& o
                           result.flow.failed_attempts.end());
     trial.failures.push_back(set_aside);
     const std::size_t listed_before = trial.failures.size();
-    const OneConeAtlasResult combinatorial = result;
+    Discarded tangent_costs;
+    tangent_costs.add_costs(result);
+    // try_intrinsic replaces `result` only when the intrinsic flow converges.
     intrinsic_tried = try_intrinsic(input, options, report, result, trial);
-    if (result.intrinsic && result.flow.converged()) {
-      trial.add_costs(combinatorial);  // its failures are listed in the result's
+    if (result.intrinsic) {
+      trial.add_costs(tangent_costs);  // their failures are listed in the result's
       discarded = std::move(trial);
     } else {
-      // Back to the tangent circles: the intrinsic flow's failures are listed after theirs,
-      // its costs counted with the discarded attempts'.
-      result = combinatorial;
+      // The tangent circles stay: the intrinsic flow's failures are listed after theirs, its
+      // costs counted with the discarded attempts'.
       std::vector<std::string>& listed = result.flow.failed_attempts;
       listed.insert(listed.end(),
                     trial.failures.begin() + static_cast<std::ptrdiff_t>(listed_before),
