@@ -81,6 +81,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   o.refinement_rounds = args.get_int("refine-rounds", o.refinement_rounds);
   o.fold_rounds = args.get_int("fold-rounds", o.fold_rounds);
   o.adaptive_domain = args.has("adaptive-domain");
+  o.tracked_parameters = args.has("tracked-parameters");
   o.tolerance = args.get_double("tolerance", o.tolerance);
   o.rms_goal = args.get_double("rms-goal", o.rms_goal);
   o.max_surface_deviation = args.get_double("max-deviation", o.max_surface_deviation);
@@ -169,6 +170,9 @@ const CommandSpec& fit_command() {
        {"refine-rounds", "N", "domain refinements where the surface folds or misses (1)"},
        {"fold-rounds", "N", "refits with stronger fairing around folds left (4)"},
        {"adaptive-domain", "", "closed scans: a domain denser at detail and thin parts"},
+       {"tracked-parameters", "",
+        "experimental, genus >= 4: place the data through the flow's intrinsic flips (exact) "
+        "rather than by closest point on the flipped faces"},
        {"max-deviation", "F",
         "fail when the surface strays farther than F diagonals from the input; 0: off (0.05)"},
        {"obj", "OUT.obj", "also write the tessellation as OBJ"},

@@ -344,6 +344,9 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
   if (!result.flow.message.empty()) failures.push_back(result.flow.message);
   IntrinsicTriangulation initial = make_intrinsic_triangulation(
       result.problem.mesh, mesh_edge_lengths(result.problem.mesh));
+  // (The record's copy: the flow takes `initial`, and its flip log numbers initial's edges.)
+  IntrinsicTriangulation initial_copy =
+      options.keep_flip_record ? initial : IntrinsicTriangulation();
   const bool warm = options.warm_start && result.predicted_log_scale.size() > 0 &&
                     result.problem.kind == OneConeKind::SingleCone &&
                     static_cast<double>(result.problem.mesh.n_faces()) < options.warm_start_below_faces;
@@ -459,6 +462,10 @@ void solve_intrinsic(const OneConeAtlasOptions& options, OneConeAtlasResult& res
       result.polish.lengths = by_mesh_edge(std::move(result.polish.lengths), edge_of);
       result.polish.lengths_low = by_mesh_edge(std::move(result.polish.lengths_low), edge_of);
       result.intrinsic = true;
+      if (options.keep_flip_record) {
+        result.flip_record = {same_order_mesh(problem_mesh), std::move(initial_copy),
+                              std::move(r.flip_log), r.u};
+      }
     }
   }
   if (flow.status != FlowStatus::converged) {

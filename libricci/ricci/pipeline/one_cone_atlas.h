@@ -12,6 +12,7 @@
 #include "ricci/mesh/collapse_short_edges.h"
 #include "ricci/mesh/flat_flips.h"
 #include "ricci/mesh/mesh.h"
+#include "ricci/mesh/simplify.h"
 #include "ricci/metric/polish_e2.h"
 #include "ricci/quality/distortion.h"
 #include "ricci/singularity/choose.h"
@@ -97,6 +98,10 @@ struct OneConeAtlasOptions {
   /// aside (docs/design-notes.md, "Tangent circles after the intrinsic flow"). Closed surfaces
   /// of genus >= 1 only (where the intrinsic flow applies).
   bool intrinsic_before_combinatorial = true;
+  /// When the intrinsic flow makes the metric: keep the mesh it started from and its flips
+  /// (OneConeAtlasResult::flip_record), so that points of the surface can be placed exactly on
+  /// the flipped triangulation (place_on_problem_mesh). Costs a copy of the problem's mesh.
+  bool keep_flip_record = false;
   /// When the singularity is chosen automatically and the intrinsic flow runs first: Newton
   /// starts at warm_start_fraction times the choice's linear prediction of the flat metric
   /// (its log scale factors, SingularityChoice::predicted_log_scale, carried to the problem's
@@ -133,6 +138,21 @@ struct OneConeAtlasLinearWork {
     sum += polish;
     return sum;
   }
+};
+
+/// What the intrinsic flow did to the problem's mesh (OneConeAtlasOptions::keep_flip_record):
+/// the mesh before its flips and the flips in order. Empty when the option is off or the
+/// intrinsic flow did not make the metric.
+struct IntrinsicFlipRecord {
+  /// problem.mesh as the flow started on it: the same vertices (indices and positions), the
+  /// faces before the flips, which lie on the surface (the flipped ones are chords).
+  Mesh initial;
+  /// The flow's starting triangulation (make_intrinsic_triangulation of `initial`; its face f
+  /// is initial's face f), whose edge numbering flip_log uses.
+  IntrinsicTriangulation triangulation;
+  std::vector<int> flip_log;  ///< IntrinsicFlowResult::flip_log, in order
+  Eigen::VectorXd u;          ///< the flow's log scale factors by vertex
+  [[nodiscard]] bool empty() const { return initial.n_faces() == 0; }
 };
 
 struct OneConeAtlasResult {
@@ -172,9 +192,25 @@ struct OneConeAtlasResult {
   ConeRefinement cone_refinement;  ///< What options.cone_refinement did.
   OneConeAtlasTimings timings;
   OneConeAtlasLinearWork linear_work;
+  IntrinsicFlipRecord flip_record;  ///< (OneConeAtlasOptions::keep_flip_record)
   /// max transition (and side pairing) residual divided by the domain diameter.
   [[nodiscard]] double relative_transition_residual() const;
 };
+
+/// The mesh whose faces lie on the surface and carry the problem's points: flip_record.initial
+/// when the record was kept, problem.mesh otherwise. Place points of the input there (e.g. by
+/// closest_points), then carry them to the atlas' mesh with place_on_problem_mesh.
+[[nodiscard]] const Mesh& placement_mesh(const OneConeAtlasResult& result);
+
+/// Points of placement_mesh(result) (SurfacePoint: face and barycentric coordinates in the
+/// face's fv_range order) as points of result.problem.mesh, whose faces the atlas lays out:
+/// through the intrinsic flow's flips by IntrinsicCorrespondence (exact, point_tracking.h),
+/// with barycentric coordinates in the flat metric's triangle (the layout's). `point` and
+/// `distance` are kept. Unchanged without a flip record.
+/// \throw InvalidInputError for a face out of range; TopologyError when the record's flips do
+///        not give problem.mesh's faces.
+[[nodiscard]] std::vector<SurfacePoint> place_on_problem_mesh(const OneConeAtlasResult& result,
+                                                              std::vector<SurfacePoint> points);
 
 /// `options` set up for the inversive-distance flow on marching-cubes meshes: edges under 1% of
 /// the median collapsed, non-Delaunay edges flipped where their faces are within 5 degrees of

@@ -228,6 +228,13 @@ struct ScanFitOptions {
   /// (on thin parts the closest point can lie on the other side). Off by default: on the
   /// shared scans it changed no fold count and raised femur's largest error.
   bool oriented_parameters = false;
+  /// On the intrinsic route (genus >= 4): each data point is placed on the faces the flow
+  /// started from and carried through its flips (ricci::place_on_problem_mesh, exact), not by
+  /// closest point onto the flipped triangulation's faces, which are chords of the surface.
+  /// Off by default: the parameter correction that follows leaves the surfaces of the generated
+  /// genus 4-10 meshes, anchor and fertility within 0.4 degrees of seam of the chords' (docs/
+  /// design-notes.md, "Tracked parameters").
+  bool tracked_parameters = false;
   /// The domain mesh to build the spline on instead of simplifying the input (a domain refined
   /// after an earlier fit); it must have the input's topology. Empty: simplify the input.
   std::optional<ricci::Mesh> domain;

@@ -152,6 +152,7 @@ ScanFitOptions scan_options(const FitSurfaceOptions& options) {
   scan.fair_r = options.fairness;
   scan.fit.smoothing = options.smoothing;
   scan.atlas.cone_refinement = options.cone_refinement;
+  scan.tracked_parameters = options.tracked_parameters;
   return scan;
 }
 

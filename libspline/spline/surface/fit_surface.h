@@ -33,6 +33,8 @@ struct FitSurfaceOptions {
   /// the automatically chosen cone split once (the cone goes where the domain is coarsest);
   /// false (default), or open inputs: one edge length (fit_scan's simplification).
   bool adaptive_domain = false;
+  /// ScanFitOptions::tracked_parameters (genus >= 4: data placed through the flow's flips).
+  bool tracked_parameters = false;
   /// The adaptive domain's sizing (its target_faces is replaced by domain_faces).
   AdaptiveDomainOptions sizing;
   /// Input-mesh vertex of the extraordinary point (an interior vertex), -1 to choose it by

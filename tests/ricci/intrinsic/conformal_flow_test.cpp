@@ -3,14 +3,17 @@
 // closed form, and the flat metric lays out as a one-cone atlas with rigid transitions.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "ricci/intrinsic/conformal_flow.h"
+#include "ricci/intrinsic/point_tracking.h"
 #include "ricci/mesh/arrays.h"
 #include "ricci/mesh/errors.h"
 #include "ricci/mesh/io.h"
 #include "ricci/mesh/primitives.h"
+#include "ricci/mesh/simplify.h"
 #include "ricci/metric/curvature.h"
 #include "ricci/metric/polish_e2.h"
 #include "ricci/pipeline/one_cone_atlas.h"
@@ -112,6 +115,94 @@ TEST(IntrinsicOneConeAtlas, Genus4OnTheFlippedTriangulation) {
   EXPECT_EQ(r.atlas.uncovered_faces, 0);
   EXPECT_LT(r.relative_transition_residual(), 1e-9);
   EXPECT_LT(r.atlas.domain_max_absolute_length_error / r.atlas.domain_diameter, 1e-9);
+}
+
+// Points of the surface placed on the flipped triangulation (place_on_problem_mesh): placed on
+// the faces the flow started from, carried through its flips, each lands in a face of the
+// atlas' mesh with barycentric coordinates of the flat metric; carried back, every one
+// reproduces its 3D position, and every vertex lands on its own corner.
+TEST(IntrinsicOneConeAtlas, PlacedPointsKeepTheir3DPositionsThroughTheFlips) {
+  const int genus = 4;
+  ricci::OneConeAtlasOptions options;
+  options.singular_vertex = 0;
+  options.route = ricci::FlowRoute::intrinsic_delaunay;
+  options.keep_flip_record = true;
+  const ricci::Mesh slab = ricci::make_genus_slab(genus, 2, 4);
+  const ricci::OneConeAtlasResult r = ricci::build_one_cone_atlas(slab, options);
+  ASSERT_TRUE(r.intrinsic);
+  ASSERT_FALSE(r.flip_record.empty());
+  ASSERT_EQ(static_cast<int>(r.flip_record.flip_log.size()), r.intrinsic_flips);
+  const ricci::Mesh& initial = ricci::placement_mesh(r);
+  ASSERT_EQ(&initial, &r.flip_record.initial);
+  ASSERT_EQ(initial.n_vertices(), r.problem.mesh.n_vertices());
+  ASSERT_EQ(initial.n_faces(), r.problem.mesh.n_faces());
+
+  // Queries: every vertex, then 3 points inside each face, of the starting faces.
+  const Eigen::MatrixX3d V = ricci::to_arrays(initial).V;
+  const auto nv = static_cast<Eigen::Index>(initial.n_vertices());
+  Eigen::MatrixX3d queries(nv + 3 * static_cast<Eigen::Index>(initial.n_faces()), 3);
+  queries.topRows(nv) = V;
+  Eigen::Index row = nv;
+  const Eigen::Matrix3d weights{{0.6, 0.3, 0.1}, {0.2, 0.2, 0.6}, {0.45, 0.1, 0.45}};
+  for (auto f : initial.faces()) {
+    Eigen::Matrix3d corners;
+    int k = 0;
+    for (auto v : initial.fv_range(f)) corners.col(k++) = V.row(v.idx()).transpose();
+    for (int q = 0; q < 3; ++q) queries.row(row++) = (corners * weights.col(q)).transpose();
+  }
+  const std::vector<ricci::SurfacePoint> start = ricci::closest_points(initial, queries);
+  const std::vector<ricci::SurfacePoint> placed = ricci::place_on_problem_mesh(r, start);
+  ASSERT_EQ(placed.size(), start.size());
+
+  // Back through the flips from the placed face and flat coordinates.
+  const ricci::IntrinsicCorrespondence map(r.flip_record.triangulation, r.flip_record.flip_log);
+  const ricci::IntrinsicTriangulation& end = map.final_triangulation();
+  std::vector<ricci::TriangulationPoint> back(placed.size());
+  const double diagonal = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  int moved = 0;
+  for (std::size_t n = 0; n < placed.size(); ++n) {
+    const ricci::SurfacePoint& p = placed[n];
+    ASSERT_GE(p.face, 0);
+    ASSERT_LT(p.face, static_cast<int>(r.problem.mesh.n_faces()));
+    EXPECT_NEAR(p.barycentric.sum(), 1.0, 1e-12);
+    EXPECT_GE(p.barycentric.minCoeff(), -1e-12);
+    std::vector<int> corners;
+    for (auto v : r.problem.mesh.fv_range(r.problem.mesh.face_handle(p.face)))
+      corners.push_back(v.idx());
+    Eigen::Vector3d b;
+    for (int k = 0; k < 3; ++k) {
+      const int v = end.tail[static_cast<std::size_t>(3 * p.face + k)];
+      const auto at = std::find(corners.begin(), corners.end(), v) - corners.begin();
+      ASSERT_LT(at, 3) << "face " << p.face << " is not the triangulation's";
+      b[k] = p.barycentric[at];
+    }
+    back[n] = ricci::point_at_barycentric(end, p.face, b.cwiseMax(0.0), r.flip_record.u);
+    if (p.face != start[n].face) ++moved;
+    if (static_cast<Eigen::Index>(n) < nv) {
+      Eigen::Index k = 0;
+      EXPECT_NEAR(p.barycentric.maxCoeff(&k), 1.0, 1e-9) << "vertex " << n;
+      EXPECT_EQ(corners[static_cast<std::size_t>(k)], static_cast<int>(n));
+    }
+  }
+  EXPECT_GT(moved, static_cast<int>(placed.size()) / 10);  // the flips carried many of them
+  back = map.to_initial(std::move(back));
+  double worst = 0.0;
+  for (std::size_t n = 0; n < back.size(); ++n) {
+    const Eigen::Vector3d x = ricci::point_position(map.initial(), V, back[n]);
+    worst = std::max(worst, (x - start[n].point).norm() / diagonal);
+  }
+  EXPECT_LT(worst, 1e-9);
+
+  // Without the record the points stay where they were put, on the atlas' own faces.
+  options.keep_flip_record = false;
+  const ricci::OneConeAtlasResult plain = ricci::build_one_cone_atlas(slab, options);
+  EXPECT_TRUE(plain.flip_record.empty());
+  EXPECT_EQ(&ricci::placement_mesh(plain), &plain.problem.mesh);
+  const std::vector<ricci::SurfacePoint> same = ricci::place_on_problem_mesh(plain, start);
+  for (std::size_t n = 0; n < same.size(); ++n) {
+    EXPECT_EQ(same[n].face, start[n].face);
+    EXPECT_EQ(same[n].barycentric, start[n].barycentric);
+  }
 }
 
 // Chord steps (IntrinsicFlowOptions::chord_forcing_cap): conjugate gradients on the last

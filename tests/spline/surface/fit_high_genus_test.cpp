@@ -2,7 +2,8 @@
 // cone of 2 pi (2g - 1), whose patch must neither fold nor show a seam. At genus 8 the valence
 // modification and the cone refinement leave a band of slivers around the 30 pi cone; the cone
 // hole must reach past them (cone_hole_limits' reach) or its patch flips (main before the reach:
-// seam 164 degrees at 12k faces; 1.79 degrees and 24 folds at 2400).
+// seam 164 degrees at 12k faces; 1.79 degrees and 24 folds at 2400). Genus 4 also with the
+// data placed through the intrinsic flips (tracked_parameters).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -16,6 +17,7 @@ struct HighGenusCase {
   int genus;
   int faces;
   double rms;  ///< the fit's RMS bound, relative to the bounding-box diagonal
+  bool tracked = false;  ///< FitSurfaceOptions::tracked_parameters
 };
 
 class FitSurfaceHighGenus : public ::testing::TestWithParam<HighGenusCase> {};
@@ -26,8 +28,12 @@ TEST_P(FitSurfaceHighGenus, OneConeWatertightWithoutFoldsAndASmallSeam) {
   generate.genus = c.genus;
   generate.target_faces = c.faces;
   const ricci::Mesh mesh = ricci::generate_surface(generate);
-  const spline::FittedSurface fitted = spline::fit_surface(mesh);
+  spline::FitSurfaceOptions options;
+  options.tracked_parameters = c.tracked;
+  const spline::FittedSurface fitted = spline::fit_surface(mesh, options);
   EXPECT_EQ(fitted.input.genus, c.genus);
+  EXPECT_EQ(fitted.atlas.intrinsic, true);
+  EXPECT_EQ(fitted.atlas.flip_record.empty(), !c.tracked);
   EXPECT_TRUE(fitted.watertight);
   EXPECT_TRUE(fitted.topology.closed(c.genus));
   EXPECT_EQ(fitted.surface_dihedral.over_90_deg, 0);
@@ -59,9 +65,11 @@ TEST(FitSurfaceHighGenusRounds, FoldRoundsThatChangeNothingEndTheirSeries) {
 
 INSTANTIATE_TEST_SUITE_P(Generated, FitSurfaceHighGenus,
                          ::testing::Values(HighGenusCase{4, 6000, 1e-3},
+                                           HighGenusCase{4, 6000, 1e-3, true},
                                            HighGenusCase{8, 2400, 2e-3}),
                          [](const auto& info) {
-                           return "genus" + std::to_string(info.param.genus);
+                           return "genus" + std::to_string(info.param.genus) +
+                                  (info.param.tracked ? "_tracked" : "");
                          });
 
 }  // namespace
