@@ -66,7 +66,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   spline::FitSurfaceOptions o;
   o.domain_faces = args.get_int("domain-faces", o.domain_faces);
   o.degree = args.get_int("degree", o.degree);
-  o.fairness = args.get_int("fairness", o.fairness);
+  o.fairness = args.get_int("fairness", spline::default_fairness(o.degree));
   o.smoothing = args.get_double("smoothing", o.smoothing);
   o.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
   o.fill_boundaries = args.has("fill-boundaries");
@@ -150,7 +150,8 @@ const CommandSpec& fit_command() {
       {{"output", "OUT.glb", "write the surface as binary glTF"},
        {"domain-faces", "N", "simplify the mesh to about N faces for the domain (2000)"},
        {"degree", "n", "degree of the DMS spline (3)"},
-       {"fairness", "r", "fit inside the fairing constraints of order r; -1: none (1)"},
+       {"fairness", "r",
+        "fit inside the fairing constraints of order r; -1: none (1; 0 below degree 3)"},
        singularity_option(),
        {"fill-boundaries", "", "also cap the input's boundary loops with G1 patches"},
        {"small-holes", "F", "cap boundary loops narrower than F diagonals before the fit (0.002)"},

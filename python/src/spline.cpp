@@ -33,7 +33,8 @@ struct Spline {
 };
 
 // The options msp fit reads, with its checks (its messages without the leading "--").
-spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness, double smoothing,
+spline::FitSurfaceOptions fit_options(int domain_faces, int degree, std::optional<int> fairness,
+                                      double smoothing,
                                       const nb::object& singularity, bool fill_boundaries,
                                       int density, int cone_refinement, double tolerance,
                                       int refine_rounds, double max_deviation, int fold_rounds,
@@ -41,7 +42,7 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness
   spline::FitSurfaceOptions o;
   o.domain_faces = domain_faces;
   o.degree = degree;
-  o.fairness = fairness;
+  o.fairness = fairness.value_or(spline::default_fairness(degree));
   o.smoothing = smoothing;
   o.singular_vertex = parse_singularity(singularity);
   o.fill_boundaries = fill_boundaries;
@@ -62,7 +63,8 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, int fairness
   return o;
 }
 
-Spline fit(nb::handle V, nb::handle F, int domain_faces, int degree, int fairness, double smoothing,
+Spline fit(nb::handle V, nb::handle F, int domain_faces, int degree, std::optional<int> fairness,
+           double smoothing,
            const nb::object& singularity, bool fill_boundaries, int density, int cone_refinement,
            double tolerance, int refine_rounds, double max_deviation, int fold_rounds,
            bool adaptive_domain, double small_holes, const std::string& name) {
@@ -396,7 +398,7 @@ void bind_spline(nb::module_& m) {
       });
 
   m.def("fit", &fit, "V"_a, "F"_a, nb::kw_only(), "domain_faces"_a = 2000, "degree"_a = 3,
-        "fairness"_a = 1, "smoothing"_a = spline::FitSurfaceOptions{}.smoothing,
+        "fairness"_a = nb::none(), "smoothing"_a = spline::FitSurfaceOptions{}.smoothing,
         "singularity"_a = "auto", "fill_boundaries"_a = false, "density"_a = 0,
         "cone_refinement"_a = spline::FitSurfaceOptions{}.cone_refinement.levels,
         "tolerance"_a = 0.0, "refine_rounds"_a = spline::FitSurfaceOptions{}.refinement_rounds,
@@ -405,15 +407,17 @@ void bind_spline(nb::module_& m) {
         "small_holes"_a = spline::FitSurfaceOptions{}.small_hole_diameter,
         "name"_a = "(V, F) arrays",
         nb::sig("def fit(V: numpy.typing.ArrayLike, F: numpy.typing.ArrayLike, *, "
-                "domain_faces: int = 2000, degree: int = 3, fairness: int = 1, smoothing: float "
-                "= 0.0001, singularity: str | int = 'auto', fill_boundaries: bool = False, "
+                "domain_faces: int = 2000, degree: int = 3, fairness: int | None = None, "
+                "smoothing: float = 0.0001, singularity: str | int = 'auto', "
+                "fill_boundaries: bool = False, "
                 "density: int = 0, cone_refinement: int = 2, tolerance: float = 0.0, "
                 "refine_rounds: int = 1, max_deviation: float = 0.05, fold_rounds: int = 4, "
                 "adaptive_domain: bool = False, small_holes: float = 0.002, "
                 "name: str = '(V, F) arrays') -> Spline"),
         "The whole scan-to-surface job of `msp fit` (spline::fit_surface): simplify to\n"
         "domain_faces, one-cone atlas, DMS spline of `degree` fitted inside the fairing\n"
-        "constraints of order `fairness` (-1: none) with thin-plate weight `smoothing`, holes\n"
+        "constraints of order `fairness` (-1: none; None: 1 from degree 3, 0 below) with\n"
+        "thin-plate weight `smoothing`, holes\n"
         "capped by G1 patches (boundaries too with fill_boundaries). Options as msp fit's\n"
         "(singularity: \"auto\" or an interior vertex; tolerance, refine_rounds,\n"
         "max_deviation, fold_rounds, adaptive_domain and small_holes as --tolerance,\n"

@@ -254,6 +254,22 @@ TEST(FitCli, SingularVertexIsHonoured) {
   EXPECT_GT(report["cone_refinement"]["added_faces"].get<int>(), 0);
 }
 
+// Below degree 3 the fairing order defaults to 0 (spline::default_fairness): at degree 2, r = 1
+// (= n - 1) held the fit so close to its neighbours' polynomials that genus2's surface left the
+// input (a spike 7% of the diagonal out, refused after 27 rounds).
+TEST(FitCli, DegreeTwoTakesFairnessZero) {
+  const fs::path dir = fresh_dir("degree2");
+  const auto r = run_msp(
+      args({"fit", model("genus2.off"), "--degree", "2", "--json", (dir / "d.json").string()}));
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const auto report = read_json(dir / "d.json");
+  EXPECT_EQ(report["degree"], 2);
+  EXPECT_EQ(report["fairness"], 0);
+  EXPECT_TRUE(report["watertight"].get<bool>());
+  EXPECT_EQ(report["folds"]["count"], 0);
+  EXPECT_LT(report["fit_rms_relative"].get<double>(), 2e-3);
+}
+
 // --cone-refinement 0: the simplified mesh is the domain as it is (after the valence
 // modification), and the report says so.
 TEST(FitCli, ConeRefinementCanBeTurnedOff) {

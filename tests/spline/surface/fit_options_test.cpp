@@ -33,6 +33,17 @@ TEST(CheckOptions, DefaultsPassAndEachRangeIsEnforced) {
   EXPECT_NE(with([](auto& o) { o.degree = kMaxDmsDegree + 1; }), "");
   EXPECT_NE(with([](auto& o) { o.fairness = o.degree; }), "");
   EXPECT_EQ(with([](auto& o) { o.fairness = -1; }), "");
+  // msp fit's default order suits every degree: 0 below 3, then 1.
+  for (int degree = 1; degree <= kMaxDmsDegree; ++degree) {
+    EXPECT_EQ(with([&](auto& o) {
+                o.degree = degree;
+                o.fairness = default_fairness(degree);
+              }),
+              "")
+        << "degree " << degree;
+  }
+  EXPECT_EQ(default_fairness(2), 0);
+  EXPECT_EQ(default_fairness(3), 1);
   EXPECT_NE(with([](auto& o) { o.smoothing = -1e-3; }), "");
   EXPECT_NE(with([](auto& o) { o.density = 65; }), "");
   EXPECT_NE(with([](auto& o) { o.cone_refinement.levels = 5; }), "");
