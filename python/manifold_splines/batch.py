@@ -42,6 +42,7 @@ FIT_OPTIONS = {
     "fold_rounds": int,
     "adaptive_domain": bool,
     "small_holes": float,
+    "tracked_parameters": bool,
 }
 COLUMNS = [
     "mesh", "genus", "faces", "status", "error", "error_type", "fit_rms_relative",

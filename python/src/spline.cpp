@@ -38,7 +38,8 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, std::optiona
                                       const nb::object& singularity, bool fill_boundaries,
                                       int density, int cone_refinement, double tolerance,
                                       int refine_rounds, double max_deviation, int fold_rounds,
-                                      bool adaptive_domain, double small_holes) {
+                                      bool adaptive_domain, double small_holes,
+                                      bool tracked_parameters) {
   spline::FitSurfaceOptions o;
   o.domain_faces = domain_faces;
   o.degree = degree;
@@ -54,6 +55,7 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, std::optiona
   o.fold_rounds = fold_rounds;
   o.adaptive_domain = adaptive_domain;
   o.small_hole_diameter = small_holes;
+  o.tracked_parameters = tracked_parameters;
   spline::check_options(o, [](const std::string& field) {
     if (field == "refinement_rounds") return std::string("refine_rounds");
     if (field == "max_surface_deviation") return std::string("max_deviation");
@@ -67,11 +69,12 @@ Spline fit(nb::handle V, nb::handle F, int domain_faces, int degree, std::option
            double smoothing,
            const nb::object& singularity, bool fill_boundaries, int density, int cone_refinement,
            double tolerance, int refine_rounds, double max_deviation, int fold_rounds,
-           bool adaptive_domain, double small_holes, const std::string& name) {
+           bool adaptive_domain, double small_holes, bool tracked_parameters,
+           const std::string& name) {
   const spline::FitSurfaceOptions options =
       fit_options(domain_faces, degree, fairness, smoothing, singularity, fill_boundaries, density,
                   cone_refinement, tolerance, refine_rounds, max_deviation, fold_rounds,
-                  adaptive_domain, small_holes);
+                  adaptive_domain, small_holes, tracked_parameters);
   const ricci::PolygonSoup soup = soup_from_arrays(V, F, name);
   nlohmann::json report;
   Spline result;
@@ -405,7 +408,7 @@ void bind_spline(nb::module_& m) {
         "max_deviation"_a = spline::FitSurfaceOptions{}.max_surface_deviation,
         "fold_rounds"_a = spline::FitSurfaceOptions{}.fold_rounds, "adaptive_domain"_a = false,
         "small_holes"_a = spline::FitSurfaceOptions{}.small_hole_diameter,
-        "name"_a = "(V, F) arrays",
+        "tracked_parameters"_a = false, "name"_a = "(V, F) arrays",
         nb::sig("def fit(V: numpy.typing.ArrayLike, F: numpy.typing.ArrayLike, *, "
                 "domain_faces: int = 2000, degree: int = 3, fairness: int | None = None, "
                 "smoothing: float = 0.0001, singularity: str | int = 'auto', "
@@ -413,15 +416,16 @@ void bind_spline(nb::module_& m) {
                 "density: int = 0, cone_refinement: int = 2, tolerance: float = 0.0, "
                 "refine_rounds: int = 1, max_deviation: float = 0.05, fold_rounds: int = 4, "
                 "adaptive_domain: bool = False, small_holes: float = 0.002, "
-                "name: str = '(V, F) arrays') -> Spline"),
+                "tracked_parameters: bool = False, name: str = '(V, F) arrays') -> Spline"),
         "The whole scan-to-surface job of `msp fit` (spline::fit_surface): simplify to\n"
         "domain_faces, one-cone atlas, DMS spline of `degree` fitted inside the fairing\n"
         "constraints of order `fairness` (-1: none; None: 1 from degree 3, 0 below) with\n"
         "thin-plate weight `smoothing`, holes\n"
         "capped by G1 patches (boundaries too with fill_boundaries). Options as msp fit's\n"
         "(singularity: \"auto\" or an interior vertex; tolerance, refine_rounds,\n"
-        "max_deviation, fold_rounds, adaptive_domain and small_holes as --tolerance,\n"
-        "--refine-rounds, --max-deviation, --fold-rounds, --adaptive-domain, --small-holes).\n"
+        "max_deviation, fold_rounds, adaptive_domain, small_holes and tracked_parameters as\n"
+        "--tolerance, --refine-rounds, --max-deviation, --fold-rounds, --adaptive-domain,\n"
+        "--small-holes, --tracked-parameters).\n"
         "Returns the Spline;\n"
         "its report is the\n"
         "dict `msp fit --json` writes, `name` its \"mesh\".\n\n"

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import manifold_splines as ms
-from conftest import model, msp_json, run_msp, same_figures
+from conftest import ROOT, model, msp_json, run_msp, same_figures
 
 
 def sample_points(spline, count=40, seed=1):
@@ -153,6 +153,18 @@ def test_bezier_patches_reproduce_the_spline(fitted, cli_fit, tmp_path):
 def test_bad_points_raise(fitted, faces, bary, message):
     with pytest.raises(ms.InvalidInputError, match=message.replace("(", r"\(").replace(")", r"\)")):
         fitted.evaluate(faces, bary)
+
+
+def test_tracked_parameters_on_a_genus_4_scan():
+    """tracked_parameters (msp fit --tracked-parameters): on the intrinsic route the data are
+    carried through the flow's flips; the report says whether they were."""
+    V, F = ms.read_mesh(str(ROOT / "tests" / "data" / "meshes" / "closed_g4plus" / "anchor.off"))
+    tracked = ms.fit(V, F, tracked_parameters=True).report
+    assert tracked["genus"] == 4
+    assert tracked["tracked_parameters"] is True
+    assert tracked["watertight"] is True
+    assert tracked["folds"]["count"] == 0
+    assert ms.fit(V, F).report["tracked_parameters"] is False
 
 
 def test_bad_options_and_files(genus2, tmp_path):

@@ -254,6 +254,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
         {"added_faces", atlas.cone_refinement.added_faces},
         {"radial_splits", atlas.cone_refinement.radial_splits}}},
       {"metric", {{"route", atlas.flow.metric_name}, {"refused", atlas.flow.failed_attempts}}},
+      {"tracked_parameters", !atlas.flip_record.empty()},
       {"control_points", space.function_count()},
       {"degree", space.degree()},
       {"fairness", options.fairness},
