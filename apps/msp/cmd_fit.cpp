@@ -66,7 +66,7 @@ spline::FitSurfaceOptions parse_options(const Args& args) {
   spline::FitSurfaceOptions o;
   o.domain_faces = args.get_int("domain-faces", o.domain_faces);
   o.degree = args.get_int("degree", o.degree);
-  o.fairness = args.get_int("fairness", spline::default_fairness(o.degree));
+  if (args.has("fairness")) o.fairness = args.get_int("fairness", 0);
   o.smoothing = args.get_double("smoothing", o.smoothing);
   o.singular_vertex = parse_singularity(args.get_or("singularity", "auto"));
   o.fill_boundaries = args.has("fill-boundaries");

@@ -43,7 +43,7 @@ spline::FitSurfaceOptions fit_options(int domain_faces, int degree, std::optiona
   spline::FitSurfaceOptions o;
   o.domain_faces = domain_faces;
   o.degree = degree;
-  o.fairness = fairness.value_or(spline::default_fairness(degree));
+  o.fairness = fairness;
   o.smoothing = smoothing;
   o.singular_vertex = parse_singularity(singularity);
   o.fill_boundaries = fill_boundaries;

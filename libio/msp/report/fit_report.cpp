@@ -257,7 +257,7 @@ nlohmann::json fit_report_json(const std::string& path, const spline::FittedSurf
       {"tracked_parameters", !atlas.flip_record.empty()},
       {"control_points", space.function_count()},
       {"degree", space.degree()},
-      {"fairness", options.fairness},
+      {"fairness", options.fairness_order()},
       {"fairness_free_faces", fitted.fit_unconstrained_faces},
       {"cone_hole_reach_layers",
        spline::cone_hole_limits(fitted.input.genus, fitted.fit_unconstrained_faces > 0)

@@ -655,14 +655,16 @@ ScanFitResult fit_scan(const ricci::Mesh& dense, const ScanFitOptions& options) 
   // Oriented: a point on one side of a thin part is placed on that side of the domain. On the
   // intrinsic route the atlas' faces are chords of the surface (anchor.off: up to 5.7% of the
   // diagonal off it); with tracked_parameters the points are placed on the faces the flow
-  // started from and carried through its flips (placement_mesh is problem.mesh otherwise).
-  const ricci::Mesh& placement = ricci::placement_mesh(result.atlas);
-  const auto closest = ricci::place_on_problem_mesh(
-      result.atlas,
+  // started from and carried through its flips.
+  const ricci::Mesh& placement =
+      options.tracked_parameters ? ricci::placement_mesh(result.atlas) : mesh;
+  std::vector<ricci::SurfacePoint> closest =
       options.oriented_parameters
           ? ricci::closest_points(placement, points.positions, points.normals,
                                   kOrientedSearchEdges * mean_edge_length(placement))
-          : ricci::closest_points(placement, points.positions));
+          : ricci::closest_points(placement, points.positions);
+  if (options.tracked_parameters)
+    closest = ricci::place_on_problem_mesh(result.atlas, std::move(closest));
   std::vector<DomainPoint> parameters(closest.size());
   const std::vector<int> rings = domain_rim_rings(*space);
   for (std::size_t k = 0; k < closest.size(); ++k) {

@@ -149,7 +149,7 @@ ScanFitOptions scan_options(const FitSurfaceOptions& options) {
   ScanFitOptions scan;
   scan.domain_faces = options.domain_faces;
   scan.degree = options.degree;
-  scan.fair_r = options.fairness;
+  scan.fair_r = options.fairness_order();
   scan.fit.smoothing = options.smoothing;
   scan.atlas.cone_refinement = options.cone_refinement;
   scan.tracked_parameters = options.tracked_parameters;
@@ -1529,7 +1529,7 @@ void check_options(const FitSurfaceOptions& o,
   require(o.domain_faces >= 1, "domain_faces", "positive");
   require(o.degree >= 1 && o.degree <= kMaxDmsDegree, "degree",
           "in [1, " + std::to_string(kMaxDmsDegree) + "]");
-  require(o.fairness >= -1 && o.fairness <= o.degree - 1, "fairness",
+  require(o.fairness_order() >= -1 && o.fairness_order() <= o.degree - 1, "fairness",
           "-1 (none) or in [0, degree - 1]");
   require(o.smoothing >= 0.0 && o.smoothing < 1e6, "smoothing", "in [0, 1e6)");
   require(o.density >= 0 && o.density <= 64, "density", "in [1, 64] (0: chosen by size)");

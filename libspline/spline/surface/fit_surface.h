@@ -6,6 +6,7 @@
 // (distance to the scan, seam normal jumps, topology of the tessellation). `msp fit` is this
 // call plus file output.
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,11 +23,19 @@
 
 namespace spline {
 
+/// The fairing order the fit takes at `degree` when none is given: 1 from degree 3, 0 below.
+/// At degree 2, r = 1 is r = n - 1, which ties each face to its neighbours' polynomials so
+/// closely that the fit leaves the input (models/genus2.off: a spike 7% of the diagonal out after
+/// 27 rounds; r = 0: RMS 0.05%).
+[[nodiscard]] constexpr int default_fairness(int degree) { return degree >= 3 ? 1 : 0; }
+
 struct FitSurfaceOptions {
   int domain_faces = 2000;  ///< Target face count of the simplified domain mesh.
   int degree = 3;           ///< n of the DMS spline, 1..kMaxDmsDegree.
-  /// r of the fairing constraints the fit obeys (-1: none); default_fairness(degree) suits.
-  int fairness = 1;
+  /// r of the fairing constraints the fit obeys (-1: none); empty: default_fairness(degree).
+  std::optional<int> fairness;
+  /// `fairness`, or default_fairness(degree) when it is empty.
+  [[nodiscard]] int fairness_order() const { return fairness.value_or(default_fairness(degree)); }
   /// Weight of the fit's thin-plate energy (FitOptions::smoothing, dimensionless).
   double smoothing = FitOptions{}.smoothing;
   /// Closed inputs: the domain's density follows the shape (adaptive_domain: splits where the
@@ -112,12 +121,6 @@ struct FitSurfaceOptions {
   /// Optional: called with a stage name when the stage starts (the names of `seconds`).
   std::function<void(const std::string& stage)> progress;
 };
-
-/// The fairing order msp fit takes at `degree` when none is given: 1 from degree 3, 0 below.
-/// At degree 2, r = 1 is r = n - 1, which ties each face to its neighbours' polynomials so
-/// closely that the fit leaves the input (models/genus2.off: a spike 7% of the diagonal out after
-/// 27 rounds; r = 0: RMS 0.05%).
-[[nodiscard]] constexpr int default_fairness(int degree) { return degree >= 3 ? 1 : 0; }
 
 /// Checks the ranges of the options: domain_faces >= 1, degree in [1, kMaxDmsDegree], fairness
 /// -1 or in [0, degree - 1], smoothing in [0, 1e6), density in [0, 64],

@@ -44,6 +44,11 @@ TEST(CheckOptions, DefaultsPassAndEachRangeIsEnforced) {
   }
   EXPECT_EQ(default_fairness(2), 0);
   EXPECT_EQ(default_fairness(3), 1);
+  // Left empty, the order follows the degree.
+  FitSurfaceOptions quadratic;
+  quadratic.degree = 2;
+  EXPECT_EQ(quadratic.fairness_order(), 0);
+  EXPECT_EQ(FitSurfaceOptions{}.fairness_order(), 1);
   EXPECT_NE(with([](auto& o) { o.smoothing = -1e-3; }), "");
   EXPECT_NE(with([](auto& o) { o.density = 65; }), "");
   EXPECT_NE(with([](auto& o) { o.cone_refinement.levels = 5; }), "");
