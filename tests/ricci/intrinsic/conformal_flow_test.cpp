@@ -193,6 +193,14 @@ TEST(IntrinsicOneConeAtlas, PlacedPointsKeepTheir3DPositionsThroughTheFlips) {
   }
   EXPECT_LT(worst, 1e-9);
 
+  // A point on no face of the starting mesh is refused with the placement's error.
+  for (const int face : {-1, static_cast<int>(initial.n_faces())}) {
+    std::vector<ricci::SurfacePoint> bad(1);
+    bad[0].face = face;
+    bad[0].barycentric = Eigen::Vector3d::Constant(1.0 / 3.0);
+    EXPECT_THROW((void)ricci::place_on_problem_mesh(r, bad), ricci::InvalidInputError);
+  }
+
   // Without the record the points stay where they were put, on the atlas' own faces.
   options.keep_flip_record = false;
   const ricci::OneConeAtlasResult plain = ricci::build_one_cone_atlas(slab, options);
