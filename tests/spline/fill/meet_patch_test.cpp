@@ -1,6 +1,6 @@
 // The surface next to a filled rim moved to meet the patch (spline/fill/meet_patch.h): the seam's
-// normal jump drops where the rows sample it and the surface is not pleated between them; the
-// rim stays where it was; the surface away from the rim does not move; bad options throw.
+// normal jump drops where the rows sample it and the surface is not pleated between them (where
+// measure_seam's refinement finds the peak the rows miss); the rim stays where it was; the surface away from the rim does not move; bad options throw.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,11 +11,27 @@
 #include "spline/fill/fill_fixtures.h"
 #include "spline/fill/hole_fill.h"
 #include "spline/fill/meet_patch.h"
+#include "spline/fill/patch_domain.h"
 #include "spline/fit/fit.h"
 #include "test_paths.h"
 
 namespace spline {
 namespace {
+
+// The largest normal jump at the rows' own samples (rim_edge_parameters), without
+// measure_seam's refinement between them.
+double jump_at_row_samples(const ManifoldSpline& spline, const HoleFill& fill, int per_edge) {
+  double worst = 0.0;
+  for (int j = 0; j < static_cast<int>(fill.rim.edges.size()); ++j) {
+    for (double t : fill_detail::rim_edge_parameters(per_edge)) {
+      const RimEdge& edge = fill.rim.edges[static_cast<std::size_t>(j)];
+      const auto s = fill_detail::sample_rim(spline, edge, t);
+      const Eigen::Vector3d n = fill.evaluate(fill.parameter(j, t)).normal;
+      worst = std::max(worst, ricci::angle_between(s.jet.normal, n) * 180.0 / M_PI);
+    }
+  }
+  return worst;
+}
 
 TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
   // The bundled genus-3 surface at msp fit's 2000 faces: a parametric patch over a 16-edge cone
@@ -69,21 +85,18 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
   // Where the rows look (their 200 samples per edge) the seam drops (measured 3.62 -> 3.29
   // degrees; 3.53 -> 2.89 on h/large's layout: a least-squares compromise along the rim, which
   // moves its peak little); the position gap does not grow.
-  const SeamReport rows_before = measure_seam(fit.spline, fill, 200);
-  const SeamReport rows_after = measure_seam(moved, fill, 200);
-  EXPECT_LT(rows_after.max_normal_jump_deg, rows_before.max_normal_jump_deg);
-  EXPECT_LT(rows_after.max_position_gap, rows_before.max_position_gap + 1e-5);
-  // Between them the surface is not pleated: next to the rim's vertices a function's support
+  EXPECT_LT(jump_at_row_samples(moved, fill, 200), jump_at_row_samples(fit.spline, fill, 200));
+  const SeamReport before = measure_seam(fit.spline, fill, 200);
+  const SeamReport after = measure_seam(moved, fill, 200);
+  EXPECT_LT(after.max_position_gap, before.max_position_gap + 1e-5);
+  // Between the rows the surface is not pleated: next to the rim's vertices a function's support
   // can meet the rim within a sliver narrower than the rows' spacing, and with uniform rows
-  // alone it moved unseen (77.7 degrees at 1000 samples per edge against 3.62 before; with the
-  // graded rows 4.35, and 4.80 at 2000, measured on h/large's layout: the least squares trade
-  // the rows' mean for the sliver's peak, which move_surface_to_patches' seam check sees).
-  for (int per_edge : {1000, 2000}) {
-    const SeamReport before = measure_seam(fit.spline, fill, per_edge);
-    const SeamReport after = measure_seam(moved, fill, per_edge);
-    EXPECT_LT(after.max_normal_jump_deg, 1.5 * before.max_normal_jump_deg) << per_edge;
-    EXPECT_LT(after.max_position_gap, before.max_position_gap + 1e-5) << per_edge;
-  }
+  // alone it moved unseen (77.7 degrees at 1000 samples per edge against 3.62 before). With the
+  // graded rows the peak between them grows by less than half (measure_seam refines where the
+  // normals turn, so it sees it: 3.57 -> 5.18 degrees), which move_surface_to_patches' seam check
+  // sees and refuses.
+  EXPECT_GT(after.max_normal_jump_deg, jump_at_row_samples(moved, fill, 200));
+  EXPECT_LT(after.max_normal_jump_deg, 1.5 * before.max_normal_jump_deg);
   // Far from the rim (a face no moved function reaches) the surface is the same.
   int checked = 0;
   for (int face : fit.spline.space->domain_faces()) {
