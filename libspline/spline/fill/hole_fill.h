@@ -300,9 +300,10 @@ struct SeamReport {
 /// Normal-angle jump (degrees) and position gap between the surrounding spline (evaluated on
 /// the rim edge inside its domain face, one-sided) and the patch, at the rim parameters of
 /// fill_detail::rim_edge_parameters (t = i / samples_per_edge, graded towards the rim's
-/// vertices), refined by bisection wherever either normal turns by more than 0.1 degrees between
-/// neighbouring samples (down to 1e-7 of a rim edge, at most 16384 samples an edge), so that a
-/// surface turning fast inside a vertex's knot cloud is not stepped over; the RMS gap and
+/// vertices) and at 64 steps within 1.5 knot-cloud radii of each rim vertex, refined by
+/// bisection wherever either normal turns by more than 0.1 degrees between neighbouring samples
+/// (down to 1e-7 of a rim edge, at most 16384 samples an edge), so that a surface turning fast
+/// inside a vertex's knot cloud is not stepped over; the RMS gap and
 /// `samples` count the uniform ones. Normals are compared with their orientation (a flipped
 /// patch reports ~180 degrees).
 /// \throw ricci::InvalidInputError when samples_per_edge < 1.

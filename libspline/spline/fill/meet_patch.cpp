@@ -5,8 +5,10 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 #include "ricci/mesh/errors.h"
 #include "spline/fill/patch_domain.h"
@@ -31,19 +33,23 @@ struct Sample {
   Eigen::Vector3d patch_normal;
 };
 
+// Per filled rim (fills' order) and rim edge: the parameters its rows sample.
+using EdgeParameters = std::vector<std::vector<std::vector<double>>>;
+
 std::vector<Sample> rim_samples(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
-                                int per_edge) {
-  const std::vector<double> parameters = fill_detail::rim_edge_parameters(per_edge);
+                                const EdgeParameters& parameters) {
   struct At {
     const HoleFill* fill;
     int edge;
     double t;
   };
   std::vector<At> where;
-  for (const HoleFill& fill : fills) {
+  for (std::size_t i = 0; i < fills.size(); ++i) {
+    const HoleFill& fill = fills[i];
     if (!fill.g1) continue;  // a positions-only patch has no normals worth meeting
     for (int j = 0; j < static_cast<int>(fill.rim.edges.size()); ++j)
-      for (const double t : parameters) where.push_back({&fill, j, t});
+      for (const double t : parameters[i][static_cast<std::size_t>(j)])
+        where.push_back({&fill, j, t});
   }
   // Evaluated in parallel, each into its own slot; kept in order.
   std::vector<Sample> all(where.size());
@@ -108,17 +114,13 @@ Moved moved_functions(const std::vector<Sample>& samples) {
 
 }  // namespace
 
-MeetPatchResult meet_patches(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
-                             const MeetPatchOptions& options) {
-  if (options.samples_per_edge < 1 || !(options.position_weight >= 0.0) ||
-      !(options.change_weight > 0.0)) {
-    throw ricci::InvalidInputError(
-        "meet_patches: options out of range (samples_per_edge >= 1, position_weight >= 0, "
-        "change_weight > 0)");
-  }
+namespace {
+
+MeetPatchResult solve_meet(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
+                           const EdgeParameters& parameters, const MeetPatchOptions& options) {
   MeetPatchResult result;
   result.control_points = spline.control_points;
-  const std::vector<Sample> samples = rim_samples(spline, fills, options.samples_per_edge);
+  const std::vector<Sample> samples = rim_samples(spline, fills, parameters);
   const Moved moved = moved_functions(samples);
   const int unknowns = static_cast<int>(moved.functions.size());
   if (unknowns == 0) return result;
@@ -168,6 +170,64 @@ MeetPatchResult meet_patches(const ManifoldSpline& spline, const std::vector<Hol
   }
   result.moved_functions = unknowns;
   return result;
+}
+
+double largest_seam(const ManifoldSpline& spline, const std::vector<HoleFill>& fills) {
+  double worst = 0.0;
+  for (const HoleFill& fill : fills)
+    if (fill.g1) worst = std::max(worst, measure_seam(spline, fill).max_normal_jump_deg);
+  return worst;
+}
+
+}  // namespace
+
+MeetPatchResult meet_patches(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
+                             const MeetPatchOptions& options) {
+  if (options.samples_per_edge < 1 || !(options.position_weight >= 0.0) ||
+      !(options.change_weight > 0.0) || options.peak_rounds < 0) {
+    throw ricci::InvalidInputError(
+        "meet_patches: options out of range (samples_per_edge >= 1, position_weight >= 0, "
+        "change_weight > 0, peak_rounds >= 0)");
+  }
+  const std::vector<double> fixed = fill_detail::rim_edge_parameters(options.samples_per_edge);
+  EdgeParameters parameters;
+  for (const HoleFill& fill : fills)
+    parameters.emplace_back(fill.rim.edges.size(), fixed);
+  MeetPatchResult best = solve_meet(spline, fills, parameters, options);
+  if (options.peak_rounds == 0) return best;
+  ManifoldSpline moved = spline;
+  moved.control_points = best.control_points;
+  double best_seam = largest_seam(moved, fills);
+  for (int round = 0; round < options.peak_rounds; ++round) {
+    // Rows also where the moved surface's seam peaks between them (the rim edges in parallel).
+    std::vector<std::pair<std::size_t, int>> edges;
+    for (std::size_t i = 0; i < fills.size(); ++i) {
+      if (!fills[i].g1) continue;
+      for (int j = 0; j < static_cast<int>(fills[i].rim.edges.size()); ++j)
+        edges.emplace_back(i, j);
+    }
+    parallel_for(
+        edges.size(), 0,
+        [&](std::size_t e) {
+          const auto [i, j] = edges[e];
+          std::vector<double>& t = parameters[i][static_cast<std::size_t>(j)];
+          const std::vector<double> more =
+              fill_detail::seam_parameters(moved, fills[i], j, options.samples_per_edge);
+          std::vector<double> merged;
+          std::merge(t.begin(), t.end(), more.begin(), more.end(), std::back_inserter(merged));
+          merged.erase(std::unique(merged.begin(), merged.end()), merged.end());
+          t = std::move(merged);
+        },
+        1);
+    MeetPatchResult next = solve_meet(spline, fills, parameters, options);
+    moved.control_points = next.control_points;
+    const double seam = largest_seam(moved, fills);
+    if (seam < best_seam) {
+      best = std::move(next);
+      best_seam = seam;
+    }
+  }
+  return best;
 }
 
 }  // namespace spline

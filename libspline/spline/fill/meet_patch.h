@@ -34,6 +34,11 @@ struct MeetPatchOptions {
   /// Of the smallest-change rows; small, so that the tangency rows win, but non-zero so that
   /// functions the rows do not determine stay put.
   double change_weight = 0.1;
+  /// Solves again with rows added where the moved surface's seam peaks between the rows
+  /// (measure_seam's refined samples), this many times; the move with the smallest seam is
+  /// returned. The rows alone trade their mean for peaks between them: generated genus 8's
+  /// cone patch (82 rim edges) 6.5 degrees before the move, 17.1 after it, 2.7 after one round.
+  int peak_rounds = 1;
 };
 
 struct MeetPatchResult {

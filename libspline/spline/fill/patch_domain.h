@@ -104,4 +104,10 @@ inline constexpr int kRimEndRefinement = 8;
 inline constexpr int kRimEndSamples = 12;
 [[nodiscard]] std::vector<double> rim_edge_parameters(int per_edge);
 
+/// The parameters measure_seam samples rim edge `edge` of `fill` at: rim_edge_parameters(
+/// per_edge) and those its refinement adds where the surface's or the patch's normal turns fast
+/// between them. Sorted ascending.
+[[nodiscard]] std::vector<double> seam_parameters(const ManifoldSpline& spline,
+                                                  const HoleFill& fill, int edge, int per_edge);
+
 }  // namespace spline::fill_detail

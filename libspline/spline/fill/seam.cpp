@@ -14,15 +14,17 @@ namespace spline {
 
 namespace {
 
-// measure_seam's samples of one rim edge: rim_edge_parameters, refined by bisection where the
+// measure_seam's samples of one rim edge: rim_edge_parameters and kCloudSamples within 1.5
+// radii of each end vertex's knot cloud (in the edge's chart), refined by bisection where the
 // surface's or the patch's normal turns by more than kSeamTurnDeg between neighbouring samples,
 // down to kSeamMinStep of the edge and at most kSeamMaxSamplesPerEdge samples. Next to a large
 // cone the spline turns by degrees within a thousandth of a rim edge (inside the rim vertices'
-// knot clouds): generated genus 8's seam read 2.7 degrees at
-// the fixed samples, 13.2 at 16 times as many and 17.0 refined (docs/design-notes.md).
+// knot clouds): generated genus 8's seam read 2.7 degrees at the fixed samples, 13.2 at 16
+// times as many and 17.0 refined (docs/design-notes.md).
 constexpr double kSeamTurnDeg = 0.1;
 constexpr double kSeamMinStep = 1e-7;
 constexpr int kSeamMaxSamplesPerEdge = 1 << 14;
+constexpr int kCloudSamples = 64;
 
 struct SeamSample {
   double t = 0.0;
@@ -49,11 +51,39 @@ SeamSample seam_sample(const ManifoldSpline& spline, const HoleFill& fill, int e
   return sample;
 }
 
-// The samples of rim edge `edge`: those of rim_edge_parameters(per_edge) first, in order, then
-// the refined ones, unsorted.
+// The parameters within 1.5 knot-cloud radii of each end of the rim edge (in the edge's
+// chart), kCloudSamples steps each: the spline's pieces there are as small as the cloud, and a
+// wiggle can turn and come back between the graded samples of rim_edge_parameters.
+std::vector<double> cloud_parameters(const ManifoldSpline& spline, const RimEdge& rim_edge) {
+  const fill_detail::RimChartEdge in_chart = fill_detail::rim_chart_edge(*spline.space, rim_edge);
+  const auto clouds = spline.space->face_clouds(in_chart.chart, rim_edge.face);
+  const double length = (in_chart.end - in_chart.start).norm();
+  std::vector<double> parameters;
+  for (const int end : {0, 1}) {
+    const int corner = end == 0 ? rim_edge_start_corner(rim_edge) : rim_edge_end_corner(rim_edge);
+    const KnotCloud& cloud = clouds[static_cast<std::size_t>(corner)];
+    double radius = 0.0;
+    for (const Eigen::Vector2d& k : cloud.knots)
+      radius = std::max(radius, (k - cloud.knots[0]).norm());
+    const double reach = std::min(0.5, 1.5 * radius / length);
+    for (int i = 1; i <= kCloudSamples; ++i) {
+      const double t = reach * i / kCloudSamples;
+      parameters.push_back(end == 0 ? t : 1.0 - t);
+    }
+  }
+  return parameters;
+}
+
+// The samples of rim edge `edge`: those of rim_edge_parameters(per_edge) and cloud_parameters,
+// ascending, then the refined ones, unsorted.
 std::vector<SeamSample> seam_samples(const ManifoldSpline& spline, const HoleFill& fill,
                                      int edge, int per_edge) {
-  const std::vector<double> parameters = fill_detail::rim_edge_parameters(per_edge);
+  std::vector<double> parameters = fill_detail::rim_edge_parameters(per_edge);
+  const std::vector<double> near_ends =
+      cloud_parameters(spline, fill.rim.edges[static_cast<std::size_t>(edge)]);
+  parameters.insert(parameters.end(), near_ends.begin(), near_ends.end());
+  std::sort(parameters.begin(), parameters.end());
+  parameters.erase(std::unique(parameters.begin(), parameters.end()), parameters.end());
   std::vector<SeamSample> samples;
   samples.reserve(parameters.size());
   for (double t : parameters) samples.push_back(seam_sample(spline, fill, edge, t));
@@ -78,6 +108,14 @@ std::vector<SeamSample> seam_samples(const ManifoldSpline& spline, const HoleFil
 
 }  // namespace
 
+std::vector<double> fill_detail::seam_parameters(const ManifoldSpline& spline,
+                                                 const HoleFill& fill, int edge, int per_edge) {
+  std::vector<double> t;
+  for (const SeamSample& s : seam_samples(spline, fill, edge, per_edge)) t.push_back(s.t);
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
 SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int samples_per_edge) {
   if (samples_per_edge < 1) {
     throw ricci::InvalidInputError("measure_seam: samples_per_edge must be >= 1, got " +
@@ -88,7 +126,6 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
   const int m = static_cast<int>(fill.rim.edges.size());
   report.edge_normal_jump_deg.assign(static_cast<std::size_t>(m), 0.0);
   std::vector<double>& per_edge = report.edge_normal_jump_deg;
-  const std::size_t given = fill_detail::rim_edge_parameters(samples_per_edge).size();
   // The rim edges in parallel (each refines its own samples), the figures summed in order.
   std::vector<std::vector<SeamSample>> samples(static_cast<std::size_t>(m));
   parallel_for(
@@ -106,7 +143,7 @@ SeamReport measure_seam(const ManifoldSpline& spline, const HoleFill& fill, int 
       report.max_position_gap = std::max(report.max_position_gap, sample.gap);
       // The RMS weighs the rim evenly: the samples on the uniform grid only.
       const double on_grid = sample.t * samples_per_edge;
-      if (k >= given || std::abs(on_grid - std::nearbyint(on_grid)) > 1e-9) continue;
+      if (std::abs(on_grid - std::nearbyint(on_grid)) > 1e-9) continue;
       sum_squares += sample.gap * sample.gap;
       ++report.samples;
     }

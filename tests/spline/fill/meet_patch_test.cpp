@@ -80,8 +80,9 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
           largest_move, (moved.evaluate(p).position - fit.spline.evaluate(p).position).norm());
     }
   }
-  // Measured: 0.033 h (0.19 h for the control points), next to the rim's vertices.
-  EXPECT_LT(largest_move, 0.05 * h);
+  // Measured: 0.033 h (0.19 h for the control points), next to the rim's vertices; 0.055 h with
+  // the peak round (MeetPatchOptions::peak_rounds).
+  EXPECT_LT(largest_move, 0.08 * h);
   // Where the rows look (their 200 samples per edge) the seam drops (measured 3.62 -> 3.29
   // degrees; 3.53 -> 2.89 on h/large's layout: a least-squares compromise along the rim, which
   // moves its peak little); the position gap does not grow.
