@@ -112,10 +112,7 @@ Moved moved_functions(const std::vector<Sample>& samples) {
   return moved;
 }
 
-}  // namespace
-
-namespace {
-
+// The least-squares move for rows at `parameters` (meet_patch.h).
 MeetPatchResult solve_meet(const ManifoldSpline& spline, const std::vector<HoleFill>& fills,
                            const EdgeParameters& parameters, const MeetPatchOptions& options) {
   MeetPatchResult result;
@@ -198,14 +195,13 @@ MeetPatchResult meet_patches(const ManifoldSpline& spline, const std::vector<Hol
   ManifoldSpline moved = spline;
   moved.control_points = best.control_points;
   double best_seam = largest_seam(moved, fills);
+  std::vector<std::pair<std::size_t, int>> edges;  // (fill, rim edge) of the G1 patches
+  for (std::size_t i = 0; i < fills.size(); ++i) {
+    if (!fills[i].g1) continue;
+    for (int j = 0; j < static_cast<int>(fills[i].rim.edges.size()); ++j) edges.emplace_back(i, j);
+  }
   for (int round = 0; round < options.peak_rounds; ++round) {
     // Rows also where the moved surface's seam peaks between them (the rim edges in parallel).
-    std::vector<std::pair<std::size_t, int>> edges;
-    for (std::size_t i = 0; i < fills.size(); ++i) {
-      if (!fills[i].g1) continue;
-      for (int j = 0; j < static_cast<int>(fills[i].rim.edges.size()); ++j)
-        edges.emplace_back(i, j);
-    }
     parallel_for(
         edges.size(), 0,
         [&](std::size_t e) {

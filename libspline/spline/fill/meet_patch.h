@@ -15,7 +15,9 @@
 //   rows S(c + dc) = S(c) at the same samples (the rim, where patch and surface are welded,
 //     stays in place);
 //   change_weight * |dc| / h for every moved control point (h: the rims' mean 3D edge length):
-//     the smallest change.
+//     the smallest change;
+//   then (MeetPatchOptions::peak_rounds) the same rows again plus rows at measure_seam's samples
+//     of the moved surface, where it peaks between the first rows.
 // Unknowns: the control points of the functions that are non-zero at some sample (their
 // supports reach at most a ring beyond the rim; those of covered faces only change what the
 // patch hides). The spline stays C^2 (any control points give a smooth DMS spline); its fit to
