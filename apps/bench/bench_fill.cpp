@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/benchmarks.h"
@@ -149,9 +150,11 @@ void fill_model(const std::string& path, const spline::ScanFitOptions& fit_optio
   // What msp fit shows: the surface moved to meet the patches (meet_patch.h).
   const ricci::Stopwatch t;
   spline::ManifoldSpline met = fit.spline;
-  met.control_points = spline::meet_patches(fit.spline, fills).control_points;
+  spline::MeetPatchResult result = spline::meet_patches(fit.spline, fills);
+  met.control_points = std::move(result.control_points);
   for (std::size_t i = 0; i < fills.size(); ++i) {
-    const spline::SeamReport seam = spline::measure_seam(met, fills[i]);
+    const spline::SeamReport seam =
+        result.seams.empty() ? spline::measure_seam(met, fills[i]) : result.seams[i];
     std::printf("%-28s   after meet_patches: rim %zu jump_deg %.4f max_gap %.2e (%.2fs)\n",
                 name.c_str(), i, seam.max_normal_jump_deg, seam.max_position_gap, t.seconds());
   }

@@ -169,10 +169,19 @@ MeetPatchResult solve_meet(const ManifoldSpline& spline, const std::vector<HoleF
   return result;
 }
 
-double largest_seam(const ManifoldSpline& spline, const std::vector<HoleFill>& fills) {
+// measure_seam of every fill on `spline`.
+std::vector<SeamReport> measure_seams(const ManifoldSpline& spline,
+                                      const std::vector<HoleFill>& fills) {
+  std::vector<SeamReport> seams;
+  for (const HoleFill& fill : fills) seams.push_back(measure_seam(spline, fill));
+  return seams;
+}
+
+// The largest seam of the G1 patches (the ones the rows meet).
+double largest_seam(const std::vector<SeamReport>& seams, const std::vector<HoleFill>& fills) {
   double worst = 0.0;
-  for (const HoleFill& fill : fills)
-    if (fill.g1) worst = std::max(worst, measure_seam(spline, fill).max_normal_jump_deg);
+  for (std::size_t i = 0; i < fills.size(); ++i)
+    if (fills[i].g1) worst = std::max(worst, seams[i].max_normal_jump_deg);
   return worst;
 }
 
@@ -194,7 +203,8 @@ MeetPatchResult meet_patches(const ManifoldSpline& spline, const std::vector<Hol
   if (options.peak_rounds == 0) return best;
   ManifoldSpline moved = spline;
   moved.control_points = best.control_points;
-  double best_seam = largest_seam(moved, fills);
+  best.seams = measure_seams(moved, fills);
+  double best_seam = largest_seam(best.seams, fills);
   std::vector<std::pair<std::size_t, int>> edges;  // (fill, rim edge) of the G1 patches
   for (std::size_t i = 0; i < fills.size(); ++i) {
     if (!fills[i].g1) continue;
@@ -217,7 +227,8 @@ MeetPatchResult meet_patches(const ManifoldSpline& spline, const std::vector<Hol
         1);
     MeetPatchResult next = solve_meet(spline, fills, parameters, options);
     moved.control_points = next.control_points;
-    const double seam = largest_seam(moved, fills);
+    next.seams = measure_seams(moved, fills);
+    const double seam = largest_seam(next.seams, fills);
     if (seam < best_seam) {
       best = std::move(next);
       best_seam = seam;

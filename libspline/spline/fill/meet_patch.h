@@ -47,6 +47,9 @@ struct MeetPatchResult {
   Eigen::MatrixX3d control_points;  ///< the spline's, with the rims' neighbourhood moved
   int moved_functions = 0;
   double max_change = 0.0;  ///< max |dc| / h
+  /// With MeetPatchOptions::peak_rounds > 0: measure_seam (default samples) of every fill on the
+  /// returned control points, which the rounds were ranked by; empty otherwise.
+  std::vector<SeamReport> seams;
 };
 
 /// \pre every fill was made by fill_rim on `spline`'s space and mesh.

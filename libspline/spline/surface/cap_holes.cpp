@@ -20,13 +20,16 @@ void move_surface_to_patches(SplineSurface& surface) {
   auto& fills = surface.fills;
   if (fills.empty()) return;
   ManifoldSpline moved = surface.spline;
-  moved.control_points = meet_patches(surface.spline, fills).control_points;
-  std::vector<SeamReport> seams;
+  MeetPatchResult met = meet_patches(surface.spline, fills);
+  moved.control_points = std::move(met.control_points);
+  // The seams of the move, measured by meet_patches when it ranked its rounds.
+  std::vector<SeamReport> seams = std::move(met.seams);
+  if (seams.empty())
+    for (const auto& fill : fills) seams.push_back(measure_seam(moved, fill));
   double before = 0.0, after = 0.0;
-  for (const auto& fill : fills) {
-    seams.push_back(measure_seam(moved, fill));
-    before = std::max(before, fill.max_normal_jump_deg);
-    after = std::max(after, seams.back().max_normal_jump_deg);
+  for (std::size_t i = 0; i < fills.size(); ++i) {
+    before = std::max(before, fills[i].max_normal_jump_deg);
+    after = std::max(after, seams[i].max_normal_jump_deg);
   }
   if (!(after < before)) return;
   surface.spline = std::move(moved);

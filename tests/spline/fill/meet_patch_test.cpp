@@ -104,9 +104,19 @@ TEST(MeetPatches, SurfaceMeetsThePatchOfAFittedScan) {
   MeetPatchOptions rows_only;
   rows_only.peak_rounds = 0;
   ManifoldSpline plain = fit.spline;
-  plain.control_points = meet_patches(fit.spline, {fill}, rows_only).control_points;
+  const MeetPatchResult rows_met = meet_patches(fit.spline, {fill}, rows_only);
+  plain.control_points = rows_met.control_points;
   const double plain_seam = measure_seam(plain, fill, 200).max_normal_jump_deg;
   EXPECT_LT(after.max_normal_jump_deg, plain_seam);
+  // The rounds were ranked by the returned move's seams, which the caller reuses: those of
+  // measure_seam at its default samples; without rounds none are measured.
+  ASSERT_EQ(met.seams.size(), 1u);
+  const SeamReport measured = measure_seam(moved, fill);
+  EXPECT_EQ(met.seams[0].max_normal_jump_deg, measured.max_normal_jump_deg);
+  EXPECT_EQ(met.seams[0].edge_normal_jump_deg, measured.edge_normal_jump_deg);
+  EXPECT_EQ(met.seams[0].max_position_gap, measured.max_position_gap);
+  EXPECT_EQ(met.seams[0].rms_position_gap, measured.rms_position_gap);
+  EXPECT_TRUE(rows_met.seams.empty());
   // Far from the rim (a face no moved function reaches) the surface is the same.
   int checked = 0;
   for (int face : fit.spline.space->domain_faces()) {
